@@ -1,0 +1,36 @@
+# Two commands for a fresh machine (see README):
+#   make demo   set up .venv, derive the PUMA 560 and write its derivation to build/
+#   make test   set up .venv and run the whole test suite
+PYTHON ?= python3
+VENV   ?= .venv
+PY     := $(VENV)/bin/python
+STAMP  := $(VENV)/.installed-stamp
+
+.PHONY: demo test lint bench setup clean
+
+setup: $(STAMP)
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[test,notebooks,dask]'
+	$(PY) -m ipykernel install --sys-prefix --name python3 >/dev/null
+	touch $(STAMP)
+
+demo: $(STAMP)
+	$(VENV)/bin/dhsym derive puma560 --format text
+	$(VENV)/bin/dhsym derive puma560 --format markdown -o build/puma560.md
+	$(VENV)/bin/dhsym handout puma560 -o build/puma560.tex --pdf
+
+test: $(STAMP)
+	$(PY) -m pytest -q
+
+lint: $(STAMP)
+	$(VENV)/bin/ruff check dhsym tests benchmarks
+	$(VENV)/bin/ruff format --check dhsym tests benchmarks
+
+bench: $(STAMP)
+	$(PY) benchmarks/bench_core.py
+
+clean:
+	rm -rf $(VENV) build .pytest_cache

@@ -1,0 +1,50 @@
+"""dhsym: Denavit–Hartenberg tables to lecture-style closed-form kinematics.
+
+>>> import dhsym
+>>> robot = dhsym.load("planar2r")
+>>> robot.arm_matrix()[0, 3]
+a1*cos(theta1) + a2*cos(theta1 + theta2)
+"""
+
+from __future__ import annotations
+
+from importlib.metadata import PackageNotFoundError, version
+
+from .errors import ChainError, DHError, GeometryError, ParseError, TableError
+from .library import builtin_names, builtin_table, load, load_table, planar_chain
+from .notation import Notation
+from .pose import Pose
+from .robot import Robot
+from .table import AngleUnit, Convention, DHRow, DHTable, Elementary, JointType
+from .tablefile import dump_table, read_table, read_table_text
+
+try:
+    __version__ = version("dhsym")
+except PackageNotFoundError:  # running from a source tree that is not installed
+    __version__ = "0.0.0"
+
+__all__ = [
+    "AngleUnit",
+    "ChainError",
+    "Convention",
+    "DHError",
+    "DHRow",
+    "DHTable",
+    "Elementary",
+    "GeometryError",
+    "JointType",
+    "Notation",
+    "ParseError",
+    "Pose",
+    "Robot",
+    "TableError",
+    "__version__",
+    "builtin_names",
+    "builtin_table",
+    "dump_table",
+    "load",
+    "load_table",
+    "planar_chain",
+    "read_table",
+    "read_table_text",
+]

@@ -1,0 +1,59 @@
+"""Shared fixtures: symbols named as in the lectures."""
+
+from __future__ import annotations
+
+import pytest
+import sympy as sp
+
+
+@pytest.fixture
+def sym():
+    """Real symbols by name: ``sym("theta1")``."""
+
+    def make(name: str) -> sp.Symbol:
+        return sp.Symbol(name, real=True)
+
+    return make
+
+
+def _need(what: str, found: bool, hint: str) -> None:
+    """Skip a test whose tool is missing, except in CI (CI=true) where it must run."""
+    if found:
+        return
+    import os
+
+    if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
+        pytest.fail(f"{what} is required in CI but missing: {hint}")
+    pytest.skip(f"{what} not installed ({hint})")
+
+
+@pytest.fixture
+def need_tex():
+    """Require latexmk/pdflatex and pdftoppm (Debian: texlive-latex-* latexmk poppler-utils)."""
+    import shutil
+
+    ok = all(shutil.which(t) for t in ("latexmk", "pdflatex", "pdftoppm"))
+    _need("TeX", ok, "apt-get install texlive-latex-base texlive-latex-recommended "
+          "texlive-latex-extra latexmk poppler-utils")
+
+
+@pytest.fixture
+def need_chromium():
+    """Require headless Chromium (Debian: chromium)."""
+    import shutil
+
+    _need("Chromium", bool(shutil.which("chromium")), "apt-get install chromium")
+
+
+@pytest.fixture
+def need_jupyter():
+    """Require nbclient, nbconvert and a python3 Jupyter kernel."""
+    try:
+        import nbclient  # noqa: F401
+        import nbconvert  # noqa: F401
+        from jupyter_client.kernelspec import KernelSpecManager
+
+        ok = "python3" in KernelSpecManager().find_kernel_specs()
+    except Exception:  # noqa: BLE001 - any import/kernel problem means "not available"
+        ok = False
+    _need("Jupyter", ok, "pip install -e '.[test]' (nbclient, nbconvert, ipykernel)")
