@@ -257,7 +257,7 @@ def format_angle(value: sp.Expr, degrees: bool, latex: bool = True) -> str:
     return f"{head} {sign} {str(deg).lstrip('-')}{unit}"
 
 
-def _table_rows(table: object, latex: bool) -> tuple[list[str], list[list[str]]]:
+def _table_rows(table: object, latex: bool, box: bool = True) -> tuple[list[str], list[list[str]]]:
     from .table import AngleUnit, Convention
 
     t = table  # DHTable; imported lazily to keep this module free of cycles
@@ -285,7 +285,7 @@ def _table_rows(table: object, latex: bool) -> tuple[list[str], list[list[str]]]
                 cell = format_angle(value, deg, latex)
             else:
                 cell = Notation().latex(value) if latex else Notation().text(value)
-            if row.variable_field == name and latex:
+            if row.variable_field == name and latex and box:
                 cell = rf"\boxed{{{cell}}}"
             cells.append(cell)
         cells.append(row.joint.value)
@@ -320,11 +320,11 @@ def table_markdown(table: object) -> str:
     |---|---|---|---|---|---|
     | 1 | $\\theta_{1}$ | $0$ | $a_{1}$ | $0$ | R |
     """
-    heads, rows = _table_rows(table, latex=True)
+    heads, rows = _table_rows(table, latex=True, box=False)
     head = "| " + " | ".join(f"${h}$" if h != r"\text{joint}" else "joint" for h in heads) + " |"
     sep = "|" + "---|" * len(heads)
     lines = [head, sep]
     for r in rows:
-        cells = [r[0]] + [f"${c.replace(chr(92) + 'boxed', '')}$" for c in r[1:-1]] + [r[-1]]
+        cells = [r[0]] + [f"${c}$" for c in r[1:-1]] + [r[-1]]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)

@@ -9,8 +9,12 @@ Examples
 >>> P = Pose(Rz(t1), 0, 1, Notation.from_variables([t1]))
 >>> P.label_latex
 '{}^{0}T_{1}'
->>> P.text().splitlines()[0]
-'Matrix([[C1, -S1, 0, 0], [S1, C1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])'
+>>> print(P.text())
+Matrix([
+[C1, -S1, 0, 0],
+[S1,  C1, 0, 0],
+[ 0,   0, 1, 0],
+[ 0,   0, 0, 1]])
 >>> P.a
 Matrix([
 [0],

@@ -5,8 +5,12 @@ Examples
 >>> from dhsym.table import DHTable, DHRow
 >>> r = Robot(DHTable.from_rows([DHRow.revolute("theta1", a="a1"),
 ...                              DHRow.revolute("theta2", a="a2")], name="2R"))
->>> r.arm_matrix().text()
-'Matrix([[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0, 0, 1, 0], [0, 0, 0, 1]])'
+>>> print(r.arm_matrix().text())
+Matrix([
+[C12, -S12, 0, a1*C1 + a2*C12],
+[S12,  C12, 0, a1*S1 + a2*S12],
+[  0,    0, 1,              0],
+[  0,    0, 0,              1]])
 >>> r.transform(2, 0)[0, 3]
 -a1*cos(theta2) - a2
 >>> r.fk([0, 0], values={"a1": 1, "a2": 0.5})[0, 3]

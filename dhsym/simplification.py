@@ -225,7 +225,7 @@ def tidy_signs(expr: sp.Expr) -> sp.Expr:
 
     >>> a, b, c = sp.symbols("a b c", real=True)
     >>> tidy_signs(c * (-a - b) + 1)
-    1 - c*(a + b)
+    -c*(a + b) + 1
     """
     if expr.is_Atom or not isinstance(expr, sp.Expr):
         return expr

@@ -232,6 +232,7 @@ class Elementary:
         return f"{self.kind}{self.axis}({self.value})"
 
 
+_VAR_LIKE = re.compile(r"^(theta|th|q|d|t)_?\d+$")
 _VAR_NAMES = {
     "R": ("theta{i}", "theta_{i}", "q{i}", "q_{i}", "th{i}", "t{i}"),
     "P": ("d{i}", "d_{i}", "q{i}", "q_{i}"),
@@ -285,6 +286,11 @@ class DHRow:
             object.__setattr__(self, name, as_expr(getattr(self, name), field=name))
         if isinstance(self.variable, str):
             object.__setattr__(self, "variable", symbol(self.variable))
+        own = self.variable_field
+        if self.variable is None and own is not None:
+            candidates = getattr(self, own).free_symbols
+            if len(candidates) == 1:
+                object.__setattr__(self, "variable", next(iter(candidates)))
         if self.limits is not None:
             lo, hi = (as_expr(v, field="limits") for v in self.limits)
             object.__setattr__(self, "limits", (lo, hi))
@@ -299,8 +305,7 @@ class DHRow:
         """Constant part of the variable's entry (``theta3 + pi/2`` gives ``pi/2``)."""
         if self.variable is None or self.variable_field is None:
             return sp.Integer(0)
-        entry = getattr(self, self.variable_field)
-        return sp.expand(entry - self.variable) if entry.is_Add or entry == self.variable else 0
+        return sp.expand(getattr(self, self.variable_field) - self.variable)
 
     def params(self) -> dict[str, Expr]:
         """The four parameters by name."""
@@ -343,7 +348,8 @@ def _infer_variable(row: DHRow, index: int) -> sp.Symbol | None:
         return candidates[0]
     names = {p.format(i=index) for p in _VAR_NAMES[row.joint.value]}
     preferred = [s for s in candidates if s.name in names]
-    if len(preferred) == 1:
+    looks_like_variable = [s for s in candidates if _VAR_LIKE.match(s.name)]
+    if len(preferred) == 1 and looks_like_variable == preferred:
         return preferred[0]
     raise TableError(
         f"{own} = {entry} has {len(candidates)} candidate joint variables "

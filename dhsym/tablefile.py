@@ -38,6 +38,7 @@ dhsym.errors.TableError: arm.yaml: row 1, field alfa: unknown column 'alfa': exp
 
 from __future__ import annotations
 
+import json
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -45,7 +46,17 @@ import sympy as sp
 import yaml
 
 from .errors import DHError, TableError
-from .table import AngleUnit, Convention, DHRow, DHTable, Elementary, as_expr, to_radians
+from .notation import _exact_decimal
+from .table import (
+    AngleUnit,
+    Convention,
+    DHRow,
+    DHTable,
+    Elementary,
+    JointType,
+    as_expr,
+    to_radians,
+)
 
 __all__ = ["MAX_FILE_BYTES", "dump_table", "read_table", "read_table_text", "table_from_data"]
 
@@ -210,8 +221,8 @@ def _elementaries(data: object, where: str, unit: AngleUnit) -> tuple[Elementary
 def _plain(value: sp.Expr) -> object:
     if value.is_Integer:
         return int(value)
-    if value.is_Rational:
-        return float(value)
+    if value.is_Rational and _exact_decimal(value) is not None:
+        return float(_exact_decimal(value))  # type: ignore[arg-type]
     return str(value)
 
 
@@ -239,10 +250,9 @@ def dump_table(table: DHTable, *, angles: str | None = None) -> str:
         return str(sym) if const == 0 else f"{sym} + {const}".replace("+ -", "- ")
 
     lines = []
-    if table.name:
-        lines.append(f"name: {yaml.safe_dump(table.name, default_style=None).splitlines()[0]}")
-    if table.source:
-        lines.append(f"source: {yaml.safe_dump(table.source).splitlines()[0]}")
+    for key in ("name", "source"):
+        if getattr(table, key):
+            lines.append(f"{key}: {json.dumps(getattr(table, key), ensure_ascii=False)}")
     lines += [f"convention: {table.convention.value}", f"angles: {unit.value}", "joints:"]
     for row in table.rows:
         cells = {
@@ -255,10 +265,19 @@ def dump_table(table: DHTable, *, angles: str | None = None) -> str:
         own = row.variable_field
         if row.variable is not None and own and len(getattr(row, own).free_symbols) > 1:
             cells["q"] = str(row.variable)
+        if row.limits is not None:
+            conv = ang if row.joint is JointType.REVOLUTE else _plain
+            cells["limits"] = [conv(v) for v in row.limits]
+        if row.label:
+            cells["name"] = row.label
         lines.append("- " + yaml.safe_dump(cells, default_flow_style=True, sort_keys=False).strip())
+    if table.notes:
+        lines.append(f"notes: {json.dumps(table.notes, ensure_ascii=False)}")
     if table.values:
         vals = {str(k): _plain(v) for k, v in table.values}
-        lines.append("values: " + yaml.safe_dump(vals, default_flow_style=True).strip())
+        lines.append(
+            "values: " + yaml.safe_dump(vals, default_flow_style=True, sort_keys=False).strip()
+        )
     for where, seq in (("base", table.base), ("tool", table.tool)):
         if seq:
             steps = [
