@@ -165,7 +165,7 @@ class Notation:
 
         def order(item: tuple[str, LegendEntry]) -> tuple[int, int, str]:
             name = item[0]
-            return (name[:1].lower() != name[:1], len(name), name)
+            return (name[:1].islower(), len(name), name)
 
         return [entries[k] for k, _ in sorted(entries.items(), key=order)]
 
@@ -207,8 +207,28 @@ class _DHLatexPrinter(LatexPrinter):
         return self._print_trig(expr, exp)
 
     def _print_Rational(self, expr: sp.Rational) -> str:
-        dec = _exact_decimal(expr) if expr.q > 1 and expr.q % 10 == 0 else None
+        dec = _decimal(expr)
         return dec if dec is not None else super()._print_Rational(expr)
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        return _decimal_mul(self, expr, " ") or super()._print_Mul(expr)
+
+
+def _decimal(r: sp.Rational) -> str | None:
+    """Decimal text of a lecture number like 3001/20000 (denominator a multiple of 10)."""
+    return _exact_decimal(r) if r.q > 1 and r.q % 10 == 0 else None
+
+
+def _decimal_mul(printer: StrPrinter | LatexPrinter, expr: sp.Mul, sep: str) -> str | None:
+    """``0.15005*theta1`` instead of ``3001*theta1/20000``; None when not applicable."""
+    coeff, rest = expr.as_coeff_Mul()
+    dec = _decimal(coeff) if isinstance(coeff, sp.Rational) else None
+    if dec is None or rest == 1:
+        return None
+    body = printer._print(rest)
+    if rest.is_Add:
+        body = rf"\left({body}\right)" if sep == " " else f"({body})"
+    return f"{dec}{sep}{body}"
 
 
 class _DHStrPrinter(StrPrinter):
@@ -225,8 +245,11 @@ class _DHStrPrinter(StrPrinter):
     _print_sin = _print_trig
 
     def _print_Rational(self, expr: sp.Rational) -> str:
-        dec = _exact_decimal(expr) if expr.q > 1 and expr.q % 10 == 0 else None
+        dec = _decimal(expr)
         return dec if dec is not None else super()._print_Rational(expr)
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        return _decimal_mul(self, expr, "*") or super()._print_Mul(expr)
 
 
 # --- tables ---------------------------------------------------------------------------

@@ -20,21 +20,25 @@ np.float64(1.5)
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from functools import cache, cached_property
+from typing import TYPE_CHECKING
 
-import numpy as np
 import sympy as sp
 
 from .notation import Notation
-from .numeric import FkFunction, compile_pose
 from .parsing import symbol
 from .pose import Pose
 from .simplification import compose, numeric_equal, prove_equal
 from .table import Convention, DHTable, Elementary, JointType, as_expr
 from .transforms import chain_word, link_word, plain_product
 
+if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `import sympy`
+    import numpy as np
+
 __all__ = ["Robot"]
+
+FkFunction = Callable[[object], "np.ndarray"]
 
 
 class Robot:
@@ -140,6 +144,8 @@ class Robot:
             vals[symbol(k) if isinstance(k, str) else k] = as_expr(v, field="values")  # type: ignore[index]
         key = (pose.frm, pose.to, tuple(sorted((str(k), str(v)) for k, v in vals.items())))
         if key not in self._fk_cache:
+            from .numeric import compile_pose
+
             self._fk_cache[key] = compile_pose(pose.matrix, self.variables, vals)  # type: ignore[index]
         return self._fk_cache[key]  # type: ignore[index]
 
@@ -149,6 +155,8 @@ class Robot:
 
         With ``deg=True`` revolute joint values are in degrees.
         """
+        import numpy as np
+
         arr = np.asarray(q, dtype=float)
         if deg:
             arr = arr.copy()

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Debian packages that the handouts (TeX, pdftoppm) and the browser test (Chromium, MathJax) need.
+# Installs only what is missing; needs root (or sudo) and apt-get. Elsewhere it says what to install.
+set -euo pipefail
+PKGS=(make texlive-latex-base texlive-latex-recommended texlive-latex-extra latexmk poppler-utils
+      chromium libjs-mathjax)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+if ! command -v apt-get >/dev/null 2>&1; then
+  echo "note: install ${missing[*]} for PDF handouts and the browser test" >&2; exit 0
+fi
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
+    echo "note: run as root: apt-get install --no-install-recommends ${missing[*]}" >&2; exit 0
+  fi
+fi
+echo "installing Debian packages: ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q >/dev/null
+$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}" >/dev/null
