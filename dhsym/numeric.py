@@ -81,6 +81,7 @@ def compile_pose(
             block = flat[start : start + _CHUNK]
             for k, v in enumerate(fn(*Q[start : start + _CHUNK].T)):
                 block[:, k] = v  # cells are the first 12 entries of the row-major 4x4
+            block[:, :12] += 0.0  # -0.0 -> 0.0, so printed poses read cleanly
         return out[0] if single else out
 
     return fk
