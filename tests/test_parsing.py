@@ -238,7 +238,7 @@ def test_any_text_gives_an_expression_or_parse_error(text: str) -> None:
         assert isinstance(parse_expression(text), sympy.Expr)
     except ParseError as err:
         assert "\n" not in str(err)
-    assert time.process_time() - start < 0.5
+    assert time.process_time() - start < 2.0  # a hang guard, not a speed figure
 
 
 # --- hostile input ------------------------------------------------------------------------
@@ -293,7 +293,7 @@ def test_hostile_input_raises_parse_error_quickly(text: str) -> None:
     start = time.process_time()  # CPU time: the load of other processes does not count
     with pytest.raises(ParseError):
         parse_expression(text)
-    assert time.process_time() - start < 0.5
+    assert time.process_time() - start < 2.0  # a hang guard, not a speed figure
 
 
 @pytest.mark.parametrize("value", [b"x + 1", None, 3, ["x"]])
