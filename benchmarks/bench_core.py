@@ -48,20 +48,22 @@ def ops(M: sp.MatrixBase) -> int:
 
 def planar(ns: list[int], fu_max: int, trig_max: int) -> None:
     print("\n## Planar nR: arm matrix in closed form")
-    print(f"{'n':>3} {'dhsym s':>9} {'ops':>5} | {'trigsimp s':>10} {'ops':>5} {'ratio':>7} |"
-          f" {'fu s':>8} {'ops':>5} {'ratio':>7}")
+    print(
+        f"{'n':>3} {'dhsym s':>9} {'ops':>5} | {'trigsimp s':>10} {'ops':>5} {'ratio':>7} |"
+        f" {'fu s':>8} {'ops':>5} {'ratio':>7}"
+    )
     for n in ns:
         table = dhsym.planar_chain(n)
-        t_d, T = timed(lambda: dhsym.Robot(table).arm_matrix().matrix)
+        t_d, T = timed(lambda table=table: dhsym.Robot(table).arm_matrix().matrix)
         plain = plain_product(chain_word(table, 0, n))
         row = f"{n:>3} {t_d:9.4f} {ops(T):5d} |"
         if n <= trig_max:
-            t_t, Tt = timed(lambda: sp.trigsimp(plain))
+            t_t, Tt = timed(lambda plain=plain: sp.trigsimp(plain))
             row += f" {t_t:10.3f} {ops(Tt):5d} {t_t / t_d:6.0f}x |"
         else:
             row += f" {'skipped':>10} {'':5} {'':7} |"
         if n <= fu_max:
-            t_f, Tf = timed(lambda: plain.applyfunc(fu))
+            t_f, Tf = timed(lambda plain=plain: plain.applyfunc(fu))
             row += f" {t_f:8.3f} {ops(Tf):5d} {t_f / t_d:6.0f}x"
         else:
             row += f" {'skipped':>8}"
@@ -72,13 +74,16 @@ def puma() -> None:
     print("\n## PUMA 560 arm matrix (6R), derivation with simplification")
     for name in ("puma560", "puma560_modified"):
         table = dhsym.builtin_table(name)
-        t_cold, T = timed(lambda: dhsym.Robot(table).arm_matrix().matrix)
-        t_warm, T = timed(lambda: dhsym.Robot(table).arm_matrix().matrix, repeat=5)
+        t_cold, T = timed(lambda table=table: dhsym.Robot(table).arm_matrix().matrix)
+        t_warm, T = timed(lambda table=table: dhsym.Robot(table).arm_matrix().matrix, repeat=5)
         plain = plain_product(chain_word(table, 0, 6))
-        t_trig, Tt = timed(lambda: sp.trigsimp(plain))
-        print(f"{name:17s} dhsym cold {t_cold:.3f} s, warm {t_warm:.3f} s, ops {ops(T)} | "
-              f"trigsimp {t_trig:.2f} s, ops {ops(Tt)} | ratio cold {t_trig / t_cold:.0f}x, "
-              f"warm {t_trig / t_warm:.0f}x", flush=True)
+        t_trig, Tt = timed(lambda plain=plain: sp.trigsimp(plain))
+        print(
+            f"{name:17s} dhsym cold {t_cold:.3f} s, warm {t_warm:.3f} s, ops {ops(T)} | "
+            f"trigsimp {t_trig:.2f} s, ops {ops(Tt)} | ratio cold {t_trig / t_cold:.0f}x, "
+            f"warm {t_trig / t_warm:.0f}x",
+            flush=True,
+        )
 
 
 def numpy_baseline(table: dhsym.DHTable, Q: np.ndarray) -> np.ndarray:
@@ -110,8 +115,10 @@ def batch_fk(N: int) -> None:
     t_d, T = timed(lambda: f(Q), repeat=3)
     t_n, Tn = timed(lambda: numpy_baseline(table, Q), repeat=3)
     err = float(np.max(np.abs(T - Tn)))
-    print(f"dhsym {t_d:.3f} s ({N / t_d / 1e6:.1f} M configs/s) | numpy 4x4 stacks {t_n:.3f} s "
-          f"({N / t_n / 1e6:.1f} M/s) | ratio {t_n / t_d:.1f}x | max |diff| {err:.1e}")
+    print(
+        f"dhsym {t_d:.3f} s ({N / t_d / 1e6:.1f} M configs/s) | numpy 4x4 stacks {t_n:.3f} s "
+        f"({N / t_n / 1e6:.1f} M/s) | ratio {t_n / t_d:.1f}x | max |diff| {err:.1e}"
+    )
 
 
 def import_time(runs: int = 5) -> None:
@@ -127,8 +134,10 @@ def import_time(runs: int = 5) -> None:
 
     t_sympy = run("import sympy")
     t_dhsym = run("import dhsym")
-    print(f"import sympy {t_sympy:.3f} s | import dhsym {t_dhsym:.3f} s "
-          f"(ratio {t_dhsym / t_sympy:.2f})")
+    print(
+        f"import sympy {t_sympy:.3f} s | import dhsym {t_dhsym:.3f} s "
+        f"(ratio {t_dhsym / t_sympy:.2f})"
+    )
 
 
 def main() -> None:
@@ -136,8 +145,10 @@ def main() -> None:
     p.add_argument("--quick", action="store_true", help="skip slow baselines above 6R")
     p.add_argument("--n", type=int, default=1_000_000, help="configurations for batch fk")
     args = p.parse_args()
-    print(f"dhsym {dhsym.__version__}, sympy {sp.__version__}, numpy {np.__version__}, "
-          f"python {sys.version.split()[0]}")
+    print(
+        f"dhsym {dhsym.__version__}, sympy {sp.__version__}, numpy {np.__version__}, "
+        f"python {sys.version.split()[0]}"
+    )
     import_time()
     puma()
     planar([2, 3, 4, 6, 8, 12, 20], fu_max=6 if args.quick else 8, trig_max=6 if args.quick else 8)

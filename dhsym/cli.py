@@ -62,7 +62,9 @@ def _frames(robot: Robot, args: argparse.Namespace) -> tuple[int, int]:
     j = robot.n if args.to is None else args.to
     for k in (i, j):
         if not -1 <= k <= robot.n + 1:
-            raise DHError(f"frames of {robot.name} are 0 … {robot.n} (-1 world, {robot.n + 1} tool)")
+            raise DHError(
+                f"frames of {robot.name} are 0 … {robot.n} (-1 world, {robot.n + 1} tool)"
+            )
     return i, j
 
 
@@ -85,8 +87,14 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
     if 0 <= i < j <= robot.n:
         for k in range(i + 1, j + 1):
             L = robot.link_matrix(k)
-            links.append({"index": k, "label": L.label_text, "compact": grid(robot.notation.text, L.matrix),
-                          "matrix": grid(full.text, L.matrix)})
+            links.append(
+                {
+                    "index": k,
+                    "label": L.label_text,
+                    "compact": grid(robot.notation.text, L.matrix),
+                    "matrix": grid(full.text, L.matrix),
+                }
+            )
     return {
         "schema": JSON_SCHEMA_VERSION,
         "dhsym": __version__,
@@ -100,8 +108,10 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
         "compact": grid(robot.notation.text, pose.matrix),
         "latex": grid(robot.notation.latex, pose.matrix),
         "links": links,
-        "legend": [{"abbrev": e.text, "meaning": e.meaning_text}
-                   for e in robot.notation.legend(list(pose.matrix))],
+        "legend": [
+            {"abbrev": e.text, "meaning": e.meaning_text}
+            for e in robot.notation.legend(list(pose.matrix))
+        ],
         "count_ops": pose.count_ops(),
     }
 
@@ -147,8 +157,17 @@ def _cmd_fk(args: argparse.Namespace) -> int:
     q = _parse_q(args.q, len(robot.variables))
     T = robot.fk(q, deg=args.deg)
     if args.json:
-        print(json.dumps({"robot": robot.name, "variables": [str(v) for v in robot.variables],
-                          "q": q, "deg": bool(args.deg), "matrix": T.round(12).tolist()}))
+        print(
+            json.dumps(
+                {
+                    "robot": robot.name,
+                    "variables": [str(v) for v in robot.variables],
+                    "q": q,
+                    "deg": bool(args.deg),
+                    "matrix": T.round(12).tolist(),
+                }
+            )
+        )
     else:
         with np.printoptions(precision=6, suppress=True):
             print(T)

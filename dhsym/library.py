@@ -39,8 +39,12 @@ def planar_chain(n: int) -> DHTable:
     if not 1 <= n <= 60:
         raise DHError(f"planar chains have 1 to 60 joints; got {n}")
     rows = [DHRow.revolute(f"theta{k}", a=f"a{k}") for k in range(1, n + 1)]
-    return DHTable.from_rows(rows, name=f"Planar {n}R", angles="deg",
-                             source="seed 001, Examples 2 and 3, extended to n joints")
+    return DHTable.from_rows(
+        rows,
+        name=f"Planar {n}R",
+        angles="deg",
+        source="seed 001, Examples 2 and 3, extended to n joints",
+    )
 
 
 def builtin_table(name: str) -> DHTable:
@@ -54,7 +58,8 @@ def builtin_table(name: str) -> DHTable:
         return planar_chain(int(m.group(1)))
     raise DHError(
         f"no built-in robot or table file {name!r}: built-in robots are "
-        + ", ".join(builtin_names()) + ", planarNr"
+        + ", ".join(builtin_names())
+        + ", planarNr"
     )
 
 

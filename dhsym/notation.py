@@ -14,8 +14,8 @@ Examples
 'a1*C1 + a2*C12'
 >>> nota.latex(e)
 'a_{1} C_{1} + a_{2} C_{12}'
->>> Notation.from_variables([t1, t2], compact=False).latex(e)
-'a_{1} \\\\cos{\\\\left(\\\\theta_{1} \\\\right)} + a_{2} \\\\cos{\\\\left(\\\\theta_{1} + \\\\theta_{2} \\\\right)}'
+>>> print(Notation.from_variables([t1, t2], compact=False).latex(sp.cos(t1 + t2)))
+\\cos{\\left(\\theta_{1} + \\theta_{2} \\right)}
 """
 
 from __future__ import annotations
@@ -121,7 +121,9 @@ class Notation:
         cls, variables: Sequence[sp.Symbol], labels: Sequence[str] | None = None, **kw: bool
     ) -> Notation:
         """Notation whose joint angles are ``variables``, labelled 1, 2, … by default."""
-        labs = list(labels) if labels is not None else [str(i) for i in range(1, len(variables) + 1)]
+        labs = (
+            list(labels) if labels is not None else [str(i) for i in range(1, len(variables) + 1)]
+        )
         return cls(tuple(zip(variables, labs)), **kw)
 
     @property
@@ -329,8 +331,13 @@ def table_latex(table: object) -> str:
     heads, rows = _table_rows(table, latex=True)
     body = " \\\\\n".join(" & ".join(r) for r in rows)
     return (
-        "\\begin{array}{" + "c" * len(heads) + "}\n"
-        + " & ".join(heads) + " \\\\ \\hline\n" + body + "\n\\end{array}"
+        "\\begin{array}{"
+        + "c" * len(heads)
+        + "}\n"
+        + " & ".join(heads)
+        + " \\\\ \\hline\n"
+        + body
+        + "\n\\end{array}"
     )
 
 

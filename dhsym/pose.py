@@ -92,8 +92,13 @@ class Pose:
 
     def subs(self, values: dict) -> Pose:
         """A copy with values substituted (symbols to numbers or expressions)."""
-        return Pose(sp.ImmutableMatrix(self.matrix.subs(values)), self.frm, self.to,
-                    self.notation, self.symbol)
+        return Pose(
+            sp.ImmutableMatrix(self.matrix.subs(values)),
+            self.frm,
+            self.to,
+            self.notation,
+            self.symbol,
+        )
 
     def evalf(self, values: dict | None = None) -> sp.ImmutableMatrix:
         """Numerical matrix (sympy floats) at ``values``."""

@@ -125,7 +125,9 @@ class Robot:
 
     def tool_pose(self) -> Pose:
         """World to tool: base · ``^0T_n`` · tool (equals the arm matrix without them)."""
-        return self.transform(-1 if self.table.base else 0, self.n + 1 if self.table.tool else self.n)
+        return self.transform(
+            -1 if self.table.base else 0, self.n + 1 if self.table.tool else self.n
+        )
 
     def verify(self, i: int = 0, j: int | None = None, *, exact: bool = True) -> bool:
         """Check the compact ``^iT_j`` against the plain product (exactly, or at 20 points)."""
@@ -135,10 +137,18 @@ class Robot:
         return prove_equal(compact, plain) if exact else numeric_equal(compact, plain)
 
     # -- numbers ---------------------------------------------------------------------
-    def fk_function(self, i: int | None = None, j: int | None = None,
-                    values: Mapping[object, object] | None = None) -> FkFunction:
+    def fk_function(
+        self,
+        i: int | None = None,
+        j: int | None = None,
+        values: Mapping[object, object] | None = None,
+    ) -> FkFunction:
         """A compiled numeric function ``q -> ^iT_j`` (defaults: world to tool)."""
-        pose = self.tool_pose() if i is None and j is None else self.transform(i or 0, self.n if j is None else j)
+        pose = (
+            self.tool_pose()
+            if i is None and j is None
+            else self.transform(i or 0, self.n if j is None else j)
+        )
         vals = dict(self.table.value_map)
         for k, v in (values or {}).items():
             vals[symbol(k) if isinstance(k, str) else k] = as_expr(v, field="values")  # type: ignore[index]
@@ -149,9 +159,10 @@ class Robot:
             self._fk_cache[key] = compile_pose(pose.matrix, self.variables, vals)  # type: ignore[index]
         return self._fk_cache[key]  # type: ignore[index]
 
-    def fk(self, q: object, *, deg: bool = False,
-           values: Mapping[object, object] | None = None) -> np.ndarray:
-        """Tool pose for one configuration ``(n,)`` → ``(4, 4)`` or a batch ``(N, n)`` → ``(N, 4, 4)``.
+    def fk(
+        self, q: object, *, deg: bool = False, values: Mapping[object, object] | None = None
+    ) -> np.ndarray:
+        """Tool pose: one configuration ``(n,)`` → ``(4, 4)``; a batch ``(N, n)`` → ``(N, 4, 4)``.
 
         With ``deg=True`` revolute joint values are in degrees.
         """
@@ -160,7 +171,9 @@ class Robot:
         arr = np.asarray(q, dtype=float)
         if deg:
             arr = arr.copy()
-            mask = [r.joint is JointType.REVOLUTE for r in self.table.rows if r.variable is not None]
+            mask = [
+                r.joint is JointType.REVOLUTE for r in self.table.rows if r.variable is not None
+            ]
             arr[..., np.asarray(mask, dtype=bool)] *= math.pi / 180.0
         return self.fk_function(values=values)(arr)
 

@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .table import Elementary
-from .transforms import elementary_matrix, plain_product
+from .transforms import plain_product
 
 __all__ = [
     "Segment",
@@ -242,8 +242,9 @@ def tidy_signs(expr: sp.Expr) -> sp.Expr:
         for m, f in enumerate(factors):
             if not f.is_Add:
                 continue
-            flipped = sp.Mul(-1, *factors[:m], sp.Add(*[-t for t in f.args]), *factors[m + 1 :],
-                             evaluate=True)
+            flipped = sp.Mul(
+                -1, *factors[:m], sp.Add(*[-t for t in f.args]), *factors[m + 1 :], evaluate=True
+            )
             trial = sp.Add(*terms[:k], flipped, *terms[k + 1 :])
             ops = sp.count_ops(trial)
             if ops < best:
@@ -316,9 +317,7 @@ def _fold_pair(terms: list[sp.Expr]) -> list[sp.Expr] | None:
     return None
 
 
-def _combine(
-    kind: str, sig: tuple[object, ...], c1: sp.Expr, c2: sp.Expr
-) -> sp.Expr | None:
+def _combine(kind: str, sig: tuple[object, ...], c1: sp.Expr, c2: sp.Expr) -> sp.Expr | None:
     if kind == "cc":
         A, B = (list(sig[1]) * 2)[:2] if sig[2] else sorted(sig[1], key=sp.default_sort_key)
         if c2 == -c1:

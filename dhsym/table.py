@@ -99,9 +99,7 @@ class AngleUnit(str, Enum):
             return cls.DEG
         if key in ("rad", "radian", "radians"):
             return cls.RAD
-        raise TableError(
-            f"unknown angle unit {value!r}: expected 'deg' or 'rad'", field="angles"
-        )
+        raise TableError(f"unknown angle unit {value!r}: expected 'deg' or 'rad'", field="angles")
 
 
 class JointType(str, Enum):

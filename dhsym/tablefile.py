@@ -33,7 +33,7 @@ Examples
 >>> read_table_text("joints: [{type: R, theta: q1, d: 0, a: 0, alfa: 0}]", file="arm.yaml")
 Traceback (most recent call last):
 ...
-dhsym.errors.TableError: arm.yaml: row 1, field alfa: unknown column 'alfa': expected type, theta, d, a, alpha, q, limits, offset, name
+dhsym.errors.TableError: arm.yaml: row 1, field alfa: unknown column 'alfa': expected type, ...
 """
 
 from __future__ import annotations
@@ -63,7 +63,15 @@ __all__ = ["MAX_FILE_BYTES", "dump_table", "read_table", "read_table_text", "tab
 MAX_FILE_BYTES = 1_000_000
 _ROW_KEYS = ("type", "theta", "d", "a", "alpha", "q", "limits", "offset", "name")
 _TOP_KEYS = (
-    "name", "source", "convention", "angles", "joints", "values", "base", "tool", "notes",
+    "name",
+    "source",
+    "convention",
+    "angles",
+    "joints",
+    "values",
+    "base",
+    "tool",
+    "notes",
 )
 _ALIASES = {"θ": "theta", "α": "alpha", "joint": "type", "variable": "q", "th": "theta"}
 
@@ -93,7 +101,9 @@ def read_table_text(text: str, *, file: str | None = None) -> DHTable:
     except yaml.YAMLError as err:
         mark = getattr(err, "problem_mark", None)
         where = f" (line {mark.line + 1}, column {mark.column + 1})" if mark else ""
-        raise TableError(f"not valid YAML{where}: {getattr(err, 'problem', err)}", file=file) from None
+        raise TableError(
+            f"not valid YAML{where}: {getattr(err, 'problem', err)}", file=file
+        ) from None
     return table_from_data(data, file=file)
 
 
@@ -229,7 +239,8 @@ def _plain(value: sp.Expr) -> object:
 def dump_table(table: DHTable, *, angles: str | None = None) -> str:
     """Write a table as YAML text that :func:`read_table_text` reads back to the same table.
 
-    >>> t = read_table_text("angles: deg\\njoints: [{type: R, theta: q1 + 90, d: 0, a: 1, alpha: -90}]")
+    >>> row = "{type: R, theta: q1 + 90, d: 0, a: 1, alpha: -90}"
+    >>> t = read_table_text(f"angles: deg\\njoints: [{row}]")
     >>> print(dump_table(t), end="")
     convention: standard
     angles: deg

@@ -33,8 +33,12 @@ def need_tex():
     import shutil
 
     ok = all(shutil.which(t) for t in ("latexmk", "pdflatex", "pdftoppm"))
-    _need("TeX", ok, "apt-get install texlive-latex-base texlive-latex-recommended "
-          "texlive-latex-extra latexmk poppler-utils")
+    _need(
+        "TeX",
+        ok,
+        "apt-get install texlive-latex-base texlive-latex-recommended "
+        "texlive-latex-extra latexmk poppler-utils",
+    )
 
 
 @pytest.fixture

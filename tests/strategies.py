@@ -23,8 +23,13 @@ def dh_rows(draw: st.DrawFn, k: int) -> DHRow:
     if kind == "R":
         return DHRow.revolute(sp.Symbol(f"theta{k}", real=True) + theta_c, d=d_c, a=a, alpha=alpha)
     if kind == "P":
-        return DHRow.prismatic(sp.Symbol(f"d{k}", real=True) + d_c, theta=theta_c, a=a,
-                               alpha=alpha, variable=sp.Symbol(f"d{k}", real=True))
+        return DHRow.prismatic(
+            sp.Symbol(f"d{k}", real=True) + d_c,
+            theta=theta_c,
+            a=a,
+            alpha=alpha,
+            variable=sp.Symbol(f"d{k}", real=True),
+        )
     return DHRow.fixed(theta=theta_c, d=d_c, a=a, alpha=alpha)
 
 

@@ -75,6 +75,9 @@ def test_bad_table_file_names_file_row_field(tmp_path, capsys):
 
 
 def test_console_script_runs_without_traceback(tmp_path):
-    out = subprocess.run([sys.executable, "-m", "dhsym", "fk", "planar2r", "--q", "1"],
-                         capture_output=True, text=True)
+    out = subprocess.run(
+        [sys.executable, "-m", "dhsym", "fk", "planar2r", "--q", "1"],
+        capture_output=True,
+        text=True,
+    )
     assert out.returncode == 2 and "Traceback" not in out.stderr

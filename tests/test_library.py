@@ -9,8 +9,19 @@ import dhsym
 
 def test_builtin_names_cover_the_lectures():
     names = set(dhsym.builtin_names())
-    assert {"planar2r", "planar4r", "example1_rrp", "example4_6dof", "puma260", "puma560",
-            "puma560_modified", "stanford", "scara", "cylindrical", "cartesian"} <= names
+    assert {
+        "planar2r",
+        "planar4r",
+        "example1_rrp",
+        "example4_6dof",
+        "puma260",
+        "puma560",
+        "puma560_modified",
+        "stanford",
+        "scara",
+        "cylindrical",
+        "cartesian",
+    } <= names
 
 
 def test_load_by_name_is_case_insensitive():

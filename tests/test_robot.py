@@ -17,16 +17,20 @@ c, s = sp.cos, sp.sin
 
 def test_planar_2r_matches_seed_001():
     r = dhsym.load("planar2r")
-    H01 = sp.Matrix([[c(t1), -s(t1), 0, a1 * c(t1)], [s(t1), c(t1), 0, a1 * s(t1)],
-                     [0, 0, 1, 0], [0, 0, 0, 1]])
-    H12 = sp.Matrix([[c(t2), -s(t2), 0, a2 * c(t2)], [s(t2), c(t2), 0, a2 * s(t2)],
-                     [0, 0, 1, 0], [0, 0, 0, 1]])
-    T02 = sp.Matrix([
-        [c(t1 + t2), -s(t1 + t2), 0, a1 * c(t1) + a2 * c(t1 + t2)],
-        [s(t1 + t2), c(t1 + t2), 0, a1 * s(t1) + a2 * s(t1 + t2)],
-        [0, 0, 1, 0],
-        [0, 0, 0, 1],
-    ])
+    H01 = sp.Matrix(
+        [[c(t1), -s(t1), 0, a1 * c(t1)], [s(t1), c(t1), 0, a1 * s(t1)], [0, 0, 1, 0], [0, 0, 0, 1]]
+    )
+    H12 = sp.Matrix(
+        [[c(t2), -s(t2), 0, a2 * c(t2)], [s(t2), c(t2), 0, a2 * s(t2)], [0, 0, 1, 0], [0, 0, 0, 1]]
+    )
+    T02 = sp.Matrix(
+        [
+            [c(t1 + t2), -s(t1 + t2), 0, a1 * c(t1) + a2 * c(t1 + t2)],
+            [s(t1 + t2), c(t1 + t2), 0, a1 * s(t1) + a2 * s(t1 + t2)],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ]
+    )
     assert r.link_matrix(1).matrix == H01
     assert r.link_matrix(2).matrix == H12
     assert r.arm_matrix().matrix == T02  # structurally identical, not just equal
@@ -41,8 +45,11 @@ def test_example_4_link_matrices_match_seed_001():
     expected = [
         [[c(t1), 0, s(t1), 0], [s(t1), 0, -c(t1), 0], [0, 1, 0, d1]],
         [[c(t2), -s(t2), 0, a2 * c(t2)], [s(t2), c(t2), 0, a2 * s(t2)], [0, 0, 1, 0]],
-        [[c(t3 + sp.pi / 2), 0, s(t3 + sp.pi / 2), 0],
-         [s(t3 + sp.pi / 2), 0, -c(t3 + sp.pi / 2), 0], [0, 1, 0, 0]],
+        [
+            [c(t3 + sp.pi / 2), 0, s(t3 + sp.pi / 2), 0],
+            [s(t3 + sp.pi / 2), 0, -c(t3 + sp.pi / 2), 0],
+            [0, 1, 0, 0],
+        ],
         [[c(t4), 0, -s(t4), 0], [s(t4), 0, c(t4), 0], [0, -1, 0, d4]],
         [[c(t5), 0, s(t5), 0], [s(t5), 0, -c(t5), 0], [0, 1, 0, 0]],
         [[c(t6), -s(t6), 0, 0], [s(t6), c(t6), 0, 0], [0, 0, 1, d6]],
@@ -76,21 +83,29 @@ def test_puma560_reaches_the_nested_c23_form():
 c1, s1, c23, s23 = c(t1), s(t1), c(t2 + t3), s(t2 + t3)
 c2, s2 = c(t2), s(t2)
 c4, s4, c5, s5, c6, s6 = c(t4), s(t4), c(t5), s(t5), c(t6), s(t6)
-CRAIG = sp.Matrix([
-    [c1 * (c23 * (c4 * c5 * c6 - s4 * s6) - s23 * s5 * c6) + s1 * (s4 * c5 * c6 + c4 * s6),
-     c1 * (c23 * (-c4 * c5 * s6 - s4 * c6) + s23 * s5 * s6) + s1 * (c4 * c6 - s4 * c5 * s6),
-     -c1 * (c23 * c4 * s5 + s23 * c5) - s1 * s4 * s5,
-     c1 * (a2 * c2 + a3 * c23 - d4 * s23) - d3 * s1],
-    [s1 * (c23 * (c4 * c5 * c6 - s4 * s6) - s23 * s5 * c6) - c1 * (s4 * c5 * c6 + c4 * s6),
-     s1 * (c23 * (-c4 * c5 * s6 - s4 * c6) + s23 * s5 * s6) - c1 * (c4 * c6 - s4 * c5 * s6),
-     -s1 * (c23 * c4 * s5 + s23 * c5) + c1 * s4 * s5,
-     s1 * (a2 * c2 + a3 * c23 - d4 * s23) + d3 * c1],
-    [-s23 * (c4 * c5 * c6 - s4 * s6) - c23 * s5 * c6,
-     -s23 * (-c4 * c5 * s6 - s4 * c6) + c23 * s5 * s6,
-     s23 * c4 * s5 - c23 * c5,
-     -a3 * s23 - a2 * s2 - d4 * c23],
-    [0, 0, 0, 1],
-])
+CRAIG = sp.Matrix(
+    [
+        [
+            c1 * (c23 * (c4 * c5 * c6 - s4 * s6) - s23 * s5 * c6) + s1 * (s4 * c5 * c6 + c4 * s6),
+            c1 * (c23 * (-c4 * c5 * s6 - s4 * c6) + s23 * s5 * s6) + s1 * (c4 * c6 - s4 * c5 * s6),
+            -c1 * (c23 * c4 * s5 + s23 * c5) - s1 * s4 * s5,
+            c1 * (a2 * c2 + a3 * c23 - d4 * s23) - d3 * s1,
+        ],
+        [
+            s1 * (c23 * (c4 * c5 * c6 - s4 * s6) - s23 * s5 * c6) - c1 * (s4 * c5 * c6 + c4 * s6),
+            s1 * (c23 * (-c4 * c5 * s6 - s4 * c6) + s23 * s5 * s6) - c1 * (c4 * c6 - s4 * c5 * s6),
+            -s1 * (c23 * c4 * s5 + s23 * c5) + c1 * s4 * s5,
+            s1 * (a2 * c2 + a3 * c23 - d4 * s23) + d3 * c1,
+        ],
+        [
+            -s23 * (c4 * c5 * c6 - s4 * s6) - c23 * s5 * c6,
+            -s23 * (-c4 * c5 * s6 - s4 * c6) + c23 * s5 * s6,
+            s23 * c4 * s5 - c23 * c5,
+            -a3 * s23 - a2 * s2 - d4 * c23,
+        ],
+        [0, 0, 0, 1],
+    ]
+)
 
 
 def test_modified_puma560_equals_craigs_printed_closed_form():
@@ -124,8 +139,9 @@ def test_example_i_twist_180_standard_and_modified():
     r = dhsym.load("example1_rrp")
     T = r.arm_matrix().matrix
     # standard: the 180 twist lies between joints 2 and 3; theta1 + theta2 combine, z flips
-    assert T[:3, :3] == sp.Matrix([[c(t1 + t2), s(t1 + t2), 0],
-                                   [s(t1 + t2), -c(t1 + t2), 0], [0, 0, -1]])
+    assert T[:3, :3] == sp.Matrix(
+        [[c(t1 + t2), s(t1 + t2), 0], [s(t1 + t2), -c(t1 + t2), 0], [0, 0, -1]]
+    )
     assert r.verify()
     # read as a modified table the twist sits between joints 1 and 2: theta1 - theta2
     mod = dhsym.Robot(dhsym.DHTable(r.table.rows, dhsym.Convention.MODIFIED))

@@ -58,9 +58,11 @@ def test_transforms_chain(table, data):
     assert numeric_equal(T0i * Tij, T0j, tol=1e-11)
 
 
-@given(st.sampled_from([x, x + y, x - y, 2 * x, x + sp.pi / 3]),
-       st.sampled_from([y, z, y + z, -z, y - sp.pi / 7]),
-       st.sampled_from([1, r, -2 * r, sp.Rational(1, 3)]))
+@given(
+    st.sampled_from([x, x + y, x - y, 2 * x, x + sp.pi / 3]),
+    st.sampled_from([y, z, y + z, -z, y - sp.pi / 7]),
+    st.sampled_from([1, r, -2 * r, sp.Rational(1, 3)]),
+)
 def test_fold_sum_angles_keeps_value(A, B, k):
     e = k * (sp.cos(A) * sp.cos(B) - sp.sin(A) * sp.sin(B)) + k * sp.sin(A) * sp.cos(B)
     folded = fold_sum_angles(sp.expand(e))
@@ -87,15 +89,30 @@ def test_tidy_signs_keeps_value_and_saves_operations():
 
 def test_normalize_word_moves_tx_left_of_rx_and_merges():
     a, b = sp.symbols("a b", real=True)
-    word = [Elementary("R", "x", x), Elementary("T", "x", a), Elementary("T", "x", b),
-            Elementary("R", "z", 0), Elementary("R", "z", y), Elementary("R", "z", z)]
-    assert normalize_word(word) == (Elementary("T", "x", a + b), Elementary("R", "x", x),
-                                   Elementary("R", "z", y + z))
+    word = [
+        Elementary("R", "x", x),
+        Elementary("T", "x", a),
+        Elementary("T", "x", b),
+        Elementary("R", "z", 0),
+        Elementary("R", "z", y),
+        Elementary("R", "z", z),
+    ]
+    assert normalize_word(word) == (
+        Elementary("T", "x", a + b),
+        Elementary("R", "x", x),
+        Elementary("R", "z", y + z),
+    )
 
 
 def test_split_segments_keeps_half_turns_planar():
-    word = normalize_word([Elementary("R", "z", x), Elementary("R", "x", sp.pi),
-                           Elementary("R", "z", y), Elementary("R", "x", sp.pi / 2)])
+    word = normalize_word(
+        [
+            Elementary("R", "z", x),
+            Elementary("R", "x", sp.pi),
+            Elementary("R", "z", y),
+            Elementary("R", "x", sp.pi / 2),
+        ]
+    )
     segs = split_segments(word)
     assert [s.planar for s in segs] == [True, False]
     assert segs[0].angle == x - y

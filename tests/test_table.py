@@ -23,8 +23,13 @@ def test_rows_and_tables_are_frozen_values():
 
 
 def test_degree_conversion_is_exact():
-    for deg, rad in [(90, sp.pi / 2), (180, sp.pi), (-90, -sp.pi / 2), (45, sp.pi / 4),
-                     (30.5, sp.Rational(61, 360) * sp.pi)]:
+    for deg, rad in [
+        (90, sp.pi / 2),
+        (180, sp.pi),
+        (-90, -sp.pi / 2),
+        (45, sp.pi / 4),
+        (30.5, sp.Rational(61, 360) * sp.pi),
+    ]:
         assert to_radians(as_expr(deg), "deg") == rad
 
 
@@ -36,8 +41,9 @@ def test_enums_parse_synonyms():
 
 
 def test_variable_inference_prefers_the_rows_own_name():
-    t = DHTable.from_rows([DHRow.revolute("theta1"), DHRow.revolute("theta2"),
-                           DHRow.prismatic("a5 + d3")])
+    t = DHTable.from_rows(
+        [DHRow.revolute("theta1"), DHRow.revolute("theta2"), DHRow.prismatic("a5 + d3")]
+    )
     assert t.variables == (S("theta1"), S("theta2"), S("d3"))
     assert t.constants == (S("a5"),)
 

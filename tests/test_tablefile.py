@@ -29,7 +29,10 @@ def _err(text: str, file: str = "arm.yaml") -> str:
 def test_reads_the_documented_format():
     t = read_table_text(GOOD)
     assert t.name == "Planar 2R" and t.n == 2
-    assert t.value_map == {sp.Symbol("a1", real=True): 1, sp.Symbol("a2", real=True): sp.Rational(4, 5)}
+    assert t.value_map == {
+        sp.Symbol("a1", real=True): 1,
+        sp.Symbol("a2", real=True): sp.Rational(4, 5),
+    }
 
 
 def test_degrees_become_exact_radians():
@@ -41,8 +44,9 @@ def test_degrees_become_exact_radians():
 
 
 def test_offset_column_and_symbolic_twist():
-    t = read_table_text("angles: deg\njoints: [{type: R, theta: q1, d: 0, a: 0, alpha: alpha1, "
-                        "offset: 180}]")
+    t = read_table_text(
+        "angles: deg\njoints: [{type: R, theta: q1, d: 0, a: 0, alpha: alpha1, offset: 180}]"
+    )
     assert t.rows[0].theta == sp.Symbol("q1", real=True) + sp.pi
     assert t.rows[0].alpha == sp.Symbol("alpha1", real=True)
 
@@ -62,63 +66,113 @@ def test_every_builtin_cites_its_source():
 @pytest.mark.parametrize(
     ("text", "expected"),
     [
-        ("joints: [{type: R, theta: q1, d: 0, a: 0, alfa: 0}]",
-         "arm.yaml: row 1, field alfa: unknown column 'alfa'"),
-        ("joints: [{type: R, theta: q1, d: 0, a: 0}]",
-         "arm.yaml: row 1, field alpha: missing column 'alpha'"),
-        ("convention: craigish\njoints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}]",
-         "arm.yaml: field convention: unknown convention 'craigish'"),
-        ("angles: grad\njoints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}]",
-         "arm.yaml: field angles: unknown angle unit 'grad'"),
-        ("joints: [{type: R, theta: 0, d: 0, a: 1, alpha: 0}]",
-         "arm.yaml: row 1, field theta: revolute joint has no variable in theta"),
-        ("joints: [{type: R, theta: q1 + q2, d: 0, a: 1, alpha: 0}]",
-         "arm.yaml: row 1, field theta: theta = q1 + q2 has 2 candidate joint variables"),
-        ("joints: [{type: R, theta: 0, d: d1, a: 1, alpha: 0}]",
-         "d = d1 has a symbol: is this joint prismatic (type: P)?"),
-        ("joints: [{type: P, theta: q1, d: 0, a: 1, alpha: 0}]",
-         "arm.yaml: row 1, field d: prismatic joint has no variable in d (got 0); theta = q1"),
-        ("joints: [{type: R, theta: q1, d: q1, a: 1, alpha: 0}]",
-         "arm.yaml: row 1, field d: joint variable q1 of this revolute joint appears in d"),
-        ("joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 90}]",
-         "arm.yaml: row 1, field alpha: angle 90 is larger than 2*pi radians: is this table in "
-         "degrees? (set angles: deg)"),
-        ("joints: [{type: R, theta: q1, d: .nan, a: 0, alpha: 0}]",
-         "arm.yaml: row 1, field d: non-finite number"),
-        ("joints: [{type: R, theta: q1, d: .inf, a: 0, alpha: 0}]",
-         "arm.yaml: row 1, field d: non-finite number"),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: 0, alfa: 0}]",
+            "arm.yaml: row 1, field alfa: unknown column 'alfa'",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: 0}]",
+            "arm.yaml: row 1, field alpha: missing column 'alpha'",
+        ),
+        (
+            "convention: craigish\njoints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}]",
+            "arm.yaml: field convention: unknown convention 'craigish'",
+        ),
+        (
+            "angles: grad\njoints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}]",
+            "arm.yaml: field angles: unknown angle unit 'grad'",
+        ),
+        (
+            "joints: [{type: R, theta: 0, d: 0, a: 1, alpha: 0}]",
+            "arm.yaml: row 1, field theta: revolute joint has no variable in theta",
+        ),
+        (
+            "joints: [{type: R, theta: q1 + q2, d: 0, a: 1, alpha: 0}]",
+            "arm.yaml: row 1, field theta: theta = q1 + q2 has 2 candidate joint variables",
+        ),
+        (
+            "joints: [{type: R, theta: 0, d: d1, a: 1, alpha: 0}]",
+            "d = d1 has a symbol: is this joint prismatic (type: P)?",
+        ),
+        (
+            "joints: [{type: P, theta: q1, d: 0, a: 1, alpha: 0}]",
+            "arm.yaml: row 1, field d: prismatic joint has no variable in d (got 0); theta = q1",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: q1, a: 1, alpha: 0}]",
+            "arm.yaml: row 1, field d: joint variable q1 of this revolute joint appears in d",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 90}]",
+            "arm.yaml: row 1, field alpha: angle 90 is larger than 2*pi radians: is this table in "
+            "degrees? (set angles: deg)",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: .nan, a: 0, alpha: 0}]",
+            "arm.yaml: row 1, field d: non-finite number",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: .inf, a: 0, alpha: 0}]",
+            "arm.yaml: row 1, field d: non-finite number",
+        ),
         ("joints: []", "arm.yaml: field joints: the table has no joints"),
         ("name: x", "arm.yaml: field joints: missing 'joints'"),
-        ("joints: [{type: Q, theta: q1, d: 0, a: 0, alpha: 0}]",
-         "arm.yaml: row 1, field type: unknown joint type 'Q'"),
-        ("joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}, "
-         "{type: R, theta: q1, d: 0, a: 0, alpha: 0}]",
-         "arm.yaml: row 2, field theta: joint variable q1 is already the variable of row 1"),
-        ("joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}]\nvalues: {a9: 1}",
-         "arm.yaml: field values: symbol a9 does not appear in the table"),
-        ("joints: [{type: R, theta: q1, d: 0, a: a1, alpha: 0}]\nvalues: {q1: 1}",
-         "arm.yaml: field values: q1 is a joint variable"),
-        ("joints: [{type: R, theta: q1, d: 0, a: a1, alpha: 0}]\nvalues: {a1: x}",
-         "arm.yaml: field values.a1: value of a1 must be a number"),
-        ("joints: [{type: R, theta: q1, d: '__import__(\"os\")', a: 0, alpha: 0}]",
-         "arm.yaml: row 1, field d: name '__import__' at column 1"),
-        ("joints: [{type: R, theta: q1, d: 'open(\"x\")', a: 0, alpha: 0}]",
-         "arm.yaml: row 1, field d: reserved name 'open'"),
-        ("joints: [{type: R, theta: q1, d: 0, a: true, alpha: 0}]",
-         "arm.yaml: row 1, field a: expected a number or expression, got True"),
-        ("joints: [{type: R, theta: q1, d: 0, a: [1], alpha: 0}]",
-         "arm.yaml: row 1, field a: expected a number or expression, got list"),
+        (
+            "joints: [{type: Q, theta: q1, d: 0, a: 0, alpha: 0}]",
+            "arm.yaml: row 1, field type: unknown joint type 'Q'",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}, "
+            "{type: R, theta: q1, d: 0, a: 0, alpha: 0}]",
+            "arm.yaml: row 2, field theta: joint variable q1 is already the variable of row 1",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}]\nvalues: {a9: 1}",
+            "arm.yaml: field values: symbol a9 does not appear in the table",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: a1, alpha: 0}]\nvalues: {q1: 1}",
+            "arm.yaml: field values: q1 is a joint variable",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: a1, alpha: 0}]\nvalues: {a1: x}",
+            "arm.yaml: field values.a1: value of a1 must be a number",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: '__import__(\"os\")', a: 0, alpha: 0}]",
+            "arm.yaml: row 1, field d: name '__import__' at column 1",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 'open(\"x\")', a: 0, alpha: 0}]",
+            "arm.yaml: row 1, field d: reserved name 'open'",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: true, alpha: 0}]",
+            "arm.yaml: row 1, field a: expected a number or expression, got True",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: [1], alpha: 0}]",
+            "arm.yaml: row 1, field a: expected a number or expression, got list",
+        ),
         ("joints: {type: R}", "arm.yaml: field joints: 'joints' must be a list of rows"),
         ("joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}", "arm.yaml: not valid YAML (line"),
         ("- 1\n- 2", "arm.yaml: expected a mapping with a 'joints' list"),
-        ("joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0, limits: [10, -10]}]",
-         "arm.yaml: row 1, field limits: limits [10, -10]: low is above high"),
-        ("joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}]\nbase: [{Qz: 1}]",
-         "arm.yaml: field base: step 1: unknown transform 'Qz'"),
-        ("angles: deg\njoints: [{type: R, theta: q1 + pi, d: 0, a: 0, alpha: 0}]",
-         "arm.yaml: row 1: angles are in degrees but pi contains pi"),
-        ("joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}]\ncolour: red",
-         "arm.yaml: field colour: unknown key 'colour'"),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0, limits: [10, -10]}]",
+            "arm.yaml: row 1, field limits: limits [10, -10]: low is above high",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}]\nbase: [{Qz: 1}]",
+            "arm.yaml: field base: step 1: unknown transform 'Qz'",
+        ),
+        (
+            "angles: deg\njoints: [{type: R, theta: q1 + pi, d: 0, a: 0, alpha: 0}]",
+            "arm.yaml: row 1: angles are in degrees but pi contains pi",
+        ),
+        (
+            "joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0}]\ncolour: red",
+            "arm.yaml: field colour: unknown key 'colour'",
+        ),
     ],
 )
 def test_bad_input_names_file_row_and_field(text, expected):

@@ -17,12 +17,14 @@ def test_standard_link_matrix_is_seed_001_and_002():
     # seed 001 "Example 4" general matrix; seed 002 "Arm Matrix for the Standard DH"
     row = DHRow(dhsym.JointType.REVOLUTE, th, d, a, al)
     A = link_matrix(row, Convention.STANDARD)
-    expected = sp.Matrix([
-        [c(th), -s(th) * c(al), s(th) * s(al), a * c(th)],
-        [s(th), c(th) * c(al), -c(th) * s(al), a * s(th)],
-        [0, s(al), c(al), d],
-        [0, 0, 0, 1],
-    ])
+    expected = sp.Matrix(
+        [
+            [c(th), -s(th) * c(al), s(th) * s(al), a * c(th)],
+            [s(th), c(th) * c(al), -c(th) * s(al), a * s(th)],
+            [0, s(al), c(al), d],
+            [0, 0, 0, 1],
+        ]
+    )
     assert sp.expand(A - expected) == sp.zeros(4)
     assert A == Rz(th) * Tz(d) * Tx(a) * Rx(al)
 
@@ -31,20 +33,23 @@ def test_modified_link_matrix_is_seed_000_eq10_with_the_correct_sign():
     # seed 000 eq. (10) and seed 002; one slide of seed 002 prints +d_i sin(alpha_{i-1})
     row = DHRow(dhsym.JointType.REVOLUTE, th, d, am, alm)
     T = link_matrix(row, Convention.MODIFIED)
-    expected = sp.Matrix([
-        [c(th), -s(th), 0, am],
-        [s(th) * c(alm), c(th) * c(alm), -s(alm), -s(alm) * d],
-        [s(th) * s(alm), c(th) * s(alm), c(alm), c(alm) * d],
-        [0, 0, 0, 1],
-    ])
+    expected = sp.Matrix(
+        [
+            [c(th), -s(th), 0, am],
+            [s(th) * c(alm), c(th) * c(alm), -s(alm), -s(alm) * d],
+            [s(th) * s(alm), c(th) * s(alm), c(alm), c(alm) * d],
+            [0, 0, 0, 1],
+        ]
+    )
     assert sp.expand(T - expected) == sp.zeros(4)
     assert T[1, 3] == -d * s(alm)  # entry (2,4): minus, not the slide's plus
     assert T[1, 3] != d * s(alm)
 
 
 def test_modified_factors_are_seed_002_transformations_1_to_4():
-    r = dhsym.Robot(DHTable.from_rows([DHRow(dhsym.JointType.REVOLUTE, th, d, am, alm)],
-                                      convention="modified"))
+    r = dhsym.Robot(
+        DHTable.from_rows([DHRow(dhsym.JointType.REVOLUTE, th, d, am, alm)], convention="modified")
+    )
     f = [p.matrix for p in r.link_factors(1)]
     assert f == [Rx(alm), Tx(am), Rz(th), Tz(d)]
     assert f[0] * f[1] * f[2] * f[3] == link_matrix(r.table.rows[0], Convention.MODIFIED)
@@ -71,8 +76,9 @@ def test_chain_word_inverse_reverses_and_inverts():
 
 
 def test_chain_word_includes_base_and_tool():
-    table = DHTable.from_rows([DHRow.revolute("q1")],
-                              base=(Elementary("T", "z", 1),), tool=(Elementary("T", "x", 2),))
+    table = DHTable.from_rows(
+        [DHRow.revolute("q1")], base=(Elementary("T", "z", 1),), tool=(Elementary("T", "x", 2),)
+    )
     assert chain_word(table, -1, 2)[0] == Elementary("T", "z", 1)
     assert chain_word(table, -1, 2)[-1] == Elementary("T", "x", 2)
     assert chain_word(table, 0, 1) == chain_word(table, 0, 1)[:4]
