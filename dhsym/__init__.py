@@ -18,6 +18,25 @@ from .robot import Robot
 from .table import AngleUnit, Convention, DHRow, DHTable, Elementary, JointType
 from .tablefile import dump_table, read_table, read_table_text
 
+# Names whose modules import numpy or matplotlib load on first use (PEP 562), so that
+# `import dhsym` costs little more than `import sympy`.
+_LAZY = {
+    "animate_path": "animation",
+    "joint_path": "animation",
+    "frame_origins": "plotting",
+    "plot_robot": "plotting",
+    "plot_workspace": "plotting",
+}
+
+
+def __getattr__(name: str) -> object:
+    if name in _LAZY:
+        import importlib
+
+        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    raise AttributeError(f"module 'dhsym' has no attribute {name!r}")
+
+
 try:
     __version__ = version("dhsym")
 except PackageNotFoundError:  # running from a source tree that is not installed
@@ -39,12 +58,17 @@ __all__ = [
     "Robot",
     "TableError",
     "__version__",
+    "animate_path",
     "builtin_names",
     "builtin_table",
     "dump_table",
+    "frame_origins",
+    "joint_path",
     "load",
     "load_table",
     "planar_chain",
+    "plot_robot",
+    "plot_workspace",
     "read_table",
     "read_table_text",
 ]

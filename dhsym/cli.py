@@ -212,7 +212,7 @@ def _extensions() -> list[Callable[[argparse._SubParsersAction], None]]:
     """Sub-commands contributed by other modules (handout, plot, check, grade, convert)."""
     found = []
     here = Path(__file__).parent
-    for module in ("rendering", "plotting", "checking.cli", "conversion"):
+    for module in ("rendering", "plotting", "notebooks", "checking.cli", "conversion"):
         if not (here / (module.replace(".", "/") + ".py")).exists():
             continue
         mod = importlib.import_module(f"dhsym.{module}")
@@ -221,10 +221,26 @@ def _extensions() -> list[Callable[[argparse._SubParsersAction], None]]:
     return found
 
 
+def _glue_negative_values(argv: list[str]) -> list[str]:
+    """``--q -30,45`` would read as an option: glue it to ``--q=-30,45``."""
+    out: list[str] = []
+    k = 0
+    while k < len(argv):
+        tok = argv[k]
+        nxt = argv[k + 1] if k + 1 < len(argv) else ""
+        if tok == "--q" and nxt.startswith("-") and nxt[1:2].isdigit() | (nxt[1:2] == "."):
+            out.append(f"--q={nxt}")
+            k += 2
+            continue
+        out.append(tok)
+        k += 1
+    return out
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args = parser.parse_args(_glue_negative_values(list(sys.argv[1:] if argv is None else argv)))
     try:
         return int(args.func(args))
     except DHError as err:
