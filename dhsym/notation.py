@@ -180,7 +180,9 @@ class Notation:
         lab = angle_label(arg, self.label_map)
         if lab is not None:
             letter = letter if self.upper else letter.lower()
-            return f"{letter}_{{{lab}}}" if latex else f"{letter}{lab}"
+            if latex:
+                return f"{letter}_{{{lab}}}"
+            return f"{letter}[{lab}]" if "-" in lab else f"{letter}{lab}"
         if isinstance(arg, sp.Symbol):
             small = letter.lower()
             if latex:
@@ -209,7 +211,7 @@ class _DHLatexPrinter(LatexPrinter):
         return self._print_trig(expr, exp)
 
     def _print_Rational(self, expr: sp.Rational) -> str:
-        dec = _decimal(expr)
+        dec = _exact_decimal(expr) if expr.q > 1 else None
         return dec if dec is not None else super()._print_Rational(expr)
 
     def _print_Mul(self, expr: sp.Mul) -> str:
@@ -247,7 +249,7 @@ class _DHStrPrinter(StrPrinter):
     _print_sin = _print_trig
 
     def _print_Rational(self, expr: sp.Rational) -> str:
-        dec = _decimal(expr)
+        dec = _exact_decimal(expr) if expr.q > 1 else None
         return dec if dec is not None else super()._print_Rational(expr)
 
     def _print_Mul(self, expr: sp.Mul) -> str:

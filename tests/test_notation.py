@@ -15,7 +15,7 @@ nota = Notation.from_variables(t)
 def test_sum_and_difference_labels():
     assert nota.text(sp.cos(t[0] + t[1])) == "C12"
     assert nota.text(sp.sin(t[1] + t[2])) == "S23"
-    assert nota.text(sp.cos(t[0] + t[1] - t[3])) == "C12-4"
+    assert nota.text(sp.cos(t[0] + t[1] - t[3])) == "C[12-4]"
     assert nota.latex(sp.cos(t[0] - t[1])) == "C_{1-2}"
     assert nota.latex(sp.sin(t[0]) ** 2) == "S_{1}^{2}"
 
@@ -47,6 +47,8 @@ def test_lowercase_craig_style_and_full_form():
 def test_exact_decimals_print_as_decimals():
     assert nota.text(sp.Rational("0.15005") * t[0]) == "0.15005*theta1"
     assert nota.latex(sp.Rational(1, 3)) == r"\frac{1}{3}"
+    assert nota.latex(sp.Rational(4, 5)) == "0.8"
+    assert nota.text(sp.Rational(1, 2) * t[0]) == "theta1/2"
 
 
 def test_legend_lists_each_abbreviation_once():
