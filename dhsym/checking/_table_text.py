@@ -1,0 +1,278 @@
+r"""Pasted DH tables (Markdown, CSV, tab or space separated) and YAML answers, as DHTable.
+
+Headers are matched loosely (``θ``, ``$\Theta$``, ``theta_i``, ``alpha_{i-1}``,
+``Link``, ``J``, ``joint angle``); a header with ``i-1`` means the modified
+convention.  Angle cells may carry ``°``/``^\circ``; unmarked numbers are degrees
+when the header says so, when another cell is marked, or when one is above 2π.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from collections.abc import Mapping
+from dataclasses import replace
+
+import sympy as sp
+import yaml
+
+from dhsym.errors import DHError, ParseError, TableError
+from dhsym.parsing import normalize_name, parse_expression
+from dhsym.table import Convention, DHRow, DHTable, JointType, to_radians
+from dhsym.tablefile import table_from_data
+
+from ._limits import AnswerLimits, UnreadableAnswer
+from .latex_input import flatten_subscripts, is_latex, latex_to_text
+from .names import NameContext
+
+__all__ = ["grid_table", "yaml_table"]
+
+_COLUMNS = {
+    "theta": {"theta", "th", "jointangle", "angle", "θ"},
+    "d": {"d", "jointdistance", "linkoffset", "jointoffset", "distance"},
+    "a": {"a", "r", "linklength", "length"},
+    "alpha": {"alpha", "twist", "linktwist"},
+    "label": {"", "link", "joint", "j", "l", "n", "no", "#", "frame", "axis", "linkjoint"},
+    "type": {"type", "jointtype", "kind", "rp", "r/p", "sigma"},
+    "offset": {"offset"},
+    "q": {"q", "variable", "var", "jointvariable"},
+}
+_LOOKUP = {alias: col for col, aliases in _COLUMNS.items() for alias in aliases}
+_SEPARATOR = re.compile(r"^\s*\|?\s*:?-{2,}:?\s*(\|\s*:?-{2,}:?\s*)*\|?\s*$")
+_DEGREE_MARK = re.compile(r"\^\s*\{?\s*\\circ\s*\}?|°|\\degree|\bdeg(rees?)?\b", re.IGNORECASE)
+_TWO_PI = 2 * math.pi + 1e-6
+_MAX_YAML_NODES = 20_000
+
+
+def _column(header: str) -> tuple[str, str | None, bool | None]:
+    """(column name, unit, modified?) of one header cell."""
+    t = header.strip().strip("$").strip()
+    unit = "deg" if _DEGREE_MARK.search(t) else ("rad" if re.search(r"rad", t, re.I) else None)
+    t = re.sub(r"[(\[][^)\]]*(deg|rad|°|m|mm|cm|in)[^)\]]*[)\]]", "", t, flags=re.I)
+    t = re.sub(r"\\(?:var)?([A-Za-z]+)", r"\1", t)
+    t = normalize_name(t)
+    modified = True if re.search(r"i\s*-\s*1|im1", t) else None
+    if modified is None and re.search(r"_\{?\s*i\s*\}?\s*$", t):
+        modified = False
+    key = re.sub(r"[_{}\s()\[\]$.^]", "", t).lower()
+    key = re.sub(r"(i-1|im1|i\+1|i)$", "", key) if key not in ("i",) else ""
+    if key not in _LOOKUP:
+        shown = header.strip()[:40]
+        raise TableError(
+            f"unknown column {shown!r}: expected θ (theta), d, a, α (alpha), "
+            "and optionally Link, type, offset"
+        )
+    return _LOOKUP[key], unit, modified
+
+
+def _split(line: str, mode: str) -> list[str]:
+    if mode == "|":
+        return line.strip().strip("|").split("|")
+    if mode == "\t":
+        return line.rstrip("\r\n ").split("\t")
+    if mode in ",;":
+        return next(csv.reader([line], delimiter=mode))
+    return re.findall(r"\$[^$]*\$|\S+", line)
+
+
+def _mode(header: str) -> str:
+    for mode in ("|", "\t", ",", ";"):
+        if mode in header:
+            return mode
+    return " "
+
+
+def _cell(text: str, ctx: NameContext, limits: AnswerLimits, row: int, field: str) -> tuple:
+    """(expression, degree-marked?) of one cell."""
+    raw = text.strip()
+    if not raw:
+        raise TableError("empty cell", row=row, field=field)
+    marked = bool(_DEGREE_MARK.search(raw))
+    if marked:
+        raw = _DEGREE_MARK.sub("", raw)
+    src = latex_to_text(raw) if is_latex(raw) else flatten_subscripts(raw.replace("**", "^"))
+    try:
+        expr = parse_expression(src, resolve=ctx.table_resolve, limits=limits.parse)
+    except ParseError as err:
+        raise TableError(err.message, row=row, field=field) from None
+    return expr, marked
+
+
+def _constant(expr: sp.Expr) -> float:
+    const = sum((t for t in sp.Add.make_args(expr) if not t.free_symbols), sp.Integer(0))
+    return abs(float(const)) if not const.has(sp.pi) else 0.0
+
+
+def _to_rad(expr: sp.Expr, degrees: bool, row: int, field: str) -> sp.Expr:
+    if not degrees or expr.has(sp.pi):  # a cell with pi is in radians whatever the table says
+        return expr
+    try:
+        return to_radians(expr, "deg")
+    except DHError as err:
+        raise TableError(err.message, row=row, field=field) from None
+
+
+def _joint(cells: Mapping[str, sp.Expr], typed: str | None, row: int) -> JointType:
+    if typed is not None:
+        try:
+            return JointType.parse(typed.strip().strip("$"))
+        except TableError as err:
+            raise err.located(row=row) from None
+    if cells["theta"].free_symbols:
+        return JointType.REVOLUTE
+    if cells["d"].free_symbols:
+        return JointType.PRISMATIC
+    return JointType.FIXED
+
+
+def grid_table(
+    text: str, ctx: NameContext, convention: Convention, limits: AnswerLimits
+) -> DHTable:
+    """Read a Markdown, CSV, tab- or space-separated table with a header row."""
+    lines = []
+    for line in text.splitlines():
+        stripped = line.strip()
+        if (
+            not stripped
+            or stripped.startswith("```")
+            or stripped in ("$$",)
+            or _SEPARATOR.match(line)
+        ):
+            continue
+        m = re.match(r"^\s*convention\s*[:=]\s*(\S+)\s*$", line, re.I)
+        if m:
+            convention = Convention.parse(m[1])
+            continue
+        lines.append(line)
+    if len(lines) < 2:
+        raise UnreadableAnswer("expected a table: a header row (θ, d, a, α) and one row per joint")
+    if len(lines) - 1 > limits.max_rows:
+        raise UnreadableAnswer(f"the table has {len(lines) - 1} rows; at most {limits.max_rows}")
+    mode = _mode(lines[0])
+    headers = _split(lines[0], mode)
+    if len(headers) > limits.max_columns:
+        raise UnreadableAnswer(
+            f"the table has {len(headers)} columns; at most {limits.max_columns}"
+        )
+    columns = [_column(h) for h in headers]
+    names = [c[0] for c in columns]
+    for need in ("theta", "d", "a", "alpha"):
+        if need not in names:
+            raise TableError(f"missing column {need!r}: a DH table has θ, d, a and α")
+    dup = {n for n in names if names.count(n) > 1 and n != "label"}
+    if dup:
+        raise TableError(f"column {sorted(dup)[0]!r} appears twice")
+    hints = {c[2] for c in columns if c[0] in ("a", "alpha") and c[2] is not None}
+    if hints == {True}:
+        convention = Convention.MODIFIED
+    elif hints == {False}:
+        convention = Convention.STANDARD
+    units = {c[0]: c[1] for c in columns}
+    raw_rows = []
+    for r, line in enumerate(lines[1:], start=1):
+        cells = _split(line, mode)
+        if len(cells) != len(headers) and mode == " ":
+            cells = re.split(r"\s{2,}", line.strip())
+        if len(cells) != len(headers):
+            raise TableError(f"{len(cells)} cells, but the header has {len(headers)}", row=r)
+        raw_rows.append(dict(zip(names, cells)))
+    parsed = []
+    for r, raw in enumerate(raw_rows, start=1):
+        parsed.append(
+            {
+                k: _cell(raw[k], ctx, limits, r, k)
+                for k in ("theta", "d", "a", "alpha", "offset")
+                if k in raw
+            }
+        )
+    degrees = {}
+    for field in ("theta", "alpha"):
+        marked = any(p[field][1] for p in parsed)
+        big = any(_constant(p[field][0]) > _TWO_PI for p in parsed)
+        degrees[field] = units.get(field) == "deg" or (
+            units.get(field) != "rad" and (marked or big)
+        )
+    shared = degrees["theta"] or degrees["alpha"]
+    rows = []
+    for r, (raw, p) in enumerate(zip(raw_rows, parsed), start=1):
+        vals = {}
+        for field in ("theta", "d", "a", "alpha"):
+            expr, marked = p[field]
+            if field in ("theta", "alpha"):
+                deg = marked or degrees[field] or (shared and units.get(field) != "rad")
+                expr = _to_rad(expr, deg, r, field)
+            vals[field] = expr
+        joint = _joint(vals, raw.get("type"), r)
+        if "offset" in p:
+            own = "d" if joint is JointType.PRISMATIC else "theta"
+            off = p["offset"][0]
+            if own == "theta":
+                off = _to_rad(off, p["offset"][1] or degrees["theta"], r, "offset")
+            vals[own] = vals[own] + off
+        kw = {}
+        if "q" in raw and raw["q"].strip():
+            kw["variable"] = _cell(raw["q"], ctx, limits, r, "q")[0]
+        try:
+            rows.append(DHRow(joint, vals["theta"], vals["d"], vals["a"], vals["alpha"], **kw))
+        except DHError as err:
+            raise TableError(err.message, row=r, field=err.field) from None
+    try:
+        return DHTable(tuple(rows), convention, name="answer", angles="deg" if shared else "rad")
+    except DHError as err:
+        raise TableError(err.message, row=err.row, field=err.field) from None
+
+
+def _count_nodes(data: object, budget: int) -> int:
+    """Visit a YAML value (aliases counted every time they are used); stop past ``budget``."""
+    todo, seen = [data], 0
+    while todo:
+        item = todo.pop()
+        seen += 1
+        if seen > budget:
+            raise UnreadableAnswer("the YAML answer is too large (too many values or aliases)")
+        if isinstance(item, Mapping):
+            todo.extend(item.keys())
+            todo.extend(item.values())
+        elif isinstance(item, (list, tuple)):
+            todo.extend(item)
+        elif isinstance(item, str) and len(item) > 20_000:
+            raise UnreadableAnswer("a YAML value is too long")
+    return seen
+
+
+def _renamed(table: DHTable, ctx: NameContext) -> DHTable:
+    """The table with the student's spellings of symbols (``a_2``, ``q1``) as the key's."""
+    syms = set(table.variables) | set(table.constants)
+    mapping = {s: ctx.symbol(s.name) for s in syms}
+    mapping = {s: k for s, k in mapping.items() if k is not None and k != s}
+    if not mapping:
+        return table
+    rows = []
+    for row in table.rows:
+        new = {k: v.xreplace(mapping) for k, v in row.params().items()}
+        var = mapping.get(row.variable, row.variable) if row.variable is not None else None
+        rows.append(replace(row, **new, variable=var))
+    values = tuple((mapping.get(k, k), v) for k, v in table.values)
+    return replace(table, rows=tuple(rows), values=values)
+
+
+def yaml_table(
+    text: str, ctx: NameContext, convention: Convention, limits: AnswerLimits
+) -> DHTable:
+    """Read the YAML table format (:mod:`dhsym.tablefile`); no convention means the key's."""
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as err:
+        mark = getattr(err, "problem_mark", None)
+        where = f" (line {mark.line + 1})" if mark else ""
+        raise TableError(f"not valid YAML{where}: {getattr(err, 'problem', err)}") from None
+    _count_nodes(data, _MAX_YAML_NODES)
+    if not isinstance(data, Mapping):
+        raise TableError("expected a mapping with a 'joints' list at the top level")
+    if isinstance(data.get("joints"), list) and len(data["joints"]) > limits.max_rows:
+        raise UnreadableAnswer(f"the table has more than {limits.max_rows} rows")
+    data = dict(data)
+    data.setdefault("convention", convention.value)
+    data.pop("name", None), data.pop("notes", None), data.pop("source", None)
+    return _renamed(table_from_data(data), ctx)

@@ -1,0 +1,260 @@
+r"""Reading answers: text from files or strings, expressions, matrices and DH tables.
+
+Every reader takes untrusted text and either returns sympy objects or raises a
+:class:`~dhsym.errors.DHError` (``UnreadableAnswer``, ``ParseError``,
+``TableError``) that says what was wrong: size and type are checked first, plain
+math goes through :func:`dhsym.parsing.parse_expression` with the key's
+:class:`~dhsym.checking.names.NameContext` as ``resolve`` hook, LaTeX through
+:mod:`dhsym.checking.latex_input`, tables through :mod:`dhsym.tablefile` or the
+pasted-table reader :mod:`dhsym.checking._table_text`.
+
+Examples
+--------
+>>> from dhsym import load_table
+>>> ctx = NameContext.from_table(load_table("planar2r"))
+>>> read_expression("a1*c1 + a2*C12", ctx)
+a1*cos(theta1) + a2*cos(theta1 + theta2)
+>>> read_expression(r"p_x = a_1 C_1 + a_2 C_{12}", ctx)
+a1*cos(theta1) + a2*cos(theta1 + theta2)
+>>> read_matrix("[[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0,0,1,0]]",
+...             ctx)[1, 3]
+a1*sin(theta1) + a2*sin(theta1 + theta2)
+>>> read_table("| Link | θ | α | a | d |\n|---|---|---|---|---|\n| 1 | θ1 | 0 | a1 | 0 |\n"
+...            "| 2 | θ2 | 0 | a2 | 0 |", ctx).rows[1]
+DHRow(R: theta=theta2, d=0, a=a2, alpha=0)
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import sympy as sp
+
+from dhsym.errors import DHError, ParseError, TableError
+from dhsym.parsing import parse_expression
+from dhsym.table import Convention, DHTable
+
+from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
+from ._table_text import grid_table, yaml_table
+from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
+from .names import NameContext
+
+__all__ = [
+    "NameContext",
+    "expression_cell",
+    "matrix_cells",
+    "parse_cell",
+    "read_answer_file",
+    "read_expression",
+    "read_matrix",
+    "read_table",
+    "read_text",
+]
+
+_UNICODE = str.maketrans({"−": "-", "–": "-", "·": "*", "×": "*", "⋅": "*", "\u00a0": " "})
+_MATRIX_WRAPPER = re.compile(r"^\s*(?:sp\.|sympy\.)?(?:Immutable)?Matrix\s*\((.*)\)\s*$", re.DOTALL)
+
+
+def read_text(data: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
+    """Check size and encoding of an answer and return it as text.
+
+    >>> read_text(b"\\x00\\x01\\xff")
+    Traceback (most recent call last):
+    ...
+    dhsym.checking._limits.UnreadableAnswer: the answer is not text (binary data)
+    """
+    size = len(data) if isinstance(data, bytes) else len(data.encode("utf-8", "replace"))
+    if size > limits.max_bytes:
+        raise UnreadableAnswer(f"the answer is {size} bytes; at most {limits.max_bytes} are read")
+    if isinstance(data, bytes):
+        if b"\x00" in data:
+            raise UnreadableAnswer("the answer is not text (binary data)")
+        try:
+            data = data.decode("utf-8")
+        except UnicodeDecodeError:
+            raise UnreadableAnswer("the answer is not UTF-8 text") from None
+    if not isinstance(data, str):
+        raise UnreadableAnswer(f"expected text, got {type(data).__name__}")
+    if "\x00" in data:
+        raise UnreadableAnswer("the answer is not text (binary data)")
+    text = data.lstrip("\ufeff").translate(_UNICODE)
+    if not text.strip():
+        raise UnreadableAnswer("the answer is empty")
+    return text
+
+
+def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
+    """Read an answer file: its size is checked before anything is read."""
+    p = Path(path)
+    try:
+        size = p.stat().st_size
+        if size > limits.max_bytes:
+            raise UnreadableAnswer(
+                f"the answer file is {size} bytes; at most {limits.max_bytes} are read"
+            )
+        with p.open("rb") as fh:
+            data = fh.read(limits.max_bytes + 1)
+    except OSError as err:
+        raise UnreadableAnswer(f"cannot read the answer file: {err.strerror}") from None
+    return read_text(data, limits)
+
+
+def _cell_text(cell: str) -> str:
+    """One cell or expression as parser text (LaTeX translated, subscripts flattened)."""
+    cell = cell.strip()
+    if is_latex(cell):
+        return latex_to_text(cell)
+    cell = cell.replace("**", "^")
+    if "=" in cell:
+        cell = cell.rsplit("=", 1)[1]
+    return flatten_subscripts(cell)
+
+
+def _parse(cell: str, ctx: NameContext, limits: AnswerLimits, where: str) -> sp.Expr:
+    try:
+        return parse_expression(_cell_text(cell), resolve=ctx.resolve, limits=limits.parse)
+    except ParseError as err:
+        raise ParseError(f"{where}: {err.message}") from None
+
+
+def expression_cell(text: str, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
+    """The text of a single-entry answer (a 1×1 LaTeX matrix is unwrapped)."""
+    text = read_text(text, limits)
+    cells = latex_matrix_cells(text) if is_latex(text) else None
+    if cells is not None:
+        if len(cells) != 1 or len(cells[0]) != 1:
+            raise UnreadableAnswer("expected a single expression, got a matrix")
+        text = cells[0][0]
+    return text
+
+
+def read_expression(
+    text: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+) -> sp.Expr:
+    """One entry (``p_x``, an element of a matrix) in plain math or LaTeX."""
+    return parse_cell(expression_cell(text, limits), ctx, limits)
+
+
+def parse_cell(
+    cell: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS, where: str = ""
+) -> sp.Expr:
+    """One cell (plain math or LaTeX) as an expression, names resolved by ``ctx``."""
+    return _parse(cell, ctx, limits, where or "the answer")
+
+
+def _split_top(text: str, seps: str) -> list[str]:
+    """Split at separators that are outside parentheses and brackets."""
+    out, depth, start = [], 0, 0
+    for k, ch in enumerate(text):
+        if ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+        elif ch in seps and depth == 0:
+            out.append(text[start:k])
+            start = k + 1
+    out.append(text[start:])
+    return out
+
+
+def _plain_cells(text: str) -> list[list[str]]:
+    """Cells of a plain-text matrix: ``[[…], […]]``, ``[a, b; c, d]`` or one row per line."""
+    m = _MATRIX_WRAPPER.match(text)
+    if m:
+        text = m[1]
+    if "=" in text:
+        text = text.rsplit("=", 1)[1]
+    body = text.strip()
+    if body.startswith("[") and body.endswith("]"):
+        inner = body[1:-1].strip()
+        if inner.startswith("["):
+            rows = [r.strip() for r in _split_top(inner, ",") if r.strip()]
+            if not all(r.startswith("[") and r.endswith("]") for r in rows):
+                raise UnreadableAnswer("expected rows in brackets: [[a, b, …], [c, d, …], …]")
+            return [_split_top(r[1:-1], ",") for r in rows]
+        body = inner
+    lines = [ln for ln in re.split(r"[;\n]|\\\\", body) if ln.strip()]
+    out = []
+    for line in lines:
+        line = line.strip().strip("|")
+        for seps in ("&", "\t", "|", ","):
+            parts = _split_top(line, seps)
+            if len(parts) > 1:
+                break
+        else:
+            parts = re.split(r"\s{2,}", line)
+            if len(parts) == 1:
+                words = line.split()
+                if all(re.fullmatch(r"[-+]?[0-9.]+(?:e[-+]?[0-9]+)?", w) for w in words):
+                    parts = words
+        out.append(parts)
+    return out
+
+
+def read_matrix(
+    text: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+) -> sp.ImmutableMatrix:
+    r"""A 4×4 homogeneous matrix (or its top three rows) in plain math or LaTeX.
+
+    >>> from dhsym import load_table
+    >>> ctx = NameContext.from_table(load_table("planar2r"))
+    >>> read_matrix("C1 -S1 0 0", ctx)
+    Traceback (most recent call last):
+    ...
+    dhsym.checking._limits.UnreadableAnswer: expected a 4×4 matrix (or its top 3 rows), got 1 row of 1 cell
+    """  # noqa: E501
+    cells = matrix_cells(text, limits)
+    entries = [
+        [_parse(c, ctx, limits, f"entry ({i},{j})") for j, c in enumerate(row, 1)]
+        for i, row in enumerate(cells, 1)
+    ]
+    if len(cells) == 3:
+        entries.append([sp.Integer(0)] * 3 + [sp.Integer(1)])
+    return sp.ImmutableMatrix(entries)
+
+
+def matrix_cells(text: str, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> list[list[str]]:
+    """The cells of a matrix answer as the student wrote them (3 or 4 rows of 4).
+
+    >>> matrix_cells(r"$\\begin{pmatrix} c_1 & -s_1 & 0 & 0 \\\\ s_1 & c_1 & 0 & 0 \\\\"
+    ...              r" 0&0&1&0 \\end{pmatrix}$")[1]
+    ['s_1', 'c_1', '0', '0']
+    """
+    text = read_text(text, limits)
+    cells = latex_matrix_cells(text) if is_latex(text) else None
+    if cells is None:
+        cells = _plain_cells(text)
+    if len(cells) > limits.max_rows or any(len(r) > limits.max_columns for r in cells):
+        raise UnreadableAnswer("the matrix has too many rows or columns")
+    shape = (len(cells), len({len(r) for r in cells}) == 1 and len(cells[0]) or 0)
+    if shape not in ((4, 4), (3, 4)):
+        widths = sorted({len(r) for r in cells})
+        got = f"{len(cells)} row{'s' * (len(cells) != 1)} of " + "/".join(map(str, widths))
+        raise UnreadableAnswer(
+            f"expected a 4×4 matrix (or its top 3 rows), got {got} cell" + ("s" * (widths != [1]))
+        )
+    return cells
+
+
+def read_table(
+    text: str,
+    ctx: NameContext,
+    convention: Convention | str = Convention.STANDARD,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+) -> DHTable:
+    """A DH table: the YAML table format, CSV, or a pasted Markdown / plain-text table.
+
+    Columns may come in any order with headers like ``theta``, ``θ``, ``$\\theta_i$``,
+    ``alpha_{i-1}``, ``Link``, ``J``; angles in degrees or radians.  Headers with
+    ``i-1`` mean the modified convention, otherwise ``convention`` (the key's).
+    """
+    text = read_text(text, limits)
+    try:
+        if re.search(r"^\s*joints\s*:", text, re.MULTILINE):
+            return yaml_table(text, ctx, Convention.parse(convention), limits)
+        return grid_table(text, ctx, Convention.parse(convention), limits)
+    except (TableError, ParseError, UnreadableAnswer):
+        raise
+    except DHError as err:
+        raise TableError(str(err)) from None

@@ -1,0 +1,374 @@
+r"""Checking one answer against a key: read it, compare it, explain it.
+
+Examples
+--------
+>>> key = Key.load("planar2r", "T0_2")
+>>> r = check_answer(key, r"\begin{bmatrix} C_{12} & -S_{12} & 0 & a_1 C_1 + a_2 C_{12} \\"
+...                       r" S_{12} & C_{12} & 0 & a_1 S_1 + a_2 S_{12} \\ 0&0&1&0 \\ 0&0&0&1"
+...                       r"\end{bmatrix}")
+>>> r.verdict.value, r.entries[3].proof
+('correct', 'exact')
+>>> r = check_answer(key, "[[C12, -S12, 0, a1*C1 - a2*C12], [S12, C12, 0, a1*S1 + a2*S12],"
+...                       " [0, 0, 1, 0]]")
+>>> r.verdict.value, r.kinds, r.diagnoses[0].entries
+('incorrect', ('wrong_sign',), ((1, 4),))
+>>> check_answer(key, "__import__('os').system('ls')").verdict.value
+'unreadable'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+
+from dhsym.errors import DHError
+from dhsym.library import load_table
+from dhsym.notation import format_angle
+from dhsym.robot import Robot
+from dhsym.table import AngleUnit, Convention, DHTable
+
+from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
+from .answers import expression_cell, matrix_cells, parse_cell, read_table
+from .equivalence import (
+    EXACT_RTOL,
+    ROUNDING_RTOL,
+    Sample,
+    close,
+    has_decimals,
+    prove_entry,
+    values,
+)
+from .mistakes import MatrixCase, TableCase, diagnose_matrix, diagnose_table
+from .names import NameContext
+from .questions import Question
+from .tables import compare_tables
+from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
+
+__all__ = ["Key", "PreparedKey", "check_answer", "prepare", "table_cells"]
+
+
+@dataclass(frozen=True)
+class Key:
+    """The key of one question: a DH table and what is asked about it.
+
+    ``tool_free`` accepts another tool frame (last frame) in a table answer.
+    """
+
+    table: DHTable
+    question: Question
+    name: str = ""
+    tool_free: bool = False
+
+    @classmethod
+    def load(
+        cls, ref: str | Path | DHTable, question: str | Question, *, tool_free: bool = False
+    ) -> Key:
+        """A key from a built-in robot name, a table file or a table."""
+        table = ref if isinstance(ref, DHTable) else load_table(ref)
+        q = question if isinstance(question, Question) else Question.parse(question, table.n)
+        name = table.name or (Path(ref).stem if not isinstance(ref, DHTable) else "")
+        return cls(table, q, name, tool_free)
+
+
+@dataclass(eq=False)
+class PreparedKey:
+    """What checking many answers to one key shares: the robot, names, samples, caches."""
+
+    key: Key
+    robot: Robot
+    names: NameContext
+    expected: sp.ImmutableMatrix | None = None
+    expected_text: tuple[tuple[str, str], ...] = ()
+    samples: dict[str, Sample] = field(default_factory=dict)
+    key_values: dict[str, np.ndarray] = field(default_factory=dict)
+    cache: dict = field(default_factory=dict)
+
+    def sample_for(self, answer: sp.Basic) -> str:
+        """``valued`` (the table's numbers for its lengths) when the answer uses none of
+        the symbols that have numbers, else ``symbolic`` (random values for every symbol)."""
+        valued = set(self.key.table.value_map)
+        if valued and not (answer.free_symbols & valued):
+            return "valued"
+        return "symbolic"
+
+
+@lru_cache(maxsize=64)
+def prepare(key: Key) -> PreparedKey:
+    """Prepare a key once per process (memoised: keys are frozen values)."""
+    table = key.table
+    robot = Robot(table)
+    names = NameContext.from_table(table)
+    pk = PreparedKey(key, robot, names)
+    q = key.question
+    if q.kind == "table":
+        return pk
+    full = robot.transform(q.frm, q.to).matrix
+    pk.expected = sp.ImmutableMatrix([[full[q.entry]]]) if q.entry else full
+    nota = robot.notation
+    pk.expected_text = tuple((nota.text(e), nota.latex(e)) for e in pk.expected)
+    syms = set(table.variables) | set(table.constants)
+    pk.samples["symbolic"] = Sample.random(syms)
+    pk.samples["valued"] = Sample.random(syms, fixed=table.value_map)
+    for name, s in pk.samples.items():
+        pk.key_values[name] = values(pk.expected, s)
+    return pk
+
+
+def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
+    """A table as text cells, header first, in its own convention's column order."""
+    deg = table.angles is AngleUnit.DEG
+    if table.convention is Convention.MODIFIED:
+        head, order = (
+            ("i", "alpha_{i-1}", "a_{i-1}", "d_i", "theta_i", "joint"),
+            ("alpha", "a", "d", "theta"),
+        )
+    else:
+        head, order = (
+            ("i", "theta_i", "d_i", "a_i", "alpha_i", "joint"),
+            ("theta", "d", "a", "alpha"),
+        )
+    rows = [head]
+    for i, row in enumerate(table.rows, 1):
+        cells = [str(i)]
+        for name in order:
+            v = getattr(row, name)
+            if name in ("theta", "alpha"):
+                cells.append(format_angle(v, deg, latex=False))
+            else:
+                cells.append(
+                    f"{float(v):.6g}" if v.is_Rational and not v.is_Integer else sp.sstr(v)
+                )
+        rows.append((*cells, row.joint.value))
+    return tuple(tuple(r) for r in rows)
+
+
+def _unreadable(key: Key, reason: str) -> CheckResult:
+    return CheckResult(
+        key.question.spec,
+        Verdict.UNREADABLE,
+        f"The answer could not be read: {reason}",
+        reason=reason,
+        key=key.name,
+    )
+
+
+def check_answer(
+    key: Key, answer: str | bytes, *, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+) -> CheckResult:
+    """Check one answer (text or bytes, untrusted) against ``key``.
+
+    Never raises on bad answers: they come back ``unreadable`` with the reason.
+    The whole check runs under ``limits.seconds`` (where a time limit is possible).
+    """
+    try:
+        with time_limit(limits.seconds):
+            pk = prepare(key)
+            if key.question.kind == "table":
+                return _check_table(pk, answer, limits)
+            return _check_matrix(pk, answer, limits)
+    except CheckTimeout as err:
+        return _unreadable(key, str(err))
+    except DHError as err:
+        return _unreadable(key, str(err))
+    except (
+        RecursionError,
+        MemoryError,
+        OverflowError,
+        ValueError,
+        TypeError,
+        ZeroDivisionError,
+    ) as err:
+        return _unreadable(key, f"it could not be processed ({type(err).__name__})")
+
+
+def _shown(cell: str) -> str:
+    cell = " ".join(cell.split())
+    return cell if len(cell) <= 200 else cell[:199] + "…"
+
+
+def _compare(
+    pk: PreparedKey, ans: sp.ImmutableMatrix, cells: list[str], limits: AnswerLimits
+) -> tuple:
+    """Entry results, wrong positions, the sample and the answer's values."""
+    q, nota, expected = pk.key.question, pk.robot.notation, pk.expected
+    assert expected is not None
+    unknown = sorted(ans.free_symbols - pk.names.symbols, key=sp.default_sort_key)
+    which = pk.sample_for(ans)
+    sample = pk.samples[which].extended(unknown)
+    kv = pk.key_values[which]
+    av = values(ans, sample)
+    near = close(av, kv, EXACT_RTOL, axis=0)
+    rounded = close(av, kv, ROUNDING_RTOL, axis=0)
+    entries, wrong = [], []
+    for i in range(expected.rows):
+        for j in range(expected.cols):
+            a, e = ans[i, j], expected[i, j]
+            proof = ""
+            if near[i, j]:
+                target = e.subs(pk.key.table.value_map) if which == "valued" else e
+                exact = prove_entry(a, target, limits) if not unknown else None
+                proof = {True: "exact", None: "numeric", False: ""}[exact]
+            elif rounded[i, j] and has_decimals(a):
+                proof = "rounding"
+            if not proof:
+                wrong.append((i, j))
+            where = (q.entry[0] + 1, q.entry[1] + 1) if q.entry else (i + 1, j + 1)
+            e_text, e_latex = pk.expected_text[i * expected.cols + j]
+            raw = cells[i * expected.cols + j]
+            if proof or len(raw) > 160:  # right, or long: what the student wrote
+                a_text, a_latex = _shown(raw), ""
+            else:  # wrong: the student's entry in the key's notation
+                a_text, a_latex = nota.text(a), nota.latex(a)
+            entries.append(
+                EntryResult(*where, bool(proof), a_text, e_text, a_latex, e_latex, proof)
+            )
+    return entries, wrong, sample, kv, av, unknown
+
+
+def _pos(k: int, q: Question) -> str:
+    return "the answer" if q.kind == "entry" else f"entry ({k // 4 + 1},{k % 4 + 1})"
+
+
+def _index_renames(unknown: list[sp.Symbol], names: NameContext) -> dict[sp.Symbol, sp.Symbol]:
+    """``alpha_i`` → ``alpha_im1`` (and back) when only the other index is a key symbol."""
+    out = {}
+    for s in unknown:
+        for a, b in (("_i", "_im1"), ("_im1", "_i"), ("i", "im1")):
+            if s.name.endswith(a):
+                target = names.symbol(s.name[: -len(a)] + b)
+                if target is not None:
+                    out[s] = target
+                    break
+    return out
+
+
+def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
+    key, q, nota = pk.key, pk.key.question, pk.robot.notation
+    if q.kind == "entry":
+        cells = [expression_cell(answer, limits)]
+    else:
+        grid = matrix_cells(answer, limits)
+        cells = [c for row in grid for c in row] + ["0", "0", "0", "1"] * (len(grid) == 3)
+    parsed = [parse_cell(c, pk.names, limits, _pos(k, q)) for k, c in enumerate(cells)]
+    ans = (
+        sp.ImmutableMatrix(1, 1, parsed) if q.kind == "entry" else sp.ImmutableMatrix(4, 4, parsed)
+    )
+    entries, wrong, sample, kv, av, unknown = _compare(pk, ans, cells, limits)
+    total = len(entries)
+    lead: tuple[Diagnosis, ...] = ()
+    renames = _index_renames(unknown, pk.names)
+    if renames and len(renames) == len(unknown):
+        shown = ", ".join(f"{a} for {b}" for a, b in renames.items())
+        lead = (
+            Diagnosis(
+                "index_shift",
+                "α/a index shifted by one row",
+                (
+                    f"The answer uses {shown}: in the {key.table.convention.value} convention "
+                    "link i "
+                    "has the parameters of this table's row i."
+                ),
+            ),
+        )
+        ans = ans.xreplace(renames)
+        entries, wrong, sample, kv, av, unknown = _compare(pk, ans, cells, limits)
+        if not wrong:
+            return CheckResult(
+                q.spec,
+                Verdict.INCORRECT,
+                f"The answer is right except for the indices. {lead[0].detail}",
+                tuple(entries),
+                lead,
+                key=key.name,
+            )
+    if not wrong:
+        note = (
+            " (some only up to rounding of decimals)"
+            if any(e.proof == "rounding" for e in entries)
+            else ""
+        )
+        what = "The entry is right" if total == 1 else f"All {total} entries are right"
+        return CheckResult(q.spec, Verdict.CORRECT, what + note + ".", tuple(entries), key=key.name)
+    case = MatrixCase(
+        tuple(key.table.rows),
+        key.table.convention,
+        q.frm,
+        q.to,
+        q.entry,
+        pk.expected,
+        ans,
+        sample,
+        kv,
+        av,
+        tuple(wrong),
+        nota,
+        pk.cache,
+    )
+    diagnoses = lead + diagnose_matrix(case)
+    if unknown:
+        names = ", ".join(str(s) for s in unknown)
+        known = ", ".join(str(s) for s in sorted(pk.names.symbols, key=sp.default_sort_key))
+        diagnoses = (
+            Diagnosis(
+                "unknown_symbol",
+                "unknown symbols",
+                (
+                    f"The answer uses {names}, which this robot does not have "
+                    f"(its symbols: {known})."
+                ),
+            ),
+        ) + diagnoses
+    what = "The entry is wrong" if total == 1 else f"{len(wrong)} of {total} entries are wrong"
+    first = next(
+        (d for d in diagnoses if d.kind not in ("unexplained", "unknown_symbol")), diagnoses[0]
+    )
+    message = f"{what}. Most likely: {first.title}. {first.detail}"
+    return CheckResult(q.spec, Verdict.INCORRECT, message, tuple(entries), diagnoses, key=key.name)
+
+
+def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
+    key = pk.key
+    table = key.table
+    ans = read_table(answer, pk.names, table.convention, limits)
+    values_ = table.value_map
+    extra = {"expected_table": table_cells(table), "answer_table": table_cells(ans)}
+    match = compare_tables(table, ans, tool_free=key.tool_free, values=values_)
+    if match.same_robot and ans.convention is table.convention:
+        if match.same_table:
+            return CheckResult(
+                "table", Verdict.CORRECT, "Your table is the key's table.", key=key.name, **extra
+            )
+        how = "; ".join(match.differences) or "other but equivalent entries"
+        return CheckResult(
+            "table",
+            Verdict.CORRECT,
+            f"Your table is a valid alternative: it describes the same robot "
+            f"with other frame choices ({how}).",
+            alternative=how,
+            key=key.name,
+            **extra,
+        )
+    diagnoses = diagnose_table(TableCase(table, ans, key.tool_free, values_))
+    if not diagnoses:
+        rows = ()
+        diagnoses = (
+            Diagnosis(
+                "geometry",
+                "different robot",
+                f"The table describes another robot: {match.reason}.",
+                rows=rows,
+            ),
+        )
+    where = (
+        f" The geometry first differs at joint {match.diverges_at}: {match.reason}."
+        if match.diverges_at and not match.same_robot
+        else ""
+    )
+    message = f"The table is wrong. Most likely: {diagnoses[0].title}. {diagnoses[0].detail}{where}"
+    return CheckResult(
+        "table", Verdict.INCORRECT, message, diagnoses=diagnoses, key=key.name, **extra
+    )

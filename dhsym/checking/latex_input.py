@@ -1,0 +1,368 @@
+r"""A small LaTeX math reader: student LaTeX into text for the whitelist parser.
+
+Nothing is executed and nothing is handed to ``sympify`` or ``parse_latex``: a
+tokenizer and a recursive translator turn the LaTeX that students paste from the
+lectures into the plain grammar of :func:`dhsym.parsing.parse_expression`, which
+then builds the sympy objects.  Supported: ``\cos\theta_1``, ``\cos(\theta_1 +
+\theta_2)``, ``\cos^2\theta``, ``C_{12}``, ``\alpha_{i-1}`` (a name ``alpha_im1``),
+``\frac{}{}``, ``\sqrt{}``, ``\left( \right)``, ``\cdot``, ``\times``, ``^{}``,
+``90^\circ``, Greek letters, font commands, and the matrix environments
+``bmatrix pmatrix matrix Bmatrix vmatrix array``.  Any other command
+(``\input``, ``\def``, ``\write18`` …) is refused with a :class:`ParseError`.
+
+Examples
+--------
+>>> latex_to_text(r"\cos\theta_1 \cos(\theta_1 + \theta_2)")
+'cos(theta_1) cos(theta_1 + theta_2)'
+>>> latex_to_text(r"p_x = a_1 C_1 + \frac{a_2}{2} S_{12}")
+'a_1 C_1 + ((a_2)/(2)) S_12'
+>>> latex_to_text(r"-d_i \sin \alpha_{i-1}")
+'- d_i sin(alpha_im1)'
+>>> latex_matrix_cells(r"\begin{bmatrix} C_1 & -S_1 \\ S_1 & C_1 \end{bmatrix}")
+[['C_1', '-S_1'], ['S_1', 'C_1']]
+>>> flatten_subscripts("c_{alpha_{i-1}} + C_{12}")
+'c_alpha_im1 + C_12'
+"""
+
+from __future__ import annotations
+
+import re
+
+from dhsym.errors import ParseError
+
+__all__ = ["flatten_subscripts", "is_latex", "latex_matrix_cells", "latex_to_text"]
+
+_GREEK = frozenset(
+    "alpha beta gamma delta epsilon varepsilon zeta eta theta vartheta iota kappa lambda mu nu "
+    "xi omicron rho varrho sigma varsigma tau upsilon phi varphi chi psi omega "
+    "Gamma Delta Theta Lambda Xi Sigma Upsilon Phi Psi Omega".split()
+)
+_FUNCTIONS = frozenset({"sin", "cos", "tan"})
+_FRACTIONS = frozenset({"frac", "dfrac", "tfrac", "cfrac"})
+_TIMES = frozenset({"cdot", "times", "ast"})
+_SPACES = frozenset({"quad", "qquad", "displaystyle", "textstyle", "hline", "nonumber"})
+_FONTS = frozenset(
+    "mathbf mathrm mathit mathsf mathtt boldsymbol bm text textrm textit mathnormal".split()
+)
+_SIZES = frozenset("big Big bigg Bigg bigl bigr Bigl Bigr biggl biggr Biggl Biggr".split())
+_MATRIX_ENVS = "bmatrix|pmatrix|matrix|Bmatrix|vmatrix|Vmatrix|smallmatrix|array"
+_MATRIX = re.compile(r"\\begin\{(" + _MATRIX_ENVS + r")\}(?P<body>.*?)\\end\{\1\}", re.DOTALL)
+_LETTER = "A-Za-z\u0370-\u03ff"
+_TOKEN = re.compile(
+    r"(?P<space>\s+)|(?P<cmd>\\[A-Za-z]+)|(?P<esc>\\.)|(?P<num>[0-9]*\.?[0-9]+)"
+    rf"|(?P<name>[{_LETTER}][{_LETTER}0-9]*)|(?P<char>.)",
+    re.DOTALL,
+)
+_FLAT_NAME = re.compile(rf"[{_LETTER}_][{_LETTER}0-9_]*")
+_PLAIN_SUB = re.compile(rf"([{_LETTER}][{_LETTER}0-9_]*)_\{{([^{{}}]*)\}}")
+_DELIMS = ("$$", "$", r"\[", r"\]", r"\(", r"\)")
+
+
+def is_latex(text: str) -> bool:
+    r"""True when ``text`` looks like LaTeX (a command or a ``$`` delimiter).
+
+    >>> is_latex(r"\cos\theta_1"), is_latex("cos(theta1)"), is_latex("$C_1$")
+    (True, False, True)
+    """
+    return "$" in text or re.search(r"\\[A-Za-z]", text) is not None
+
+
+def _flat(content: str) -> str:
+    """A subscript as a name suffix: ``i-1`` → ``im1``, ``i+1`` → ``ip1``, ``1,2`` → ``12``."""
+    flat = re.sub(r"[\s\\{}()]", "", content)
+    flat = flat.replace("-", "m").replace("+", "p").replace(",", "")
+    if not flat or not re.fullmatch(rf"[{_LETTER}0-9_]+", flat):
+        raise ParseError(f"cannot read the subscript {content!r}: expected letters and digits")
+    return flat
+
+
+def flatten_subscripts(text: str) -> str:
+    """Rewrite plain-text subscripts ``name_{…}`` as names (``alpha_{i-1}`` → ``alpha_im1``)."""
+    for _ in range(8):  # nested subscripts, innermost first
+        new = _PLAIN_SUB.sub(lambda m: f"{m[1]}_{_flat(m[2])}", text)
+        if new == text:
+            return new
+        text = new
+    return text
+
+
+def _tokens(src: str) -> list[tuple[str, str]]:
+    out = []
+    for m in _TOKEN.finditer(src):
+        kind = m.lastgroup or "char"
+        if kind != "space":
+            out.append((kind, m.group()))
+    return out
+
+
+class _Translator:
+    """One translation: the tokens and a cursor."""
+
+    def __init__(self, src: str) -> None:
+        self.src = src
+        self.toks = _tokens(src)
+        self.i = 0
+
+    # -- cursor -------------------------------------------------------------------
+    def error(self, found: str, expected: str) -> ParseError:
+        shown = self.src if len(self.src) <= 60 else self.src[:57] + "…"
+        return ParseError(f"LaTeX: {found} in {shown!r}: {expected}")
+
+    def peek(self) -> tuple[str, str]:
+        return self.toks[self.i] if self.i < len(self.toks) else ("end", "")
+
+    def take(self) -> tuple[str, str]:
+        tok = self.peek()
+        self.i += 1
+        return tok
+
+    def expect(self, text: str) -> None:
+        kind, value = self.take()
+        if value != text:
+            raise self.error(f"unexpected {value or 'end of text'!r}", f"expected {text!r}")
+
+    # -- grammar ------------------------------------------------------------------
+    def run(self) -> str:
+        out = self.seq(None)
+        if self.peek()[0] != "end":
+            raise self.error(f"unbalanced {self.peek()[1]!r}", "expected matching brackets")
+        return out
+
+    def seq(self, until: str | None) -> str:
+        parts: list[str] = []
+        while self.peek()[0] != "end" and self.peek()[1] != until:
+            if until is None and self.peek()[1] in (")", "}", "]", r"\right"):
+                break
+            piece = self.item()
+            if piece:
+                parts.append(piece)
+        return " ".join(parts)
+
+    def group(self, close: str) -> str:
+        inner = self.seq(close)
+        self.expect(close)
+        return f"({inner})"
+
+    def item(self) -> str:
+        kind, tok = self.take()
+        if tok == "{":
+            return self.postfix(self.group("}"))
+        if tok == "(":
+            return self.postfix(self.group(")"))
+        if tok == "[":
+            return self.postfix(self.group("]"))
+        if kind == "num":
+            return self.postfix(tok)
+        if kind == "name":
+            return self.postfix(self.subscripted(tok))
+        if tok in ("+", "-", "*", "/", ","):
+            return tok
+        if tok == "°":
+            return "*(pi/180)"
+        if tok in ("&", "~"):
+            return ""
+        if kind == "esc":
+            if tok in (r"\,", r"\;", r"\:", r"\!", "\\ ", r"\\"):
+                return ""
+            if tok in (r"\{", r"\}"):
+                return self.postfix(self.group(r"\}")) if tok == r"\{" else ""
+            raise self.error(f"unsupported {tok!r}", "expected math")
+        if kind == "cmd":
+            return self.command(tok[1:])
+        raise self.error(f"unexpected {tok!r}", "expected a number, name, command or bracket")
+
+    def command(self, name: str) -> str:
+        if name in _GREEK:
+            return self.postfix(self.subscripted(name.lower().removeprefix("var")))
+        if name == "pi":
+            return self.postfix("pi")
+        if name in _FUNCTIONS:
+            return self.function(name)
+        if name == "operatorname":
+            inner = re.sub(r"[\s()]", "", self.argument())
+            if inner in _FUNCTIONS:
+                return self.function(inner)
+            raise self.error(f"unknown operator {inner!r}", "expected sin, cos or tan")
+        if name in _FRACTIONS:
+            num, den = self.argument(), self.argument()
+            return self.postfix(f"(({num})/({den}))")
+        if name == "sqrt":
+            if self.peek()[1] == "[":
+                self.take()
+                root = self.seq("]")
+                self.expect("]")
+                return self.postfix(f"({self.argument()})^(1/({root}))")
+            return self.postfix(f"sqrt({self.argument()})")
+        if name == "left":
+            return self.postfix(self.left())
+        if name in _TIMES:
+            return "*"
+        if name == "div":
+            return "/"
+        if name in _SPACES:
+            return ""
+        if name in _SIZES:
+            return ""
+        if name in _FONTS:
+            return self.postfix(self.subscripted_group(self.argument()))
+        if name == "circ":
+            return "*(pi/180)"
+        raise self.error(
+            f"unsupported command \\{name}", "expected math (\\cos, \\frac, \\theta …)"
+        )
+
+    def left(self) -> str:
+        kind, tok = self.take()
+        closers = {"(": ")", "[": "]", r"\{": r"\}", ".": None}
+        if tok not in closers:
+            raise self.error(f"unsupported \\left{tok}", "expected \\left( or \\left[")
+        inner = self.seq(r"\right")
+        self.expect(r"\right")
+        self.take()  # the closing delimiter, whatever it is
+        return f"({inner})"
+
+    def argument(self) -> str:
+        """A macro argument: a ``{group}`` or a single token (first digit of a number)."""
+        kind, tok = self.peek()
+        if tok == "{":
+            self.take()
+            return self.group("}")[1:-1]
+        if kind == "num" and len(tok) > 1:
+            self.toks[self.i] = ("num", tok[1:])
+            return tok[0]
+        if kind in ("num", "name"):
+            self.take()
+            return self.subscripted(tok) if kind == "name" else tok
+        if kind == "cmd" and tok[1:] in _GREEK | {"pi"}:
+            self.take()
+            return self.command(tok[1:])
+        raise self.error(f"unexpected {tok or 'end of text'!r}", "expected an argument {…}")
+
+    def subscripted(self, name: str) -> str:
+        """A name and its subscript as one parser name: ``alpha`` ``_{i-1}`` → ``alpha_im1``."""
+        if self.peek()[1] != "_":
+            return name
+        self.take()
+        kind, tok = self.peek()
+        if tok == "{":
+            self.take()
+            sub = self.seq("}")
+            self.expect("}")
+        elif kind == "num":
+            sub = self.argument()
+        else:
+            sub = self.argument()
+        return f"{name}_{_flat(sub)}"
+
+    def subscripted_group(self, inner: str) -> str:
+        """``\\mathbf{T}_2``: a font group that is a single name may take a subscript."""
+        if _FLAT_NAME.fullmatch(inner):
+            return self.subscripted(inner)
+        return f"({inner})"
+
+    def postfix(self, base: str) -> str:
+        while self.peek()[1] in ("^", "'"):
+            self.take()
+            if self.peek()[1] == r"\circ":
+                self.take()
+                base = f"{base}*(pi/180)"
+                continue
+            if self.peek()[1] == "{" and self.toks[self.i + 1 : self.i + 3] == [
+                ("cmd", r"\circ"),
+                ("char", "}"),
+            ]:
+                self.i += 3
+                base = f"{base}*(pi/180)"
+                continue
+            base = f"{base}^({self.argument()})"
+        if self.peek()[1] == "_":
+            raise self.error("a subscript after something that is not a name", "expected x_{…}")
+        return base
+
+    def function(self, name: str) -> str:
+        power = None
+        if self.peek()[1] == "^":
+            self.take()
+            power = self.argument()
+        kind, tok = self.peek()
+        if tok in ("(", "[", "{"):
+            self.take()
+            arg = self.group({"(": ")", "[": "]", "{": "}"}[tok])
+        elif tok == r"\left":
+            self.take()
+            arg = self.left()
+        elif kind in ("num", "name") or (kind == "cmd" and tok[1:] in _GREEK | {"pi"}):
+            parts = []
+            if kind == "num":
+                parts.append(self.take()[1])
+                kind, tok = self.peek()
+            if kind == "name":
+                self.take()
+                parts.append(self.postfix(self.subscripted(tok)))
+            elif kind == "cmd" and tok[1:] in _GREEK | {"pi"}:
+                self.take()
+                parts.append(self.command(tok[1:]))
+            arg = "(" + " ".join(parts) + ")"
+        else:
+            raise self.error(
+                f"\\{name} followed by {tok or 'end of text'!r}", "expected its argument"
+            )
+        out = f"{name}{arg}"
+        return f"{out}^({power})" if power is not None else out
+
+
+def _strip_delimiters(src: str) -> str:
+    text = src.strip()
+    for d in _DELIMS:
+        text = text.replace(d, " ")
+    text = re.sub(r"\\(begin|end)\{(equation|align|aligned|gather|displaymath)\*?\}", " ", text)
+    return text
+
+
+def _right_of_equals(text: str) -> str:
+    """The part after the last top-level ``=`` (drops labels like ``{}^0T_2 =``)."""
+    depth, cut = 0, -1
+    for k, ch in enumerate(text):
+        if ch == "{":
+            depth += 1
+        elif ch == "}":
+            depth -= 1
+        elif ch == "=" and depth == 0:
+            cut = k
+    return text[cut + 1 :]
+
+
+def latex_to_text(src: str) -> str:
+    r"""Translate one LaTeX math expression into whitelist-parser text.
+
+    Text left of the last top-level ``=`` is dropped (``p_x = …``).
+
+    >>> latex_to_text(r"\cos^2\theta + 90^\circ")
+    'cos(theta)^(2) + 90*(pi/180)'
+    >>> latex_to_text(r"\input{/etc/passwd}")
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.ParseError: LaTeX: unsupported command \input in '\\input{/etc/passwd}': expected math (\cos, \frac, \theta …)
+    """  # noqa: E501
+    text = _right_of_equals(_strip_delimiters(src))
+    return _Translator(text).run()
+
+
+def latex_matrix_cells(src: str) -> list[list[str]] | None:
+    r"""The cells (LaTeX) of the last matrix environment in ``src``, or None if there is none.
+
+    >>> latex_matrix_cells(r"\begin{array}{cc} 1 & 0 \\ 0 & 1 \\ \end{array}")
+    [['1', '0'], ['0', '1']]
+    """
+    found = list(_MATRIX.finditer(src))
+    if not found:
+        return None
+    m = found[-1]
+    body = m["body"]
+    if m[1] == "array":
+        body = re.sub(r"^\s*\{[^{}]*\}", "", body)
+    body = body.replace(r"\hline", " ")
+    rows = [r for r in re.split(r"\\\\", body)]
+    if rows and not rows[-1].strip():
+        rows.pop()
+    return [[cell.strip() for cell in row.split("&")] for row in rows]

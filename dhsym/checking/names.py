@@ -1,0 +1,140 @@
+"""What the names in a student's answer mean for one key robot.
+
+Students write ``theta1``, ``θ_1``, ``q1``, the lecture abbreviations ``C12``,
+``S23``, ``c1``, ``C_{12}``, ``c_{alpha}``, ``c_alpha1``, ``c_{\\theta_i}`` or
+glued products like ``c1s2``.  :class:`NameContext` turns each name into the key
+robot's symbol or into ``cos``/``sin`` of its joint angles; it is the ``resolve``
+hook of :func:`dhsym.parsing.parse_expression`.
+
+Examples
+--------
+>>> from dhsym import load_table
+>>> ctx = NameContext.from_table(load_table("puma560"))
+>>> ctx.resolve("C23"), ctx.resolve("s1"), ctx.resolve("q4"), ctx.resolve("a_2")
+(cos(theta2 + theta3), sin(theta1), theta4, a2)
+>>> ctx.resolve("c_alpha1"), ctx.resolve("c1s2"), ctx.resolve("banana") is None
+(cos(alpha1), sin(theta2)*cos(theta1), True)
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from functools import cached_property
+
+import sympy as sp
+
+from dhsym.errors import ParseError
+from dhsym.parsing import normalize_name, symbol
+from dhsym.table import DHTable, JointType
+
+__all__ = ["NameContext"]
+
+_ABBREV = re.compile(r"^(?P<f>[CcSs])_?(?P<rest>[A-Za-z0-9_]+)$")
+_GLUED = re.compile(r"^(?:[CcSs][0-9]+){2,}$")
+_GLUED_PART = re.compile(r"[CcSs][0-9]+")
+_GREEK_HEAD = re.compile(
+    r"^(alpha|beta|gamma|delta|theta|phi|psi|omega|sigma|tau|rho|lambda|mu|nu|xi|eta|zeta|"
+    r"epsilon|kappa|chi|iota|upsilon|omicron|pi)[A-Za-z0-9_]*$"
+)
+_VAR_PREFIXES = ("theta", "th", "q", "d")
+
+
+def _canon(name: str) -> str:
+    return normalize_name(name).replace("_", "")
+
+
+@dataclass(frozen=True)
+class NameContext:
+    """Aliases of a key's symbols and the labels of its revolute joint angles.
+
+    Parameters
+    ----------
+    aliases
+        ``(alias, symbol)`` pairs; an alias is compared without underscores.
+    labels
+        ``(label, variable)`` pairs: ``C12`` is cos of the sum of labels 1 and 2.
+    """
+
+    aliases: tuple[tuple[str, sp.Symbol], ...] = ()
+    labels: tuple[tuple[str, sp.Symbol], ...] = ()
+
+    @classmethod
+    def from_table(cls, table: DHTable) -> NameContext:
+        """Names of a DH table: its symbols, ``q<k>``/``theta<k>``/``d<k>`` and joint labels."""
+        aliases: dict[str, sp.Symbol] = {}
+        for s in (*table.variables, *table.constants):
+            aliases[_canon(s.name)] = s
+        labels: dict[str, sp.Symbol] = {}
+        for k, row in enumerate(table.rows, start=1):
+            var = row.variable
+            if var is None:
+                continue
+            extra = [f"q{k}"] + ([f"theta{k}", f"th{k}"] if row.joint is JointType.REVOLUTE else [])
+            extra += [f"d{k}"] if row.joint is JointType.PRISMATIC else []
+            for alias in extra:
+                aliases.setdefault(alias, var)
+            if row.joint is JointType.REVOLUTE:
+                labels.setdefault(str(k), var)
+                low = _canon(var.name)
+                for prefix in _VAR_PREFIXES:
+                    if low.startswith(prefix) and len(low) > len(prefix):
+                        labels.setdefault(low[len(prefix) :], var)
+                        break
+        return cls(tuple(aliases.items()), tuple(labels.items()))
+
+    @cached_property
+    def _aliases(self) -> dict[str, sp.Symbol]:
+        return dict(self.aliases)
+
+    @cached_property
+    def _labels(self) -> dict[str, sp.Symbol]:
+        return dict(self.labels)
+
+    @property
+    def symbols(self) -> frozenset[sp.Symbol]:
+        """Every symbol of the key."""
+        return frozenset(self._aliases.values())
+
+    def symbol(self, name: str) -> sp.Symbol | None:
+        """The key symbol that ``name`` spells (``theta_1``, ``θ1``, ``q1`` …), or None."""
+        return self._aliases.get(_canon(name))
+
+    def angle_sum(self, rest: str) -> sp.Expr | None:
+        """Sum of the joint angles whose labels make up ``rest`` (``"12"`` → θ1 + θ2)."""
+        if rest in self._labels:
+            return self._labels[rest]
+        if len(rest) > 1 and all(ch in self._labels for ch in rest) and len(set(rest)) == len(rest):
+            return sp.Add(*(self._labels[ch] for ch in rest))
+        return None
+
+    def resolve(self, name: str) -> sp.Expr | None:
+        """The expression a name stands for, or None (a new symbol of that name)."""
+        own = self.symbol(name)
+        if own is not None:
+            return own
+        if _GLUED.match(name):
+            parts = [self.resolve(p) for p in _GLUED_PART.findall(name)]
+            if all(p is not None for p in parts):
+                return sp.Mul(*parts)
+            return None
+        m = _ABBREV.match(name)
+        if m is None:
+            return None
+        trig = sp.cos if m["f"] in "Cc" else sp.sin
+        rest = m["rest"].lstrip("_")
+        if not rest:
+            return None
+        target = self.symbol(rest)
+        if target is None:
+            target = self.angle_sum(rest.replace("_", ""))
+        if target is None and _GREEK_HEAD.match(normalize_name(rest)):
+            try:
+                target = symbol(rest.replace("__", "_"))
+            except ParseError:
+                return None
+        return trig(target) if target is not None else None
+
+    def table_resolve(self, name: str) -> sp.Expr | None:
+        """Resolve for table cells: only symbol aliases (no ``C12`` abbreviations)."""
+        return self.symbol(name)

@@ -1,0 +1,36 @@
+"""Feedback pages: content a student can act on, everything escaped."""
+
+from __future__ import annotations
+
+from dhsym.checking import Key, check_answer
+from dhsym.checking.feedback import (
+    QuestionFeedback,
+    md_code,
+    md_escape,
+    render_check,
+    render_feedback,
+)
+
+BAD = "[[C12, -S12, 0, a1*C1 - a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0, 0, 1, 0]]"
+
+
+def test_markdown_shows_entry_correct_entry_and_diagnosis():
+    md = render_check(check_answer(Key.load("planar2r", "T0_2"), BAD))
+    assert "**INCORRECT.**" in md and "wrong sign" in md
+    assert "| (1,4) | $a_{1} C_{1} - a_{2} C_{12}$ | $a_{1} C_{1} + a_{2} C_{12}$ |" in md
+    assert "The other 15 entries are right." in md
+
+
+def test_html_escapes_names_and_answers():
+    r = check_answer(Key.load("planar2r", "T0_2[0,3]"), "<img src=x onerror=alert(1)>")
+    student = {"id": "<script>alert(1)</script>", "name": "\\input{/etc/passwd} <b>"}
+    html = render_feedback(student, [QuestionFeedback("q1", "T0_2[0,3]", 1, 0, r)], fmt="html")
+    assert "<script>" not in html and "<img" not in html and "<b>" not in html
+    assert "&lt;script&gt;alert(1)&lt;/script&gt;" in html
+    md = render_feedback(student, [QuestionFeedback("q1", "T0_2[0,3]", 1, 0, r)], fmt="md")
+    assert "<script>" not in md and "&lt;script&gt;" in md
+
+
+def test_markdown_helpers():
+    assert md_escape("[x](javascript:1) $\\input$") == "\\[x\\](javascript:1) \\$\\\\input\\$"
+    assert md_code("a|b") == "`a\\|b`"

@@ -1,0 +1,64 @@
+"""Hostile answers: each is unreadable (or escaped), fast, executes nothing, writes nothing."""
+
+from __future__ import annotations
+
+import os
+import time
+from pathlib import Path
+
+import pytest
+
+from dhsym.checking import Key, check_answer
+
+CANARY = Path("/tmp/dhsym-hostile-canary")
+HOSTILE = [
+    f"__import__('os').system('touch {CANARY}')",
+    f"exec(\"open('{CANARY}','w')\")",
+    "eval('1+1')",
+    "lambda: 1",
+    "x.__class__.__bases__",
+    "(" * 5000 + "x" + ")" * 5000,
+    "x**9999999",
+    "9" * 100_000,
+    "1e999999999",
+    "2^3^4^5^6^7",
+    "((((x+1)^64+1)^64+1)^64)",
+    "cos(" * 300 + "x" + ")" * 300,
+    "\x00\x01\x02" * 1000,
+    "a" * 200_000,
+    r"\input{/etc/passwd}",
+    r"\write18{touch /tmp/x}",
+    r"\begin{bmatrix}\def\x{1}\x & 0 \\ 0 & 1\end{bmatrix}",
+    "joints: &a [*a, *a, *a]\nname: &b [*a, *a]",
+    "<script>alert(1)</script>",
+    "{{7*7}} {% for x in range(9) %}",
+    "x" * 10 + "+y" * 4000,
+]
+
+
+@pytest.mark.parametrize("question", ["T0_2", "T0_2[0,3]", "table"])
+@pytest.mark.parametrize("answer", HOSTILE, ids=range(len(HOSTILE)))
+def test_hostile_answers_are_unreadable_fast(question, answer, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    before = set(os.listdir(tmp_path)) | set(os.listdir("/tmp"))
+    t0 = time.monotonic()
+    r = check_answer(Key.load("planar2r", question), answer)
+    assert time.monotonic() - t0 < 5.0
+    assert r.verdict.value in ("unreadable", "incorrect")
+    if r.verdict.value == "incorrect":  # readable but wrong: say so, never crash
+        assert r.diagnoses
+    assert not CANARY.exists()
+    assert set(os.listdir(tmp_path)) | set(os.listdir("/tmp")) <= before | {
+        p for p in os.listdir("/tmp") if p.startswith(("pytest", "tmp", "ipykernel", "dask"))
+    }
+
+
+def test_ten_megabytes_and_binary_junk():
+    t0 = time.monotonic()
+    assert (
+        check_answer(Key.load("puma560", "T0_6"), b"1" * 10_000_000).verdict.value == "unreadable"
+    )
+    assert (
+        check_answer(Key.load("puma560", "table"), os.urandom(4096)).verdict.value == "unreadable"
+    )
+    assert time.monotonic() - t0 < 2.0
