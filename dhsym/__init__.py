@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
+from .derivation import Derivation, derive
 from .errors import ChainError, DHError, GeometryError, ParseError, TableError
 from .library import builtin_names, builtin_table, load, load_table, planar_chain
 from .notation import Notation
@@ -26,6 +27,9 @@ _LAZY = {
     "frame_origins": "plotting",
     "plot_robot": "plotting",
     "plot_workspace": "plotting",
+    "Key": "checking",
+    "check_answer": "checking",
+    "grade": "checking",
 }
 
 
@@ -48,10 +52,12 @@ __all__ = [
     "Convention",
     "DHError",
     "DHRow",
+    "Derivation",
     "DHTable",
     "Elementary",
     "GeometryError",
     "JointType",
+    "Key",
     "Notation",
     "ParseError",
     "Pose",
@@ -61,8 +67,11 @@ __all__ = [
     "animate_path",
     "builtin_names",
     "builtin_table",
+    "check_answer",
+    "derive",
     "dump_table",
     "frame_origins",
+    "grade",
     "joint_path",
     "load",
     "load_table",
