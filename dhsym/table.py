@@ -25,12 +25,13 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
-from enum import Enum
 
 import sympy as sp
 
+from .entries import as_expr, check_radians, to_radians
 from .errors import TableError
-from .parsing import parse_expression, symbol
+from .kinds import AngleUnit, Convention, JointType
+from .parsing import symbol
 
 __all__ = [
     "AngleUnit",
@@ -44,163 +45,6 @@ __all__ = [
 ]
 
 Expr = sp.Expr
-
-
-class Convention(str, Enum):
-    """Which DH convention a table uses."""
-
-    STANDARD = "standard"
-    MODIFIED = "modified"
-
-    @classmethod
-    def parse(cls, value: object) -> Convention:
-        """Read a convention name (``standard``/``distal``, ``modified``/``proximal``/``craig``).
-
-        >>> Convention.parse("Craig")
-        <Convention.MODIFIED: 'modified'>
-        """
-        if isinstance(value, Convention):
-            return value
-        names = {
-            "standard": cls.STANDARD,
-            "distal": cls.STANDARD,
-            "std": cls.STANDARD,
-            "modified": cls.MODIFIED,
-            "proximal": cls.MODIFIED,
-            "craig": cls.MODIFIED,
-            "non-standard": cls.MODIFIED,
-        }
-        key = str(value).strip().lower()
-        if key not in names:
-            raise TableError(
-                f"unknown convention {value!r}: expected 'standard' or 'modified'",
-                field="convention",
-            )
-        return names[key]
-
-
-class AngleUnit(str, Enum):
-    """Unit in which the angles of a table file are written."""
-
-    DEG = "deg"
-    RAD = "rad"
-
-    @classmethod
-    def parse(cls, value: object) -> AngleUnit:
-        """Read ``deg``/``degrees`` or ``rad``/``radians``.
-
-        >>> AngleUnit.parse("degrees")
-        <AngleUnit.DEG: 'deg'>
-        """
-        if isinstance(value, AngleUnit):
-            return value
-        key = str(value).strip().lower()
-        if key in ("deg", "degree", "degrees"):
-            return cls.DEG
-        if key in ("rad", "radian", "radians"):
-            return cls.RAD
-        raise TableError(f"unknown angle unit {value!r}: expected 'deg' or 'rad'", field="angles")
-
-
-class JointType(str, Enum):
-    """Revolute (θ variable), prismatic (d variable) or fixed (no variable)."""
-
-    REVOLUTE = "R"
-    PRISMATIC = "P"
-    FIXED = "F"
-
-    @classmethod
-    def parse(cls, value: object) -> JointType:
-        """Read ``R``/``revolute``, ``P``/``prismatic`` or ``F``/``fixed``.
-
-        >>> JointType.parse("prismatic")
-        <JointType.PRISMATIC: 'P'>
-        """
-        if isinstance(value, JointType):
-            return value
-        key = str(value).strip().lower()
-        for jt, names in (
-            (cls.REVOLUTE, ("r", "revolute", "rotary")),
-            (cls.PRISMATIC, ("p", "prismatic", "sliding")),
-            (cls.FIXED, ("f", "fixed")),
-        ):
-            if key in names:
-                return jt
-        raise TableError(
-            f"unknown joint type {value!r}: expected R (revolute), P (prismatic) or F (fixed)",
-            field="type",
-        )
-
-
-def as_expr(value: object, *, field: str | None = None, row: int | None = None) -> Expr:
-    """Turn a Python number, string or sympy object into an exact sympy expression.
-
-    Strings go through the whitelist parser (never ``sympify``); floats become
-    exact decimals; booleans, NaN and infinities are refused.
-
-    >>> as_expr(0.4318)
-    2159/5000
-    >>> as_expr("a1 + d3")
-    a1 + d3
-    """
-    if isinstance(value, bool) or value is None:
-        raise TableError(f"expected a number or expression, got {value!r}", row=row, field=field)
-    if isinstance(value, sp.Basic):
-        expr = value
-    elif isinstance(value, int):
-        expr = sp.Integer(value)
-    elif isinstance(value, float):
-        if value != value or value in (float("inf"), float("-inf")):
-            raise TableError(f"non-finite number {value!r}", row=row, field=field)
-        expr = sp.Rational(repr(value))
-    elif isinstance(value, str):
-        expr = parse_expression(value, row=row, field=field)
-    else:
-        raise TableError(
-            f"expected a number or expression, got {type(value).__name__}", row=row, field=field
-        )
-    if expr.has(sp.oo, -sp.oo, sp.zoo, sp.nan):
-        raise TableError("non-finite number", row=row, field=field)
-    return expr  # type: ignore[return-value]
-
-
-def to_radians(expr: Expr, unit: AngleUnit | str) -> Expr:
-    """Convert an angle entry to radians, exactly.
-
-    Numeric additive terms are degrees; terms with symbols (joint variables,
-    symbolic twists) are already angles and stay as they are.
-
-    >>> to_radians(as_expr("q3 + 90"), "deg")
-    q3 + pi/2
-    >>> to_radians(sp.Integer(-90), "deg"), to_radians(sp.Integer(180), "deg")
-    (-pi/2, pi)
-    """
-    if AngleUnit.parse(unit) is AngleUnit.RAD:
-        return expr
-    terms = sp.Add.make_args(sp.expand(expr)) if expr.free_symbols else (expr,)
-    out = []
-    for term in terms:
-        if term.free_symbols:
-            out.append(term)
-        else:
-            if term.has(sp.pi):
-                raise TableError(
-                    f"angles are in degrees but {term} contains pi: write degrees (e.g. 90) "
-                    "or set angles: rad"
-                )
-            out.append(term * sp.pi / 180)
-    return sp.Add(*out)
-
-
-def _check_radians(expr: Expr, *, row: int | None, field: str) -> None:
-    for term in sp.Add.make_args(expr):
-        if not term.free_symbols and term.is_number and abs(float(term)) > 2 * float(sp.pi) + 1e-9:
-            raise TableError(
-                f"angle {term} is larger than 2*pi radians: is this table in degrees? "
-                "(set angles: deg)",
-                row=row,
-                field=field,
-            )
 
 
 @dataclass(frozen=True)
@@ -442,7 +286,7 @@ class DHTable:
             if not isinstance(row, DHRow):
                 raise TableError(f"expected a DHRow, got {type(row).__name__}", row=i)
             for name in ("theta", "alpha"):
-                _check_radians(getattr(row, name), row=i, field=name)
+                check_radians(getattr(row, name), row=i, field=name)
             var = _infer_variable(row, i)
             if var is not None:
                 for name, entry in row.params().items():
