@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
+from .chains import FrameChain
 from .derivation import Derivation, derive
 from .errors import ChainError, DHError, GeometryError, ParseError, TableError
 from .library import builtin_names, builtin_table, load, load_table, planar_chain
@@ -30,6 +31,19 @@ _LAZY = {
     "Key": "checking",
     "check_answer": "checking",
     "grade": "checking",
+    "JointAxis": "axes",
+    "Tool": "axes",
+    "common_normal": "axes",
+    "assign_frames": "frames",
+    "FrameAssignment": "frames",
+    "convert": "conversion",
+    "to_modified": "conversion",
+    "to_standard": "conversion",
+    "check_conversion": "conversion",
+    "Joint": "joints",
+    "Mechanism": "joints",
+    "PAIRS": "joints",
+    "mobility": "joints",
 }
 
 
@@ -52,22 +66,32 @@ __all__ = [
     "Convention",
     "DHError",
     "DHRow",
-    "Derivation",
     "DHTable",
+    "Derivation",
     "Elementary",
+    "FrameAssignment",
+    "FrameChain",
     "GeometryError",
+    "Joint",
+    "JointAxis",
     "JointType",
     "Key",
+    "Mechanism",
     "Notation",
+    "PAIRS",
     "ParseError",
     "Pose",
     "Robot",
     "TableError",
-    "__version__",
+    "Tool",
     "animate_path",
+    "assign_frames",
     "builtin_names",
     "builtin_table",
     "check_answer",
+    "check_conversion",
+    "common_normal",
+    "convert",
     "derive",
     "dump_table",
     "frame_origins",
@@ -75,9 +99,13 @@ __all__ = [
     "joint_path",
     "load",
     "load_table",
+    "mobility",
     "planar_chain",
     "plot_robot",
     "plot_workspace",
     "read_table",
     "read_table_text",
+    "to_modified",
+    "to_standard",
+    "__version__",
 ]
