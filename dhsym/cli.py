@@ -23,10 +23,10 @@ from pathlib import Path
 import numpy as np
 
 from . import __version__
+from ._number_list import parse_number_list
 from .errors import DHError
 from .library import builtin_names, builtin_table, load
 from .notation import table_markdown
-from .parsing import parse_expression
 from .robot import Robot
 from .tablefile import dump_table
 
@@ -139,12 +139,7 @@ def _emit(text: str, output: str | None) -> None:
 
 
 def _parse_q(text: str, n: int) -> list[float]:
-    values = []
-    for k, part in enumerate(text.split(","), start=1):
-        expr = parse_expression(part, field=f"--q value {k}")
-        if expr.free_symbols:
-            raise DHError(f"--q value {k} ({part.strip()}) must be a number")
-        values.append(float(expr))
+    values = parse_number_list(text, "--q")
     if len(values) != n:
         raise DHError(f"--q needs {n} values (one per joint), got {len(values)}")
     if not all(np.isfinite(values)):

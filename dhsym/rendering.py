@@ -343,15 +343,9 @@ def _parse_check(text: str | None) -> object:
         return None
     if text == "zero":
         return True
-    from .parsing import parse_expression
+    from ._number_list import parse_number_list
 
-    values = []
-    for k, part in enumerate(text.split(","), start=1):
-        expr = parse_expression(part, field=f"--check value {k}")
-        if expr.free_symbols:
-            raise DHError(f"--check value {k} ({part.strip()}) must be a number")
-        values.append(float(expr))
-    return values
+    return parse_number_list(text, "--check")
 
 
 def _cmd_handout(args: argparse.Namespace) -> int:

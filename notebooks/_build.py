@@ -6,9 +6,9 @@ Run from the repository root::
     python notebooks/_build.py            # all notebooks + docs/puma560-frames.png
     python notebooks/_build.py 03         # only notebooks whose name starts with 03
 
-Each notebook is written from the cell lists below with nbformat (cell ids are
-fixed, so a rebuild changes only what really changed), then executed in place
-with :func:`dhsym.notebooks.execute_notebook`, which fails on any error or
+Each notebook is written from the cell lists below by ``_nbtools.build_notebook``
+(cell ids are fixed, so a rebuild changes only what really changed), which executes
+it in place with :func:`dhsym.notebooks.execute_notebook`, failing on any error or
 warning output.
 """
 
@@ -17,14 +17,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-import nbformat
-
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-
-from dhsym.notebooks import execute_notebook  # noqa: E402
-
-HERE = ROOT / "notebooks"
+from _nbtools import ROOT, build_notebook
 
 IMPORTS = """\
 %matplotlib inline
@@ -829,26 +822,6 @@ NOTEBOOKS = {
 }
 
 
-def build(name: str, cells: list[tuple[str, str]]) -> Path:
-    """Write one notebook from its cell list (no outputs yet)."""
-    stem = name.split("_")[0]
-    nb = nbformat.v4.new_notebook()
-    nb.metadata["kernelspec"] = {
-        "name": "python3",
-        "display_name": "Python 3",
-        "language": "python",
-    }
-    nb.metadata["language_info"] = {"name": "python"}
-    for k, (kind, source) in enumerate(cells):
-        make = nbformat.v4.new_markdown_cell if kind == "md" else nbformat.v4.new_code_cell
-        cell = make(source)
-        cell["id"] = f"nb{stem}-{k:02d}"
-        nb.cells.append(cell)
-    path = HERE / name
-    nbformat.write(nb, path)
-    return path
-
-
 def puma_picture(path: Path = ROOT / "docs" / "puma560-frames.png") -> Path:
     """The README picture: the PUMA 560 with its DH frames at q = 0 (the printout's pose)."""
     import dhsym
@@ -870,9 +843,7 @@ def main(argv: list[str]) -> int:
     for name, cells in NOTEBOOKS.items():
         if argv and not any(name.startswith(a) for a in argv):
             continue
-        path = build(name, cells)
-        execute_notebook(path, timeout=120, write=True, pythonpath=[ROOT])
-        print(f"built {path.relative_to(ROOT)}")
+        build_notebook(name, cells, timeout=120)
     if not argv or "docs" in argv:
         print(f"wrote {puma_picture().relative_to(ROOT)}")
     return 0

@@ -1,28 +1,30 @@
-"""Build notebooks/06_homework_checking.ipynb and execute it in place (nbformat + nbclient).
+# ruff: noqa: E501  (Markdown cells are long lines)
+"""Build notebooks/06_homework_checking.ipynb and execute it in place (``_nbtools``).
 
 Run from the repository root: ``python notebooks/_build_06.py``.
 """
 
 from __future__ import annotations
 
-from pathlib import Path
+from _nbtools import build_notebook
 
-import nbformat
-from nbclient import NotebookClient
-
-HERE = Path(__file__).resolve().parent
-OUT = HERE / "06_homework_checking.ipynb"
+NAME = "06_homework_checking.ipynb"
 
 CELLS = [
-    ("md", """# Homework checking: an instructor's whole flow
+    (
+        "md",
+        """# Homework checking: an instructor's whole flow
 
 A DH homework has many right answers and a few classic wrong ones. `dhsym.checking`
 says right or wrong, says where and most likely why, accepts valid alternative frame
 choices, and grades a whole class without ever running what a student typed.
 
 This notebook: check single answers (the seed 002 slide, a valid alternative table),
-then grade the small example class in `examples/homework/` and read the reports."""),
-    ("code", """from pathlib import Path
+then grade the small example class in `examples/homework/` and read the reports.""",
+    ),
+    (
+        "code",
+        """from pathlib import Path
 import tempfile
 from IPython.display import Markdown, Image, display
 
@@ -30,13 +32,19 @@ from dhsym.checking import Key, check_answer, grade, render_check
 
 ROOT = Path.cwd().parent if Path.cwd().name == "notebooks" else Path.cwd()
 HW = ROOT / "examples" / "homework"
-"""),
-    ("md", """## One answer: seed 002's slide
+""",
+    ),
+    (
+        "md",
+        """## One answer: seed 002's slide
 
 Seed 002 prints the modified link matrix with `+d_i sin α_{i−1}` in entry (2,4). The
 key is the generic one-row modified table `generic_modified_link.yaml`; the answer is
-the slide's LaTeX exactly as printed."""),
-    ("code", r"""slide = (r"\begin{bmatrix} \cos \theta_i & -\sin \theta_i & 0 & a_{i-1} \\ "
+the slide's LaTeX exactly as printed.""",
+    ),
+    (
+        "code",
+        r"""slide = (r"\begin{bmatrix} \cos \theta_i & -\sin \theta_i & 0 & a_{i-1} \\ "
          r"\sin \theta_i \cos \alpha_{i-1} & \cos \theta_i \cos \alpha_{i-1} & -\sin \alpha_{i-1}"
          r" & d_i \sin \alpha_{i-1} \\ \sin \theta_i \sin \alpha_{i-1} & \cos \theta_i "
          r"\sin \alpha_{i-1} & \cos \alpha_{i-1} & d_i \cos \alpha_{i-1} \\ 0 & 0 & 0 & 1 "
@@ -44,12 +52,18 @@ the slide's LaTeX exactly as printed."""),
 key = Key.load(HW / "generic_modified_link.yaml", "A1")
 result = check_answer(key, slide)
 print(result.verdict.value, result.kinds, result.diagnoses[0].entries)
-display(Markdown(render_check(result)))"""),
-    ("md", """## A valid alternative DH table
+display(Markdown(render_check(result)))""",
+    ),
+    (
+        "md",
+        """## A valid alternative DH table
 
 x0 turned by 90°, z1 reversed, and the origin of frame 2 moved along the parallel
-axes z1, z2: a different table of the same PUMA 560, so it is right."""),
-    ("code", r"""alternative = '''Link	$\theta_i$	$d_i$	$a_i$	$\alpha_i$
+axes z1, z2: a different table of the same PUMA 560, so it is right.""",
+    ),
+    (
+        "code",
+        r"""alternative = '''Link	$\theta_i$	$d_i$	$a_i$	$\alpha_i$
 1	$\theta_1 - 90^\circ$	0	0	$-90^\circ$
 2	$\theta_2$	0.1	$a_2$	$180^\circ$
 3	$\theta_3$	$d_3 + 0.1$	$a_3$	$-90^\circ$
@@ -58,52 +72,57 @@ axes z1, z2: a different table of the same PUMA 560, so it is right."""),
 6	$\theta_6$	0	0	0'''
 r = check_answer(Key.load("puma560", "table"), alternative)
 print(r.verdict.value)
-print(r.alternative)"""),
-    ("md", """## Untrusted input
+print(r.alternative)""",
+    ),
+    (
+        "md",
+        """## Untrusted input
 
 Code, huge powers, deep nesting and LaTeX commands are answered "unreadable" with the
-reason; nothing is executed."""),
-    ("code", """for text in ["__import__('os').system('ls')", "x**9999999", "(" * 500 + "x" + ")" * 500,
+reason; nothing is executed.""",
+    ),
+    (
+        "code",
+        """for text in ["__import__('os').system('ls')", "x**9999999", "(" * 500 + "x" + ")" * 500,
              r"\\input{/etc/passwd}"]:
     r = check_answer(Key.load("puma560", "T0_6[0,3]"), text)
-    print(f"{r.verdict.value:10s} {r.reason[:90]}")"""),
-    ("md", """## Grading the class
+    print(f"{r.verdict.value:10s} {r.reason[:90]}")""",
+    ),
+    (
+        "md",
+        """## Grading the class
 
 `examples/homework/assignment.yaml` asks five questions (a table, `T0_2`, a link matrix
 with an offset, seed 002's link matrix, `p_x`). The class has right answers, every
 kind of classic mistake, a missing answer and a hostile student.
-The same as `dhsym grade examples/homework/assignment.yaml examples/homework/submissions -o REPORT`."""),
-    ("code", """report_dir = Path(tempfile.mkdtemp()) / "report"
+The same as `dhsym grade examples/homework/assignment.yaml examples/homework/submissions -o REPORT`.""",
+    ),
+    (
+        "code",
+        """report_dir = Path(tempfile.mkdtemp()) / "report"
 report = grade(HW / "assignment.yaml", HW / "submissions", report_dir, workers=2, progress=False)
 print(report.students, "students, mean", round(report.mean, 2), "of", 10)
-print((report_dir / "gradebook.csv").read_text())"""),
+print((report_dir / "gradebook.csv").read_text())""",
+    ),
     ("code", """display(Image(filename=str(report_dir / "summary.png")))"""),
-    ("md", """Each student gets a feedback page (Markdown and HTML): the verdict, the diagnosis,
-their entry and the correct one in the lecture notation."""),
+    (
+        "md",
+        """Each student gets a feedback page (Markdown and HTML): the verdict, the diagnosis,
+their entry and the correct one in the lecture notation.""",
+    ),
     ("code", """display(Markdown((report_dir / "feedback" / "erin.md").read_text()))"""),
     ("md", """A rerun skips everything already graded (the cache in the report folder):"""),
-    ("code", """again = grade(HW / "assignment.yaml", HW / "submissions", report_dir, workers=2,
+    (
+        "code",
+        """again = grade(HW / "assignment.yaml", HW / "submissions", report_dir, workers=2,
               progress=False)
-print("graded", again.graded, "skipped", again.skipped)"""),
+print("graded", again.graded, "skipped", again.skipped)""",
+    ),
 ]
 
 
-def build() -> nbformat.NotebookNode:
-    nb = nbformat.v4.new_notebook()
-    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
-                                 "language": "python"}
-    for kind, src in CELLS:
-        make = nbformat.v4.new_markdown_cell if kind == "md" else nbformat.v4.new_code_cell
-        nb.cells.append(make(src))
-    return nb
-
-
 def main() -> None:
-    nb = build()
-    NotebookClient(nb, timeout=600, kernel_name="python3",
-                   resources={"metadata": {"path": str(HERE)}}).execute()
-    nbformat.write(nb, OUT)
-    print(f"wrote {OUT}")
+    build_notebook(NAME, CELLS, timeout=600)
 
 
 if __name__ == "__main__":

@@ -13,14 +13,8 @@ ids), then executed in place with nbclient through
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
-import nbformat
-
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-
-from dhsym.notebooks import execute_notebook  # noqa: E402
+from _nbtools import build_notebook
 
 NAME = "07_frames_and_chains.ipynb"
 
@@ -331,29 +325,8 @@ fig""",
 ]
 
 
-def build() -> Path:
-    """Write the notebook from :data:`CELLS` (no outputs yet)."""
-    nb = nbformat.v4.new_notebook()
-    nb.metadata["kernelspec"] = {
-        "name": "python3",
-        "display_name": "Python 3",
-        "language": "python",
-    }
-    nb.metadata["language_info"] = {"name": "python"}
-    for k, (kind, source) in enumerate(CELLS):
-        make = nbformat.v4.new_markdown_cell if kind == "md" else nbformat.v4.new_code_cell
-        cell = make(source)
-        cell["id"] = f"nb07-{k:02d}"
-        nb.cells.append(cell)
-    path = ROOT / "notebooks" / NAME
-    nbformat.write(nb, path)
-    return path
-
-
 def main() -> int:
-    path = build()
-    execute_notebook(path, timeout=180, write=True, pythonpath=[ROOT])
-    print(f"built {path.relative_to(ROOT)}")
+    build_notebook(NAME, CELLS, timeout=180)
     return 0
 
 

@@ -85,7 +85,7 @@ def test_degrees_read_as_radians():
 
 
 def test_index_shift_in_a_modified_table():
-    from dhsym.checking.mistakes import _shifted
+    from dhsym.checking._row_mistakes import shifted as _shifted
 
     m = dhsym.load("puma560_modified")
     rows = _shifted(m.table.rows, 1, ("alpha", "a"))[:3]

@@ -54,7 +54,7 @@ def test_fk(capsys):
     [
         (["fk", "puma560", "--q", "0,0"], "--q needs 6 values (one per joint), got 2"),
         (["fk", "puma560", "--q", "0,0,0,0,0,__import__('os')"], "names with double underscores"),
-        (["fk", "planar2r", "--q", "1,x"], "--q value 2 (x) must be a number"),
+        (["fk", "planar2r", "--q", "1,x"], "--q value 2 (x) must be a real number"),
         (["show", "nothing-here"], "no built-in robot or table file 'nothing-here'"),
         (["derive", "planar2r", "--to", "9"], "frames of Planar 2R are 0"),
     ],
@@ -81,3 +81,8 @@ def test_console_script_runs_without_traceback(tmp_path):
         text=True,
     )
     assert out.returncode == 2 and "Traceback" not in out.stderr
+
+
+def test_complex_joint_value_is_a_clean_error(capsys):
+    assert main(["fk", "planar2r", "--q", "sqrt(-1),0"]) == 2
+    assert "--q value 1 (sqrt(-1)) must be a real number" in capsys.readouterr().err

@@ -8,7 +8,8 @@ import pytest
 import sympy as sp
 
 import dhsym
-from dhsym.derivation import LATEX_WIDTH, TEXT_WIDTH, Derivation, _pieces, derive, general_link
+from dhsym._linebreak import pieces as _pieces
+from dhsym.derivation import LATEX_WIDTH, TEXT_WIDTH, Derivation, derive, general_link
 from dhsym.errors import DHError
 from dhsym.latex import math_width
 from dhsym.notation import table_latex

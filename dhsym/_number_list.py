@@ -1,0 +1,33 @@
+"""Comma-separated numbers given on the command line (``--q 90,-45`` or ``--check pi/2,0``).
+
+Each value goes through the whitelist parser :func:`dhsym.parsing.parse_expression`,
+so ``pi/2`` and ``sqrt(2)/2`` are numbers and nothing is evaluated. Used by the
+sub-commands of :mod:`dhsym.cli`, :mod:`dhsym.plotting` and :mod:`dhsym.rendering`.
+
+Examples
+--------
+>>> parse_number_list("pi/2, 0.5", "--q")
+[1.5707963267948966, 0.5]
+>>> parse_number_list("1, a2", "--check")
+Traceback (most recent call last):
+...
+dhsym.errors.DHError: --check value 2 (a2) must be a real number
+"""
+
+from __future__ import annotations
+
+from .errors import DHError
+from .parsing import parse_expression
+
+__all__ = ["parse_number_list"]
+
+
+def parse_number_list(text: str, option: str) -> list[float]:
+    """The numbers of ``text`` (comma separated) as floats; ``option`` names them in errors."""
+    values = []
+    for k, part in enumerate(text.split(","), start=1):
+        expr = parse_expression(part, field=f"{option} value {k}")
+        if expr.free_symbols or not expr.is_number or not expr.is_real:
+            raise DHError(f"{option} value {k} ({part.strip()}) must be a real number")
+        values.append(float(expr))
+    return values
