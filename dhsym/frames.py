@@ -41,14 +41,14 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
-from types import MappingProxyType
 from typing import TYPE_CHECKING
 
 import numpy as np
 import sympy as sp
 
+from ._frame_placement import place_modified, place_standard
+from ._frame_sentences import say
 from .axes import (
-    CommonNormal,
     Frame,
     JointAxis,
     Relation,
@@ -56,11 +56,9 @@ from .axes import (
     common_normal,
     exact_number,
     is_zero_vector,
-    sign_of,
     simplify_vector,
-    unit,
 )
-from .chains import Step, angle, name, step, vec, word
+from .chains import Step, angle, name, word
 from .conversion import transform_word
 from .errors import GeometryError
 from .notation import table_markdown
@@ -74,7 +72,6 @@ if TYPE_CHECKING:
 __all__ = ["FrameAssignment", "VariableMap", "assign_frames"]
 
 Vector = sp.ImmutableMatrix
-_EX, _EY = Vector([1, 0, 0]), Vector([0, 1, 0])
 
 
 @dataclass(frozen=True)
@@ -184,7 +181,7 @@ def assign_frames(
     _check_pairs(axs, vals)
     tool_v = tool if isinstance(tool, Tool) or tool is None else Tool(*tool)
     base_f = None if base is None else _base(base, axs[0], vals)
-    build = _standard if conv is Convention.STANDARD else _modified
+    build = place_standard if conv is Convention.STANDARD else place_modified
     frames, points_b, log = build(axs, base_f, tool_v, vals)
     rows, vmap, row_steps = _rows(axs, frames, points_b, conv, offsets)
     base_word = transform_word(frames[0].matrix)
@@ -209,14 +206,14 @@ def assign_frames(
     n = len(axs)
     log += row_steps
     log.append(
-        _say(
+        say(
             "base transform",
             "base transform" if base_word else "no base transform",
             w=word(base_word),
         )
     )
     log.append(
-        _say(
+        say(
             "tool transform",
             "tool transform" if tool_word else "no tool transform",
             n,
@@ -237,7 +234,7 @@ def assign_frames(
     _check_home_exact(result)
     if verify:
         err = result.verify()
-        check = _say("verified", "verified", e=f"{err:.1e}")
+        check = say("verified", "verified", e=f"{err:.1e}")
         result = replace(result, steps=result.steps + (check,))
     return result
 
@@ -291,261 +288,6 @@ def _base(base: object, axis: JointAxis, vals: dict) -> Frame:
     return Frame(0, f.origin, f.x, f.z)
 
 
-def _reference(axis: JointAxis) -> tuple[Vector, Vector]:
-    """The point of the axis nearest the world origin, and world x (or y) made perpendicular."""
-    u = axis.direction
-    v = simplify_vector(_EX - _EX.dot(u) * u)
-    if is_zero_vector(v):
-        v = simplify_vector(_EY - _EY.dot(u) * u)
-    return axis.foot((0, 0, 0)), unit(v)
-
-
-def _closest(candidate: Vector, ref: Vector, vals: dict) -> tuple[Vector, str]:
-    s = sign_of(candidate.dot(ref), vals, what="a direction")
-    return (Vector(-candidate), "−") if s < 0 else (candidate, "+")
-
-
-# --- the lecture's sentences ------------------------------------------------------------------
-# {…p}, {…k}, {…n} are the names with index k − 1, k, k + 1 (z, x, y, O, a, d, b, th, al).
-
-_SENTENCES = {
-    "standard numbering": (
-        "Seed 004, step 1: number the joints 1 … {n} from the base to the tool; frame k has its "
-        "z axis along the axis of joint k + 1."
-    ),
-    "modified numbering": (
-        "Number the joints 1 … {n} from the base to the tool (seed 000): frame i has its z axis "
-        "along the axis of joint i and is attached to link i."
-    ),
-    "standard base": (
-        "Frame 0 (base, seed 004): {zk} = {z} along the axis of joint 1; we place {Ok} = {o}, "
-        "the point of that axis nearest the world origin, and take {xk} = {x}, the world x axis "
-        "made perpendicular to {zk} (any perpendicular would do)."
-    ),
-    "given base": (
-        "Frame 0 is the given base frame: {zk} = {z} along the axis of joint 1, {Ok} = {o}, {xk} "
-        "= {x}."
-    ),
-    "standard skew": (
-        "{zp} and {zk} are skew: the common normal is unique (Dimentberg, seed 003); it meets "
-        "{zp} at {bk} = {foot} and {zk} at {Ok} = {o}, the origin of frame {k}; {xk} = {x} "
-        "points along it away from {zp}, and {ak} = {len}."
-    ),
-    "modified skew": (
-        "{zk} and {zn} are skew: the common normal is unique (Dimentberg, seed 003); its foot on "
-        "{zk} is {Ok} = {o}, {xk} = {x} points along it towards {zn}, and {ak} = {len}."
-    ),
-    "standard intersecting": (
-        "{zp} and {zk} intersect at {o}: {Ok} is the intersection and {ak} = 0; {xk} = ±({zp} × "
-        "{zk})/‖{zp} × {zk}‖, and we take the sign {sgn} so that {xk} = {x} stays closest to "
-        "{xp}."
-    ),
-    "modified intersecting": (
-        "{zk} and {zn} intersect at {o}: {Ok} is the intersection and {ak} = 0; {xk} = ±({zk} × "
-        "{zn})/‖{zk} × {zn}‖, normal to their plane, with the sign {sgn} so that {xk} = {x} "
-        "stays closest to {xp}."
-    ),
-    "standard parallel": (
-        "{zp} and {zk} are parallel: the common normal is not unique (seed 000); we choose the "
-        "one through {Op} = {start}, so that {dk} = 0{home}; it meets {zk} at {Ok} = {o}, {xk} = "
-        "{x} points away from {zp}, and {ak} = {len}."
-    ),
-    "modified parallel": (
-        "{zk} and {zn} are parallel: the common normal is not unique (seed 000); we choose the "
-        "one through {Ok} = {o}, where {xp} meets {zk}, so that {dk} = 0{home}; {xk} = {x} "
-        "points away from {zk}, and {ak} = {len}."
-    ),
-    "standard coincident": (
-        "{zp} and {zk} lie on one line: joints {k} and {n1} form a cylindrical pair (C = R + P, "
-        "seed 000); every perpendicular is a common normal, so we keep {Ok} = {Op} and {xk} = "
-        "{xp} ({ak} = 0)."
-    ),
-    "modified coincident": (
-        "{zk} and {zn} lie on one line: joints {k} and {n1} form a cylindrical pair (C = R + P, "
-        "seed 000); every perpendicular is a common normal, so we keep {Ok} = {o} and {xk} = "
-        "{xp} ({ak} = 0)."
-    ),
-    "no tool": (
-        "Last frame: no tool was given, so frame {k} is frame {m} at the home pose ({ak} = 0, "
-        "{alk} = 0, {dk} = 0); give a tool (point, approach, sliding) to place it at the tool "
-        "tip."
-    ),
-    "tool": (
-        "Last frame (seed 004): {Ok} at the tool point {p}, {zk} along the approach vector a = "
-        "{a}, {yk} along the sliding vector s = {s}, {xk} = s × a = {nv}. "
-    ),
-    "tool is DH": (
-        "{xk} is perpendicular to {zp} and meets it at {bk} = {b}, so this is a DH frame and no "
-        "tool transform is needed."
-    ),
-    "tool is not DH": (
-        "It breaks a DH rule ({xk} must be perpendicular to {zp} and meet it), so frame {k} is "
-        "the DH frame nearest to it: {Ok} = {p}, {xk} = {x}, {zk} = {z}; the constant rest is "
-        "the tool transform."
-    ),
-    "last link": (
-        "Last link (seed 000): there is no {zn}; joint {k} is {kind}, so {Ok} = {o} is where "
-        "{xp} meets {zk} and {xk} = {xp} at the home pose: {dk} = 0 and {thk} = 0 at home."
-    ),
-    "first link R": (
-        "First link (seed 000): {zk} is not fixed by any joint; joint 1 is revolute, so frame 0 "
-        "is chosen coincident with frame 1 at home: {alk} = 0, {ak} = 0, {dn} = 0, {thn} = 0."
-    ),
-    "first link P": (
-        "First link (seed 000): {zk} is not fixed by any joint; joint 1 is prismatic, so frame 0 "
-        "is chosen parallel to frame 1 (and at its home position): {alk} = 0, {ak} = 0, {thn} = "
-        "0, {dn} = 0 at home."
-    ),
-    "standard row": (
-        "Row {k} (seed 004): {thk} = angle from {xp} to {xk} about {zp} = {th} at home; {dk} = "
-        "distance from {Op} to {bk} = {b} along {zp} = {d} at home; {ak} = distance from {bk} to "
-        "{Ok} along {xk} = {a}; {alk} = angle from {zp} to {zk} about {xk} = {al}. The joint "
-        "variable {v} is {zero} at the home pose."
-    ),
-    "modified row": (
-        "Row {k} (seed 000): {alp} = angle from {zp} to {zk} about {xp} = {al}; {ap} = distance "
-        "from {zp} to {zk} along {xp} = {a}; {dk} = distance from {xp} to {xk} along {zk} = {d} "
-        "at home; {thk} = angle from {xp} to {xk} about {zk} = {th} at home. The joint variable "
-        "{v} is {zero} at the home pose."
-    ),
-    "base transform": ("World → frame 0: {w} (the base transform)."),
-    "no base transform": ("World → frame 0: frame 0 is the world frame; no base transform."),
-    "tool transform": ("Frame {k} → tool: {w} (the tool transform)."),
-    "no tool transform": ("Frame {k} → tool: frame {k} is the tool frame; no tool transform."),
-    "verified": (
-        "Check: at the home pose and at 5 random configurations every frame moves rigidly with "
-        "its link (each origin stays on its joint axis, each z along it) and the tool pose "
-        "agrees with the geometry (largest difference {e})."
-    ),
-}
-_SAY = MappingProxyType(_SENTENCES)
-
-
-def _say(rule: str, key: str | tuple[str, ...], k: int = 0, **args: object) -> Step:
-    """The sentence(s) ``_SAY[key]`` about link ``k`` (vectors are printed as tuples)."""
-    names: dict[str, object] = {"k": str(k), "m": str(k - 1), "n1": str(k + 1)}
-    for base in ("z", "x", "y", "O", "a", "d", "b", "theta", "alpha"):
-        short = {"theta": "th", "alpha": "al"}.get(base, base)
-        for suffix, i in (("p", k - 1), ("k", k), ("n", k + 1)):
-            names[short + suffix] = name(base, i)
-    marked = {key_: vec(v) if isinstance(v, sp.MatrixBase) else v for key_, v in args.items()}
-    template = "".join(_SAY[x] for x in ((key,) if isinstance(key, str) else key))
-    return step(rule, template, **{**names, **marked})
-
-
-def _at_home(axis: JointAxis) -> str:
-    return " at home (its joint variable)" if axis.joint == "P" else ""
-
-
-_Link = tuple[CommonNormal, Vector, str, Vector, Vector]
-_Built = tuple[list[Frame], list[Vector], list[Step]]
-
-
-def _link(L1: JointAxis, L2: JointAxis, start: Vector, prev_x: Vector, vals: dict) -> _Link:
-    """x along the common normal of L1 and L2; returns (normal, x, sign, foot on L1, on L2).
-
-    Parallel lines: the normal through ``start``; intersecting: the sign of
-    ``±L1 × L2`` closest to ``prev_x``; coincident: ``prev_x`` at ``start``.
-    """
-    cn = common_normal(L1, L2, through=start, values=vals)
-    if cn.relation is Relation.INTERSECTING:
-        x, sgn = _closest(unit(Vector(L1.direction.cross(L2.direction))), prev_x, vals)
-        return cn, x, sgn, cn.foot1, cn.foot1
-    if cn.relation is Relation.COINCIDENT:
-        return cn, prev_x, "", start, start
-    return cn, cn.direction, "", cn.foot1, cn.foot2
-
-
-def _standard(
-    axes: tuple[JointAxis, ...], base: Frame | None, tool: Tool | None, vals: dict
-) -> _Built:
-    n = len(axes)
-    log = [_say("numbering", "standard numbering", n=str(n))]
-    if base is None:
-        origin, x = _reference(axes[0])
-        base = Frame(0, origin, x, axes[0].direction)
-        log.append(_say("base", "standard base", 0, z=base.z, o=base.origin, x=x))
-    else:
-        log.append(_say("base", "given base", 0, z=base.z, o=base.origin, x=base.x))
-    frames, bs = [base], []
-    for k in range(1, n):
-        prev = frames[-1]
-        cn, x, sgn, b, origin = _link(axes[k - 1], axes[k], prev.origin, prev.x, vals)
-        frames.append(Frame(k, origin, x, axes[k].direction))
-        bs.append(b)
-        log.append(
-            _say(
-                cn.relation.value,
-                f"standard {cn.relation.value}",
-                k,
-                foot=b,
-                o=origin,
-                x=x,
-                len=cn.length,
-                sgn=sgn,
-                start=prev.origin,
-                home=_at_home(axes[k - 1]),
-            )
-        )
-    last, b, text = _standard_last(axes[-1], frames[-1], tool, vals, n)
-    return [*frames, last], [*bs, b], [*log, text]
-
-
-def _standard_last(
-    Ln: JointAxis, prev: Frame, tool: Tool | None, vals: dict, n: int
-) -> tuple[Frame, Vector, Step]:
-    if tool is None:
-        return Frame(n, prev.origin, prev.x, prev.z), prev.origin, _say("last link", "no tool", n)
-    p, t = tool.point, tool.frame
-    foot = Ln.foot(p)
-    gap = simplify_vector(p - foot)
-    if is_zero_vector(gap, vals):  # the tool point is on the last axis: x_n only ⊥ z_{n−1}
-        x = simplify_vector(t.x - t.x.dot(prev.z) * prev.z)
-        x = prev.x if is_zero_vector(x) else unit(x)
-    else:
-        x = unit(gap, vals)
-    z = simplify_vector(t.z - t.z.dot(x) * x)
-    frame = Frame(n, p, x, prev.z if is_zero_vector(z) else unit(z))
-    dh = is_zero_vector(simplify_vector(frame.matrix - t.matrix))
-    args = dict(p=p, a=tool.approach, s=tool.sliding, nv=t.x, b=foot, x=frame.x, z=frame.z)
-    keys = ("tool", "tool is DH" if dh else "tool is not DH")
-    return frame, foot, _say("tool", keys, n, **args)
-
-
-def _modified(
-    axes: tuple[JointAxis, ...], base: Frame | None, tool: Tool | None, vals: dict
-) -> _Built:
-    n = len(axes)
-    log = [_say("numbering", "modified numbering", n=str(n))]
-    start, prev_x = (base.origin, base.x) if base is not None else _reference(axes[0])
-    frames: list[Frame] = []
-    for i in range(1, n):
-        cn, x, sgn, origin, start = _link(axes[i - 1], axes[i], start, prev_x, vals)
-        frames.append(Frame(i, origin, x, axes[i - 1].direction))
-        log.append(
-            _say(
-                cn.relation.value,
-                f"modified {cn.relation.value}",
-                i,
-                o=origin,
-                x=x,
-                len=cn.length,
-                sgn=sgn,
-                home=_at_home(axes[i - 1]),
-            )
-        )
-        prev_x = x
-    frames.append(Frame(n, start, prev_x, axes[-1].direction))
-    kind = "revolute" if axes[-1].joint == "R" else "prismatic"
-    log.append(_say("last link", "last link", n, o=start, kind=kind))
-    if base is None:
-        base = Frame(0, frames[0].origin, frames[0].x, frames[0].z)
-        log.insert(1, _say("first link", f"first link {axes[0].joint}", 0))
-    else:
-        log.insert(1, _say("base", "given base", 0, z=base.z, o=base.origin, x=base.x))
-    return [base, *frames], [], log
-
-
 def _atan2(y: sp.Expr, x: sp.Expr) -> sp.Expr:
     return sp.simplify(sp.atan2(sp.radsimp(sp.simplify(y)), sp.radsimp(sp.simplify(x))))
 
@@ -581,7 +323,7 @@ def _rows(
             )
         zero = "zero" if offsets else "not zero (no constant offsets)"
         log.append(
-            _say(
+            say(
                 "parameters",
                 f"{conv.value} row",
                 k,
