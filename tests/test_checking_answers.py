@@ -21,7 +21,7 @@ from dhsym.checking.names import NameContext
 from dhsym.errors import DHError
 from dhsym.table import Convention
 
-SEEDS = Path(__file__).resolve().parents[2] / "shared" / "seeds"
+SEEDS = Path(__file__).resolve().parent / "data" / "seeds"
 S = lambda n: sp.Symbol(n, real=True)  # noqa: E731
 t1, t2, a1, a2 = S("theta1"), S("theta2"), S("a1"), S("a2")
 P2 = NameContext.from_table(load_table("planar2r"))

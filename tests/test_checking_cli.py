@@ -39,7 +39,7 @@ def test_json_output(monkeypatch, capsys):
 def test_answer_from_a_file_and_a_table_key_file(tmp_path, capsys):
     f = tmp_path / "a.tex"
     lines = (
-        (ROOT.parent / "shared" / "seeds" / "002_8d4894e47f2048cf.txt")
+        (ROOT / "tests" / "data" / "seeds" / "002_8d4894e47f2048cf.txt")
         .read_text(encoding="utf-8")
         .splitlines()
     )

@@ -16,7 +16,7 @@ from dhsym.checking.latex_input import (
 from dhsym.errors import ParseError
 from dhsym.parsing import parse_expression
 
-SEED002 = Path(__file__).resolve().parents[2] / "shared" / "seeds" / "002_8d4894e47f2048cf.txt"
+SEED002 = Path(__file__).resolve().parent / "data" / "seeds" / "002_8d4894e47f2048cf.txt"
 t = sp.Symbol("theta_1", real=True)
 
 

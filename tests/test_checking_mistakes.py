@@ -14,7 +14,7 @@ from dhsym.table import Convention
 from dhsym.transforms import link_word, plain_product
 
 ROOT = Path(__file__).resolve().parents[1]
-SEED002 = ROOT.parent / "shared" / "seeds" / "002_8d4894e47f2048cf.txt"
+SEED002 = ROOT / "tests" / "data" / "seeds" / "002_8d4894e47f2048cf.txt"
 GENERIC = ROOT / "examples" / "homework" / "generic_modified_link.yaml"
 PUMA = dhsym.load("puma560")
 
