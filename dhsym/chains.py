@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from .entries import as_expr
 from .errors import ChainError
 from .notation import Notation, format_angle
 from .pose import Pose
@@ -87,7 +88,7 @@ def name(base: str, index: object) -> _Name:
 
 def angle(value: sp.Expr) -> _Angle:
     """Mark an angle for a :class:`Step` (printed in degrees when exact)."""
-    return _Angle(sp.sympify(value))
+    return _Angle(as_expr(value))
 
 
 def vec(value: sp.MatrixBase) -> _Vec:
