@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from functools import cache, cached_property
+from functools import cache
 from typing import TYPE_CHECKING
 
 import sympy as sp
@@ -187,11 +187,6 @@ class Robot:
     def _check_row(self, i: int) -> None:
         if not 1 <= i <= self.n:
             raise IndexError(f"{self.name or 'robot'} has links 1 … {self.n}; got {i}")
-
-    @cached_property
-    def variable_rows(self) -> tuple[int, ...]:
-        """1-based row index of each joint variable."""
-        return self.table.joint_rows
 
 
 def _frame_name(i: int, n: int) -> int | str:

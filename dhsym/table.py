@@ -23,7 +23,7 @@ DHRow(R: theta=theta1, d=0, a=a1, alpha=0)
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
 
 import sympy as sp
@@ -388,12 +388,3 @@ class DHTable:
         from .notation import table_markdown
 
         return table_markdown(self)
-
-
-def _natural_key(name: str) -> list[object]:
-    return [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", name)]
-
-
-def sorted_symbols(symbols: Sequence[sp.Symbol]) -> list[sp.Symbol]:
-    """Symbols in natural order (a2 before a10)."""
-    return sorted(symbols, key=lambda s: _natural_key(s.name))
