@@ -22,8 +22,8 @@ import sympy as sp
 
 import dhsym
 from dhsym.checking import Key, check_answer, grade
-from dhsym.parsing import parse_expression
-from dhsym.transforms import link_word, plain_product
+from dhsym.kinematics.transforms import link_word, plain_product
+from dhsym.model.parsing import parse_expression
 
 ROOT = Path(__file__).resolve().parents[1]
 HW = ROOT / "examples" / "homework"

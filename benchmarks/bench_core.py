@@ -29,7 +29,7 @@ import sympy as sp
 from sympy.simplify.fu import fu
 
 import dhsym
-from dhsym.transforms import chain_word, plain_product
+from dhsym.kinematics.transforms import chain_word, plain_product
 
 
 def timed(fn: Callable[[], object], repeat: int = 1) -> tuple[float, object]:

@@ -10,49 +10,47 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from .chains import FrameChain
-from .derivation import Derivation, derive
+from dhsym.explain.derivation import Derivation, derive
+from dhsym.geometry.chains import FrameChain
+from dhsym.kinematics.pose import Pose
+from dhsym.kinematics.robot import Robot, load
+from dhsym.model.kinds import AngleUnit, Convention, JointType
+from dhsym.model.library import builtin_names, builtin_table, load_table, planar_chain
+from dhsym.model.table import DHRow, DHTable, Elementary
+from dhsym.model.tablefile import dump_table, read_table, read_table_text
+from dhsym.notation.printers import Notation
+
+from ._lazy import lazy_exports
 from .errors import ChainError, DHError, GeometryError, ParseError, TableError
-from .library import builtin_names, builtin_table, load, load_table, planar_chain
-from .notation import Notation
-from .pose import Pose
-from .robot import Robot
-from .table import AngleUnit, Convention, DHRow, DHTable, Elementary, JointType
-from .tablefile import dump_table, read_table, read_table_text
 
-# Names whose modules import numpy or matplotlib load on first use (PEP 562), so that
-# `import dhsym` costs little more than `import sympy`.
-_LAZY = {
-    "animate_path": "animation",
-    "joint_path": "animation",
-    "frame_origins": "plotting",
-    "plot_robot": "plotting",
-    "plot_workspace": "plotting",
-    "Key": "checking",
-    "check_answer": "checking",
-    "grade": "checking",
-    "JointAxis": "axes",
-    "Tool": "axes",
-    "common_normal": "axes",
-    "assign_frames": "frames",
-    "FrameAssignment": "frames",
-    "convert": "conversion",
-    "to_modified": "conversion",
-    "to_standard": "conversion",
-    "check_conversion": "conversion",
-    "Joint": "joints",
-    "Mechanism": "joints",
-    "PAIRS": "joints",
-    "mobility": "joints",
-}
-
-
-def __getattr__(name: str) -> object:
-    if name in _LAZY:
-        import importlib
-
-        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-    raise AttributeError(f"module 'dhsym' has no attribute {name!r}")
+# Names whose modules import numpy, matplotlib or the checker load on first use (PEP 562),
+# so that `import dhsym` costs little more than `import sympy`.
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "animate_path": "dhsym.plot.animation",
+        "joint_path": "dhsym.plot.animation",
+        "frame_origins": "dhsym.plot.figures",
+        "plot_robot": "dhsym.plot.figures",
+        "plot_workspace": "dhsym.plot.figures",
+        "Key": "dhsym.checking",
+        "check_answer": "dhsym.checking",
+        "grade": "dhsym.checking",
+        "JointAxis": "dhsym.geometry.axes",
+        "Tool": "dhsym.geometry.axes",
+        "common_normal": "dhsym.geometry.axes",
+        "assign_frames": "dhsym.geometry.frames",
+        "FrameAssignment": "dhsym.geometry.frames",
+        "convert": "dhsym.geometry.conversion",
+        "to_modified": "dhsym.geometry.conversion",
+        "to_standard": "dhsym.geometry.conversion",
+        "check_conversion": "dhsym.geometry.conversion",
+        "Joint": "dhsym.geometry.joints",
+        "Mechanism": "dhsym.geometry.joints",
+        "PAIRS": "dhsym.geometry.joints",
+        "mobility": "dhsym.geometry.joints",
+    },
+)
 
 
 try:

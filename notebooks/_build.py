@@ -8,7 +8,7 @@ Run from the repository root::
 
 Each notebook is written from the cell lists below by ``_nbtools.build_notebook``
 (cell ids are fixed, so a rebuild changes only what really changed), which executes
-it in place with :func:`dhsym.notebooks.execute_notebook`, failing on any error or
+it in place with :func:`dhsym.explain.notebooks.execute_notebook`, failing on any error or
 warning output.
 """
 
@@ -168,7 +168,7 @@ cannot fold back completely and the hole in the middle is a little larger.""",
     ),
     (
         "code",
-        "from dhsym.plotting import plot_workspace, workspace_points\n\nplot_workspace(robot)",
+        "from dhsym.plot.figures import plot_workspace, workspace_points\n\nplot_workspace(robot)",
     ),
     (
         "code",
@@ -241,7 +241,7 @@ import base64
 import tempfile
 from pathlib import Path
 from IPython.display import HTML
-from dhsym.animation import animate_path, joint_path
+from dhsym.plot.animation import animate_path, joint_path
 
 path = joint_path([0, 0], [90, -60], 10)
 out = animate_path(robot, path, Path(tempfile.mkdtemp()) / "2r.gif", deg=True, view="2d",
@@ -358,7 +358,7 @@ are drawn, $q_B$ and $q_C$ are the pale arms):""",
     (
         "code",
         """\
-from dhsym.plotting import view_limits
+from dhsym.plot.figures import view_limits
 
 limits = view_limits(robot, [qA, qB, qC], dim=2)
 fig = robot.plot(qB, view="2d", frames=False, labels=False, limits=limits, alpha=0.35)
@@ -676,7 +676,7 @@ Two DH conventions are in use (seeds 001 and 002):
 This notebook writes the PUMA 560 both ways, shows that the frames land in different places,
 and that the tool pose agrees.""",
     ),
-    ("code", IMPORTS + "\nfrom dhsym.plotting import frame_origins"),
+    ("code", IMPORTS + "\nfrom dhsym.plot.figures import frame_origins"),
     (
         "md",
         r"""## 1. From the standard table to a modified one

@@ -7,7 +7,7 @@ Run from the repository root::
 
 The notebook is written from the cell list below with nbformat (fixed cell
 ids), then executed in place with nbclient through
-:func:`dhsym.notebooks.execute_notebook`, which fails on any error or warning.
+:func:`dhsym.explain.notebooks.execute_notebook`, which fails on any error or warning.
 """
 
 from __future__ import annotations
@@ -44,12 +44,20 @@ from IPython.display import Markdown, display
 from matplotlib.figure import Figure
 
 import dhsym
-from dhsym.axes import JointAxis
-from dhsym.chains import FrameChain
-from dhsym.conversion import check_conversion, to_modified, to_standard
+from dhsym.geometry.axes import JointAxis
+from dhsym.geometry.chains import FrameChain
+from dhsym.geometry.conversion import check_conversion, to_modified, to_standard
 from dhsym.errors import GeometryError
-from dhsym.frames import assign_frames
-from dhsym.joints import PAIRS, Joint, decompose, four_bar, planar_five_bar, serial_6r, stewart_platform
+from dhsym.geometry.frames import assign_frames
+from dhsym.geometry.joints import (
+    PAIRS,
+    Joint,
+    decompose,
+    four_bar,
+    planar_five_bar,
+    serial_6r,
+    stewart_platform,
+)
 from dhsym.notation import table_markdown""",
     ),
     (

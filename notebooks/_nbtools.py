@@ -3,7 +3,7 @@
 Shared by the build scripts ``notebooks/_build*.py``. A cell list is a list of
 ``("md" | "code", source)`` pairs; cell ids are fixed (``nb01-00``, ``nb01-01``,
 … from the file name's number), so a rebuild changes only what really changed.
-Execution goes through :func:`dhsym.notebooks.execute_notebook` with this source
+Execution goes through :func:`dhsym.explain.notebooks.execute_notebook` with this source
 tree on the kernel's path; it fails on any error or warning output.
 """
 
@@ -20,7 +20,7 @@ HERE = ROOT / "notebooks"
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from dhsym.notebooks import execute_notebook  # noqa: E402
+from dhsym.explain.notebooks import execute_notebook
 
 __all__ = ["HERE", "ROOT", "build_notebook", "write_notebook"]
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sympy as sp
 from hypothesis import strategies as st
 
-from dhsym.table import Convention, DHRow, DHTable
+from dhsym.model.table import Convention, DHRow, DHTable
 
 _TWISTS = [sp.Integer(0), sp.pi, sp.pi / 2, -sp.pi / 2, sp.pi / 3, -sp.pi / 4]
 _OFFSETS = [sp.Integer(0), sp.pi / 2, -sp.pi / 2, sp.pi, sp.pi / 6]

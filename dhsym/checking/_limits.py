@@ -1,7 +1,7 @@
 """Resource limits for untrusted answers: sizes, a time limit and a cost estimate.
 
 Everything a student typed is bounded three ways: its size (bytes, cells),
-the whitelist parser's :class:`~dhsym.parsing.ParseLimits`, and the symbolic
+the whitelist parser's :class:`~dhsym.model.parsing.ParseLimits`, and the symbolic
 work done on it — an *estimate* of the expansion size refuses hopeless
 expressions before sympy starts, and :func:`time_limit` stops what slips
 through (``SIGALRM``; in a non-main thread only the estimate applies).
@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.parsing import ParseLimits
+from dhsym.model.parsing import ParseLimits
 
 __all__ = [
     "AnswerLimits",

@@ -23,9 +23,9 @@ from typing import ClassVar
 import numpy as np
 import sympy as sp
 
-from dhsym.notation import Notation, format_angle
-from dhsym.table import AngleUnit, Convention, DHRow, DHTable
-from dhsym.transforms import link_word
+from dhsym.kinematics.transforms import link_word
+from dhsym.model.table import AngleUnit, Convention, DHRow, DHTable
+from dhsym.notation.printers import Notation, format_angle
 
 from ._numeric import word_product
 from .equivalence import Sample, close

@@ -2,7 +2,7 @@
 
 A small tree walker (no code generation, no ``lambdify``): each node is one numpy
 operation over all sample points at once, shared subtrees are computed once.
-Words of elementary transforms come from :mod:`dhsym.transforms` (the core's
+Words of elementary transforms come from :mod:`dhsym.kinematics.transforms` (the core's
 convention logic); only ``Rx … Tz`` themselves are written here as numbers.
 
 Examples
@@ -20,8 +20,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import sympy as sp
 
-from dhsym.table import DHTable, Elementary
-from dhsym.transforms import link_word
+from dhsym.kinematics.transforms import link_word
+from dhsym.model.table import DHTable, Elementary
 
 __all__ = ["EvaluationError", "evaluate", "frames", "word_product"]
 

@@ -17,7 +17,7 @@ from dataclasses import replace
 
 import sympy as sp
 
-from dhsym.table import Convention, DHRow, JointType
+from dhsym.model.table import Convention, DHRow, JointType
 
 from ._mistake_base import Mistake, cell_text
 from .tables import Chain, same_cells

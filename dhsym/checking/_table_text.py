@@ -18,9 +18,9 @@ import sympy as sp
 import yaml
 
 from dhsym.errors import DHError, ParseError, TableError
-from dhsym.parsing import normalize_name, parse_expression
-from dhsym.table import Convention, DHRow, DHTable, JointType, to_radians
-from dhsym.tablefile import table_from_data
+from dhsym.model.parsing import normalize_name, parse_expression
+from dhsym.model.table import Convention, DHRow, DHTable, JointType, to_radians
+from dhsym.model.tablefile import table_from_data
 
 from ._limits import AnswerLimits, UnreadableAnswer
 from .latex_input import flatten_subscripts, is_latex, latex_to_text
@@ -260,7 +260,7 @@ def _renamed(table: DHTable, ctx: NameContext) -> DHTable:
 def yaml_table(
     text: str, ctx: NameContext, convention: Convention, limits: AnswerLimits
 ) -> DHTable:
-    """Read the YAML table format (:mod:`dhsym.tablefile`); no convention means the key's."""
+    """Read the YAML table format (:mod:`dhsym.model.tablefile`); no convention means the key's."""
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as err:

@@ -3,9 +3,9 @@ r"""Reading answers: text from files or strings, expressions, matrices and DH ta
 Every reader takes untrusted text and either returns sympy objects or raises a
 :class:`~dhsym.errors.DHError` (``UnreadableAnswer``, ``ParseError``,
 ``TableError``) that says what was wrong: size and type are checked first, plain
-math goes through :func:`dhsym.parsing.parse_expression` with the key's
+math goes through :func:`dhsym.model.parsing.parse_expression` with the key's
 :class:`~dhsym.checking.names.NameContext` as ``resolve`` hook, LaTeX through
-:mod:`dhsym.checking.latex_input`, tables through :mod:`dhsym.tablefile` or the
+:mod:`dhsym.checking.latex_input`, tables through :mod:`dhsym.model.tablefile` or the
 pasted-table reader :mod:`dhsym.checking._table_text`.
 
 Examples
@@ -32,8 +32,8 @@ from pathlib import Path
 import sympy as sp
 
 from dhsym.errors import DHError, ParseError, TableError
-from dhsym.parsing import parse_expression
-from dhsym.table import Convention, DHTable
+from dhsym.model.parsing import parse_expression
+from dhsym.model.table import Convention, DHTable
 
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
 from ._table_text import grid_table, yaml_table

@@ -26,10 +26,10 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.library import load_table
-from dhsym.notation import format_angle
-from dhsym.robot import Robot
-from dhsym.table import AngleUnit, Convention, DHTable
+from dhsym.kinematics.robot import Robot
+from dhsym.model.library import load_table
+from dhsym.model.table import AngleUnit, Convention, DHTable
+from dhsym.notation.printers import format_angle
 
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
 from .answers import expression_cell, matrix_cells, parse_cell, read_table

@@ -3,7 +3,7 @@
 :class:`Sample` holds random values for a set of symbols; :func:`values` evaluates
 an expression or matrix at all of them at once (:mod:`dhsym.checking._numeric`).
 Entries that agree numerically are confirmed with
-:func:`dhsym.simplification.prove_equal` under a time limit, after
+:func:`dhsym.kinematics.simplification.prove_equal` under a time limit, after
 :func:`~dhsym.checking._limits.expansion_terms` has shown the proof is affordable.
 
 Examples
@@ -25,9 +25,15 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from dhsym.simplification import prove_equal
+from dhsym.kinematics.simplification import prove_equal
 
-from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, expansion_terms, time_limit
+from ._limits import (
+    DEFAULT_ANSWER_LIMITS,
+    AnswerLimits,
+    CheckTimeout,
+    expansion_terms,
+    time_limit,
+)
 from ._numeric import EvaluationError, evaluate
 
 __all__ = [

@@ -24,9 +24,9 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
-from pathlib import Path
 
 from dhsym.errors import DHError
+from dhsym.explain.templates import loader
 
 from .verdict import CheckResult
 
@@ -37,7 +37,6 @@ __all__ = [
     "render_check",
     "render_feedback",
     "render_summary",
-    "templates_dir",
 ]
 
 _MD_SPECIAL = re.compile(r"([\\`*_\[\]|~$])")
@@ -52,14 +51,6 @@ class QuestionFeedback:
     points: float
     score: float
     result: CheckResult | None
-
-
-def templates_dir() -> Path:
-    """The project's ``templates/`` folder (next to the ``dhsym`` package)."""
-    here = Path(__file__).resolve().parents[2] / "templates"
-    if not (here / "feedback.md.j2").is_file():
-        raise DHError(f"feedback templates not found in {here}")
-    return here
 
 
 def md_escape(text: object) -> str:
@@ -92,7 +83,7 @@ def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
     import jinja2
 
     env = jinja2.Environment(
-        loader=jinja2.FileSystemLoader(str(templates_dir())),
+        loader=loader(),
         autoescape=(fmt == "html"),
         undefined=jinja2.StrictUndefined,
         trim_blocks=False,

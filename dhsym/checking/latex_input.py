@@ -2,7 +2,7 @@ r"""A small LaTeX math reader: student LaTeX into text for the whitelist parser.
 
 Nothing is executed and nothing is handed to ``sympify`` or ``parse_latex``: a
 tokenizer and a recursive translator turn the LaTeX that students paste from the
-lectures into the plain grammar of :func:`dhsym.parsing.parse_expression`, which
+lectures into the plain grammar of :func:`dhsym.model.parsing.parse_expression`, which
 then builds the sympy objects.  Supported: ``\cos\theta_1``, ``\cos(\theta_1 +
 \theta_2)``, ``\cos^2\theta``, ``C_{12}``, ``\alpha_{i-1}`` (a name ``alpha_im1``),
 ``\frac{}{}``, ``\sqrt{}``, ``\left( \right)``, ``\cdot``, ``\times``, ``^{}``,

@@ -26,8 +26,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from dhsym.table import Convention
-from dhsym.transforms import link_word
+from dhsym.kinematics.transforms import link_word
+from dhsym.model.table import Convention
 
 from ._entry_mistakes import SinCosSwapped, WrongSign
 from ._mistake_base import MatrixCase, Mistake, TableCase

@@ -4,7 +4,7 @@ Students write ``theta1``, ``θ_1``, ``q1``, the lecture abbreviations ``C12``,
 ``S23``, ``c1``, ``C_{12}``, ``c_{alpha}``, ``c_alpha1``, ``c_{\\theta_i}`` or
 glued products like ``c1s2``.  :class:`NameContext` turns each name into the key
 robot's symbol or into ``cos``/``sin`` of its joint angles; it is the ``resolve``
-hook of :func:`dhsym.parsing.parse_expression`.
+hook of :func:`dhsym.model.parsing.parse_expression`.
 
 Examples
 --------
@@ -25,8 +25,8 @@ from functools import cached_property
 import sympy as sp
 
 from dhsym.errors import ParseError
-from dhsym.parsing import normalize_name, symbol
-from dhsym.table import DHTable, JointType
+from dhsym.model.parsing import normalize_name, symbol
+from dhsym.model.table import DHTable, JointType
 
 __all__ = ["NameContext"]
 

@@ -16,7 +16,7 @@ where the geometry diverges.
 Examples
 --------
 >>> from dhsym import load_table
->>> from dhsym.table import DHRow, DHTable
+>>> from dhsym.model.table import DHRow, DHTable
 >>> key = load_table("planar2r")
 >>> alt = DHTable.from_rows([DHRow.revolute("theta1 - 90", a="a1"),
 ...                          DHRow.revolute("theta2", a="a2")], angles="deg")
@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from dhsym.table import Convention, DHRow, DHTable, JointType
+from dhsym.model.table import Convention, DHRow, DHTable, JointType
 
 from ._numeric import EvaluationError, evaluate, frames
 
@@ -49,7 +49,7 @@ _CONFIGS = 6
 
 @dataclass(frozen=True)
 class Chain:
-    """Rows and a convention without the checks of :class:`~dhsym.table.DHTable`.
+    """Rows and a convention without the checks of :class:`~dhsym.model.table.DHTable`.
 
     Mistake variants (a table read in the wrong unit, rows shifted) need not be
     valid tables; :func:`compare_tables` takes either.

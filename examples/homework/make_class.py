@@ -14,8 +14,8 @@ from pathlib import Path
 import sympy as sp
 
 import dhsym
-from dhsym.notation import Notation
-from dhsym.transforms import link_word, plain_product
+from dhsym.notation.printers import Notation
+from dhsym.kinematics.transforms import link_word, plain_product
 
 HERE = Path(__file__).resolve().parent
 SEED002 = [  # seed 002's two slides of ^{i-1}T_i: the first prints +d_i sin(alpha_{i-1}) (wrong)

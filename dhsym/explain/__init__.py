@@ -1,0 +1,44 @@
+"""The documents room: derivations as plain data in the lecture's order, rendered through
+the Jinja2 templates (text, Markdown, LaTeX), handouts compiled to PDF, notebooks run/exported.
+
+May import model, notation, kinematics and plot (figures in handouts).
+"""
+
+from dhsym._lazy import lazy_exports
+
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "builtin_dir": "templates",
+        "check_log": "latex",
+        "compile_pdf": "latex",
+        "Derivation": "derivation",
+        "derive": "derivation",
+        "execute_notebook": "notebooks",
+        "export_notebook": "notebooks",
+        "general_link": "derivation",
+        "loader": "templates",
+        "render": "rendering",
+        "render_derivation": "rendering",
+        "render_handout": "rendering",
+        "tex_available": "latex",
+        "write_handout": "rendering",
+    },
+)
+
+__all__ = [
+    "Derivation",
+    "builtin_dir",
+    "check_log",
+    "compile_pdf",
+    "derive",
+    "execute_notebook",
+    "export_notebook",
+    "general_link",
+    "loader",
+    "render",
+    "render_derivation",
+    "render_handout",
+    "tex_available",
+    "write_handout",
+]

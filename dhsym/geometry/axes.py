@@ -1,0 +1,454 @@
+"""Joint axes as exact lines, and the line geometry the DH algorithm needs.
+
+A joint axis is a line in space (a point and a unit direction) with a joint
+type: ``R`` (the link turns about the line) or ``P`` (the link slides along
+it; only the direction matters, seed 003). Two consecutive axes are *skew*
+(one common normal), *intersecting* (a = 0), *parallel* (infinitely many common
+normals, seed 000) or *coincident*. :func:`common_normal` finds the common
+normal with its feet, exactly (Dimentberg's link length, seed 003).
+
+Numbers are exact sympy values. Floats are read as the simplest exact number
+within 1e-12 (a fraction with denominator at most 1000, or such a fraction times
+√2, √3 or √6, or a fraction with denominator at most 10⁶; otherwise the float's
+exact decimal), so ``0.7071067811865476``
+becomes ``sqrt(2)/2``. Directions are numbers; points may hold symbols
+(lengths such as ``a2``): then a zero or sign test that sympy cannot decide
+uses the numeric ``values`` given, or raises :class:`~dhsym.errors.GeometryError`.
+
+Examples
+--------
+>>> z1 = JointAxis((0, 0, 0), (0, 0, 2), "R", "1")
+>>> z1.direction.T
+Matrix([[0, 0, 1]])
+>>> JointAxis((0, 0, 0), (1, 1, 0)).direction.T
+Matrix([[sqrt(2)/2, sqrt(2)/2, 0]])
+>>> cn = common_normal(z1, JointAxis((1, 0, 5), (0, 1, 0)))
+>>> cn.relation.value, cn.foot1.T, cn.foot2.T, cn.length
+('skew', Matrix([[0, 0, 5]]), Matrix([[1, 0, 5]]), 1)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from enum import Enum
+from fractions import Fraction
+
+import numpy as np
+import sympy as sp
+
+from dhsym.errors import GeometryError
+from dhsym.model.table import JointType, as_expr
+
+__all__ = [
+    "CommonNormal",
+    "Frame",
+    "JointAxis",
+    "Relation",
+    "Tool",
+    "classify",
+    "common_normal",
+    "exact_number",
+    "is_zero_vector",
+    "norm",
+    "sign_of",
+    "simplify_vector",
+    "unit",
+    "vector",
+]
+
+Vector = sp.ImmutableMatrix
+Values = Mapping[sp.Symbol, sp.Expr]
+_SURDS = (sp.Integer(1), sp.sqrt(2), sp.sqrt(3), sp.sqrt(6))
+
+
+def exact_number(value: object, *, field: str | None = None) -> sp.Expr:
+    """An exact sympy number or expression for ``value`` (floats: simplest exact form).
+
+    >>> exact_number(0.15005000000000002), exact_number(-0.8660254037844386)
+    (3001/20000, -sqrt(3)/2)
+    >>> exact_number("a2 + 1")
+    a2 + 1
+    """
+    if hasattr(value, "dtype") and hasattr(value, "item"):  # numpy scalar
+        value = value.item()
+    if isinstance(value, float):
+        return _from_float(value, field)
+    try:
+        return as_expr(value, field=field)
+    except Exception as err:  # noqa: BLE001 - re-raised as a geometry error
+        raise GeometryError(str(err), field=field) from None
+
+
+def _from_float(f: float, field: str | None) -> sp.Expr:
+    if f != f or f in (float("inf"), float("-inf")):
+        raise GeometryError(f"non-finite number {f!r}", field=field)
+    if abs(f) < 1e-14:
+        return sp.Integer(0)
+    candidates = [(surd, 1000) for surd in _SURDS] + [(_SURDS[0], 10**6)]
+    for surd, largest in candidates:
+        s = float(surd)
+        frac = Fraction(f / s).limit_denominator(largest)
+        if abs(float(frac) * s - f) <= 1e-12 * max(1.0, abs(f)):
+            return sp.Rational(frac.numerator, frac.denominator) * surd
+    return sp.Rational(repr(f))
+
+
+def vector(values: object, *, field: str = "vector") -> Vector:
+    """A 3×1 exact column vector from three numbers (a list, tuple, numpy or sympy matrix).
+
+    >>> vector([1, 0.5, "d3"]).T
+    Matrix([[1, 1/2, d3]])
+    """
+    if isinstance(values, sp.MatrixBase):
+        items = list(values)
+    else:
+        try:
+            items = list(values)  # type: ignore[call-overload]
+        except TypeError:
+            raise GeometryError(f"{field} must be three numbers, got {values!r}") from None
+    if len(items) != 3:
+        raise GeometryError(f"{field} must have three components, got {len(items)}")
+    return Vector([exact_number(v, field=field) for v in items])
+
+
+def sign_of(expr: sp.Expr, values: Values | None = None, *, what: str = "a length") -> int:
+    """The sign (-1, 0, 1) of an exact expression; symbols are decided at ``values``.
+
+    >>> a2 = sp.Symbol("a2", real=True)
+    >>> sign_of(sp.sqrt(2) - 1), sign_of(a2 - 1, {a2: sp.Rational(1, 2)}), sign_of(a2**2 + 1)
+    (1, -1, 1)
+    """
+    expr = sp.radsimp(sp.expand(expr)) if not expr.free_symbols else sp.expand(expr)
+    for test, result in ((expr.is_zero, 0), (expr.is_positive, 1), (expr.is_negative, -1)):
+        if test:
+            return result
+    if expr.free_symbols:
+        known = {k: v for k, v in (values or {}).items() if k in expr.free_symbols}
+        missing = expr.free_symbols - set(known)
+        if missing:
+            names = ", ".join(sorted(str(s) for s in missing))
+            raise GeometryError(
+                f"cannot decide the sign of {what} {expr}: give values for {names} "
+                "(values={...}) or declare the symbols positive"
+            )
+        return sign_of(expr.subs(known), None, what=what)
+    if sp.simplify(expr) == 0:
+        return 0
+    v = sp.N(expr, 50)
+    return 0 if abs(v) < sp.Float("1e-40") else (1 if v > 0 else -1)
+
+
+def is_zero_vector(v: Vector, values: Values | None = None) -> bool:
+    """True when every component of ``v`` is zero (symbols decided at ``values``).
+
+    >>> is_zero_vector(vector([0, sp.sqrt(2) - sp.sqrt(8) / 2, 0]))
+    True
+    """
+    return all(sign_of(c, values) == 0 for c in v)
+
+
+def norm(v: Vector, values: Values | None = None) -> sp.Expr:
+    """Exact Euclidean norm; ``sqrt(x**2)`` becomes ``±x`` by the sign of ``x`` at ``values``.
+
+    >>> a2 = sp.Symbol("a2", real=True)
+    >>> norm(vector([0, "a2", 0]), {a2: 1}), norm(vector([3, 4, 0]))
+    (a2, 5)
+    """
+    n2 = sp.factor(sp.expand(v.dot(v)))
+    r = sp.sqrt(n2)
+    if r.has(sp.Abs):
+        r = r.replace(sp.Abs, lambda x: sign_of(x, values) * x)
+    return sp.radsimp(r) if not r.free_symbols else r
+
+
+def unit(v: Vector, values: Values | None = None) -> Vector:
+    """``v / |v|`` exactly (radicals rationalised).
+
+    >>> unit(vector([1, 0, 1])).T
+    Matrix([[sqrt(2)/2, 0, sqrt(2)/2]])
+    """
+    n = norm(v, values)
+    return Vector([sp.radsimp(sp.simplify(c / n)) for c in v])
+
+
+def simplify_vector(v: sp.MatrixBase) -> Vector:
+    """Entry-wise ``simplify`` + ``radsimp`` (small exact vectors only).
+
+    >>> simplify_vector(sp.Matrix([1 / sp.sqrt(2), sp.sin(1) ** 2 + sp.cos(1) ** 2, 0])).T
+    Matrix([[sqrt(2)/2, 1, 0]])
+    """
+    return Vector([sp.radsimp(sp.simplify(c)) for c in v])
+
+
+@dataclass(frozen=True)
+class JointAxis:
+    """A joint axis: a line through ``point`` along unit ``direction``, joint ``'R'`` or ``'P'``.
+
+    ``direction`` is normalised exactly; a zero direction raises
+    :class:`~dhsym.errors.GeometryError` naming the joint.
+
+    >>> JointAxis((0, 0, 0), (0, 0, 0), "R", "2")
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.GeometryError: joint 2: the direction of the axis has zero length
+    """
+
+    point: Vector
+    direction: Vector
+    joint: str = "R"
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        label = f"joint {self.name}" if self.name else "joint axis"
+        try:
+            kind = JointType.parse(self.joint)
+        except Exception:  # noqa: BLE001
+            raise GeometryError(
+                f"{label}: unknown joint type {self.joint!r}: expected R or P"
+            ) from None
+        if kind is JointType.FIXED:
+            raise GeometryError(f"{label}: a joint axis is R or P, not fixed")
+        object.__setattr__(self, "joint", kind.value)
+        object.__setattr__(self, "name", str(self.name))
+        point = vector(self.point, field="point")
+        d = vector(self.direction, field="direction")
+        if d.free_symbols:
+            raise GeometryError(f"{label}: the direction must be numbers, got {tuple(d)}")
+        if is_zero_vector(d):
+            raise GeometryError(f"{label}: the direction of the axis has zero length")
+        object.__setattr__(self, "point", point)
+        object.__setattr__(self, "direction", unit(d))
+
+    @property
+    def label(self) -> str:
+        """``joint NAME`` for messages.
+
+        >>> JointAxis((0, 0, 0), (0, 0, 1), "P", "3").label
+        'joint 3'
+        """
+        return f"joint {self.name}" if self.name else "joint axis"
+
+    def at(self, t: object) -> Vector:
+        """The point ``point + t·direction``.
+
+        >>> JointAxis((1, 0, 0), (0, 0, 2)).at(3).T
+        Matrix([[1, 0, 3]])
+        """
+        return Vector(self.point + exact_number(t) * self.direction)
+
+    def contains(self, p: object, values: Values | None = None) -> bool:
+        """True when point ``p`` lies on the line.
+
+        >>> JointAxis((1, 0, 0), (0, 0, 1)).contains((1, 0, 7))
+        True
+        """
+        w = vector(p) - self.point
+        return is_zero_vector(Vector(w.cross(self.direction)), values)
+
+    def foot(self, p: object) -> Vector:
+        """The foot of the perpendicular from ``p`` onto the line (the closest point).
+
+        >>> JointAxis((1, 0, 0), (0, 0, 1)).foot((5, 5, 2)).T
+        Matrix([[1, 0, 2]])
+        """
+        w = vector(p) - self.point
+        return simplify_vector(self.point + w.dot(self.direction) * self.direction)
+
+    def motion(self, q: float, values: Values | None = None) -> np.ndarray:
+        """The 4×4 rigid motion (numbers) of turning by ``q`` about (R) or sliding ``q`` along (P).
+
+        >>> JointAxis((1, 0, 0), (0, 0, 1)).motion(np.pi)[:3, 3].round(12) + 0.0
+        array([2., 0., 0.])
+        """
+        subs = dict(values or {})
+        p = np.array([float(sp.N(c.subs(subs))) for c in self.point])
+        u = np.array([float(c) for c in self.direction])
+        M = np.eye(4)
+        if self.joint == "P":
+            M[:3, 3] = q * u
+            return M
+        K = np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+        R = np.eye(3) + np.sin(q) * K + (1 - np.cos(q)) * K @ K
+        M[:3, :3], M[:3, 3] = R, p - R @ p
+        return M
+
+
+class Relation(str, Enum):
+    """How two lines lie: the cases of seed 000's DH special cases."""
+
+    SKEW = "skew"
+    INTERSECTING = "intersecting"
+    PARALLEL = "parallel"
+    COINCIDENT = "coincident"
+
+
+@dataclass(frozen=True)
+class CommonNormal:
+    """The common normal of two lines: feet on each line, unit direction, length.
+
+    ``direction`` points from ``foot1`` to ``foot2``; it is ``None`` when the
+    lines intersect or coincide (length 0). For parallel lines the normal is
+    not unique: this one passes through the ``through`` point on line 1.
+    """
+
+    relation: Relation
+    foot1: Vector
+    foot2: Vector
+    direction: Vector | None
+    length: sp.Expr
+
+
+def classify(l1: JointAxis, l2: JointAxis, values: Values | None = None) -> Relation:
+    """Skew, intersecting, parallel or coincident.
+
+    >>> z = JointAxis((0, 0, 0), (0, 0, 1))
+    >>> [classify(z, JointAxis(p, d)).value for p, d in
+    ...  [((1, 0, 0), (0, 0, -1)), ((0, 0, 3), (0, 0, 1)), ((0, 0, 3), (1, 0, 0))]]
+    ['parallel', 'coincident', 'intersecting']
+    """
+    return common_normal(l1, l2, values=values).relation
+
+
+def common_normal(
+    l1: JointAxis,
+    l2: JointAxis,
+    *,
+    through: object | None = None,
+    values: Values | None = None,
+) -> CommonNormal:
+    """The common normal of two lines with its feet (exact).
+
+    Parameters
+    ----------
+    l1, l2
+        The lines.
+    through
+        For parallel lines: the point of ``l1`` the chosen normal passes
+        through (default: ``l1.point``); ignored otherwise.
+    values
+        Numbers for symbols in the points, used only to decide zero and sign.
+
+    >>> z0 = JointAxis((0, 0, 0), (0, 0, 1))
+    >>> cn = common_normal(z0, JointAxis(("a1", 0, 3), (0, 0, 1)), through=(0, 0, 1),
+    ...                    values={sp.Symbol("a1", real=True): 1})
+    >>> cn.relation.value, cn.foot2.T, cn.direction.T, cn.length
+    ('parallel', Matrix([[a1, 0, 1]]), Matrix([[1, 0, 0]]), a1)
+    """
+    u1, u2 = l1.direction, l2.direction
+    w = Vector(l2.point - l1.point)
+    c = Vector(u1.cross(u2))
+    if is_zero_vector(c):
+        start = l1.point if through is None else vector(through, field="through")
+        w = Vector(l2.point - start)
+        perp = simplify_vector(w - w.dot(u1) * u1)
+        if is_zero_vector(perp, values):
+            return CommonNormal(Relation.COINCIDENT, start, start, None, sp.Integer(0))
+        length = norm(perp, values)
+        direction = simplify_vector(perp / length)
+        return CommonNormal(
+            Relation.PARALLEL, start, simplify_vector(start + perp), direction, length
+        )
+    cc = c.dot(c)
+    t1 = w.cross(u2).dot(c) / cc
+    t2 = w.cross(u1).dot(c) / cc
+    foot1 = simplify_vector(l1.point + t1 * u1)
+    foot2 = simplify_vector(l2.point + t2 * u2)
+    gap = simplify_vector(foot2 - foot1)
+    if is_zero_vector(gap, values):
+        return CommonNormal(Relation.INTERSECTING, foot1, foot1, None, sp.Integer(0))
+    length = norm(gap, values)
+    return CommonNormal(Relation.SKEW, foot1, foot2, simplify_vector(gap / length), length)
+
+
+@dataclass(frozen=True)
+class Frame:
+    """A frame at the home pose: origin and unit x, z axes (y = z × x), exact.
+
+    >>> Frame(0, vector([0, 0, 1]), vector([1, 0, 0]), vector([0, 0, 1])).y.T
+    Matrix([[0, 1, 0]])
+    """
+
+    index: int | str
+    origin: Vector
+    x: Vector
+    z: Vector
+
+    def __post_init__(self) -> None:
+        for key in ("origin", "x", "z"):
+            object.__setattr__(self, key, vector(getattr(self, key), field=f"frame {key}"))
+        checks = (self.x.dot(self.x) - 1, self.z.dot(self.z) - 1, self.x.dot(self.z))
+        if any(sign_of(c) != 0 for c in checks):
+            raise GeometryError(f"frame {self.index}: x and z must be orthogonal unit vectors")
+
+    @property
+    def y(self) -> Vector:
+        """``z × x`` (right-handed)."""
+        return Vector(self.z.cross(self.x))
+
+    @property
+    def matrix(self) -> sp.ImmutableMatrix:
+        """The 4×4 pose of the frame in world coordinates."""
+        M = sp.eye(4)
+        M[:3, 0], M[:3, 1], M[:3, 2], M[:3, 3] = self.x, self.y, self.z, self.origin
+        return sp.ImmutableMatrix(M)
+
+    @classmethod
+    def from_matrix(cls, T: object, index: int | str = "") -> Frame:
+        """Read a 4×4 pose (sympy, numpy or nested lists); checks that it is rigid.
+
+        >>> Frame.from_matrix([[0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]).x.T
+        Matrix([[0, 1, 0]])
+        """
+        rows = T.tolist() if hasattr(T, "tolist") else list(T)  # type: ignore[union-attr]
+        M = sp.Matrix([[exact_number(v) for v in row] for row in rows])
+        if M.shape != (4, 4):
+            raise GeometryError(f"frame {index}: expected a 4×4 matrix, got {M.shape}")
+        R = M[:3, :3]
+        if not is_zero_vector(Vector(list(R.T * R - sp.eye(3)))) or sign_of(R.det() - 1) != 0:
+            raise GeometryError(f"frame {index}: the 3×3 part is not a rotation")
+        return cls(index, Vector(M[:3, 3]), Vector(M[:3, 0]), Vector(M[:3, 2]))
+
+
+@dataclass(frozen=True)
+class Tool:
+    """Tool point with approach ``a`` (z_n) and sliding ``s`` (y_n) vectors (seed 004).
+
+    >>> Tool((0, 0, 1), (0, 0, 1), (1, 0, 1))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.GeometryError: tool: the approach vector a = ... got a·s = sqrt(2)/2 (unit vectors)
+    """
+
+    point: Vector
+    approach: Vector
+    sliding: Vector
+
+    def __post_init__(self) -> None:
+        raw = {
+            k: vector(getattr(self, k), field=f"tool {k}") for k in ("point", "approach", "sliding")
+        }
+        for k in ("approach", "sliding"):
+            if raw[k].free_symbols or is_zero_vector(raw[k]):
+                raise GeometryError(
+                    f"tool: the {k} vector must be non-zero numbers, got {tuple(raw[k])}"
+                )
+        a, s = unit(raw["approach"]), unit(raw["sliding"])
+        dot = sp.radsimp(sp.simplify(a.dot(s)))
+        if dot != 0:
+            raise GeometryError(
+                f"tool: the approach vector a = {tuple(raw['approach'])} and the sliding vector "
+                f"s = {tuple(raw['sliding'])} must be orthogonal; got a·s = {dot} (unit vectors)"
+            )
+        object.__setattr__(self, "point", raw["point"])
+        object.__setattr__(self, "approach", a)
+        object.__setattr__(self, "sliding", s)
+
+    @property
+    def frame(self) -> Frame:
+        """The tool frame: x = n = s × a, y = s, z = a.
+
+        >>> Tool((0, 0, 1), (0, 0, -1), (0, 1, 0)).frame.x.T
+        Matrix([[-1, 0, 0]])
+        """
+        return Frame("tool", self.point, Vector(self.sliding.cross(self.approach)), self.approach)

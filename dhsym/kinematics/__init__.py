@@ -1,0 +1,51 @@
+"""The kinematics room: the one transform kernel (elementary matrices, words, ^iT_j, rigid
+inverse), the compact closed form and its proof, compiled numbers, ``Pose`` and ``Robot``.
+
+May import :mod:`dhsym.model` and :mod:`dhsym.notation` (``Robot.plot`` reaches the plot
+room at call time: a convenience for notebooks).
+"""
+
+from dhsym._lazy import lazy_exports
+
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "chain_word": "transforms",
+        "compile_pose": "numeric",
+        "compose": "simplification",
+        "link_word": "transforms",
+        "load": "robot",
+        "numeric_equal": "simplification",
+        "plain_product": "transforms",
+        "Pose": "pose",
+        "prove_equal": "simplification",
+        "rigid_inverse": "transforms",
+        "Robot": "robot",
+        "Rx": "transforms",
+        "Ry": "transforms",
+        "Rz": "transforms",
+        "Tx": "transforms",
+        "Ty": "transforms",
+        "Tz": "transforms",
+    },
+)
+
+__all__ = [
+    "Pose",
+    "Robot",
+    "Rx",
+    "Ry",
+    "Rz",
+    "Tx",
+    "Ty",
+    "Tz",
+    "chain_word",
+    "compile_pose",
+    "compose",
+    "link_word",
+    "load",
+    "numeric_equal",
+    "plain_product",
+    "prove_equal",
+    "rigid_inverse",
+]

@@ -1,0 +1,209 @@
+"""``Robot``: a thin class around a :class:`~dhsym.model.table.DHTable` and the pure functions.
+
+Examples
+--------
+>>> from dhsym.model.table import DHTable, DHRow
+>>> r = Robot(DHTable.from_rows([DHRow.revolute("theta1", a="a1"),
+...                              DHRow.revolute("theta2", a="a2")], name="2R"))
+>>> print(r.arm_matrix().text())
+Matrix([
+[C12, -S12, 0, a1*C1 + a2*C12],
+[S12,  C12, 0, a1*S1 + a2*S12],
+[  0,    0, 1,              0],
+[  0,    0, 0,              1]])
+>>> r.transform(2, 0)[0, 3]
+-a1*cos(theta2) - a2
+>>> r.fk([0, 0], values={"a1": 1, "a2": 0.5})[0, 3]
+np.float64(1.5)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from functools import cache
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import sympy as sp
+
+from dhsym.model.library import load_table
+from dhsym.model.parsing import symbol
+from dhsym.model.table import Convention, DHTable, Elementary, JointType, as_expr
+from dhsym.notation.printers import Notation
+
+from .pose import Pose
+from .simplification import compose, numeric_equal, prove_equal
+from .transforms import chain_word, link_word, plain_product
+
+if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `import sympy`
+    import numpy as np
+
+__all__ = ["Robot"]
+
+FkFunction = Callable[[object], "np.ndarray"]
+
+
+class Robot:
+    """Kinematics of one DH table: link matrices, ``^iT_j``, the arm matrix, ``fk``.
+
+    Frames are numbered 0 … n (DH frames); ``-1`` is the world frame before the
+    base transform and ``n + 1`` the tool frame after the tool transform.
+    """
+
+    def __init__(self, table: DHTable, *, compact: bool = True, upper: bool = True) -> None:
+        self.table = table
+        self.notation = Notation.from_variables(
+            [r.variable for r in table.rows if r.joint is JointType.REVOLUTE],
+            [str(i) for i, r in enumerate(table.rows, 1) if r.joint is JointType.REVOLUTE],
+            compact=compact,
+            upper=upper,
+        )
+        self._transform = cache(self._compute_transform)
+        self._fk_cache: dict[tuple[int, int], FkFunction] = {}
+
+    # -- description -----------------------------------------------------------------
+    @property
+    def name(self) -> str:
+        """The table's name."""
+        return self.table.name
+
+    @property
+    def n(self) -> int:
+        """Number of rows (DH frames 1 … n)."""
+        return self.table.n
+
+    @property
+    def convention(self) -> Convention:
+        """The table's convention."""
+        return self.table.convention
+
+    @property
+    def variables(self) -> tuple[sp.Symbol, ...]:
+        """Joint variables in order (the configuration vector of :meth:`fk`)."""
+        return self.table.variables
+
+    def __repr__(self) -> str:
+        kinds = "".join(r.joint.value for r in self.table.rows)
+        return f"Robot({self.name!r}, {kinds}, {self.convention.value})"
+
+    def _repr_markdown_(self) -> str:
+        return f"**{self.name}** ({self.convention.value} DH)\n\n" + self.table._repr_markdown_()
+
+    # -- symbolic --------------------------------------------------------------------
+    def link_factors(self, i: int) -> tuple[Pose, ...]:
+        """The four elementary factors of link matrix ``i`` (1-based), each a 4×4 Pose."""
+        self._check_row(i)
+        word = link_word(self.table.rows[i - 1], self.convention)
+        return tuple(
+            Pose(plain_product([e]), "", "", self.notation, symbol=f"{e.kind}_{e.axis}")
+            for e in word
+        )
+
+    def link_word(self, i: int) -> tuple[Elementary, ...]:
+        """The elementary transforms of link ``i`` in multiplication order."""
+        self._check_row(i)
+        return link_word(self.table.rows[i - 1], self.convention)
+
+    def link_matrix(self, i: int) -> Pose:
+        """``^{i-1}T_i`` in compact form."""
+        self._check_row(i)
+        return self.transform(i - 1, i)
+
+    def transform(self, i: int, j: int) -> Pose:
+        """``^iT_j`` in compact form, for any frames ``i``, ``j`` (inverse when ``j < i``)."""
+        return self._transform(i, j)
+
+    def _compute_transform(self, i: int, j: int) -> Pose:
+        matrix = compose(chain_word(self.table, i, j))
+        return Pose(matrix, _frame_name(i, self.n), _frame_name(j, self.n), self.notation)
+
+    def plain_transform(self, i: int, j: int) -> sp.ImmutableMatrix:
+        """``^iT_j`` as the plain product of the elementary matrices (the reference)."""
+        return plain_product(chain_word(self.table, i, j))
+
+    def arm_matrix(self) -> Pose:
+        """``^0T_n``, the arm matrix (without base and tool transforms)."""
+        return self.transform(0, self.n)
+
+    def tool_pose(self) -> Pose:
+        """World to tool: base · ``^0T_n`` · tool (equals the arm matrix without them)."""
+        return self.transform(
+            -1 if self.table.base else 0, self.n + 1 if self.table.tool else self.n
+        )
+
+    def verify(self, i: int = 0, j: int | None = None, *, exact: bool = True) -> bool:
+        """Check the compact ``^iT_j`` against the plain product (exactly, or at 20 points)."""
+        j = self.n if j is None else j
+        compact = self.transform(i, j).matrix
+        plain = self.plain_transform(i, j)
+        return prove_equal(compact, plain) if exact else numeric_equal(compact, plain)
+
+    # -- numbers ---------------------------------------------------------------------
+    def fk_function(
+        self,
+        i: int | None = None,
+        j: int | None = None,
+        values: Mapping[object, object] | None = None,
+    ) -> FkFunction:
+        """A compiled numeric function ``q -> ^iT_j`` (defaults: world to tool)."""
+        pose = (
+            self.tool_pose()
+            if i is None and j is None
+            else self.transform(i or 0, self.n if j is None else j)
+        )
+        vals = dict(self.table.value_map)
+        for k, v in (values or {}).items():
+            vals[symbol(k) if isinstance(k, str) else k] = as_expr(v, field="values")  # type: ignore[index]
+        key = (pose.frm, pose.to, tuple(sorted((str(k), str(v)) for k, v in vals.items())))
+        if key not in self._fk_cache:
+            from .numeric import compile_pose
+
+            self._fk_cache[key] = compile_pose(pose.matrix, self.variables, vals)  # type: ignore[index]
+        return self._fk_cache[key]  # type: ignore[index]
+
+    def fk(
+        self, q: object, *, deg: bool = False, values: Mapping[object, object] | None = None
+    ) -> np.ndarray:
+        """Tool pose: one configuration ``(n,)`` → ``(4, 4)``; a batch ``(N, n)`` → ``(N, 4, 4)``.
+
+        With ``deg=True`` revolute joint values are in degrees.
+        """
+        import numpy as np
+
+        arr = np.asarray(q, dtype=float)
+        if deg:
+            arr = arr.copy()
+            mask = [
+                r.joint is JointType.REVOLUTE for r in self.table.rows if r.variable is not None
+            ]
+            arr[..., np.asarray(mask, dtype=bool)] *= math.pi / 180.0
+        return self.fk_function(values=values)(arr)
+
+    def plot(self, q: object = None, **kw: object) -> object:
+        """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plot.figures`)."""
+        from dhsym.plot.figures import plot_robot
+
+        return plot_robot(self, q, **kw)
+
+    # -- helpers ---------------------------------------------------------------------
+    def _check_row(self, i: int) -> None:
+        if not 1 <= i <= self.n:
+            raise IndexError(f"{self.name or 'robot'} has links 1 … {self.n}; got {i}")
+
+
+def _frame_name(i: int, n: int) -> int | str:
+    if i == -1:
+        return "W"
+    if i == n + 1:
+        return "tool"
+    return i
+
+
+def load(name_or_path: str | Path, **kw: bool) -> Robot:
+    """A :class:`Robot` from a built-in name or a table file.
+
+    >>> load("planar2r").name
+    'Planar 2R'
+    """
+    return Robot(load_table(name_or_path), **kw)

@@ -1,0 +1,434 @@
+"""Textbook-compact products of elementary transforms, by construction.
+
+No ``simplify``/``trigsimp``/``fu`` runs over a whole product. Instead:
+
+1. **Normalise the word**: drop identities, move each ``Tx`` left past an
+   ``Rx`` (they commute), merge neighbours of the same kind and axis.
+2. **Planar segments**: a maximal run of ``Rz``, ``Tz``, ``Tx``, ``Ty`` and
+   half-turn flips ``Rx(π)``, ``Ry(π)`` keeps the z axis (up to sign), so its
+   rotation is ``Rz(φ)`` (times a flip) with φ the *sum* of the joint angles
+   (a difference after a flip) and its translation is ``Σ a_k (cos φ_k, sin φ_k)``
+   — this is where ``C12`` and ``a1 C1 + a2 C12`` come from, exactly.
+3. **Nesting**: segments and the remaining twists are multiplied right to left
+   without expanding, which keeps the textbook nesting (arm part times wrist
+   part): ``c1[c23(c4c5c6 − s4s6) − s23s5c6] + s1(s4c5c6 + c4s6)``.
+4. **Targeted identities**: in each sum, pairs ``cAcB ∓ sAsB``, ``sAcB ± cAsB``
+   and ``cA² + sA²`` are folded (:func:`fold_sum_angles`).
+
+:func:`prove_equal` checks a result against the plain product exactly
+(polynomial reduction modulo ``s² + c² − 1``); :func:`numeric_equal` at random
+points.
+
+Examples
+--------
+>>> from dhsym.model.table import Elementary as E
+>>> t1, t2, a1, a2 = sp.symbols("theta1 theta2 a1 a2", real=True)
+>>> T = compose([E("R", "z", t1), E("T", "x", a1), E("R", "z", t2), E("T", "x", a2)])
+>>> T[0, 0], T[0, 3]
+(cos(theta1 + theta2), a1*cos(theta1) + a2*cos(theta1 + theta2))
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import sympy as sp
+
+from dhsym.model.table import Elementary
+
+from .transforms import plain_product
+
+__all__ = [
+    "Segment",
+    "compose",
+    "fold_sum_angles",
+    "normalize_word",
+    "numeric_equal",
+    "prove_equal",
+    "split_segments",
+    "tidy_signs",
+]
+
+Matrix = sp.ImmutableMatrix
+
+
+def _is_zero_turn(e: Elementary) -> bool:
+    if e.kind == "T":
+        return e.value == 0
+    v = e.value
+    return v == 0 or (not v.free_symbols and (v / (2 * sp.pi)).is_integer is True)
+
+
+def _is_half_turn(e: Elementary) -> bool:
+    v = e.value
+    return (
+        e.kind == "R"
+        and e.axis in ("x", "y")
+        and not v.free_symbols
+        and ((v - sp.pi) / (2 * sp.pi)).is_integer is True
+    )
+
+
+def _commute(left: Elementary, right: Elementary) -> bool:
+    """True when ``left right == right left`` for these two elementaries."""
+    if left.kind == "T" and right.kind == "T":
+        return True
+    return left.axis == right.axis
+
+
+def normalize_word(word: Sequence[Elementary]) -> tuple[Elementary, ...]:
+    """Drop identities, move translations left past rotations about their own axis, merge.
+
+    >>> from dhsym.model.table import Elementary as E
+    >>> a = sp.Symbol("a")
+    >>> normalize_word([E("R", "z", 1), E("T", "z", 0), E("R", "x", 1), E("T", "x", a),
+    ...                 E("R", "z", 2)])
+    (Rz(1), Tx(a), Rx(1), Rz(2))
+    >>> normalize_word([E("R", "z", 1), E("R", "z", -1)])
+    ()
+    """
+    out: list[Elementary] = []
+    for e in word:
+        if _is_zero_turn(e):
+            continue
+        out.append(e)
+        # bubble a translation left past rotations about the same axis
+        k = len(out) - 1
+        while (
+            k > 0
+            and out[k].kind == "T"
+            and out[k - 1].kind == "R"
+            and out[k - 1].axis == out[k].axis
+        ):
+            out[k - 1], out[k] = out[k], out[k - 1]
+            k -= 1
+        # merge with the left neighbour of the same kind and axis
+        while k > 0 and out[k - 1].kind == out[k].kind and out[k - 1].axis == out[k].axis:
+            merged = Elementary(out[k].kind, out[k].axis, out[k - 1].value + out[k].value)
+            del out[k - 1 : k + 1]
+            k -= 1
+            if _is_zero_turn(merged):
+                break
+            out.insert(k, merged)
+        del k
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A run of elementaries that keeps the z axis, or one other elementary.
+
+    ``planar`` segments compose by angle addition; others are single factors.
+    """
+
+    word: tuple[Elementary, ...]
+    planar: bool
+
+    @property
+    def angle(self) -> sp.Expr:
+        """The accumulated angle φ of a planar segment (sum/difference of its Rz)."""
+        return _planar(self.word)[0]
+
+    def matrix(self) -> Matrix:
+        """The segment's 4×4 matrix in closed form."""
+        if not self.planar:
+            return plain_product(self.word)
+        phi, sigma, p = _planar(self.word)
+        c, s = sp.cos(phi), sp.sin(phi)
+        return Matrix(
+            [
+                [c, -sigma * s, 0, p[0]],
+                [s, sigma * c, 0, p[1]],
+                [0, 0, sigma, p[2]],
+                [0, 0, 0, 1],
+            ]
+        )
+
+
+def _is_planar(e: Elementary) -> bool:
+    return e.axis == "z" or e.kind == "T" or _is_half_turn(e)
+
+
+def _planar(word: Sequence[Elementary]) -> tuple[sp.Expr, int, list[sp.Expr]]:
+    """Angle φ, flip sign σ and translation p of a planar run: ``Rz(φ)·diag(1,σ,σ)``."""
+    phi: sp.Expr = sp.Integer(0)
+    sigma = 1
+    p: list[sp.Expr] = [sp.Integer(0)] * 3
+    for e in word:
+        if e.kind == "R" and e.axis == "z":
+            phi += sigma * e.value
+        elif e.kind == "R":  # half turn about x, or about y = Rz(pi) Rx(pi)
+            if e.axis == "y":
+                phi += sigma * sp.pi
+            sigma = -sigma
+        elif e.axis == "z":
+            p[2] += sigma * e.value
+        elif e.axis == "x":
+            p[0] += e.value * sp.cos(phi)
+            p[1] += e.value * sp.sin(phi)
+        else:
+            p[0] += -sigma * e.value * sp.sin(phi)
+            p[1] += sigma * e.value * sp.cos(phi)
+    return phi, sigma, p
+
+
+def split_segments(word: Sequence[Elementary]) -> tuple[Segment, ...]:
+    """Split a normalised word into planar runs and single non-planar factors.
+
+    >>> from dhsym.model.table import Elementary as E
+    >>> [s.planar for s in split_segments([E("R", "z", 1), E("R", "x", sp.pi / 2),
+    ...                                    E("R", "z", 2), E("T", "x", 3)])]
+    [True, False, True]
+    """
+    segs: list[Segment] = []
+    run: list[Elementary] = []
+    for e in word:
+        if _is_planar(e):
+            run.append(e)
+            continue
+        if run:
+            segs.append(Segment(tuple(run), True))
+            run = []
+        segs.append(Segment((e,), False))
+    if run:
+        segs.append(Segment(tuple(run), True))
+    return tuple(segs)
+
+
+def compose(word: Sequence[Elementary]) -> Matrix:
+    """The product of ``word`` in textbook-compact closed form.
+
+    Exact: equal to :func:`dhsym.kinematics.transforms.plain_product` of the same word.
+
+    >>> from dhsym.model.table import Elementary as E
+    >>> t1, t2 = sp.symbols("theta1 theta2", real=True)
+    >>> compose([E("R", "z", t1), E("R", "x", sp.pi), E("R", "z", t2)])[:2, :2]
+    Matrix([
+    [cos(theta1 - theta2),  sin(theta1 - theta2)],
+    [sin(theta1 - theta2), -cos(theta1 - theta2)]])
+    """
+    segs = split_segments(normalize_word(word))
+    if not segs:
+        return Matrix(sp.eye(4))
+    result = segs[-1].matrix()
+    for seg in reversed(segs[:-1]):
+        result = seg.matrix() * result
+    return Matrix(result.applyfunc(lambda e: tidy_signs(fold_sum_angles(e))))
+
+
+def tidy_signs(expr: sp.Expr) -> sp.Expr:
+    """Move minus signs out of inner sums where that saves operations.
+
+    ``-(-a - b)*c`` becomes ``(a + b)*c``; ``(-a - b)*c`` becomes ``-(a + b)*c``
+    when it prints shorter. The value never changes.
+
+    >>> a, b, c = sp.symbols("a b c", real=True)
+    >>> tidy_signs(c * (-a - b) + 1)
+    -c*(a + b) + 1
+    """
+    if expr.is_Atom or not isinstance(expr, sp.Expr):
+        return expr
+    args = [tidy_signs(a) for a in expr.args]
+    node = expr.func(*args) if args != list(expr.args) else expr
+    if not node.is_Add:
+        return node
+    terms = list(node.args)
+    best = sp.count_ops(node)
+    for k, term in enumerate(terms):
+        if not term.is_Mul:
+            continue
+        factors = list(term.args)
+        for m, f in enumerate(factors):
+            if not f.is_Add:
+                continue
+            flipped = sp.Mul(
+                -1, *factors[:m], sp.Add(*[-t for t in f.args]), *factors[m + 1 :], evaluate=True
+            )
+            trial = sp.Add(*terms[:k], flipped, *terms[k + 1 :])
+            ops = sp.count_ops(trial)
+            if ops < best:
+                best, terms[k] = ops, flipped
+                break
+    return sp.Add(*terms)
+
+
+# --- targeted sum-angle identities ------------------------------------------------
+
+
+def _trig_pairs(term: sp.Expr) -> list[tuple[tuple[object, ...], sp.Expr, sp.Expr]]:
+    """Every way to read ``term`` as ``coeff * rest * f(A) * g(B)`` with f, g in {sin, cos}.
+
+    Returns ``(signature, coeff, rest)`` triples; the signature names the pair.
+    """
+    coeff, body = term.as_coeff_Mul()
+    factors: list[sp.Expr] = []
+    for f in sp.Mul.make_args(body):
+        base, exp = f.as_base_exp()
+        if isinstance(base, (sp.sin, sp.cos)) and exp.is_Integer and 0 < exp <= 4:
+            factors.extend([base] * int(exp))
+        else:
+            factors.append(f)
+    out = []
+    n = len(factors)
+    for i in range(n):
+        for j in range(i + 1, n):
+            f, g = factors[i], factors[j]
+            if not (isinstance(f, (sp.sin, sp.cos)) and isinstance(g, (sp.sin, sp.cos))):
+                continue
+            rest = sp.Mul(*(factors[k] for k in range(n) if k not in (i, j)))
+            A, B = f.args[0], g.args[0]
+            if isinstance(f, sp.cos) and isinstance(g, sp.cos):
+                sig: tuple[object, ...] = ("cc", frozenset((A, B)), A == B)
+            elif isinstance(f, sp.sin) and isinstance(g, sp.sin):
+                sig = ("ss", frozenset((A, B)), A == B)
+            elif isinstance(f, sp.sin):
+                sig = ("sc", A, B)
+            else:
+                sig = ("sc", B, A)
+            out.append((sig, coeff, rest))
+    return out
+
+
+def _fold_pair(terms: list[sp.Expr]) -> list[sp.Expr] | None:
+    """Fold one matching pair of terms of a sum, or return None."""
+    reads = [_trig_pairs(t) for t in terms]
+    index: dict[tuple[object, ...], list[tuple[int, sp.Expr]]] = {}
+    for i, rs in enumerate(reads):
+        for sig, coeff, rest in rs:
+            index.setdefault((sig, rest), []).append((i, coeff))
+    for i, rs in enumerate(reads):
+        for sig, coeff, rest in rs:
+            kind = sig[0]
+            if kind == "cc":
+                partner_sig: tuple[object, ...] = ("ss", sig[1], sig[2])
+            elif kind == "sc" and sig[1] != sig[2]:
+                partner_sig = ("sc", sig[2], sig[1])
+            else:
+                continue
+            for j, c2 in index.get((partner_sig, rest), []):
+                if j == i:
+                    continue
+                new = _combine(kind, sig, coeff, c2)
+                if new is None:
+                    continue
+                kept = [t for k, t in enumerate(terms) if k not in (i, j)]
+                return [*kept, coeff * rest * new]
+    return None
+
+
+def _combine(kind: str, sig: tuple[object, ...], c1: sp.Expr, c2: sp.Expr) -> sp.Expr | None:
+    if kind == "cc":
+        A, B = (list(sig[1]) * 2)[:2] if sig[2] else sorted(sig[1], key=sp.default_sort_key)
+        if c2 == -c1:
+            return sp.cos(A + B)
+        if c2 == c1:
+            return sp.cos(A - B)
+        return None
+    A, B = sig[1], sig[2]
+    if c2 == c1:
+        return sp.sin(A + B)
+    if c2 == -c1:
+        return sp.sin(A - B)
+    return None
+
+
+def fold_sum_angles(expr: sp.Expr) -> sp.Expr:
+    """Apply the sum-angle and Pythagorean identities to pairs of terms, bottom up.
+
+    >>> a, b, r = sp.symbols("a b r", real=True)
+    >>> fold_sum_angles(r * sp.cos(a) * sp.cos(b) - r * sp.sin(a) * sp.sin(b))
+    r*cos(a + b)
+    >>> fold_sum_angles(sp.sin(a) * sp.cos(b) - sp.cos(a) * sp.sin(b) + 2)
+    sin(a - b) + 2
+    >>> fold_sum_angles(3 * sp.cos(a)**2 + 3 * sp.sin(a)**2)
+    3
+    """
+    if expr.is_Atom or not isinstance(expr, sp.Expr):
+        return expr
+    args = [fold_sum_angles(a) for a in expr.args]
+    if not expr.is_Add:
+        return expr.func(*args) if args != list(expr.args) else expr
+    terms = list(args)
+    while len(terms) > 1:
+        folded = _fold_pair(terms)
+        if folded is None:
+            break
+        terms = list(sp.Add.make_args(sp.Add(*folded)))
+    return sp.Add(*terms)
+
+
+# --- checking ---------------------------------------------------------------------
+
+
+def _trig_polynomial(expr: sp.Expr) -> tuple[sp.Expr, list[sp.Expr], list[sp.Symbol]]:
+    """Rewrite ``expr`` as a polynomial in c_x = cos x, s_x = sin x of its symbols."""
+    expanded = sp.expand(sp.expand_trig(expr))
+    subs: dict[sp.Expr, sp.Symbol] = {}
+    relations: list[sp.Expr] = []
+    gens: list[sp.Symbol] = []
+    for f in sorted(expanded.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
+        x = f.args[0]
+        if sp.cos(x) not in subs:
+            c = sp.Dummy(f"c_{x}")
+            s = sp.Dummy(f"s_{x}")
+            subs[sp.cos(x)] = c
+            subs[sp.sin(x)] = s
+            relations.append(c**2 + s**2 - 1)
+            gens.extend([s, c])
+    return sp.expand(expanded.xreplace(subs)), relations, gens
+
+
+def prove_equal(A: sp.MatrixBase, B: sp.MatrixBase) -> bool:
+    """Exact proof that two trigonometric matrices are equal.
+
+    Each entry of ``A − B`` is expanded into a polynomial in ``cos x``, ``sin x``
+    and reduced modulo ``sin² x + cos² x − 1``; all remainders must vanish.
+
+    >>> t = sp.Symbol("t", real=True)
+    >>> prove_equal(sp.Matrix([sp.cos(2 * t)]), sp.Matrix([1 - 2 * sp.sin(t)**2]))
+    True
+    >>> prove_equal(sp.Matrix([sp.cos(t)]), sp.Matrix([sp.sin(t)]))
+    False
+    """
+    if A.shape != B.shape:
+        return False
+    for a, b in zip(A, B):
+        diff = a - b
+        if diff == 0:
+            continue
+        poly, relations, gens = _trig_polynomial(diff)
+        if poly == 0:
+            continue
+        if not relations:
+            return False
+        others = sorted(poly.free_symbols - set(gens), key=sp.default_sort_key)
+        _, rem = sp.reduced(poly, relations, *gens, *others, order="lex")
+        if sp.expand(rem) != 0:
+            return False
+    return True
+
+
+def numeric_equal(
+    A: sp.MatrixBase, B: sp.MatrixBase, *, points: int = 20, tol: float = 1e-12, seed: int = 0
+) -> bool:
+    """Compare two symbolic matrices at ``points`` random values of their symbols.
+
+    >>> t = sp.Symbol("t", real=True)
+    >>> numeric_equal(sp.Matrix([sp.sin(t)**2]), sp.Matrix([1 - sp.cos(t)**2]))
+    True
+    """
+    if A.shape != B.shape:
+        return False
+    syms = sorted(A.free_symbols | B.free_symbols, key=sp.default_sort_key)
+    fa = sp.lambdify(syms, list(A), "math")
+    fb = sp.lambdify(syms, list(B), "math")
+    rng = random.Random(seed)
+    for _ in range(points):
+        vals = [rng.uniform(-3.0, 3.0) for _ in syms]
+        ma, mb = fa(*vals), fb(*vals)
+        for x, y in zip(ma, mb):
+            if abs(float(x) - float(y)) > tol * max(1.0, abs(float(x))):
+                return False
+    return True

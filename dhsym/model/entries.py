@@ -1,0 +1,108 @@
+"""Entries of a DH table: exact sympy expressions from numbers and text, angles in radians.
+
+>>> to_radians(as_expr("q3 + 90"), "deg")
+q3 + pi/2
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from dhsym.errors import TableError
+
+from .kinds import AngleUnit
+from .parsing import parse_expression
+
+__all__ = ["as_expr", "check_radians", "to_radians"]
+
+Expr = sp.Expr
+
+
+def as_expr(value: object, *, field: str | None = None, row: int | None = None) -> Expr:
+    """Turn a Python number, string or sympy object into an exact sympy expression.
+
+    Strings go through the whitelist parser (never ``sympify``); floats become
+    exact decimals; booleans, NaN and infinities are refused.
+
+    >>> as_expr(0.4318)
+    2159/5000
+    >>> as_expr("a1 + d3")
+    a1 + d3
+    """
+    if isinstance(value, bool) or value is None:
+        raise TableError(f"expected a number or expression, got {value!r}", row=row, field=field)
+    if isinstance(value, sp.Basic):
+        expr = value
+    elif isinstance(value, int):
+        expr = sp.Integer(value)
+    elif isinstance(value, float):
+        if value != value or value in (float("inf"), float("-inf")):
+            raise TableError(f"non-finite number {value!r}", row=row, field=field)
+        expr = sp.Rational(repr(value))
+    elif isinstance(value, str):
+        expr = parse_expression(value, row=row, field=field)
+    else:
+        raise TableError(
+            f"expected a number or expression, got {type(value).__name__}", row=row, field=field
+        )
+    if expr.has(sp.oo, -sp.oo, sp.zoo, sp.nan):
+        raise TableError("non-finite number", row=row, field=field)
+    return expr  # type: ignore[return-value]
+
+
+def to_radians(expr: Expr, unit: AngleUnit | str) -> Expr:
+    """Convert an angle entry to radians, exactly.
+
+    Numeric additive terms are degrees; terms with symbols (joint variables,
+    symbolic twists) are already angles and stay as they are.
+
+    >>> to_radians(as_expr("q3 + 90"), "deg")
+    q3 + pi/2
+    >>> to_radians(sp.Integer(-90), "deg"), to_radians(sp.Integer(180), "deg")
+    (-pi/2, pi)
+    """
+    if AngleUnit.parse(unit) is AngleUnit.RAD:
+        return expr
+    terms = sp.Add.make_args(sp.expand(expr)) if expr.free_symbols else (expr,)
+    out = []
+    for term in terms:
+        if term.free_symbols:
+            out.append(term)
+        else:
+            if term.has(sp.pi):
+                raise TableError(
+                    f"angles are in degrees but {term} contains pi: write degrees (e.g. 90) "
+                    "or set angles: rad"
+                )
+            out.append(term * sp.pi / 180)
+    return sp.Add(*out)
+
+
+def check_radians(expr: Expr, *, row: int | None, field: str) -> None:
+    for term in sp.Add.make_args(expr):
+        if not term.free_symbols and term.is_number and abs(float(term)) > 2 * float(sp.pi) + 1e-9:
+            raise TableError(
+                f"angle {term} is larger than 2*pi radians: is this table in degrees? "
+                "(set angles: deg)",
+                row=row,
+                field=field,
+            )
+
+
+def exact_decimal(r: sp.Rational) -> str | None:
+    """Print a rational whose denominator is 2^a 5^b as a finite decimal."""
+    q = int(r.q)
+    twos = fives = 0
+    while q % 2 == 0:
+        q //= 2
+        twos += 1
+    while q % 5 == 0:
+        q //= 5
+        fives += 1
+    if q != 1:
+        return None
+    digits = max(twos, fives)
+    scaled = int(r.p) * 10**digits // int(r.q)
+    sign = "-" if scaled < 0 else ""
+    s = str(abs(scaled)).rjust(digits + 1, "0")
+    return f"{sign}{s[:-digits]}.{s[-digits:]}"

@@ -1,0 +1,423 @@
+"""Whitelist parser: text typed by users into sympy expressions, never ``eval``.
+
+The only way text enters the engine (DH tables, homework answers).  A hand-written
+tokenizer and a depth-checked recursive-descent parser build sympy ``Add``, ``Mul``,
+``Pow``, ``Rational``, real ``Symbol``, ``pi`` and ``sin cos tan sqrt atan2`` only::
+
+    expr   := term (('+' | '-') term)*
+    term   := factor (('*' | '/') factor | factor)*      # juxtaposition multiplies
+    factor := ('+' | '-') factor | atom ('^' factor)?    # '**' is '^'; -x^2 is -(x^2)
+    atom   := number | name | name '(' expr (',' expr)* ')' | '(' expr ')'
+"""
+
+from __future__ import annotations
+
+import keyword
+import math
+import re
+from collections.abc import Callable
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Any, NamedTuple
+
+import sympy
+
+from dhsym.errors import DHError, ParseError
+
+__all__ = [
+    "DEFAULT_LIMITS",
+    "ParseLimits",
+    "normalize_name",
+    "parse_expression",
+    "parse_number_list",
+    "symbol",
+]
+
+_GREEK_NAMES = (  # lower case, upper case ('Θ' is 'theta' too), variant forms
+    "alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi omicron pi rho sigma "
+    "tau upsilon phi chi psi omega " * 2 + "sigma theta phi epsilon rho mu"
+).split()
+_GREEK_LETTERS = "αβγδεζηθικλμνξοπρστυφχψωΑΒΓΔΕΖΗΘΙΚΛΜΝΞΟΠΡΣΤΥΦΧΨΩςϑϕϵϱµ"
+_GREEK = MappingProxyType(dict(zip(map(ord, _GREEK_LETTERS), _GREEK_NAMES, strict=True)))
+_LETTERS = "A-Za-z_" + re.escape(_GREEK_LETTERS)
+_TOKEN = re.compile(  # explicit ASCII classes: \d and \w would accept any Unicode digit/letter
+    r"(?P<space>[ \t\r\n]+)"
+    r"|(?P<num>(?=\.?[0-9])(?P<whole>[0-9]*)(?:\.(?P<frac>[0-9]*))?(?:[eE](?P<exp>[+-]?[0-9]+))?)"
+    rf"|(?P<name>[{_LETTERS}][{_LETTERS}0-9]*)|(?P<op>\*\*|[-+*/^(),])"
+)
+_FUNCTIONS: MappingProxyType[str, tuple[Callable[..., sympy.Expr], int]] = MappingProxyType(
+    {"atan2": (sympy.atan2, 2), "cos": (sympy.cos, 1), "sin": (sympy.sin, 1)}
+    | {"sqrt": (sympy.sqrt, 1), "tan": (sympy.tan, 1)}
+)
+_NON_FINITE_NAMES = frozenset({"nan", "inf", "infinity", "oo", "zoo"})
+_BUILTINS = "eval exec compile open input globals locals vars getattr setattr delattr breakpoint"
+_RESERVED = frozenset(keyword.kwlist + _BUILTINS.split()) - {"lambda"}  # λ is 'lambda'
+_NON_FINITE = (sympy.S.ComplexInfinity, sympy.S.NaN, sympy.S.Infinity, sympy.S.NegativeInfinity)
+_Resolve = Callable[[str], "sympy.Expr | None"]
+_CHARS = "expected a number, name, operator (+ - * / ^ **), '(', ')' or ','"
+_ALLOWED = "allowed: " + ", ".join(_FUNCTIONS)
+_ATOM = "expected a number, name or '('"
+_FINITE = "expected a finite value"
+_MINUS = sympy.S.NegativeOne
+
+
+@dataclass(frozen=True)
+class ParseLimits:
+    """Resource limits of :func:`parse_expression`; each one is a positive ``int``."""
+
+    max_length: int = 20_000  # characters of input
+    max_depth: int = 60  # nesting of parentheses, signs, powers and calls
+    max_nodes: int = 5_000  # tokens
+    max_digits: int = 40  # digits in one numeric literal
+    max_exponent: int = 64  # |p| and q of any exponent p/q, after sympy merges powers
+    max_symbols: int = 100  # distinct names
+    max_result_digits: int = 400  # digits of any number computed on the way
+
+    def __post_init__(self) -> None:
+        for name, value in vars(self).items():
+            if type(value) is not int or value < 1:
+                raise ValueError(f"ParseLimits.{name} must be a positive int, got {value!r}")
+
+
+DEFAULT_LIMITS = ParseLimits()
+
+
+def normalize_name(name: str) -> str:
+    """Spell Greek letters in ``name`` as ASCII names; other characters are kept.
+
+    Examples
+    --------
+    >>> normalize_name("θ1"), normalize_name("α"), normalize_name("Θ"), normalize_name("q_2")
+    ('theta1', 'alpha', 'theta', 'q_2')
+    """
+    return name.translate(_GREEK)
+
+
+def symbol(name: str) -> sympy.Symbol:
+    """Return the canonical real symbol for ``name``: ``Symbol(normalize_name(name), real=True)``.
+
+    Raise `ParseError` for names not ``[A-Za-z_][A-Za-z0-9_]*``, with ``__``, ``nan`` or keywords.
+
+    Examples
+    --------
+    >>> symbol("θ1"), symbol("θ1") == symbol("theta1"), symbol("q").is_real
+    (theta1, True, True)
+    """
+    norm = normalize_name(name) if isinstance(name, str) else ""
+    if problem := _name_problem(norm):
+        raise ParseError(f"{problem[0]} {name!r}: {problem[1]}")
+    return sympy.Symbol(norm, real=True)
+
+
+def _name_problem(name: str) -> tuple[str, str] | None:
+    """Return (what was found, what was expected) if ``name`` may not be used."""
+    problems = [
+        (not (name.isascii() and name.isidentifier()), "invalid name", "expected [A-Za-z0-9_]"),
+        ("__" in name, "name", "names with double underscores are not allowed"),
+        (name.lower() in _NON_FINITE_NAMES, "non-finite number", "expected a finite number"),
+        (name in _RESERVED, "reserved name", "expected a variable, not a keyword or builtin"),
+    ]
+    return next(((found, expected) for bad, found, expected in problems if bad), None)
+
+
+class _Token(NamedTuple):
+    kind: str  # "num", "name", "op" or "end"
+    text: str  # normalized name; "^" for "**"
+    pos: int  # 0-based index into the text
+    value: sympy.Expr | None = None  # value of a number
+
+
+def _digits(value: sympy.Expr) -> float:
+    """Decimal digits of the larger of numerator and denominator of a rational, else 0."""
+    bits = max(abs(value.p).bit_length(), value.q.bit_length()) if value.is_Rational else 0
+    return bits * 0.30103
+
+
+def _merged_digits(args: tuple[Any, ...], add: bool) -> float:
+    """Bound the digits of the numbers sympy computes when it flattens ``Add``/``Mul(*args)``."""
+    parts = [p for a in args for p in (a.args if (a.is_Add if add else a.is_Mul) else (a,))]
+    if add:  # coefficients of like terms are added over a common denominator
+        coeffs = [p.as_coeff_Mul()[0] for p in parts]
+        lcm = math.lcm(*(c.q for c in coeffs if c.is_Rational))
+        return lcm.bit_length() * 0.30103 + max(map(_digits, coeffs))
+    pairs = (p.as_base_exp() for p in parts)  # numbers; bases of equal exponents multiply
+    return sum(_digits(b) * (abs(e.p) if e.is_Rational else 1) for b, e in pairs)
+
+
+def _show(text: str, pos: int | None, width: int = 60) -> str:
+    """Quote ``text`` on one line, cut to ``width`` characters around ``pos``."""
+    start = max(0, min((pos or 0) - width // 2, len(text) - width))
+    head, tail = "…" * (start > 0), "…" * (start + width < len(text))
+    return repr(head + text[start : start + width] + tail)
+
+
+class _Parser:
+    """One parse: tokens, cursor, nesting depth and the names seen so far."""
+
+    def __init__(self, text: str, resolve: _Resolve | None, limits: ParseLimits, where: dict):
+        self.text, self.resolve, self.limits, self.where = text, resolve, limits, where
+        self.i = self.depth = 0
+        self.names: dict[str, sympy.Expr | None] = {}
+        self.tokens = self.tokenize()
+
+    def error(self, found: str, pos: int | None, expected: str) -> ParseError:
+        at = f" at column {pos + 1}" if pos is not None else ""
+        return ParseError(f"{found}{at} in {_show(self.text, pos)}: {expected}", **self.where)
+
+    def over(self, found: str, pos: int | None, limit: str) -> ParseError:
+        return self.error(found, pos, f"expected at most {limit}={getattr(self.limits, limit)}")
+
+    def unexpected(self, tok: _Token, expected: str) -> ParseError:
+        what = {"num": f"number {tok.text!r}", "name": f"name {tok.text!r}", "end": "end of text"}
+        return self.error(f"unexpected {what.get(tok.kind, repr(tok.text))}", tok.pos, expected)
+
+    def tokenize(self) -> list[_Token]:
+        text, tokens, i = self.text, [], 0
+        while i < len(text):
+            m = _TOKEN.match(text, i)
+            if m is None:
+                c = text[i]
+                shown = repr(c).replace("\\\\", "\\") if c.isprintable() else f"U+{ord(c):04X}"
+                raise self.error(f"unexpected character {shown}", i, _CHARS)
+            if m["space"] is None and len(tokens) >= self.limits.max_nodes:
+                raise self.over("too many tokens", i, "max_nodes")
+            if m["num"] is not None:
+                tokens.append(_Token("num", m["num"], i, self.number(m)))
+            elif m["name"] is not None:
+                name = normalize_name(m["name"])
+                if problem := _name_problem(name):
+                    raise self.error(f"{problem[0]} {m['name']!r}", i, problem[1])
+                tokens.append(_Token("name", name, i))
+            elif m["op"] is not None:
+                tokens.append(_Token("op", m["op"].replace("**", "^"), i))
+            i = m.end()
+        return [*tokens, _Token("end", "", len(text))]
+
+    def number(self, m: re.Match[str]) -> sympy.Expr:
+        """Exact value of a decimal literal: ``0.4318`` is ``Rational(4318, 10000)``."""
+        whole, frac, exp = m["whole"], m["frac"] or "", m["exp"] or ""
+        digits = len(whole + frac + exp.lstrip("+-"))
+        if digits > self.limits.max_digits:
+            raise self.over(f"number with {digits} digits", m.start(), "max_digits")
+        mantissa, scale = int(whole + frac), int(exp or "0") - len(frac)
+        if mantissa and abs(scale) + len(whole + frac) > self.limits.max_result_digits:
+            raise self.over(f"number {m['num']!r} out of range", m.start(), "max_result_digits")
+        return sympy.Rational(mantissa * 10 ** max(scale, 0), 10 ** max(-scale, 0))
+
+    def take(self) -> _Token:
+        self.i += 1
+        return self.tokens[self.i - 1]
+
+    def is_op(self, *ops: str) -> bool:
+        return self.tokens[self.i].kind == "op" and self.tokens[self.i].text in ops
+
+    def enter(self, tok: _Token) -> None:
+        self.depth += 1
+        if self.depth > self.limits.max_depth:
+            raise self.over("too deeply nested", tok.pos, "max_depth")
+
+    def nested(self, tok: _Token, parse: Callable[[], sympy.Expr], close: str = "") -> sympy.Expr:
+        """Run ``parse`` one level deeper (``max_depth``), then take ')' if ``close``."""
+        self.enter(tok)
+        value = parse()
+        if close and not self.is_op(")"):
+            raise self.unexpected(self.tokens[self.i], close)
+        self.i += bool(close)
+        self.depth -= 1
+        return value
+
+    def make(self, tok: _Token, build: Callable[..., sympy.Expr], *args: sympy.Expr) -> sympy.Expr:
+        """Build a node with sympy, then refuse non-finite or oversized results."""
+        limit = self.limits.max_result_digits
+        if build in (sympy.Add, sympy.Mul) and _merged_digits(args, build is sympy.Add) > limit:
+            raise self.over("too large numbers", tok.pos, "max_result_digits")
+        try:
+            value = build(*args)
+        except (ArithmeticError, ValueError, TypeError) as exc:
+            raise self.error(f"cannot evaluate ({type(exc).__name__})", tok.pos, _FINITE) from None
+        if value in _NON_FINITE:
+            raise self.error("division by zero or undefined value", tok.pos, _FINITE)
+        parts = [value, *value.args, *(a for arg in value.args for a in arg.args)]
+        if max(map(_digits, parts)) > limit:  # sympy may have merged numbers
+            raise self.over("too large number", tok.pos, "max_result_digits")
+        return value
+
+    def parse(self) -> sympy.Expr:
+        if self.tokens[self.i].kind == "end":
+            raise self.error("empty expression", None, _ATOM)
+        value = self.expr()
+        if self.tokens[self.i].kind != "end":
+            raise self.unexpected(self.tokens[self.i], "expected an operator or end of text")
+        if value.has(*_NON_FINITE):
+            raise self.error("non-finite result", None, _FINITE)
+        return value
+
+    def expr(self) -> sympy.Expr:
+        first, terms = self.tokens[self.i], [self.term()]
+        while self.is_op("+", "-"):
+            tok, term = self.take(), self.term()
+            terms.append(term if tok.text == "+" else self.make(tok, sympy.Mul, _MINUS, term))
+        return terms[0] if len(terms) == 1 else self.make(first, sympy.Add, *terms)
+
+    def term(self) -> sympy.Expr:
+        first, factors = self.tokens[self.i], []
+        while not factors or self.is_op("*", "/", "(") or self.tokens[self.i].kind == "name":
+            tok = self.take() if factors and self.is_op("*", "/") else self.tokens[self.i]
+            sign, value = self.factor()  # a sign applies to the product: -(a+b)*c stays so
+            if tok.text == "/" and value == 0:
+                raise self.error("division by zero", tok.pos, "expected a non-zero divisor")
+            value = self.make(tok, sympy.Pow, value, _MINUS) if tok.text == "/" else value
+            factors += [value] if sign > 0 else [_MINUS, value]
+        return factors[0] if len(factors) == 1 else self.make(first, sympy.Mul, *factors)
+
+    def factor(self) -> tuple[int, sympy.Expr]:
+        """Leading signs (counted, not recursed) and the power after them."""
+        sign, depth = 1, self.depth
+        while self.is_op("+", "-"):
+            self.enter(tok := self.take())
+            sign = -sign if tok.text == "-" else sign
+        value = self.atom()
+        if self.is_op("^"):  # right-associative; the exponent may have signs: x^-2
+            self.enter(tok := self.take())
+            value = self.pow(tok, value, sympy.Mul(*self.factor()))
+        self.depth = depth
+        return sign, value
+
+    def pow(self, tok: _Token, base: sympy.Expr, exponent: sympy.Expr) -> sympy.Expr:
+        """Check the limits on ``base**exponent`` before sympy evaluates it."""
+        if not exponent.is_Rational:
+            raise self.error("non-numeric exponent", tok.pos, "expected an integer or fraction")
+        if base == 0 and exponent.is_negative:
+            raise self.error("division by zero", tok.pos, "expected a non-zero base")
+        digits, todo = 0.0, [(base, exponent)]
+        while todo:  # sympy merges (b**x)**y into b**(x*y) and distributes (a*b)**y
+            b, x = todo.pop()
+            if max(abs(x.p), x.q) > self.limits.max_exponent:
+                raise self.over(f"exponent {x}", tok.pos, "max_exponent")  # for |p| and q of p/q
+            digits += abs(x.p) * _digits(b)
+            if b.is_Pow and b.exp.is_Rational:
+                todo.append((b.base, b.exp * x))
+            elif b.is_Mul:
+                todo.extend((arg, x) for arg in b.args)
+        if digits > self.limits.max_result_digits:
+            raise self.over(f"power with about {digits:.0f} digits", tok.pos, "max_result_digits")
+        return self.make(tok, sympy.Pow, base, exponent)
+
+    def atom(self) -> sympy.Expr:
+        tok = self.take()
+        if tok.value is not None:  # a number
+            return tok.value
+        if tok.kind == "name":
+            return self.name(tok)
+        if tok.text == "(":
+            return self.nested(tok, self.expr, close="expected an operator or ')'")
+        raise self.unexpected(tok, _ATOM)
+
+    def name(self, tok: _Token) -> sympy.Expr:
+        name, call = tok.text, self.is_op("(")
+        if name in _FUNCTIONS and call:
+            return self.call(tok)
+        if name in _FUNCTIONS:
+            raise self.unexpected(self.tokens[self.i], f"expected '(' after function {name!r}")
+        if name == "pi" and not call:
+            return sympy.pi
+        if name not in self.names and name != "pi":  # ask resolve once per distinct name
+            if len(self.names) >= self.limits.max_symbols:
+                raise self.over(f"name {name!r}", tok.pos, "max_symbols")
+            value = self.resolve(name) if self.resolve is not None else None
+            if value is not None and not isinstance(value, sympy.Expr):
+                raise TypeError(f"resolve({name!r}) gave {type(value).__name__}, not sympy.Expr")
+            self.names[name] = value
+        value = self.names.get(name)
+        if call and value is None:  # a resolved name before '(' multiplies
+            raise self.error(f"unknown function {name!r}", tok.pos, _ALLOWED)
+        return symbol(name) if value is None else value
+
+    def call(self, tok: _Token) -> sympy.Expr:
+        build, arity = _FUNCTIONS[tok.text]
+        args: list[sympy.Expr] = []
+        while not args or self.is_op(","):  # take '(' or ','
+            args.append(self.nested(self.take(), self.expr))
+        if self.take().text != ")":
+            raise self.unexpected(self.tokens[self.i - 1], "expected an operator, ',' or ')'")
+        if len(args) != arity:
+            raise self.error(
+                f"{tok.text}() with {len(args)} argument(s)", tok.pos, f"expected {arity}"
+            )
+        if tok.text == "sqrt":
+            return self.pow(tok, args[0], sympy.S.Half)
+        return self.make(tok, build, *args)
+
+
+def parse_expression(
+    text: str,
+    *,
+    resolve: _Resolve | None = None,
+    limits: ParseLimits = DEFAULT_LIMITS,
+    file: str | None = None,
+    row: int | None = None,
+    field: str | None = None,
+) -> sympy.Expr:
+    """Turn user text into a finite sympy expression with a whitelist grammar, never ``eval``.
+
+    Parameters
+    ----------
+    text
+        Decimals become exact rationals, names real symbols (Greek letters in ASCII);
+        ``pi``/``π`` is π, ``e``/``E`` are plain symbols.
+    resolve
+        Called once per distinct normalized name (not ``pi``, not functions); returns
+        the expression to use or ``None``.  A resolved name before ``(`` multiplies.
+    limits, file, row, field
+        Resource limits (:class:`ParseLimits`); where the text came from, for errors.
+
+    Raises
+    ------
+    ParseError
+        One line: what was found, at which 1-based column, in which text, what was expected.
+
+    Examples
+    --------
+    >>> parse_expression("a1*cos(theta1) + 1/2")
+    a1*cos(theta1) + 1/2
+    >>> parse_expression("2^3^2"), parse_expression("-x^2"), parse_expression("2a1 + 0.4318 pi")
+    (512, -x**2, 2*a1 + 2159*pi/5000)
+    >>> parse_expression("theta1 + pi/2"), parse_expression("1e-3"), parse_expression("θ1 + α")
+    (theta1 + pi/2, 1/1000, alpha + theta1)
+    >>> parse_expression("x^70", limits=ParseLimits(max_exponent=70))
+    x**70
+    >>> parse_expression("a1 C1", resolve=lambda n: sympy.cos(symbol("q1")) if n == "C1" else None)
+    a1*cos(q1)
+    >>> parse_expression("q1 + )", file="arm.yaml", row=2, field="theta")
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.ParseError: arm.yaml: row 2, field theta: unexpected ')' at column 6 in 'q1 + )': expected a number, name or '('
+    """  # noqa: E501
+    where: dict[str, Any] = {"file": file, "row": row, "field": field}
+    if not isinstance(text, str):
+        raise ParseError(f"expected text (str), got {type(text).__name__}", **where)
+    if len(text) > limits.max_length:  # before looking at the characters
+        found = f"text of {len(text)} characters in {_show(text, 0)}"
+        raise ParseError(f"{found}: expected at most max_length={limits.max_length}", **where)
+    try:
+        return _Parser(text, resolve, limits, where).parse()
+    except RecursionError:  # only possible with a max_depth far above the default
+        message = f"expression too deeply nested in {_show(text, 0)}: lower max_depth"
+        raise ParseError(message, **where) from None
+
+
+def parse_number_list(text: str, option: str) -> list[float]:
+    """The numbers of ``text`` (comma separated) as floats; ``option`` names them in errors.
+
+    Used for command-line values such as ``--q 90,-45`` or ``--check pi/2,0``.
+
+    >>> parse_number_list("pi/2, 0.5", "--q")
+    [1.5707963267948966, 0.5]
+    """
+    values = []
+    for k, part in enumerate(text.split(","), start=1):
+        expr = parse_expression(part, field=f"{option} value {k}")
+        if expr.free_symbols or not expr.is_number or not expr.is_real:
+            raise DHError(f"{option} value {k} ({part.strip()}) must be a real number")
+        values.append(float(expr))
+    return values

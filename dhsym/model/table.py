@@ -1,0 +1,391 @@
+"""The DH table: conventions, joint types, rows and tables as frozen values.
+
+Two conventions are first class (seed 001 and seed 002):
+
+* ``standard`` (distal; Spong, Corke): ``A_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i)``;
+* ``modified`` (proximal; Craig, Ghosal): ``^{i-1}T_i = Rx(α_{i-1}) Tx(a_{i-1}) Rz(θ_i) Tz(d_i)``.
+  Row *i* of a modified table holds α_{i-1}, a_{i-1}, d_i, θ_i, as in Craig's tables.
+
+All entries are exact sympy expressions in radians; :func:`to_radians` turns a
+degree entry (``q3 + 90``) into radians (``q3 + pi/2``) exactly.
+
+Examples
+--------
+>>> t = DHTable.from_rows(
+...     [DHRow.revolute("theta1", a="a1"), DHRow.revolute("theta2", a="a2")],
+...     name="Planar 2R")
+>>> t.n, t.convention.value, t.variables
+(2, 'standard', (theta1, theta2))
+>>> t.rows[0]
+DHRow(R: theta=theta1, d=0, a=a1, alpha=0)
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field, replace
+
+import sympy as sp
+
+from dhsym.errors import TableError
+
+from .entries import as_expr, check_radians, to_radians
+from .kinds import AngleUnit, Convention, JointType
+from .parsing import symbol
+
+__all__ = [
+    "AngleUnit",
+    "Convention",
+    "DHRow",
+    "DHTable",
+    "Elementary",
+    "JointType",
+    "as_expr",
+    "to_radians",
+]
+
+Expr = sp.Expr
+
+
+@dataclass(frozen=True)
+class Elementary:
+    """One elementary transform: a rotation ``R`` or translation ``T`` about/along an axis.
+
+    >>> Elementary("R", "z", sp.pi / 2)
+    Rz(pi/2)
+    >>> Elementary("T", "x", symbol("a1")).inverse()
+    Tx(-a1)
+    """
+
+    kind: str
+    axis: str
+    value: Expr
+
+    def __post_init__(self) -> None:
+        if self.kind not in ("R", "T") or self.axis not in ("x", "y", "z"):
+            raise TableError(f"unknown elementary transform {self.kind}{self.axis}")
+        object.__setattr__(self, "value", as_expr(self.value))
+
+    def inverse(self) -> Elementary:
+        """The inverse transform (negated angle or distance)."""
+        return Elementary(self.kind, self.axis, -self.value)
+
+    def __repr__(self) -> str:
+        return f"{self.kind}{self.axis}({self.value})"
+
+
+_VAR_LIKE = re.compile(r"^(theta|th|q|d|t)_?\d+$")
+_VAR_NAMES = {
+    "R": ("theta{i}", "theta_{i}", "q{i}", "q_{i}", "th{i}", "t{i}"),
+    "P": ("d{i}", "d_{i}", "q{i}", "q_{i}"),
+}
+
+
+@dataclass(frozen=True)
+class DHRow:
+    """One row of a DH table: joint type, four exact parameters and the joint variable.
+
+    In a modified table, ``a`` and ``alpha`` of row *i* are a_{i-1} and α_{i-1}.
+    Angles are in radians. ``limits`` are joint limits (radians or lengths).
+
+    >>> DHRow.prismatic("d3", theta=0, a=0, alpha=0).variable
+    d3
+    >>> DHRow.revolute("theta3 + pi/2").offset
+    pi/2
+    """
+
+    joint: JointType
+    theta: Expr
+    d: Expr
+    a: Expr
+    alpha: Expr
+    variable: sp.Symbol | None = None
+    limits: tuple[Expr, Expr] | None = None
+    label: str | None = None
+
+    @classmethod
+    def revolute(
+        cls, theta: object, d: object = 0, a: object = 0, alpha: object = 0, **kw: object
+    ) -> DHRow:
+        """A revolute row; θ holds the variable (and maybe a constant offset)."""
+        return cls(JointType.REVOLUTE, theta, d, a, alpha, **kw)  # type: ignore[arg-type]
+
+    @classmethod
+    def prismatic(
+        cls, d: object, theta: object = 0, a: object = 0, alpha: object = 0, **kw: object
+    ) -> DHRow:
+        """A prismatic row; d holds the variable."""
+        return cls(JointType.PRISMATIC, theta, d, a, alpha, **kw)  # type: ignore[arg-type]
+
+    @classmethod
+    def fixed(cls, theta: object = 0, d: object = 0, a: object = 0, alpha: object = 0) -> DHRow:
+        """A fixed row (constant transform, no joint variable)."""
+        return cls(JointType.FIXED, theta, d, a, alpha)  # type: ignore[arg-type]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "joint", JointType.parse(self.joint))
+        for name in ("theta", "d", "a", "alpha"):
+            object.__setattr__(self, name, as_expr(getattr(self, name), field=name))
+        if isinstance(self.variable, str):
+            object.__setattr__(self, "variable", symbol(self.variable))
+        own = self.variable_field
+        if self.variable is None and own is not None:
+            candidates = getattr(self, own).free_symbols
+            if len(candidates) == 1:
+                object.__setattr__(self, "variable", next(iter(candidates)))
+        if self.limits is not None:
+            lo, hi = (as_expr(v, field="limits") for v in self.limits)
+            object.__setattr__(self, "limits", (lo, hi))
+
+    @property
+    def variable_field(self) -> str | None:
+        """Name of the column that holds the joint variable (``theta`` or ``d``)."""
+        return {JointType.REVOLUTE: "theta", JointType.PRISMATIC: "d"}.get(self.joint)
+
+    @property
+    def offset(self) -> Expr:
+        """Constant part of the variable's entry (``theta3 + pi/2`` gives ``pi/2``)."""
+        if self.variable is None or self.variable_field is None:
+            return sp.Integer(0)
+        return sp.expand(getattr(self, self.variable_field) - self.variable)
+
+    def params(self) -> dict[str, Expr]:
+        """The four parameters by name."""
+        return {"theta": self.theta, "d": self.d, "a": self.a, "alpha": self.alpha}
+
+    def __repr__(self) -> str:
+        return (
+            f"DHRow({self.joint.value}: theta={self.theta}, d={self.d}, a={self.a}, "
+            f"alpha={self.alpha})"
+        )
+
+
+def _infer_variable(row: DHRow, index: int) -> sp.Symbol | None:
+    """Find the joint variable of a row, or explain why there is none."""
+    if row.joint is JointType.FIXED:
+        return None
+    own = row.variable_field
+    assert own is not None
+    other = "d" if own == "theta" else "theta"
+    entry = getattr(row, own)
+    if row.variable is not None:
+        if row.variable not in entry.free_symbols:
+            raise TableError(
+                f"joint variable {row.variable} does not appear in {own}", row=index, field=own
+            )
+        return row.variable
+    candidates = sorted(entry.free_symbols, key=lambda s: s.name)
+    if not candidates:
+        kind = "revolute" if own == "theta" else "prismatic"
+        hint = ""
+        if getattr(row, other).free_symbols:
+            hint = (
+                f"; {other} = {getattr(row, other)} has a symbol: is this joint "
+                f"{'prismatic (type: P)' if own == 'theta' else 'revolute (type: R)'}?"
+            )
+        raise TableError(
+            f"{kind} joint has no variable in {own} (got {entry}){hint}", row=index, field=own
+        )
+    if len(candidates) == 1:
+        return candidates[0]
+    names = {p.format(i=index) for p in _VAR_NAMES[row.joint.value]}
+    preferred = [s for s in candidates if s.name in names]
+    looks_like_variable = [s for s in candidates if _VAR_LIKE.match(s.name)]
+    if len(preferred) == 1 and looks_like_variable == preferred:
+        return preferred[0]
+    raise TableError(
+        f"{own} = {entry} has {len(candidates)} candidate joint variables "
+        f"({', '.join(s.name for s in candidates)}): a joint has exactly one; "
+        "name it with q: NAME",
+        row=index,
+        field=own,
+    )
+
+
+@dataclass(frozen=True)
+class DHTable:
+    """An ordered, validated DH table.
+
+    Parameters
+    ----------
+    rows
+        The rows, joint 1 first.
+    convention
+        :class:`Convention` (``standard`` or ``modified``).
+    name, source
+        A title and where the numbers come from (a citation).
+    values
+        Optional numbers for symbolic lengths, as ``(symbol, value)`` pairs.
+    base, tool
+        Optional constant transforms before joint 1 and after the last frame,
+        as sequences of :class:`Elementary`.
+    angles
+        The unit the table was *written* in (for display); entries are radians.
+    """
+
+    rows: tuple[DHRow, ...]
+    convention: Convention = Convention.STANDARD
+    name: str = ""
+    source: str = ""
+    values: tuple[tuple[sp.Symbol, Expr], ...] = ()
+    base: tuple[Elementary, ...] = ()
+    tool: tuple[Elementary, ...] = ()
+    angles: AngleUnit = AngleUnit.RAD
+    notes: str = field(default="", compare=False)
+
+    @classmethod
+    def from_rows(
+        cls,
+        rows: Iterable[DHRow],
+        *,
+        convention: Convention | str = Convention.STANDARD,
+        angles: AngleUnit | str = AngleUnit.RAD,
+        values: Mapping[object, object] | None = None,
+        **kw: object,
+    ) -> DHTable:
+        """Build a table from rows; with ``angles='deg'`` θ, α and revolute limits are degrees.
+
+        >>> t = DHTable.from_rows([DHRow.revolute("q1", alpha=90)], angles="deg")
+        >>> t.rows[0].alpha
+        pi/2
+        """
+        unit = AngleUnit.parse(angles)
+        converted = []
+        for i, row in enumerate(rows, start=1):
+            try:
+                changes: dict[str, object] = {
+                    "theta": to_radians(row.theta, unit),
+                    "alpha": to_radians(row.alpha, unit),
+                }
+                if row.limits is not None and row.joint is JointType.REVOLUTE:
+                    changes["limits"] = tuple(to_radians(v, unit) for v in row.limits)
+            except TableError as err:
+                raise err.located(row=i) from None
+            converted.append(replace(row, **changes))  # type: ignore[arg-type]
+        pairs = tuple(
+            (symbol(k) if isinstance(k, str) else k, as_expr(v, field="values"))
+            for k, v in (values or {}).items()
+        )
+        return cls(
+            tuple(converted),
+            Convention.parse(convention),
+            values=pairs,  # type: ignore[arg-type]
+            angles=unit,
+            **kw,  # type: ignore[arg-type]
+        )
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "convention", Convention.parse(self.convention))
+        object.__setattr__(self, "angles", AngleUnit.parse(self.angles))
+        rows = tuple(self.rows)
+        if not rows:
+            raise TableError("the table has no joints: give at least one row", field="joints")
+        fixed_rows = []
+        seen: dict[sp.Symbol, int] = {}
+        for i, row in enumerate(rows, start=1):
+            if not isinstance(row, DHRow):
+                raise TableError(f"expected a DHRow, got {type(row).__name__}", row=i)
+            for name in ("theta", "alpha"):
+                check_radians(getattr(row, name), row=i, field=name)
+            var = _infer_variable(row, i)
+            if var is not None:
+                for name, entry in row.params().items():
+                    if name != row.variable_field and var in entry.free_symbols:
+                        raise TableError(
+                            f"joint variable {var} of this {row.joint.name.lower()} joint "
+                            f"appears in {name}; it belongs in {row.variable_field} only",
+                            row=i,
+                            field=name,
+                        )
+                if var in seen:
+                    raise TableError(
+                        f"joint variable {var} is already the variable of row {seen[var]}",
+                        row=i,
+                        field=row.variable_field,
+                    )
+                seen[var] = i
+            fixed_rows.append(row if row.variable == var else replace(row, variable=var))
+        for i, row in enumerate(fixed_rows, start=1):
+            for name, entry in row.params().items():
+                stray = (entry.free_symbols & set(seen)) - {row.variable}
+                if stray:
+                    s = sorted(stray, key=str)[0]
+                    raise TableError(
+                        f"{s} is the joint variable of row {seen[s]} and cannot appear here",
+                        row=i,
+                        field=name,
+                    )
+        object.__setattr__(self, "rows", tuple(fixed_rows))
+        object.__setattr__(self, "base", tuple(self.base))
+        object.__setattr__(self, "tool", tuple(self.tool))
+        known = set().union(*(e.free_symbols for r in fixed_rows for e in r.params().values()))
+        known |= set().union(*(e.value.free_symbols for e in self.base + self.tool))
+        for sym, value in self.values:
+            if sym in seen:
+                raise TableError(
+                    f"{sym} is a joint variable; values are for constant symbols",
+                    field="values",
+                )
+            if sym not in known:
+                raise TableError(f"symbol {sym} does not appear in the table", field="values")
+            if value.free_symbols or not value.is_number:
+                raise TableError(f"value of {sym} must be a number, got {value}", field="values")
+
+    @property
+    def n(self) -> int:
+        """Number of rows."""
+        return len(self.rows)
+
+    @property
+    def variables(self) -> tuple[sp.Symbol, ...]:
+        """Joint variables, in row order (fixed rows have none)."""
+        return tuple(r.variable for r in self.rows if r.variable is not None)
+
+    @property
+    def joint_rows(self) -> tuple[int, ...]:
+        """1-based indices of the rows that have a joint variable."""
+        return tuple(i for i, r in enumerate(self.rows, start=1) if r.variable is not None)
+
+    @property
+    def constants(self) -> tuple[sp.Symbol, ...]:
+        """Constant symbols (lengths, offsets, symbolic twists), sorted by name."""
+        syms: set[sp.Symbol] = set()
+        for r in self.rows:
+            for e in r.params().values():
+                syms |= e.free_symbols
+        for e in self.base + self.tool:
+            syms |= e.value.free_symbols
+        return tuple(sorted(syms - set(self.variables), key=lambda s: s.name))
+
+    @property
+    def value_map(self) -> dict[sp.Symbol, Expr]:
+        """The numeric values of constant symbols as a dict."""
+        return dict(self.values)
+
+    def with_values(self, values: Mapping[object, object]) -> DHTable:
+        """A copy with more (or replaced) numeric values for constant symbols."""
+        merged = self.value_map
+        for k, v in values.items():
+            merged[symbol(k) if isinstance(k, str) else k] = as_expr(v, field="values")  # type: ignore[index]
+        return replace(self, values=tuple(merged.items()))
+
+    def substituted(self) -> DHTable:
+        """A copy with the numeric values substituted into the rows (values emptied)."""
+        vm = self.value_map
+        rows = tuple(
+            replace(r, **{k: v.subs(vm) for k, v in r.params().items()}) for r in self.rows
+        )
+        base = tuple(Elementary(e.kind, e.axis, e.value.subs(vm)) for e in self.base)
+        tool = tuple(Elementary(e.kind, e.axis, e.value.subs(vm)) for e in self.tool)
+        return replace(self, rows=rows, base=base, tool=tool, values=())
+
+    def _repr_latex_(self) -> str:
+        from dhsym.notation.tables import table_latex
+
+        return "$$" + table_latex(self) + "$$"
+
+    def _repr_markdown_(self) -> str:
+        from dhsym.notation.tables import table_markdown
+
+        return table_markdown(self)

@@ -1,0 +1,300 @@
+"""Reading and writing DH tables as YAML files.
+
+The format (every key but ``joints`` optional)::
+
+    name: Planar 2R
+    source: seed 001, Example 2          # where the numbers come from
+    convention: standard                 # or modified (Craig): rows hold alpha_{i-1}, a_{i-1}
+    angles: deg                          # or rad
+    joints:
+      - {type: R, theta: theta1, d: 0, a: a1, alpha: 0}
+      - {type: R, theta: theta2, d: 0, a: a2, alpha: 0, limits: [-150, 150]}
+      - {type: P, theta: 0, d: a5 + d3, a: 0, alpha: 180, q: d3}
+    values: {a1: 1.0, a2: 0.8}           # numbers for symbolic lengths
+    base: [{Tz: 0.5}]                    # constant transforms before joint 1 ...
+    tool: [{Tz: t}]                      # ... and after the last frame
+
+Entries are numbers or expressions read by the whitelist parser
+(:mod:`dhsym.model.parsing`): never ``eval`` or ``sympify``. Every error names the
+file, the row and the field.
+
+Examples
+--------
+>>> t = read_table_text('''
+... name: Planar 2R
+... angles: deg
+... joints:
+...   - {type: R, theta: theta1, d: 0, a: a1, alpha: 0}
+...   - {type: R, theta: theta2, d: 0, a: a2, alpha: 0}
+... values: {a1: 1.0, a2: 0.8}
+... ''')
+>>> t.name, t.n, t.value_map
+('Planar 2R', 2, {a1: 1, a2: 4/5})
+>>> read_table_text("joints: [{type: R, theta: q1, d: 0, a: 0, alfa: 0}]", file="arm.yaml")
+Traceback (most recent call last):
+...
+dhsym.errors.TableError: arm.yaml: row 1, field alfa: unknown column 'alfa': expected type, ...
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from pathlib import Path
+
+import sympy as sp
+import yaml
+
+from dhsym.errors import DHError, TableError
+
+from .entries import exact_decimal as _exact_decimal
+from .table import (
+    AngleUnit,
+    Convention,
+    DHRow,
+    DHTable,
+    Elementary,
+    JointType,
+    as_expr,
+    to_radians,
+)
+
+__all__ = ["MAX_FILE_BYTES", "dump_table", "read_table", "read_table_text", "table_from_data"]
+
+MAX_FILE_BYTES = 1_000_000
+_ROW_KEYS = ("type", "theta", "d", "a", "alpha", "q", "limits", "offset", "name")
+_TOP_KEYS = (
+    "name",
+    "source",
+    "convention",
+    "angles",
+    "joints",
+    "values",
+    "base",
+    "tool",
+    "notes",
+)
+_ALIASES = {"θ": "theta", "α": "alpha", "joint": "type", "variable": "q", "th": "theta"}
+
+
+def read_table(path: str | Path) -> DHTable:
+    """Read a table file (YAML). Errors name the file, row and field."""
+    p = Path(path)
+    try:
+        size = p.stat().st_size
+    except OSError as err:
+        raise TableError(f"cannot read table file: {err.strerror}", file=str(p)) from None
+    if size > MAX_FILE_BYTES:
+        raise TableError(f"file is {size} bytes; tables are at most {MAX_FILE_BYTES}", file=str(p))
+    try:
+        text = p.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise TableError("not a UTF-8 text file", file=str(p)) from None
+    return read_table_text(text, file=str(p))
+
+
+def read_table_text(text: str, *, file: str | None = None) -> DHTable:
+    """Read a table from YAML text."""
+    if len(text) > MAX_FILE_BYTES:
+        raise TableError("table text is too large", file=file)
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as err:
+        mark = getattr(err, "problem_mark", None)
+        where = f" (line {mark.line + 1}, column {mark.column + 1})" if mark else ""
+        raise TableError(
+            f"not valid YAML{where}: {getattr(err, 'problem', err)}", file=file
+        ) from None
+    return table_from_data(data, file=file)
+
+
+def _canon(key: object) -> str:
+    k = str(key).strip()
+    return _ALIASES.get(k, _ALIASES.get(k.lower(), k.lower()))
+
+
+def table_from_data(data: object, *, file: str | None = None) -> DHTable:
+    """Build a table from parsed YAML/JSON data (dicts, lists, numbers, strings)."""
+    try:
+        return _from_data(data, file)
+    except DHError as err:
+        raise err.located(file=file) from None
+
+
+def _from_data(data: object, file: str | None) -> DHTable:
+    if not isinstance(data, Mapping):
+        raise TableError("expected a mapping with a 'joints' list at the top level")
+    top = {_canon(k): v for k, v in data.items()}
+    unknown = sorted(set(top) - set(_TOP_KEYS))
+    if unknown:
+        raise TableError(
+            f"unknown key {unknown[0]!r}: expected {', '.join(_TOP_KEYS)}", field=unknown[0]
+        )
+    convention = Convention.parse(top.get("convention", "standard"))
+    unit = AngleUnit.parse(top.get("angles", "rad"))
+    joints = top.get("joints")
+    if joints is None:
+        raise TableError("missing 'joints': the list of rows", field="joints")
+    if not isinstance(joints, list):
+        raise TableError("'joints' must be a list of rows", field="joints")
+    if not joints:
+        raise TableError("the table has no joints: give at least one row", field="joints")
+    rows = [_row(entry, i) for i, entry in enumerate(joints, start=1)]
+    values = top.get("values") or {}
+    if not isinstance(values, Mapping):
+        raise TableError("'values' must map symbol names to numbers", field="values")
+    checked = {}
+    for k, v in values.items():
+        expr = as_expr(v, field=f"values.{k}")
+        if expr.free_symbols:
+            raise TableError(f"value of {k} must be a number, got {v!r}", field=f"values.{k}")
+        checked[str(k)] = expr
+    return DHTable.from_rows(
+        rows,
+        convention=convention,
+        angles=unit,
+        values=checked,
+        name=str(top.get("name") or ""),
+        source=str(top.get("source") or ""),
+        notes=str(top.get("notes") or ""),
+        base=_elementaries(top.get("base"), "base", unit),
+        tool=_elementaries(top.get("tool"), "tool", unit),
+    )
+
+
+def _row(entry: object, i: int) -> DHRow:
+    if not isinstance(entry, Mapping):
+        raise TableError("each row must be a mapping like {type: R, theta: ..., ...}", row=i)
+    row = {_canon(k): v for k, v in entry.items()}
+    for key in row:
+        if key not in _ROW_KEYS:
+            raise TableError(
+                f"unknown column {key!r}: expected {', '.join(_ROW_KEYS)}", row=i, field=key
+            )
+    for key in ("type", "theta", "d", "a", "alpha"):
+        if key not in row:
+            raise TableError(f"missing column {key!r}", row=i, field=key)
+    kw: dict[str, object] = {}
+    params = {k: as_expr(row[k], field=k, row=i) for k in ("theta", "d", "a", "alpha")}
+    try:
+        return _build_row(row, params, kw, i)
+    except DHError as err:
+        raise err.located(row=i) from None
+
+
+def _build_row(row: dict, params: dict, kw: dict, i: int) -> DHRow:
+    from .parsing import symbol
+
+    joint = row["type"]
+    if "q" in row:
+        if not isinstance(row["q"], str):
+            raise TableError("q must name the joint variable, e.g. q: d3", row=i, field="q")
+        kw["variable"] = symbol(row["q"].strip())
+    if "offset" in row:
+        own = "d" if str(joint).strip().upper().startswith("P") else "theta"
+        params[own] = params[own] + as_expr(row["offset"], field="offset", row=i)
+    if "limits" in row:
+        lim = row["limits"]
+        if not (isinstance(lim, list) and len(lim) == 2):
+            raise TableError("limits must be a list [low, high]", row=i, field="limits")
+        lo, hi = (as_expr(v, field="limits", row=i) for v in lim)
+        if (lo - hi).is_positive:
+            raise TableError(f"limits [{lo}, {hi}]: low is above high", row=i, field="limits")
+        kw["limits"] = (lo, hi)
+    if "name" in row:
+        kw["label"] = str(row["name"])
+    return DHRow(joint, params["theta"], params["d"], params["a"], params["alpha"], **kw)
+
+
+def _elementaries(data: object, where: str, unit: AngleUnit) -> tuple[Elementary, ...]:
+    if data is None:
+        return ()
+    if not isinstance(data, list):
+        raise TableError(f"'{where}' must be a list like [{{Tz: 0.5}}, {{Rx: 90}}]", field=where)
+    out = []
+    for k, step in enumerate(data, start=1):
+        if not (isinstance(step, Mapping) and len(step) == 1):
+            raise TableError(f"step {k} must be one of {{Rx|Ry|Rz|Tx|Ty|Tz: value}}", field=where)
+        ((name, value),) = step.items()
+        name = str(name)
+        if len(name) != 2 or name[0] not in "RT" or name[1].lower() not in "xyz":
+            raise TableError(
+                f"step {k}: unknown transform {name!r}: expected Rx, Ry, Rz, Tx, Ty or Tz",
+                field=where,
+            )
+        expr = as_expr(value, field=f"{where}[{k}]")
+        if name[0] == "R":
+            expr = to_radians(expr, unit)
+        out.append(Elementary(name[0], name[1].lower(), expr))
+    return tuple(out)
+
+
+def _plain(value: sp.Expr) -> object:
+    if value.is_Integer:
+        return int(value)
+    if value.is_Rational and _exact_decimal(value) is not None:
+        return float(_exact_decimal(value))  # type: ignore[arg-type]
+    return str(value)
+
+
+def dump_table(table: DHTable, *, angles: str | None = None) -> str:
+    """Write a table as YAML text that :func:`read_table_text` reads back to the same table.
+
+    >>> row = "{type: R, theta: q1 + 90, d: 0, a: 1, alpha: -90}"
+    >>> t = read_table_text(f"angles: deg\\njoints: [{row}]")
+    >>> print(dump_table(t), end="")
+    convention: standard
+    angles: deg
+    joints:
+    - {type: R, theta: q1 + 90, d: 0, a: 1, alpha: -90}
+    >>> read_table_text(dump_table(t)) == t
+    True
+    """
+    unit = AngleUnit.parse(angles or table.angles)
+
+    def ang(v: sp.Expr) -> object:
+        if unit is AngleUnit.RAD:
+            return _plain(v)
+        sym = sp.Add(*[t for t in sp.Add.make_args(v) if t.free_symbols])
+        const = sp.nsimplify(sp.expand((v - sym) * 180 / sp.pi))
+        if sym == 0:
+            return _plain(const)
+        return str(sym) if const == 0 else f"{sym} + {const}".replace("+ -", "- ")
+
+    lines = []
+    for key in ("name", "source"):
+        if getattr(table, key):
+            lines.append(f"{key}: {json.dumps(getattr(table, key), ensure_ascii=False)}")
+    lines += [f"convention: {table.convention.value}", f"angles: {unit.value}", "joints:"]
+    for row in table.rows:
+        cells = {
+            "type": row.joint.value,
+            "theta": ang(row.theta),
+            "d": _plain(row.d),
+            "a": _plain(row.a),
+            "alpha": ang(row.alpha),
+        }
+        own = row.variable_field
+        if row.variable is not None and own and len(getattr(row, own).free_symbols) > 1:
+            cells["q"] = str(row.variable)
+        if row.limits is not None:
+            conv = ang if row.joint is JointType.REVOLUTE else _plain
+            cells["limits"] = [conv(v) for v in row.limits]
+        if row.label:
+            cells["name"] = row.label
+        lines.append("- " + yaml.safe_dump(cells, default_flow_style=True, sort_keys=False).strip())
+    if table.notes:
+        lines.append(f"notes: {json.dumps(table.notes, ensure_ascii=False)}")
+    if table.values:
+        vals = {str(k): _plain(v) for k, v in table.values}
+        lines.append(
+            "values: " + yaml.safe_dump(vals, default_flow_style=True, sort_keys=False).strip()
+        )
+    for where, seq in (("base", table.base), ("tool", table.tool)):
+        if seq:
+            steps = [
+                {f"{e.kind}{e.axis}": ang(e.value) if e.kind == "R" else _plain(e.value)}
+                for e in seq
+            ]
+            lines.append(f"{where}: " + yaml.safe_dump(steps, default_flow_style=True).strip())
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,44 @@
+"""The notation room: lecture printers (C12, S23, c1), formula layout and line breaking,
+the one view of a DH table, and escaping of user text for LaTeX and Markdown.
+
+May import :mod:`dhsym.model`; never kinematics, documents or checking.
+"""
+
+from dhsym._lazy import lazy_exports
+
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "angle_label": "printers",
+        "as_math": "layout",
+        "Equation": "layout",
+        "escape_latex": "escape",
+        "escape_markdown": "escape",
+        "format_angle": "printers",
+        "LegendEntry": "printers",
+        "Math": "layout",
+        "matrix_block": "layout",
+        "MatrixBlock": "layout",
+        "Notation": "printers",
+        "table_latex": "tables",
+        "table_markdown": "tables",
+        "TeX": "escape",
+    },
+)
+
+__all__ = [
+    "Equation",
+    "LegendEntry",
+    "Math",
+    "MatrixBlock",
+    "Notation",
+    "TeX",
+    "angle_label",
+    "as_math",
+    "escape_latex",
+    "escape_markdown",
+    "format_angle",
+    "matrix_block",
+    "table_latex",
+    "table_markdown",
+]

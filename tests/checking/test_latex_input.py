@@ -1,0 +1,84 @@
+"""LaTeX math reader: translation to whitelist-parser text, matrices, refusals."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+from dhsym.checking.latex_input import (
+    flatten_subscripts,
+    is_latex,
+    latex_matrix_cells,
+    latex_to_text,
+)
+from dhsym.errors import ParseError
+from dhsym.model.parsing import parse_expression
+
+SEED002 = Path(__file__).resolve().parents[1] / "data" / "seeds" / "002_8d4894e47f2048cf.txt"
+t = sp.Symbol("theta_1", real=True)
+
+
+@pytest.mark.parametrize(
+    ("src", "text"),
+    [
+        (r"\cos\theta_1", "cos(theta_1)"),
+        (r"\cos(\theta_1 + \theta_2)", "cos(theta_1 + theta_2)"),
+        (r"C_{12}", "C_12"),
+        (r"\alpha_{i-1}", "alpha_im1"),
+        (r"\frac{\pi}{2}", "((pi)/(2))"),
+        (r"\left( a_1 + a_2 \right) \cdot C_1", "(a_1 + a_2) * C_1"),
+        (r"a^{2}", "a^(2)"),
+        (r"\cos^2\theta", "cos(theta)^(2)"),
+        (r"90^\circ", "90*(pi/180)"),
+        (r"\mathbf{p}_x = d_3", "d_3"),
+        (r"\sqrt{2}", "sqrt(2)"),
+        (r"\Theta_1", "theta_1"),
+    ],
+)
+def test_translation(src, text):
+    assert latex_to_text(src) == text
+
+
+def test_translated_text_parses_to_the_right_expression():
+    e = parse_expression(latex_to_text(r"\cos(\theta_1 + \frac{\pi}{2})"))
+    assert e == -sp.sin(t)
+
+
+@pytest.mark.parametrize(
+    "src",
+    [
+        r"\input{/etc/passwd}",
+        r"\write18{rm -rf /}",
+        r"\def\x{1}",
+        r"\cos",
+        r"\frac{1}",
+        r"(a",
+        r"\left| x \right|",
+        r"x_",
+    ],
+)
+def test_refused_latex_raises_parse_error(src):
+    with pytest.raises(ParseError):
+        latex_to_text(src)
+
+
+def test_matrix_cells_take_the_last_matrix_and_skip_the_trailing_row_break():
+    src = (
+        r"T = \begin{bmatrix} n & s \end{bmatrix} = \begin{pmatrix} 1 & 2 \\ 3 & 4 \\ \end{pmatrix}"
+    )
+    assert latex_matrix_cells(src) == [["1", "2"], ["3", "4"]]
+    assert latex_matrix_cells("no matrix here") is None
+
+
+def test_seed_002_slide_reads_as_a_4x4_matrix():
+    line = SEED002.read_text(encoding="utf-8").splitlines()[166]
+    cells = latex_matrix_cells(line)
+    assert [len(r) for r in cells] == [4, 4, 4, 4]
+    assert latex_to_text(cells[1][3]) == "d_i sin(alpha_im1)"
+
+
+def test_helpers():
+    assert is_latex(r"\theta") and is_latex("$x$") and not is_latex("cos(x)")
+    assert flatten_subscripts("alpha_{i-1} + a_{i+1} + C_{1,2}") == "alpha_im1 + a_ip1 + C_12"

@@ -1,0 +1,83 @@
+"""dhsym check and dhsym grade from the command line (exit codes, JSON)."""
+
+from __future__ import annotations
+
+import io
+import json
+import sys
+from pathlib import Path
+
+from dhsym.cli.main import main
+
+ROOT = Path(__file__).resolve().parents[2]
+HW = ROOT / "examples" / "homework"
+RIGHT = "[[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0, 0, 1, 0]]"
+
+
+def run_check(monkeypatch, capsys, answer: str, *extra: str) -> tuple[int, str, str]:
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(answer.encode())))
+    code = main(["check", "--key", "planar2r", "--question", "T0_2", "--answer", "-", *extra])
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_exit_codes_correct_incorrect_unreadable(monkeypatch, capsys):
+    assert run_check(monkeypatch, capsys, RIGHT)[0] == 0
+    code, out, _ = run_check(monkeypatch, capsys, RIGHT.replace("+ a2*S12", "- a2*S12"))
+    assert code == 1 and "wrong sign" in out
+    code, out, err = run_check(monkeypatch, capsys, "[[1, 2], [3")
+    assert code == 2 and "unreadable answer" in err
+
+
+def test_json_output(monkeypatch, capsys):
+    code, out, _ = run_check(monkeypatch, capsys, RIGHT.replace("C12, -S12", "S12, -S12"), "--json")
+    data = json.loads(out)
+    assert code == 1 and data["verdict"] == "incorrect" and data["schema"] == 1
+    assert data["diagnosis"][0]["kind"] == "sin_cos_swapped"
+
+
+def test_answer_from_a_file_and_a_table_key_file(tmp_path, capsys):
+    f = tmp_path / "a.tex"
+    lines = (
+        (ROOT / "tests" / "data" / "seeds" / "002_8d4894e47f2048cf.txt")
+        .read_text(encoding="utf-8")
+        .splitlines()
+    )
+    f.write_text(lines[166], encoding="utf-8")
+    code = main(
+        [
+            "check",
+            "--key",
+            str(HW / "generic_modified_link.yaml"),
+            "--question",
+            "A1",
+            "--answer",
+            str(f),
+            "--json",
+        ]
+    )
+    data = json.loads(capsys.readouterr().out)
+    assert code == 1 and data["diagnosis"][0]["entries"] == [[2, 4]]
+
+
+def test_unknown_key_is_an_error(capsys):
+    assert main(["check", "--key", "nosuchrobot", "--question", "T0_1", "--answer", "-"]) == 2
+    assert "dhsym: error" in capsys.readouterr().err
+
+
+def test_grade_command(tmp_path, capsys):
+    out = tmp_path / "report"
+    code = main(
+        [
+            "grade",
+            str(HW / "assignment.yaml"),
+            str(HW / "class.csv"),
+            "-o",
+            str(out),
+            "--workers",
+            "0",
+            "--quiet",
+        ]
+    )
+    assert code == 0 and "graded 3 submission(s)" in capsys.readouterr().out
+    assert (out / "gradebook.csv").is_file() and (out / "summary.html").is_file()

@@ -1,0 +1,88 @@
+"""The command line: list, show, derive, fk; errors exit 2 with one line."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from dhsym.cli.main import main
+
+
+def test_list(capsys):
+    assert main(["list"]) == 0
+    out = capsys.readouterr().out
+    assert "puma560" in out and "RRRRRR" in out and "planarNr" in out
+
+
+def test_show_markdown_and_yaml(capsys):
+    assert main(["show", "scara"]) == 0
+    assert "| 3 | $0$ | $d_{3}$ |" in capsys.readouterr().out
+    assert main(["show", "scara", "--format", "yaml"]) == 0
+    assert "- {type: P, theta: 0, d: d3" in capsys.readouterr().out
+
+
+def test_derive_json_is_stable(capsys):
+    assert main(["derive", "planar2r", "--format", "json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["schema"] == 1
+    assert d["compact"][0] == ["C12", "-S12", "0", "a1*C1 + a2*C12"]
+    assert d["latex"][0][3] == "a_{1} C_{1} + a_{2} C_{12}"
+    assert d["legend"][0] == {"abbrev": "C1", "meaning": "cos(theta1)"}
+    assert [x["label"] for x in d["links"]] == ["T0_1", "T1_2"]
+
+
+def test_derive_any_pair(capsys):
+    assert main(["derive", "puma560", "--format", "json", "--from", "2", "--to", "5"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["label"] == "T2_5" and len(d["links"]) == 3
+
+
+def test_fk(capsys):
+    assert main(["fk", "puma560", "--q", "0,0,0,0,0,0", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["matrix"][0][3] == pytest.approx(0.4521)
+    assert d["matrix"][1][3] == pytest.approx(-0.15005)
+    assert main(["fk", "planar2r", "--q", "90,0", "--deg"]) == 0
+    assert "1.8" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["fk", "puma560", "--q", "0,0"], "--q needs 6 values (one per joint), got 2"),
+        (["fk", "puma560", "--q", "0,0,0,0,0,__import__('os')"], "names with double underscores"),
+        (["fk", "planar2r", "--q", "1,x"], "--q value 2 (x) must be a real number"),
+        (["show", "nothing-here"], "no built-in robot or table file 'nothing-here'"),
+        (["derive", "planar2r", "--to", "9"], "frames of Planar 2R are 0"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(argv, message, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("dhsym: error: ") and message in err
+    assert err.count("\n") == 1
+
+
+def test_bad_table_file_names_file_row_field(tmp_path, capsys):
+    p = tmp_path / "bad.yaml"
+    p.write_text("joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 90}]\n")
+    assert main(["show", str(p)]) == 2
+    err = capsys.readouterr().err
+    assert "bad.yaml: row 1, field alpha: angle 90 is larger than 2*pi radians" in err
+
+
+def test_console_script_runs_without_traceback(tmp_path):
+    out = subprocess.run(
+        [sys.executable, "-m", "dhsym", "fk", "planar2r", "--q", "1"],
+        capture_output=True,
+        text=True,
+    )
+    assert out.returncode == 2 and "Traceback" not in out.stderr
+
+
+def test_complex_joint_value_is_a_clean_error(capsys):
+    assert main(["fk", "planar2r", "--q", "sqrt(-1),0"]) == 2
+    assert "--q value 1 (sqrt(-1)) must be a real number" in capsys.readouterr().err

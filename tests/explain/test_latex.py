@@ -1,0 +1,370 @@
+"""LaTeX escaping, the log checker, safe compilation, and the compiled handouts (CI: TeX)."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import time
+import unicodedata
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+import dhsym
+from dhsym.errors import DHError
+from dhsym.explain.latex import check_log, compile_pdf
+from dhsym.explain.rendering import write_handout
+from dhsym.notation.escape import TeX, escape_latex
+from dhsym.notation.layout import math_width
+
+ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts"
+
+HOSTILE = [
+    r"\input{/etc/passwd}",
+    r"\write18{rm -rf /}",
+    r"}\end{document}",
+    "100% sure",
+    "$x$ and $$y$$",
+    r"# $ % & _ { } ~ ^ \ < > | \"",
+    "a--b---c ?` !`",
+    "Übung — Müller, Łódź, Straße, α/β → θ",
+    "中文 🤖",
+    "bidi\u202eevil\x00\x1b[31m",
+]
+
+
+# --- escaping ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("text", HOSTILE)
+def test_escaped_text_has_no_live_commands_or_specials(text):
+    out = escape_latex(text)
+    assert isinstance(out, TeX) and out.isascii()
+    for cmd in ("input", "write18", "end", "include", "openin", "catcode"):
+        assert f"\\{cmd}" not in out
+    # every special character is escaped: strip the escapes we emit, none may remain
+    rest = out
+    for safe in (
+        r"\textbackslash{}",
+        r"\{",
+        r"\}",
+        r"\#",
+        r"\$",
+        r"\%",
+        r"\&",
+        "-{}",
+        "!{}",
+        "?{}",
+        r"{\ttfamily\char",
+        r"\ensuremath{",
+        r"\texttt{[U+",
+    ):
+        rest = rest.replace(safe, "")
+    for ch in "#$%&_^~":
+        assert ch not in rest, (text, out)
+
+
+def test_escaping_of_each_special_character():
+    assert escape_latex("#$%&") == r"\#\$\%\&"
+    assert escape_latex("a_b") == r"a{\ttfamily\char95}b"
+    assert escape_latex("{x}") == r"\{x\}"
+    assert escape_latex("\\") == r"\textbackslash{}"
+    assert escape_latex("~^") == r"{\ttfamily\char126}{\ttfamily\char94}"
+    assert escape_latex("--") == "-{}-{}"
+    assert escape_latex("line\nbreak\ttab") == "line break tab"
+
+
+def test_escaping_of_unicode():
+    assert escape_latex("é") == r"\'{e}"
+    assert escape_latex("ï") == r"\"{\i{}}"
+    assert escape_latex("Ł ß") == r"\L{} \ss{}"
+    assert escape_latex("θ Ω") == r"\ensuremath{\theta} \ensuremath{\Omega}"
+    assert escape_latex("中") == r"\texttt{[U+4E2D]}"
+    assert escape_latex("\u202e\u200b\x07") == ""  # bidi override, zero width, bell dropped
+
+
+@given(st.text(max_size=40))
+def test_escaping_any_text_gives_balanced_ascii(text):
+    out = escape_latex(text)
+    assert out.isascii()
+    depth = 0
+    k = 0
+    while k < len(out):  # braces balance when escaped braces \{ \} are skipped
+        if out[k] == "\\" and k + 1 < len(out) and out[k + 1] in "{}":
+            k += 2
+            continue
+        depth += {"{": 1, "}": -1}.get(out[k], 0)
+        assert depth >= 0
+        k += 1
+    assert depth == 0
+
+
+def test_math_width_grows_with_content():
+    assert (
+        math_width("C_{1}") < math_width("C_{123}") < math_width(r"\cos{\left(\theta_{1}\right)}")
+    )
+    assert math_width("a + b") > math_width("ab")
+
+
+# --- the log ----------------------------------------------------------------------------
+
+
+def test_check_log_reports_errors_overfull_and_missing_characters():
+    log = "\n".join(
+        [
+            "Overfull \\hbox (4.9pt too wide) in paragraph at lines 3--4",
+            "Overfull \\hbox (5.1pt too wide) in alignment at lines 10--12",
+            "Overfull \\vbox (50pt too high) has occurred while \\output is active",
+            "./doc.tex:17: Undefined control sequence.",
+            "! Undefined control sequence.",
+            "l.17 \\foo",
+            "Missing character: There is no ^^A in font cmr10!",
+        ]
+    )
+    issues = check_log(log)
+    assert [(i.kind, i.line) for i in issues] == [
+        ("overfull", 10),
+        ("error", 17),
+        ("missing", None),
+    ]
+    assert issues[0].width_pt == pytest.approx(5.1)
+    assert check_log(log, max_overfull_pt=6.0)[0].kind == "error"
+    assert check_log("This is pdfTeX\nOutput written on doc.pdf (1 page).") == []
+
+
+def test_check_log_reads_a_path(tmp_path):
+    log = tmp_path / "x.log"
+    log.write_text("Overfull \\hbox (9.0pt too wide) detected at line 3\n")
+    assert [i.line for i in check_log(log)] == [3]
+
+
+# --- compiling (no TeX needed for the failure paths) --------------------------------------
+
+
+def test_missing_tex_names_the_debian_packages(tmp_path, monkeypatch):
+    tex = tmp_path / "a.tex"
+    tex.write_text("\\documentclass{article}\\begin{document}x\\end{document}\n")
+    monkeypatch.setattr(shutil, "which", lambda name: None)
+    with pytest.raises(DHError, match="texlive-latex-extra latexmk"):
+        compile_pdf(tex)
+
+
+def test_compile_refuses_a_missing_file(tmp_path):
+    with pytest.raises(DHError, match="no such file"):
+        compile_pdf(tmp_path / "nothing.tex")
+
+
+def _doc(body: str) -> str:
+    return "\\documentclass{article}\n\\begin{document}\n" + body + "\n\\end{document}\n"
+
+
+@pytest.mark.tex
+def test_compile_reports_the_latex_error_with_its_line(tmp_path, need_tex):
+    tex = tmp_path / "bad.tex"
+    tex.write_text(_doc("fine\n\\undefinedcommand"))
+    with pytest.raises(DHError, match=r"line 4: Undefined control sequence"):
+        compile_pdf(tex)
+
+
+@pytest.mark.tex
+def test_shell_escape_is_off_and_absolute_reads_are_refused(tmp_path, need_tex):
+    tex = tmp_path / "evil.tex"
+    tex.write_text(_doc("\\immediate\\write18{touch pwned}x"))
+    compile_pdf(tex)  # \write18 without shell escape just writes to the log
+    assert not (tmp_path / "pwned").exists()
+    tex.write_text(_doc("\\input{/etc/passwd}"))
+    with pytest.raises(DHError, match="LaTeX failed"):
+        compile_pdf(tex)
+
+
+@pytest.mark.tex
+def test_a_runaway_document_is_killed_after_the_timeout(tmp_path, need_tex):
+    tex = tmp_path / "loop.tex"
+    tex.write_text(_doc("\\def\\a{\\a}\\a"))
+    start = time.monotonic()
+    with pytest.raises(DHError, match="did not finish"):
+        compile_pdf(tex, timeout=2)
+    assert time.monotonic() - start < 30
+
+
+# --- the handouts, compiled ------------------------------------------------------------------
+
+
+def _compile(path: Path, robots: list[str], **options: object) -> tuple[Path, list, float]:
+    start = time.monotonic()
+    pdf = write_handout(robots, path, pdf=True, **options)
+    return pdf, check_log(pdf.with_suffix(".log")), time.monotonic() - start
+
+
+@pytest.fixture(scope="module")
+def handouts(tmp_path_factory):
+    """Compile, once per module and in parallel, one document with every built-in robot and
+    the two PUMA 560 handouts (each in its own convention). Call it after ``need_tex``."""
+    folder = tmp_path_factory.mktemp("handouts")
+    jobs = {
+        "all": (folder / "all.tex", dhsym.builtin_names(), {"check": True}),
+        "puma560": (folder / "puma560.tex", ["puma560"], {"check": True}),
+        "puma560_modified": (
+            folder / "puma560_modified.tex",
+            ["puma560_modified"],
+            {"convention_note": True},
+        ),
+    }
+    done: dict[str, tuple[Path, list, float]] = {}
+
+    def compiled() -> dict[str, tuple[Path, list, float]]:
+        if not done:
+            with ThreadPoolExecutor(max_workers=3) as pool:
+                futures = {k: pool.submit(_compile, *j[:2], **j[2]) for k, j in jobs.items()}
+                done.update({k: f.result() for k, f in futures.items()})
+        return done
+
+    return compiled
+
+
+@pytest.mark.tex
+def test_every_builtin_robot_compiles_without_errors_or_overfull_boxes(handouts, need_tex):
+    results = handouts()
+    for name, (pdf, issues, seconds) in results.items():
+        assert pdf.exists()
+        assert issues == [], f"{name}: {[str(i) for i in issues]}"
+        print(f"{name}: compiled in {seconds:.1f} s")
+    text = subprocess.run(
+        ["pdftotext", str(results["all"][0]), "-"], capture_output=True, text=True, check=True
+    ).stdout
+    for name in dhsym.builtin_names():
+        assert dhsym.load(name).name in text
+    assert "0.4521" in text  # the numeric check of the PUMA 560 at zero (seed 001)
+    modified = subprocess.run(
+        ["pdftotext", str(results["puma560_modified"][0]), "-"],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    assert "The two DH conventions" in modified and "αi−1" in modified
+
+
+@pytest.mark.tex
+def test_full_notation_and_numeric_lengths_also_fit_the_page(tmp_path, need_tex):
+    pdf, issues, _ = _compile(
+        tmp_path / "full.tex", ["puma560", "stanford", "planar8r"], compact=False, numeric=True
+    )
+    assert issues == [], [str(i) for i in issues]
+
+
+@pytest.mark.tex
+def test_a_fragment_fits_a_default_article_with_a_narrower_width(tmp_path, need_tex):
+    from dhsym.explain.rendering import render_derivation
+
+    robot = dhsym.load("puma560", compact=False)
+    (tmp_path / "frag.tex").write_text(render_derivation(robot, fmt="latex", width=40))
+    main = tmp_path / "main.tex"
+    main.write_text(
+        "\\documentclass{article}\n\\usepackage{amsmath}\n\\allowdisplaybreaks\n"
+        "\\begin{document}\n\\input{frag}\n\\end{document}\n"
+    )
+    pdf = compile_pdf(main)
+    assert pdf.exists() and check_log(main.with_suffix(".log")) == []
+
+
+@pytest.mark.tex
+def test_hostile_strings_compile_and_print_literally(tmp_path, need_tex):
+    title = r"\input{/etc/passwd} }\end{document} 100% $x$ #&_~^"
+    course = r"\write18{rm -rf /} Übung α"
+    rows = [dhsym.DHRow.revolute("theta1", a="a1")]
+    table = dhsym.DHTable.from_rows(rows, name=r"Arm_{1} \write18{touch pwned} 50%")
+    pdf, issues, _ = _compile(
+        tmp_path / "hostile.tex",
+        [dhsym.Robot(table), "planar2r"],
+        title=title,
+        course=course,
+        author="O'Brien <o@b.c>",
+        date="2024-05-01",
+        mode="problems",
+        convention_note=True,
+    )
+    assert [i for i in issues if i.kind != "overfull"] == []
+    assert not (tmp_path / "pwned").exists()
+    text = subprocess.run(
+        ["pdftotext", str(pdf), "-"], capture_output=True, text=True, check=True
+    ).stdout
+    text = unicodedata.normalize("NFC", text).replace("’", "'")
+    for literal in (
+        r"\input{/etc/passwd} }\end{document} 100% $x$ #&_~^",
+        r"\write18{rm -rf /} Übung α",
+        r"Arm_{1} \write18{touch pwned} 50%",
+        "O'Brien <o@b.c>",
+    ):
+        assert literal in text, literal
+    assert "root:" not in text
+
+
+@pytest.mark.tex
+def test_page_one_of_the_puma_handout_is_not_blank(handouts, tmp_path, need_tex):
+    import matplotlib.image as mpimg
+
+    pdf = handouts()["puma560"][0]
+    subprocess.run(
+        [
+            "pdftoppm",
+            "-png",
+            "-r",
+            "110",
+            "-f",
+            "1",
+            "-l",
+            "1",
+            "-singlefile",
+            str(pdf),
+            str(tmp_path / "page1"),
+        ],
+        check=True,
+        timeout=60,
+    )
+    png = tmp_path / "page1.png"
+    pixels = mpimg.imread(png)
+    dark = (pixels[..., :3].mean(axis=-1) < 0.5).mean()
+    assert 0.005 < dark < 0.25, dark  # text and a table, not an empty or black page
+    ARTIFACTS.mkdir(exist_ok=True)
+    shutil.copy(png, ARTIFACTS / "handout-puma560-page1.png")
+
+
+def _plotting_available() -> bool:
+    try:
+        import dhsym.plot.figures  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+@pytest.mark.tex
+@pytest.mark.skipif(not _plotting_available(), reason="dhsym.plot.figures is not available")
+def test_handout_with_home_configuration_figure_compiles(tmp_path, need_tex):
+    pdf, issues, _ = _compile(tmp_path / "fig.tex", ["planar2r"], figure=True)
+    assert (tmp_path / "fig-planar-2r-home.pdf").exists()
+    assert "\\includegraphics" in (tmp_path / "fig.tex").read_text()
+    assert issues == [], [str(i) for i in issues]
+
+
+def test_environment_of_the_compiler_is_locked_down(tmp_path, monkeypatch):
+    """Without running TeX: the command and environment that compile_pdf would use."""
+    import dhsym.explain.latex as L
+
+    calls = []
+    monkeypatch.setattr(L, "_run", lambda cmd, cwd, env, timeout: calls.append((cmd, env)))
+    monkeypatch.setattr(shutil, "which", lambda name: "/usr/bin/" + name)
+    tex = tmp_path / "a.tex"
+    tex.write_text(_doc("x"))
+    tex.with_suffix(".pdf").write_bytes(b"%PDF")
+    tex.with_suffix(".log").write_text("ok")
+    compile_pdf(tex)
+    cmd, env = calls[0]
+    assert cmd[0] == "latexmk" and "-norc" in cmd and cmd[-1] == "a.tex"
+    for flag in ("-no-shell-escape", "-halt-on-error", "-interaction=nonstopmode"):
+        assert flag in cmd
+    assert env["openin_any"] == env["openout_any"] == "p" and env["shell_escape"] == "f"
+    assert "openin_any" not in os.environ  # set for TeX only, not in our own process
