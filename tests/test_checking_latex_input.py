@@ -31,7 +31,7 @@ t = sp.Symbol("theta_1", real=True)
         (r"\left( a_1 + a_2 \right) \cdot C_1", "(a_1 + a_2) * C_1"),
         (r"a^{2}", "a^(2)"),
         (r"\cos^2\theta", "cos(theta)^(2)"),
-        (r"90^\circ", "90*(pi/180)"),
+        (r"90^\circ", "90°"),
         (r"\mathbf{p}_x = d_3", "d_3"),
         (r"\sqrt{2}", "sqrt(2)"),
         (r"\Theta_1", "theta_1"),
