@@ -271,6 +271,8 @@ def yaml_table(
         mark = getattr(err, "problem_mark", None)
         where = f" (line {mark.line + 1})" if mark else ""
         raise TableError(f"not valid YAML{where}: {getattr(err, 'problem', err)}") from None
+    except ValueError:  # an integer of thousands of digits (Python's int conversion limit)
+        raise TableError("a number with thousands of digits: at most 40 digits") from None
     _count_nodes(data, _MAX_YAML_NODES)
     if not isinstance(data, Mapping):
         raise TableError("expected a mapping with a 'joints' list at the top level")
