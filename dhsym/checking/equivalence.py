@@ -58,7 +58,6 @@ __all__ = [
     "Sample",
     "agree_precisely",
     "close",
-    "has_decimals",
     "prove_entry",
     "values",
 ]
@@ -155,19 +154,6 @@ def close(a: np.ndarray, b: np.ndarray, rtol: float = EXACT_RTOL, axis: object =
     with np.errstate(all="ignore"):
         ok = np.isfinite(a) & np.isfinite(b) & (np.abs(a - b) <= rtol * (1.0 + np.abs(b)))
     return ok.all(axis=axis) if axis is not None else bool(ok.all())
-
-
-def has_decimals(expr: sp.Basic) -> bool:
-    """True when ``expr`` holds a decimal number such as ``0.7071`` (a power-of-ten fraction).
-
-    >>> has_decimals(sp.Rational(7071, 10000)), has_decimals(sp.Rational(1, 2))
-    (True, False)
-    """
-    for r in expr.atoms(sp.Rational):
-        q = int(r.q)
-        if q > 1 and 10 ** len(str(q)) // 10 == q:
-            return True
-    return False
 
 
 def _polynomial_trig(expr: sp.Basic) -> bool:
