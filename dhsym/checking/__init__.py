@@ -22,6 +22,7 @@ from .latex_input import latex_matrix_cells, latex_to_text
 from .mistakes import Mistake
 from .names import NameContext
 from .questions import Question
+from .rounding import Rounding
 from .tables import TableMatch, compare_tables
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
@@ -37,6 +38,7 @@ __all__ = [
     "Mistake",
     "NameContext",
     "Question",
+    "Rounding",
     "TableMatch",
     "UnreadableAnswer",
     "Verdict",

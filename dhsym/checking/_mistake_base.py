@@ -121,7 +121,7 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
         return iter(())
 
     def _cached_variants(self, case: MatrixCase) -> list[tuple[np.ndarray, str]]:
-        key = (self.kind, id(case.sample), case.entry)
+        key = (self.kind, case.sample.origin, case.entry)
         if key not in case.cache:
             found = []
             for vals, detail in self.matrix_variants(case):

@@ -32,13 +32,16 @@ class EvaluationError(ValueError):
     """An expression node that the numeric walker does not know."""
 
 
-def evaluate(expr: sp.Basic, env: Mapping[sp.Basic, np.ndarray], size: int) -> np.ndarray:
+def evaluate(
+    expr: sp.Basic, env: Mapping[sp.Basic, np.ndarray], size: int, memo: dict | None = None
+) -> np.ndarray:
     """Values of ``expr`` at ``size`` points; ``env`` maps each symbol to its values.
 
     Non-finite results (division by zero, overflow) come out as ``nan``/``inf``;
-    callers treat them as "not equal".
+    callers treat them as "not equal".  ``memo`` (subtree → values) may be shared by
+    calls with the same ``env`` (the entries of one matrix).
     """
-    memo: dict[sp.Basic, np.ndarray] = {}
+    memo = {} if memo is None else memo
     with np.errstate(all="ignore"):
         out = _walk(expr, env, size, memo)
     return np.broadcast_to(np.asarray(out, dtype=float), (size,)).copy()

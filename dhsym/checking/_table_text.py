@@ -40,7 +40,11 @@ _COLUMNS = {
 }
 _LOOKUP = {alias: col for col, aliases in _COLUMNS.items() for alias in aliases}
 _SEPARATOR = re.compile(r"^\s*\|?\s*:?-{2,}:?\s*(\|\s*:?-{2,}:?\s*)*\|?\s*$")
-_DEGREE_MARK = re.compile(r"\^\s*\{?\s*\\circ\s*\}?|°|\\degree|\bdeg(rees?)?\b", re.IGNORECASE)
+_DEGREE_MARK = re.compile(
+    r"\^\s*\{?\s*\\circ\s*\}?|[°º˚]|\\(?:text)?degree|\bdeg(rees?)?\b"
+    r"|(?<=[0-9.])\s*\^\s*(?:o|\{\s*o\s*\})(?![A-Za-z0-9_])",  # 90^o
+    re.IGNORECASE,
+)
 _TWO_PI = 2 * math.pi + 1e-6
 _MAX_YAML_NODES = 20_000
 
@@ -93,7 +97,7 @@ def _cell(text: str, ctx: NameContext, limits: AnswerLimits, row: int, field: st
         raw = _DEGREE_MARK.sub("", raw)
     src = latex_to_text(raw) if is_latex(raw) else flatten_subscripts(raw.replace("**", "^"))
     try:
-        expr = parse_expression(src, resolve=ctx.table_resolve, limits=limits.parse)
+        expr = parse_expression(src, resolve=ctx.table_resolve, limits=limits.parse, textbook=True)
     except ParseError as err:
         raise TableError(err.message, row=row, field=field) from None
     return expr, marked
@@ -267,6 +271,8 @@ def yaml_table(
         mark = getattr(err, "problem_mark", None)
         where = f" (line {mark.line + 1})" if mark else ""
         raise TableError(f"not valid YAML{where}: {getattr(err, 'problem', err)}") from None
+    except ValueError:  # an integer of thousands of digits (Python's int conversion limit)
+        raise TableError("a number with thousands of digits: at most 40 digits") from None
     _count_nodes(data, _MAX_YAML_NODES)
     if not isinstance(data, Mapping):
         raise TableError("expected a mapping with a 'joints' list at the top level")

@@ -39,11 +39,14 @@ from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
 from ._table_text import grid_table, yaml_table
 from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
 from .names import NameContext
+from .rounding import Literal
 
 __all__ = [
     "NameContext",
+    "cell_literals",
     "expression_cell",
     "matrix_cells",
+    "normalize_unicode",
     "parse_cell",
     "read_answer_file",
     "read_expression",
@@ -52,7 +55,19 @@ __all__ = [
     "read_text",
 ]
 
-_UNICODE = str.maketrans({"−": "-", "–": "-", "·": "*", "×": "*", "⋅": "*", "\u00a0": " "})
+_UNICODE = str.maketrans(
+    {"−": "-", "–": "-", "·": "*", "×": "*", "⋅": "*", "∗": "*", "÷": "/", "⁄": "/"}
+    | {"º": "°", "˚": "°", "\u200b": "", "\u2060": "", "ᵢ": "i", "ⱼ": "j", "₍": "(", "₎": ")"}
+    | {c: " " for c in "\u00a0\u2002\u2003\u2004\u2005\u2006\u2007\u2008\u2009\u200a\u202f"}
+    | {chr(0x2080 + k): str(k) for k in range(10)}  # subscript digits: θ₁ is θ1
+    | {"½": "(1/2)", "¼": "(1/4)", "¾": "(3/4)", "⅓": "(1/3)", "√": " sqrt "}
+)
+_SUPERSCRIPTS = dict(zip("⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻", "0123456789+-"))
+_SUPERSCRIPT_RUN = re.compile("[" + "".join(_SUPERSCRIPTS) + "]+")
+_DEGREE_O = re.compile(  # 90^o, 90^{o}: degrees where the base is a number
+    r"(?<![A-Za-z_0-9.])([0-9]+(?:\.[0-9]*)?|\.[0-9]+)\s*\^\s*(?:o|\{\s*o\s*\}|\(\s*o\s*\))"
+    r"(?![A-Za-z0-9_])"
+)
 _MATRIX_WRAPPER = re.compile(r"^\s*(?:sp\.|sympy\.)?(?:Immutable)?Matrix\s*\((.*)\)\s*$", re.DOTALL)
 
 
@@ -78,10 +93,26 @@ def read_text(data: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -
         raise UnreadableAnswer(f"expected text, got {type(data).__name__}")
     if "\x00" in data:
         raise UnreadableAnswer("the answer is not text (binary data)")
-    text = data.lstrip("\ufeff").translate(_UNICODE)
+    text = normalize_unicode(data.lstrip("\ufeff"))
     if not text.strip():
         raise UnreadableAnswer("the answer is empty")
     return text
+
+
+def normalize_unicode(text: str) -> str:
+    """ASCII for the Unicode that answers carry: ``−`` ``·`` ``×`` ``θ₁`` ``sin²`` ``√2`` ``½``.
+
+    Superscript runs become ``^(…)`` (``^{…}`` in LaTeX), subscript digits plain digits,
+    ``º`` and ``˚`` the degree sign, odd spaces plain spaces.
+
+    >>> normalize_unicode("1 − 2 sin²((θ₁+θ₂)/2) · √2")
+    '1 - 2 sin^(2)((θ1+θ2)/2) *  sqrt 2'
+    """
+    sup = ("^{", "}") if is_latex(text) else ("^(", ")")
+    text = _SUPERSCRIPT_RUN.sub(
+        lambda m: sup[0] + "".join(_SUPERSCRIPTS[c] for c in m[0]) + sup[1], text
+    )
+    return text.translate(_UNICODE)
 
 
 def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
@@ -101,21 +132,48 @@ def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIM
 
 
 def _cell_text(cell: str) -> str:
-    """One cell or expression as parser text (LaTeX translated, subscripts flattened)."""
+    """One cell or expression as parser text (LaTeX translated, subscripts flattened,
+    ``[ ]`` and ``{ }`` used as brackets, ``90^o`` as degrees)."""
     cell = cell.strip()
     if is_latex(cell):
         return latex_to_text(cell)
     cell = cell.replace("**", "^")
     if "=" in cell:
         cell = cell.rsplit("=", 1)[1]
-    return flatten_subscripts(cell)
+    cell = _DEGREE_O.sub(r"\1°", flatten_subscripts(cell))
+    return cell.translate(_BRACKETS)
 
 
-def _parse(cell: str, ctx: NameContext, limits: AnswerLimits, where: str) -> sp.Expr:
+_BRACKETS = str.maketrans("[]{}", "()()")
+
+
+def _parse(cell: str, ctx: NameContext, limits: AnswerLimits, where: str, **kw) -> sp.Expr:
     try:
-        return parse_expression(_cell_text(cell), resolve=ctx.resolve, limits=limits.parse)
+        return parse_expression(
+            _cell_text(cell), resolve=ctx.resolve, limits=limits.parse, textbook=True, **kw
+        )
     except ParseError as err:
         raise ParseError(f"{where}: {err.message}") from None
+
+
+def cell_literals(
+    cell: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+) -> tuple[sp.Expr, tuple[Literal, ...]]:
+    """The cell with each numeric literal as a placeholder symbol, and the literals.
+
+    >>> from dhsym import load_table
+    >>> t, lits = cell_literals("0.7071 C1 + 2", NameContext.from_table(load_table("planar2r")))
+    >>> [(lit.text, lit.value) for lit in lits], t.subs({lit.symbol: lit.value for lit in lits})
+    ([('0.7071', 7071/10000), ('2', 2)], 7071*cos(theta1)/10000 + 2)
+    """
+    found: list[Literal] = []
+
+    def placeholder(text: str, value: sp.Rational) -> sp.Expr:
+        found.append(Literal(sp.Dummy(f"n{len(found)}", real=True), text, value))
+        return found[-1].symbol
+
+    template = _parse(cell, ctx, limits, "the answer", literal=placeholder)
+    return template, tuple(found)
 
 
 def expression_cell(text: str, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
@@ -189,7 +247,23 @@ def _plain_cells(text: str) -> list[list[str]]:
                 if all(re.fullmatch(r"[-+]?[0-9.]+(?:e[-+]?[0-9]+)?", w) for w in words):
                     parts = words
         out.append(parts)
+    if any(len(r) == 1 for r in out):  # MATLAB rows: [c1 -s1 0 0; s1 c1 0 0; 0 0 1 0]
+        words = [r[0].split() if len(r) == 1 else r for r in out]
+        if all(len(w) == 4 for w in words) and all(_whole_cell(t) for w in words for t in w):
+            return words
     return out
+
+
+def _whole_cell(word: str) -> bool:
+    """True when a space-free word can be a cell by itself (no dangling operator or bracket)."""
+    if word[-1] in "+-*/^(" or word[0] in "*/^)":
+        return False
+    depth = 0
+    for ch in word:
+        depth += (ch == "(") - (ch == ")")
+        if depth < 0:
+            return False
+    return depth == 0
 
 
 def read_matrix(
@@ -202,7 +276,7 @@ def read_matrix(
     >>> read_matrix("C1 -S1 0 0", ctx)
     Traceback (most recent call last):
     ...
-    dhsym.checking._limits.UnreadableAnswer: expected a 4×4 matrix (or its top 3 rows), got 1 row of 1 cell
+    dhsym.checking._limits.UnreadableAnswer: expected a 4×4 matrix (or its top 3 rows), got 1 row of 4 cells
     """  # noqa: E501
     cells = matrix_cells(text, limits)
     entries = [

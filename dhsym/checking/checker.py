@@ -18,6 +18,7 @@ Examples
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
@@ -32,19 +33,12 @@ from dhsym.model.table import AngleUnit, Convention, DHTable
 from dhsym.notation.printers import format_angle
 
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
-from .answers import expression_cell, matrix_cells, parse_cell, read_table
-from .equivalence import (
-    EXACT_RTOL,
-    ROUNDING_RTOL,
-    Sample,
-    close,
-    has_decimals,
-    prove_entry,
-    values,
-)
+from .answers import cell_literals, expression_cell, matrix_cells, parse_cell, read_table
+from .equivalence import EXACT_RTOL, Sample, agree_precisely, close, prove_entry, values
 from .mistakes import MatrixCase, TableCase, diagnose_matrix, diagnose_table
 from .names import NameContext
 from .questions import Question
+from .rounding import DEFAULT_ROUNDING, Rounding, rounding_accepts
 from .tables import compare_tables
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
@@ -55,28 +49,43 @@ __all__ = ["Key", "PreparedKey", "check_answer", "prepare", "table_cells"]
 class Key:
     """The key of one question: a DH table and what is asked about it.
 
-    ``tool_free`` accepts another tool frame (last frame) in a table answer.
+    ``tool_free`` accepts another tool frame (last frame) in a table answer;
+    ``rounding`` is how much rounding of decimals is accepted (:class:`Rounding`).
     """
 
     table: DHTable
     question: Question
     name: str = ""
     tool_free: bool = False
+    rounding: Rounding = DEFAULT_ROUNDING
 
     @classmethod
     def load(
-        cls, ref: str | Path | DHTable, question: str | Question, *, tool_free: bool = False
+        cls,
+        ref: str | Path | DHTable,
+        question: str | Question,
+        *,
+        tool_free: bool = False,
+        rounding: object = None,
     ) -> Key:
-        """A key from a built-in robot name, a table file or a table."""
+        """A key from a built-in robot name, a table file or a table.
+
+        ``rounding``: anything :meth:`Rounding.parse` reads (``"digits=4"``, ``"abs=1e-3"``,
+        ``{"rel": 0.001}``, ``"off"``); None is the default (3 significant digits).
+        """
         table = ref if isinstance(ref, DHTable) else load_table(ref)
         q = question if isinstance(question, Question) else Question.parse(question, table.n)
         name = table.name or (Path(ref).stem if not isinstance(ref, DHTable) else "")
-        return cls(table, q, name, tool_free)
+        return cls(table, q, name, tool_free, Rounding.parse(rounding))
 
 
 @dataclass(eq=False)
 class PreparedKey:
-    """What checking many answers to one key shares: the robot, names, samples, caches."""
+    """What checking many answers to one key shares: the robot, names, caches.
+
+    ``samples`` and ``key_values`` serve only the diagnosis of wrong answers (the
+    mistakes' variants are cached per key); every verdict draws its own points.
+    """
 
     key: Key
     robot: Robot
@@ -86,6 +95,7 @@ class PreparedKey:
     samples: dict[str, Sample] = field(default_factory=dict)
     key_values: dict[str, np.ndarray] = field(default_factory=dict)
     cache: dict = field(default_factory=dict)
+    symbols: frozenset[sp.Symbol] = frozenset()
 
     def sample_for(self, answer: sp.Basic) -> str:
         """``valued`` (the table's numbers for its lengths) when the answer uses none of
@@ -111,6 +121,7 @@ def prepare(key: Key) -> PreparedKey:
     nota = robot.notation
     pk.expected_text = tuple((nota.text(e), nota.latex(e)) for e in pk.expected)
     syms = set(table.variables) | set(table.constants)
+    pk.symbols = frozenset(syms)
     pk.samples["symbolic"] = Sample.random(syms)
     pk.samples["valued"] = Sample.random(syms, fixed=table.value_map)
     for name, s in pk.samples.items():
@@ -190,43 +201,78 @@ def _shown(cell: str) -> str:
     return cell if len(cell) <= 200 else cell[:199] + "…"
 
 
+_DECIMAL = re.compile(r"[0-9]\.|\.[0-9]|[0-9][eE]")
+
+
 def _compare(
     pk: PreparedKey, ans: sp.ImmutableMatrix, cells: list[str], limits: AnswerLimits
 ) -> tuple:
-    """Entry results, wrong positions, the sample and the answer's values."""
+    """Entry results, wrong positions and the unknown symbols, at fresh random points.
+
+    Per entry: equal at every point → the exact proof if affordable (``exact``), else the
+    numbers stand (``numeric``); a proof that says "not equal" is checked once more with
+    60-digit numbers.  Not equal → right up to rounding if the key's :class:`Rounding`
+    accepts its decimals (``rounding``).
+    """
     q, nota, expected = pk.key.question, pk.robot.notation, pk.expected
     assert expected is not None
     unknown = sorted(ans.free_symbols - pk.names.symbols, key=sp.default_sort_key)
-    which = pk.sample_for(ans)
-    sample = pk.samples[which].extended(unknown)
-    kv = pk.key_values[which]
+    valued = pk.sample_for(ans) == "valued"
+    value_map = pk.key.table.value_map
+    sample = Sample.random(pk.symbols | set(unknown), fixed=value_map if valued else None)
+    kv = values(expected, sample)
     av = values(ans, sample)
     near = close(av, kv, EXACT_RTOL, axis=0)
-    rounded = close(av, kv, ROUNDING_RTOL, axis=0)
     entries, wrong = [], []
     for i in range(expected.rows):
         for j in range(expected.cols):
             a, e = ans[i, j], expected[i, j]
-            proof = ""
+            k = i * expected.cols + j
+            proof, note = "", ""
             if near[i, j]:
-                target = e.subs(pk.key.table.value_map) if which == "valued" else e
+                target = e.subs(value_map) if valued else e
                 exact = prove_entry(a, target, limits) if not unknown else None
-                proof = {True: "exact", None: "numeric", False: ""}[exact]
-            elif rounded[i, j] and has_decimals(a):
-                proof = "rounding"
+                if exact is None or (exact is False and agree_precisely(a, target)):
+                    proof = "numeric"
+                elif exact:
+                    proof = "exact"
+            if not proof and _DECIMAL.search(cells[k]):
+                note = _rounded(pk, cells[k], sample, kv[:, i, j], limits)
+                proof = "rounding" if note else ""
             if not proof:
                 wrong.append((i, j))
             where = (q.entry[0] + 1, q.entry[1] + 1) if q.entry else (i + 1, j + 1)
-            e_text, e_latex = pk.expected_text[i * expected.cols + j]
-            raw = cells[i * expected.cols + j]
+            e_text, e_latex = pk.expected_text[k]
+            raw = cells[k]
             if proof or len(raw) > 160:  # right, or long: what the student wrote
                 a_text, a_latex = _shown(raw), ""
             else:  # wrong: the student's entry in the key's notation
                 a_text, a_latex = nota.text(a), nota.latex(a)
             entries.append(
-                EntryResult(*where, bool(proof), a_text, e_text, a_latex, e_latex, proof)
+                EntryResult(*where, bool(proof), a_text, e_text, a_latex, e_latex, proof, note)
             )
-    return entries, wrong, sample, kv, av, unknown
+    return entries, wrong, unknown
+
+
+def _rounded(
+    pk: PreparedKey, cell: str, sample: Sample, key: np.ndarray, limits: AnswerLimits
+) -> str:
+    """How the cell is right up to rounding under the key's rule, or ``""``."""
+    try:
+        template, literals = cell_literals(cell, pk.names, limits)
+    except DHError:
+        return ""
+    env = sample.extended(template.free_symbols - set(sample.symbols)).env
+    how = rounding_accepts(pk.key.rounding, template, literals, env, sample.size, key)
+    return how or ""
+
+
+def _diagnosis_values(pk: PreparedKey, ans: sp.ImmutableMatrix, unknown: list) -> tuple:
+    """The key's diagnosis sample (fixed per key, so the mistakes' variants are cached),
+    extended with the unknown symbols, the key's and the answer's values there."""
+    which = pk.sample_for(ans)
+    sample = pk.samples[which].extended(unknown)
+    return sample, pk.key_values[which], values(ans, sample)
 
 
 def _pos(k: int, q: Question) -> str:
@@ -257,7 +303,7 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
     ans = (
         sp.ImmutableMatrix(1, 1, parsed) if q.kind == "entry" else sp.ImmutableMatrix(4, 4, parsed)
     )
-    entries, wrong, sample, kv, av, unknown = _compare(pk, ans, cells, limits)
+    entries, wrong, unknown = _compare(pk, ans, cells, limits)
     total = len(entries)
     lead: tuple[Diagnosis, ...] = ()
     renames = _index_renames(unknown, pk.names)
@@ -275,7 +321,7 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
             ),
         )
         ans = ans.xreplace(renames)
-        entries, wrong, sample, kv, av, unknown = _compare(pk, ans, cells, limits)
+        entries, wrong, unknown = _compare(pk, ans, cells, limits)
         if not wrong:
             return CheckResult(
                 q.spec,
@@ -286,13 +332,14 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
                 key=key.name,
             )
     if not wrong:
-        note = (
-            " (some only up to rounding of decimals)"
-            if any(e.proof == "rounding" for e in entries)
-            else ""
-        )
         what = "The entry is right" if total == 1 else f"All {total} entries are right"
-        return CheckResult(q.spec, Verdict.CORRECT, what + note + ".", tuple(entries), key=key.name)
+        rounded = [e for e in entries if e.proof == "rounding"]
+        if rounded:
+            how = "; ".join(sorted({e.rounding for e in rounded}))
+            some = " up to rounding" if total == 1 else f"; {len(rounded)} of them up to rounding"
+            what = f"{what}{some} ({how})"
+        return CheckResult(q.spec, Verdict.CORRECT, what + ".", tuple(entries), key=key.name)
+    sample, kv, av = _diagnosis_values(pk, ans, unknown)
     case = MatrixCase(
         tuple(key.table.rows),
         key.table.convention,

@@ -1,10 +1,28 @@
-"""Are two expressions equal? Numbers at many random points first, then an exact proof.
+"""Are two expressions equal? An exact proof when affordable, numbers at fresh random points.
 
 :class:`Sample` holds random values for a set of symbols; :func:`values` evaluates
 an expression or matrix at all of them at once (:mod:`dhsym.checking._numeric`).
 Entries that agree numerically are confirmed with
 :func:`dhsym.kinematics.simplification.prove_equal` under a time limit, after
-:func:`~dhsym.checking._limits.expansion_terms` has shown the proof is affordable.
+:func:`~dhsym.checking._limits.expansion_terms` has shown the proof is affordable;
+:func:`prove_entry` first rewrites the angles so that half angles (``θ/2``) and whole
+angles share one variable, so ``1 - 2 sin²(θ/2)`` is proven equal to ``cos θ``.
+
+**Why a wrong answer cannot pass.**  Every check draws its own :data:`POINTS` = 64 points
+from the operating system's entropy (:func:`secrets.randbits` seeds the generator; there is
+no fixed seed), uniformly in ``[-2.5, 2.5]`` for each symbol, and compares in double
+precision with relative tolerance :data:`EXACT_RTOL` = 1e-9.  If an answer differs from the
+key by more than that tolerance on a fraction ``q`` of the sampling box, the chance that
+all 64 independent points miss that part is ``(1 - q)**64``: 5.4e-20 for ``q = 1/2``,
+1e-64 for ``q = 9/10``.  A difference that is not identically zero (sums and products of
+sines, cosines and powers) is below 1e-9 only near its zero set, a set of measure zero,
+so ``q`` is 1 up to the width of that band; an answer built to vanish on chosen points
+(``key + Π (θ1 − t_k)``) has ``1 - q`` of about 1e-8 and passes with a chance below
+1e-500.  The points are not known before the check, so they cannot be chosen.  What
+the numbers cannot see is a difference below 1e-9 everywhere (the key plus 1e-30): the
+exact proof catches it whenever the proof is affordable (a polynomial in sines and
+cosines of at most ``max_terms`` terms), and it is tried first on every entry that agrees
+numerically.
 
 Examples
 --------
@@ -15,10 +33,14 @@ Examples
 True
 >>> prove_entry(sp.cos(t1 + t2), sp.cos(t1)*sp.cos(t2) - sp.sin(t1)*sp.sin(t2))
 True
+>>> prove_entry(1 - 2 * sp.sin((t1 + t2) / 2) ** 2, sp.cos(t1 + t2))
+True
 """
 
 from __future__ import annotations
 
+import math
+import secrets
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
@@ -38,25 +60,36 @@ from ._numeric import EvaluationError, evaluate
 
 __all__ = [
     "EXACT_RTOL",
-    "ROUNDING_RTOL",
+    "POINTS",
     "Sample",
+    "agree_precisely",
     "close",
-    "has_decimals",
     "prove_entry",
     "values",
 ]
 
 EXACT_RTOL = 1e-9
-ROUNDING_RTOL = 2e-3
+POINTS = 64
 _POLY_FUNCS = (sp.sin, sp.cos)
+_TRIG = (sp.sin, sp.cos, sp.tan)
+
+
+def _generator(seed: int | None) -> np.random.Generator:
+    """A generator seeded from ``seed``, or from 128 bits of OS entropy when it is None."""
+    return np.random.default_rng(secrets.randbits(128) if seed is None else seed)
 
 
 @dataclass(frozen=True, eq=False)
 class Sample:
-    """Random values for symbols at ``size`` points (row ``k`` of ``table`` for ``symbols[k]``)."""
+    """Random values for symbols at ``size`` points (row ``k`` of ``table`` for ``symbols[k]``).
+
+    ``origin`` identifies the draw: an extended sample keeps it (its first symbols keep
+    their values), so values computed from those symbols may be cached under it.
+    """
 
     symbols: tuple[sp.Symbol, ...]
     table: np.ndarray = field(repr=False)
+    origin: int = field(default=0, repr=False)
 
     @property
     def size(self) -> int:
@@ -72,27 +105,28 @@ class Sample:
     def random(
         cls,
         symbols: Iterable[sp.Symbol],
-        size: int = 24,
-        seed: int = 20240,
+        size: int = POINTS,
+        seed: int | None = None,
         fixed: Mapping[sp.Symbol, float] | None = None,
     ) -> Sample:
-        """Uniform values in [-2.5, 2.5]; symbols in ``fixed`` keep one value at every point."""
+        """Uniform values in [-2.5, 2.5]; symbols in ``fixed`` keep one value at every point.
+
+        Without ``seed`` the points are fresh and unpredictable (seeded from OS entropy).
+        """
         syms = tuple(sorted(set(symbols), key=sp.default_sort_key))
-        rng = np.random.default_rng(seed)
-        table = rng.uniform(-2.5, 2.5, size=(len(syms), size))
+        table = _generator(seed).uniform(-2.5, 2.5, size=(len(syms), size))
         for k, s in enumerate(syms):
             if fixed and s in fixed:
                 table[k] = float(fixed[s])
-        return cls(syms, table)
+        return cls(syms, table, secrets.randbits(63) if seed is None else seed)
 
-    def extended(self, symbols: Iterable[sp.Symbol], seed: int = 7) -> Sample:
-        """This sample plus random values for symbols it does not have yet."""
+    def extended(self, symbols: Iterable[sp.Symbol], seed: int | None = None) -> Sample:
+        """This sample plus (fresh) random values for symbols it does not have yet."""
         new = sorted(set(symbols) - set(self.symbols), key=sp.default_sort_key)
         if not new:
             return self
-        rng = np.random.default_rng(seed)
-        extra = rng.uniform(-2.5, 2.5, size=(len(new), self.size))
-        return Sample(self.symbols + tuple(new), np.vstack([self.table, extra]))
+        extra = _generator(seed).uniform(-2.5, 2.5, size=(len(new), self.size))
+        return Sample(self.symbols + tuple(new), np.vstack([self.table, extra]), self.origin)
 
 
 def values(expr: sp.Basic, sample: Sample) -> np.ndarray:
@@ -100,18 +134,22 @@ def values(expr: sp.Basic, sample: Sample) -> np.ndarray:
 
     Unknown node types give ``nan`` (never equal to anything).
     """
-    env = sample.env
+    env, memo = sample.env, {}  # subexpressions shared by the entries are computed once
     if isinstance(expr, sp.MatrixBase):
         r, c = expr.shape
         out = np.empty((sample.size, r, c))
         for i in range(r):
             for j in range(c):
-                out[:, i, j] = values(expr[i, j], sample)
+                out[:, i, j] = _values(expr[i, j], env, sample.size, memo)
         return out
+    return _values(expr, env, sample.size, memo)
+
+
+def _values(expr: sp.Basic, env: Mapping, size: int, memo: dict) -> np.ndarray:
     try:
-        return evaluate(expr, env, sample.size)
+        return evaluate(expr, env, size, memo)
     except (EvaluationError, OverflowError, TypeError, ValueError):
-        return np.full(sample.size, np.nan)
+        return np.full(size, np.nan)
 
 
 def close(a: np.ndarray, b: np.ndarray, rtol: float = EXACT_RTOL, axis: object = None) -> object:
@@ -124,19 +162,6 @@ def close(a: np.ndarray, b: np.ndarray, rtol: float = EXACT_RTOL, axis: object =
     return ok.all(axis=axis) if axis is not None else bool(ok.all())
 
 
-def has_decimals(expr: sp.Basic) -> bool:
-    """True when ``expr`` holds a decimal number such as ``0.7071`` (a power-of-ten fraction).
-
-    >>> has_decimals(sp.Rational(7071, 10000)), has_decimals(sp.Rational(1, 2))
-    (True, False)
-    """
-    for r in expr.atoms(sp.Rational):
-        q = int(r.q)
-        if q > 1 and 10 ** len(str(q)) // 10 == q:
-            return True
-    return False
-
-
 def _polynomial_trig(expr: sp.Basic) -> bool:
     """True when ``expr`` is a polynomial in symbols and sin/cos (what ``prove_equal`` decides)."""
     for node in sp.preorder_traversal(expr):
@@ -147,23 +172,74 @@ def _polynomial_trig(expr: sp.Basic) -> bool:
     return True
 
 
+def _whole_angles(answer: sp.Expr, key: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
+    """Both expressions in variables scaled so that every trigonometric argument is a
+    whole multiple of them (``θ → 2θ`` when ``θ/2`` appears), so that ``prove_equal``
+    sees ``sin θ`` and ``sin(θ/2)`` as related, not as independent unknowns."""
+    scale: dict[sp.Symbol, int] = {}
+    for f in answer.atoms(*_TRIG) | key.atoms(*_TRIG):
+        for term in sp.Add.make_args(f.args[0]):
+            coeff, rest = term.as_coeff_Mul()
+            if rest.is_Symbol and coeff.is_Rational and coeff.q > 1:
+                scale[rest] = math.lcm(scale.get(rest, 1), int(coeff.q))
+    if not scale:
+        return answer, key
+    sub = {s: m * s for s, m in scale.items()}
+    return answer.xreplace(sub), key.xreplace(sub)
+
+
 def prove_entry(
     answer: sp.Expr, key: sp.Expr, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
 ) -> bool | None:
     """Exact check ``answer == key``: True, False, or None when it cannot be decided.
 
     None means the proof was skipped (too large, not a trigonometric polynomial)
-    or ran out of time; the numeric comparison then stands alone.
+    or ran out of time; the numeric comparison then stands alone.  False is exact for
+    polynomials in sines and cosines of whole multiples of the variables; other constants
+    inside the functions may make it a false False, which :func:`agree_precisely` catches.
     """
     diff = answer - key
     if diff == 0:
         return True
     if not (_polynomial_trig(answer) and _polynomial_trig(key)):
         return None
-    if expansion_terms(diff) > limits.max_terms:
+    answer, key = _whole_angles(answer, key)
+    if expansion_terms(answer - key) > limits.max_terms:
         return None
     try:
         with time_limit(limits.proof_seconds):
             return bool(prove_equal(sp.Matrix([answer]), sp.Matrix([key])))
     except (CheckTimeout, RecursionError, MemoryError):
         return None
+
+
+def agree_precisely(
+    answer: sp.Expr, key: sp.Expr, points: int = 3, digits: int = 60, seed: int | None = None
+) -> bool:
+    """True when ``answer - key`` is below ``10**-(digits - 15)`` (relative) at ``points``
+    fresh random points, computed with ``digits`` significant digits.
+
+    For an exact proof that said "not equal" while double precision said "equal": a
+    difference far below double precision (``key + 1e-30``) is real and stays; one that
+    vanishes to 45 digits at random points is the proof's blind spot (a numeric
+    constant such as ``cos(1/2)`` next to ``cos(1)``), and the answer is equal.
+
+    >>> x = sp.Symbol("x", real=True)
+    >>> agree_precisely(2 * sp.cos(sp.Rational(1, 2)) ** 2 - 1 + x, sp.cos(1) + x)
+    True
+    >>> agree_precisely(sp.cos(x) + sp.Rational(1, 10**30), sp.cos(x))
+    False
+    """
+    syms = sorted(answer.free_symbols | key.free_symbols, key=sp.default_sort_key)
+    rng = _generator(seed)
+    for _ in range(points):
+        subs = {s: sp.Float(rng.uniform(-2.5, 2.5), digits) for s in syms}
+        try:
+            a, k = answer.evalf(digits, subs=subs), key.evalf(digits, subs=subs)
+            if not (a.is_number and k.is_number):
+                return False
+            if abs(complex(a - k)) > 10.0 ** -(digits - 15) * (1 + abs(complex(k))):
+                return False
+        except (ArithmeticError, TypeError, ValueError):
+            return False
+    return True

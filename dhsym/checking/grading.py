@@ -4,6 +4,7 @@ The assignment (YAML) names the key and the questions::
 
     title: Homework 3, forward kinematics
     key: puma560                  # built-in robot or table file (relative to this file)
+    rounding: digits=3            # accepted rounding of decimals (Rounding); per question too
     questions:
       - {id: q1, ask: table, points: 4, tool: free}   # tool: free accepts another tool frame
       - {id: q2, ask: T0_2, points: 2}
@@ -119,8 +120,9 @@ class Assignment:
             local = p.parent / str(ref)
             ref = local if local.suffix.lower() in (".yaml", ".yml") or local.exists() else str(ref)
             tool = str(q.get("tool", "fixed")).lower() in ("free", "any", "true")
+            rounding = q.get("rounding", data.get("rounding"))
             try:
-                key = Key.load(ref, str(q["ask"]), tool_free=tool)
+                key = Key.load(ref, str(q["ask"]), tool_free=tool, rounding=rounding)
                 points = float(q.get("points", 1))
             except (DHError, ValueError) as err:
                 raise DHError(str(err), file=str(p), row=k) from None

@@ -6,7 +6,10 @@ lectures into the plain grammar of :func:`dhsym.model.parsing.parse_expression`,
 then builds the sympy objects.  Supported: ``\cos\theta_1``, ``\cos(\theta_1 +
 \theta_2)``, ``\cos^2\theta``, ``C_{12}``, ``\alpha_{i-1}`` (a name ``alpha_im1``),
 ``\frac{}{}``, ``\sqrt{}``, ``\left( \right)``, ``\cdot``, ``\times``, ``^{}``,
-``90^\circ``, Greek letters, font commands, and the matrix environments
+degree signs (``90°``, ``90^\circ``, ``90^{\circ}``, ``90\degree``, ``90^o``: a ``°`` in the
+output, which the parser reads with ``textbook=True``), function arguments without brackets
+(``\sin\frac{\pi}{2}``, ``\cos\theta_{1}``, ``\sin 90^\circ``, ``\cos{\theta_1}``),
+Craig's ``c\theta_i``, Greek letters, font commands, and the matrix environments
 ``bmatrix pmatrix matrix Bmatrix vmatrix array``.  Any other command
 (``\input``, ``\def``, ``\write18`` …) is refused with a :class:`ParseError`.
 
@@ -45,6 +48,9 @@ _FONTS = frozenset(
     "mathbf mathrm mathit mathsf mathtt boldsymbol bm text textrm textit mathnormal".split()
 )
 _SIZES = frozenset("big Big bigg Bigg bigl bigr Bigl Bigr biggl biggr Biggl Biggr".split())
+_DEGREES = frozenset({"degree", "textdegree", "circ"})
+_ABBREVIATION_HEADS = frozenset("cCsS")  # Craig's c\theta_i, s\alpha_{i-1}
+_ROW_SPACING = re.compile(r"^\s*\[\s*-?[0-9.]+\s*(?:pt|em|ex|mm|cm|in|bp|mu)\s*\]")
 _MATRIX_ENVS = "bmatrix|pmatrix|matrix|Bmatrix|vmatrix|Vmatrix|smallmatrix|array"
 _MATRIX = re.compile(r"\\begin\{(" + _MATRIX_ENVS + r")\}(?P<body>.*?)\\end\{\1\}", re.DOTALL)
 _LETTER = "A-Za-z\u0370-\u03ff"
@@ -154,11 +160,16 @@ class _Translator:
         if kind == "num":
             return self.postfix(tok)
         if kind == "name":
+            if tok in _ABBREVIATION_HEADS and self.peek()[1][1:] in _GREEK:  # c\theta_1
+                greek = self.take()[1][1:].lower().removeprefix("var")
+                return self.postfix(f"{tok}_{self.subscripted(greek)}")
             return self.postfix(self.subscripted(tok))
         if tok in ("+", "-", "*", "/", ","):
             return tok
-        if tok == "°":
-            return "*(pi/180)"
+        if tok in ("°", "º", "˚"):
+            return "°"
+        if tok == "^" and self.degree_mark(after_hat=True):  # 90\,^{\circ}
+            return "°"
         if tok in ("&", "~"):
             return ""
         if kind == "esc":
@@ -205,8 +216,8 @@ class _Translator:
             return ""
         if name in _FONTS:
             return self.postfix(self.subscripted_group(self.argument()))
-        if name == "circ":
-            return "*(pi/180)"
+        if name in _DEGREES:
+            return "°"
         raise self.error(
             f"unsupported command \\{name}", "expected math (\\cos, \\frac, \\theta …)"
         )
@@ -260,30 +271,56 @@ class _Translator:
             return self.subscripted(inner)
         return f"({inner})"
 
+    def degree_mark(self, after_hat: bool = False, number: bool = False) -> bool:
+        r"""Take a degree mark if one comes next: ``^\circ``, ``^{\circ}``, ``\degree``,
+        ``°``, and ``^o``/``^{o}`` after a number (``after_hat``: the ``^`` is already taken)."""
+        ahead = self.toks[self.i : self.i + 4]
+        marks = [[("cmd", r"\circ")], [("char", "{"), ("cmd", r"\circ"), ("char", "}")]]
+        if number:
+            marks += [[("name", "o")], [("char", "{"), ("name", "o"), ("char", "}")]]
+        if not after_hat:
+            if ahead[:1] in ([("char", "°")], [("char", "º")], [("char", "˚")]) or (
+                ahead[:1] and ahead[0][0] == "cmd" and ahead[0][1][1:] in ("degree", "textdegree")
+            ):
+                self.i += 1
+                return True
+            if ahead[:1] != [("char", "^")]:
+                return False
+            ahead = ahead[1:]
+        for mark in marks:
+            if ahead[: len(mark)] == mark:
+                self.i += len(mark) + (not after_hat)
+                return True
+        return False
+
     def postfix(self, base: str) -> str:
-        while self.peek()[1] in ("^", "'"):
+        number = re.fullmatch(r"[0-9]*\.?[0-9]+", base) is not None
+        while self.peek()[1] in ("^", "'", "°", "º", "˚", r"\degree", r"\textdegree"):
+            if self.degree_mark(number=number):
+                base, number = f"{base}°", False
+                continue
+            if self.peek()[1] not in ("^", "'"):
+                break
             self.take()
-            if self.peek()[1] == r"\circ":
-                self.take()
-                base = f"{base}*(pi/180)"
-                continue
-            if self.peek()[1] == "{" and self.toks[self.i + 1 : self.i + 3] == [
-                ("cmd", r"\circ"),
-                ("char", "}"),
-            ]:
-                self.i += 3
-                base = f"{base}*(pi/180)"
-                continue
             base = f"{base}^({self.argument()})"
         if self.peek()[1] == "_":
             raise self.error("a subscript after something that is not a name", "expected x_{…}")
         return base
 
     def function(self, name: str) -> str:
+        r"""``\sin`` and its argument: bracketed, braced, a fraction, or a number and/or symbol."""
         power = None
         if self.peek()[1] == "^":
             self.take()
             power = self.argument()
+            if re.fullmatch(r"\s*-.*", power):
+                raise self.error(
+                    f"\\{name}^{{{power}}}",
+                    f"expected a positive power (an inverse function is not read: write "
+                    f"1/\\{name}(x) or \\{name}(x)^{{-1}})",
+                )
+        while self.peek()[0] == "cmd" and self.peek()[1][1:] in _SIZES:  # \bigl(
+            self.take()
         kind, tok = self.peek()
         if tok in ("(", "[", "{"):
             self.take()
@@ -291,10 +328,13 @@ class _Translator:
         elif tok == r"\left":
             self.take()
             arg = self.left()
+        elif kind == "cmd" and tok[1:] in _FRACTIONS:
+            self.take()
+            arg = f"({self.command(tok[1:])})"
         elif kind in ("num", "name") or (kind == "cmd" and tok[1:] in _GREEK | {"pi"}):
             parts = []
             if kind == "num":
-                parts.append(self.take()[1])
+                parts.append(self.postfix(self.take()[1]))
                 kind, tok = self.peek()
             if kind == "name":
                 self.take()
@@ -307,8 +347,11 @@ class _Translator:
             raise self.error(
                 f"\\{name} followed by {tok or 'end of text'!r}", "expected its argument"
             )
-        out = f"{name}{arg}"
-        return f"{out}^({power})" if power is not None else out
+        base = f"{name}{arg}"
+        out = self.postfix(base)
+        if power is None:
+            return out
+        return f"({base}^({power})){out[len(base) :]}" if out != base else f"{base}^({power})"
 
 
 def _strip_delimiters(src: str) -> str:
@@ -337,8 +380,8 @@ def latex_to_text(src: str) -> str:
 
     Text left of the last top-level ``=`` is dropped (``p_x = …``).
 
-    >>> latex_to_text(r"\cos^2\theta + 90^\circ")
-    'cos(theta)^(2) + 90*(pi/180)'
+    >>> latex_to_text(r"\cos^2\theta + 90^\circ"), latex_to_text(r"\sin\frac{\pi}{2} c\theta_1")
+    ('cos(theta)^(2) + 90°', 'sin(((pi)/(2))) c_theta_1')
     >>> latex_to_text(r"\input{/etc/passwd}")
     Traceback (most recent call last):
     ...
@@ -362,7 +405,7 @@ def latex_matrix_cells(src: str) -> list[list[str]] | None:
     if m[1] == "array":
         body = re.sub(r"^\s*\{[^{}]*\}", "", body)
     body = body.replace(r"\hline", " ")
-    rows = [r for r in re.split(r"\\\\", body)]
+    rows = [_ROW_SPACING.sub("", r) for r in re.split(r"\\\\", body)]  # \\[2pt]
     if rows and not rows[-1].strip():
         rows.pop()
     return [[cell.strip() for cell in row.split("&")] for row in rows]

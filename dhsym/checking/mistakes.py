@@ -67,7 +67,7 @@ class Transposed(Mistake):
     kind, title = "transposed", "matrix transposed"
 
     def matrix_variants(self, case):
-        full = np.asarray(case.cache.setdefault(("full", id(case.sample)), _full(case)))
+        full = np.asarray(case.cache.setdefault(("full", case.sample.origin), _full(case)))
         yield (
             case.project(np.swapaxes(full, 1, 2)),
             (

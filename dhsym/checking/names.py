@@ -1,10 +1,13 @@
 """What the names in a student's answer mean for one key robot.
 
 Students write ``theta1``, ``θ_1``, ``q1``, the lecture abbreviations ``C12``,
-``S23``, ``c1``, ``C_{12}``, ``c_{alpha}``, ``c_alpha1``, ``c_{\\theta_i}`` or
-glued products like ``c1s2``.  :class:`NameContext` turns each name into the key
-robot's symbol or into ``cos``/``sin`` of its joint angles; it is the ``resolve``
-hook of :func:`dhsym.model.parsing.parse_expression`.
+``S23``, ``c1``, ``C_{12}``, ``c_{alpha}``, ``c_alpha1``, ``c_{\\theta_i}``, Craig's
+``cθ1``, or glued products like ``c1s2``, ``a_1c_1``, ``s_23c_4``, ``a1C1`` and
+``cosθ1``.  :class:`NameContext` turns each name into the key robot's symbol or into
+``cos``/``sin`` of its joint angles; it is the ``resolve`` hook of
+:func:`dhsym.model.parsing.parse_expression`.  A glued name is read whole when it can be
+(the longest match), else split into known factors; when two splits give different
+products the name is refused as ambiguous.
 
 Examples
 --------
@@ -14,6 +17,8 @@ Examples
 (cos(theta2 + theta3), sin(theta1), theta4, a2)
 >>> ctx.resolve("c_alpha1"), ctx.resolve("c1s2"), ctx.resolve("banana") is None
 (cos(alpha1), sin(theta2)*cos(theta1), True)
+>>> ctx.resolve("a_2c_23"), ctx.resolve("s_23c_4"), ctx.resolve("costheta1")
+(a2*cos(theta2 + theta3), sin(theta2 + theta3)*cos(theta4), cos(theta1))
 """
 
 from __future__ import annotations
@@ -38,6 +43,10 @@ _GREEK_HEAD = re.compile(
     r"epsilon|kappa|chi|iota|upsilon|omicron|pi)[A-Za-z0-9_]*$"
 )
 _VAR_PREFIXES = ("theta", "th", "q", "d")
+_FUNCTION_HEAD = re.compile(r"^(sin|cos|tan)(?P<rest>[A-Za-z][A-Za-z0-9_]*)$")  # cosθ1
+_TRIG_OF = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan}
+_SPLIT_LONGEST = 48  # longest glued name that is split into factors
+_PIECE_LONGEST = 20  # longest factor in it
 
 
 def _canon(name: str) -> str:
@@ -109,15 +118,68 @@ class NameContext:
         return None
 
     def resolve(self, name: str) -> sp.Expr | None:
-        """The expression a name stands for, or None (a new symbol of that name)."""
+        """The expression a name stands for, or None (a new symbol of that name).
+
+        A name that is not one symbol or abbreviation is split into factors that are
+        (``a_1c_1`` is a_1·c_1); two splits with different products raise ParseError.
+        """
+        whole = self._single(name, guess=False)
+        if whole is not None:
+            return whole
+        splittable = len(name) <= _SPLIT_LONGEST and any(c.isdigit() or c == "_" for c in name)
+        readings = self._splits(name) if splittable else {}
+        if not readings:
+            return self._single(name)  # c_alpha: cos of a new symbol alpha
+        if len(readings) > 1:
+            shown = [" ".join(pieces) for pieces in list(readings.values())[:2]]
+            raise ParseError(
+                f"ambiguous name {name!r}: it reads as {shown[0]!r} or as {shown[1]!r}; "
+                f"write the factors apart, e.g. {shown[0]!r} or "
+                f"{shown[0].replace(' ', '*')!r}"
+            )
+        return next(iter(readings))
+
+    def _splits(self, name: str) -> dict[sp.Expr, tuple[str, ...]]:
+        """Products of the ways ``name`` splits into known factors (at most two found)."""
+        memo: dict[int, dict[sp.Expr, tuple[str, ...]]] = {len(name): {sp.Integer(1): ()}}
+
+        def rest(i: int) -> dict[sp.Expr, tuple[str, ...]]:
+            if i in memo:
+                return memo[i]
+            found: dict[sp.Expr, tuple[str, ...]] = {}
+            for j in range(i + 1, min(len(name), i + _PIECE_LONGEST) + 1):
+                if j < len(name) and not name[j].isalpha():
+                    continue  # a factor starts with a letter
+                whole_name = j - i == len(name) or name[j - 1] == "_"
+                piece = None if whole_name else self._single(name[i:j], guess=False)
+                if piece is None:
+                    continue
+                for product, pieces in rest(j).items():
+                    found.setdefault(piece * product, (name[i:j], *pieces))
+                    if len(found) > 1:
+                        break
+                if len(found) > 1:
+                    break
+            memo[i] = found
+            return found
+
+        return rest(0) if name[:1].isalpha() else {}
+
+    def _single(self, name: str, guess: bool = True) -> sp.Expr | None:
+        """One symbol, abbreviation (``C12``, ``c_alpha``), ``cosθ1``, or ``c1s2``.
+
+        ``guess``: ``c_<Greek name>…`` may be cos of a symbol the key does not have."""
         own = self.symbol(name)
         if own is not None:
             return own
         if _GLUED.match(name):
-            parts = [self.resolve(p) for p in _GLUED_PART.findall(name)]
+            parts = [self._single(p) for p in _GLUED_PART.findall(name)]
             if all(p is not None for p in parts):
                 return sp.Mul(*parts)
             return None
+        f = _FUNCTION_HEAD.match(name)
+        if f is not None and self.symbol(f["rest"]) is not None:  # cosθ1: cos of a key symbol
+            return _TRIG_OF[f[1]](self.symbol(f["rest"]))
         m = _ABBREV.match(name)
         if m is None:
             return None
@@ -128,7 +190,7 @@ class NameContext:
         target = self.symbol(rest)
         if target is None:
             target = self.angle_sum(rest.replace("_", ""))
-        if target is None and _GREEK_HEAD.match(normalize_name(rest)):
+        if target is None and guess and _GREEK_HEAD.match(normalize_name(rest)):
             try:
                 target = symbol(rest.replace("__", "_"))
             except ParseError:

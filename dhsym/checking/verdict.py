@@ -60,7 +60,8 @@ class EntryResult:
     """One entry of a matrix answer (1-based row and column).
 
     ``proof`` says how a correct entry was established: ``exact`` (symbolic proof),
-    ``numeric`` (random points only), ``rounding`` (equal up to rounded decimals).
+    ``numeric`` (random points only), ``rounding`` (equal up to rounded decimals, and
+    ``rounding`` says how: ``to 4 significant digits``).
     Texts are plain math in the key's notation; ``*_latex`` the same in LaTeX.
     """
 
@@ -72,6 +73,7 @@ class EntryResult:
     answer_latex: str = ""
     expected_latex: str = ""
     proof: str = ""
+    rounding: str = ""
 
     def to_json(self) -> dict[str, object]:
         """A JSON-ready dict."""
@@ -84,6 +86,7 @@ class EntryResult:
             "answer_latex": self.answer_latex,
             "expected_latex": self.expected_latex,
             "proof": self.proof,
+            "rounding": self.rounding,
         }
 
 
@@ -168,6 +171,7 @@ class CheckResult:
                     e.get("answer_latex", ""),
                     e.get("expected_latex", ""),
                     e.get("proof", ""),
+                    e.get("rounding", ""),
                 )
                 for e in data.get("entries", [])
             ),

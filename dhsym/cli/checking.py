@@ -44,7 +44,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
     from dhsym.checking.feedback import render_check
     from dhsym.checking.verdict import CheckResult, Verdict
 
-    key = Key.load(args.key, args.question, tool_free=args.tool_free)
+    key = Key.load(args.key, args.question, tool_free=args.tool_free, rounding=args.rounding)
     limits = AnswerLimits(seconds=args.timeout) if args.timeout else DEFAULT_ANSWER_LIMITS
     try:
         answer = _read_answer(args.answer, limits.max_bytes)
@@ -104,6 +104,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--tool-free", action="store_true", help="accept another tool frame in a table answer"
     )
     c.add_argument("--timeout", type=float, default=None, help="time limit in seconds")
+    c.add_argument(
+        "--rounding",
+        default=None,
+        metavar="RULE",
+        help="accepted rounding of decimals: digits=N (a decimal of at least N significant "
+        "digits may be rounded or truncated; default digits=3), abs=T, rel=T, or off",
+    )
     c.set_defaults(func=_cmd_check)
 
     g = subparsers.add_parser("grade", help="grade a class: gradebook, feedback, summary")

@@ -11,7 +11,7 @@ import sympy as sp
 from dhsym.errors import TableError
 
 from .kinds import AngleUnit
-from .parsing import parse_expression
+from .parsing import DEFAULT_LIMITS, numeral_problem, parse_expression
 
 __all__ = ["as_expr", "check_radians", "to_radians"]
 
@@ -34,10 +34,19 @@ def as_expr(value: object, *, field: str | None = None, row: int | None = None) 
     if isinstance(value, sp.Basic):
         expr = value
     elif isinstance(value, int):
+        if abs(value) >= 10**DEFAULT_LIMITS.max_digits:  # before any str(value)
+            raise TableError(
+                f"number with more than {DEFAULT_LIMITS.max_digits} digits: "
+                f"expected at most max_digits={DEFAULT_LIMITS.max_digits}",
+                row=row,
+                field=field,
+            )
         expr = sp.Integer(value)
     elif isinstance(value, float):
         if value != value or value in (float("inf"), float("-inf")):
             raise TableError(f"non-finite number {value!r}", row=row, field=field)
+        if problem := numeral_problem(repr(abs(value))):
+            raise TableError(f"{problem[0]}: {problem[1]}", row=row, field=field)
         expr = sp.Rational(repr(value))
     elif isinstance(value, str):
         expr = parse_expression(value, row=row, field=field)

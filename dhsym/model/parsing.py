@@ -8,6 +8,12 @@ tokenizer and a depth-checked recursive-descent parser build sympy ``Add``, ``Mu
     term   := factor (('*' | '/') factor | factor)*      # juxtaposition multiplies
     factor := ('+' | '-') factor | atom ('^' factor)?    # '**' is '^'; -x^2 is -(x^2)
     atom   := number | name | name '(' expr (',' expr)* ')' | '(' expr ')'
+
+With ``textbook=True`` (answers) it also reads what textbooks print: ``atom '°'`` (degrees,
+binding to that atom only), ``sin^2(x)`` and ``sin^2 x`` (a power of the function), arguments
+without brackets (``sin x``, ``cos 2θ1``, ``sin 90°``: a number, a name, or a number and a
+name) and a coefficient glued to a function (``a1cos(q1)``).  Every numeric literal has at most
+``max_digits`` digits and a bounded decimal exponent, checked before any arithmetic.
 """
 
 from __future__ import annotations
@@ -28,6 +34,7 @@ __all__ = [
     "DEFAULT_LIMITS",
     "ParseLimits",
     "normalize_name",
+    "numeral_problem",
     "parse_expression",
     "parse_number_list",
     "symbol",
@@ -43,8 +50,9 @@ _LETTERS = "A-Za-z_" + re.escape(_GREEK_LETTERS)
 _TOKEN = re.compile(  # explicit ASCII classes: \d and \w would accept any Unicode digit/letter
     r"(?P<space>[ \t\r\n]+)"
     r"|(?P<num>(?=\.?[0-9])(?P<whole>[0-9]*)(?:\.(?P<frac>[0-9]*))?(?:[eE](?P<exp>[+-]?[0-9]+))?)"
-    rf"|(?P<name>[{_LETTERS}][{_LETTERS}0-9]*)|(?P<op>\*\*|[-+*/^(),])"
+    rf"|(?P<name>[{_LETTERS}][{_LETTERS}0-9]*)|(?P<op>\*\*|[-+*/^(),°])"
 )
+_GLUED_CALL = re.compile(r"^(?P<head>.*[0-9])(?P<func>atan2|cos|sin|sqrt|tan)$")  # a1cos(…)
 _FUNCTIONS: MappingProxyType[str, tuple[Callable[..., sympy.Expr], int]] = MappingProxyType(
     {"atan2": (sympy.atan2, 2), "cos": (sympy.cos, 1), "sin": (sympy.sin, 1)}
     | {"sqrt": (sympy.sqrt, 1), "tan": (sympy.tan, 1)}
@@ -59,6 +67,8 @@ _ALLOWED = "allowed: " + ", ".join(_FUNCTIONS)
 _ATOM = "expected a number, name or '('"
 _FINITE = "expected a finite value"
 _MINUS = sympy.S.NegativeOne
+_DEGREE = sympy.pi / 180
+_Literal = Callable[[str, sympy.Rational], sympy.Expr]
 
 
 @dataclass(frozen=True)
@@ -80,6 +90,41 @@ class ParseLimits:
 
 
 DEFAULT_LIMITS = ParseLimits()
+
+
+_NUMERAL = re.compile(r"(?P<whole>[0-9]*)(?:\.(?P<frac>[0-9]*))?(?:[eE](?P<exp>[+-]?[0-9]+))?")
+
+
+def numeral_problem(text: str, limits: ParseLimits = DEFAULT_LIMITS) -> tuple[str, str] | None:
+    """(what was found, what was expected) when a decimal literal is too long or too large.
+
+    Every literal -- in tables, answers and on the command line -- has at most
+    ``max_digits`` digits (exponent included) and a decimal exponent small enough that its
+    exact value has at most ``max_result_digits`` digits, whatever its mantissa (``0e99999``
+    too).  Checked on the text, before any arithmetic.
+
+    >>> numeral_problem("0.4318") is None, numeral_problem("1e-300") is None
+    (True, True)
+    >>> numeral_problem("0e99999999999")
+    ("number '0e99999999999' with exponent 99999999999", 'expected an exponent between -399 and 399 (max_result_digits=400)')
+    >>> numeral_problem("9" * 41)[1]
+    'expected at most max_digits=40'
+    """  # noqa: E501
+    m = _NUMERAL.fullmatch(text.strip().lstrip("+-"))
+    if m is None or not (m["whole"] or m["frac"]):
+        return (f"invalid number {text!r}", "expected digits, a point and an exponent")
+    whole, frac, exp = m["whole"], m["frac"] or "", m["exp"] or "0"
+    digits = len(whole + frac + m["exp"].lstrip("+-") if m["exp"] else whole + frac)
+    if digits > limits.max_digits:
+        return (f"number with {digits} digits", f"expected at most max_digits={limits.max_digits}")
+    bound = limits.max_result_digits - len(whole + frac)
+    if abs(int(exp) - len(frac)) > bound:
+        return (
+            f"number {text.strip()!r} with exponent {exp.lstrip('+')}",
+            f"expected an exponent between {-bound} and {bound} "
+            f"(max_result_digits={limits.max_result_digits})",
+        )
+    return None
 
 
 def normalize_name(name: str) -> str:
@@ -154,9 +199,18 @@ def _show(text: str, pos: int | None, width: int = 60) -> str:
 class _Parser:
     """One parse: tokens, cursor, nesting depth and the names seen so far."""
 
-    def __init__(self, text: str, resolve: _Resolve | None, limits: ParseLimits, where: dict):
+    def __init__(
+        self,
+        text: str,
+        resolve: _Resolve | None,
+        limits: ParseLimits,
+        where: dict,
+        textbook: bool = False,
+        literal: _Literal | None = None,
+    ):
         self.text, self.resolve, self.limits, self.where = text, resolve, limits, where
-        self.i = self.depth = 0
+        self.textbook, self.literal = textbook, literal
+        self.i = self.depth = self.in_exponent = 0
         self.names: dict[str, sympy.Expr | None] = {}
         self.tokens = self.tokenize()
 
@@ -185,10 +239,16 @@ class _Parser:
                 tokens.append(_Token("num", m["num"], i, self.number(m)))
             elif m["name"] is not None:
                 name = normalize_name(m["name"])
+                glued = _GLUED_CALL.match(name) if self.textbook else None
+                if glued:  # a1cos(q1): the coefficient, then the function
+                    tokens.append(_Token("name", glued["head"], i))
+                    name, i = glued["func"], i + len(glued["head"])
                 if problem := _name_problem(name):
                     raise self.error(f"{problem[0]} {m['name']!r}", i, problem[1])
                 tokens.append(_Token("name", name, i))
             elif m["op"] is not None:
+                if m["op"] == "°" and not self.textbook:
+                    raise self.error("unexpected character '°'", i, _CHARS)
                 tokens.append(_Token("op", m["op"].replace("**", "^"), i))
             i = m.end()
         return [*tokens, _Token("end", "", len(text))]
@@ -196,12 +256,9 @@ class _Parser:
     def number(self, m: re.Match[str]) -> sympy.Expr:
         """Exact value of a decimal literal: ``0.4318`` is ``Rational(4318, 10000)``."""
         whole, frac, exp = m["whole"], m["frac"] or "", m["exp"] or ""
-        digits = len(whole + frac + exp.lstrip("+-"))
-        if digits > self.limits.max_digits:
-            raise self.over(f"number with {digits} digits", m.start(), "max_digits")
+        if problem := numeral_problem(m["num"], self.limits):
+            raise self.error(problem[0], m.start(), problem[1])
         mantissa, scale = int(whole + frac), int(exp or "0") - len(frac)
-        if mantissa and abs(scale) + len(whole + frac) > self.limits.max_result_digits:
-            raise self.over(f"number {m['num']!r} out of range", m.start(), "max_result_digits")
         return sympy.Rational(mantissa * 10 ** max(scale, 0), 10 ** max(-scale, 0))
 
     def take(self) -> _Token:
@@ -276,12 +333,25 @@ class _Parser:
         while self.is_op("+", "-"):
             self.enter(tok := self.take())
             sign = -sign if tok.text == "-" else sign
-        value = self.atom()
+        value = self.degrees(self.atom())
         if self.is_op("^"):  # right-associative; the exponent may have signs: x^-2
             self.enter(tok := self.take())
-            value = self.pow(tok, value, sympy.Mul(*self.factor()))
+            value = self.pow(tok, value, self.exponent())
         self.depth = depth
         return sign, value
+
+    def exponent(self) -> sympy.Expr:
+        """The factor after '^' (literals in it stay exact numbers)."""
+        self.in_exponent += 1
+        value = sympy.Mul(*self.factor())
+        self.in_exponent -= 1
+        return value
+
+    def degrees(self, value: sympy.Expr) -> sympy.Expr:
+        """``value°`` is ``value·π/180`` (textbook mode; the sign binds to that atom only)."""
+        while self.is_op("°"):
+            value = self.make(self.take(), sympy.Mul, value, _DEGREE)
+        return value
 
     def pow(self, tok: _Token, base: sympy.Expr, exponent: sympy.Expr) -> sympy.Expr:
         """Check the limits on ``base**exponent`` before sympy evaluates it."""
@@ -306,6 +376,8 @@ class _Parser:
     def atom(self) -> sympy.Expr:
         tok = self.take()
         if tok.value is not None:  # a number
+            if self.literal is not None and not self.in_exponent:
+                return self.literal(tok.text, tok.value)
             return tok.value
         if tok.kind == "name":
             return self.name(tok)
@@ -317,6 +389,8 @@ class _Parser:
         name, call = tok.text, self.is_op("(")
         if name in _FUNCTIONS and call:
             return self.call(tok)
+        if name in _FUNCTIONS and self.textbook and name != "atan2":
+            return self.textbook_call(tok)
         if name in _FUNCTIONS:
             raise self.unexpected(self.tokens[self.i], f"expected '(' after function {name!r}")
         if name == "pi" and not call:
@@ -332,6 +406,40 @@ class _Parser:
         if call and value is None:  # a resolved name before '(' multiplies
             raise self.error(f"unknown function {name!r}", tok.pos, _ALLOWED)
         return symbol(name) if value is None else value
+
+    def textbook_call(self, tok: _Token) -> sympy.Expr:
+        """``sin^2(x)``, ``sin^2 x``, ``sin x``, ``cos 2θ1``, ``sin 90°`` (textbook mode)."""
+        power = None
+        if self.is_op("^"):
+            self.enter(hat := self.take())
+            power = self.exponent()
+            if not (power.is_Integer and power > 0):
+                found = f"{tok.text}^{power}" if power.is_number else f"{tok.text}^…"
+                raise self.error(
+                    found,
+                    hat.pos,
+                    f"expected a positive whole power ({tok.text}^-1 is not read"
+                    f" as an inverse function: write 1/{tok.text}(x) or {tok.text}(x)^-1)",
+                )
+            self.depth -= 1
+        if self.is_op("("):
+            value = self.call(tok)
+        else:  # an argument without brackets: a number, a name, or a number and a name
+            first = self.tokens[self.i]
+            if first.kind not in ("num", "name") or first.text in _FUNCTIONS:
+                raise self.unexpected(first, f"expected '(' or an argument after {tok.text!r}")
+            self.enter(tok)
+            sign, arg = self.factor()
+            nxt = self.tokens[self.i]
+            if first.kind == "num" and nxt.kind == "name" and nxt.text not in _FUNCTIONS:
+                arg = self.make(nxt, sympy.Mul, arg, sympy.Mul(*self.factor()))
+            self.depth -= 1
+            arg = arg if sign > 0 else self.make(first, sympy.Mul, _MINUS, arg)
+            if tok.text == "sqrt":
+                value = self.pow(tok, arg, sympy.S.Half)
+            else:
+                value = self.make(tok, _FUNCTIONS[tok.text][0], arg)
+        return value if power is None else self.pow(tok, value, power)
 
     def call(self, tok: _Token) -> sympy.Expr:
         build, arity = _FUNCTIONS[tok.text]
@@ -357,6 +465,8 @@ def parse_expression(
     file: str | None = None,
     row: int | None = None,
     field: str | None = None,
+    textbook: bool = False,
+    literal: _Literal | None = None,
 ) -> sympy.Expr:
     """Turn user text into a finite sympy expression with a whitelist grammar, never ``eval``.
 
@@ -370,6 +480,13 @@ def parse_expression(
         the expression to use or ``None``.  A resolved name before ``(`` multiplies.
     limits, file, row, field
         Resource limits (:class:`ParseLimits`); where the text came from, for errors.
+    textbook
+        Also read degree signs, ``sin^2 x`` and arguments without brackets (see the module
+        docstring); for answers, where a student writes what the textbook prints.
+    literal
+        Called with the text and exact value of each numeric literal outside exponents;
+        returns the expression to use in its place (the checker puts symbols there to see
+        how rounding a decimal moves the result).
 
     Raises
     ------
@@ -388,6 +505,8 @@ def parse_expression(
     x**70
     >>> parse_expression("a1 C1", resolve=lambda n: sympy.cos(symbol("q1")) if n == "C1" else None)
     a1*cos(q1)
+    >>> parse_expression("sin^2 θ1 + cos 90°", textbook=True), parse_expression("a1cos(q1)", textbook=True)
+    (sin(theta1)**2, a1*cos(q1))
     >>> parse_expression("q1 + )", file="arm.yaml", row=2, field="theta")
     Traceback (most recent call last):
     ...
@@ -400,7 +519,7 @@ def parse_expression(
         found = f"text of {len(text)} characters in {_show(text, 0)}"
         raise ParseError(f"{found}: expected at most max_length={limits.max_length}", **where)
     try:
-        return _Parser(text, resolve, limits, where).parse()
+        return _Parser(text, resolve, limits, where, textbook, literal).parse()
     except RecursionError:  # only possible with a max_depth far above the default
         message = f"expression too deeply nested in {_show(text, 0)}: lower max_depth"
         raise ParseError(message, **where) from None

@@ -105,7 +105,12 @@ def read_table_text(text: str, *, file: str | None = None) -> DHTable:
         raise TableError(
             f"not valid YAML{where}: {getattr(err, 'problem', err)}", file=file
         ) from None
+    except ValueError:  # an integer of thousands of digits (Python's int conversion limit)
+        raise TableError(_LONG_NUMBER, file=file) from None
     return table_from_data(data, file=file)
+
+
+_LONG_NUMBER = "a number with thousands of digits: numbers have at most 40 digits"
 
 
 def _canon(key: object) -> str:

@@ -31,7 +31,7 @@ t = sp.Symbol("theta_1", real=True)
         (r"\left( a_1 + a_2 \right) \cdot C_1", "(a_1 + a_2) * C_1"),
         (r"a^{2}", "a^(2)"),
         (r"\cos^2\theta", "cos(theta)^(2)"),
-        (r"90^\circ", "90*(pi/180)"),
+        (r"90^\circ", "90°"),
         (r"\mathbf{p}_x = d_3", "d_3"),
         (r"\sqrt{2}", "sqrt(2)"),
         (r"\Theta_1", "theta_1"),
@@ -82,3 +82,45 @@ def test_seed_002_slide_reads_as_a_4x4_matrix():
 def test_helpers():
     assert is_latex(r"\theta") and is_latex("$x$") and not is_latex("cos(x)")
     assert flatten_subscripts("alpha_{i-1} + a_{i+1} + C_{1,2}") == "alpha_im1 + a_ip1 + C_12"
+
+
+@pytest.mark.parametrize(
+    "src",
+    [
+        r"\sin 90°",
+        r"\sin 90^\circ",
+        r"\sin 90^{\circ}",
+        r"\sin 90\degree",
+        r"\sin 90\textdegree",
+        r"\sin(90^o)",
+        r"\sin(90^{o})",
+        r"\sin(90\,^{\circ})",
+        r"\sin\frac{\pi}{2}",
+        r"\sin\tfrac{\pi}{2}",
+        r"\sin\dfrac\pi2",
+        r"\sin{\tfrac{\pi}{2}}",
+        r"\sin\bigl(\tfrac{\pi}{2}\bigr)",
+    ],
+)
+def test_degree_signs_and_fractions_as_function_arguments(src):
+    assert parse_expression(latex_to_text(src), textbook=True) == 1
+
+
+def test_degrees_only_where_written():
+    assert parse_expression(latex_to_text(r"\sin 90"), textbook=True) == sp.sin(90)
+    text = latex_to_text(r"\frac{x}{90^\circ}")
+    assert parse_expression(text, textbook=True) == 2 * sp.Symbol("x", real=True) / sp.pi
+    assert latex_to_text(r"x^o") == "x^(o)"  # ^o is degrees after a number only
+
+
+def test_craig_c_theta_and_powers_of_functions():
+    assert latex_to_text(r"c\theta_1 s\alpha_{i-1}") == "c_theta_1 s_alpha_im1"
+    assert latex_to_text(r"\cos(\theta_1)^2") == "cos(theta_1)^(2)"
+    assert latex_to_text(r"\cos^2\frac{\theta}{2}") == "cos(((theta)/(2)))^(2)"
+    with pytest.raises(ParseError, match="inverse function"):
+        latex_to_text(r"\sin^{-1}\theta")
+
+
+def test_matrix_rows_with_spacing_and_left_right_brackets():
+    src = r"\left[ \begin{matrix} 1 & 0 \\[2pt] 0 & 1 \end{matrix} \right]"
+    assert latex_matrix_cells(src) == [["1", "0"], ["0", "1"]]

@@ -40,5 +40,6 @@ def test_json_round_trip_and_schema_keys():
         "answer_latex",
         "expected_latex",
         "proof",
+        "rounding",
     }
     assert CheckResult.from_json(data) == r

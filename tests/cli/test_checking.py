@@ -81,3 +81,17 @@ def test_grade_command(tmp_path, capsys):
     )
     assert code == 0 and "graded 3 submission(s)" in capsys.readouterr().out
     assert (out / "gradebook.csv").is_file() and (out / "summary.html").is_file()
+
+
+def test_rounding_option_both_ways(monkeypatch, capsys):
+    answer = RIGHT.replace(
+        "[S12, C12, 0, a1*S1 + a2*S12]", "[S12, C12*sin(1.5708), 0, a1*S1 + a2*S12]"
+    )
+    code, out, _ = run_check(monkeypatch, capsys, answer)
+    assert code == 0 and "to 5 significant digits" in out
+    assert run_check(monkeypatch, capsys, answer, "--rounding", "off")[0] == 1
+    short = answer.replace("1.5708", "1.6")
+    assert run_check(monkeypatch, capsys, short)[0] == 1
+    assert run_check(monkeypatch, capsys, short, "--rounding", "digits=2")[0] == 0
+    code, _, err = run_check(monkeypatch, capsys, answer, "--rounding", "roughly")
+    assert code == 2 and "unknown rounding 'roughly'" in err

@@ -55,6 +55,7 @@ def test_fk(capsys):
         (["fk", "puma560", "--q", "0,0"], "--q needs 6 values (one per joint), got 2"),
         (["fk", "puma560", "--q", "0,0,0,0,0,__import__('os')"], "names with double underscores"),
         (["fk", "planar2r", "--q", "1,x"], "--q value 2 (x) must be a real number"),
+        (["fk", "planar2r", "--q", "0e99999999999,0"], "exponent 99999999999"),
         (["show", "nothing-here"], "no built-in robot or table file 'nothing-here'"),
         (["derive", "planar2r", "--to", "9"], "frames of Planar 2R are 0"),
     ],

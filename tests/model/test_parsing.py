@@ -461,3 +461,87 @@ def test_long_text_is_shortened_in_messages() -> None:
     assert f"column {len(text)}" in message
     assert "…" in message
     assert len(message) < 200
+
+
+# --- bounded numerals ---------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["0e99999999999", "0E+99999999999", "0.0e-99999999999", "00.000e99999", "x + 0e9999999"],
+)
+@pytest.mark.parametrize("textbook", [False, True])
+def test_zero_mantissa_with_a_huge_exponent_is_refused_before_any_arithmetic(
+    text: str, textbook: bool
+) -> None:
+    start = time.process_time()
+    with pytest.raises(ParseError, match="exponent .*max_result_digits=400"):
+        parse_expression(text, textbook=textbook)
+    assert time.process_time() - start < 1.0  # a hang guard: this used to never return
+
+
+def test_numeral_problem_is_the_one_rule_for_every_literal() -> None:
+    assert parsing.numeral_problem("0.4318") is None
+    assert parsing.numeral_problem("1e-390") is None  # 391 digits: within 400
+    assert "exponent" in parsing.numeral_problem("1e-400")[0]
+    assert "max_digits" in parsing.numeral_problem("1" * 41)[1]
+    small = ParseLimits(max_digits=5, max_result_digits=10)
+    assert parsing.numeral_problem("1e12", small) and not parsing.numeral_problem("1e8", small)
+
+
+# --- textbook mode (answers) -------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("90°", sympy.pi / 2),
+        ("sin 90°", sympy.Integer(1)),
+        ("x/90°", 2 * x / sympy.pi),  # the sign binds to its number only
+        ("-90° + x", x - sympy.pi / 2),
+        ("(x + 30)°", (x + 30) * sympy.pi / 180),
+        ("sin x cos y", sympy.sin(x) * sympy.cos(y)),
+        ("cos 2θ1", sympy.cos(2 * theta1)),
+        ("sin^2 x + cos^2(x)", sympy.Integer(1)),
+        ("sin^(2)(x)", sympy.sin(x) ** 2),
+        ("sqrt 2/2", sympy.sqrt(2) / 2),
+        ("a1cos(theta1)", a1 * sympy.cos(theta1)),
+        ("2a1cos(x)", 2 * a1 * sympy.cos(x)),
+        ("sin(x)^2", sympy.sin(x) ** 2),
+    ],
+)
+def test_textbook_forms(text: str, expected: sympy.Expr) -> None:
+    assert sympy.simplify(parse_expression(text, textbook=True) - expected) == 0
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("sin^-1(x)", "not read as an inverse function"),
+        ("sin^x(y)", "unknown function 'x'"),
+        ("sin", "expected '(' or an argument after 'sin'"),
+        ("sin + x", "expected '(' or an argument after 'sin'"),
+        ("cos cos x", "expected '(' or an argument after 'cos'"),
+    ],
+)
+def test_textbook_refusals(text: str, fragment: str) -> None:
+    with pytest.raises(ParseError, match=fragment.replace("(", r"\(").replace("'", "'")):
+        parse_expression(text, textbook=True)
+
+
+def test_textbook_forms_are_off_by_default() -> None:
+    with pytest.raises(ParseError, match="unexpected character '°'"):
+        parse_expression("90°")
+    assert parse_expression("acos1") == symbol("acos1")  # only a digit before 'cos' splits
+
+
+def test_literal_hook_sees_every_number_outside_exponents() -> None:
+    seen: list[tuple[str, sympy.Rational]] = []
+
+    def hook(text: str, value: sympy.Rational) -> sympy.Expr:
+        seen.append((text, value))
+        return symbol(f"n{len(seen)}")
+
+    value = parse_expression("0.7071*x^2 + 1.5°", literal=hook, textbook=True)
+    assert seen == [("0.7071", sympy.Rational(7071, 10000)), ("1.5", sympy.Rational(3, 2))]
+    assert value == symbol("n1") * x**2 + symbol("n2") * sympy.pi / 180
