@@ -23,8 +23,8 @@ def _parse_check(text: str | None) -> object:
 
 
 def _cmd_handout(args: argparse.Namespace) -> int:
+    from dhsym.explain.documents import write_handout
     from dhsym.explain.latex import check_log
-    from dhsym.explain.rendering import write_handout
     from dhsym.kinematics.robot import load
 
     robots = [load(name, compact=not args.full) for name in args.robots]

@@ -119,7 +119,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     if args.format == "json":
         out = json.dumps(derive_json(robot, i, j), indent=2)
     else:
-        from dhsym.explain.rendering import render_derivation
+        from dhsym.explain.documents import render_derivation
 
         out = render_derivation(robot, fmt=args.format, frm=i, to=j)
     emit(out, args.output)

@@ -19,10 +19,10 @@ __getattr__, __dir__ = lazy_exports(
         "general_link": "derivation",
         "loader": "templates",
         "render": "rendering",
-        "render_derivation": "rendering",
-        "render_handout": "rendering",
+        "render_derivation": "documents",
+        "render_handout": "documents",
         "tex_available": "latex",
-        "write_handout": "rendering",
+        "write_handout": "documents",
     },
 )
 

@@ -16,8 +16,8 @@ from hypothesis import strategies as st
 
 import dhsym
 from dhsym.errors import DHError
+from dhsym.explain.documents import write_handout
 from dhsym.explain.latex import check_log, compile_pdf
-from dhsym.explain.rendering import write_handout
 from dhsym.notation.escape import TeX, escape_latex
 from dhsym.notation.layout import math_width
 
@@ -258,7 +258,7 @@ def test_full_notation_and_numeric_lengths_also_fit_the_page(tmp_path, need_tex)
 
 @pytest.mark.tex
 def test_a_fragment_fits_a_default_article_with_a_narrower_width(tmp_path, need_tex):
-    from dhsym.explain.rendering import render_derivation
+    from dhsym.explain.documents import render_derivation
 
     robot = dhsym.load("puma560", compact=False)
     (tmp_path / "frag.tex").write_text(render_derivation(robot, fmt="latex", width=40))

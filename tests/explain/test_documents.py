@@ -12,7 +12,7 @@ import pytest
 import dhsym
 from dhsym.cli.main import main
 from dhsym.errors import DHError
-from dhsym.explain.rendering import (
+from dhsym.explain.documents import (
     render_derivation,
     render_handout,
     write_handout,
