@@ -1,12 +1,13 @@
 # Two commands for a fresh machine (see README):
 #   make demo   set up .venv, derive the PUMA 560 and write its derivation to build/
 #   make test   set up .venv and run the whole test suite
+#   make notebooks [NB=notebooks/03_puma560.py]   rebuild notebooks from their .py sources
 PYTHON ?= python3
 VENV   ?= .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-stamp
 
-.PHONY: demo test lint bench setup clean
+.PHONY: demo test lint bench notebooks setup clean
 
 setup: $(STAMP)
 
@@ -29,6 +30,9 @@ test: $(STAMP)
 lint: $(STAMP)
 	$(VENV)/bin/ruff check dhsym tests benchmarks
 	$(VENV)/bin/ruff format --check dhsym tests benchmarks
+
+notebooks: $(STAMP)
+	$(VENV)/bin/dhsym notebooks build $(NB)
 
 bench: $(STAMP)
 	$(PY) benchmarks/bench_core.py

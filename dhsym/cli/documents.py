@@ -1,4 +1,4 @@
-"""``dhsym handout`` and ``dhsym notebooks run|export``: documents for a course."""
+"""``dhsym handout`` and ``dhsym notebooks build|run|export``: documents for a course."""
 
 from __future__ import annotations
 
@@ -96,6 +96,18 @@ def _register_handout(subparsers: argparse._SubParsersAction) -> None:
     h.set_defaults(func=_cmd_handout)
 
 
+def _cmd_build(args: argparse.Namespace) -> int:
+    from dhsym.explain.notebooks import build_notebook
+
+    sources = args.sources or sorted(Path("notebooks").glob("*.py"))
+    if not sources:
+        raise DHError("no notebook sources given and none in notebooks/")
+    for source in sources:
+        path = build_notebook(source, execute=not args.no_execute, timeout=args.timeout)
+        print(f"wrote {path}" + ("" if args.no_execute else " (executed)"), file=sys.stderr)
+    return 0
+
+
 def _cmd_run(args: argparse.Namespace) -> int:
     from dhsym.explain.notebooks import execute_notebook
 
@@ -119,6 +131,13 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
 
 def _add_commands(sub: Any) -> None:
+    b = sub.add_parser("build", help="write notebooks from their .py sources and execute them")
+    b.add_argument("sources", nargs="*", help="jupytext .py sources (default: notebooks/*.py)")
+    b.add_argument("--timeout", type=int, default=120, help="seconds per cell (default 120)")
+    b.add_argument(
+        "--no-execute", action="store_true", help="only update the cells, do not run them"
+    )
+    b.set_defaults(func=_cmd_build)
     r = sub.add_parser("run", help="execute notebooks; fail on errors and warnings")
     r.add_argument("notebooks", nargs="*", help="default: notebooks/*.ipynb")
     r.add_argument("--timeout", type=int, default=120, help="seconds per cell (default 120)")
@@ -133,11 +152,11 @@ def _add_commands(sub: Any) -> None:
 
 
 def _register_notebooks(subparsers: Any) -> None:
-    p = subparsers.add_parser("notebooks", help="run or export the course notebooks")
+    p = subparsers.add_parser("notebooks", help="build, run or export the course notebooks")
     _add_commands(p.add_subparsers(dest="notebooks_command", required=True))
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    """Add ``handout`` and ``notebooks run|export``."""
+    """Add ``handout`` and ``notebooks build|run|export``."""
     _register_handout(subparsers)
     _register_notebooks(subparsers)

@@ -9,6 +9,7 @@ from dhsym._lazy import lazy_exports
 __getattr__, __dir__ = lazy_exports(
     __name__,
     {
+        "build_notebook": "notebooks",
         "builtin_dir": "templates",
         "check_log": "latex",
         "compile_pdf": "latex",
@@ -28,6 +29,7 @@ __getattr__, __dir__ = lazy_exports(
 
 __all__ = [
     "Derivation",
+    "build_notebook",
     "builtin_dir",
     "check_log",
     "compile_pdf",
