@@ -34,6 +34,7 @@ from types import MappingProxyType
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.kinematics.pose import Pose
 from dhsym.kinematics.robot import Robot
 from dhsym.kinematics.transforms import chain_word, elementary_matrix
 from dhsym.model.table import AngleUnit, Convention, DHTable
@@ -47,12 +48,9 @@ from dhsym.notation.layout import (
     Term,
     as_decimal,
     as_math,
-    inverse_math,
-    label_math,
     legend_lines,
     math_width,
     matrix_block,
-    product_math,
     word_math,
 )
 from dhsym.notation.printers import Notation, format_angle
@@ -161,6 +159,23 @@ def _table(table: DHTable) -> TableData:
         values,
         tuple(as_math(v, plain) for v in table.variables),
     )
+
+
+def label_math(pose: Pose) -> Math:
+    """The pose's label, ``^iT_j``."""
+    return Math(TeX(pose.label_latex), pose.label_text)
+
+
+def product_math(left: Pose, right: Pose) -> Math:
+    """``^iT_{k-1} ^{k-1}T_k`` as written in a derivation step."""
+    return Math(
+        TeX(rf"{left.label_latex}\,{right.label_latex}"), f"{left.label_text}*{right.label_text}"
+    )
+
+
+def inverse_math(pose: Pose) -> Math:
+    """``(^jT_i)^{-1}``, where the inverse result comes from."""
+    return Math(TeX(rf"\left({pose.label_latex}\right)^{{-1}}"), f"({pose.label_text})^-1")
 
 
 def general_link(convention: Convention | str, nota: Notation | None = None) -> GeneralLink:

@@ -23,7 +23,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from decimal import Decimal
 from types import MappingProxyType
-from typing import TYPE_CHECKING
 
 import sympy as sp
 
@@ -31,10 +30,6 @@ from dhsym.model.table import Elementary
 
 from .escape import TeX
 from .printers import Notation
-
-if TYPE_CHECKING:  # a pose only needs its labels here
-    from dhsym.kinematics.pose import Pose
-
 
 __all__ = [
     "LATEX_WIDTH",
@@ -49,13 +44,10 @@ __all__ = [
     "as_math",
     "equation",
     "fill",
-    "inverse_math",
-    "label_math",
     "legend_lines",
     "math_width",
     "matrix_block",
     "pieces",
-    "product_math",
     "tight",
     "word_math",
 ]
@@ -251,23 +243,6 @@ def word_math(word: Sequence[Elementary], nota: Notation) -> Math:
     """A word of elementary transforms as ``R_z(θ_i) T_z(d_i) …`` (zero factors left out)."""
     factors = [_OPS[(e.kind, e.axis)](e.value) for e in word if e.value != 0]
     return as_math(sp.Mul(*factors) if factors else sp.Integer(1), nota)
-
-
-def label_math(pose: Pose) -> Math:
-    """The pose's label, ``^iT_j``."""
-    return Math(TeX(pose.label_latex), pose.label_text)
-
-
-def product_math(left: Pose, right: Pose) -> Math:
-    """``^iT_{k-1} ^{k-1}T_k`` as written in a derivation step."""
-    return Math(
-        TeX(rf"{left.label_latex}\,{right.label_latex}"), f"{left.label_text}*{right.label_text}"
-    )
-
-
-def inverse_math(pose: Pose) -> Math:
-    """``(^jT_i)^{-1}``, where the inverse result comes from."""
-    return Math(TeX(rf"\left({pose.label_latex}\right)^{{-1}}"), f"({pose.label_text})^-1")
 
 
 def equation(name: Math, expr: sp.Expr, whole: Math, nota: Notation, width: float) -> Equation:
