@@ -58,6 +58,7 @@ class Robot:
         )
         self._transform = cache(self._compute_transform)
         self._fk_cache: dict[tuple[int, int], FkFunction] = {}
+        self._extra_cache: dict[object, object] = {}  # Jacobians, IK solvers (see ik, jacobian)
 
     # -- description -----------------------------------------------------------------
     @property
@@ -176,6 +177,50 @@ class Robot:
             ]
             arr[..., np.asarray(mask, dtype=bool)] *= math.pi / 180.0
         return self.fk_function(values=values)(arr)
+
+    def jacobian(
+        self,
+        q: object = None,
+        *,
+        frame: int | str = "base",
+        euler: str | None = None,
+        values: Mapping[object, object] | None = None,
+    ) -> object:
+        """The Jacobian (see :mod:`dhsym.jacobian`): symbolic without ``q``, else numeric.
+
+        ``robot.jacobian()`` is the exact 6×n geometric Jacobian (``frame="tool"`` for the
+        end-effector frame); ``robot.jacobian(q)`` evaluates it, ``(n,)`` → ``(6, n)`` and
+        ``(N, n)`` → ``(N, 6, n)``, in the base frame of ``fk``. With ``euler="zyz"`` or
+        ``"rpy"`` it is the analytic Jacobian.
+        """
+        from . import jacobian as jac
+
+        if q is None:
+            if euler is not None:
+                return jac.analytic_jacobian(self, euler, frame)
+            return jac.geometric_jacobian(self, frame)
+        key = ("jacobian", frame, euler, tuple(sorted((str(k), str(v)) for k, v in (values or {}).items())))
+        if key not in self._extra_cache:
+            if euler is not None:
+                if frame != "base":
+                    raise ValueError("the numeric analytic Jacobian is in the base frame")
+                self._extra_cache[key] = jac.analytic_jacobian_function(self, euler, values)
+            else:
+                self._extra_cache[key] = jac.jacobian_function(self, frame, values=values)
+        return self._extra_cache[key](q)  # type: ignore[operator]
+
+    def ik(self, T: object, **kw: object) -> object:
+        """Every closed-form solution of a pose or a batch of poses (see :mod:`dhsym.inverse`).
+
+        One pose ``(4, 4)`` gives an ``IKSolution`` (``.q`` is ``(k, n)``, with branch
+        names); a batch ``(N, 4, 4)`` gives an ``IKBatch`` (padded ``(N, K, n)`` with a
+        validity mask).
+        """
+        from .inverse import inverse
+
+        if "inverse" not in self._extra_cache:
+            self._extra_cache["inverse"] = inverse(self)
+        return self._extra_cache["inverse"].solve(T, **kw)  # type: ignore[attr-defined]
 
     def plot(self, q: object = None, **kw: object) -> object:
         """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plotting`)."""
