@@ -44,6 +44,7 @@ _LAZY = {
     "Mechanism": "joints",
     "PAIRS": "joints",
     "mobility": "joints",
+    "inverse": "inverse",
 }
 
 
@@ -96,6 +97,7 @@ __all__ = [
     "dump_table",
     "frame_origins",
     "grade",
+    "inverse",
     "joint_path",
     "load",
     "load_table",

@@ -50,6 +50,7 @@ theta1 = atan2(p_y, p_x) - atan2(a2*S2, a1 + a2*C2)
 from __future__ import annotations
 
 import itertools
+import sys
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -867,6 +868,14 @@ class Solver:
         self._base = self._constant(-1, 0) if robot.table.base else None
         self._tool = self._constant(robot.n, robot.n + 1) if robot.table.tool else None
         self._factors: tuple[tuple[str, Callable[[object], np.ndarray], float], ...] | None = None
+        self._frames: dict[int | None, Callable[[object], np.ndarray]] = {}
+
+    def frame(self, k: int | None = None) -> Callable[[object], np.ndarray]:
+        """The compiled ``^0T_k`` (``None``: the whole ``fk``, world to tool), cached."""
+        if k not in self._frames:
+            fk = self.robot.fk_function
+            self._frames[k] = fk(values=self.values) if k is None else fk(0, k, self.values)
+        return self._frames[k]
 
     def _compile(
         self, steps: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
@@ -976,20 +985,18 @@ class Solver:
         valid = np.isfinite(q).all(axis=-1)
         residual = np.full((N, K), np.nan)
         if valid.any():
-            fk = self.robot.fk_function(values=self.values)
-            got = fk(q[valid])
+            got = self.frame()(q[valid])
             want = np.repeat(poses[:, None], K, axis=1)[valid]
             cells = (slice(None), slice(0, 3), slice(3, 4)) if check == "position" else (
                 slice(None), slice(0, 3), slice(None))
             residual[valid] = np.abs(got[cells] - want[cells]).reshape(len(got), -1).max(axis=1)
         if check is not None:
             valid &= residual <= tol
-        for k in range(K):
-            for m in range(k):
-                d = q[:, k] - q[:, m]
-                d[:, self.revolute] = _wrap(d[:, self.revolute])
-                same = valid[:, m] & (np.abs(d).max(axis=1) < 1e-9)
-                valid[:, k] &= ~same
+        for k in range(1, K):  # a branch equal to an earlier valid one is a repeat
+            d = q[:, k : k + 1] - q[:, :k]
+            d[..., self.revolute] = _wrap(d[..., self.revolute])
+            repeat = (valid[:, :k] & (np.abs(d).max(axis=-1) < 1e-9)).any(axis=1)
+            valid[:, k] &= ~repeat
         q = np.where(valid[..., None], q, np.nan)
         names, near = self._near(q, valid, singular_tol)
         batch = IKBatch(q, valid, residual, near, names, self.branch_signs, self)
@@ -1111,46 +1118,45 @@ def _branch_names(solver: Solver, q: np.ndarray, signs: np.ndarray) -> tuple[str
     ik = solver.ik
     parts: list[list[str]] = [[] for _ in range(len(q))]
     for b, col in zip(ik.branches, signs.T):
-        for k, sgn in enumerate(col):
-            if b.role == "arm":
-                parts[k].append("right arm" if sgn > 0 else "left arm")
-            elif b.role == "elbow":
-                parts[k].append("elbow up" if _elbow_up(solver, q[k], b) else "elbow down")
-            elif b.role == "wrist":
-                parts[k].append("wrist not flipped" if sgn > 0 else "wrist flipped")
-            else:
-                var = solver.robot.variables[b.joint - 1]
-                parts[k].append(f"{var} {'+' if sgn > 0 else '−'}√")
+        if b.role == "elbow":
+            up = _elbow_up(solver, q, b) if len(q) else np.zeros(0, dtype=bool)
+            words = ["elbow up" if u else "elbow down" for u in up]
+        elif b.role == "arm":
+            words = ["right arm" if sgn > 0 else "left arm" for sgn in col]
+        elif b.role == "wrist":
+            words = ["wrist not flipped" if sgn > 0 else "wrist flipped" for sgn in col]
+        else:
+            var = solver.robot.variables[b.joint - 1]
+            words = [f"{var} {'+' if sgn > 0 else '−'}√" for sgn in col]
+        for k, w in enumerate(words):
+            parts[k].append(w)
     return tuple(", ".join(p) for p in parts)
 
 
-def _elbow_up(solver: Solver, q: np.ndarray, branch: Branch) -> bool:
-    """True when the elbow lies above the line from the shoulder to the wrist centre.
+def _elbow_up(solver: Solver, q: np.ndarray, branch: Branch) -> np.ndarray:
+    """True where the elbow lies above the line from the shoulder to the wrist centre.
 
     "Above" is the side of +z0 for an arm that moves in a vertical plane, and the left of
-    the shoulder-to-wrist line seen from above (+z0) for a planar arm.
+    the shoulder-to-wrist line seen from above (+z0) for a planar arm. ``q`` is ``(k, n)``.
     """
     robot = solver.robot
     rows = robot.table.joint_rows
     elbow_row = rows[branch.joint - 1]
     shoulder_row = rows[branch.joint - 2]
-    vals = solver.values
-
-    def frame(k: int) -> np.ndarray:
-        return robot.fk_function(0, k, values=vals)(q)
-
-    s = frame(axis_frame(robot, shoulder_row))[:3, 3]
-    E = frame(axis_frame(robot, elbow_row))
-    e, h = E[:3, 3] - s, E[:3, 2]
-    w = frame(solver.ik.decoupling.centre)[:3, 3] - s
-    z0 = np.array([0.0, 0.0, 1.0])
-    if abs(h @ z0) > 0.5:  # a planar arm: look from above
-        h = h * np.sign(h @ z0)
-        return bool(e @ np.cross(h, w) > 0)
-    w_perp = w - (w @ h) * h
+    s = solver.frame(axis_frame(robot, shoulder_row))(q)[:, :3, 3]
+    E = solver.frame(axis_frame(robot, elbow_row))(q)
+    e, h = E[:, :3, 3] - s, E[:, :3, 2]
+    w = solver.frame(solver.ik.decoupling.centre)(q)[:, :3, 3] - s
+    up = h[:, 2]
+    planar = np.abs(up) > 0.5
+    h_up = h * np.where(up < 0, -1.0, 1.0)[:, None]
+    left = np.einsum("ij,ij->i", e, np.cross(h_up, w)) > 0
+    w_perp = w - np.einsum("ij,ij->i", w, h)[:, None] * h
+    e_perp = e - np.einsum("ij,ij->i", e, h)[:, None] * h
     n = np.cross(h, w_perp)
-    n = n * (1.0 if n @ z0 >= 0 else -1.0)
-    return bool((e - (e @ h) * h) @ n > 0)
+    n = n * np.where(n[:, 2] < 0, -1.0, 1.0)[:, None]
+    above = np.einsum("ij,ij->i", e_perp, n) > 0
+    return np.where(planar, left, above)
 
 
 # --- the numeric solver ---------------------------------------------------------------------
@@ -1219,3 +1225,14 @@ def numeric_ik(
             lam *= 10
     err = float(np.sqrt(e @ e))
     return NumericSolution(q, err < tol, it, err)
+
+
+class _CallableModule(type(sys.modules[__name__])):  # type: ignore[misc]
+    """``dhsym.inverse(robot)`` works whether the package attribute is this module or
+    the function (importing the submodule binds the module to that name)."""
+
+    def __call__(self, robot: Robot | str) -> InverseKinematics:
+        return inverse(robot)
+
+
+sys.modules[__name__].__class__ = _CallableModule
