@@ -89,7 +89,7 @@ def decouple(robot: Robot, size: int) -> Decoupling:
     >>> decouple(dhsym.load("planar4r"), 3)
     Traceback (most recent call last):
     ...
-    dhsym._structure.StructureError: no spherical wrist: the axes of joints 2, 3, 4 do not meet in one point (no frame origin from frame 1 on stays fixed in link 1 and in link 4)
+    dhsym._structure.StructureError: no spherical wrist: the axes of joints 2, 3, 4 do not meet ...
     """
     rows = _joint_rows(robot)
     n = robot.n
@@ -117,8 +117,10 @@ def decouple(robot: Robot, size: int) -> Decoupling:
             const = Matrix(in_last.subs({v: 0 for v in variables}))
             return Decoupling(arm, wrist, f, const)
     before = arm[-1] if arm else 0
-    what = f"the axes of joints {names} do not meet in one point" if size == 3 else (
-        f"joint {names} has no axis point"
+    what = (
+        f"the axes of joints {names} do not meet in one point"
+        if size == 3
+        else (f"joint {names} has no axis point")
     )
     raise StructureError(
         f"no {kind}: {what} (no frame origin from frame {start} on stays fixed in "

@@ -234,8 +234,13 @@ def _position(b: _Builder, geo: ArmGeometry, target: Matrix) -> None:
         local = (Rp.T * (target - tp)).applyfunc(sp.expand)
         names = [sp.Symbol(f"u_{c}", **_REAL) for c in "xyz"]
         for name, value in zip(names, local):
-            b.add("position", "The point in the frame before joint 1 (undo the constant "
-                  "transform that precedes it).", name, value)
+            b.add(
+                "position",
+                "The point in the frame before joint 1 (undo the constant "
+                "transform that precedes it).",
+                name,
+                value,
+            )
         u = Matrix(names)
     ux, uy, uz = u
     g = geo.point
@@ -249,15 +254,22 @@ def _position(b: _Builder, geo: ArmGeometry, target: Matrix) -> None:
             radial_axis = 1 - geo.offset_axis
             r = sp.Symbol("r", **_REAL)
             arm = b.branch(
-                "arm", q1, "σ = +1: right arm (the wrist centre in front of the shoulder, "
+                "arm",
+                q1,
+                "σ = +1: right arm (the wrist centre in front of the shoulder, "
                 "r > 0); σ = −1: left arm",
             )
             sigma = arm.symbol
             reach = sp.sqrt(ux**2 + uy**2 - e**2)
-            b.add("position",
-                  "Joint 1 turns the arm about z0; the point keeps the shoulder offset "
-                  f"e = {sp.sstr(e)} from the plane of the arm, so its reach in that plane is",
-                  r, sigma * reach, equation=sp.Eq(ux**2 + uy**2, r**2 + e**2), branch=arm)
+            b.add(
+                "position",
+                "Joint 1 turns the arm about z0; the point keeps the shoulder offset "
+                f"e = {sp.sstr(e)} from the plane of the arm, so its reach in that plane is",
+                r,
+                sigma * reach,
+                equation=sp.Eq(ux**2 + uy**2, r**2 + e**2),
+                branch=arm,
+            )
             if e == 0 and radial_axis == 0:
                 x1 = sp.atan2(sigma * uy, sigma * ux)
             elif e == 0:
@@ -265,11 +277,27 @@ def _position(b: _Builder, geo: ArmGeometry, target: Matrix) -> None:
             else:
                 gx, gy = (r, e) if radial_axis == 0 else (e, r)
                 x1 = sp.atan2(uy, ux) - sp.atan2(gy, gx)
-            b.add("position", "The angle of the point minus the angle of (r, e) in the arm's frame:",
-                  q1, _solve_joint_from_entry(x1, geo.first.value, q1))
+            b.add(
+                "position",
+                "The angle of the point minus the angle of (r, e) in the arm's frame:",
+                q1,
+                _solve_joint_from_entry(x1, geo.first.value, q1),
+            )
             radial, height = g[radial_axis], g[2]
-            kr = sp.Add(*[t for t in sp.Add.make_args(sp.expand(radial)) if not t.free_symbols & set(unknowns)])
-            kz = sp.Add(*[t for t in sp.Add.make_args(sp.expand(height)) if not t.free_symbols & set(unknowns)])
+            kr = sp.Add(
+                *[
+                    t
+                    for t in sp.Add.make_args(sp.expand(radial))
+                    if not t.free_symbols & set(unknowns)
+                ]
+            )
+            kz = sp.Add(
+                *[
+                    t
+                    for t in sp.Add.make_args(sp.expand(height))
+                    if not t.free_symbols & set(unknowns)
+                ]
+            )
             r2 = (ux**2 + uy**2 - e**2) if kr == 0 else (r - kr) ** 2
             equations += [
                 _Equation(
@@ -282,9 +310,11 @@ def _position(b: _Builder, geo: ArmGeometry, target: Matrix) -> None:
             ]
         else:
             equations += [
-                _Equation(g[0] ** 2 + g[1] ** 2 - ux**2 - uy**2,
-                          sp.Eq(g[0] ** 2 + g[1] ** 2, ux**2 + uy**2),
-                          "the squared distance from the axis of joint 1"),
+                _Equation(
+                    g[0] ** 2 + g[1] ** 2 - ux**2 - uy**2,
+                    sp.Eq(g[0] ** 2 + g[1] ** 2, ux**2 + uy**2),
+                    "the squared distance from the axis of joint 1",
+                ),
                 _Equation(g[2] - uz, sp.Eq(g[2], uz), "the height"),
             ]
             final_theta1 = (g[0], g[1])
@@ -293,14 +323,20 @@ def _position(b: _Builder, geo: ArmGeometry, target: Matrix) -> None:
         full = geo.first.value
         point = Matrix([g[0], g[1], g[2] + full])
         for i, c in enumerate("xyz"):
-            equations.append(_Equation(point[i] - u[i], sp.Eq(point[i], u[i]), f"the {c} coordinate"))
+            equations.append(
+                _Equation(point[i] - u[i], sp.Eq(point[i], u[i]), f"the {c} coordinate")
+            )
     _solve_equations(b, equations, unknowns)
     if final_theta1 is not None:
         gx, gy = (b.tidy(v) for v in final_theta1)
         x1 = sp.atan2(uy, ux) - sp.atan2(gy, gx)
-        b.add("position", "Joint 1: the angle of the point minus the angle the other joints "
-              "give it in the frame of joint 1:", q1,
-              _solve_joint_from_entry(x1, geo.first.value, q1))
+        b.add(
+            "position",
+            "Joint 1: the angle of the point minus the angle the other joints "
+            "give it in the frame of joint 1:",
+            q1,
+            _solve_joint_from_entry(x1, geo.first.value, q1),
+        )
 
 
 def _solve_equations(b: _Builder, equations: list[_Equation], unknowns: list[sp.Symbol]) -> None:
@@ -355,13 +391,18 @@ def _try_pair(
                 value = sp.atan2(t(-R2), t(R1)) - sp.atan2(t(-A2), t(A1))
             else:
                 delta = sp.Symbol(f"Delta_{b.number[var]}", **_REAL)
-                b.add("position", "The determinant of the two linear equations in "
-                      f"cos and sin of {var}:", delta, t(det))
+                b.add(
+                    "position",
+                    f"The determinant of the two linear equations in cos and sin of {var}:",
+                    delta,
+                    t(det),
+                )
                 value = sp.atan2(t(A1 * R2 - A2 * R1) / delta, t(R1 * B2 - R2 * B1) / delta)
-            text = (f"With the joints before known, {equations[i].name} and {equations[j].name} "
-                    f"are linear in cos {var} and sin {var}: one atan2.")
-            b.add("position", text, var, value,
-                  equation=sp.Eq(_show(A1, B1, var), b.tidy(R1)))
+            text = (
+                f"With the joints before known, {equations[i].name} and {equations[j].name} "
+                f"are linear in cos {var} and sin {var}: one atan2."
+            )
+            b.add("position", text, var, value, equation=sp.Eq(_show(A1, B1, var), b.tidy(R1)))
             used.update((i, j))
             pending.remove(var)
             return True
@@ -400,8 +441,13 @@ def _solve_single(b: _Builder, eq: _Equation, e: sp.Expr, var: sp.Symbol, two: b
             return False
         if len(coeffs) == 2 and not two:
             A, C = coeffs
-            b.add("position", f"{eq.name[0].upper() + eq.name[1:]} is linear in {var}:", var,
-                  b.tidy(-C / A), equation=eq.shown)
+            b.add(
+                "position",
+                f"{eq.name[0].upper() + eq.name[1:]} is linear in {var}:",
+                var,
+                b.tidy(-C / A),
+                equation=eq.shown,
+            )
             return True
         if len(coeffs) == 3 and two:
             A, B, C = coeffs
@@ -410,8 +456,14 @@ def _solve_single(b: _Builder, eq: _Equation, e: sp.Expr, var: sp.Symbol, two: b
                 value = br.symbol * sp.sqrt(b.tidy(-C / A))
             else:
                 value = (-B + br.symbol * sp.sqrt(b.tidy(B**2 - 4 * A * C))) / (2 * A)
-            b.add("position", f"{eq.name[0].upper() + eq.name[1:]} is quadratic in {var}:", var,
-                  value, equation=eq.shown, branch=br)
+            b.add(
+                "position",
+                f"{eq.name[0].upper() + eq.name[1:]} is quadratic in {var}:",
+                var,
+                value,
+                equation=eq.shown,
+                branch=br,
+            )
             return True
         return False
     if not two:
@@ -426,19 +478,28 @@ def _solve_single(b: _Builder, eq: _Equation, e: sp.Expr, var: sp.Symbol, two: b
         A, B, K = (sp.cancel(v / g) for v in (A, B, K))
     br = b.branch("elbow", var, "σ = +1 and σ = −1: the two elbow configurations (up/down)")
     s = br.symbol
-    text = (f"{eq.name[0].upper() + eq.name[1:]} leaves {var} alone "
-            f"(the law of cosines): ")
+    text = f"{eq.name[0].upper() + eq.name[1:]} leaves {var} alone (the law of cosines): "
     if B == 0 or A == 0:
         D = sp.Symbol(f"D_{j}", **_REAL)
-        b.add("position", text + ("cos" if B == 0 else "sin") + f" {var} = D_{j} with",
-              D, b.tidy(K / (A if B == 0 else B)), equation=sp.Eq(_show(A, B, var), b.tidy(K)))
+        b.add(
+            "position",
+            text + ("cos" if B == 0 else "sin") + f" {var} = D_{j} with",
+            D,
+            b.tidy(K / (A if B == 0 else B)),
+            equation=sp.Eq(_show(A, B, var), b.tidy(K)),
+        )
         root = s * sp.sqrt(1 - D**2)
         value = sp.atan2(root, D) if B == 0 else sp.atan2(D, root)
         b.add("position", "Two solutions, one for each sign of the root:", var, value, branch=br)
         return True
     Ks = sp.Symbol(f"K_{j}", **_REAL)
-    b.add("position", text + f"{sp.sstr(A)} cos {var} + {sp.sstr(B)} sin {var} = K_{j} with",
-          Ks, b.tidy(K), equation=sp.Eq(_show(A, B, var), b.tidy(K)))
+    b.add(
+        "position",
+        text + f"{sp.sstr(A)} cos {var} + {sp.sstr(B)} sin {var} = K_{j} with",
+        Ks,
+        b.tidy(K),
+        equation=sp.Eq(_show(A, B, var), b.tidy(K)),
+    )
     value = sp.atan2(B, A) + sp.atan2(s * sp.sqrt(A**2 + B**2 - Ks**2), Ks)
     b.add("position", "Two solutions, one for each sign of the root:", var, value, branch=br)
     return True
@@ -479,15 +540,24 @@ def _orientation(b: _Builder, pose: Matrix) -> None:
         if (i, j) not in names:
             sym = sp.Symbol(f"m_{i + 1}{j + 1}", **_REAL)
             names[(i, j)] = sym
-            b.add("orientation", f"Entry ({i + 1}, {j + 1}) of the wrist's rotation "
-                  "(arm rotation transposed times R):", sym, b.tidy(M[i, j]))
+            b.add(
+                "orientation",
+                f"Entry ({i + 1}, {j + 1}) of the wrist's rotation "
+                "(arm rotation transposed times R):",
+                sym,
+                b.tidy(M[i, j]),
+            )
         return names[(i, j)]
 
     xs = [rot[p].value for p in pos]
     if len(wvars) == 1:
         x = sp.atan2(m(1, 0), m(0, 0))
-        b.add("orientation", "The wrist's rotation is Rz of the last joint angle:", wvars[0],
-              _solve_joint_from_entry(x, xs[0], wvars[0]))
+        b.add(
+            "orientation",
+            "The wrist's rotation is Rz of the last joint angle:",
+            wvars[0],
+            _solve_joint_from_entry(x, xs[0], wvars[0]),
+        )
         return
     a4 = _x_twist(rot[pos[0] + 1 : pos[1]], "twist between its first two axes")
     a5 = _x_twist(rot[pos[1] + 1 : pos[2]], "twist between its last two axes")
@@ -496,22 +566,39 @@ def _orientation(b: _Builder, pose: Matrix) -> None:
         raise StructureError("two neighbouring wrist axes are parallel: not a spherical wrist")
     j4, j5, j6 = (b.number[v] for v in wvars)
     cx5 = sp.Symbol(f"c_{j5}", **_REAL)
-    b.add("orientation",
-          f"Entry (3, 3) of Rz(θ{j4}) Rx(α) Rz(θ{j5}) Rx(α') Rz(θ{j6}) depends on θ{j5} alone:",
-          cx5, b.tidy((c4 * c5 - m(2, 2)) / (s4 * s5)))
+    b.add(
+        "orientation",
+        f"Entry (3, 3) of Rz(θ{j4}) Rx(α) Rz(θ{j5}) Rx(α') Rz(θ{j6}) depends on θ{j5} alone:",
+        cx5,
+        b.tidy((c4 * c5 - m(2, 2)) / (s4 * s5)),
+    )
     br = b.branch("wrist", wvars[1], "σ = +1: wrist not flipped (sin > 0); σ = −1: flipped")
     sg = br.symbol
     sx5 = sp.Symbol(f"s_{j5}", **_REAL)
     v = sp.expand(-(c4 * s5 * cx5 + s4 * c5))
     qq = sp.expand(s4 * c5 * cx5 + c4 * s5)
     if v == 0:  # twists of ±90°: the third column is (±s cos θ4, ±s sin θ4, c)
-        b.add("orientation", f"The rest of column 3 has length |sin θ{j5}|; two signs: the "
-              "wrist flip.", sx5, sg * sp.sqrt(m(0, 2) ** 2 + m(1, 2) ** 2), branch=br)
+        b.add(
+            "orientation",
+            f"The rest of column 3 has length |sin θ{j5}|; two signs: the wrist flip.",
+            sx5,
+            sg * sp.sqrt(m(0, 2) ** 2 + m(1, 2) ** 2),
+            branch=br,
+        )
     else:
-        b.add("orientation", "Two signs of the root: the wrist flip.", sx5,
-              sg * sp.sqrt(1 - cx5**2), branch=br)
-    b.add("orientation", f"θ{j5} from its sine and cosine:", wvars[1],
-          _solve_joint_from_entry(sp.atan2(sx5, cx5), xs[1], wvars[1]))
+        b.add(
+            "orientation",
+            "Two signs of the root: the wrist flip.",
+            sx5,
+            sg * sp.sqrt(1 - cx5**2),
+            branch=br,
+        )
+    b.add(
+        "orientation",
+        f"θ{j5} from its sine and cosine:",
+        wvars[1],
+        _solve_joint_from_entry(sp.atan2(sx5, cx5), xs[1], wvars[1]),
+    )
     if v == 0:
         x4 = sp.atan2(sp.sign(s5) * sg * m(1, 2), sp.sign(s5) * sg * m(0, 2))
     else:
@@ -526,12 +613,20 @@ def _orientation(b: _Builder, pose: Matrix) -> None:
     turn5 = sp.Matrix([[cx5, -sx5, 0], [sx5, cx5, 0], [0, 0, 1]])
     N = (turn4 * rot_x(a4) * turn5 * rot_x(a5)).T * sp.Matrix(3, 3, lambda i, j: m(i, j))
     x6_singular = sp.atan2(b.tidy(N[1, 0]), b.tidy(N[0, 0]))
-    b.add("orientation", f"Column 3 of the wrist's rotation gives θ{j4}:", wvars[0],
-          _solve_joint_from_entry(x4, xs[0], wvars[0]),
-          singular=_solve_joint_from_entry(sp.Integer(0), xs[0], wvars[0]))
-    b.add("orientation", f"Row 3 of the wrist's rotation gives θ{j6}:", wvars[2],
-          _solve_joint_from_entry(x6, xs[2], wvars[2]),
-          singular=_solve_joint_from_entry(x6_singular, xs[2], wvars[2]))
+    b.add(
+        "orientation",
+        f"Column 3 of the wrist's rotation gives θ{j4}:",
+        wvars[0],
+        _solve_joint_from_entry(x4, xs[0], wvars[0]),
+        singular=_solve_joint_from_entry(sp.Integer(0), xs[0], wvars[0]),
+    )
+    b.add(
+        "orientation",
+        f"Row 3 of the wrist's rotation gives θ{j6}:",
+        wvars[2],
+        _solve_joint_from_entry(x6, xs[2], wvars[2]),
+        singular=_solve_joint_from_entry(x6_singular, xs[2], wvars[2]),
+    )
 
 
 def rot_z(a: sp.Expr) -> sp.Matrix:
@@ -544,8 +639,6 @@ def rot_x(a: sp.Expr) -> sp.Matrix:
     """3×3 rotation about x (exact)."""
     c, s = sp.cos(a), sp.sin(a)
     return sp.Matrix([[1, 0, 0], [0, c, -s], [0, s, c]])
-
-
 
 
 # --- the derivation object ---------------------------------------------------------------------
@@ -581,7 +674,10 @@ def _structure_text(robot: Robot, dec: Decoupling) -> str:
             f"last joint revolute: joints {joints(dec.arm)} place a point of its axis (origin "
             f"of frame {dec.centre}), joint {joints(dec.wrist)} turns the tool about it"
         )
-    return f"positioning arm: joints {joints(dec.arm)} place the tool point (origin of frame {dec.centre})"
+    return (
+        f"positioning arm: joints {joints(dec.arm)} place the tool point "
+        f"(origin of frame {dec.centre})"
+    )
 
 
 @dataclass(frozen=True)
@@ -648,14 +744,14 @@ def inverse(robot: Robot | str) -> InverseKinematics:
 
     >>> import dhsym
     >>> ik = inverse(dhsym.load("puma560"))
-    >>> ik.structure
-    'spherical wrist: joints 1–3 place the wrist centre (origin of frame 4), joints 4–6 turn about it'
+    >>> print(ik.structure)
+    spherical wrist: joints 1–3 place the wrist centre (origin of frame 4), joints 4–6 turn ...
     >>> [b.role for b in ik.branches], ik.count
     (['arm', 'elbow', 'wrist'], 8)
     >>> inverse(dhsym.load("planar4r"))
     Traceback (most recent call last):
     ...
-    dhsym._structure.StructureError: no closed-form inverse kinematics for Planar 4R (redundant): last joint revolute: the position sub-problem has no equation in one unknown left (theta2, theta3 appear together): no closed form by decoupling — a redundant arm, or joints 2 and 3 do not move the point in a plane through the axis of joint 1
+    dhsym._structure.StructureError: no closed-form inverse kinematics ...: ...redundant arm...
     """
     if isinstance(robot, str):
         from .library import load
@@ -683,8 +779,7 @@ def inverse(robot: Robot | str) -> InverseKinematics:
             robot, _structure_text(robot, dec), dec, pose, tuple(b.steps), tuple(b.branches)
         )
     raise StructureError(
-        f"no closed-form inverse kinematics for {robot.name or 'this table'}: "
-        + "; ".join(reasons)
+        f"no closed-form inverse kinematics for {robot.name or 'this table'}: " + "; ".join(reasons)
     )
 
 
@@ -720,9 +815,9 @@ def _safe_sqrt(x: np.ndarray) -> np.ndarray:
 
 
 def _with_safe_sqrt(e: sp.Expr) -> sp.Expr:
-    return e.replace(
-        lambda t: t.is_Pow and t.exp == sp.S.Half, lambda t: SafeSqrt(t.base)
-    ).replace(lambda t: t.is_Pow and t.exp == -sp.S.Half, lambda t: 1 / SafeSqrt(t.base))
+    return e.replace(lambda t: t.is_Pow and t.exp == sp.S.Half, lambda t: SafeSqrt(t.base)).replace(
+        lambda t: t.is_Pow and t.exp == -sp.S.Half, lambda t: 1 / SafeSqrt(t.base)
+    )
 
 
 _CHUNK = 1024
@@ -864,7 +959,9 @@ class Solver:
             shape = [1] * (B + 1)
             shape[k + 1] = 2
             self._sign_arrays.append(np.array([1.0, -1.0]).reshape(shape))
-        self.branch_signs = np.array(list(itertools.product([1, -1], repeat=B)), dtype=int).reshape(2**B, B)
+        self.branch_signs = np.array(list(itertools.product([1, -1], repeat=B)), dtype=int).reshape(
+            2**B, B
+        )
         self._base = self._constant(-1, 0) if robot.table.base else None
         self._tool = self._constant(robot.n, robot.n + 1) if robot.table.tool else None
         self._factors: tuple[tuple[str, Callable[[object], np.ndarray], float], ...] | None = None
@@ -987,8 +1084,11 @@ class Solver:
         if valid.any():
             got = self.frame()(q[valid])
             want = np.repeat(poses[:, None], K, axis=1)[valid]
-            cells = (slice(None), slice(0, 3), slice(3, 4)) if check == "position" else (
-                slice(None), slice(0, 3), slice(None))
+            cells = (
+                (slice(None), slice(0, 3), slice(3, 4))
+                if check == "position"
+                else (slice(None), slice(0, 3), slice(None))
+            )
             residual[valid] = np.abs(got[cells] - want[cells]).reshape(len(got), -1).max(axis=1)
         if check is not None:
             valid &= residual <= tol
@@ -1002,7 +1102,9 @@ class Solver:
         batch = IKBatch(q, valid, residual, near, names, self.branch_signs, self)
         return batch.solution(0) if single else batch
 
-    def _near(self, q: np.ndarray, valid: np.ndarray, tol: float) -> tuple[tuple[str, ...], np.ndarray]:
+    def _near(
+        self, q: np.ndarray, valid: np.ndarray, tol: float
+    ) -> tuple[tuple[str, ...], np.ndarray]:
         factors = self._singular_factors()
         N, K, _ = q.shape
         near = np.zeros((N, K, len(factors)), dtype=bool)
@@ -1109,7 +1211,8 @@ class IKBatch:
         q = self.q[i][keep]
         names = _branch_names(self.solver, q, self.branch_signs[keep])
         sing = tuple(
-            tuple(k for k, hit in zip(self.factor_kinds, row) if hit) for row in self.singular[i][keep]
+            tuple(k for k, hit in zip(self.factor_kinds, row) if hit)
+            for row in self.singular[i][keep]
         )
         return IKSolution(q, names, self.residual[i][keep], sing)
 

@@ -385,7 +385,9 @@ class AnalyticJacobian:
     geometric: Jacobian
 
 
-def analytic_jacobian(robot: Robot, euler: str = "zyz", frame: int | str = "base") -> AnalyticJacobian:
+def analytic_jacobian(
+    robot: Robot, euler: str = "zyz", frame: int | str = "base"
+) -> AnalyticJacobian:
     """The analytic Jacobian for the Euler set ``euler`` (``"zyz"`` or ``"rpy"``).
 
     >>> import dhsym
@@ -483,4 +485,3 @@ def analytic_jacobian_function(
         return out
 
     return evaluate
-

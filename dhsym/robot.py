@@ -199,7 +199,12 @@ class Robot:
             if euler is not None:
                 return jac.analytic_jacobian(self, euler, frame)
             return jac.geometric_jacobian(self, frame)
-        key = ("jacobian", frame, euler, tuple(sorted((str(k), str(v)) for k, v in (values or {}).items())))
+        key = (
+            "jacobian",
+            frame,
+            euler,
+            tuple(sorted((str(k), str(v)) for k, v in (values or {}).items())),
+        )
         if key not in self._extra_cache:
             if euler is not None:
                 if frame != "base":

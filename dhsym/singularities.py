@@ -180,8 +180,7 @@ def _describe(
     if kind == "elbow":
         return (
             "elbow singularity",
-            f"joint {joint} stretches the arm out or folds it back: "
-            "the boundary of the workspace",
+            f"joint {joint} stretches the arm out or folds it back: the boundary of the workspace",
         )
     if kind == "shoulder":
         where = (
@@ -270,7 +269,9 @@ class Singularities:
         product = sp.Mul(*(b.determinant for b in self.blocks))
         return prove_equal(Matrix([self.determinant]), Matrix([product]))
 
-    def function(self, values: Mapping[object, object] | None = None) -> Callable[[object], np.ndarray]:
+    def function(
+        self, values: Mapping[object, object] | None = None
+    ) -> Callable[[object], np.ndarray]:
         """The compiled measure: ``(n,)`` → scalar, ``(N, n)`` → ``(N,)``."""
         return _compile(self.determinant, self.robot, values)
 
@@ -283,7 +284,9 @@ class Singularities:
         )
 
 
-def _compile(expr: sp.Expr, robot: Robot, values: Mapping[object, object] | None) -> Callable[[object], np.ndarray]:
+def _compile(
+    expr: sp.Expr, robot: Robot, values: Mapping[object, object] | None
+) -> Callable[[object], np.ndarray]:
     import numpy as np
 
     from .numeric import compile_matrix
@@ -375,7 +378,13 @@ def _name_factors(
         sols = _zeros(base, vs[0], joints[vs[0]]) if len(vs) == 1 else ()
         out.append(
             SingularFactor(
-                base, power, kind, name, text, vs, tuple((vs[0], z) for z in sols),
+                base,
+                power,
+                kind,
+                name,
+                text,
+                vs,
+                tuple((vs[0], z) for z in sols),
                 robot.notation,
             )
         )
@@ -419,9 +428,7 @@ def singularities(robot: Robot) -> Singularities:
         wrist_factors = {b for b, _ in _normal_product(blocks[-1].determinant)[1]}
         if dec.arm:
             measure, rows = "det J", tuple(range(6))
-            method = (
-                "J at the wrist centre is block lower triangular: det J = det J11 · det J22"
-            )
+            method = "J at the wrist centre is block lower triangular: det J = det J11 · det J22"
         else:
             measure, rows = "det J_w", (3, 4, 5)
             method = "a wrist alone: the determinant of its three axes"
@@ -438,13 +445,10 @@ def singularities(robot: Robot) -> Singularities:
                 "determinant is not factored here (use the numeric measure)"
             )
         mats = [
-            geometric_jacobian(robot, k).matrix.extract(list(rows), list(range(n)))
-            for k in frames
+            geometric_jacobian(robot, k).matrix.extract(list(rows), list(range(n))) for k in frames
         ]
         det = _best_det(mats)
-        method = (
-            "the position rows of J" if measure == "det J_v" else "the non-zero rows of J"
-        )
+        method = "the position rows of J" if measure == "det J_v" else "the non-zero rows of J"
         block = Block("J", Matrix(mats[0]), 0, det)
         det, named = _name_factors(robot, det, set(), geo, "tool point")
         return Singularities(measure, det, named, (block,), rows, method, robot)
@@ -458,7 +462,11 @@ def singularities(robot: Robot) -> Singularities:
     det = sp.Add(*[m**2 for m in minors])
     block = Block("J", Matrix(M), 0, det)
     return Singularities(
-        "det(J J^T)", det, (), (block,), rows,
-        "Cauchy–Binet: det(J Jᵀ) is the sum of the squared maximal minors", robot,
+        "det(J J^T)",
+        det,
+        (),
+        (block,),
+        rows,
+        "Cauchy–Binet: det(J Jᵀ) is the sum of the squared maximal minors",
+        robot,
     )
-

@@ -71,9 +71,22 @@ def test_numeric_jacobian_equals_finite_differences_of_fk(name: str) -> None:
     assert worst < 1e-7
 
 
-@pytest.mark.parametrize("name", ["planar2r", "planar3r", "scara", "example1_rrp", "cylindrical",
-                                  "cartesian", "stanford", "puma560_modified"])
-def test_symbolic_jacobian_is_proven_equal_to_the_derivative_of_the_plain_product(name: str) -> None:
+@pytest.mark.parametrize(
+    "name",
+    [
+        "planar2r",
+        "planar3r",
+        "scara",
+        "example1_rrp",
+        "cylindrical",
+        "cartesian",
+        "stanford",
+        "puma560_modified",
+    ],
+)
+def test_symbolic_jacobian_is_proven_equal_to_the_derivative_of_the_plain_product(
+    name: str,
+) -> None:
     robot = _robot(name)
     J = geometric_jacobian(robot)
     assert J.verify()
@@ -155,7 +168,9 @@ def test_rate_matrix_maps_euler_rates_to_angular_velocity() -> None:
             ang, rate = rng.uniform(-1, 1, 3), rng.uniform(-1, 1, 3)
             h = 1e-6
             R = _euler_matrix(axes, ang)
-            dR = (_euler_matrix(axes, ang + h * rate) - _euler_matrix(axes, ang - h * rate)) / (2 * h)
+            dR = (_euler_matrix(axes, ang + h * rate) - _euler_matrix(axes, ang - h * rate)) / (
+                2 * h
+            )
             assert np.allclose(_vee(dR @ R.T), np.asarray(B(*ang), float) @ rate, atol=1e-8)
 
 

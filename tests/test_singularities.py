@@ -21,8 +21,19 @@ def _robot(name: str) -> dhsym.Robot:
     return robot
 
 
-SQUARE = ["puma560", "puma560_modified", "stanford", "example4_6dof", "puma260", "planar2r",
-          "planar3r", "scara", "cylindrical", "cartesian", "example1_rrp"]
+SQUARE = [
+    "puma560",
+    "puma560_modified",
+    "stanford",
+    "example4_6dof",
+    "puma260",
+    "planar2r",
+    "planar3r",
+    "scara",
+    "cylindrical",
+    "cartesian",
+    "example1_rrp",
+]
 
 
 @pytest.mark.parametrize("name", SQUARE)
@@ -50,7 +61,10 @@ def test_puma_determinant_has_the_arm_and_wrist_factors(name: str) -> None:
         "wrist": "S5",
     }
     wrist = next(f for f in s.factors if f.kind == "wrist")
-    assert wrist.solutions == ((sp.Symbol("theta5", real=True), 0), (sp.Symbol("theta5", real=True), sp.pi))
+    assert wrist.solutions == (
+        (sp.Symbol("theta5", real=True), 0),
+        (sp.Symbol("theta5", real=True), sp.pi),
+    )
 
 
 def test_named_configurations_make_the_jacobian_singular() -> None:
