@@ -49,6 +49,7 @@ theta1 = atan2(p_y, p_x) - atan2(a2*S2, a1 + a2*C2)
 
 from __future__ import annotations
 
+import functools
 import itertools
 import sys
 from collections.abc import Callable, Mapping, Sequence
@@ -1079,44 +1080,42 @@ class Solver:
             inner = inner @ np.linalg.inv(self._tool)
         q = self.raw(inner)
         N, K, n = q.shape
-        valid = np.isfinite(q).all(axis=-1)
-        residual = np.full((N, K), np.nan)
-        if valid.any():
-            got = self.frame()(q[valid])
-            want = np.repeat(poses[:, None], K, axis=1)[valid]
-            cells = (
-                (slice(None), slice(0, 3), slice(3, 4))
-                if check == "position"
-                else (slice(None), slice(0, 3), slice(None))
-            )
-            residual[valid] = np.abs(got[cells] - want[cells]).reshape(len(got), -1).max(axis=1)
-        if check is not None:
-            valid &= residual <= tol
-        for k in range(1, K):  # a branch equal to an earlier valid one is a repeat
-            d = q[:, k : k + 1] - q[:, :k]
-            d[..., self.revolute] = _wrap(d[..., self.revolute])
-            repeat = (valid[:, :k] & (np.abs(d).max(axis=-1) < 1e-9)).any(axis=1)
-            valid[:, k] &= ~repeat
-        q = np.where(valid[..., None], q, np.nan)
-        names, near = self._near(q, valid, singular_tol)
+        with np.errstate(invalid="ignore"):
+            got = self.frame()(q.reshape(-1, n)).reshape(N, K, 4, 4)  # NaN rows stay NaN
+            rows = slice(0, 3)
+            cols = slice(3, 4) if check == "position" else slice(None)
+            diff = np.abs(got[:, :, rows, cols] - poses[:, None, rows, cols])
+            residual = diff.reshape(N, K, -1).max(axis=-1)
+            valid = np.isfinite(residual)
+            if check is not None:
+                valid &= residual <= tol
+        names, closeness = self._closeness(q)
+        # two branches coincide only where a radicand vanishes, i.e. at a singularity: look
+        # for repeats (angles compared by cos and sin) only among poses near one
+        suspects = np.nonzero((closeness < 1e-4).any(axis=(1, 2)) & valid.any(axis=1))[0]
+        if suspects.size:
+            qs, vs = q[suspects], valid[suspects]
+            rev = qs[..., self.revolute]
+            key = np.concatenate([np.cos(rev), np.sin(rev), qs[..., ~self.revolute]], axis=-1)
+            for k in range(1, K):
+                close = np.abs(key[:, k : k + 1] - key[:, :k]).max(axis=-1) < 1e-9
+                vs[:, k] &= ~(vs[:, :k] & close).any(axis=1)
+            valid[suspects] = vs
+        q[~valid] = np.nan
+        near = (closeness < singular_tol) & valid[..., None]
         batch = IKBatch(q, valid, residual, near, names, self.branch_signs, self)
         return batch.solution(0) if single else batch
 
-    def _near(
-        self, q: np.ndarray, valid: np.ndarray, tol: float
-    ) -> tuple[tuple[str, ...], np.ndarray]:
+    def _closeness(self, q: np.ndarray) -> tuple[tuple[str, ...], np.ndarray]:
+        """Each singular factor at each solution, as a fraction of its largest value."""
         factors = self._singular_factors()
-        N, K, _ = q.shape
-        near = np.zeros((N, K, len(factors)), dtype=bool)
-        if not factors or not valid.any():
-            return tuple(f[0] for f in factors), near
-        flat = q[valid]
-        for i, (_, fn, scale) in enumerate(factors):
-            vals = np.abs(fn(flat))
-            col = np.zeros((N, K), dtype=bool)
-            col[valid] = vals < tol * scale
-            near[..., i] = col
-        return tuple(f[0] for f in factors), near
+        N, K, n = q.shape
+        out = np.full((N, K, len(factors)), np.inf)
+        flat = q.reshape(-1, n)
+        with np.errstate(invalid="ignore"):
+            for i, (_, fn, scale) in enumerate(factors):
+                out[..., i] = np.nan_to_num(np.abs(fn(flat)) / scale, nan=np.inf).reshape(N, K)
+        return tuple(f[0] for f in factors), out
 
     def _singular_factors(self) -> tuple[tuple[str, Callable[[object], np.ndarray], float], ...]:
         if self._factors is None:
@@ -1152,9 +1151,15 @@ class IKSolution:
     """
 
     q: np.ndarray
-    branches: tuple[str, ...]
     residual: np.ndarray
     singular: tuple[tuple[str, ...], ...]
+    signs: np.ndarray = field(repr=False)
+    solver: Solver = field(repr=False)
+
+    @functools.cached_property
+    def branches(self) -> tuple[str, ...]:
+        """The name of each solution's branch (computed on first use)."""
+        return _branch_names(self.solver, self.q, self.signs)
 
     @property
     def near_singular(self) -> np.ndarray:
@@ -1208,13 +1213,13 @@ class IKBatch:
     def solution(self, i: int) -> IKSolution:
         """The solutions of pose ``i`` (only the valid ones, with their branch names)."""
         keep = self.valid[i]
-        q = self.q[i][keep]
-        names = _branch_names(self.solver, q, self.branch_signs[keep])
         sing = tuple(
             tuple(k for k, hit in zip(self.factor_kinds, row) if hit)
             for row in self.singular[i][keep]
         )
-        return IKSolution(q, names, self.residual[i][keep], sing)
+        return IKSolution(
+            self.q[i][keep], self.residual[i][keep], sing, self.branch_signs[keep], self.solver
+        )
 
 
 def _branch_names(solver: Solver, q: np.ndarray, signs: np.ndarray) -> tuple[str, ...]:
@@ -1276,20 +1281,36 @@ class NumericSolution:
     method: str = "numeric: Levenberg–Marquardt on the compiled fk (one local solution)"
 
 
+def _rotation_error(R: np.ndarray, goal: np.ndarray) -> np.ndarray:
+    """The rotation vector (axis times angle) that turns ``R`` into ``goal``, base frame."""
+    E = goal @ R.T
+    v = 0.5 * np.array([E[2, 1] - E[1, 2], E[0, 2] - E[2, 0], E[1, 0] - E[0, 1]])
+    s, c = float(np.linalg.norm(v)), (float(np.trace(E)) - 1.0) / 2.0
+    if s > 1e-9:
+        return np.arctan2(s, c) / s * v  # type: ignore[no-any-return]
+    if c > 0:
+        return v
+    k = int(np.argmax(np.linalg.norm(E + np.eye(3), axis=0)))  # a half turn: axis from E + I
+    axis = (E + np.eye(3))[:, k]
+    return np.pi * axis / np.linalg.norm(axis)  # type: ignore[no-any-return]
+
+
 def numeric_ik(
     robot: Robot,
     T: object,
     q0: object = None,
     *,
     tol: float = 1e-12,
-    max_iter: int = 200,
+    max_iter: int = 100,
     values: Mapping[object, object] | None = None,
 ) -> NumericSolution:
     """Levenberg–Marquardt on the compiled ``fk`` and Jacobian, from ``q0`` (default zeros).
 
     A numeric solver, clearly not the closed form: it finds one solution near its
-    start, or none. The error is the position error and the orientation error
-    ``½ Σ r_i × r_i*`` over the three axes, both in the base frame.
+    start, or none. The error is the position error and the rotation vector from the
+    current orientation to the goal, both in the base frame; the step solves
+    ``(JᵀJ + λ diag(JᵀJ)) Δq = Jᵀe`` with λ divided by 10 after a successful step and
+    multiplied by 10 after a failed one.
 
     >>> import dhsym
     >>> r = dhsym.load("planar2r")
@@ -1297,27 +1318,24 @@ def numeric_ik(
     >>> sol.converged, np.round(sol.q, 9).tolist()
     (True, [0.4, 0.9])
     """
-    from .jacobian import jacobian_function
-
     fk = robot.fk_function(values=values)
-    jac = jacobian_function(robot, values=values)
     target = np.asarray(T, dtype=float)
     n = len(robot.variables)
     q = np.zeros(n) if q0 is None else np.asarray(q0, dtype=float).copy()
 
     def error(q: np.ndarray) -> np.ndarray:
         M = fk(q)
-        dp = target[:3, 3] - M[:3, 3]
-        do = 0.5 * sum(np.cross(M[:3, i], target[:3, i]) for i in range(3))
-        return np.concatenate([dp, do])
+        return np.concatenate(
+            [target[:3, 3] - M[:3, 3], _rotation_error(M[:3, :3], target[:3, :3])]
+        )
 
     e = error(q)
-    lam = 1e-3
+    lam = 1e-2
     it = 0
     for it in range(1, max_iter + 1):
         if e @ e < tol**2:
             return NumericSolution(q, True, it - 1, float(np.sqrt(e @ e)))
-        J = jac(q)
+        J = np.asarray(robot.jacobian(q, values=values))
         H = J.T @ J
         step = np.linalg.solve(H + lam * np.diag(np.diag(H) + 1e-12), J.T @ e)
         trial = q + step
@@ -1325,7 +1343,7 @@ def numeric_ik(
         if e_trial @ e_trial < e @ e:
             q, e, lam = trial, e_trial, max(lam / 10, 1e-12)
         else:
-            lam *= 10
+            lam = min(lam * 10, 1e12)
     err = float(np.sqrt(e @ e))
     return NumericSolution(q, err < tol, it, err)
 
