@@ -496,7 +496,7 @@ def _solve_single(b: _Builder, eq: _Equation, e: sp.Expr, var: sp.Symbol, two: b
     Ks = sp.Symbol(f"K_{j}", **_REAL)
     b.add(
         "position",
-        text + f"{sp.sstr(A)} cos {var} + {sp.sstr(B)} sin {var} = K_{j} with",
+        text + f"{sp.sstr(_show(A, B, var))} = K_{j} with",
         Ks,
         b.tidy(K),
         equation=sp.Eq(_show(A, B, var), b.tidy(K)),
@@ -768,7 +768,7 @@ def inverse(robot: Robot | str) -> InverseKinematics:
             dec = decouple(robot, size)
             b = _Builder(robot, dec)
             pose = pose_symbols()
-            target = _wrist_centre(b, pose) if dec.wrist else pose[:3, 3]
+            target = _wrist_centre(b, pose) if dec.wrist and dec.arm else pose[:3, 3]
             if dec.arm:
                 _position(b, arm_geometry(robot, dec), target)
             if dec.wrist:
@@ -788,13 +788,12 @@ def _wrist_centre(b: _Builder, pose: Matrix) -> Matrix:
     v = b.dec.centre_in_last
     c = pose[:3, 3] + pose[:3, :3] * v
     names = [sp.Symbol(f"c_{k}", **_REAL) for k in "xyz"]
+    point = "wrist centre" if len(b.dec.wrist) == 3 else "point of the last joint's axis"
     if v == Matrix.zeros(3, 1):
-        text = f"The wrist centre is the origin of frame {b.robot.n}: c = p."
+        text = f"The {point} is the origin of frame {b.robot.n}: c = p."
     else:
-        text = (
-            f"The wrist centre sits at {sp.sstr(tuple(v))} in frame {b.robot.n}: "
-            f"c = p + R·{sp.sstr(tuple(v))}."
-        )
+        where = ", ".join(b.robot.notation.text(x) for x in v)
+        text = f"The {point} sits at ({where}) in frame {b.robot.n}: c = p + R·({where})."
     for name, value in zip(names, c):
         b.add("wrist centre", text, name, sp.expand(value))
     return Matrix(names)
