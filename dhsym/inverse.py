@@ -25,6 +25,17 @@ the signs ``σ = ±1`` of each branch are explicit. :meth:`InverseKinematics.sol
 compiles the steps once (``lambdify`` with the steps as the common subexpressions) into a
 numpy function over a batch of poses and all branches at once.
 
+Results. One pose ``(4, 4)`` gives an :class:`IKSolution`: ``q`` is ``(k, n)`` (k ≤ 8,
+only real, checked, distinct solutions) with a name per solution and the singularities
+each one is near. A batch ``(N, 4, 4)`` gives an :class:`IKBatch`: ``q`` is padded to
+``(N, K, n)`` with NaN, ``valid`` ``(N, K)`` is the mask, ``K = 2^(number of branches)``.
+By default a branch is kept only when its ``fk`` reproduces the whole pose to ``1e-9``
+(``check="pose"``). An arm with fewer than six joints cannot reach every pose, so a branch
+that only matches the coordinates it solves is dropped: a planar 2R has one solution for
+a whole pose and two (elbow up and down) for a position ``(3,)``. Near a singularity a
+solution is flagged (``singular``) with the kind of the singular factor (from
+:mod:`dhsym.singularities`); at ``sin θ5 = 0`` only ``θ4 + θ6`` is defined and ``θ4 = 0``.
+
 Arms without such structure get a :class:`~dhsym._structure.StructureError` naming
 what is missing; :func:`numeric_ik` is a separate, clearly numeric Levenberg–Marquardt
 solver on the compiled ``fk``.
@@ -60,6 +71,7 @@ import numpy as np
 import sympy as sp
 
 from ._structure import ArmGeometry, Decoupling, StructureError, arm_geometry, decouple
+from .errors import DHError
 from .jacobian import _values, axis_frame, compact
 from .simplification import compose
 from .table import Elementary, JointType
@@ -943,7 +955,7 @@ class Solver:
         missing = free - defined - set(self.pose_args) - set(self.signs)
         if missing:
             names = ", ".join(sorted(str(s) for s in missing))
-            raise StructureError(f"no numeric value for {names}: give values for these symbols")
+            raise DHError(f"no numeric value for {names}: give values for these symbols")
         self._fn = self._compile(steps, list(robot.variables) + wrist_s)
         self._alt = None
         if singular and wrist_s:
@@ -1062,16 +1074,16 @@ class Solver:
         arr = np.asarray(T, dtype=float)
         if arr.shape[-1] == 3 and arr.ndim in (1, 2):
             if self.ik.decoupling.wrist:
-                raise StructureError("this arm has a wrist: give a full 4×4 pose, not a position")
+                raise DHError("this arm has a wrist: give a full 4×4 pose, not a position")
             pose = np.zeros(arr.shape[:-1] + (4, 4))
             pose[..., :3, :3] = np.eye(3)
             pose[..., :3, 3] = arr
             pose[..., 3, 3] = 1.0
             arr, check = pose, ("position" if check is not None else None)
         single = arr.ndim == 2
+        if arr.shape[-2:] != (4, 4) or arr.ndim not in (2, 3):
+            raise DHError(f"expected poses of shape (4, 4) or (N, 4, 4), got {arr.shape}")
         poses = arr.reshape(-1, 4, 4)
-        if poses.shape[1:] != (4, 4):
-            raise StructureError(f"expected poses of shape (4, 4) or (N, 4, 4), got {arr.shape}")
         inner = poses
         if self._base is not None:
             inner = np.linalg.inv(self._base) @ inner

@@ -257,3 +257,12 @@ def test_property_every_solution_reproduces_the_pose(q: list[float]) -> None:
     d = np.remainder(sol.q - np.array(q) + np.pi, 2 * np.pi) - np.pi
     same_arm = np.abs(d[:, [0, 1, 2, 4]]).max(axis=1) < 1e-6
     assert any("wrist" in sol.singular[k] for k in np.nonzero(same_arm)[0])
+
+
+def test_inputs_are_checked() -> None:
+    with pytest.raises(dhsym.DHError, match="no numeric value for a1, a2, a3"):
+        dhsym.load("planar3r").ik(np.eye(4))
+    with pytest.raises(dhsym.DHError, match="give a full 4×4 pose"):
+        _robot("puma560").ik([0.3, 0.1, 0.2])
+    with pytest.raises(dhsym.DHError, match="expected poses of shape"):
+        _robot("puma560").ik(np.eye(5))
