@@ -73,7 +73,7 @@ import sympy as sp
 from ._structure import ArmGeometry, Decoupling, StructureError, arm_geometry, decouple
 from .errors import DHError
 from .jacobian import _values, axis_frame, compact
-from .simplification import compose
+from .simplification import compose, trig_coefficients
 from .table import Elementary, JointType
 from .transforms import chain_word, plain_product
 
@@ -165,18 +165,6 @@ def _reduce(expr: sp.Expr, revolute: Sequence[sp.Symbol]) -> sp.Expr:
 
         e = sp.expand(e.replace(is_power, lower))
     return e
-
-
-def _trig_coefficients(e: sp.Expr, x: sp.Symbol) -> tuple[sp.Expr, sp.Expr, sp.Expr] | None:
-    """``(A, B, C)`` with ``e = A cos x + B sin x + C``, or None."""
-    c, s = sp.Dummy("c"), sp.Dummy("s")
-    f = e.xreplace({sp.cos(x): c, sp.sin(x): s})
-    if x in f.free_symbols:
-        return None
-    poly = sp.Poly(f, c, s)
-    if poly.total_degree() > 1:
-        return None
-    return poly.coeff_monomial(c), poly.coeff_monomial(s), poly.coeff_monomial(1)
 
 
 def _poly_coefficients(e: sp.Expr, d: sp.Symbol) -> list[sp.Expr] | None:
@@ -365,9 +353,13 @@ def _solve_equations(b: _Builder, equations: list[_Equation], unknowns: list[sp.
             present = [v for v in pending if v in e.free_symbols]
             if len(present) == 1:
                 single.setdefault(present[0], []).append(i)
-        if _try_pair(b, equations, reduced, single, pending, used):
-            continue
-        if _try_single(b, equations, reduced, single, pending, used):
+        done = _try_pair(b, equations, reduced, single) or _try_single(
+            b, equations, reduced, single
+        )
+        if done is not None:
+            var, rows = done
+            used.update(rows)
+            pending.remove(var)
             continue
         names = ", ".join(str(v) for v in pending)
         raise StructureError(
@@ -377,19 +369,21 @@ def _solve_equations(b: _Builder, equations: list[_Equation], unknowns: list[sp.
         )
 
 
+_Solved = tuple[sp.Symbol, tuple[int, ...]] | None  # the joint solved and the equations used
+
+
 def _try_pair(
     b: _Builder,
     equations: list[_Equation],
     reduced: list[sp.Expr],
     single: dict[sp.Symbol, list[int]],
-    pending: list[sp.Symbol],
-    used: set[int],
-) -> bool:
+) -> _Solved:
+    """One revolute joint from two equations linear in its cos and sin: a single atan2."""
     for var, idx in single.items():
         if b.kind[var] is not JointType.REVOLUTE or len(idx) < 2:
             continue
         for i, j in itertools.combinations(idx, 2):
-            c1, c2 = _trig_coefficients(reduced[i], var), _trig_coefficients(reduced[j], var)
+            c1, c2 = trig_coefficients(reduced[i], var), trig_coefficients(reduced[j], var)
             if c1 is None or c2 is None:
                 continue
             (A1, B1, C1), (A2, B2, C2) = c1, c2
@@ -416,10 +410,8 @@ def _try_pair(
                 f"are linear in cos {var} and sin {var}: one atan2."
             )
             b.add("position", text, var, value, equation=sp.Eq(_show(A1, B1, var), b.tidy(R1)))
-            used.update((i, j))
-            pending.remove(var)
-            return True
-    return False
+            return var, (i, j)
+    return None
 
 
 def _show(A: sp.Expr, B: sp.Expr, var: sp.Symbol) -> sp.Expr:
@@ -431,19 +423,15 @@ def _try_single(
     equations: list[_Equation],
     reduced: list[sp.Expr],
     single: dict[sp.Symbol, list[int]],
-    pending: list[sp.Symbol],
-    used: set[int],
-) -> bool:
-    # linear prismatic equations first (no branch), then the ±√ forms
+) -> _Solved:
+    """One joint from one equation: linear prismatic ones first (no branch), then ±√."""
     order = sorted(single.items(), key=lambda kv: b.kind[kv[0]] is JointType.REVOLUTE)
     for two_branch in (False, True):
         for var, idx in order:
             for i in idx:
                 if _solve_single(b, equations[i], reduced[i], var, two_branch):
-                    used.add(i)
-                    pending.remove(var)
-                    return True
-    return False
+                    return var, (i,)
+    return None
 
 
 def _solve_single(b: _Builder, eq: _Equation, e: sp.Expr, var: sp.Symbol, two: bool) -> bool:
@@ -481,7 +469,7 @@ def _solve_single(b: _Builder, eq: _Equation, e: sp.Expr, var: sp.Symbol, two: b
         return False
     if not two:
         return False
-    abc = _trig_coefficients(e, var)
+    abc = trig_coefficients(e, var)
     if abc is None:
         return False
     A, B, C = abc

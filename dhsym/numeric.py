@@ -62,11 +62,7 @@ def compile_pose(
     n = len(variables)
 
     def fk(q: object) -> np.ndarray:
-        arr = np.asarray(q, dtype=float)
-        single = arr.ndim <= 1
-        Q = arr.reshape(1, -1) if single else arr
-        if Q.shape[-1] != n:
-            raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
+        Q, single = _configurations(q, n)
         N = Q.shape[0]
         out = np.empty((N, 4, 4))
         flat = out.reshape(N, 16)
@@ -81,6 +77,16 @@ def compile_pose(
         return out[0] if single else out
 
     return fk
+
+
+def _configurations(q: object, n: int) -> tuple[np.ndarray, bool]:
+    """``q`` as a batch ``(N, n)``, and whether it was one configuration."""
+    arr = np.asarray(q, dtype=float)
+    single = arr.ndim <= 1
+    Q = arr.reshape(1, -1) if single else arr
+    if Q.shape[-1] != n:
+        raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
+    return Q, single
 
 
 def _substituted(
@@ -120,11 +126,7 @@ def compile_matrix(
     n = len(variables)
 
     def evaluate(q: object) -> np.ndarray:
-        arr = np.asarray(q, dtype=float)
-        single = arr.ndim <= 1
-        Q = arr.reshape(1, -1) if single else arr
-        if Q.shape[-1] != n:
-            raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
+        Q, single = _configurations(q, n)
         N = Q.shape[0]
         flat = np.empty((N, rows * cols))
         for start in range(0, N, _CHUNK):

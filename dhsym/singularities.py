@@ -48,7 +48,7 @@ import sympy as sp
 
 from ._structure import ArmGeometry, Decoupling, StructureError, arm_geometry, decouple
 from .jacobian import _values, axis_frame, geometric_jacobian
-from .simplification import fold_sum_angles, prove_equal
+from .simplification import fold_sum_angles, prove_equal, trig_coefficients
 from .table import JointType
 
 if TYPE_CHECKING:
@@ -132,19 +132,6 @@ class SingularFactor:
         return self.notation.latex(self.expr) if self.notation else sp.latex(self.expr)  # type: ignore[attr-defined]
 
 
-def _trig_linear(expr: sp.Expr, x: sp.Symbol) -> tuple[sp.Expr, sp.Expr, sp.Expr] | None:
-    """``(A, B, C)`` with ``expr = A cos x + B sin x + C``, or None."""
-    e = sp.expand(sp.expand_trig(expr))
-    c, s = sp.Dummy("c"), sp.Dummy("s")
-    e = e.xreplace({sp.cos(x): c, sp.sin(x): s})
-    if x in e.free_symbols:
-        return None
-    poly = sp.Poly(e, c, s)
-    if poly.total_degree() > 1:
-        return None
-    return poly.coeff_monomial(c), poly.coeff_monomial(s), poly.coeff_monomial(1)
-
-
 def _zeros(expr: sp.Expr, x: sp.Symbol, joint: JointType) -> tuple[sp.Expr, ...]:
     """The values of ``x`` where ``expr`` (in ``x`` alone) vanishes, when they are simple."""
     if joint is JointType.PRISMATIC:
@@ -152,7 +139,7 @@ def _zeros(expr: sp.Expr, x: sp.Symbol, joint: JointType) -> tuple[sp.Expr, ...]
         if poly.degree() >= 1 and len(set(sp.roots(poly).keys())) >= 1:
             return tuple(sorted(set(sp.roots(poly)), key=sp.default_sort_key))
         return ()
-    abc = _trig_linear(expr, x)
+    abc = trig_coefficients(expr, x)
     if abc is None or abc[2] != 0:
         return ()
     A, B, _ = abc
