@@ -821,6 +821,7 @@ def _with_safe_sqrt(e: sp.Expr) -> sp.Expr:
 
 
 _CHUNK = 1024
+_CHECK_CHUNK = 32768  # poses checked at once (bounds the memory of the fk of all branches)
 _TWO_PI = 2 * np.pi
 
 
@@ -1077,6 +1078,20 @@ class Solver:
             inner = np.linalg.inv(self._base) @ inner
         if self._tool is not None:
             inner = inner @ np.linalg.inv(self._tool)
+        parts = [
+            self._checked(inner[k : k + _CHECK_CHUNK], poses[k : k + _CHECK_CHUNK], check, tol)
+            for k in range(0, max(len(poses), 1), _CHECK_CHUNK)
+        ]
+        q, valid, residual, closeness = (np.concatenate(x) for x in zip(*parts))
+        names = tuple(f[0] for f in self._singular_factors())
+        near = (closeness < singular_tol) & valid[..., None]
+        batch = IKBatch(q, valid, residual, near, names, self.branch_signs, self)
+        return batch.solution(0) if single else batch
+
+    def _checked(
+        self, inner: np.ndarray, poses: np.ndarray, check: str | None, tol: float
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Solve a block of poses; residuals, validity and distance from singular factors."""
         q = self.raw(inner)
         N, K, n = q.shape
         with np.errstate(invalid="ignore"):
@@ -1088,7 +1103,7 @@ class Solver:
             valid = np.isfinite(residual)
             if check is not None:
                 valid &= residual <= tol
-        names, closeness = self._closeness(q)
+        _, closeness = self._closeness(q)
         # two branches coincide only where a radicand vanishes, i.e. at a singularity: look
         # for repeats (angles compared by cos and sin) only among poses near one
         suspects = np.nonzero((closeness < 1e-4).any(axis=(1, 2)) & valid.any(axis=1))[0]
@@ -1101,9 +1116,7 @@ class Solver:
                 vs[:, k] &= ~(vs[:, :k] & close).any(axis=1)
             valid[suspects] = vs
         q[~valid] = np.nan
-        near = (closeness < singular_tol) & valid[..., None]
-        batch = IKBatch(q, valid, residual, near, names, self.branch_signs, self)
-        return batch.solution(0) if single else batch
+        return q, valid, residual, closeness
 
     def _closeness(self, q: np.ndarray) -> tuple[tuple[str, ...], np.ndarray]:
         """Each singular factor at each solution, as a fraction of its largest value."""

@@ -214,3 +214,19 @@ def test_robot_jacobian_with_euler_is_the_analytic_one() -> None:
     q = _random_q(robot, 3, seed=8)
     assert np.allclose(robot.jacobian(q, euler="zyz"), analytic_jacobian_function(robot, "zyz")(q))
     assert robot.jacobian(euler="rpy").euler == "rpy"
+
+
+def test_base_and_tool_transforms_are_part_of_the_jacobian() -> None:
+    from dataclasses import replace
+
+    from dhsym.table import Elementary
+
+    table = dhsym.load("puma560").table
+    base = (Elementary("T", "z", sp.Rational(1, 2)), Elementary("R", "x", sp.pi / 3))
+    tool = (Elementary("T", "z", sp.Rational(1, 10)), Elementary("R", "y", sp.pi / 2))
+    robot = dhsym.Robot(replace(table, base=base, tool=tool))
+    qs = _random_q(robot, 10, seed=4)
+    J = robot.jacobian(qs)
+    assert max(np.abs(_finite_difference(robot, q) - Jk).max() for q, Jk in zip(qs, J)) < 1e-7
+    assert geometric_jacobian(robot).frame == "W"
+    assert geometric_jacobian(robot).point == "tool"
