@@ -1099,7 +1099,7 @@ class Solver:
             rows = slice(0, 3)
             cols = slice(3, 4) if check == "position" else slice(None)
             diff = np.abs(got[:, :, rows, cols] - poses[:, None, rows, cols])
-            residual = diff.reshape(N, K, -1).max(axis=-1)
+            residual = diff.reshape(N, K, diff.shape[-2] * diff.shape[-1]).max(axis=-1)
             valid = np.isfinite(residual)
             if check is not None:
                 valid &= residual <= tol
