@@ -111,7 +111,7 @@ def main() -> None:
         bench("puma560", lm_poses=50, single=200, batch=100_000)
         return
     for name in ("puma560", "puma560_modified", "stanford", "example4_6dof", "planar2r", "scara"):
-        bench(name, lm_poses=200, single=500, batch=500_000)
+        bench(name, lm_poses=200, single=500, batch=200_000)
 
 
 if __name__ == "__main__":

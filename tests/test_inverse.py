@@ -266,3 +266,8 @@ def test_inputs_are_checked() -> None:
         _robot("puma560").ik([0.3, 0.1, 0.2])
     with pytest.raises(dhsym.DHError, match="expected poses of shape"):
         _robot("puma560").ik(np.eye(5))
+
+
+def test_empty_batch() -> None:
+    batch = _robot("puma560").ik(np.zeros((0, 4, 4)))
+    assert batch.q.shape == (0, 8, 6) and batch.count.shape == (0,)
