@@ -11,7 +11,8 @@ Printed per robot:
 * LM: time per converged solution, convergence rate;
 * closed form, one pose per call: every branch, checked (fk of each branch compared with
   the pose, singular factors evaluated) and unchecked;
-* closed form, batched: poses per second, unchecked and checked;
+* closed form, batched: poses per second, unchecked and checked, and the same run's batch
+  ``fk`` throughput as a yardstick (IK time in units of one ``fk``: independent of load);
 * ratios LM time per solution / closed-form time per pose (all branches).
 
 Usage::
@@ -87,13 +88,16 @@ def bench(name: str, lm_poses: int, single: int, batch: int) -> None:
         f"{t_raw * 1e6:8.1f} µs unchecked (all {K} branches)"
     )
 
-    # closed form, batched
-    TB = robot.fk(random_q(robot, batch, rng))
+    # closed form, batched; batch fk in the same run as a yardstick of this machine's speed
+    qB = random_q(robot, batch, rng)
+    t_fk = best(lambda: robot.fk(qB), 3) / batch
+    TB = robot.fk(qB)
     t_b_raw = best(lambda: solver.raw(TB), 3) / batch
     t_b_chk = best(lambda: solver.solve(TB), 1) / batch
     print(
         f"closed form, batch of {batch}: {1 / t_b_raw:12,.0f} poses/s unchecked, "
-        f"{1 / t_b_chk:12,.0f} poses/s checked"
+        f"{1 / t_b_chk:12,.0f} poses/s checked; batch fk {1 / t_fk:12,.0f} configurations/s "
+        f"(IK unchecked = {t_b_raw / t_fk:.1f} fk, checked = {t_b_chk / t_fk:.1f} fk)"
     )
     print(
         f"ratio LM per solution / closed form per pose (all branches): "

@@ -1095,11 +1095,10 @@ class Solver:
         q = self.raw(inner)
         N, K, n = q.shape
         with np.errstate(invalid="ignore"):
-            got = self.frame()(q.reshape(-1, n)).reshape(N, K, 4, 4)  # NaN rows stay NaN
-            rows = slice(0, 3)
-            cols = slice(3, 4) if check == "position" else slice(None)
-            diff = np.abs(got[:, :, rows, cols] - poses[:, None, rows, cols])
-            residual = diff.reshape(N, K, diff.shape[-2] * diff.shape[-1]).max(axis=-1)
+            got = self.frame()(q.reshape(-1, n)).reshape(N, K, 16)  # NaN rows stay NaN
+            cells = [3, 7, 11] if check == "position" else slice(0, 12)
+            diff = got[:, :, cells] - poses.reshape(N, 1, 16)[:, :, cells]
+            residual = np.abs(diff, out=diff).max(axis=-1, initial=0.0)
             valid = np.isfinite(residual)
             if check is not None:
                 valid &= residual <= tol
