@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 
 import sympy as sp
 
+from .errors import DHError
 from .notation import Notation
 from .parsing import symbol
 from .pose import Pose
@@ -208,7 +209,7 @@ class Robot:
         if key not in self._extra_cache:
             if euler is not None:
                 if frame != "base":
-                    raise ValueError("the numeric analytic Jacobian is in the base frame")
+                    raise DHError("the numeric analytic Jacobian is in the base frame")
                 self._extra_cache[key] = jac.analytic_jacobian_function(self, euler, values)
             else:
                 self._extra_cache[key] = jac.jacobian_function(self, frame, values=values)
