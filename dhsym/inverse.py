@@ -651,7 +651,7 @@ def _sizes(joints: int) -> list[int]:
         return [1]
     if joints == 3:
         return [3, 0, 1]
-    return [0] if joints >= 1 else []
+    return [0] if joints in (1, 2) else []  # more than six joints: redundant, nothing to try
 
 
 def _structure_text(robot: Robot, dec: Decoupling) -> str:
