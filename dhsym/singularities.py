@@ -40,6 +40,7 @@ det J_v = a1*a2*S2
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -59,6 +60,7 @@ if TYPE_CHECKING:
 __all__ = ["Block", "SingularFactor", "Singularities", "factored_det", "singularities"]
 
 Matrix = sp.ImmutableMatrix
+_MAX_MINORS = 5  # Cauchy–Binet beyond this takes seconds: one redundant joint at most
 
 
 # --- determinants, factored as they are built -----------------------------------------------
@@ -408,6 +410,11 @@ def singularities(robot: Robot) -> Singularities:
     det(J J^T)
     """
     n = len(robot.variables)
+    if n > 6:
+        raise StructureError(
+            f"{robot.name or 'this arm'} has {n} joints: a redundant arm's manipulability is "
+            "not factored here; evaluate sqrt(det(J Jᵀ)) from robot.jacobian(q) instead"
+        )
     dec, geo = _structure(robot)
     if dec is not None and len(dec.wrist) == 3:
         blocks = _wrist_blocks(robot, dec)
@@ -442,6 +449,13 @@ def singularities(robot: Robot) -> Singularities:
     rows = tuple(i for i in range(6) if any(x != 0 for x in J0.row(i)))
     M = J0.extract(list(rows), list(range(n)))
     wide = M if M.rows <= M.cols else M.T
+    count = math.comb(wide.cols, wide.rows)
+    if count > _MAX_MINORS:
+        raise StructureError(
+            f"{robot.name or 'this arm'}: det(J Jᵀ) is a sum of {count} squared minors, more "
+            f"than the {_MAX_MINORS} factored here; evaluate sqrt(det(J Jᵀ)) from "
+            "robot.jacobian(q) instead"
+        )
     minors = [
         factored_det(wide.extract(list(range(wide.rows)), list(cols)))
         for cols in itertools.combinations(range(wide.cols), wide.rows)

@@ -127,3 +127,10 @@ def test_factored_det_expands_along_the_sparsest_line() -> None:
     a, b, c = sp.symbols("a b c")
     M = sp.Matrix([[a, 0, 0], [b, c, 0], [1, 2, a * b]])
     assert factored_det(M) == a**2 * b * c
+
+
+def test_many_redundant_joints_are_refused_quickly() -> None:
+    from dhsym._structure import StructureError
+
+    with pytest.raises(StructureError, match="10 squared minors"):
+        singularities(dhsym.load("planar5r"))
