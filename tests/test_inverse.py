@@ -37,6 +37,16 @@ def _robot(name: str) -> dhsym.Robot:
             DHRow.revolute("q6", d=0.1),
         ]
         return dhsym.Robot(DHTable.from_rows(rows, name="user arm"))
+    if name == "oblique_wrist":  # wrist twists of 60° and -45°: the general wrist formulas
+        rows = [
+            DHRow.revolute("q1", d=0.4, alpha=sp.pi / 2),
+            DHRow.revolute("q2", a=0.5),
+            DHRow.revolute("q3", alpha=sp.pi / 2),
+            DHRow.revolute("q4", d=0.45, alpha=sp.pi / 3),
+            DHRow.revolute("q5", alpha=-sp.pi / 4),
+            DHRow.revolute("q6", d=0.1),
+        ]
+        return dhsym.Robot(DHTable.from_rows(rows, name="oblique wrist"))
     if name == "wrist_alone":
         rows = [
             DHRow.revolute("q1", alpha=-sp.pi / 2),
