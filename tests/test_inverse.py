@@ -86,6 +86,7 @@ MORE = [
     "cartesian",
     "example1_rrp",
     "user_kuka_like",
+    "oblique_wrist",
     "wrist_alone",
     "puma560_base_tool",
 ]
