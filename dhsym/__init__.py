@@ -49,6 +49,8 @@ __getattr__, __dir__ = lazy_exports(
         "Mechanism": "dhsym.geometry.joints",
         "PAIRS": "dhsym.geometry.joints",
         "mobility": "dhsym.geometry.joints",
+        "inverse": "dhsym.kinematics.robot",
+        "singularities": "dhsym.kinematics.singularities",
     },
 )
 
@@ -94,6 +96,7 @@ __all__ = [
     "dump_table",
     "frame_origins",
     "grade",
+    "inverse",
     "joint_path",
     "load",
     "load_table",

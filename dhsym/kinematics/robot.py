@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 
 import sympy as sp
 
+from dhsym.errors import DHError
 from dhsym.model.library import load_table
 from dhsym.model.parsing import symbol
 from dhsym.model.table import Convention, DHTable, Elementary, JointType, as_expr
@@ -61,6 +62,7 @@ class Robot:
         )
         self._transform = cache(self._compute_transform)
         self._fk_cache: dict[tuple[int, int], FkFunction] = {}
+        self._extra_cache: dict[object, object] = {}  # Jacobians, IK solvers (see ik, jacobian)
 
     # -- description -----------------------------------------------------------------
     @property
@@ -180,6 +182,59 @@ class Robot:
             arr[..., np.asarray(mask, dtype=bool)] *= math.pi / 180.0
         return self.fk_function(values=values)(arr)
 
+    def jacobian(
+        self,
+        q: object = None,
+        *,
+        frame: int | str = "base",
+        euler: str | None = None,
+        values: Mapping[object, object] | None = None,
+    ) -> object:
+        """The Jacobian (see :mod:`.jacobian`): symbolic without ``q``, else numeric.
+
+        ``robot.jacobian()`` is the exact 6×n geometric Jacobian (``frame="tool"`` for the
+        end-effector frame); ``robot.jacobian(q)`` evaluates it, ``(n,)`` → ``(6, n)`` and
+        ``(N, n)`` → ``(N, 6, n)``, in the base frame of ``fk``. With ``euler="zyz"`` or
+        ``"rpy"`` it is the analytic Jacobian.
+        """
+        from . import jacobian as jac
+
+        if q is None:
+            if euler is not None:
+                return jac.analytic_jacobian(self, euler, frame)
+            return jac.geometric_jacobian(self, frame)
+        key = (
+            "jacobian",
+            frame,
+            euler,
+            tuple(sorted((str(k), str(v)) for k, v in (values or {}).items())),
+        )
+        if key not in self._extra_cache:
+            if euler is not None:
+                if frame != "base":
+                    raise DHError("the numeric analytic Jacobian is in the base frame")
+                self._extra_cache[key] = jac.analytic_jacobian_function(self, euler, values)
+            else:
+                self._extra_cache[key] = jac.jacobian_function(self, frame, values=values)
+        return self._extra_cache[key](q)  # type: ignore[operator]
+
+    def inverse(self) -> object:
+        """The closed-form inverse kinematics derived step by step (:mod:`.inverse`), cached."""
+        from .inverse import inverse
+
+        if "inverse" not in self._extra_cache:
+            self._extra_cache["inverse"] = inverse(self)
+        return self._extra_cache["inverse"]
+
+    def ik(self, T: object, **kw: object) -> object:
+        """Every closed-form solution of a pose or a batch of poses (see :mod:`.inverse`).
+
+        One pose ``(4, 4)`` gives an ``IKSolution`` (``.q`` is ``(k, n)``, with branch
+        names); a batch ``(N, 4, 4)`` gives an ``IKBatch`` (padded ``(N, K, n)`` with a
+        validity mask).
+        """
+        return self.inverse().solve(T, **kw)  # type: ignore[attr-defined]
+
     def plot(self, q: object = None, **kw: object) -> object:
         """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plot.figures`)."""
         from dhsym.plot.figures import plot_robot
@@ -207,3 +262,13 @@ def load(name_or_path: str | Path, **kw: bool) -> Robot:
     'Planar 2R'
     """
     return Robot(load_table(name_or_path), **kw)
+
+
+def inverse(robot: Robot | str | Path) -> object:
+    """The closed-form inverse kinematics of a robot or built-in name, derived step by step.
+
+    >>> ik = inverse("planar2r")
+    >>> [b.role for b in ik.branches], ik.count
+    (['elbow'], 2)
+    """
+    return (robot if isinstance(robot, Robot) else load(robot)).inverse()

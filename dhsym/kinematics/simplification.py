@@ -49,6 +49,7 @@ __all__ = [
     "prove_equal",
     "split_segments",
     "tidy_signs",
+    "trig_coefficients",
 ]
 
 Matrix = sp.ImmutableMatrix
@@ -357,6 +358,26 @@ def fold_sum_angles(expr: sp.Expr) -> sp.Expr:
             break
         terms = list(sp.Add.make_args(sp.Add(*folded)))
     return sp.Add(*terms)
+
+
+def trig_coefficients(expr: sp.Expr, x: sp.Symbol) -> tuple[sp.Expr, sp.Expr, sp.Expr] | None:
+    """``(A, B, C)`` with ``expr = A cos x + B sin x + C`` after expanding sum angles, or None.
+
+    >>> x, a, b = sp.symbols("x a b", real=True)
+    >>> trig_coefficients(a * sp.cos(x + b) + 2, x)
+    (a*cos(b), -a*sin(b), 2)
+    >>> trig_coefficients(sp.cos(x) ** 2, x) is None
+    True
+    """
+    e = sp.expand(sp.expand_trig(expr))
+    c, s = sp.Dummy("c"), sp.Dummy("s")
+    e = e.xreplace({sp.cos(x): c, sp.sin(x): s})
+    if x in e.free_symbols:
+        return None
+    poly = sp.Poly(e, c, s)
+    if poly.total_degree() > 1:
+        return None
+    return poly.coeff_monomial(c), poly.coeff_monomial(s), poly.coeff_monomial(1)
 
 
 # --- checking ---------------------------------------------------------------------

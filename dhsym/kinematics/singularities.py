@@ -1,0 +1,474 @@
+r"""Singular configurations: the Jacobian determinant factored the way the lectures write it.
+
+For a six-joint arm with a spherical wrist, take the Jacobian at the wrist centre: the
+wrist joints then move the centre not at all, so
+
+.. math::
+
+    J_c = \begin{bmatrix} J_{11} & 0 \\ J_{21} & J_{22} \end{bmatrix},
+    \qquad \det J = \det J_{11} \cdot \det J_{22}
+
+(moving the reference point multiplies ``J`` by ``[[I, −S(r)], [0, I]]``, of
+determinant 1). ``J11`` is the 3×3 arm block, ``J22 = [z_a4 z_a5 z_a6]`` the wrist
+axes. Determinants are expanded along the line with most zeros and every minor is
+factored before it is used (sum-angle folds, then ``factor``), in the frame that gives
+the shortest result; a rotation does not change a determinant. Other arms use the
+square part of ``J`` (the position rows for a positioning arm, the non-zero rows
+otherwise) or, when it is not square, the manipulability ``w = sqrt(det(J Jᵀ))`` by the
+Cauchy–Binet sum of squared minors.
+
+Each factor is named from the structure, not the robot's name: a factor of the wrist
+block is the *wrist* singularity, a factor that divides the wrist centre's radial
+reach (its distance from the axis of joint 1, measured in the arm's plane) is the
+*shoulder* singularity, one in the last arm joint alone is the *elbow* singularity
+(the arm stretched out or folded back: the workspace boundary).
+
+Examples
+--------
+>>> import dhsym
+>>> s = singularities(dhsym.load("puma560"))
+>>> print(s.text())
+det J = a2*(a3*S3 + d4*C3)*(a2*C2 + a3*C23 - d4*S23)*S5
+>>> [(f.kind, f.text()) for f in s.factors if f.kind != "constant"]
+[('elbow', 'a3*S3 + d4*C3'), ('shoulder', 'a2*C2 + a3*C23 - d4*S23'), ('wrist', 'S5')]
+>>> s.factors[-1].solutions
+((theta5, 0), (theta5, pi))
+>>> print(singularities(dhsym.load("planar2r")).text())
+det J_v = a1*a2*S2
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import sympy as sp
+
+from dhsym.model.table import JointType
+
+from ._structure import ArmGeometry, Decoupling, StructureError, arm_geometry, decouple
+from .jacobian import _values, axis_frame, geometric_jacobian
+from .simplification import fold_sum_angles, prove_equal, trig_coefficients
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from .robot import Robot
+
+__all__ = ["Block", "SingularFactor", "Singularities", "factored_det", "singularities"]
+
+Matrix = sp.ImmutableMatrix
+_MAX_MINORS = 5  # Cauchy–Binet beyond this takes seconds: one redundant joint at most
+
+
+# --- determinants, factored as they are built -----------------------------------------------
+
+
+def _factor(expr: sp.Expr) -> sp.Expr:
+    """Factor a sum after folding sum angles; products are kept as they are."""
+    if expr == 0 or not expr.is_Add:
+        return expr
+    folded = fold_sum_angles(sp.expand(expr))
+    return sp.factor(folded) if folded != 0 else sp.Integer(0)
+
+
+def factored_det(M: sp.MatrixBase) -> sp.Expr:
+    """Determinant by expansion along the line with most zeros, each minor factored.
+
+    >>> t2, t3, a2, a3 = sp.symbols("theta2 theta3 a2 a3", real=True)
+    >>> factored_det(sp.Matrix([[1, 0, 0], [0, -a2 * sp.sin(t2), -a3 * sp.sin(t2 + t3)],
+    ...                         [0, a2 * sp.cos(t2), a3 * sp.cos(t2 + t3)]]))
+    a2*a3*sin(theta3)
+    """
+    n = M.rows
+    if n == 0:
+        return sp.Integer(1)
+    if n == 1:
+        return _factor(M[0, 0])
+    lines = [(sum(1 for x in M.row(i) if x == 0), 0, i) for i in range(n)]
+    lines += [(sum(1 for x in M.col(j) if x == 0), 1, j) for j in range(n)]
+    _, along_column, k = max(lines)
+    terms = []
+    for m in range(n):
+        i, j = (m, k) if along_column else (k, m)
+        if M[i, j] == 0:
+            continue
+        sub = sp.Matrix(M).minor_submatrix(i, j)
+        terms.append((-1) ** (i + j) * M[i, j] * factored_det(sub))
+    return _factor(sp.Add(*terms))
+
+
+def _best_det(matrices: Sequence[sp.MatrixBase]) -> sp.Expr:
+    """The shortest factored determinant among equal-determinant ``matrices``."""
+    return min((factored_det(M) for M in matrices), key=sp.count_ops)
+
+
+# --- naming --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class SingularFactor:
+    """One factor of the determinant, with the configurations where it vanishes.
+
+    ``kind`` is ``"wrist"``, ``"elbow"``, ``"shoulder"``, ``"arm"`` or ``"constant"``;
+    ``solutions`` lists ``(variable, value)`` pairs when the factor has one variable.
+    """
+
+    expr: sp.Expr
+    power: int
+    kind: str
+    name: str
+    description: str
+    variables: tuple[sp.Symbol, ...]
+    solutions: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    notation: object = field(compare=False, repr=False, default=None)
+
+    def text(self) -> str:
+        """The factor in plain text, compact notation."""
+        return self.notation.text(self.expr) if self.notation else sp.sstr(self.expr)  # type: ignore[attr-defined]
+
+    def latex(self) -> str:
+        """The factor in LaTeX, compact notation."""
+        return self.notation.latex(self.expr) if self.notation else sp.latex(self.expr)  # type: ignore[attr-defined]
+
+
+def _zeros(expr: sp.Expr, x: sp.Symbol, joint: JointType) -> tuple[sp.Expr, ...]:
+    """The values of ``x`` where ``expr`` (in ``x`` alone) vanishes, when they are simple."""
+    if joint is JointType.PRISMATIC:
+        poly = sp.Poly(sp.expand(expr), x)
+        if poly.degree() >= 1 and len(set(sp.roots(poly).keys())) >= 1:
+            return tuple(sorted(set(sp.roots(poly)), key=sp.default_sort_key))
+        return ()
+    abc = trig_coefficients(expr, x)
+    if abc is None or abc[2] != 0:
+        return ()
+    A, B, _ = abc
+    return (sp.atan2(-A, B), sp.atan2(A, -B))
+
+
+def _divides(factor: sp.Expr, expr: sp.Expr) -> bool:
+    """True when ``factor`` divides ``expr`` as a polynomial in sines and cosines."""
+    f = sp.expand(sp.expand_trig(factor))
+    e = sp.expand(sp.expand_trig(expr))
+    if not f.free_symbols:
+        return False
+    _, rem = sp.div(e, f)
+    return sp.expand(rem) == 0
+
+
+def _describe(
+    kind: str, robot: Robot, joint: int | None, point: str, offset: sp.Expr | None
+) -> tuple[str, str]:
+    if kind == "wrist":
+        return (
+            "wrist singularity",
+            "the first and last wrist axes line up, so two wrist joints turn about one axis",
+        )
+    if kind == "elbow":
+        return (
+            "elbow singularity",
+            f"joint {joint} stretches the arm out or folds it back: the boundary of the workspace",
+        )
+    if kind == "shoulder":
+        where = (
+            f"the {point} lies on the axis of joint 1"
+            if offset is None or offset == 0
+            else f"the {point} lies on the line parallel to the axis of joint 1 "
+            "at the shoulder offset"
+        )
+        return "shoulder singularity", where
+    if kind == "arm":
+        return "arm singularity", "the arm joints lose a direction of motion"
+    return "constant factor", "a length of the table; the arm is singular everywhere if it is 0"
+
+
+# --- the result -----------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Block:
+    """One matrix whose determinant is a factor of the measure (``J11``, ``J22``, …)."""
+
+    name: str
+    matrix: Matrix
+    frame: int | str
+    determinant: sp.Expr
+
+
+@dataclass(frozen=True)
+class Singularities:
+    """The factored determinant (or manipulability) and its named factors.
+
+    ``measure`` names what is factored: ``"det J"`` (square), ``"det J_v"`` (a
+    positioning arm), ``"det J_w"`` (a wrist alone) or ``"det(J J^T)"`` (the square of
+    the manipulability ``w``). ``rows`` are the rows of the 6×n Jacobian it uses.
+    """
+
+    measure: str
+    determinant: sp.Expr
+    factors: tuple[SingularFactor, ...]
+    blocks: tuple[Block, ...]
+    rows: tuple[int, ...]
+    method: str
+    robot: Robot = field(compare=False, repr=False)
+
+    def text(self) -> str:
+        """``det J = …`` in plain text."""
+        return f"{self.measure} = {self.robot.notation.text(self.determinant)}"
+
+    def latex(self) -> str:
+        """The measure and its factored value in LaTeX."""
+        head = {
+            "det J": r"\det J",
+            "det J_v": r"\det J_v",
+            "det J_w": r"\det J_\omega",
+            "det(J J^T)": r"\det(J J^{T})",
+        }[self.measure]
+        return f"{head} = {self.robot.notation.latex(self.determinant)}"
+
+    def verify(self) -> bool:
+        """Exact proof that the factored form equals the determinant of ``J`` in frame 0.
+
+        For the block form each block is proven against its own determinant in frame
+        0 and the block triangle is checked (the wrist joints do not move the centre).
+        """
+        robot = self.robot
+        if self.measure == "det J" and len(self.blocks) == 2:
+            dec = decouple(robot, 3)
+            J = geometric_jacobian(robot, 0, dec.centre).matrix
+            if any(x != 0 for x in J[:3, 3:]):
+                return False
+            pieces = [J[:3, :3], J[3:, 3:]]
+        elif self.blocks and self.blocks[0].name == "J22":
+            J = geometric_jacobian(robot, 0, decouple(robot, 3).centre).matrix
+            pieces = [J[3:, :]]
+        else:
+            J = geometric_jacobian(robot, 0).matrix
+            pieces = [J.extract(list(self.rows), list(range(J.cols)))]
+        if self.measure == "det(J J^T)":
+            M = pieces[0] if pieces[0].rows <= pieces[0].cols else pieces[0].T
+            return prove_equal(
+                Matrix([self.determinant]), Matrix([(M * M.T).det(method="berkowitz")])
+            )
+        for block, M in zip(self.blocks, pieces):
+            if not prove_equal(Matrix([block.determinant]), Matrix([M.det(method="berkowitz")])):
+                return False
+        product = sp.Mul(*(b.determinant for b in self.blocks))
+        return prove_equal(Matrix([self.determinant]), Matrix([product]))
+
+    def function(
+        self, values: Mapping[object, object] | None = None
+    ) -> Callable[[object], np.ndarray]:
+        """The compiled measure: ``(n,)`` → scalar, ``(N, n)`` → ``(N,)``."""
+        return _compile(self.determinant, self.robot, values)
+
+    def factor_functions(
+        self, values: Mapping[object, object] | None = None
+    ) -> tuple[Callable[[object], np.ndarray], ...]:
+        """One compiled function per non-constant factor (same order as ``factors``)."""
+        return tuple(
+            _compile(f.expr, self.robot, values) for f in self.factors if f.kind != "constant"
+        )
+
+
+def _compile(
+    expr: sp.Expr, robot: Robot, values: Mapping[object, object] | None
+) -> Callable[[object], np.ndarray]:
+    import numpy as np
+
+    from .numeric import compile_matrix
+
+    inner = compile_matrix(sp.Matrix([[expr]]), robot.variables, _values(robot, values))
+
+    def evaluate(q: object) -> np.ndarray:
+        out = inner(q)
+        return np.asarray(out[..., 0, 0])
+
+    return evaluate
+
+
+# --- building -------------------------------------------------------------------------------
+
+
+def _rotation_about_z0(robot: Robot, k: int) -> bool:
+    z = robot.transform(0, k).matrix[:3, 2]
+    return list(z) == [0, 0, 1]
+
+
+def _wrist_blocks(robot: Robot, dec: Decoupling) -> tuple[Block, ...]:
+    frames = range(0, dec.centre + 1)
+    blocks = []
+    if dec.arm:
+        arm = [geometric_jacobian(robot, k, dec.centre).linear[:, : len(dec.arm)] for k in frames]
+        det11 = _best_det(arm)
+        blocks.append(Block("J11", Matrix(arm[0]), 0, det11))
+    k = axis_frame(robot, dec.wrist[0])
+    J22 = geometric_jacobian(robot, k, dec.centre).angular[:, len(dec.arm) :]
+    blocks.append(Block("J22", Matrix(J22), k, factored_det(J22)))
+    return tuple(blocks)
+
+
+def _square_rows(J: Matrix, n: int) -> tuple[str, tuple[int, ...]] | None:
+    nonzero = [i for i in range(6) if any(x != 0 for x in J.row(i))]
+    position = [i for i in nonzero if i < 3]
+    if len(position) == n:
+        return "det J_v", tuple(position)
+    if len(nonzero) == n:
+        return "det J", tuple(nonzero)
+    return None
+
+
+def _normal_product(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
+    """``expr`` as ``coefficient · Π baseᵖ`` with no base starting with a minus sign."""
+    if expr.is_Add:
+        coeff, pairs = sp.factor_list(expr)
+    else:
+        coeff, rest = expr.as_coeff_Mul()
+        pairs = [f.as_base_exp() for f in sp.Mul.make_args(rest)] if rest != 1 else []
+    out = []
+    for base, power in pairs:
+        if base.could_extract_minus_sign():
+            base = -base
+            coeff = -coeff if power % 2 else coeff
+        out.append((base, int(power)))
+    return coeff, out
+
+
+def _name_factors(
+    robot: Robot,
+    det: sp.Expr,
+    wrist_factors: set[sp.Expr],
+    geo: ArmGeometry | None,
+    point: str,
+) -> tuple[sp.Expr, tuple[SingularFactor, ...]]:
+    """The determinant with tidy signs, and its factors named (see the module text)."""
+    variables = robot.variables
+    joints = {r.variable: r.joint for r in robot.table.rows if r.variable is not None}
+    number = {v: i for i, v in enumerate(variables, start=1)}
+    coeff, pairs = _normal_product(det)
+    wrist = {w if not w.could_extract_minus_sign() else -w for w in wrist_factors}
+    out = []
+    for base, power in pairs:
+        vs = tuple(v for v in variables if v in base.free_symbols)
+        if not vs:
+            kind = "constant"
+        elif base in wrist:
+            kind = "wrist"
+        elif geo is not None and geo.radial is not None and _divides(base, geo.radial):
+            kind = "shoulder"
+        elif len(vs) == 1 and vs[0] != variables[0] and joints[vs[0]] is JointType.REVOLUTE:
+            kind = "elbow"
+        else:
+            kind = "arm"
+        offset = geo.offset if geo is not None else None
+        name, text = _describe(kind, robot, number[vs[0]] if vs else None, point, offset)
+        sols = _zeros(base, vs[0], joints[vs[0]]) if len(vs) == 1 else ()
+        out.append(
+            SingularFactor(
+                base,
+                power,
+                kind,
+                name,
+                text,
+                vs,
+                tuple((vs[0], z) for z in sols),
+                robot.notation,
+            )
+        )
+    order = {"constant": 0, "elbow": 1, "shoulder": 2, "arm": 3, "wrist": 4}
+    tidy = coeff * sp.Mul(*(b**p for b, p in pairs))
+    return tidy, tuple(sorted(out, key=lambda f: order[f.kind]))
+
+
+def _structure(robot: Robot) -> tuple[Decoupling | None, ArmGeometry | None]:
+    joints = len(robot.variables)
+    for size in (3, 1, 0):
+        if size >= joints and not (size == 3 and joints == 3):
+            continue
+        try:
+            dec = decouple(robot, size)
+            geo = arm_geometry(robot, dec) if dec.arm else None
+        except StructureError:
+            continue
+        if size == 3 and joints not in (3, 6):
+            continue
+        return dec, geo
+    return None, None
+
+
+def singularities(robot: Robot) -> Singularities:
+    """The factored Jacobian determinant of ``robot`` and its named singular factors.
+
+    >>> import dhsym
+    >>> print(singularities(dhsym.load("stanford")).text())
+    det J = d3**2*S2*S5
+    >>> [f.kind for f in singularities(dhsym.load("stanford")).factors]
+    ['shoulder', 'shoulder', 'wrist']
+    >>> print(singularities(dhsym.load("planar4r")).measure)
+    det(J J^T)
+    """
+    n = len(robot.variables)
+    if n > 6:
+        raise StructureError(
+            f"{robot.name or 'this arm'} has {n} joints: a redundant arm's manipulability is "
+            "not factored here; evaluate sqrt(det(J Jᵀ)) from robot.jacobian(q) instead"
+        )
+    dec, geo = _structure(robot)
+    if dec is not None and len(dec.wrist) == 3:
+        blocks = _wrist_blocks(robot, dec)
+        det = sp.Mul(*(b.determinant for b in blocks))
+        wrist_factors = {b for b, _ in _normal_product(blocks[-1].determinant)[1]}
+        if dec.arm:
+            measure, rows = "det J", tuple(range(6))
+            method = "J at the wrist centre is block lower triangular: det J = det J11 · det J22"
+        else:
+            measure, rows = "det J_w", (3, 4, 5)
+            method = "a wrist alone: the determinant of its three axes"
+        det, named = _name_factors(robot, det, wrist_factors, geo, "wrist centre")
+        return Singularities(measure, det, named, blocks, rows, method, robot)
+    J0 = geometric_jacobian(robot).matrix
+    square = _square_rows(J0, n)
+    frames = [k for k in range(0, robot.n + 1) if _rotation_about_z0(robot, k)]
+    if square is not None:
+        measure, rows = square
+        if len(rows) > 4:
+            raise StructureError(
+                f"{robot.name or 'this arm'} has no spherical wrist: the {len(rows)}×{len(rows)} "
+                "determinant is not factored here (use the numeric measure)"
+            )
+        mats = [
+            geometric_jacobian(robot, k).matrix.extract(list(rows), list(range(n))) for k in frames
+        ]
+        det = _best_det(mats)
+        method = "the position rows of J" if measure == "det J_v" else "the non-zero rows of J"
+        block = Block("J", Matrix(mats[0]), 0, det)
+        det, named = _name_factors(robot, det, set(), geo, "tool point")
+        return Singularities(measure, det, named, (block,), rows, method, robot)
+    rows = tuple(i for i in range(6) if any(x != 0 for x in J0.row(i)))
+    M = J0.extract(list(rows), list(range(n)))
+    wide = M if M.rows <= M.cols else M.T
+    count = math.comb(wide.cols, wide.rows)
+    if count > _MAX_MINORS:
+        raise StructureError(
+            f"{robot.name or 'this arm'}: det(J Jᵀ) is a sum of {count} squared minors, more "
+            f"than the {_MAX_MINORS} factored here; evaluate sqrt(det(J Jᵀ)) from "
+            "robot.jacobian(q) instead"
+        )
+    minors = [
+        factored_det(wide.extract(list(range(wide.rows)), list(cols)))
+        for cols in itertools.combinations(range(wide.cols), wide.rows)
+    ]
+    det = sp.Add(*[m**2 for m in minors])
+    block = Block("J", Matrix(M), 0, det)
+    return Singularities(
+        "det(J J^T)",
+        det,
+        (),
+        (block,),
+        rows,
+        "Cauchy–Binet: det(J Jᵀ) is the sum of the squared maximal minors",
+        robot,
+    )

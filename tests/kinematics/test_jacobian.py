@@ -1,0 +1,232 @@
+"""The geometric and analytic Jacobians: exact proofs, finite differences, frames, batches."""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import pytest
+import sympy as sp
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import dhsym
+from dhsym.errors import DHError
+from dhsym.kinematics.jacobian import (
+    Jacobian,
+    analytic_jacobian,
+    analytic_jacobian_function,
+    euler_angles,
+    geometric_jacobian,
+    jacobian_function,
+    rate_matrix,
+)
+from dhsym.kinematics.simplification import prove_equal
+
+
+@functools.cache
+def _robot(name: str) -> dhsym.Robot:
+    robot = dhsym.load(name)
+    if name == "planar3r":  # planar chains carry no lengths
+        robot = dhsym.Robot(robot.table.with_values({"a1": 1.0, "a2": 0.8, "a3": 0.5}))
+    return robot
+
+
+ALL = [*dhsym.builtin_names(), "planar3r"]
+
+
+def _random_q(robot: dhsym.Robot, count: int, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    q = rng.uniform(-np.pi, np.pi, (count, len(robot.variables)))
+    for k, row in enumerate(r for r in robot.table.rows if r.variable is not None):
+        if row.joint.value == "P":
+            q[:, k] = rng.uniform(0.1, 0.8, count)
+    return q
+
+
+def _vee(W: np.ndarray) -> np.ndarray:
+    return np.array([W[2, 1], W[0, 2], W[1, 0]])
+
+
+def _finite_difference(robot: dhsym.Robot, q: np.ndarray, h: float = 1e-6) -> np.ndarray:
+    """Central differences of fk: d(position)/dq and vee(dR/dq Rᵀ)."""
+    fk = robot.fk_function()
+    T = fk(q)
+    J = np.zeros((6, len(q)))
+    for i in range(len(q)):
+        dq = np.zeros(len(q))
+        dq[i] = h
+        plus, minus = fk(q + dq), fk(q - dq)
+        J[:3, i] = (plus[:3, 3] - minus[:3, 3]) / (2 * h)
+        J[3:, i] = _vee((plus[:3, :3] - minus[:3, :3]) / (2 * h) @ T[:3, :3].T)
+    return J
+
+
+@pytest.mark.parametrize("name", ALL)
+def test_numeric_jacobian_equals_finite_differences_of_fk(name: str) -> None:
+    robot = _robot(name)
+    qs = _random_q(robot, 25, seed=1)
+    J = jacobian_function(robot)(qs)
+    worst = max(np.abs(_finite_difference(robot, q) - Jk).max() for q, Jk in zip(qs, J))
+    assert worst < 1e-7
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "planar2r",
+        "planar3r",
+        "scara",
+        "example1_rrp",
+        "cylindrical",
+        "cartesian",
+        "stanford",
+        "puma560_modified",
+    ],
+)
+def test_symbolic_jacobian_is_proven_equal_to_the_derivative_of_the_plain_product(
+    name: str,
+) -> None:
+    robot = _robot(name)
+    J = geometric_jacobian(robot)
+    assert J.verify()
+    plain = robot.plain_transform(0, robot.n)[:3, 3]
+    assert prove_equal(J.linear, plain.jacobian(list(robot.variables)))
+
+
+def test_tool_frame_jacobian_is_proven_too() -> None:
+    assert geometric_jacobian(_robot("stanford"), frame="tool").verify()
+
+
+def test_verify_fails_on_a_wrong_entry() -> None:
+    J = geometric_jacobian(_robot("planar2r"))
+    wrong = J.matrix.as_mutable()
+    wrong[0, 1] = -wrong[0, 1]  # the sign a student might lose
+    bad = Jacobian(sp.ImmutableMatrix(wrong), J.columns, J.frame, J.point, J.robot)
+    assert not bad.verify()
+
+
+def test_planar_2r_is_the_lecture_jacobian() -> None:
+    r = _robot("planar2r")
+    J = geometric_jacobian(r)
+    assert r.notation.text(J.linear[:2, :]) == (
+        "Matrix([\n[-a1*S1 - a2*S12, -a2*S12],\n[ a1*C1 + a2*C12,  a2*C12]])"
+    )
+    assert list(J.angular.row(2)) == [1, 1]
+
+
+def test_modified_convention_turns_joint_i_about_z_i() -> None:
+    r = _robot("puma560_modified")
+    J = geometric_jacobian(r)
+    assert [c.axis_frame for c in J.columns] == [1, 2, 3, 4, 5, 6]
+    # the last axis passes through the end-effector origin: no linear velocity from it
+    assert list(J.linear.col(5)) == [0, 0, 0]
+    standard = geometric_jacobian(_robot("puma560"))
+    assert [c.axis_frame for c in standard.columns] == [0, 1, 2, 3, 4, 5]
+
+
+def test_prismatic_column_is_the_axis() -> None:
+    J = geometric_jacobian(_robot("stanford"))
+    col = J.columns[2]
+    assert col.joint.value == "P"
+    assert list(col.angular) == [0, 0, 0]
+    assert col.linear == col.axis
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(-3.0, 3.0), min_size=6, max_size=6))
+def test_tool_frame_jacobian_is_the_base_one_rotated(q: list[float]) -> None:
+    robot = _robot("puma560")
+    J0 = robot.jacobian(q)
+    Jt = robot.jacobian(q, frame="tool")
+    R = robot.fk(q)[:3, :3]
+    assert np.allclose(Jt[:3], R.T @ J0[:3], atol=1e-12)
+    assert np.allclose(Jt[3:], R.T @ J0[3:], atol=1e-12)
+
+
+def test_batches_and_shapes() -> None:
+    robot = _robot("puma560")
+    qs = _random_q(robot, 7, seed=3)
+    batch = robot.jacobian(qs)
+    assert batch.shape == (7, 6, 6)
+    assert robot.jacobian(qs[2]).shape == (6, 6)
+    assert np.array_equal(batch[2], robot.jacobian(qs[2]))
+    assert isinstance(robot.jacobian(), Jacobian)
+
+
+def test_frames_are_checked() -> None:
+    with pytest.raises(DHError, match="frame must be"):
+        geometric_jacobian(_robot("planar2r"), frame=9)
+
+
+def test_rate_matrix_maps_euler_rates_to_angular_velocity() -> None:
+    rng = np.random.default_rng(0)
+    for euler in ("zyz", "rpy"):
+        B = sp.lambdify(sp.symbols("phi theta psi", real=True), rate_matrix(euler), "numpy")
+        axes = {"zyz": "zyz", "rpy": "zyx"}[euler]
+        for _ in range(5):
+            ang, rate = rng.uniform(-1, 1, 3), rng.uniform(-1, 1, 3)
+            h = 1e-6
+            R = _euler_matrix(axes, ang)
+            dR = (_euler_matrix(axes, ang + h * rate) - _euler_matrix(axes, ang - h * rate)) / (
+                2 * h
+            )
+            assert np.allclose(_vee(dR @ R.T), np.asarray(B(*ang), float) @ rate, atol=1e-8)
+
+
+def _euler_matrix(axes: str, ang: np.ndarray) -> np.ndarray:
+    from dhsym.kinematics.transforms import Rx, Ry, Rz
+
+    rot = {"x": Rx, "y": Ry, "z": Rz}
+    M = sp.eye(4)
+    for a, v in zip(axes, ang):
+        M = M * rot[a](float(v))
+    return np.array(M[:3, :3], dtype=float)
+
+
+@pytest.mark.parametrize("euler", ["zyz", "rpy"])
+def test_analytic_jacobian_is_the_derivative_of_the_euler_angles(euler: str) -> None:
+    robot = _robot("puma560")
+    fk = robot.fk_function()
+    JA = analytic_jacobian_function(robot, euler)
+    for q in _random_q(robot, 10, seed=5):
+        num = np.zeros((3, 6))
+        for i in range(6):
+            dq = np.zeros(6)
+            dq[i] = 1e-6
+            a, b = euler_angles(fk(q + dq), euler), euler_angles(fk(q - dq), euler)
+            num[:, i] = (np.remainder(a - b + np.pi, 2 * np.pi) - np.pi) / 2e-6
+        assert np.allclose(JA(q)[3:], num, atol=1e-6)
+        assert np.allclose(JA(q)[:3], robot.jacobian(q)[:3])
+
+
+def test_analytic_jacobian_symbolic_form() -> None:
+    A = analytic_jacobian(_robot("planar2r"), "rpy")
+    assert A.angles == sp.symbols("phi theta psi", real=True)
+    assert A.matrix.shape == (6, 2)
+    # for a planar arm the yaw rate is the sum of the joint rates
+    assert sp.simplify(A.matrix[3, 0] - 1) == 0
+    assert A.matrix[5, 0] == 0
+
+
+def test_robot_jacobian_with_euler_is_the_analytic_one() -> None:
+    robot = _robot("puma560")
+    q = _random_q(robot, 3, seed=8)
+    assert np.allclose(robot.jacobian(q, euler="zyz"), analytic_jacobian_function(robot, "zyz")(q))
+    assert robot.jacobian(euler="rpy").euler == "rpy"
+
+
+def test_base_and_tool_transforms_are_part_of_the_jacobian() -> None:
+    from dataclasses import replace
+
+    from dhsym.model.table import Elementary
+
+    table = dhsym.load("puma560").table
+    base = (Elementary("T", "z", sp.Rational(1, 2)), Elementary("R", "x", sp.pi / 3))
+    tool = (Elementary("T", "z", sp.Rational(1, 10)), Elementary("R", "y", sp.pi / 2))
+    robot = dhsym.Robot(replace(table, base=base, tool=tool))
+    qs = _random_q(robot, 10, seed=4)
+    J = robot.jacobian(qs)
+    assert max(np.abs(_finite_difference(robot, q) - Jk).max() for q, Jk in zip(qs, J)) < 1e-7
+    assert geometric_jacobian(robot).frame == "W"
+    assert geometric_jacobian(robot).point == "tool"

@@ -1,0 +1,136 @@
+"""Factored Jacobian determinants and named singular configurations."""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import dhsym
+from dhsym.kinematics.jacobian import jacobian_function
+from dhsym.kinematics.singularities import factored_det, singularities
+
+
+@functools.cache
+def _robot(name: str) -> dhsym.Robot:
+    robot = dhsym.load(name)
+    if name == "planar3r":
+        robot = dhsym.Robot(robot.table.with_values({"a1": 1.0, "a2": 0.8, "a3": 0.5}))
+    return robot
+
+
+SQUARE = [
+    "puma560",
+    "puma560_modified",
+    "stanford",
+    "example4_6dof",
+    "puma260",
+    "planar2r",
+    "planar3r",
+    "scara",
+    "cylindrical",
+    "cartesian",
+    "example1_rrp",
+]
+
+
+@pytest.mark.parametrize("name", SQUARE)
+def test_factored_determinant_is_proven_and_matches_numbers(name: str) -> None:
+    robot = _robot(name)
+    s = singularities(robot)
+    assert s.verify()
+    rng = np.random.default_rng(2)
+    q = rng.uniform(-np.pi, np.pi, (20, len(robot.variables)))
+    q[:, [r.joint.value == "P" for r in robot.table.rows]] = rng.uniform(0.1, 0.8, (20, 1))
+    J = jacobian_function(robot)(q)[:, list(s.rows)]
+    assert np.allclose(np.linalg.det(J), s.function()(q), atol=1e-10)
+
+
+@pytest.mark.parametrize("name", ["puma560", "puma560_modified"])
+def test_puma_determinant_has_the_arm_and_wrist_factors(name: str) -> None:
+    s = singularities(_robot(name))
+    assert s.measure == "det J"
+    assert [b.name for b in s.blocks] == ["J11", "J22"]
+    kinds = {f.kind: f.text() for f in s.factors}
+    assert kinds == {
+        "constant": "a2",
+        "elbow": "a3*S3 + d4*C3",
+        "shoulder": "a2*C2 + a3*C23 - d4*S23",
+        "wrist": "S5",
+    }
+    wrist = next(f for f in s.factors if f.kind == "wrist")
+    assert wrist.solutions == (
+        (sp.Symbol("theta5", real=True), 0),
+        (sp.Symbol("theta5", real=True), sp.pi),
+    )
+
+
+def test_named_configurations_make_the_jacobian_singular() -> None:
+    robot = _robot("puma560")
+    s = singularities(robot)
+    J = jacobian_function(robot)
+    base = np.array([0.3, -0.4, 0.5, 0.2, 0.7, -0.1])
+    values = robot.table.value_map
+    for factor in s.factors:
+        for var, value in factor.solutions:
+            q = base.copy()
+            q[robot.variables.index(var)] = float(value.subs(values))
+            assert abs(np.linalg.det(J(q))) < 1e-12, (factor.kind, value)
+    assert abs(np.linalg.det(J(base))) > 1e-4
+
+
+def test_shoulder_singularity_puts_the_wrist_centre_on_the_offset_line() -> None:
+    robot = _robot("puma560")
+    s = singularities(robot)
+    shoulder = next(f for f in s.factors if f.kind == "shoulder")
+    t2, t3 = sp.symbols("theta2 theta3", real=True)
+    f = sp.lambdify((t2, t3), shoulder.expr.subs(robot.table.value_map))
+    theta3 = 0.5
+    # find theta2 with f = 0 by bisection on a sign change
+    lo, hi = -np.pi, np.pi
+    grid = np.linspace(lo, hi, 721)
+    vals = np.array([f(g, theta3) for g in grid])
+    k = int(np.nonzero(np.sign(vals[:-1]) != np.sign(vals[1:]))[0][0])
+    a, b = grid[k], grid[k + 1]
+    for _ in range(80):
+        m = (a + b) / 2
+        a, b = (a, m) if np.sign(f(a, theta3)) != np.sign(f(m, theta3)) else (m, b)
+    q = np.array([0.7, a, theta3, 0.3, 0.9, 0.2])
+    centre = robot.fk_function(0, 4)(q)[:3, 3]
+    assert np.isclose(np.hypot(centre[0], centre[1]), 0.15005, atol=1e-9)
+    assert abs(np.linalg.det(jacobian_function(robot)(q))) < 1e-10
+
+
+def test_stanford_and_planar_and_positioning_arms() -> None:
+    assert singularities(_robot("stanford")).text() == "det J = d3**2*S2*S5"
+    two = singularities(_robot("planar2r"))
+    assert two.text() == "det J_v = a1*a2*S2"
+    assert [f.kind for f in two.factors] == ["constant", "constant", "elbow"]
+    assert singularities(_robot("cartesian")).factors == ()
+    cyl = singularities(_robot("cylindrical"))
+    assert [(f.kind, f.text()) for f in cyl.factors] == [("shoulder", "d3")]
+
+
+def test_redundant_arm_gets_the_manipulability_by_cauchy_binet() -> None:
+    robot = _robot("planar4r")
+    s = singularities(robot)
+    assert s.measure == "det(J J^T)"
+    assert s.verify()
+    q = np.random.default_rng(0).uniform(-np.pi, np.pi, (10, 4))
+    J = jacobian_function(robot)(q)[:, list(s.rows)]
+    assert np.allclose(np.linalg.det(J @ np.swapaxes(J, 1, 2)), s.function()(q))
+
+
+def test_factored_det_expands_along_the_sparsest_line() -> None:
+    a, b, c = sp.symbols("a b c")
+    M = sp.Matrix([[a, 0, 0], [b, c, 0], [1, 2, a * b]])
+    assert factored_det(M) == a**2 * b * c
+
+
+def test_many_redundant_joints_are_refused_quickly() -> None:
+    from dhsym.kinematics._structure import StructureError
+
+    with pytest.raises(StructureError, match="10 squared minors"):
+        singularities(dhsym.load("planar5r"))
