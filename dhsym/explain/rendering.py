@@ -35,6 +35,7 @@ from pathlib import Path
 from dhsym.errors import DHError
 from dhsym.kinematics.robot import Robot
 from dhsym.notation.escape import TeX, _clean_text, escape_latex, escape_markdown
+from dhsym.notation.printers import Notation, TrigStyle
 
 from .derivation import Derivation, as_robot, derive, general_link
 from .latex import compile_pdf
@@ -159,14 +160,14 @@ def render_derivation(
     """``^{frm}T_{to}`` of ``robot`` derived step by step, as text, Markdown or LaTeX.
 
     ``options`` go to :func:`dhsym.explain.derivation.derive` (``factors``, ``numeric``,
-    ``compact``, ``check``, ``width``) except ``template_dir``.
+    ``compact``, ``notation``, ``check``, ``width``) except ``template_dir``.
     """
     template_dir = options.pop("template_dir", None)
     d = derive(robot, frm=frm, to=to, **options)  # type: ignore[arg-type]
     return render(d, fmt, template_dir=template_dir)  # type: ignore[arg-type]
 
 
-_DERIVE_OPTIONS = ("frm", "to", "factors", "numeric", "compact", "check", "width")
+_DERIVE_OPTIONS = ("frm", "to", "factors", "numeric", "compact", "notation", "check", "width")
 
 
 def _derivations(
@@ -227,6 +228,7 @@ def render_handout(
     if unknown:
         raise DHError(f"unknown handout option(s): {', '.join(sorted(unknown))}")
     ds = _derivations(robots, options)
+    nota = Notation(style=options.get("notation") or TrigStyle.UPPER)  # type: ignore[arg-type]
     items = [
         {"d": d, "key": k, "figure": _graphic((figures or {}).get(k))}
         for d, k in zip(ds, _unique_keys(ds), strict=True)
@@ -244,7 +246,7 @@ def render_handout(
         date=date,
         mode=mode,
         convention_note=convention_note,
-        general={c: general_link(c) for c in ("standard", "modified")},
+        general={c: general_link(c, nota) for c in ("standard", "modified")},
     )
 
 

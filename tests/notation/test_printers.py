@@ -38,7 +38,7 @@ def test_non_joint_arguments_print_in_full():
 
 
 def test_lowercase_craig_style_and_full_form():
-    craig = Notation.from_variables(t, upper=False)
+    craig = Notation.from_variables(t, style="c1")
     assert craig.text(sp.cos(t[1] + t[2])) == "c23"
     full = Notation.from_variables(t, compact=False)
     assert full.text(sp.cos(t[0] + t[1])) == "cos(theta1 + theta2)"
