@@ -462,7 +462,6 @@ class Notation:
             not factors
             or not term.is_commutative
             or any(f.is_Pow and f.exp.is_negative for f in factors)
-            or (coeff.is_Rational and not coeff.is_Integer and _coefficient(coeff) is None)
         )
         if plain:
             whole = -term if negative else term
@@ -545,12 +544,20 @@ class _LayoutMixin:
     def _product_tokens(self, p: Product, depth: int) -> list[Token]:
         if p.whole is not None:
             return [Token("atom", self._print_whole(p.whole), depth)]
+        c = p.coeff
+        if c.is_Rational and not c.is_Integer and _coefficient(c) is None:  # a2*C2/3
+            top = render(
+                self._product_tokens(replace(p, coeff=sp.Integer(c.p)), depth), self._latex
+            )
+            q = int(c.q)  # type: ignore[attr-defined]
+            return [
+                Token("atom", rf"\frac{{{top}}}{{{q}}}" if self._latex else f"{top}/{q}", depth)
+            ]
         out: list[Token] = []
         sep = " " if self._latex else "*"
-        coeff = _coefficient(p.coeff) if p.coeff.is_Rational else None
-        lead = coeff if coeff is not None else self._print(p.coeff)
-        if p.coeff != 1:
-            out.append(Token("atom", lead, depth))
+        lead = _coefficient(c) if c.is_Rational else None
+        if c != 1:
+            out.append(Token("atom", lead if lead is not None else self._print(c), depth))
         for f in p.factors:
             joint = sep if out else ""
             if isinstance(f, Sum):
