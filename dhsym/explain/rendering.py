@@ -32,6 +32,8 @@ import re
 from collections.abc import Sequence
 from pathlib import Path
 
+import sympy as sp
+
 from dhsym.errors import DHError
 from dhsym.kinematics.robot import Robot
 from dhsym.notation.escape import TeX, _clean_text, escape_latex, escape_markdown
@@ -228,7 +230,8 @@ def render_handout(
     if unknown:
         raise DHError(f"unknown handout option(s): {', '.join(sorted(unknown))}")
     ds = _derivations(robots, options)
-    nota = Notation(style=options.get("notation") or TrigStyle.UPPER)  # type: ignore[arg-type]
+    own = (r.notation.style for r in robots if isinstance(r, Robot))
+    nota = Notation(style=options.get("notation") or next(own, TrigStyle.UPPER))  # type: ignore[arg-type]
     items = [
         {"d": d, "key": k, "figure": _graphic((figures or {}).get(k))}
         for d, k in zip(ds, _unique_keys(ds), strict=True)
@@ -247,7 +250,16 @@ def render_handout(
         mode=mode,
         convention_note=convention_note,
         general={c: general_link(c, nota) for c in ("standard", "modified")},
+        abbrev=_abbreviations(nota),
     )
+
+
+def _abbreviations(nota: Notation) -> tuple[TeX, TeX, TeX]:
+    """``C_i``, ``S_i``, ``C_{ij}`` as the handout's notation prints them."""
+    ti, tj = sp.Symbol("theta_i", real=True), sp.Symbol("theta_j", real=True)
+    general = Notation(((ti, "i"), (tj, "j")), style=nota.style)
+    c, s, cij = (general.latex(f) for f in (sp.cos(ti), sp.sin(ti), sp.cos(ti + tj)))
+    return TeX(c), TeX(s), TeX(cij)
 
 
 def _graphic(name: str | None) -> TeX | None:
@@ -297,7 +309,8 @@ def write_handout(
     if figure:
         stem = re.sub(r"[^A-Za-z0-9-]+", "-", out.stem).strip("-") or "handout"
         figures = _figures(loaded, _unique_keys(ds), out.parent, stem)
-    out.write_text(render_handout(ds, figures=figures, **options), encoding="utf-8")
+    style = (derive_opts.get("notation") or loaded[0].notation.style) if loaded else None
+    out.write_text(render_handout(ds, figures=figures, notation=style, **options), encoding="utf-8")
     return compile_pdf(out) if pdf else out
 
 

@@ -504,7 +504,7 @@ def _coefficient(c: sp.Expr) -> str | None:
 
 def _angle_head(arg: sp.Expr) -> str:
     r"""``\theta`` for angles θ1, θ2…, ``q`` for q1, q2… (the letter of the joint variables)."""
-    names = {_TRAILING_INDEX.sub("", s.name).rstrip("_") for s in arg.free_symbols}
+    names = {re.match(r"[A-Za-z]*", s.name).group(0) for s in arg.free_symbols}  # type: ignore[union-attr]
     return sp.latex(sp.Symbol(names.pop())) if len(names) == 1 and "" not in names else r"\theta"
 
 
@@ -563,8 +563,9 @@ class _LayoutMixin:
             if isinstance(f, Sum):
                 inner = self.tokens(f, depth + 1)
                 tall = self._latex and any(r"\frac" in t.text or r"\sqrt" in t.text for t in inner)
-                if out:  # the same pieces in both formats: an empty one in LaTeX
-                    out.append(Token("atom", "" if self._latex else "*", depth))
+                if out:  # the same pieces in both formats; in LaTeX a space after a
+                    gap = " " if out[-1].kind == "close" else ""  # bracket: no Markdown ](
+                    out.append(Token("atom", gap if self._latex else "*", depth))
                 out.append(Token("open", "(", depth, f.level, tall))
                 out += inner
                 out.append(Token("close", ")", depth, f.level, tall))

@@ -318,6 +318,20 @@ def test_cli_derive_formats(capsys):
     assert r"\cos{\left(\theta_{1} + \theta_{2} \right)}" in capsys.readouterr().out
 
 
+def test_cli_notation_option_for_derive_and_handout(tmp_path, capsys):
+    assert main(["derive", "puma560_modified", "--notation", "c1", "--format", "text"]) == 0
+    assert "p_x = c1*(a2*c2 + a3*c23 - d4*s23) - d3*s1" in capsys.readouterr().out
+    assert main(["derive", "planar2r", "--notation", "c_theta", "--format", "markdown"]) == 0
+    assert r"a_{1} c_{\theta_{1}} + a_{2} c_{\theta_{12}}" in capsys.readouterr().out
+    out = tmp_path / "craig.tex"
+    assert main(["handout", "puma560_modified", "--notation", "c1", "-o", str(out)]) == 0
+    tex = out.read_text()
+    assert r"p_{x} &= c_{1}(a_{2} c_{2} + a_{3} c_{23} - d_{4} s_{23}) - d_{3} s_{1}" in tex
+    assert r"$c_{i} = \cos\theta_i$" in tex and "C_{1}" not in tex
+    with pytest.raises(SystemExit):
+        main(["derive", "planar2r", "--notation", "fancy"])
+
+
 def test_cli_derive_markdown_to_a_file(tmp_path, capsys):
     out = tmp_path / "build" / "puma560.md"
     assert main(["derive", "puma560", "--format", "markdown", "-o", str(out)]) == 0
