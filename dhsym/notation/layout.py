@@ -58,7 +58,6 @@ __all__ = [
     "matrix_block",
     "pieces",
     "product_math",
-    "tight",
     "word_math",
 ]
 
@@ -159,15 +158,6 @@ def math_width(tex: str) -> float:
             width += w * (0.7 * scale if script else scale)
         script = False
     return width
-
-
-def tight(latex: str) -> str:
-    """``- S_{12}`` → ``-S_{12}`` (a leading unary minus hugs its term).
-
-    >>> tight("- S_{12}")
-    '-S_{12}'
-    """
-    return "-" + latex[2:] if latex.startswith("- ") else latex
 
 
 @dataclass(frozen=True)
@@ -298,8 +288,8 @@ def _indent(
 
 
 def as_math(expr: object, nota: Notation) -> Math:
-    """``expr`` printed by ``nota`` (LaTeX with a tight leading minus, and text)."""
-    return Math(TeX(tight(nota.latex(expr))), nota.text(expr))
+    """``expr`` printed by ``nota`` in LaTeX and text (a leading minus hugs its term)."""
+    return Math(TeX(nota.latex(expr)), nota.text(expr))
 
 
 def as_decimal(value: sp.Expr, nota: Notation) -> Math:

@@ -213,7 +213,7 @@ class Sum:
 
 
 def _lead(terms: Iterable[Product]) -> Sum:
-    """Terms in key order, the first positive one moved to the front (rules 3)."""
+    """Terms in key order, the first positive one moved to the front (rule 3)."""
     ordered = sorted(terms, key=lambda t: t.key)
     if ordered[0].negative:
         pos = next((k for k, t in enumerate(ordered) if not t.negative), None)
@@ -415,23 +415,34 @@ class Notation:
         neg = sorted(self._joint_index[s] for s, c in coeffs.items() if c == -1)
         return tuple(pos + neg)
 
+    @cached_property
+    def _factor_keys(self) -> dict[sp.Expr, tuple]:
+        return {}  # a memo of _factor_key: the same few leaves recur in every entry
+
     def _factor_key(self, f: sp.Expr) -> tuple:
-        """(group, index, letter, text): number, symbol, joint trig, other trig, other, bracket."""
-        base = f.base if f.is_Pow else f
+        """(group, index, letter, name): number, symbol, joint trig, other trig, other, bracket."""
+        key = self._factor_keys.get(f)
+        if key is None:
+            key = self._factor_keys[f] = self._compute_factor_key(f)
+        return key
+
+    def _compute_factor_key(self, f: sp.Expr) -> tuple:
+        base, exp = (f.base, f.exp) if f.is_Pow else (f, 1)
+        name = (getattr(base, "name", ""), str(exp))  # ties: a2 before d2, S1 before S1**2
         if f.is_number:
-            return (0, (), 0, str(f))
+            return (0, (), 0, name)
         if isinstance(base, (sp.cos, sp.sin)):
             letter = 0 if isinstance(base, sp.cos) else 1
             joints = self._angle(base.args[0])
             if joints is not None:
-                return (2, joints, letter, str(f))
+                return (2, joints, letter, name)
             index = tuple(sorted(self._index(s) for s in base.free_symbols))
-            return (3, index, letter, str(f))
+            return (3, index, letter, name)
         if isinstance(base, sp.Symbol):
-            return (1, (self._index(base),), 0, str(f))
+            return (1, (self._index(base),), 0, name)
         if base.is_Add:
-            return (5, (), 0, str(f))
-        return (4, tuple(sorted(self._index(s) for s in f.free_symbols)), 0, str(f))
+            return (5, (), 0, name)
+        return (4, tuple(sorted(self._index(s) for s in f.free_symbols)), 0, name)
 
     def _term_key(self, factors: Sequence[sp.Expr | Sum], whole: sp.Expr | None) -> tuple:
         """Rule 3: the indices of the printed factors, a bracket by its first term."""
