@@ -49,6 +49,8 @@ class Robot:
 
     Frames are numbered 0 … n (DH frames); ``-1`` is the world frame before the
     base transform and ``n + 1`` the tool frame after the tool transform.
+    ``compact`` (C12 or cos/sin) and ``style`` (``C1``, ``c1`` or ``c_theta``, see
+    :class:`~dhsym.notation.printers.TrigStyle`) set how its matrices print.
     """
 
     def __init__(

@@ -21,7 +21,7 @@ Math(latex='-x', text='-x')
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from types import MappingProxyType
 from typing import TYPE_CHECKING
@@ -273,7 +273,7 @@ def _indent(
     partner: dict[int, int],
     lines: list[tuple[int, int, str]],
     at: int,
-    content: object,
+    content: Callable[[int, int], str],
     latex: bool,
 ) -> str:
     """The indent of a line starting at ``items[at]``: under its innermost open bracket."""
@@ -283,7 +283,7 @@ def _indent(
     if opener is None:
         return r"\quad " if latex else "  "
     lo, _, ind = next(line for line in lines if line[0] <= opener < line[1])
-    before = ind + content(lo, opener + 1)  # type: ignore[operator]
+    before = ind + content(lo, opener + 1)
     return rf"\phantom{{{before}}}" if latex else " " * len(before)
 
 
