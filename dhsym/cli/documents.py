@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from dhsym.errors import DHError
+from dhsym.notation.printers import TrigStyle
 
 __all__ = ["register"]
 
@@ -27,7 +28,7 @@ def _cmd_handout(args: argparse.Namespace) -> int:
     from dhsym.explain.latex import check_log
     from dhsym.kinematics.robot import load
 
-    robots = [load(name, compact=not args.full) for name in args.robots]
+    robots = [load(name, compact=not args.full, style=args.notation) for name in args.robots]
     check = _parse_check(args.check)
     result = write_handout(
         robots,
@@ -42,6 +43,7 @@ def _cmd_handout(args: argparse.Namespace) -> int:
         convention_note=args.convention_note,
         template_dir=args.template_dir,
         numeric=args.numeric,
+        notation=args.notation,
         check=check,
     )
     print(f"wrote {args.output}", file=sys.stderr)
@@ -79,6 +81,12 @@ def _register_handout(subparsers: argparse._SubParsersAction) -> None:
         help="folder of templates that override the built-in ones",
     )
     h.add_argument("--full", action="store_true", help="full cos/sin instead of C12/S12")
+    h.add_argument(
+        "--notation",
+        choices=[s.value for s in TrigStyle],
+        default=TrigStyle.UPPER.value,
+        help="C1: C12, S23 (default); c1: c12, s23 (Craig, Spong); c_theta: c_{θ12} in LaTeX",
+    )
     h.add_argument("--numeric", action="store_true", help="substitute the numeric lengths")
     h.add_argument(
         "--figure",

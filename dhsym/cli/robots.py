@@ -22,6 +22,7 @@ from dhsym.kinematics.robot import Robot, load
 from dhsym.model.library import builtin_names, builtin_table
 from dhsym.model.parsing import parse_number_list
 from dhsym.model.tablefile import dump_table
+from dhsym.notation.printers import TrigStyle
 from dhsym.notation.tables import table_markdown
 
 from .common import emit
@@ -114,7 +115,7 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
-    robot = load(args.robot, compact=not args.full)
+    robot = load(args.robot, compact=not args.full, style=args.notation)
     i, j = _frames(robot, args)
     if args.format == "json":
         out = json.dumps(derive_json(robot, i, j), indent=2)
@@ -172,6 +173,12 @@ def register(sub: argparse._SubParsersAction) -> None:
     d.add_argument("--from", dest="frm", type=int, default=None, help="frame i of ^iT_j")
     d.add_argument("--to", type=int, default=None, help="frame j of ^iT_j")
     d.add_argument("--full", action="store_true", help="full cos/sin instead of C12/S12")
+    d.add_argument(
+        "--notation",
+        choices=[s.value for s in TrigStyle],
+        default=TrigStyle.UPPER.value,
+        help="C1: C12, S23 (default); c1: c12, s23 (Craig, Spong); c_theta: c_{θ12} in LaTeX",
+    )
     d.add_argument("-o", "--output", help="write to this file instead of standard output")
     d.set_defaults(func=_cmd_derive)
 

@@ -53,7 +53,7 @@ from dhsym.notation.layout import (
     matrix_block,
     word_math,
 )
-from dhsym.notation.printers import Notation, format_angle
+from dhsym.notation.printers import Notation, TrigStyle, format_angle
 
 from .data import (
     Derivation,
@@ -191,7 +191,7 @@ def general_link(convention: Convention | str, nota: Notation | None = None) -> 
 
     modified = convention is Convention.MODIFIED
     theta, d, a, alpha = _general_row(modified)
-    gnota = Notation(((theta, "i"),), compact=nota.compact, upper=nota.upper)
+    gnota = Notation(((theta, "i"),), compact=nota.compact, style=nota.style)
     row = DHRow.fixed(theta, d, a, alpha)
     word = link_word(row, convention)
     factors = tuple(
@@ -277,6 +277,7 @@ def derive(
     factors: bool = True,
     numeric: bool = False,
     compact: bool | None = None,
+    notation: TrigStyle | str | None = None,
     check: bool | Sequence[float] | None = None,
     width: float = LATEX_WIDTH,
 ) -> Derivation:
@@ -296,6 +297,10 @@ def derive(
         Substitute the table's numeric values for the symbolic lengths.
     compact
         ``C_{12}`` notation (default: the robot's own setting) or full cos/sin.
+    notation
+        The case of the abbreviations (:class:`~dhsym.notation.printers.TrigStyle`):
+        ``C1`` (``C_{12}``, the lectures), ``c1`` (``c_{12}``, Craig, Spong) or
+        ``c_theta`` (``c_{\theta_{12}}``); default: the robot's own.
     check
         Evaluate the result numerically at these joint values (``True``: at zero).
     width
@@ -307,12 +312,13 @@ def derive(
     >>> print(d.general.result.rows[1][3].latex)
     -d_{i} s_{\alpha_{i-1}}
     >>> [e.name.text + " = " + e.text_lines[0] for e in d.result.entries][9]
-    'p_x = -d3*S1 + (a2*C2 + a3*C23 - d4*S23)*C1'
+    'p_x = C1*(a2*C2 + a3*C23 - d4*S23) - d3*S1'
     """
     robot = as_robot(name_or_robot)
     table = robot.table.substituted() if numeric else robot.table
     compact = robot.notation.compact if compact is None else compact
-    robot = Robot(table, compact=compact, upper=robot.notation.upper)
+    style = robot.notation.style if notation is None else TrigStyle.parse(notation)
+    robot = Robot(table, compact=compact, style=style)
     nota, n = robot.notation, robot.n
     to = n if to is None else to
     for k in (frm, to):

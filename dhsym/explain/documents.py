@@ -19,9 +19,12 @@ import re
 from collections.abc import Sequence
 from pathlib import Path
 
+import sympy as sp
+
 from dhsym.errors import DHError
 from dhsym.kinematics.robot import Robot
 from dhsym.notation.escape import TeX
+from dhsym.notation.printers import Notation, TrigStyle
 
 from .derivation import Derivation, as_robot, derive, general_link
 from .latex import compile_pdf
@@ -40,14 +43,14 @@ def render_derivation(
     """``^{frm}T_{to}`` of ``robot`` derived step by step, as text, Markdown or LaTeX.
 
     ``options`` go to :func:`dhsym.explain.derivation.derive` (``factors``, ``numeric``,
-    ``compact``, ``check``, ``width``) except ``template_dir``.
+    ``compact``, ``notation``, ``check``, ``width``) except ``template_dir``.
     """
     template_dir = options.pop("template_dir", None)
     d = derive(robot, frm=frm, to=to, **options)  # type: ignore[arg-type]
     return render(d, fmt, template_dir=template_dir)  # type: ignore[arg-type]
 
 
-_DERIVE_OPTIONS = ("frm", "to", "factors", "numeric", "compact", "check", "width")
+_DERIVE_OPTIONS = ("frm", "to", "factors", "numeric", "compact", "notation", "check", "width")
 
 
 def _derivations(
@@ -108,6 +111,8 @@ def render_handout(
     if unknown:
         raise DHError(f"unknown handout option(s): {', '.join(sorted(unknown))}")
     ds = _derivations(robots, options)
+    own = (r.notation.style for r in robots if isinstance(r, Robot))
+    nota = Notation(style=options.get("notation") or next(own, TrigStyle.UPPER))  # type: ignore[arg-type]
     items = [
         {"d": d, "key": k, "figure": _graphic((figures or {}).get(k))}
         for d, k in zip(ds, _unique_keys(ds), strict=True)
@@ -125,8 +130,17 @@ def render_handout(
         date=date,
         mode=mode,
         convention_note=convention_note,
-        general={c: general_link(c) for c in ("standard", "modified")},
+        general={c: general_link(c, nota) for c in ("standard", "modified")},
+        abbrev=_abbreviations(nota),
     )
+
+
+def _abbreviations(nota: Notation) -> tuple[TeX, TeX, TeX]:
+    """``C_i``, ``S_i``, ``C_{ij}`` as the handout's notation prints them."""
+    ti, tj = sp.Symbol("theta_i", real=True), sp.Symbol("theta_j", real=True)
+    general = Notation(((ti, "i"), (tj, "j")), style=nota.style)
+    c, s, cij = (general.latex(f) for f in (sp.cos(ti), sp.sin(ti), sp.cos(ti + tj)))
+    return TeX(c), TeX(s), TeX(cij)
 
 
 def _graphic(name: str | None) -> TeX | None:
@@ -176,5 +190,6 @@ def write_handout(
     if figure:
         stem = re.sub(r"[^A-Za-z0-9-]+", "-", out.stem).strip("-") or "handout"
         figures = _figures(loaded, _unique_keys(ds), out.parent, stem)
-    out.write_text(render_handout(ds, figures=figures, **options), encoding="utf-8")
+    style = (derive_opts.get("notation") or loaded[0].notation.style) if loaded else None
+    out.write_text(render_handout(ds, figures=figures, notation=style, **options), encoding="utf-8")
     return compile_pdf(out) if pdf else out

@@ -48,7 +48,7 @@ Examples
 >>> ik = inverse(dhsym.load("planar2r"))
 >>> for step in ik.steps:
 ...     print(ik.text(step))
-D_2 = (-a1**2 - a2**2 + p_x**2 + p_y**2)/(2*a1*a2)
+D_2 = (p_x**2 + p_y**2 - a1**2 - a2**2)/(2*a1*a2)
 theta2 = atan2(sigma_2*sqrt(1 - D_2**2), D_2)
 theta1 = atan2(p_y, p_x) - atan2(a2*S2, a1 + a2*C2)
 >>> r = dhsym.load("puma560")

@@ -31,7 +31,7 @@ from dhsym.errors import DHError
 from dhsym.model.library import load_table
 from dhsym.model.parsing import symbol
 from dhsym.model.table import Convention, DHTable, Elementary, JointType, as_expr
-from dhsym.notation.printers import Notation
+from dhsym.notation.printers import Notation, TrigStyle
 
 from .pose import Pose
 from .simplification import compose, numeric_equal, prove_equal
@@ -50,15 +50,19 @@ class Robot:
 
     Frames are numbered 0 … n (DH frames); ``-1`` is the world frame before the
     base transform and ``n + 1`` the tool frame after the tool transform.
+    ``compact`` (C12 or cos/sin) and ``style`` (``C1``, ``c1`` or ``c_theta``, see
+    :class:`~dhsym.notation.printers.TrigStyle`) set how its matrices print.
     """
 
-    def __init__(self, table: DHTable, *, compact: bool = True, upper: bool = True) -> None:
+    def __init__(
+        self, table: DHTable, *, compact: bool = True, style: TrigStyle | str = TrigStyle.UPPER
+    ) -> None:
         self.table = table
         self.notation = Notation.from_variables(
             [r.variable for r in table.rows if r.joint is JointType.REVOLUTE],
             [str(i) for i, r in enumerate(table.rows, 1) if r.joint is JointType.REVOLUTE],
             compact=compact,
-            upper=upper,
+            style=style,
         )
         self._transform = cache(self._compute_transform)
         self._fk_cache: dict[tuple[int, int], FkFunction] = {}
@@ -255,8 +259,8 @@ def _frame_name(i: int, n: int) -> int | str:
     return i
 
 
-def load(name_or_path: str | Path, **kw: bool) -> Robot:
-    """A :class:`Robot` from a built-in name or a table file.
+def load(name_or_path: str | Path, **kw: object) -> Robot:
+    """A :class:`Robot` from a built-in name or a table file (``compact``, ``style`` as Robot).
 
     >>> load("planar2r").name
     'Planar 2R'

@@ -28,7 +28,7 @@ Examples
 >>> import dhsym
 >>> s = singularities(dhsym.load("puma560"))
 >>> print(s.text())
-det J = a2*(a3*S3 + d4*C3)*(a2*C2 + a3*C23 - d4*S23)*S5
+det J = a2*S5*(a2*C2 + a3*C23 - d4*S23)*(a3*S3 + d4*C3)
 >>> [(f.kind, f.text()) for f in s.factors if f.kind != "constant"]
 [('elbow', 'a3*S3 + d4*C3'), ('shoulder', 'a2*C2 + a3*C23 - d4*S23'), ('wrist', 'S5')]
 >>> s.factors[-1].solutions

@@ -23,6 +23,7 @@ __getattr__, __dir__ = lazy_exports(
         "table_latex": "tables",
         "table_markdown": "tables",
         "TeX": "escape",
+        "TrigStyle": "printers",
     },
 )
 
@@ -33,6 +34,7 @@ __all__ = [
     "MatrixBlock",
     "Notation",
     "TeX",
+    "TrigStyle",
     "angle_label",
     "as_math",
     "escape_latex",

@@ -2,9 +2,11 @@
 
 Every formula is printed twice by a :class:`~dhsym.notation.printers.Notation`
 (LaTeX and plain text) into a :class:`Math`; a matrix too wide for a line also
-gets its entries as :class:`Equation` s split at their ``+``/``-`` signs,
-outermost first (:func:`pieces`, :func:`fill`). The derivations, handouts and
-feedback pages arrange these values; they never print sympy objects themselves.
+gets its entries as :class:`Equation` s split into lines (:func:`pieces`,
+:func:`fill`): at the outermost ``+``/``-`` first, then inside the outermost
+bracket, each continuation indented under the bracket it continues. The
+derivations, handouts and feedback pages arrange these values; they never
+print sympy objects themselves.
 
 Examples
 --------
@@ -19,17 +21,17 @@ Math(latex='-x', text='-x')
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from decimal import Decimal
 from types import MappingProxyType
 
 import sympy as sp
 
+from dhsym.model.entries import exact_decimal
 from dhsym.model.table import Elementary
 
 from .escape import TeX
-from .printers import Notation
+from .printers import Notation, Token, delimiter
 
 __all__ = [
     "LATEX_WIDTH",
@@ -48,7 +50,6 @@ __all__ = [
     "math_width",
     "matrix_block",
     "pieces",
-    "tight",
     "word_math",
 ]
 
@@ -84,7 +85,12 @@ class Term:
 
 @dataclass(frozen=True)
 class Equation:
-    """One matrix entry as an equation ``name = …``, already split into lines."""
+    """One matrix entry as an equation ``name = …``, already split into lines.
+
+    A continuation line carries its own indent (``\\quad`` or ``\\phantom{…}`` in
+    LaTeX, spaces in text), relative to where the first line's ``=`` (LaTeX)
+    or right-hand side (text) starts: a template writes ``\\ &`` before it.
+    """
 
     name: Math
     latex_lines: tuple[TeX, ...]
@@ -114,13 +120,19 @@ class LegendLine:
 def math_width(tex: str) -> float:
     r"""A rough printed width of math-mode LaTeX, in units of one italic letter (~7.5pt at 11pt).
 
-    Subscripts count 0.7, ``\cos`` three letters, ``\left``/``\right`` nothing,
+    Subscripts count 0.7, ``\cos`` three letters, ``\left``/``\right`` and
+    ``\Bigl``/``\Bigr`` nothing, ``\quad`` two, ``\phantom{x}`` as ``x``,
     binary operators 2.2 (their spacing). Used to decide where to split a formula.
 
     >>> math_width("C_{12}"), math_width(r"a_{1} \cos{\left(\theta_{1} \right)}")
     (2.4, 8.0)
+    >>> math_width(r"\phantom{{}={}C_{1}[}\quad")
+    6.9
     """
-    s = re.sub(r"\\(?:left|right)(?![A-Za-z])\.?", "", tex)
+    s = re.sub(r"\\(?:left|right|[bB]igg?[lr]?)(?![A-Za-z])\.?", "", tex)
+    s = re.sub(r"\\phantom(?![A-Za-z])", "", s)
+    s = re.sub(r"\\quad(?![A-Za-z])", "xx", s)
+    s = s.replace(r"\{", "(").replace(r"\}", ")")
     s = re.sub(r"\\(?:cos|sin|tan)(?![A-Za-z])", "ccc", s)
     s = re.sub(r"\\[A-Za-z]+", "x", s)
     width, scale, stack, script = 0.0, 1.0, [], False
@@ -140,101 +152,143 @@ def math_width(tex: str) -> float:
     return width
 
 
-def tight(latex: str) -> str:
-    """``- S_{12}`` → ``-S_{12}`` (a leading unary minus hugs its term).
-
-    >>> tight("- S_{12}")
-    '-S_{12}'
-    """
-    return "-" + latex[2:] if latex.startswith("- ") else latex
-
-
 @dataclass(frozen=True)
 class Piece:
-    """A printable piece; a line may start at it when ``brk`` (an operator at ``depth``)."""
+    """A piece of a formula in LaTeX and text; a line may start at an ``op`` (``brk``).
 
+    ``kind``, ``depth``, ``level`` and ``tall`` are those of the printers'
+    :class:`~dhsym.notation.printers.Token` s; ``latex`` is the piece as printed on one line.
+    """
+
+    kind: str
     latex: str
     text: str
     depth: int
-    brk: bool
+    level: int = 0
+    tall: bool = False
+
+    @property
+    def brk(self) -> bool:
+        """True when a line may start here (a ``+`` or ``-`` between terms)."""
+        return self.kind == "op"
 
 
-def pieces(expr: sp.Expr, nota: Notation, depth: int = 0, star: bool = False) -> list[Piece]:
-    """Flatten ``expr`` into printable pieces; a line may start at an operator (``brk``)."""
-    pre = "*" if star else ""
-    if expr.is_Add:
-        out: list[Piece] = []
-        for k, term in enumerate(expr.as_ordered_terms()):
-            neg = term.could_extract_minus_sign()
-            body = -term if neg else term
-            if k == 0 and neg:
-                out.append(Piece("-", pre + "-", depth, False))
-            elif k > 0:
-                out.append(Piece("- " if neg else "+ ", " - " if neg else " + ", depth, True))
-            out.extend(pieces(body, nota, depth, star=pre != "" and k == 0 and not neg))
-        return out
-    if expr.is_Mul and any(f.is_Add for f in expr.args):
-        coeff, rest = expr.as_coeff_Mul()
+def pieces(expr: sp.Expr, nota: Notation) -> list[Piece]:
+    """``expr`` as the printers lay it out: the same tokens in LaTeX and in text.
+
+    >>> t1, a1 = sp.symbols("theta1 a1", real=True)
+    >>> [(p.kind, p.text) for p in pieces(a1 * (1 + sp.cos(t1)), Notation.from_variables([t1]))]
+    [('atom', 'a1'), ('atom', '*'), ('open', '('), ('atom', 'C1'), ('op', ' + '), \
+('atom', '1'), ('close', ')')]
+    """
+    latex, text = nota.tokens(expr, latex=True), nota.tokens(expr, latex=False)
+    return [
+        Piece(
+            a.kind,
+            delimiter(a, True) if a.kind in ("open", "close") else a.text,
+            b.text,
+            a.depth,
+            a.level,
+            a.tall,
+        )
+        for a, b in zip(latex, text, strict=True)
+    ]
+
+
+#: What stands before the first line of an entry after the alignment point: ``&= …``.
+_ANCHOR = "{}={}"
+
+
+def fill(items: Sequence[Piece], width: float, latex: bool) -> list[str]:
+    r"""Lines of ``items`` no wider than ``width`` (LaTeX in ``math_width``, text in characters).
+
+    Each line ends at the last ``+``/``-`` that fits among those of the fewest
+    brackets: the outermost sum first, then inside the outermost bracket. A
+    continuation starts with its sign; it is indented by ``\quad`` (two spaces)
+    under a sum, and under the opening bracket when it continues one
+    (``\phantom`` of what stands before it in LaTeX, spaces in text). A bracket
+    that spans lines prints as ``\Bigl(``…``\Bigr)`` when tall (``\left`` cannot span).
+    """
+    measure = math_width if latex else len
+    n = len(items)
+    partner: dict[int, int] = {}
+    stack: list[int] = []
+    for k, p in enumerate(items):
+        if p.kind == "open":
+            stack.append(k)
+        elif p.kind == "close" and stack:
+            o = stack.pop()
+            partner[o], partner[k] = k, o
+
+    def content(lo: int, hi: int) -> str:
         out = []
-        if coeff.could_extract_minus_sign():
-            out.append(Piece("-", pre + "-", depth, False))
-            coeff, pre = -coeff, ""
-        factors = ([coeff] if coeff != 1 else []) + list(rest.as_ordered_factors())
-        for k, f in enumerate(factors):
-            lead = pre if k == 0 else "*"
-            if f.is_Add:
-                out.append(Piece("(", lead + "(", depth + 1, False))
-                out.extend(pieces(f, nota, depth + 1))
-                out.append(Piece(")", ")", depth + 1, False))
+        for k in range(lo, hi):
+            p = items[k]
+            if p.kind in ("open", "close"):
+                broken = not lo <= partner.get(k, k) < hi
+                out.append(delimiter(_token(p), latex, broken))
+            elif k == lo and p.kind == "op":  # a continuation starts with its sign,
+                sign = p.latex.strip() if latex else p.text.strip()
+                out.append(("{}" if latex else "") + sign + " ")  # binary in LaTeX
             else:
-                out.append(Piece(tight(nota.latex(f)), lead + nota.text(f), depth, False))
-        return out
-    return [Piece(tight(nota.latex(expr)), pre + nota.text(expr), depth, False)]
+                out.append(p.latex if latex else p.text)
+        return "".join(out).rstrip()
+
+    anchor = _ANCHOR if latex else ""
+    budget = width + measure(anchor)
+    lines: list[tuple[int, int, str]] = []  # (start, end, indent)
+    start, indent = 0, anchor
+    while start < n:
+        if measure(indent + content(start, n)) <= budget:
+            end = n
+        else:
+            breaks = [j for j in range(start + 1, n) if items[j].brk]
+            fits = [j for j in breaks if measure(indent + content(start, j)) <= budget]
+            if fits:
+                shallow = min(items[j].depth for j in fits)
+                end = max(j for j in fits if items[j].depth == shallow)
+            else:
+                end = breaks[0] if breaks else n
+        lines.append((start, end, indent))
+        if end < n:
+            indent = _indent(items, partner, lines, end, content, latex)
+        start = end
+    return [(ind if k else "") + content(lo, hi) for k, (lo, hi, ind) in enumerate(lines)]
 
 
-def fill(items: list[Piece], width: float, measure: object, join: str) -> list[str]:
-    """Pack ``items`` into lines no wider than ``width``, breaking at the shallowest depth."""
-    size = measure  # type: ignore[assignment]
+def _token(p: Piece) -> Token:
+    return Token(p.kind, p.latex, p.depth, p.level, p.tall)
 
-    def chunks(level: int) -> list[list[Piece]]:
-        out: list[list[Piece]] = [[]]
-        for p in items:
-            if p.brk and p.depth <= level and out[-1]:
-                out.append([])
-            out[-1].append(p)
-        return out
 
-    def text(ps: list[Piece]) -> str:
-        return join.join(p.latex if join == " " else p.text for p in ps).strip()
-
-    deepest = max((p.depth for p in items), default=0)
-    level = 0
-    parts = chunks(level)
-    while level < deepest and max(size(text(c)) for c in parts) > width:  # type: ignore[operator]
-        level += 1
-        parts = chunks(level)
-    lines: list[list[Piece]] = [[]]
-    for c in parts:
-        if lines[-1] and size(text(lines[-1] + c)) > width:  # type: ignore[operator]
-            lines.append([])
-        lines[-1].extend(c)
-    return [text(line) for line in lines]
+def _indent(
+    items: Sequence[Piece],
+    partner: dict[int, int],
+    lines: list[tuple[int, int, str]],
+    at: int,
+    content: Callable[[int, int], str],
+    latex: bool,
+) -> str:
+    """The indent of a line starting at ``items[at]``: under its innermost open bracket."""
+    opener = max(
+        (o for o, c in partner.items() if o < at < c and items[o].kind == "open"), default=None
+    )
+    if opener is None:
+        return r"\quad " if latex else "  "
+    lo, _, ind = next(line for line in lines if line[0] <= opener < line[1])
+    before = ind + content(lo, opener + 1)
+    return rf"\phantom{{{before}}}" if latex else " " * len(before)
 
 
 def as_math(expr: object, nota: Notation) -> Math:
-    """``expr`` printed by ``nota`` (LaTeX with a tight leading minus, and text)."""
-    return Math(TeX(tight(nota.latex(expr))), nota.text(expr))
+    """``expr`` printed by ``nota`` in LaTeX and text (a leading minus hugs its term)."""
+    return Math(TeX(nota.latex(expr)), nota.text(expr))
 
 
 def as_decimal(value: sp.Expr, nota: Notation) -> Math:
     """A numeric value as the decimal it was written as (0.8, not 4/5) when it is one."""
     if isinstance(value, sp.Rational) and not value.is_Integer:
-        q = int(value.q)
-        for f in (2, 5):
-            while q % f == 0:
-                q //= f
-        if q == 1:
-            text = format(Decimal(int(value.p)) / Decimal(int(value.q)), "f")
+        text = exact_decimal(value)
+        if text is not None:
             return Math(TeX(text), text)
     return as_math(value, nota)
 
@@ -252,9 +306,9 @@ def equation(name: Math, expr: sp.Expr, whole: Math, nota: Notation, width: floa
     if math_width(whole.latex) > width or len(whole.text) > TEXT_WIDTH - 12:
         ps = pieces(expr, nota)
         if math_width(whole.latex) > width:
-            latex_lines = fill(ps, width, math_width, " ")
+            latex_lines = fill(ps, width, latex=True)
         if len(whole.text) > TEXT_WIDTH - 12:
-            text_lines = fill(ps, TEXT_WIDTH - 12, len, "")
+            text_lines = fill(ps, TEXT_WIDTH - 12, latex=False)
     return Equation(name, tuple(TeX(x) for x in latex_lines), tuple(text_lines))
 
 

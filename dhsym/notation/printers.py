@@ -1,37 +1,83 @@
-"""Lecture notation: ``C_{12}`` for cos(θ1+θ2), ``S_1`` for sin θ1, ``c_{α_1}`` for cos α1.
+r"""Lecture notation: ``C_{12}`` for cos(θ1+θ2), ``S_1`` for sin θ1, in the textbook's order.
 
-The printers are subclasses of sympy's own ``StrPrinter`` and ``LatexPrinter``
-that override only ``_print_cos`` and ``_print_sin``; everything else (sums,
-products, fractions, matrices) is sympy's printing.
+The printers are subclasses of sympy's own ``StrPrinter`` and ``LatexPrinter``.
+They override ``_print_cos``/``_print_sin`` (the abbreviations) and
+``_print_Add``/``_print_Mul`` (the order); both go through one layout pass,
+:meth:`Notation.arrange`, so text, LaTeX, Markdown, JSON, notebooks and
+feedback pages print every formula in the same order. The sympy expressions
+themselves are never rewritten: the order is the printer's job.
+
+The term-order policy
+---------------------
+1. **Factor before bracket.** A common factor is written before the bracket it
+   multiplies: ``C1(…)``, never ``(…)C1``.
+2. **Products in lecture order.** Numeric coefficient first, then lengths and
+   other plain symbols (``a``, ``d``, ``l`` …) by index, then the sines and
+   cosines of joint angles in joint order (``a2C2``, ``S23S5C6``, ``C4S6``; a
+   sum angle counts by its joints, ``C23`` before ``S5``), C before S on the
+   same joint; then other trigonometric factors (twists, ``c_{α1}``); brackets last.
+3. **Sums in joint order, led by a positive term.** Terms are ordered by the
+   indices of their factors as they are printed (lengths and joints alike,
+   ``C1[…] − d3S1``, ``a2C2 + a3C23 − d4S23``); a bracket counts by its first
+   term; a number comes last. If the first term is negative and a positive one
+   exists, the first positive term moves to the front (``C4C5C6 − S4S6``).
+4. **Signs before brackets.** A minus stands before a bracket rather than in all
+   its terms: ``−C1(C23C4S5 + S23C5)``, never ``C1(−C23C4S5 − S23C5)``. A
+   bracket with no bracket inside is signed so that its term with the fewest
+   sines is positive, as the sum-angle identities read (``C4C5C6 − S4S6``,
+   ``C4C6 − S4C5S6``), so the same bracket reads the same in every entry; ties go
+   to its first term in the order of rule 3. A bracket that holds brackets is
+   signed to show the fewest minus signs (ties as before).
+5. **Brackets by level** (LaTeX): ``( )`` around a bracket with no bracket
+   inside, ``[ ]`` around one that holds ``( )``, then ``\{ \}``; plain text
+   always uses ``( )`` so that it reads back through the project's parser.
+
+Case (:class:`TrigStyle`): ``C1``/``S23`` (the lectures here), ``c1``/``s23``
+(Craig, Spong) or ``c_{θ1}`` (LaTeX only; its text is ``c1``).
 
 Examples
 --------
 >>> import sympy as sp
 >>> t1, t2, a1, a2 = sp.symbols("theta1 theta2 a1 a2", real=True)
 >>> nota = Notation.from_variables([t1, t2])
->>> e = a1 * sp.cos(t1) + a2 * sp.cos(t1 + t2)
+>>> e = a2 * sp.cos(t1 + t2) + a1 * sp.cos(t1)
 >>> nota.text(e)
 'a1*C1 + a2*C12'
 >>> nota.latex(e)
 'a_{1} C_{1} + a_{2} C_{12}'
+>>> nota.text(a2 - (sp.sin(t2) - sp.cos(t2)) * sp.cos(t1))
+'C1*(C2 - S2) + a2'
+>>> nota.text((sp.sin(t2) - sp.cos(t2)) * sp.cos(t1))
+'-C1*(C2 - S2)'
+>>> Notation.from_variables([t1, t2], style="c1").latex(-sp.sin(t1) * (a1 + a2 * sp.cos(t2)))
+'-s_{1}(a_{1} + a_{2} c_{2})'
 >>> print(Notation.from_variables([t1, t2], compact=False).latex(sp.cos(t1 + t2)))
-\\cos{\\left(\\theta_{1} + \\theta_{2} \\right)}
+\cos{\left(\theta_{1} + \theta_{2} \right)}
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+import re
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field, replace
+from enum import Enum
+from functools import cached_property
+from itertools import product as _combinations
 
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 from sympy.printing.str import StrPrinter
 
+from dhsym.errors import DHError
 from dhsym.model.entries import exact_decimal
 
 __all__ = [
     "LegendEntry",
     "Notation",
+    "Product",
+    "Sum",
+    "Token",
+    "TrigStyle",
     "angle_label",
     "format_angle",
 ]
@@ -69,6 +115,38 @@ def angle_label(arg: sp.Expr, labels: dict[sp.Symbol, str]) -> str | None:
     return text
 
 
+class TrigStyle(str, Enum):
+    """How sin and cos of joint angles print.
+
+    >>> TrigStyle.parse("craig"), TrigStyle.parse("C1"), TrigStyle.parse("theta")
+    (<TrigStyle.LOWER: 'c1'>, <TrigStyle.UPPER: 'C1'>, <TrigStyle.THETA: 'c_theta'>)
+    """
+
+    UPPER = "C1"  # C_1, S_{23}: the lectures here (IRob2305)
+    LOWER = "c1"  # c_1, s_{23}: Craig, Spong
+    THETA = "c_theta"  # c_{θ_1}, s_{θ_{23}} in LaTeX; c1, s23 in text
+
+    @classmethod
+    def parse(cls, value: object) -> TrigStyle:
+        """Read ``C1``/``upper``/``lecture``, ``c1``/``lower``/``craig``/``spong`` or
+        ``c_theta``/``theta``."""
+        if isinstance(value, cls):
+            return value
+        text = str(value).strip()
+        if text in ("C1", "c1"):
+            return cls(text)
+        synonyms = dict.fromkeys(("upper", "lecture", "lectures"), "C1")
+        synonyms.update(dict.fromkeys(("lower", "craig", "spong"), "c1"))
+        synonyms.update(dict.fromkeys(("c_theta", "ctheta", "theta", "c_θ"), "c_theta"))
+        key = text.lower()
+        if key not in synonyms:
+            raise DHError(
+                f"unknown notation {value!r}: expected C1 (C1, S23), c1 (c1, s23, Craig) "
+                "or c_theta (c_{θ1})"
+            )
+        return cls(synonyms[key])
+
+
 @dataclass(frozen=True)
 class LegendEntry:
     """One abbreviation and what it stands for, in LaTeX and plain text."""
@@ -79,9 +157,122 @@ class LegendEntry:
     meaning_text: str
 
 
+# --- the layout of one formula: signed products and brackets ----------------------------------
+
+
+@dataclass(frozen=True)
+class Product:
+    """One term as printed: its sign, its coefficient and its factors in the policy's order.
+
+    ``factors`` holds sympy leaves (symbols, cos/sin, powers) and bracketed
+    :class:`Sum` s; ``whole`` is a term sympy prints itself (a fraction), positive.
+    """
+
+    negative: bool
+    coeff: sp.Expr = sp.S.One
+    factors: tuple[sp.Expr | Sum, ...] = ()
+    whole: sp.Expr | None = None
+    key: tuple = field(default=(), compare=False)
+    sines: int = 0
+
+    def flipped(self) -> Product:
+        """The same term with the opposite sign."""
+        return replace(self, negative=not self.negative)
+
+    @property
+    def minus_signs(self) -> int:
+        """How many minus signs the term shows (its own and its brackets')."""
+        return int(self.negative) + sum(f.minus_signs for f in self.factors if isinstance(f, Sum))
+
+
+@dataclass(frozen=True)
+class Sum:
+    """Terms in printed order; as a factor, a bracket of ``level`` (1 = innermost)."""
+
+    terms: tuple[Product, ...]
+
+    @cached_property
+    def level(self) -> int:
+        """1 for a bracket with no bracket inside, 2 around those, …"""
+        inner = [f.level for t in self.terms for f in t.factors if isinstance(f, Sum)]
+        return 1 + max(inner, default=0)
+
+    @property
+    def minus_signs(self) -> int:
+        """How many minus signs the sum shows."""
+        return sum(t.minus_signs for t in self.terms)
+
+    @property
+    def canonical(self) -> bool:
+        """True when the term with the fewest sines (then the first in order) is positive."""
+        return not min(self.terms, key=lambda t: (t.sines, t.key)).negative
+
+    def negated(self) -> Sum:
+        """The sum with every sign flipped, re-led by a positive term."""
+        return _lead(t.flipped() for t in self.terms)
+
+
+def _lead(terms: Iterable[Product]) -> Sum:
+    """Terms in key order, the first positive one moved to the front (rule 3)."""
+    ordered = sorted(terms, key=lambda t: t.key)
+    if ordered[0].negative:
+        pos = next((k for k, t in enumerate(ordered) if not t.negative), None)
+        if pos is not None:
+            ordered.insert(0, ordered.pop(pos))
+    return Sum(tuple(ordered))
+
+
+@dataclass(frozen=True)
+class Token:
+    """A piece of a printed formula.
+
+    ``kind`` is ``atom``, ``sign`` (a leading minus), ``op`` (`` + `` or `` - ``
+    between terms: a line may break before it), ``open`` or ``close`` (a bracket
+    of ``level``, ``tall`` when it holds a fraction or root); ``depth`` counts the
+    brackets around the piece.
+    """
+
+    kind: str
+    text: str
+    depth: int
+    level: int = 0
+    tall: bool = False
+
+
+_DELIMS = (("(", ")"), ("[", "]"), (r"\{", r"\}"))
+
+
+def delimiter(tok: Token, latex: bool, broken: bool = False) -> str:
+    r"""The bracket a token prints as: by level in LaTeX (``( [ \{``), ``(`` in text.
+
+    A tall bracket is ``\left(``…``\right)`` on one line and ``\Bigl(`` when it
+    spans lines (``\left`` cannot).
+    """
+    if not latex:
+        return "(" if tok.kind == "open" else ")"
+    pair = _DELIMS[(tok.level - 1) % 3]
+    d = pair[0] if tok.kind == "open" else pair[1]
+    if not tok.tall:
+        return d
+    side = "l" if tok.kind == "open" else "r"
+    return f"\\Big{side}{d}" if broken else f"\\{'left' if side == 'l' else 'right'}{d}"
+
+
+def render(tokens: Sequence[Token], latex: bool) -> str:
+    """The tokens joined on one line."""
+    return "".join(
+        delimiter(t, latex) if t.kind in ("open", "close") else t.text for t in tokens
+    ).strip()
+
+
+# --- the notation -------------------------------------------------------------------------------
+
+_TRAILING_INDEX = re.compile(r"([0-9]+)$")
+
+
 @dataclass(frozen=True)
 class Notation:
-    """How to print trigonometric terms: which symbols are joint angles, and their labels.
+    """How to print: which symbols are joint angles, their labels, the case of C/S.
 
     Parameters
     ----------
@@ -89,28 +280,39 @@ class Notation:
         ``(symbol, label)`` pairs: cos of a sum of these prints as ``C_{label…}``.
     compact
         False prints the full ``cos``/``sin`` form.
-    upper
-        ``C_1``/``S_1`` (seed 001) when True, ``c_1``/``s_1`` (Craig) when False.
+    style
+        :class:`TrigStyle` (or its name): ``C1`` (default), ``c1`` or ``c_theta``.
     """
 
     labels: tuple[tuple[sp.Symbol, str], ...] = ()
     compact: bool = True
-    upper: bool = True
+    style: TrigStyle = TrigStyle.UPPER
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "style", TrigStyle.parse(self.style))
 
     @classmethod
     def from_variables(
-        cls, variables: Sequence[sp.Symbol], labels: Sequence[str] | None = None, **kw: bool
+        cls,
+        variables: Sequence[sp.Symbol],
+        labels: Sequence[str] | None = None,
+        **kw: object,
     ) -> Notation:
         """Notation whose joint angles are ``variables``, labelled 1, 2, … by default."""
         labs = (
             list(labels) if labels is not None else [str(i) for i in range(1, len(variables) + 1)]
         )
-        return cls(tuple(zip(variables, labs)), **kw)
+        return cls(tuple(zip(variables, labs)), **kw)  # type: ignore[arg-type]
 
-    @property
+    @cached_property
     def label_map(self) -> dict[sp.Symbol, str]:
         """The labels as a dict."""
         return dict(self.labels)
+
+    @cached_property
+    def _joint_index(self) -> dict[sp.Symbol, int]:
+        """Joint number of each angle: its label when it is a number, else its position."""
+        return {s: int(lab) if lab.isdigit() else k for k, (s, lab) in enumerate(self.labels, 1)}
 
     def latex(self, expr: object) -> str:
         """LaTeX of ``expr`` (an expression or matrix) in this notation."""
@@ -123,6 +325,16 @@ class Notation:
     def markdown(self, expr: object) -> str:
         """Inline Markdown math: ``$…$``."""
         return f"${self.latex(expr)}$"
+
+    def tokens(self, expr: sp.Expr, latex: bool) -> list[Token]:
+        """``expr`` printed as :class:`Token` s (what line breaking works on).
+
+        >>> t1, a1 = sp.symbols("theta1 a1", real=True)
+        >>> [t.text for t in Notation.from_variables([t1]).tokens(-a1 * sp.cos(t1) + 1, False)]
+        ['1', ' - ', 'a1', '*C1']
+        """
+        printer = _DHLatexPrinter(self) if latex else _DHStrPrinter(self)
+        return printer.tokens(self.arrange(sp.sympify(expr)))
 
     def legend(self, exprs: Iterable[object]) -> list[LegendEntry]:
         """The abbreviations used in ``exprs``, in order of first appearance (sorted).
@@ -138,7 +350,7 @@ class Notation:
         for e in exprs:
             if isinstance(e, sp.Basic):
                 atoms |= e.atoms(sp.cos, sp.sin)
-        full = Notation(self.labels, compact=False, upper=self.upper)
+        full = replace(self, compact=False)
         entries = {}
         for f in atoms:
             short = self.text(f)
@@ -146,9 +358,9 @@ class Notation:
                 continue
             entries[short] = LegendEntry(self.latex(f), full.latex(f), short, full.text(f))
 
-        def order(item: tuple[str, LegendEntry]) -> tuple[int, int, str]:
+        def order(item: tuple[str, LegendEntry]) -> tuple[bool, int, str]:
             name = item[0]
-            return (name[:1].islower(), len(name), name)
+            return ("_" in name, len(name), name)
 
         return [entries[k] for k, _ in sorted(entries.items(), key=order)]
 
@@ -157,32 +369,242 @@ class Notation:
         if not self.compact:
             return None
         arg = func.args[0]
-        letter = "C" if isinstance(func, sp.cos) else "S"
+        cos = isinstance(func, sp.cos)
         lab = angle_label(arg, self.label_map)
         if lab is not None:
-            letter = letter if self.upper else letter.lower()
+            upper = self.style is TrigStyle.UPPER
+            letter = ("C" if cos else "S") if upper else ("c" if cos else "s")
+            if latex and self.style is TrigStyle.THETA:
+                return f"{letter}_{{{_angle_head(arg)}_{{{lab}}}}}"
             if latex:
                 return f"{letter}_{{{lab}}}"
             return f"{letter}[{lab}]" if "-" in lab else f"{letter}{lab}"
         if isinstance(arg, sp.Symbol):
-            small = letter.lower()
+            small = "c" if cos else "s"
             if latex:
                 return f"{small}_{{{sp.latex(arg)}}}"
             return f"{small}_{arg.name}"
         return None
 
+    # the order of the policy -------------------------------------------------------
+    def arrange(self, expr: sp.Expr) -> Sum:
+        """``expr`` laid out by the term-order policy (the module docstring): a :class:`Sum`.
 
-class _DHLatexPrinter(LatexPrinter):
+        >>> t = sp.symbols("theta1:4", real=True)
+        >>> c, s = [sp.cos(x) for x in t], [sp.sin(x) for x in t]
+        >>> tree = Notation.from_variables(t).arrange((s[1] * s[2] - c[1] * c[2]) * s[0])
+        >>> [(p.negative, len(p.factors)) for p in tree.terms]
+        [(True, 2)]
+        """
+        if expr.is_Add:
+            return _lead(self._term(t) for t in expr.args)
+        return Sum((self._term(expr),))
+
+    def _index(self, s: sp.Symbol) -> int:
+        if s in self._joint_index:
+            return self._joint_index[s]
+        m = _TRAILING_INDEX.search(s.name)
+        return int(m.group(1)) if m else 0
+
+    def _angle(self, arg: sp.Expr) -> tuple[int, ...] | None:
+        """Joint numbers of a sum of joint angles (``θ2 + θ3`` → (2, 3)), None otherwise."""
+        if angle_label(arg, self.label_map) is None:
+            return None
+        coeffs = arg.as_coefficients_dict()
+        pos = sorted(self._joint_index[s] for s, c in coeffs.items() if c == 1)
+        neg = sorted(self._joint_index[s] for s, c in coeffs.items() if c == -1)
+        return tuple(pos + neg)
+
+    @cached_property
+    def _factor_keys(self) -> dict[sp.Expr, tuple]:
+        return {}  # a memo of _factor_key: the same few leaves recur in every entry
+
+    def _factor_key(self, f: sp.Expr) -> tuple:
+        """(group, index, letter, name): number, symbol, joint trig, other trig, other, bracket."""
+        key = self._factor_keys.get(f)
+        if key is None:
+            key = self._factor_keys[f] = self._compute_factor_key(f)
+        return key
+
+    def _compute_factor_key(self, f: sp.Expr) -> tuple:
+        base, exp = (f.base, f.exp) if f.is_Pow else (f, 1)
+        name = (getattr(base, "name", ""), str(exp))  # ties: a2 before d2, S1 before S1**2
+        if f.is_number:
+            return (0, (), 0, name)
+        if isinstance(base, (sp.cos, sp.sin)):
+            letter = 0 if isinstance(base, sp.cos) else 1
+            joints = self._angle(base.args[0])
+            if joints is not None:
+                return (2, joints, letter, name)
+            index = tuple(sorted(self._index(s) for s in base.free_symbols))
+            return (3, index, letter, name)
+        if isinstance(base, sp.Symbol):
+            return (1, (self._index(base),), 0, name)
+        if base.is_Add:
+            return (5, (), 0, name)
+        return (4, tuple(sorted(self._index(s) for s in f.free_symbols)), 0, name)
+
+    def _term_key(self, factors: Sequence[sp.Expr | Sum], whole: sp.Expr | None) -> tuple:
+        """Rule 3: the indices of the printed factors, a bracket by its first term."""
+        index: list[tuple[int, ...]] = []
+        letters: list[tuple[int, int]] = []
+        if whole is not None:
+            syms = sorted(whole.free_symbols, key=lambda s: (self._index(s), s.name))
+            return (not syms, [(self._index(s),) for s in syms], [], str(whole))
+        for f in factors:
+            if isinstance(f, Sum):
+                first = f.terms[0].key
+                index += first[1]
+                letters += first[2]
+                continue
+            k = self._factor_key(f)
+            if k[0] == 0:
+                continue
+            index.append(k[1])
+            letters.append((k[0], k[2]))
+        return (not index, index, letters, "")
+
+    def _term(self, term: sp.Expr) -> Product:
+        coeff, rest = term.as_coeff_Mul()
+        negative = bool(coeff.is_negative)
+        coeff = -coeff if negative else coeff
+        factors = list(sp.Mul.make_args(rest)) if rest != 1 else []
+        plain = (
+            not factors
+            or not term.is_commutative
+            or any(f.is_Pow and f.exp.is_negative for f in factors)
+        )
+        if plain:
+            whole = -term if negative else term
+            return Product(negative, whole=whole, key=self._term_key((), whole))
+        brackets = [self.arrange(f) for f in factors if f.is_Add]
+        leaves = sorted((f for f in factors if not f.is_Add), key=self._factor_key)
+        negative, brackets = _orient(negative, brackets)
+        brackets.sort(key=lambda b: b.terms[0].key)
+        ordered = (*leaves, *brackets)
+        sines = sum(isinstance(f.base if f.is_Pow else f, sp.sin) for f in leaves)
+        return Product(negative, coeff, ordered, key=self._term_key(ordered, None), sines=sines)
+
+
+def _orient(negative: bool, brackets: list[Sum]) -> tuple[bool, list[Sum]]:
+    """Rule 4: sign the brackets of one product (inner ones canonical, outer ones frugal)."""
+    options = [
+        [b if b.canonical else b.negated()] if b.level == 1 else [b, b.negated()] for b in brackets
+    ]
+    if len(options) > 4:  # more brackets than anyone writes: inner ones only
+        options = [o[:1] for o in options]
+    best: tuple | None = None
+    choice: tuple[bool, list[Sum]] = (negative, brackets)
+    for bs in _combinations(*options):
+        flips = sum(b is not orig for b, orig in zip(bs, brackets))
+        neg = negative ^ (flips % 2 == 1)
+        score = (int(neg) + sum(b.minus_signs for b in bs), -sum(b.canonical for b in bs), flips)
+        if best is None or score < best:
+            best, choice = score, (neg, list(bs))
+    return choice
+
+
+def _coefficient(c: sp.Expr) -> str | None:
+    """A coefficient as printed before its factors: ``2``, ``0.15005``; None for 1/3."""
+    if c.is_Integer:
+        return str(c)
+    if c.is_Rational:
+        return exact_decimal(c) if c.q % 10 == 0 else None  # type: ignore[attr-defined]
+    return None
+
+
+def _angle_head(arg: sp.Expr) -> str:
+    r"""``\theta`` for angles θ1, θ2…, ``q`` for q1, q2… (the letter of the joint variables)."""
+    names = {re.match(r"[A-Za-z]*", s.name).group(0) for s in arg.free_symbols}  # type: ignore[union-attr]
+    return sp.latex(sp.Symbol(names.pop())) if len(names) == 1 and "" not in names else r"\theta"
+
+
+class _LayoutMixin:
+    """Tokens of an arranged formula; shared by the LaTeX and the text printer."""
+
+    _nota: Notation
+    _latex: bool
+    _print: Callable[..., str]  # sympy's Printer._print
+
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        dec = exact_decimal(expr) if expr.q > 1 else None
+        return dec if dec is not None else super()._print_Rational(expr)  # type: ignore[misc]
+
+    def _print_Add(self, expr: sp.Add, order: object = None) -> str:
+        return self._layout(expr)
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        return self._layout(expr)
+
+    def _print_whole(self, expr: sp.Expr) -> str:
+        """A term sympy prints itself (a fraction): sympy's own ``_print_Mul``."""
+        return super()._print_Mul(expr) if expr.is_Mul else self._print(expr)  # type: ignore[misc]
+
+    def tokens(self, tree: Sum, depth: int = 0) -> list[Token]:
+        """The tokens of ``tree`` (from :meth:`Notation.arrange`)."""
+        out: list[Token] = []
+        for k, term in enumerate(tree.terms):
+            if k == 0:
+                if term.negative:
+                    out.append(Token("sign", "-", depth))
+            else:
+                out.append(Token("op", " - " if term.negative else " + ", depth))
+            out += self._product_tokens(term, depth)
+        return out
+
+    def _product_tokens(self, p: Product, depth: int) -> list[Token]:
+        if p.whole is not None:
+            return [Token("atom", self._print_whole(p.whole), depth)]
+        c = p.coeff
+        if c.is_Rational and not c.is_Integer and _coefficient(c) is None:  # a2*C2/3
+            top = render(
+                self._product_tokens(replace(p, coeff=sp.Integer(c.p)), depth), self._latex
+            )
+            q = int(c.q)  # type: ignore[attr-defined]
+            return [
+                Token("atom", rf"\frac{{{top}}}{{{q}}}" if self._latex else f"{top}/{q}", depth)
+            ]
+        out: list[Token] = []
+        sep = " " if self._latex else "*"
+        lead = _coefficient(c) if c.is_Rational else None
+        if c != 1:
+            out.append(Token("atom", lead if lead is not None else self._print(c), depth))
+        for f in p.factors:
+            joint = sep if out else ""
+            if isinstance(f, Sum):
+                inner = self.tokens(f, depth + 1)
+                tall = self._latex and any(r"\frac" in t.text or r"\sqrt" in t.text for t in inner)
+                if out:  # the same pieces in both formats; in LaTeX a space after a
+                    gap = " " if out[-1].kind == "close" else ""  # bracket: no Markdown ](
+                    out.append(Token("atom", gap if self._latex else "*", depth))
+                out.append(Token("open", "(", depth, f.level, tall))
+                out += inner
+                out.append(Token("close", ")", depth, f.level, tall))
+            else:
+                out.append(Token("atom", joint + self._print(f), depth))
+        return out
+
+    def _layout(self, expr: sp.Expr) -> str:
+        return render(self.tokens(self._nota.arrange(expr)), self._latex)
+
+
+class _OrderedLatexPrinter(_LayoutMixin, LatexPrinter):
+    """sympy's LaTeX in the policy's order (cos and sin in full)."""
+
+    _latex = True
+
     def __init__(self, notation: Notation) -> None:
-        settings = {"mat_str": "bmatrix", "mat_delim": ""}
-        super().__init__(settings)
+        super().__init__({"mat_str": "bmatrix", "mat_delim": ""})
         self._nota = notation
-        self._plain = LatexPrinter(settings)
+
+
+class _DHLatexPrinter(_OrderedLatexPrinter):
+    """The lecture's LaTeX: ``C_{12}``, ``s_{\alpha_{1}}``."""
 
     def _print_trig(self, expr: sp.Expr, exp: str | None) -> str:
         short = self._nota._short(expr, latex=True)
-        if short is None:
-            return self._plain._print(expr, exp=exp)
+        if short is None:  # sympy's _print_Function would call _print_cos again
+            return _OrderedLatexPrinter(self._nota)._print(expr, exp=exp)
         return f"{short}^{{{exp}}}" if exp else short
 
     def _print_cos(self, expr: sp.Expr, exp: str | None = None) -> str:
@@ -191,50 +613,20 @@ class _DHLatexPrinter(LatexPrinter):
     def _print_sin(self, expr: sp.Expr, exp: str | None = None) -> str:
         return self._print_trig(expr, exp)
 
-    def _print_Rational(self, expr: sp.Rational) -> str:
-        dec = exact_decimal(expr) if expr.q > 1 else None
-        return dec if dec is not None else super()._print_Rational(expr)
 
-    def _print_Mul(self, expr: sp.Mul) -> str:
-        return _decimal_mul(self, expr, " ") or super()._print_Mul(expr)
+class _DHStrPrinter(_LayoutMixin, StrPrinter):
+    _latex = False
 
-
-def _decimal(r: sp.Rational) -> str | None:
-    """Decimal text of a lecture number like 3001/20000 (denominator a multiple of 10)."""
-    return exact_decimal(r) if r.q > 1 and r.q % 10 == 0 else None
-
-
-def _decimal_mul(printer: StrPrinter | LatexPrinter, expr: sp.Mul, sep: str) -> str | None:
-    """``0.15005*theta1`` instead of ``3001*theta1/20000``; None when not applicable."""
-    coeff, rest = expr.as_coeff_Mul()
-    dec = _decimal(coeff) if isinstance(coeff, sp.Rational) else None
-    if dec is None or rest == 1:
-        return None
-    body = printer._print(rest)
-    if rest.is_Add:
-        body = rf"\left({body}\right)" if sep == " " else f"({body})"
-    return f"{dec}{sep}{body}"
-
-
-class _DHStrPrinter(StrPrinter):
     def __init__(self, notation: Notation) -> None:
         super().__init__()
         self._nota = notation
-        self._plain = StrPrinter()
 
     def _print_trig(self, expr: sp.Expr) -> str:
         short = self._nota._short(expr, latex=False)
-        return short if short is not None else self._plain._print(expr)
+        return short if short is not None else StrPrinter._print_Function(self, expr)
 
     _print_cos = _print_trig
     _print_sin = _print_trig
-
-    def _print_Rational(self, expr: sp.Rational) -> str:
-        dec = exact_decimal(expr) if expr.q > 1 else None
-        return dec if dec is not None else super()._print_Rational(expr)
-
-    def _print_Mul(self, expr: sp.Mul) -> str:
-        return _decimal_mul(self, expr, "*") or super()._print_Mul(expr)
 
 
 # --- tables ---------------------------------------------------------------------------

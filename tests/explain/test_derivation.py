@@ -111,10 +111,8 @@ def test_puma_560_arm_matrix_is_given_entry_by_entry():
         "p_{z}",
     ]
     px = d.result.entries[9]
-    assert px.latex_lines == (
-        r"d_{3} S_{1} + \left(a_{2} C_{2} + a_{3} C_{23} - d_{4} S_{23}\right) C_{1}",
-    )
-    assert px.text_lines == ("d3*S1 + (a2*C2 + a3*C23 - d4*S23)*C1",)
+    assert px.latex_lines == (r"C_{1}(a_{2} C_{2} + a_{3} C_{23} - d_{4} S_{23}) + d_{3} S_{1}",)
+    assert px.text_lines == ("C1*(a2*C2 + a3*C23 - d4*S23) + d3*S1",)
     assert d.result.entries[11].text_lines == ("a2*S2 + a3*S23 + d4*C23",)
 
 
@@ -139,17 +137,16 @@ def test_every_entry_equals_the_arm_matrix():
 @pytest.mark.parametrize("name", ["puma560", "stanford", "example4_6dof", "planar8r"])
 def test_long_entries_are_split_at_signs_and_fit(name):
     d = derive(name, compact=False)
-    lines = [
-        line
-        for s in (*[p.block for p in d.products], d.result)
-        for e in s.entries
-        for line in e.latex_lines
-    ]
-    assert lines and max(math_width(x) for x in lines) <= LATEX_WIDTH
+    entries = [e for s in (*[p.block for p in d.products], d.result) for e in s.entries]
+    assert entries
+    anchor = math_width("{}={}")  # continuations are measured from the = sign
+    for e in entries:
+        assert math_width(e.latex_lines[0]) <= LATEX_WIDTH
+        assert all(math_width(x) <= LATEX_WIDTH + anchor for x in e.latex_lines[1:])
     split = [e for e in d.result.entries if len(e.latex_lines) > 1]
     assert split, "full notation of a 6-DOF arm needs split entries"
-    for e in split:
-        assert all(x[:2] in ("+ ", "- ") for x in e.latex_lines[1:])
+    for e in split:  # each continuation: an indent, then its sign
+        assert all(re.match(r"(\\quad |\\phantom\{.*\})\{\}[-+] ", x) for x in e.latex_lines[1:])
     text = [x for e in d.result.entries for x in e.text_lines]
     assert max(map(len, text)) <= TEXT_WIDTH - 12
 
@@ -276,7 +273,7 @@ def test_bad_frames_are_refused():
 def test_numeric_lengths_are_substituted():
     d = derive("puma560", numeric=True)
     assert d.numeric and d.table.values == ()
-    assert d.result.entries[11].text_lines == ("0.4318*S2 + 0.0203*S23 + 0.4318*C23",)
+    assert d.result.entries[11].text_lines == ("0.4318*S2 + 0.4318*C23 + 0.0203*S23",)
 
 
 def test_full_notation():

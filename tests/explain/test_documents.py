@@ -21,8 +21,8 @@ from dhsym.explain.templates import builtin_dir
 from dhsym.notation.escape import escape_markdown
 
 ROW_2R = r"C_{12} & -S_{12} & 0 & a_{1} C_{1} + a_{2} C_{12} \\"
-PX_PUMA = r"p_{x} &= d_{3} S_{1} + \left(a_{2} C_{2} + a_{3} C_{23} - d_{4} S_{23}\right) C_{1}"
-PX_CRAIG = r"p_{x} &= -d_{3} S_{1} + \left(a_{2} C_{2} + a_{3} C_{23} - d_{4} S_{23}\right) C_{1}"
+PX_PUMA = r"p_{x} &= C_{1}(a_{2} C_{2} + a_{3} C_{23} - d_{4} S_{23}) + d_{3} S_{1}"
+PX_CRAIG = r"p_{x} &= C_{1}(a_{2} C_{2} + a_{3} C_{23} - d_{4} S_{23}) - d_{3} S_{1}"
 
 
 def _render(name: str, fmt: str, **options: object) -> str:
@@ -55,7 +55,7 @@ def test_golden_puma_560(fmt):
     lines = _lines(text)
     assert PX_PUMA in lines
     assert r"p_{z} &= a_{2} S_{2} + a_{3} S_{23} + d_{4} C_{23}" in lines
-    assert r"r_{33} &= -S_{5} S_{23} C_{4} + C_{5} C_{23}" in lines
+    assert r"r_{33} &= C_{23} C_{5} - S_{23} C_{4} S_{5}" in lines
     assert r"$C_{2} C_{3} - S_{2} S_{3} = C_{23}$, $S_{2} C_{3} + C_{2} S_{3} = S_{23}$." in lines
     if fmt == "latex":
         assert (
@@ -72,9 +72,9 @@ def test_golden_puma_560(fmt):
 def test_golden_puma_560_modified(fmt):
     text = _render("puma560_modified", fmt)
     lines = _lines(text)
-    assert PX_CRAIG in lines  # Craig: p_x = c1 (a2 c2 + a3 c23 - d4 s23) - d3 s1
+    assert PX_CRAIG in lines  # Craig (3.14): p_x = c1[a2 c2 + a3 c23 - d4 s23] - d3 s1
     assert (
-        r"S_{i} c_{\alpha_{i-1}} & c_{\alpha_{i-1}} C_{i} & -s_{\alpha_{i-1}} & "
+        r"S_{i} c_{\alpha_{i-1}} & C_{i} c_{\alpha_{i-1}} & -s_{\alpha_{i-1}} & "
         r"-d_{i} s_{\alpha_{i-1}} \\" in lines
     )
     assert "one slide of seed 002 prints" in text
@@ -88,7 +88,7 @@ def test_golden_text():
     text = _render("puma560", "text")
     lines = _lines(text)
     assert lines[0] == "PUMA 560: forward kinematics (standard DH convention)"
-    assert "p_x = d3*S1 + (a2*C2 + a3*C23 - d4*S23)*C1" in lines
+    assert "p_x = C1*(a2*C2 + a3*C23 - d4*S23) + d3*S1" in lines
     assert "C2*C3 - S2*S3 = C23" in lines
     assert "= [ C1  0   S1  0 ]" in lines  # ^0T_1, aligned under its label
     assert "1 | [theta1] | 0   | 0   | pi/2    | R" in lines
@@ -313,9 +313,23 @@ def test_cli_derive_formats(capsys):
     assert main(["derive", "planar2r", "--format", "markdown"]) == 0
     assert ROW_2R in capsys.readouterr().out
     assert main(["derive", "puma560", "--format", "text"]) == 0
-    assert "p_x = d3*S1 + (a2*C2 + a3*C23 - d4*S23)*C1" in capsys.readouterr().out
+    assert "p_x = C1*(a2*C2 + a3*C23 - d4*S23) + d3*S1" in capsys.readouterr().out
     assert main(["derive", "planar2r", "--format", "latex", "--full"]) == 0
     assert r"\cos{\left(\theta_{1} + \theta_{2} \right)}" in capsys.readouterr().out
+
+
+def test_cli_notation_option_for_derive_and_handout(tmp_path, capsys):
+    assert main(["derive", "puma560_modified", "--notation", "c1", "--format", "text"]) == 0
+    assert "p_x = c1*(a2*c2 + a3*c23 - d4*s23) - d3*s1" in capsys.readouterr().out
+    assert main(["derive", "planar2r", "--notation", "c_theta", "--format", "markdown"]) == 0
+    assert r"a_{1} c_{\theta_{1}} + a_{2} c_{\theta_{12}}" in capsys.readouterr().out
+    out = tmp_path / "craig.tex"
+    assert main(["handout", "puma560_modified", "--notation", "c1", "-o", str(out)]) == 0
+    tex = out.read_text()
+    assert r"p_{x} &= c_{1}(a_{2} c_{2} + a_{3} c_{23} - d_{4} s_{23}) - d_{3} s_{1}" in tex
+    assert r"$c_{i} = \cos\theta_i$" in tex and "C_{1}" not in tex
+    with pytest.raises(SystemExit):
+        main(["derive", "planar2r", "--notation", "fancy"])
 
 
 def test_cli_derive_markdown_to_a_file(tmp_path, capsys):

@@ -212,9 +212,9 @@ def test_derivation_steps_are_exact_lecture_formulas() -> None:
 def test_stanford_wrist_centre_moves_back_along_the_approach_vector() -> None:
     ik = inverse(_robot("stanford"))
     assert [ik.text(s) for s in ik.steps[:3]] == [
-        "c_x = -a_x*d6 + p_x",
-        "c_y = -a_y*d6 + p_y",
-        "c_z = -a_z*d6 + p_z",
+        "c_x = p_x - a_x*d6",
+        "c_y = p_y - a_y*d6",
+        "c_z = p_z - a_z*d6",
     ]
     assert [b.role for b in ik.branches] == ["arm", "reach", "wrist"]
 
