@@ -181,7 +181,7 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
     """Grade one submission (runs in a worker): scores, verdicts, kinds and both feedback pages."""
     assignment, sub, limits = job
     feedback = check_submission(assignment, sub, limits)
-    scores, verdicts, kinds, wrong = {}, {}, [], {}
+    scores, verdicts, kinds, wrong, mistakes = {}, {}, [], {}, {}
     for qf in feedback:
         result = qf.result
         scores[qf.id] = qf.score
@@ -190,6 +190,7 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
             unread = ["unreadable"] if verdicts[qf.id] == "unreadable" else []
             kinds.extend(result.kinds or unread)
             wrong[qf.id] = _wrong_parts(result)
+            mistakes[qf.id] = list(result.kinds)
     student = {"id": sub.student, "name": sub.name}
     pages = {
         fmt: render_feedback(student, feedback, title=assignment.title, fmt=fmt)
@@ -204,6 +205,7 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
         "verdicts": verdicts,
         "kinds": kinds,
         "wrong": wrong,
+        "mistakes": mistakes,
         "score": sum(scores.values()),
         "max": assignment.max_score,
         "pages": pages,
