@@ -29,6 +29,7 @@ _LAZY = {
     "plot_robot": "plotting",
     "plot_workspace": "plotting",
     "Key": "checking",
+    "check": "checking",
     "check_answer": "checking",
     "grade": "checking",
     "JointAxis": "axes",

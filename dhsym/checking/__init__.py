@@ -7,8 +7,10 @@ One answer::
     >>> r.verdict.value
     'correct'
 
-A class: :func:`grade` (``dhsym grade``) with an :class:`Assignment` file.  Student
-text is untrusted throughout: see :class:`AnswerLimits`.
+A class: :func:`grade` (``dhsym grade``) with an :class:`Assignment` file; in a
+notebook: :func:`check` (rich result, or a widget without an answer); on an autograder
+platform: :mod:`~dhsym.checking.autograder`; LMS imports: :mod:`~dhsym.checking.gradebooks`.
+Student text is untrusted throughout: see :class:`AnswerLimits`.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from .latex_input import latex_matrix_cells, latex_to_text
 from .mistakes import Mistake
 from .names import NameContext
 from .questions import Question
+from .selfcheck import SelfCheck, check, check_widget
 from .tables import TableMatch, compare_tables
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
@@ -37,10 +40,13 @@ __all__ = [
     "Mistake",
     "NameContext",
     "Question",
+    "SelfCheck",
     "TableMatch",
     "UnreadableAnswer",
     "Verdict",
+    "check",
     "check_answer",
+    "check_widget",
     "compare_tables",
     "grade",
     "grade_submission",
