@@ -24,7 +24,7 @@ from .latex_input import latex_matrix_cells, latex_to_text
 from .mistakes import Mistake
 from .names import NameContext
 from .questions import Question
-from .selfcheck import SelfCheck, check, check_widget
+from .selfcheck import SelfCheck, assert_answer, check, check_widget
 from .tables import TableMatch, compare_tables
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
@@ -44,6 +44,7 @@ __all__ = [
     "TableMatch",
     "UnreadableAnswer",
     "Verdict",
+    "assert_answer",
     "check",
     "check_answer",
     "check_widget",

@@ -9,8 +9,12 @@ answer (plain math or LaTeX), a live typeset preview of how dhsym reads it, and 
 *Check* button.  The answer is untrusted text throughout: it goes through the same
 whitelist reader and limits as ``dhsym check``.
 
-Notebook graders call the same function in their test files or cells and fail the
-test with the feedback text: ``check(q2, key="puma560", question="T0_2").assert_correct()``.
+Notebook graders (otter-grader test files, nbgrader autograder cells) call
+:func:`assert_answer` with the student's variable: it raises ``AssertionError`` with
+the feedback text unless the answer is correct, and a clear one for a variable that
+holds no answer (``...``, ``None``, a number)::
+
+    assert_answer(q2, key="puma560", question="T0_2")
 
 Examples
 --------
@@ -44,7 +48,7 @@ from .checker import Key, check_answer, prepare, table_cells
 from .feedback import QuestionFeedback, render_question_text, render_template
 from .verdict import CheckResult
 
-__all__ = ["Reading", "SelfCheck", "check", "check_widget", "read_answer"]
+__all__ = ["Reading", "SelfCheck", "assert_answer", "check", "check_widget", "read_answer"]
 
 _READ_ERRORS = (DHError, RecursionError, MemoryError, OverflowError, ValueError, TypeError)
 
@@ -168,6 +172,31 @@ def check(
     if answer is None:
         return check_widget(k, show_key=show_key, limits=limits)  # type: ignore[return-value]
     return SelfCheck(check_answer(k, answer, limits=limits), k, show_key)
+
+
+def assert_answer(
+    answer: object,
+    key: str | Path | DHTable | Key,
+    question: str | None = None,
+    *,
+    tool_free: bool = False,
+    show_key: bool = False,
+) -> None:
+    """Raise ``AssertionError`` (the feedback as its message) unless ``answer`` is a
+    correct answer: the one line of an otter-grader test or an nbgrader test cell.
+
+    >>> assert_answer("a1*C1 + a2*C12", key="planar2r", question="px")
+    >>> assert_answer(..., key="planar2r", question="px")
+    Traceback (most recent call last):
+    ...
+    AssertionError: No answer yet: put your answer in the variable as text ...
+    """
+    if not isinstance(answer, (str, bytes)):
+        raise AssertionError(
+            "No answer yet: put your answer in the variable as text (a string: plain math "
+            f"or LaTeX); it holds {type(answer).__name__}."
+        )
+    check(answer, key, question, tool_free=tool_free, show_key=show_key).assert_correct()
 
 
 def check_widget(
