@@ -55,6 +55,10 @@ def test_bad_key_or_question_is_the_teachers_error():
         check("1", key="planar2r", question="T0_9")
     with pytest.raises(DHError):
         check("1", key="no-such-robot", question="T0_1")
+    with pytest.raises(DHError, match="give the key"):
+        check("1")
+    with pytest.raises(DHError, match="give the question"):
+        check("1", key="planar2r")
 
 
 def test_widget_previews_and_checks(need_ipywidgets):

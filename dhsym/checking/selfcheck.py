@@ -149,9 +149,11 @@ class SelfCheck:
             raise AssertionError(self.feedback_text())
 
 
-def _key(key: str | Path | DHTable | Key, question: str | None, tool_free: bool) -> Key:
+def _key(key: str | Path | DHTable | Key | None, question: str | None, tool_free: bool) -> Key:
     if isinstance(key, Key):
         return key
+    if key is None:
+        raise DHError("give the key: a built-in robot (key='puma560'), a table file or a table")
     if question is None:
         raise DHError("give the question: table, T<i>_<j>, A<k>, arm, px/py/pz or T<i>_<j>[r,c]")
     return Key.load(key, question, tool_free=tool_free)
@@ -159,8 +161,8 @@ def _key(key: str | Path | DHTable | Key, question: str | None, tool_free: bool)
 
 def check(
     answer: str | bytes | None = None,
-    key: str | Path | DHTable | Key = "puma560",
-    question: str | None = "T0_6",
+    key: str | Path | DHTable | Key | None = None,
+    question: str | None = None,
     *,
     tool_free: bool = False,
     show_key: bool = False,
@@ -176,7 +178,7 @@ def check(
 
 def assert_answer(
     answer: object,
-    key: str | Path | DHTable | Key,
+    key: str | Path | DHTable | Key | None = None,
     question: str | None = None,
     *,
     tool_free: bool = False,
@@ -200,8 +202,8 @@ def assert_answer(
 
 
 def check_widget(
-    key: str | Path | DHTable | Key = "puma560",
-    question: str | None = "T0_6",
+    key: str | Path | DHTable | Key | None = None,
+    question: str | None = None,
     *,
     tool_free: bool = False,
     show_key: bool = False,
