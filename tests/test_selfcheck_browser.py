@@ -41,6 +41,18 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
+def _api(base: str, token: str, method: str, path: str, body: dict | None = None) -> object:
+    data = json.dumps(body).encode() if body is not None else None
+    req = urllib.request.Request(
+        f"{base}{path}",
+        data=data,
+        method=method,
+        headers={"Authorization": f"token {token}", "Content-Type": "application/json"},
+    )
+    with urllib.request.urlopen(req, timeout=30) as r:
+        return json.loads(r.read() or b"null")
+
+
 def _notebook(path: Path) -> None:
     cell = {
         "cell_type": "code",
@@ -107,6 +119,21 @@ def jupyter_lab(tmp_path, need_jupyter, need_ipywidgets):
                         "JupyterLab did not start:\n" + (tmp_path / "jupyter.log").read_text()
                     )
                 time.sleep(0.5)
+        # Start the notebook's session (and kernel) through the REST API, so that the page
+        # attaches to it instead of choosing a kernel itself (on a slow machine the kernel
+        # list can arrive after the notebook opens, and Lab then asks which kernel to use).
+        _api(
+            base,
+            token,
+            "POST",
+            "/api/sessions",
+            {
+                "path": "selfcheck.ipynb",
+                "name": "selfcheck.ipynb",
+                "type": "notebook",
+                "kernel": {"name": "python3"},
+            },
+        )
         yield f"{base}/lab/tree/selfcheck.ipynb?token={token}"
     finally:
         if proc.poll() is None:
@@ -119,8 +146,12 @@ def jupyter_lab(tmp_path, need_jupyter, need_ipywidgets):
         log.close()
 
 
-def test_widget_checks_an_answer_in_jupyterlab(jupyter_lab, need_chromium, need_playwright):
+def test_widget_checks_an_answer_in_jupyterlab(
+    jupyter_lab, need_chromium, need_playwright, tmp_path_factory
+):
     from playwright.sync_api import expect, sync_playwright
+
+    shots = tmp_path_factory.mktemp("screenshots")
 
     with sync_playwright() as p:
         browser = p.chromium.launch(
@@ -131,11 +162,20 @@ def test_widget_checks_an_answer_in_jupyterlab(jupyter_lab, need_chromium, need_
             page.goto(jupyter_lab, wait_until="domcontentloaded")
             editor = page.locator(".jp-Notebook .jp-Cell .cm-content").first
             editor.wait_for(timeout=90_000)
-            idle = page.locator(".jp-Notebook-ExecutionIndicator[data-status='idle']")
-            idle.first.wait_for(timeout=90_000)  # the kernel is up
-            editor.click()
-            page.keyboard.press("Shift+Enter")
             answer = page.locator(".dhsym-answer textarea")
+            dialog = page.locator(".jp-Dialog", has_text="Select Kernel")
+            for _ in range(3):  # run the cell; if Lab asks for a kernel (slow start), accept
+                editor.click()
+                page.keyboard.press("Shift+Enter")
+                try:
+                    answer.or_(dialog).first.wait_for(timeout=90_000)
+                except Exception:
+                    page.screenshot(path=str(shots / "no-widget.png"))
+                    raise
+                if not dialog.count():
+                    break
+                dialog.locator(".jp-mod-accept").click()
+                dialog.wait_for(state="detached", timeout=30_000)
             answer.wait_for(timeout=90_000)
             preview = page.locator(".dhsym-preview")
             expect(preview).to_contain_text("Type your answer", timeout=30_000)
