@@ -34,6 +34,7 @@ __getattr__, __dir__ = lazy_exports(
         "plot_robot": "dhsym.plot.figures",
         "plot_workspace": "dhsym.plot.figures",
         "Key": "dhsym.checking",
+        "check": "dhsym.checking",
         "check_answer": "dhsym.checking",
         "grade": "dhsym.checking",
         "JointAxis": "dhsym.geometry.axes",

@@ -61,3 +61,27 @@ def need_jupyter():
     except Exception:  # noqa: BLE001 - any import/kernel problem means "not available"
         ok = False
     _need("Jupyter", ok, "pip install -e '.[test]' (nbclient, nbconvert, ipykernel)")
+
+
+def _importable(name: str) -> bool:
+    import importlib.util
+
+    return importlib.util.find_spec(name) is not None
+
+
+@pytest.fixture
+def need_ipywidgets():
+    """Require ipywidgets (the self-check widget; extra ``widgets``)."""
+    _need("ipywidgets", _importable("ipywidgets"), "pip install -e '.[widgets]'")
+
+
+@pytest.fixture
+def need_playwright():
+    """Require Playwright for Python (drives Debian's /usr/bin/chromium; extra ``test``)."""
+    _need("playwright", _importable("playwright"), "pip install -e '.[test]'")
+
+
+@pytest.fixture
+def need_otter():
+    """Require otter-grader (the notebook-grader example; extra ``graders``)."""
+    _need("otter-grader", _importable("otter"), "pip install -e '.[graders]'")

@@ -7,8 +7,10 @@ One answer::
     >>> r.verdict.value
     'correct'
 
-A class: :func:`grade` (``dhsym grade``) with an :class:`Assignment` file.  Student
-text is untrusted throughout: see :class:`AnswerLimits`.
+A class: :func:`grade` (``dhsym grade``) with an :class:`Assignment` file; in a
+notebook: :func:`check` (rich result, or a widget without an answer); on an autograder
+platform: :mod:`~dhsym.checking.autograder`; LMS imports: :mod:`~dhsym.checking.gradebooks`.
+Student text is untrusted throughout: see :class:`AnswerLimits`.
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ from .mistakes import Mistake
 from .names import NameContext
 from .questions import Question
 from .rounding import Rounding
+from .selfcheck import SelfCheck, assert_answer, check, check_widget
 from .tables import TableMatch, compare_tables
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
@@ -39,10 +42,14 @@ __all__ = [
     "NameContext",
     "Question",
     "Rounding",
+    "SelfCheck",
     "TableMatch",
     "UnreadableAnswer",
     "Verdict",
+    "assert_answer",
+    "check",
     "check_answer",
+    "check_widget",
     "compare_tables",
     "grade",
     "grade_submission",

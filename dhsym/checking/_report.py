@@ -3,7 +3,9 @@
 Every path is checked to stay inside the report folder, every file is written
 to a temporary name and renamed, and CSV cells that a spreadsheet would run as
 a formula are quoted. The summary page (HTML, from a template) shows a chart
-of the scores and of the mistake kinds.
+of the scores and of the mistake kinds, and per question its difficulty (the share
+of the class that got it right) and the most common wrong entries, each with one
+example answer: what to re-teach, in one page.
 
 Examples
 --------
@@ -33,7 +35,15 @@ from .feedback import render_summary
 if TYPE_CHECKING:
     from .grading import Assignment
 
-__all__ = ["csv_cell", "inside", "safe_name", "write_atomic", "write_gradebook", "write_summary"]
+__all__ = [
+    "csv_cell",
+    "inside",
+    "question_picture",
+    "safe_name",
+    "write_atomic",
+    "write_gradebook",
+    "write_summary",
+]
 
 _RESERVED = frozenset(
     {
@@ -129,14 +139,38 @@ def _chart(root: Path, a: Assignment, records: list[dict], kinds: Counter) -> Pa
     return path
 
 
-def write_summary(root: Path, a: Assignment, records: list[dict], files: dict) -> Path:
-    """``summary.html`` and its chart ``summary.png``: scores, verdicts and mistake kinds."""
-    kinds: Counter = Counter(k for r in records for k in r["kinds"])
-    chart = _chart(root, a, records, kinds)
-    per_q = []
+def _difficulty(share: float) -> str:
+    return "easy" if share >= 0.8 else "medium" if share >= 0.5 else "hard"
+
+
+def question_picture(a: Assignment, records: list[dict], files: dict, top: int = 5) -> list[dict]:
+    """Per question: verdict counts, share right, difficulty, and the most common wrong
+    entries (matrix entries, or table rows) with one example answer and its student.
+
+    >>> from types import SimpleNamespace as NS
+    >>> a = NS(questions=[NS(id="q1", ask="A1", points=2)])
+    >>> recs = [{"student": s, "verdicts": {"q1": v}, "scores": {"q1": 2 * (v == "correct")},
+    ...          "wrong": {"q1": w}} for s, v, w in [("ann", "correct", []),
+    ...          ("bo", "incorrect", [["(1,4)", "d1"]]), ("cy", "incorrect", [["(1,4)", "-d2"]])]]
+    >>> q = question_picture(a, recs, {"ann": "ann", "bo": "bo", "cy": "cy"})[0]
+    >>> q["share"], q["difficulty"], q["wrong"][0]["where"], q["wrong"][0]["count"]
+    (0.333..., 'hard', '(1,4)', 2)
+    >>> q["wrong"][0]["example"], q["wrong"][0]["student"]
+    ('d1', 'bo')
+    """
+    out = []
+    n = max(len(records), 1)
     for q in a.questions:
         v = Counter(r["verdicts"].get(q.id, "missing") for r in records)
-        per_q.append(
+        where: Counter = Counter()
+        example: dict[str, tuple[str, str]] = {}
+        mistakes = Counter(k for r in records for k in r.get("mistakes", {}).get(q.id, []))
+        for r in records:
+            for place, text in r.get("wrong", {}).get(q.id, []):
+                where[place] += 1
+                example.setdefault(place, (text, r["student"]))
+        share = v["correct"] / n
+        out.append(
             {
                 "id": q.id,
                 "ask": q.ask,
@@ -145,8 +179,31 @@ def write_summary(root: Path, a: Assignment, records: list[dict], files: dict) -
                 "incorrect": v["incorrect"],
                 "unreadable": v["unreadable"],
                 "missing": v["missing"] + v["timeout"] + v["error"],
+                "share": share,
+                "mean_points": sum(r["scores"].get(q.id, 0) for r in records) / n,
+                "difficulty": _difficulty(share),
+                "mistakes": [(k.replace("_", " "), c) for k, c in mistakes.most_common(top)],
+                "wrong": [
+                    {
+                        "where": place,
+                        "count": count,
+                        "example": example[place][0],
+                        "student": example[place][1],
+                        "feedback_html": f"feedback/{files[example[place][1]]}.html",
+                    }
+                    for place, count in where.most_common(top)
+                ],
             }
         )
+    return out
+
+
+def write_summary(root: Path, a: Assignment, records: list[dict], files: dict) -> Path:
+    """``summary.html`` and its chart ``summary.png``: scores, verdicts, mistake kinds, and
+    per question its difficulty and most common wrong entries (what to re-teach)."""
+    kinds: Counter = Counter(k for r in records for k in r["kinds"])
+    chart = _chart(root, a, records, kinds)
+    per_q = question_picture(a, records, files)
     scores = [r["score"] for r in records]
     rows = [
         {
@@ -169,6 +226,9 @@ def write_summary(root: Path, a: Assignment, records: list[dict], files: dict) -
             "problems": sum(r["status"] != "graded" for r in records),
             "chart": chart.name,
             "per_question": per_q,
+            "reteach": sorted(
+                (q for q in per_q if q["share"] < 1), key=lambda q: (q["share"], q["id"])
+            ),
             "kinds": kinds.most_common(),
             "rows": rows,
         }

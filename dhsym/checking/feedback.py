@@ -24,6 +24,7 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
+from pathlib import Path
 
 from dhsym.errors import DHError
 from dhsym.explain.templates import loader
@@ -36,7 +37,9 @@ __all__ = [
     "md_escape",
     "render_check",
     "render_feedback",
+    "render_question_text",
     "render_summary",
+    "render_template",
 ]
 
 _MD_SPECIAL = re.compile(r"([\\`*_\[\]|~$])")
@@ -78,8 +81,9 @@ def _points(x: float) -> str:
     return f"{x:g}"
 
 
-@lru_cache(maxsize=2)
+@lru_cache(maxsize=3)
 def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
+    """Jinja2 environment for ``html`` (autoescaped), ``md`` or ``txt`` (plain text)."""
     import jinja2
 
     env = jinja2.Environment(
@@ -128,3 +132,33 @@ def render_check(result: CheckResult, fmt: str = "md") -> str:
 def render_summary(data: Mapping[str, object]) -> str:
     """The class summary page (HTML) from the grading data."""
     return _environment("html").get_template("gradebook_summary.html.j2").render(**data)
+
+
+def render_template(name: str, **data: object) -> str:
+    """Render ``templates/<name>``; the format (``html``, ``md``, ``txt``) is the name's
+    second suffix (``selfcheck.html.j2``), and decides escaping as described above."""
+    fmt = Path(name).with_suffix("").suffix.lstrip(".")
+    if fmt not in ("md", "html", "txt"):
+        raise DHError(f"template {name!r}: expected a .html.j2, .md.j2 or .txt.j2 name")
+    return _environment(fmt).get_template(name).render(**data)
+
+
+def render_question_text(q: QuestionFeedback, *, show_key: bool = True) -> str:
+    """One question's feedback as plain text (an autograder's per-test output).
+
+    With ``show_key=False`` the key's entries and table are left out (for platforms
+    where students resubmit after reading the output).
+
+    >>> from dhsym.checking.verdict import CheckResult, EntryResult, Verdict
+    >>> r = CheckResult("A1", Verdict.INCORRECT, "1 of 16 entries is wrong.",
+    ...                 (EntryResult(2, 4, False, "d1", "-d1"),))
+    >>> print(render_question_text(QuestionFeedback("q1", "A1", 2, 0, r)))
+    INCORRECT (0 / 2 points). 1 of 16 entries is wrong.
+    <BLANKLINE>
+    entry (2,4): yours   d1
+                 correct -d1
+    >>> "correct -d1" in render_question_text(QuestionFeedback("q1", "A1", 2, 0, r),
+    ...                                       show_key=False)
+    False
+    """
+    return render_template("feedback_question.txt.j2", q=q, show_key=show_key).strip("\n")

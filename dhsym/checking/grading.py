@@ -48,12 +48,14 @@ from ._runner import JobFailure, Progress, run_dask, run_pool, run_serial
 from ._submissions import Submission, read_submissions
 from .checker import Key, check_answer
 from .feedback import QuestionFeedback, render_feedback
+from .verdict import CheckResult, Verdict
 
 __all__ = [
     "Assignment",
     "AssignmentQuestion",
     "GradeReport",
     "Submission",
+    "check_submission",
     "grade",
     "grade_submission",
     "read_submissions",
@@ -137,17 +139,20 @@ class Assignment:
         )
 
 
-def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
-    """Grade one submission (runs in a worker): scores, verdicts, kinds and both feedback pages."""
-    assignment, sub, limits = job
+def check_submission(
+    assignment: Assignment, sub: Submission, limits: AnswerLimits
+) -> tuple[QuestionFeedback, ...]:
+    """Check every question of one submission: its result (``None`` if missing) and score.
+
+    An answer scores the question's points when it is correct and 0 otherwise; an
+    answer that could not be read from its file is ``unreadable``.
+    """
     answers, problems = dict(sub.answers), dict(sub.problems)
-    feedback, scores, verdicts, kinds = [], {}, {}, []
+    out = []
     for q in assignment.questions:
         if q.id in answers:
             result = check_answer(q.key, answers[q.id], limits=limits)
         elif q.id in problems:
-            from .verdict import CheckResult, Verdict
-
             result = CheckResult(
                 q.ask,
                 Verdict.UNREADABLE,
@@ -158,11 +163,36 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
         else:
             result = None
         score = q.points if result is not None and result.correct else 0.0
-        scores[q.id] = score
-        verdicts[q.id] = result.verdict.value if result is not None else "missing"
+        out.append(QuestionFeedback(q.id, q.ask, q.points, score, result))
+    return tuple(out)
+
+
+def _wrong_parts(result: CheckResult) -> list[list[str]]:
+    """Where an incorrect answer went wrong, for the class summary: ``[where, example]``
+    per wrong matrix entry (the student's entry) or per wrong table row (the mistake)."""
+    if result.correct:
+        return []
+    out = [[f"({e.row},{e.col})", e.answer[:120]] for e in result.entries if not e.correct]
+    if not out:
+        for d in result.diagnoses:
+            out.extend([f"row {r}", d.title] for r in d.rows)
+    return out[:16]
+
+
+def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
+    """Grade one submission (runs in a worker): scores, verdicts, kinds and both feedback pages."""
+    assignment, sub, limits = job
+    feedback = check_submission(assignment, sub, limits)
+    scores, verdicts, kinds, wrong, mistakes = {}, {}, [], {}, {}
+    for qf in feedback:
+        result = qf.result
+        scores[qf.id] = qf.score
+        verdicts[qf.id] = result.verdict.value if result is not None else "missing"
         if result is not None:
-            kinds.extend(result.kinds or (["unreadable"] if verdicts[q.id] == "unreadable" else []))
-        feedback.append(QuestionFeedback(q.id, q.ask, q.points, score, result))
+            unread = ["unreadable"] if verdicts[qf.id] == "unreadable" else []
+            kinds.extend(result.kinds or unread)
+            wrong[qf.id] = _wrong_parts(result)
+            mistakes[qf.id] = list(result.kinds)
     student = {"id": sub.student, "name": sub.name}
     pages = {
         fmt: render_feedback(student, feedback, title=assignment.title, fmt=fmt)
@@ -176,6 +206,8 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
         "scores": scores,
         "verdicts": verdicts,
         "kinds": kinds,
+        "wrong": wrong,
+        "mistakes": mistakes,
         "score": sum(scores.values()),
         "max": assignment.max_score,
         "pages": pages,

@@ -1,4 +1,4 @@
-"""``dhsym check`` and ``dhsym grade``: one answer, or a whole class.
+"""``dhsym check``, ``dhsym grade`` and ``dhsym autograder``: one answer, a class, a platform.
 
 Only ``argparse`` is imported here; the handlers import the checker when run.
 
@@ -67,10 +67,22 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
 
 def _cmd_grade(args: argparse.Namespace) -> int:
-    from dhsym.checking.grading import grade
+    from dhsym.checking.grading import Assignment, grade
+    from dhsym.errors import DHError
 
+    assignment = Assignment.load(args.assignment)
+    roster = None
+    if args.gradebook:
+        from dhsym.checking.gradebooks import Roster
+
+        if args.roster:
+            roster = Roster.load(args.roster)
+        elif args.gradebook != "generic":
+            raise DHError(f"--gradebook {args.gradebook} needs --roster FILE (LMS ids per student)")
+    elif args.roster:
+        raise DHError("--roster is used with --gradebook canvas|moodle|generic")
     report = grade(
-        args.assignment,
+        assignment,
         args.submissions,
         args.output,
         workers=args.workers,
@@ -84,11 +96,41 @@ def _cmd_grade(args: argparse.Namespace) -> int:
     )
     print(f"gradebook: {report.gradebook}")
     print(f"summary:   {report.summary}")
+    if args.gradebook:
+        from dhsym.checking.gradebooks import write_lms_gradebook
+
+        out = write_lms_gradebook(
+            args.gradebook, report, assignment, roster, column=args.lms_column
+        )
+        print(f"{args.gradebook} import: {out.path}")
+        for line in out.notes:
+            print(f"note: {line}", file=sys.stderr)
+    return 0
+
+
+def _cmd_autograder(args: argparse.Namespace) -> int:
+    from dhsym.checking.autograder import build_autograder, run_autograder
+    from dhsym.errors import DHError
+
+    if args.run:
+        data = run_autograder()
+        print(f"score {data['score']:g}; {len(data['tests'])} tests written to results.json")
+        return 0
+    if not args.assignment or not args.output:
+        raise DHError("dhsym autograder ASSIGNMENT -o autograder.zip (or --run in the grader)")
+    out = build_autograder(
+        args.assignment,
+        args.output,
+        wheel=args.wheel,
+        visibility=args.visibility,
+        show_key=args.show_key,
+    )
+    print(f"autograder: {out}")
     return 0
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    """Add the ``check`` and ``grade`` sub-commands."""
+    """Add the ``check``, ``grade`` and ``autograder`` sub-commands."""
     c = subparsers.add_parser(
         "check", help="check one answer (exit 0 correct, 1 incorrect, 2 unreadable)"
     )
@@ -128,4 +170,39 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--dask", default=None, metavar="ADDRESS", help="run on a Dask cluster (scheduler address)"
     )
     g.add_argument("--quiet", action="store_true", help="no progress bar")
+    g.add_argument(
+        "--gradebook",
+        choices=("canvas", "moodle", "generic"),
+        default=None,
+        help="also write the import CSV of this LMS into the report folder",
+    )
+    g.add_argument(
+        "--roster", default=None, metavar="FILE", help="CSV: submission name -> LMS ids/email"
+    )
+    g.add_argument(
+        "--lms-column",
+        default=None,
+        metavar="NAME",
+        help="the LMS assignment column (Canvas: 'Name (id)'); default the assignment title",
+    )
     g.set_defaults(func=_cmd_grade)
+
+    ag = subparsers.add_parser(
+        "autograder", help="build a Gradescope-style autograder zip (or --run it in the grader)"
+    )
+    ag.add_argument("assignment", nargs="?", help="assignment YAML file")
+    ag.add_argument("-o", "--output", default=None, help="the zip to write")
+    ag.add_argument("--wheel", default=None, help="dhsym wheel to include (default: build it)")
+    ag.add_argument(
+        "--visibility",
+        default="visible",
+        choices=("hidden", "after_due_date", "after_published", "visible"),
+        help="when students see each question's result",
+    )
+    ag.add_argument(
+        "--show-key", action="store_true", help="show the key's entries in the feedback"
+    )
+    ag.add_argument(
+        "--run", action="store_true", help="grade /autograder/submission (used by run_autograder)"
+    )
+    ag.set_defaults(func=_cmd_autograder)
