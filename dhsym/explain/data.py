@@ -170,5 +170,9 @@ class Derivation:
     def _repr_latex_(self) -> str:
         return self.to_latex()
 
+    def _latex(self, printer: object) -> str:
+        """``sympy.latex(derivation)``: the LaTeX fragment."""
+        return self.to_latex()
+
     def __str__(self) -> str:
         return self.to_text()

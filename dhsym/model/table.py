@@ -381,9 +381,13 @@ class DHTable:
         return replace(self, rows=rows, base=base, tool=tool, values=())
 
     def _repr_latex_(self) -> str:
+        return "$$" + self._latex(None) + "$$"
+
+    def _latex(self, printer: object) -> str:
+        """``sympy.latex(table)``: the table as a LaTeX ``array``."""
         from dhsym.notation.tables import table_latex
 
-        return "$$" + table_latex(self) + "$$"
+        return table_latex(self)
 
     def _repr_markdown_(self) -> str:
         from dhsym.notation.tables import table_markdown
