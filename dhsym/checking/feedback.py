@@ -1,4 +1,4 @@
-r"""Feedback a student can act on, as Markdown and HTML (Jinja2 templates in ``templates/``).
+r"""Feedback a student can act on, as Markdown, HTML and plain text (Jinja2 templates).
 
 The templates get plain data; the HTML environment autoescapes, the Markdown one
 escapes every student-made string with the ``md`` filter (Markdown specials and
@@ -78,20 +78,35 @@ def _points(x: float) -> str:
     return f"{x:g}"
 
 
-@lru_cache(maxsize=2)
+def _entry_rows(entries: Sequence[object]) -> list[list[str]]:
+    """Wrong entries as rows of the plain-text table: position, the answer, the key."""
+    return [[f"({e.row},{e.col})", e.answer, e.expected] for e in entries]  # type: ignore[attr-defined]
+
+
+@lru_cache(maxsize=3)
 def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
     import jinja2
 
+    from dhsym.notation.escape import _clean_text
+
+    text = fmt == "txt"
     env = jinja2.Environment(
         loader=loader(),
         autoescape=(fmt == "html"),
         undefined=jinja2.StrictUndefined,
-        trim_blocks=False,
+        trim_blocks=text,
+        lstrip_blocks=text,
         keep_trailing_newline=True,
+        **({"finalize": _clean_text} if text else {}),
     )
     env.filters["md"] = md_escape
     env.filters["code"] = md_code
     env.filters["points"] = _points
+    if text:
+        from dhsym.notation.tables import text_table
+
+        env.filters["table"] = text_table
+        env.filters["entry_rows"] = _entry_rows
     return env
 
 
@@ -104,9 +119,9 @@ def render_feedback(
     status: str = "graded",
     mathjax_url: str | None = None,
 ) -> str:
-    """One student's feedback page (``fmt`` is ``md`` or ``html``)."""
-    if fmt not in ("md", "html"):
-        raise DHError(f"unknown feedback format {fmt!r}: expected md or html")
+    """One student's feedback page (``fmt`` is ``md``, ``html`` or ``txt``)."""
+    if fmt not in ("md", "html", "txt"):
+        raise DHError(f"unknown feedback format {fmt!r}: expected md, html or txt")
     template = _environment(fmt).get_template(f"feedback.{fmt}.j2")
     return template.render(
         title=title,
@@ -120,7 +135,21 @@ def render_feedback(
 
 
 def render_check(result: CheckResult, fmt: str = "md") -> str:
-    """Feedback for a single check (what ``dhsym check`` prints)."""
+    """Feedback for a single check: ``txt`` is what ``dhsym check`` prints on a terminal,
+    ``md`` what it prints with ``--format markdown`` (and notebooks display).
+
+    >>> from dhsym.checking.verdict import CheckResult, EntryResult, Verdict
+    >>> e = EntryResult(2, 4, False, "a1*S1 - a2*S12", "a1*S1 + a2*S12")
+    >>> r = CheckResult("T0_2", Verdict.INCORRECT, "1 of 16 entries is wrong.",
+    ...                 entries=(e,), key="Planar 2R")
+    >>> print(render_check(r, "txt"))
+    INCORRECT: T0_2 (Planar 2R). 1 of 16 entries is wrong.
+    <BLANKLINE>
+      entry | your entry     | correct entry
+      ------+----------------+---------------
+      (2,4) | a1*S1 - a2*S12 | a1*S1 + a2*S12
+    <BLANKLINE>
+    """
     q = QuestionFeedback("1", result.question, 1, float(result.correct), result)
     return render_feedback({"id": "", "name": ""}, [q], title=result.key or "check", fmt=fmt)
 

@@ -35,6 +35,7 @@ from pathlib import Path
 from dhsym.errors import DHError
 from dhsym.kinematics.robot import Robot
 from dhsym.notation.escape import TeX, _clean_text, escape_latex, escape_markdown
+from dhsym.notation.tables import text_table
 
 from .derivation import Derivation, as_robot, derive, general_link
 from .latex import compile_pdf
@@ -59,16 +60,6 @@ def _text_grid(rows: Sequence[Sequence[object]]) -> list[str]:
         "[ " + "  ".join(str(c).rjust(w) for c, w in zip(r, widths, strict=True)) + " ]"
         for r in cells
     ]
-
-
-def _text_table(heads: Sequence[str], rows: Sequence[Sequence[str]]) -> list[str]:
-    """A plain-text table with ``|`` separators."""
-    widths = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(heads)]
-
-    def line(cells: Sequence[str]) -> str:
-        return " | ".join(str(c).ljust(w) for c, w in zip(cells, widths, strict=True)).rstrip()
-
-    return [line(heads), "-+-".join("-" * w for w in widths), *map(line, rows)]
 
 
 def _text_columns(items: Sequence[str], width: int = 96) -> list[str]:
@@ -99,7 +90,7 @@ def environment(kind: str = "latex", template_dir: str | Path | None = None) -> 
     )
     if kind == "text":
         env = jinja2.Environment(autoescape=False, finalize=_clean_text, **common)
-        env.filters.update(grid=_text_grid, table=_text_table, columns=_text_columns)
+        env.filters.update(grid=_text_grid, table=text_table, columns=_text_columns)
         return env
     escape = escape_latex if kind == "latex" else escape_markdown
 
@@ -277,12 +268,14 @@ def write_handout(
     *,
     pdf: bool = False,
     figure: bool = False,
+    keep_aux: bool = False,
     **options: object,
 ) -> Path:
     """Write the handout's ``.tex`` (and figures); with ``pdf=True`` compile it.
 
     ``options`` are those of :func:`render_handout`. Returns the path of the
-    PDF when compiled, else of the ``.tex``.
+    PDF when compiled, else of the ``.tex``. LaTeX's auxiliary files stay in a
+    temporary folder unless ``keep_aux``.
     """
     out = Path(output)
     if out.suffix != ".tex":
@@ -296,7 +289,7 @@ def write_handout(
         stem = re.sub(r"[^A-Za-z0-9-]+", "-", out.stem).strip("-") or "handout"
         figures = _figures(loaded, _unique_keys(ds), out.parent, stem)
     out.write_text(render_handout(ds, figures=figures, **options), encoding="utf-8")
-    return compile_pdf(out) if pdf else out
+    return compile_pdf(out, keep_aux=keep_aux) if pdf else out
 
 
 # --- command line -----------------------------------------------------------------------------

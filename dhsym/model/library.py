@@ -10,10 +10,15 @@ True
 8
 >>> load_table("planar20r").n
 20
+>>> load_table("puma650")
+Traceback (most recent call last):
+...
+dhsym.errors.DHError: no built-in robot or table file 'puma650': did you mean 'puma560'? ...
 """
 
 from __future__ import annotations
 
+import difflib
 import re
 from importlib import resources
 from pathlib import Path
@@ -56,9 +61,12 @@ def builtin_table(name: str) -> DHTable:
         return read_table_text(text, file=f"{key}.yaml")
     if m:
         return planar_chain(int(m.group(1)))
+    names = builtin_names()
+    close = difflib.get_close_matches(key, names, n=1, cutoff=0.6)
+    hint = f"did you mean {close[0]!r}? " if close else ""
     raise DHError(
-        f"no built-in robot or table file {name!r}: built-in robots are "
-        + ", ".join(builtin_names())
+        f"no built-in robot or table file {name!r}: {hint}built-in robots are "
+        + ", ".join(names)
         + ", planarNr"
     )
 
