@@ -34,6 +34,7 @@ __all__ = [
     "QuestionFeedback",
     "md_code",
     "md_escape",
+    "check_text",
     "render_check",
     "render_feedback",
     "render_summary",
@@ -78,35 +79,20 @@ def _points(x: float) -> str:
     return f"{x:g}"
 
 
-def _entry_rows(entries: Sequence[object]) -> list[list[str]]:
-    """Wrong entries as rows of the plain-text table: position, the answer, the key."""
-    return [[f"({e.row},{e.col})", e.answer, e.expected] for e in entries]  # type: ignore[attr-defined]
-
-
-@lru_cache(maxsize=3)
+@lru_cache(maxsize=2)
 def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
     import jinja2
 
-    from dhsym.notation.escape import _clean_text
-
-    text = fmt == "txt"
     env = jinja2.Environment(
         loader=loader(),
         autoescape=(fmt == "html"),
         undefined=jinja2.StrictUndefined,
-        trim_blocks=text,
-        lstrip_blocks=text,
+        trim_blocks=False,
         keep_trailing_newline=True,
-        **({"finalize": _clean_text} if text else {}),
     )
     env.filters["md"] = md_escape
     env.filters["code"] = md_code
     env.filters["points"] = _points
-    if text:
-        from dhsym.notation.tables import text_table
-
-        env.filters["table"] = text_table
-        env.filters["entry_rows"] = _entry_rows
     return env
 
 
@@ -119,9 +105,9 @@ def render_feedback(
     status: str = "graded",
     mathjax_url: str | None = None,
 ) -> str:
-    """One student's feedback page (``fmt`` is ``md``, ``html`` or ``txt``)."""
-    if fmt not in ("md", "html", "txt"):
-        raise DHError(f"unknown feedback format {fmt!r}: expected md, html or txt")
+    """One student's feedback page (``fmt`` is ``md`` or ``html``)."""
+    if fmt not in ("md", "html"):
+        raise DHError(f"unknown feedback format {fmt!r}: expected md or html")
     template = _environment(fmt).get_template(f"feedback.{fmt}.j2")
     return template.render(
         title=title,
@@ -136,22 +122,60 @@ def render_feedback(
 
 def render_check(result: CheckResult, fmt: str = "md") -> str:
     """Feedback for a single check: ``txt`` is what ``dhsym check`` prints on a terminal,
-    ``md`` what it prints with ``--format markdown`` (and notebooks display).
+    ``md`` what it prints with ``--format markdown`` (and notebooks display)."""
+    if fmt == "txt":
+        return check_text(result)
+    q = QuestionFeedback("1", result.question, 1, float(result.correct), result)
+    return render_feedback({"id": "", "name": ""}, [q], title=result.key or "check", fmt=fmt)
 
-    >>> from dhsym.checking.verdict import CheckResult, EntryResult, Verdict
+
+def check_text(result: CheckResult) -> str:
+    """One check as plain text for a terminal: no markup, control characters removed.
+
+    A terminal message rather than a document, so it is built here and not from a
+    template: ``dhsym check`` then starts without Jinja2.
+
+    >>> from dhsym.checking.verdict import CheckResult, Diagnosis, EntryResult, Verdict
     >>> e = EntryResult(2, 4, False, "a1*S1 - a2*S12", "a1*S1 + a2*S12")
-    >>> r = CheckResult("T0_2", Verdict.INCORRECT, "1 of 16 entries is wrong.",
-    ...                 entries=(e,), key="Planar 2R")
-    >>> print(render_check(r, "txt"))
+    >>> d = Diagnosis("wrong_sign", "wrong sign", "a2*S12 has the wrong sign.", ((2, 4),))
+    >>> print(check_text(CheckResult("T0_2", Verdict.INCORRECT, "1 of 16 entries is wrong.",
+    ...                              diagnoses=(d,), entries=(e,), key="Planar 2R")))
     INCORRECT: T0_2 (Planar 2R). 1 of 16 entries is wrong.
+      - wrong sign (entries (2,4)): a2*S12 has the wrong sign.
     <BLANKLINE>
       entry | your entry     | correct entry
       ------+----------------+---------------
       (2,4) | a1*S1 - a2*S12 | a1*S1 + a2*S12
     <BLANKLINE>
     """
-    q = QuestionFeedback("1", result.question, 1, float(result.correct), result)
-    return render_feedback({"id": "", "name": ""}, [q], title=result.key or "check", fmt=fmt)
+    from dhsym.notation.escape import _clean_text
+    from dhsym.notation.tables import text_table
+
+    where = f" ({result.key})" if result.key else ""
+    lines = [f"{result.verdict.value.upper()}: {result.question}{where}. {result.message}"]
+    for d in result.diagnoses:
+        at = ""
+        if d.entries:
+            at += " (entries " + ", ".join(f"({r},{c})" for r, c in d.entries) + ")"
+        if d.rows:
+            at += " (rows " + ", ".join(map(str, d.rows)) + ")"
+        lines.append(f"  - {d.title}{at}: {d.detail}")
+    wrong = [e for e in result.entries if not e.correct]
+    if wrong:
+        rows = [[f"({e.row},{e.col})", e.answer, e.expected] for e in wrong]
+        lines += [
+            "",
+            *("  " + t for t in text_table(["entry", "your entry", "correct entry"], rows)),
+        ]
+        if len(result.entries) > len(wrong):
+            lines.append(f"The other {len(result.entries) - len(wrong)} entries are right.")
+    tables = [("Your table:", result.answer_table)]
+    if not result.correct:
+        tables.append(("The key's table:", result.expected_table))
+    for title, table in tables:
+        if table:
+            lines += ["", title, *("  " + t for t in text_table(table[0], table[1:]))]
+    return "\n".join(_clean_text(line) for line in lines) + "\n"
 
 
 def render_summary(data: Mapping[str, object]) -> str:
