@@ -51,7 +51,8 @@ class Identity:
 
 @dataclass(frozen=True)
 class Factor:
-    """One elementary transform of the general link matrix (seed 002, Transformations 1–4)."""
+    """One elementary transform of the general link matrix (Mohan, Lecture 9,
+    Transformations 1–4)."""
 
     kind: str
     axis: str

@@ -40,7 +40,8 @@ def builtin_names() -> list[str]:
 
 
 def planar_chain(n: int) -> DHTable:
-    """A planar nR chain: ``θ_k``, ``d = 0``, ``a_k``, ``α = 0`` (seed 001's 2R and 4R, any n)."""
+    """A planar nR chain: ``θ_k``, ``d = 0``, ``a_k``, ``α = 0`` (the 2R and 4R of IRob2305,
+    Lecture 5, for any n)."""
     if not 1 <= n <= 60:
         raise DHError(f"planar chains have 1 to 60 joints; got {n}")
     rows = [DHRow.revolute(f"theta{k}", a=f"a{k}") for k in range(1, n + 1)]
@@ -48,7 +49,8 @@ def planar_chain(n: int) -> DHTable:
         rows,
         name=f"Planar {n}R",
         angles="deg",
-        source="seed 001, Examples 2 and 3, extended to n joints",
+        source="IRob2305 Introduction to Robotics, Lecture 5 (Denavit-Hartenberg parameters, "
+        "forward kinematics), Examples 2 and 3, extended to n joints",
     )
 
 

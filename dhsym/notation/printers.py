@@ -90,7 +90,7 @@ class Notation:
     compact
         False prints the full ``cos``/``sin`` form.
     upper
-        ``C_1``/``S_1`` (seed 001) when True, ``c_1``/``s_1`` (Craig) when False.
+        ``C_1``/``S_1`` (IRob2305 Lecture 5) when True, ``c_1``/``s_1`` (Craig) when False.
     """
 
     labels: tuple[tuple[sp.Symbol, str], ...] = ()
