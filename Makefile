@@ -1,17 +1,20 @@
 # Two commands for a fresh machine (see README):
 #   make demo   set up .venv, derive the PUMA 560 and write its derivation to build/
 #   make test   set up .venv and run the whole test suite
+# and, once set up:
+#   make lab    JupyterLab on the course notebooks, from .venv
+#   make shell  a shell with .venv activated (dhsym, jupyter, python on the PATH)
 PYTHON ?= python3
 VENV   ?= .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-stamp
 
-.PHONY: demo test lint bench setup clean
+.PHONY: demo test lint bench setup clean lab shell
 
 setup: $(STAMP)
 
 $(STAMP): pyproject.toml scripts/system-deps.sh
-	bash scripts/system-deps.sh
+	PYTHON="$(PYTHON)" bash scripts/system-deps.sh
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[test,notebooks,dask]'
@@ -32,6 +35,14 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	$(PY) benchmarks/bench_core.py
+	$(PY) benchmarks/bench_cli.py
+
+lab: $(STAMP)
+	$(VENV)/bin/jupyter lab notebooks/
+
+shell: $(STAMP)
+	@echo "dhsym's environment is active; leave it with exit" >&2
+	@bash --init-file $(VENV)/bin/activate -i
 
 clean:
 	rm -rf $(VENV) build .pytest_cache
