@@ -17,7 +17,9 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
+from pathlib import Path
 
 from .common import add_command
 
@@ -86,8 +88,9 @@ def _cmd_grade(args: argparse.Namespace) -> int:
         f"graded {report.graded} submission(s), {report.skipped} already graded, "
         f"{report.failed} failed (timeout or error); mean score {report.mean:.2f}"
     )
-    print(f"gradebook: {report.gradebook}")
-    print(f"summary:   {report.summary}")
+    # the paths as the user gave the report folder, not resolved
+    print(f"gradebook: {os.path.join(args.output, Path(report.gradebook).name)}")
+    print(f"summary:   {os.path.join(args.output, Path(report.summary).name)}")
     return 0
 
 
