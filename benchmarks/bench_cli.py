@@ -2,8 +2,10 @@
 
 Each command runs as a fresh process, as a student's shell runs it. The runs are
 interleaved (one of each command per round, the reference included), so a machine
-shared with other work slows them alike; the report gives the median of each
-command, its ratio to the reference's median, and the load average before and after.
+shared with other work slows them alike; the report gives, for each command, the median
+wall time and the median CPU time (user + system of the process: less disturbed by other
+work on a shared machine), each also as a ratio to the reference's, and the load average
+before and after.
 
     python benchmarks/bench_cli.py [--runs 9] [--python PATH]
 
@@ -15,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -29,6 +32,7 @@ def commands(answer: Path) -> dict[str, list[str]]:
     """What is timed: the reference first, then the commands (arguments after ``python``)."""
     return {
         'python -c "import sympy"': ["-c", "import sympy"],
+        'python -c "import dhsym"': ["-c", "import dhsym"],
         "dhsym --help": ["-m", "dhsym", "--help"],
         "dhsym fk planar2r --q 0,0": ["-m", "dhsym", "fk", "planar2r", "--q", "0,0"],
         "dhsym fk puma560 --q 0,0,0,0,0,0": ["-m", "dhsym", "fk", "puma560", "--q", "0,0,0,0,0,0"],
@@ -47,13 +51,26 @@ def commands(answer: Path) -> dict[str, list[str]]:
     }
 
 
-def wall_time(python: str, args: list[str], cwd: str) -> float:
-    """Seconds from start to exit of ``python args`` (output discarded; must succeed)."""
+# Bytecode is written and read as after a normal install (pip compiles at install time).
+_ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+
+
+def run_timed(python: str, args: list[str], cwd: str) -> tuple[float, float]:
+    """Wall and CPU seconds (user + system) of ``python args`` (output discarded; must succeed)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     subprocess.run(
-        [python, *args], cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True
+        [python, *args],
+        cwd=cwd,
+        env=_ENV,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        check=True,
     )
-    return time.perf_counter() - start
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu
 
 
 def main() -> None:
@@ -67,25 +84,28 @@ def main() -> None:
         answer.write_text(RIGHT)
         cmds = commands(answer)
         for argv in cmds.values():  # warm the file cache and __pycache__
-            wall_time(args.python, argv, cwd)
+            run_timed(args.python, argv, cwd)
         load_before = os.getloadavg()
-        times: dict[str, list[float]] = {name: [] for name in cmds}
+        wall: dict[str, list[float]] = {name: [] for name in cmds}
+        cpu: dict[str, list[float]] = {name: [] for name in cmds}
         for _ in range(args.runs):
             for name, argv in cmds.items():
-                times[name].append(wall_time(args.python, argv, cwd))
+                w, c = run_timed(args.python, argv, cwd)
+                wall[name].append(w)
+                cpu[name].append(c)
         load_after = os.getloadavg()
 
     ref_name = next(iter(cmds))
-    ref = statistics.median(times[ref_name])
+    ref_wall, ref_cpu = statistics.median(wall[ref_name]), statistics.median(cpu[ref_name])
     print(f"python: {args.python}")
     print(
         f"cores: {os.cpu_count()}, load average (1 min) before {load_before[0]:.2f}, "
-        f"after {load_after[0]:.2f}; median of {args.runs} interleaved runs"
+        f"after {load_after[0]:.2f}; medians of {args.runs} interleaved runs"
     )
-    print(f"{'command':40s} {'median':>8s} {'min':>8s} {'ratio':>6s}")
-    for name, ts in times.items():
-        med = statistics.median(ts)
-        print(f"{name:40s} {med:7.3f}s {min(ts):7.3f}s {med / ref:6.2f}")
+    print(f"{'command':40s} {'wall':>8s} {'ratio':>6s} {'cpu':>8s} {'ratio':>6s}")
+    for name in cmds:
+        w, c = statistics.median(wall[name]), statistics.median(cpu[name])
+        print(f"{name:40s} {w:7.3f}s {w / ref_wall:6.2f} {c:7.3f}s {c / ref_cpu:6.2f}")
     print(f"ratio = median / median of {ref_name} (same run)")
 
 

@@ -21,6 +21,8 @@ __getattr__, __dir__ = lazy_exports(
         "render": "rendering",
         "render_derivation": "rendering",
         "render_handout": "rendering",
+        "run_latex": "latex",
+        "LatexRun": "latex",
         "tex_available": "latex",
         "write_handout": "rendering",
     },
@@ -28,6 +30,7 @@ __getattr__, __dir__ = lazy_exports(
 
 __all__ = [
     "Derivation",
+    "LatexRun",
     "builtin_dir",
     "check_log",
     "compile_pdf",
@@ -39,6 +42,7 @@ __all__ = [
     "render",
     "render_derivation",
     "render_handout",
+    "run_latex",
     "tex_available",
     "write_handout",
 ]
