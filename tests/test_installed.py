@@ -180,7 +180,8 @@ def test_the_wheel_ships_code_robots_templates_and_py_typed(dists):
     robots = {f"dhsym/model/robots/{p.name}" for p in (ROOT / "dhsym/model/robots").glob("*.yaml")}
     modules = {str(p.relative_to(ROOT)) for p in (ROOT / "dhsym").rglob("*.py")}
     assert len(templates) >= 10 and len(robots) >= 10
-    assert templates | robots | modules | {"dhsym/py.typed"} <= names
+    missing = (templates | robots | modules | {"dhsym/py.typed"}) - names
+    assert missing == set(), f"not in the wheel: {sorted(missing)}"
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     assert not any(n.startswith(("tests/", "notebooks/", "examples/")) for n in names)
 

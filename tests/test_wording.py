@@ -124,17 +124,8 @@ def test_command_line_output_help_and_errors(tmp_path):
     ]
     text = "".join(_run(argv) for argv in runs)
     text += "".join(_run(argv, wrong) for argv in checks)
-    text += _run(
-        [
-            "check",
-            "--key",
-            str(HW / "generic_modified_link.yaml"),
-            "--question",
-            "A1",
-            "--answer",
-            str(HW / "submissions" / "carol" / "q4.md"),
-        ]
-    )
+    key, answer = HW / "generic_modified_link.yaml", HW / "submissions" / "carol" / "q4.md"
+    text += _run(["check", "--key", str(key), "--question", "A1", "--answer", str(answer)])
     parser = build_parser()
     for sub in parser._subparsers._group_actions[0].choices.values():
         text += sub.format_help()
