@@ -2,17 +2,20 @@
 #   make demo   set up .venv, derive the PUMA 560 and write its derivation to build/
 #   make test   set up .venv and run the whole test suite
 #   make notebooks [NB=notebooks/03_puma560.py]   rebuild notebooks from their .py sources
+# and, once set up:
+#   make lab    JupyterLab on the course notebooks, from .venv
+#   make shell  a shell with .venv activated (dhsym, jupyter, python on the PATH)
 PYTHON ?= python3
 VENV   ?= .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-stamp
 
-.PHONY: demo test lint bench notebooks setup clean
+.PHONY: demo test lint bench notebooks setup clean lab shell
 
 setup: $(STAMP)
 
 $(STAMP): pyproject.toml scripts/system-deps.sh
-	bash scripts/system-deps.sh
+	PYTHON="$(PYTHON)" bash scripts/system-deps.sh
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[test,notebooks,dask,widgets,graders]'
@@ -36,6 +39,14 @@ notebooks: $(STAMP)
 
 bench: $(STAMP)
 	$(PY) benchmarks/bench_core.py
+	$(PY) benchmarks/bench_cli.py
+
+lab: $(STAMP)
+	$(VENV)/bin/jupyter lab notebooks/
+
+shell: $(STAMP)
+	@echo "dhsym's environment is active; leave it with exit" >&2
+	@bash --init-file $(VENV)/bin/activate -i
 
 clean:
 	rm -rf $(VENV) build .pytest_cache

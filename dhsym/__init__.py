@@ -8,35 +8,57 @@ a1*cos(theta1) + a2*cos(theta1 + theta2)
 
 from __future__ import annotations
 
-from importlib.metadata import PackageNotFoundError, version
-
-from dhsym.explain.derivation import Derivation, derive
-from dhsym.geometry.chains import FrameChain
-from dhsym.kinematics.pose import Pose
-from dhsym.kinematics.robot import Robot, load
-from dhsym.model.kinds import AngleUnit, Convention, JointType
-from dhsym.model.library import builtin_names, builtin_table, load_table, planar_chain
-from dhsym.model.table import DHRow, DHTable, Elementary
-from dhsym.model.tablefile import dump_table, read_table, read_table_text
-from dhsym.notation.printers import Notation
-
 from ._lazy import lazy_exports
-from .errors import ChainError, DHError, GeometryError, ParseError, TableError
 
-# Names whose modules import numpy, matplotlib or the checker load on first use (PEP 562),
-# so that `import dhsym` costs little more than `import sympy`.
+# Every name loads on first use (PEP 562): `import dhsym` costs almost nothing, so that
+# `dhsym --help` starts fast, and the names a program uses import only what they need.
 __getattr__, __dir__ = lazy_exports(
     __name__,
     {
+        # the rooms themselves
+        "checking": "checking",
+        "cli": "cli",
+        "explain": "explain",
+        "geometry": "geometry",
+        "kinematics": "kinematics",
+        "model": "model",
+        "notation": "notation",
+        "plot": "plot",
+        # model
+        "AngleUnit": "dhsym.model.kinds",
+        "Convention": "dhsym.model.kinds",
+        "JointType": "dhsym.model.kinds",
+        "DHRow": "dhsym.model.table",
+        "DHTable": "dhsym.model.table",
+        "Elementary": "dhsym.model.table",
+        "builtin_names": "dhsym.model.library",
+        "builtin_table": "dhsym.model.library",
+        "load_table": "dhsym.model.library",
+        "planar_chain": "dhsym.model.library",
+        "dump_table": "dhsym.model.tablefile",
+        "read_table": "dhsym.model.tablefile",
+        "read_table_text": "dhsym.model.tablefile",
+        # notation, kinematics
+        "Notation": "dhsym.notation.printers",
+        "Pose": "dhsym.kinematics.pose",
+        "Robot": "dhsym.kinematics.robot",
+        "load": "dhsym.kinematics.robot",
+        # explain
+        "Derivation": "dhsym.explain.derivation",
+        "derive": "dhsym.explain.derivation",
+        # plot
         "animate_path": "dhsym.plot.animation",
         "joint_path": "dhsym.plot.animation",
         "frame_origins": "dhsym.plot.figures",
         "plot_robot": "dhsym.plot.figures",
         "plot_workspace": "dhsym.plot.figures",
+        # checking
         "Key": "dhsym.checking",
         "check": "dhsym.checking",
         "check_answer": "dhsym.checking",
         "grade": "dhsym.checking",
+        # geometry
+        "FrameChain": "dhsym.geometry.chains",
         "JointAxis": "dhsym.geometry.axes",
         "Tool": "dhsym.geometry.axes",
         "common_normal": "dhsym.geometry.axes",
@@ -52,14 +74,15 @@ __getattr__, __dir__ = lazy_exports(
         "mobility": "dhsym.geometry.joints",
         "inverse": "dhsym.kinematics.robot",
         "singularities": "dhsym.kinematics.singularities",
+        # errors, version
+        "ChainError": "dhsym.errors",
+        "DHError": "dhsym.errors",
+        "GeometryError": "dhsym.errors",
+        "ParseError": "dhsym.errors",
+        "TableError": "dhsym.errors",
+        "__version__": "dhsym._version",
     },
 )
-
-
-try:
-    __version__ = version("dhsym")
-except PackageNotFoundError:  # running from a source tree that is not installed
-    __version__ = "0.0.0"
 
 __all__ = [
     "AngleUnit",
@@ -89,6 +112,7 @@ __all__ = [
     "assign_frames",
     "builtin_names",
     "builtin_table",
+    "check",
     "check_answer",
     "check_conversion",
     "common_normal",
@@ -107,6 +131,7 @@ __all__ = [
     "plot_workspace",
     "read_table",
     "read_table_text",
+    "singularities",
     "to_modified",
     "to_standard",
     "__version__",

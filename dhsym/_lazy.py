@@ -26,7 +26,8 @@ def lazy_exports(
     """``__getattr__`` and ``__dir__`` for ``package``: ``names`` maps a name to its module.
 
     Module paths are relative to ``package`` (``"parsing"``) or absolute
-    (``"dhsym.plot.figures"``).
+    (``"dhsym.plot.figures"``); a name that maps to itself (``"kinematics":
+    "kinematics"``) is the submodule.
     """
 
     def __getattr__(name: str) -> object:
@@ -34,6 +35,8 @@ def lazy_exports(
             raise AttributeError(f"module {package!r} has no attribute {name!r}")
         module = names[name]
         target = module if module.startswith("dhsym") else f"{package}.{module}"
+        if target == f"{package}.{name}":  # a subpackage or module of its own
+            return importlib.import_module(target)
         return getattr(importlib.import_module(target), name)
 
     def __dir__() -> list[str]:

@@ -15,19 +15,47 @@ Student text is untrusted throughout: see :class:`AnswerLimits`.
 
 from __future__ import annotations
 
-from ._limits import AnswerLimits, CheckTimeout, UnreadableAnswer
-from .answers import read_expression, read_matrix, read_table
-from .checker import Key, check_answer, prepare
-from .feedback import render_check, render_feedback
-from .grading import Assignment, GradeReport, grade, grade_submission, read_submissions
-from .latex_input import latex_matrix_cells, latex_to_text
-from .mistakes import Mistake
-from .names import NameContext
-from .questions import Question
-from .rounding import Rounding
-from .selfcheck import SelfCheck, assert_answer, check, check_widget
-from .tables import TableMatch, compare_tables
-from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
+from dhsym._lazy import lazy_exports
+
+# Loaded on first use, so that `dhsym check` imports the checker and not the grading
+# machinery (process pools, reports, Dask).
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "AnswerLimits": "_limits",
+        "CheckTimeout": "_limits",
+        "UnreadableAnswer": "_limits",
+        "read_expression": "answers",
+        "read_matrix": "answers",
+        "read_table": "answers",
+        "Key": "checker",
+        "check_answer": "checker",
+        "prepare": "checker",
+        "render_check": "feedback",
+        "render_feedback": "feedback",
+        "Assignment": "grading",
+        "GradeReport": "grading",
+        "grade": "grading",
+        "grade_submission": "grading",
+        "read_submissions": "grading",
+        "latex_matrix_cells": "latex_input",
+        "latex_to_text": "latex_input",
+        "Mistake": "mistakes",
+        "NameContext": "names",
+        "Question": "questions",
+        "TableMatch": "tables",
+        "compare_tables": "tables",
+        "CheckResult": "verdict",
+        "Diagnosis": "verdict",
+        "EntryResult": "verdict",
+        "Verdict": "verdict",
+        "Rounding": "rounding",
+        "SelfCheck": "selfcheck",
+        "assert_answer": "selfcheck",
+        "check": "selfcheck",
+        "check_widget": "selfcheck",
+    },
+)
 
 __all__ = [
     "AnswerLimits",

@@ -81,7 +81,8 @@ class EntryMistake(Mistake):
 
 
 class WrongSign(EntryMistake):
-    """An entry, or one term of it, with the wrong sign (seed 002's +d_i sin α_{i-1})."""
+    """An entry, or one term of it, with the wrong sign (as the +d_i sin α_{i-1} that one
+    slide of Mohan, Lecture 9, prints)."""
 
     kind, title = "wrong_sign", "wrong sign"
 

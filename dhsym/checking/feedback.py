@@ -1,4 +1,4 @@
-r"""Feedback a student can act on, as Markdown and HTML (Jinja2 templates in ``templates/``).
+r"""Feedback a student can act on, as Markdown, HTML and plain text (Jinja2 templates).
 
 The templates get plain data; the HTML environment autoescapes, the Markdown one
 escapes every student-made string with the ``md`` filter (Markdown specials and
@@ -35,6 +35,7 @@ __all__ = [
     "QuestionFeedback",
     "md_code",
     "md_escape",
+    "check_text",
     "render_check",
     "render_feedback",
     "render_question_text",
@@ -124,9 +125,61 @@ def render_feedback(
 
 
 def render_check(result: CheckResult, fmt: str = "md") -> str:
-    """Feedback for a single check (what ``dhsym check`` prints)."""
+    """Feedback for a single check: ``txt`` is what ``dhsym check`` prints on a terminal,
+    ``md`` what it prints with ``--format markdown`` (and notebooks display)."""
+    if fmt == "txt":
+        return check_text(result)
     q = QuestionFeedback("1", result.question, 1, float(result.correct), result)
     return render_feedback({"id": "", "name": ""}, [q], title=result.key or "check", fmt=fmt)
+
+
+def check_text(result: CheckResult) -> str:
+    """One check as plain text for a terminal: no markup, control characters removed.
+
+    A terminal message rather than a document, so it is built here and not from a
+    template: ``dhsym check`` then starts without Jinja2.
+
+    >>> from dhsym.checking.verdict import CheckResult, Diagnosis, EntryResult, Verdict
+    >>> e = EntryResult(2, 4, False, "a1*S1 - a2*S12", "a1*S1 + a2*S12")
+    >>> d = Diagnosis("wrong_sign", "wrong sign", "a2*S12 has the wrong sign.", ((2, 4),))
+    >>> print(check_text(CheckResult("T0_2", Verdict.INCORRECT, "1 of 16 entries is wrong.",
+    ...                              diagnoses=(d,), entries=(e,), key="Planar 2R")))
+    INCORRECT: T0_2 (Planar 2R). 1 of 16 entries is wrong.
+      - wrong sign (entries (2,4)): a2*S12 has the wrong sign.
+    <BLANKLINE>
+      entry | your entry     | correct entry
+      ------+----------------+---------------
+      (2,4) | a1*S1 - a2*S12 | a1*S1 + a2*S12
+    <BLANKLINE>
+    """
+    from dhsym.notation.escape import _clean_text
+    from dhsym.notation.tables import text_table
+
+    where = f" ({result.key})" if result.key else ""
+    lines = [f"{result.verdict.value.upper()}: {result.question}{where}. {result.message}"]
+    for d in result.diagnoses:
+        at = ""
+        if d.entries:
+            at += " (entries " + ", ".join(f"({r},{c})" for r, c in d.entries) + ")"
+        if d.rows:
+            at += " (rows " + ", ".join(map(str, d.rows)) + ")"
+        lines.append(f"  - {d.title}{at}: {d.detail}")
+    wrong = [e for e in result.entries if not e.correct]
+    if wrong:
+        rows = [[f"({e.row},{e.col})", e.answer, e.expected] for e in wrong]
+        lines += [
+            "",
+            *("  " + t for t in text_table(["entry", "your entry", "correct entry"], rows)),
+        ]
+        if len(result.entries) > len(wrong):
+            lines.append(f"The other {len(result.entries) - len(wrong)} entries are right.")
+    tables = [("Your table:", result.answer_table)]
+    if not result.correct:
+        tables.append(("The key's table:", result.expected_table))
+    for title, table in tables:
+        if table:
+            lines += ["", title, *("  " + t for t in text_table(table[0], table[1:]))]
+    return "\n".join(_clean_text(line) for line in lines) + "\n"
 
 
 def render_summary(data: Mapping[str, object]) -> str:

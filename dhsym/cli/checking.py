@@ -7,15 +7,21 @@ Examples
 >>> import argparse
 >>> p = argparse.ArgumentParser(prog="dhsym")
 >>> register(p.add_subparsers(dest="command"))
->>> p.parse_args(["check", "--key", "planar2r", "--question", "T0_2", "--answer", "-"]).json
-False
+>>> p.parse_args(["check", "--key", "planar2r", "--question", "T0_2", "--answer", "-"]).format
+'text'
+>>> p.parse_args(["check", "--key", "k", "--question", "q", "--answer", "-", "--json"]).format
+'json'
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
+from pathlib import Path
+
+from .common import add_command
 
 __all__ = ["register"]
 
@@ -57,11 +63,11 @@ def _cmd_check(args: argparse.Namespace) -> int:
             reason=str(err),
             key=key.name,
         )
-    if args.json:
+    if args.format == "json":
         print(json.dumps(result.to_json(), indent=2, ensure_ascii=False))
     else:
-        print(render_check(result), end="")
-    if result.verdict is Verdict.UNREADABLE and not args.json:
+        print(render_check(result, "md" if args.format == "markdown" else "txt"), end="")
+    if result.verdict is Verdict.UNREADABLE and args.format != "json":
         print(f"dhsym: unreadable answer: {result.reason}", file=sys.stderr)
     return result.verdict.exit_code
 
@@ -81,6 +87,7 @@ def _cmd_grade(args: argparse.Namespace) -> int:
             raise DHError(f"--gradebook {args.gradebook} needs --roster FILE (LMS ids per student)")
     elif args.roster:
         raise DHError("--roster is used with --gradebook canvas|moodle|generic")
+
     report = grade(
         assignment,
         args.submissions,
@@ -94,15 +101,16 @@ def _cmd_grade(args: argparse.Namespace) -> int:
         f"graded {report.graded} submission(s), {report.skipped} already graded, "
         f"{report.failed} failed (timeout or error); mean score {report.mean:.2f}"
     )
-    print(f"gradebook: {report.gradebook}")
-    print(f"summary:   {report.summary}")
+    # the paths as the user gave the report folder, not resolved
+    print(f"gradebook: {os.path.join(args.output, Path(report.gradebook).name)}")
+    print(f"summary:   {os.path.join(args.output, Path(report.summary).name)}")
     if args.gradebook:
         from dhsym.checking.gradebooks import write_lms_gradebook
 
         out = write_lms_gradebook(
             args.gradebook, report, assignment, roster, column=args.lms_column
         )
-        print(f"{args.gradebook} import: {out.path}")
+        print(f"{args.gradebook} import: {os.path.join(args.output, Path(out.path).name)}")
         for line in out.notes:
             print(f"note: {line}", file=sys.stderr)
     return 0
@@ -129,23 +137,59 @@ def _cmd_autograder(args: argparse.Namespace) -> int:
     return 0
 
 
+CHECK_EPILOG = """\
+Exit status:
+  0  the answer is correct (or a valid alternative)
+  1  the answer is incorrect
+  2  the answer could not be read, or the key or question is wrong (reason printed)
+
+Answers may be plain math (c1*c2 - s1*s2, C12, a1 C1 + a2 C_{12}), LaTeX
+(\\begin{bmatrix} ... \\end{bmatrix}) or, for tables, YAML, CSV or a pasted table.
+Nothing a student typed is executed."""
+
+GRADE_EPILOG = """\
+Exit status:
+  0  the class was graded (each student's score is in the gradebook, even when
+     single submissions failed or timed out)
+  2  the assignment or the submissions could not be read
+
+Writes REPORT/gradebook.csv, REPORT/feedback/<student>.md|.html and
+REPORT/summary.html; a rerun skips what is already graded."""
+
+
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``check``, ``grade`` and ``autograder`` sub-commands."""
-    c = subparsers.add_parser(
-        "check", help="check one answer (exit 0 correct, 1 incorrect, 2 unreadable)"
+    c = add_command(
+        subparsers,
+        "check",
+        "check one answer (exit 0 correct, 1 incorrect, 2 unreadable)",
+        description="Check one answer against a key: a built-in robot or a table file.",
+        epilog=CHECK_EPILOG,
     )
     c.add_argument("--key", required=True, help="built-in robot name or table file")
     c.add_argument(
         "--question",
         required=True,
-        help="table, T<i>_<j>, A<k>, arm, px, or T<i>_<j>[row,col] (0-based)",
+        help="table, T<i>_<j>, A<k>, arm, px, py, pz, or T<i>_<j>[row,col] (0-based)",
     )
     c.add_argument("--answer", required=True, help="answer file, or - for standard input")
-    c.add_argument("--json", action="store_true", help="print the result as JSON")
+    c.add_argument(
+        "--format",
+        choices=["text", "markdown", "json"],
+        default="text",
+        help="text for the terminal, Markdown (as in the feedback pages), or JSON",
+    )
+    c.add_argument(
+        "--json",
+        dest="format",
+        action="store_const",
+        const="json",
+        help="print the result as JSON (same as --format json)",
+    )
     c.add_argument(
         "--tool-free", action="store_true", help="accept another tool frame in a table answer"
     )
-    c.add_argument("--timeout", type=float, default=None, help="time limit in seconds")
+    c.add_argument("--timeout", type=float, default=None, help="time limit in seconds (default: 5)")
     c.add_argument(
         "--rounding",
         default=None,
@@ -155,10 +199,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     c.set_defaults(func=_cmd_check)
 
-    g = subparsers.add_parser("grade", help="grade a class: gradebook, feedback, summary")
+    g = add_command(
+        subparsers,
+        "grade",
+        "grade a class: gradebook, feedback, summary",
+        description="Grade every submission of a class against an assignment.",
+        epilog=GRADE_EPILOG,
+    )
     g.add_argument("assignment", help="assignment YAML file")
     g.add_argument("submissions", help="folder of submissions, or a CSV file")
-    g.add_argument("-o", "--output", required=True, help="report folder (created)")
+    g.add_argument(
+        "-o", "--output", required=True, metavar="REPORT", help="report folder (created)"
+    )
     g.add_argument("--workers", type=int, default=2, help="worker processes (0: none)")
     g.add_argument(
         "--timeout",
@@ -187,8 +239,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     g.set_defaults(func=_cmd_grade)
 
-    ag = subparsers.add_parser(
-        "autograder", help="build a Gradescope-style autograder zip (or --run it in the grader)"
+    ag = add_command(
+        subparsers,
+        "autograder",
+        "build a Gradescope-style autograder zip (or --run it in the grader)",
     )
     ag.add_argument("assignment", nargs="?", help="assignment YAML file")
     ag.add_argument("-o", "--output", default=None, help="the zip to write")

@@ -1,18 +1,203 @@
-"""What every command shares: writing its result to a file or standard output."""
+"""What every command shares: the shell's conventions, in one place.
+
+* ``-o -`` means standard output for every command that writes a file
+  (:func:`emit`, :func:`emit_bytes`); a binary picture goes to standard output only
+  when it is not a terminal.
+* A closed pipe (``dhsym derive puma560 | head -1``) ends the command quietly with
+  status 141 (128 + SIGPIPE, as the shell reports a program killed by it): no message,
+  no traceback, not even at the interpreter's last flush (:func:`run_quietly`).
+* Help is plain text with the defaults and choices shown (:class:`HelpFormatter`,
+  :func:`add_command`).
+* Every "wrote" line names the path the way the user gave it (:func:`wrote`).
+* ``--values a2=0.43,d3=0.15`` gives numbers to a table's symbols (:func:`load_robot`).
+
+Only the standard library is imported here: ``dhsym --help`` must start fast.
+
+Examples
+--------
+>>> parse_values("a2=0.43, d3 = pi/20", "--values")
+{'a2': 0.43, 'd3': 0.15707963267948966}
+>>> emit("hello", "-")
+hello
+"""
 
 from __future__ import annotations
 
+import argparse
+import os
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
-__all__ = ["emit"]
+__all__ = [
+    "EXIT_BROKEN_PIPE",
+    "STDOUT",
+    "HelpFormatter",
+    "add_command",
+    "emit",
+    "emit_bytes",
+    "load_robot",
+    "parse_values",
+    "run_quietly",
+    "wrote",
+]
+
+#: The file name that means standard output.
+STDOUT = "-"
+
+#: Exit status after a closed pipe: 128 + SIGPIPE, what the shell shows for ``yes | head``.
+EXIT_BROKEN_PIPE = 141
+
+
+class HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Plain help: descriptions and epilogs as written, ``(default: …)`` after each option
+    whose default is a value (not for flags, nor when the help already says it)."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        default = action.default
+        if (
+            action.option_strings
+            and default not in (None, False, True, argparse.SUPPRESS)
+            and "default" not in text
+            and action.nargs != 0
+        ):
+            text += " (default: %(default)s)"
+        return text
+
+
+def add_command(
+    subparsers: argparse._SubParsersAction,
+    name: str,
+    help: str,  # noqa: A002 - argparse's own word
+    *,
+    description: str | None = None,
+    epilog: str | None = None,
+) -> argparse.ArgumentParser:
+    """A sub-command with plain help, defaults shown, and ``help`` as its description."""
+    return subparsers.add_parser(
+        name,
+        help=help,
+        description=description or help[:1].upper() + help[1:] + ".",
+        epilog=epilog,
+        formatter_class=HelpFormatter,
+    )
+
+
+def wrote(path: str | os.PathLike[str]) -> None:
+    """Say on standard error that ``path`` was written (as the user wrote it: no resolving)."""
+    print(f"wrote {os.fspath(path)}", file=sys.stderr)
 
 
 def emit(text: str, output: str | None) -> None:
-    """Print ``text``, or write it to ``output`` and say so on standard error."""
-    if output:
-        Path(output).parent.mkdir(parents=True, exist_ok=True)
-        Path(output).write_text(text if text.endswith("\n") else text + "\n", encoding="utf-8")
-        print(f"wrote {output}", file=sys.stderr)
-    else:
-        print(text)
+    """Print ``text``, or write it to the file ``output`` and say so (``-`` is stdout)."""
+    if not output or output == STDOUT:
+        print(text if not text.endswith("\n") else text[:-1])
+        return
+    Path(output).parent.mkdir(parents=True, exist_ok=True)
+    Path(output).write_text(text if text.endswith("\n") else text + "\n", encoding="utf-8")
+    wrote(output)
+
+
+def emit_bytes(data: bytes, output: str, what: str) -> None:
+    """Write binary ``data`` to the file ``output``, or to standard output for ``-``.
+
+    Refuses to print binary data (``what``, e.g. ``a PNG picture``) on a terminal.
+    """
+    from dhsym.errors import DHError
+
+    if output == STDOUT:
+        if sys.stdout.isatty():
+            raise DHError(
+                f"-o - would print {what} on the terminal: pipe it (| display), or give a file name"
+            )
+        sys.stdout.flush()
+        sys.stdout.buffer.write(data)
+        sys.stdout.buffer.flush()
+        return
+    Path(output).parent.mkdir(parents=True, exist_ok=True)
+    Path(output).write_bytes(data)
+    wrote(output)
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null so that the interpreter's last flush cannot fail again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):  # stdout without a file descriptor
+        pass
+
+
+def run_quietly(command: Callable[[], int]) -> int:
+    """Run ``command`` and flush stdout; a closed pipe gives :data:`EXIT_BROKEN_PIPE` quietly.
+
+    Python ignores SIGPIPE and raises :class:`BrokenPipeError` instead, at the write
+    that found the pipe closed or at the final flush. Both are caught here (the flush
+    is done here, inside the handler), and stdout is then pointed at ``/dev/null``.
+    SIGPIPE itself stays ignored: worker processes of ``grade`` talk through pipes,
+    and a dead worker must be an error the batch survives, not a silent kill.
+    """
+    try:
+        try:
+            status = command()
+        except SystemExit:  # --help, --version and usage errors end through sys.exit
+            sys.stdout.flush()
+            raise
+        sys.stdout.flush()
+        return status
+    except BrokenPipeError:
+        _silence_stdout()
+        return EXIT_BROKEN_PIPE
+
+
+def parse_values(text: str, option: str = "--values") -> dict[str, float]:
+    """``a2=0.43,d3=0.15`` as ``{"a2": 0.43, "d3": 0.15}``; numbers through the safe parser."""
+    from dhsym.errors import DHError
+    from dhsym.model.parsing import parse_number_list
+
+    out: dict[str, float] = {}
+    for part in text.split(","):
+        name, sep, value = part.partition("=")
+        name = name.strip()
+        if not sep or not name or not value.strip():
+            raise DHError(f"{option}: expected NAME=NUMBER pairs separated by commas, got {part!r}")
+        if not name.replace("_", "").isalnum() or not name[0].isalpha():
+            raise DHError(f"{option}: {name!r} is not a symbol name")
+        out[name] = parse_number_list(value, f"{option} {name}")[0]
+    return out
+
+
+def load_robot(name: str, values: str | None = None, *, need_numbers: bool = False) -> object:
+    """The robot ``name`` (built-in or file) with ``--values`` applied to its table.
+
+    With ``need_numbers`` every symbolic length must have a number, from the table's
+    ``values:`` or from ``--values``; the error names both ways.
+    """
+    from dhsym.errors import DHError
+    from dhsym.kinematics.robot import Robot
+    from dhsym.model.library import load_table
+
+    table = load_table(name)
+    if values:
+        given = parse_values(values)
+        known = {str(s) for s in table.constants}
+        unknown = sorted(set(given) - known)
+        if unknown:
+            have = ", ".join(sorted(known)) or "none"
+            raise DHError(
+                f"--values: {table.name or name} has no symbol {', '.join(unknown)} "
+                f"(its symbolic lengths: {have})"
+            )
+        table = table.with_values(given)
+    if need_numbers:
+        missing = sorted(str(s) for s in set(table.constants) - set(table.value_map))
+        if missing:
+            example = ",".join(f"{m}=…" for m in missing)
+            raise DHError(
+                f"{table.name or name} has no numbers for {', '.join(missing)}: give them in "
+                f"the table file's values: (values: {{{missing[0]}: …}}) or on the command "
+                f"line with --values {example}"
+            )
+    return Robot(table)

@@ -7,8 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from dhsym.errors import DHError
-from dhsym.notation.printers import TrigStyle
+from .common import STDOUT, add_command, emit, wrote
 
 __all__ = ["register"]
 
@@ -24,17 +23,13 @@ def _parse_check(text: str | None) -> object:
 
 
 def _cmd_handout(args: argparse.Namespace) -> int:
-    from dhsym.explain.documents import write_handout
-    from dhsym.explain.latex import check_log
+    from dhsym.errors import DHError
+    from dhsym.explain.documents import render_handout, write_handout
+    from dhsym.explain.latex import run_latex
     from dhsym.kinematics.robot import load
 
     robots = [load(name, compact=not args.full, style=args.notation) for name in args.robots]
-    check = _parse_check(args.check)
-    result = write_handout(
-        robots,
-        args.output,
-        pdf=args.pdf,
-        figure=args.figure,
+    options = dict(
         title=args.title,
         course=args.course or "",
         author=args.author or "",
@@ -44,21 +39,43 @@ def _cmd_handout(args: argparse.Namespace) -> int:
         template_dir=args.template_dir,
         numeric=args.numeric,
         notation=args.notation,
-        check=check,
+        check=_parse_check(args.check),
     )
-    print(f"wrote {args.output}", file=sys.stderr)
+    if args.output == STDOUT:
+        for flag in ("pdf", "figure", "keep_aux"):
+            if getattr(args, flag):
+                raise DHError(f"--{flag.replace('_', '-')} needs a file: -o NAME.tex, not -o -")
+        emit(render_handout(robots, **options), STDOUT)
+        return 0
+    tex = write_handout(robots, args.output, figure=args.figure, **options)
+    wrote(args.output)
     if args.pdf:
-        print(f"wrote {result}", file=sys.stderr)
-        for issue in check_log(result.with_suffix(".log")):
-            print(f"dhsym: warning: {result.with_suffix('.tex').name}: {issue}", file=sys.stderr)
+        run = run_latex(tex, keep_aux=args.keep_aux)
+        wrote(Path(args.output).with_suffix(".pdf"))
+        for issue in run.issues:
+            print(f"dhsym: warning: {args.output}: {issue}", file=sys.stderr)
     return 0
 
 
 def _register_handout(subparsers: argparse._SubParsersAction) -> None:
-    h = subparsers.add_parser("handout", help="a LaTeX handout (and PDF) for one or more robots")
+    h = add_command(
+        subparsers,
+        "handout",
+        "a LaTeX handout (and PDF) for one or more robots",
+        description="Write a standalone LaTeX handout with the derivation of each robot (or,\n"
+        "with --mode problems, the questions), and compile it to PDF with --pdf.\n"
+        "LaTeX runs with shell escape off; its auxiliary files go to a temporary folder.",
+    )
     h.add_argument("robots", nargs="+", metavar="NAME|FILE", help="built-in names or table files")
-    h.add_argument("-o", "--output", required=True, metavar="FILE.tex", help="the .tex to write")
+    h.add_argument(
+        "-o", "--output", required=True, metavar="FILE.tex", help="the .tex to write (-: stdout)"
+    )
     h.add_argument("--pdf", action="store_true", help="compile it with latexmk/pdflatex")
+    h.add_argument(
+        "--keep-aux",
+        action="store_true",
+        help="keep LaTeX's .aux/.log/.fls files beside the .tex (default: a temporary folder)",
+    )
     h.add_argument("--title", default=None, help="title (default: Forward kinematics: NAMES)")
     h.add_argument("--course", default="", help="course name, printed above the title")
     h.add_argument("--author", default="", help="author line")
@@ -83,9 +100,9 @@ def _register_handout(subparsers: argparse._SubParsersAction) -> None:
     h.add_argument("--full", action="store_true", help="full cos/sin instead of C12/S12")
     h.add_argument(
         "--notation",
-        choices=[s.value for s in TrigStyle],
-        default=TrigStyle.UPPER.value,
-        help="C1: C12, S23 (default); c1: c12, s23 (Craig, Spong); c_theta: c_{θ12} in LaTeX",
+        choices=("C1", "c1", "c_theta"),
+        default="C1",
+        help="C1: C12, S23; c1: c12, s23 (Craig, Spong); c_theta: c_{θ12} in LaTeX",
     )
     h.add_argument("--numeric", action="store_true", help="substitute the numeric lengths")
     h.add_argument(
@@ -105,6 +122,7 @@ def _register_handout(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _cmd_build(args: argparse.Namespace) -> int:
+    from dhsym.errors import DHError
     from dhsym.explain.notebooks import build_notebook
 
     sources = args.sources or sorted(Path("notebooks").glob("*.py"))
@@ -112,11 +130,12 @@ def _cmd_build(args: argparse.Namespace) -> int:
         raise DHError("no notebook sources given and none in notebooks/")
     for source in sources:
         path = build_notebook(source, execute=not args.no_execute, timeout=args.timeout)
-        print(f"wrote {path}" + ("" if args.no_execute else " (executed)"), file=sys.stderr)
+        wrote(path)
     return 0
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
+    from dhsym.errors import DHError
     from dhsym.explain.notebooks import execute_notebook
 
     paths = args.notebooks or sorted(Path("notebooks").glob("*.ipynb"))
@@ -134,34 +153,34 @@ def _cmd_export(args: argparse.Namespace) -> int:
     formats = [f.strip() for f in args.to.split(",") if f.strip()]
     for p in args.notebooks:
         for f in export_notebook(p, args.output, formats, args.mathjax_url):
-            print(f"wrote {f}", file=sys.stderr)
+            wrote(f)
     return 0
 
 
 def _add_commands(sub: Any) -> None:
-    b = sub.add_parser("build", help="write notebooks from their .py sources and execute them")
+    b = add_command(sub, "build", "write notebooks from their .py sources and execute them")
     b.add_argument("sources", nargs="*", help="jupytext .py sources (default: notebooks/*.py)")
-    b.add_argument("--timeout", type=int, default=120, help="seconds per cell (default 120)")
+    b.add_argument("--timeout", type=int, default=120, help="seconds per cell")
     b.add_argument(
         "--no-execute", action="store_true", help="only update the cells, do not run them"
     )
     b.set_defaults(func=_cmd_build)
-    r = sub.add_parser("run", help="execute notebooks; fail on errors and warnings")
-    r.add_argument("notebooks", nargs="*", help="default: notebooks/*.ipynb")
-    r.add_argument("--timeout", type=int, default=120, help="seconds per cell (default 120)")
+    r = add_command(sub, "run", "execute notebooks; fail on errors and warnings")
+    r.add_argument("notebooks", nargs="*", help="notebook files (default: notebooks/*.ipynb)")
+    r.add_argument("--timeout", type=int, default=120, help="seconds per cell")
     r.add_argument("--write", action="store_true", help="save the outputs into the notebooks")
     r.set_defaults(func=_cmd_run)
-    e = sub.add_parser("export", help="export notebooks to HTML and Markdown")
-    e.add_argument("notebooks", nargs="+")
-    e.add_argument("-o", "--output", default="build/notebooks", help="folder (build/notebooks)")
-    e.add_argument("--to", default="html,markdown", help="html, markdown or both (default)")
+    e = add_command(sub, "export", "export notebooks to HTML and Markdown")
+    e.add_argument("notebooks", nargs="+", help="notebook files")
+    e.add_argument("-o", "--output", default="build/notebooks", help="folder")
+    e.add_argument("--to", default="html,markdown", help="html, markdown or both")
     e.add_argument("--mathjax-url", help="MathJax address (default: local libjs-mathjax if any)")
     e.set_defaults(func=_cmd_export)
 
 
 def _register_notebooks(subparsers: Any) -> None:
-    p = subparsers.add_parser("notebooks", help="build, run or export the course notebooks")
-    _add_commands(p.add_subparsers(dest="notebooks_command", required=True))
+    p = add_command(subparsers, "notebooks", "build, run or export the course notebooks")
+    _add_commands(p.add_subparsers(dest="notebooks_command", required=True, metavar="ACTION"))
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:

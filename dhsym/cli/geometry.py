@@ -5,15 +5,14 @@ from __future__ import annotations
 import argparse
 import sys
 
-from dhsym.model.kinds import Convention
+from .common import add_command, emit
 
 __all__ = ["register"]
 
 
 def _cmd_convert(args: argparse.Namespace) -> int:
-    from pathlib import Path
-
     from dhsym.geometry.conversion import check_conversion, convert
+    from dhsym.model.kinds import Convention
     from dhsym.model.library import load_table
     from dhsym.model.tablefile import dump_table
 
@@ -26,13 +25,7 @@ def _cmd_convert(args: argparse.Namespace) -> int:
         )
     new = convert(table, target)
     err = check_conversion(table, new, samples=args.samples)
-    text = dump_table(new)
-    if args.output:
-        Path(args.output).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.output).write_text(text, encoding="utf-8")
-        print(f"wrote {args.output}", file=sys.stderr)
-    else:
-        print(text, end="")
+    emit(dump_table(new), args.output)
     print(
         f"tool pose agrees at {args.samples} random configurations (max difference {err:.2g})",
         file=sys.stderr,
@@ -48,19 +41,17 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     >>> sorted(sub.choices)
     ['convert']
     """
-    c = subparsers.add_parser(
+    c = add_command(
+        subparsers,
         "convert",
-        help="standard <-> modified DH, with base/tool transforms that keep the tool pose",
+        "standard <-> modified DH, with base/tool transforms that keep the tool pose",
     )
-    c.add_argument("robot", help="built-in name or table file")
+    c.add_argument("robot", help="built-in robot name (dhsym list) or table file")
     c.add_argument(
         "--to", required=True, choices=["standard", "modified"], help="target convention"
     )
-    c.add_argument("-o", "--output", help="write the YAML table here instead of standard output")
     c.add_argument(
-        "--samples",
-        type=int,
-        default=20,
-        help="random configurations for the fk check (default 20)",
+        "-o", "--output", metavar="FILE", help="write the YAML table to FILE (- or none: stdout)"
     )
+    c.add_argument("--samples", type=int, default=20, help="random configurations for the fk check")
     c.set_defaults(func=_cmd_convert)

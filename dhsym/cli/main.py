@@ -1,13 +1,16 @@
 """The ``dhsym`` command line: the parser and the explicit list of command groups.
 
 Each group lives in its own module of this room and adds its sub-commands with
-``register(subparsers)``. Bad input exits with status 2 and one line
-``dhsym: error: …`` (no traceback).
+``register(subparsers)``; the group modules import only the standard library at
+the top, and each command imports what it needs when it runs, so ``dhsym --help``
+starts without sympy. Bad input exits with status 2 and one line
+``dhsym: error: …`` (no traceback); the shell conventions are in :mod:`.common`.
 
 Examples
 --------
 >>> sorted(build_parser()._subparsers._group_actions[0].choices)  # doctest: +NORMALIZE_WHITESPACE
-['check', 'convert', 'derive', 'fk', 'grade', 'handout', 'list', 'notebooks', 'plot', 'show']
+['autograder', 'check', 'convert', 'derive', 'fk', 'grade', 'handout', 'list', 'notebooks',
+ 'plot', 'show']
 """
 
 from __future__ import annotations
@@ -16,24 +19,48 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from dhsym import __version__
-from dhsym.errors import DHError
-
 from . import checking, documents, geometry, plots, robots
+from .common import HelpFormatter, run_quietly
 
 __all__ = ["COMMAND_GROUPS", "build_parser", "main"]
 
 #: The command groups, in the order ``dhsym --help`` lists them.
 COMMAND_GROUPS = (robots, documents, plots, geometry, checking)
 
+_DESCRIPTION = """\
+Denavit-Hartenberg tables to closed-form kinematics in lecture notation
+(C12, S23, a1C1 + a2C12), lecture-style derivations and handouts, pictures,
+and homework checking.
+
+A robot is a built-in name (dhsym list) or a YAML table file."""
+
+_EPILOG = """\
+Options -o FILE write to FILE; -o - writes to standard output.
+Exit status: 0 success, 1 an incorrect answer (check), 2 bad input or an error,
+141 the output pipe was closed (e.g. | head), 130 interrupted.
+'dhsym COMMAND --help' describes each command."""
+
+
+class _VersionAction(argparse.Action):
+    """``--version``: reads the installed version only when asked (it costs an import)."""
+
+    def __init__(self, option_strings: Sequence[str], dest: str, **kw: object) -> None:
+        super().__init__(option_strings, dest, nargs=0, help="print the version and exit")
+
+    def __call__(self, parser: argparse.ArgumentParser, *args: object) -> None:
+        from dhsym._version import __version__
+
+        print(f"dhsym {__version__}")
+        parser.exit()
+
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every command group's sub-commands."""
     p = argparse.ArgumentParser(
-        prog="dhsym", description="Denavit-Hartenberg tables to lecture-style kinematics."
+        prog="dhsym", description=_DESCRIPTION, epilog=_EPILOG, formatter_class=HelpFormatter
     )
-    p.add_argument("--version", action="version", version=f"dhsym {__version__}")
-    sub = p.add_subparsers(dest="command", required=True)
+    p.add_argument("--version", action=_VersionAction)
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for group in COMMAND_GROUPS:
         group.register(sub)
     return p
@@ -55,18 +82,30 @@ def _glue_negative_values(argv: list[str]) -> list[str]:
     return out
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status."""
-    parser = build_parser()
-    args = parser.parse_args(_glue_negative_values(list(sys.argv[1:] if argv is None else argv)))
+def _run(args: argparse.Namespace) -> int:
+    from dhsym.errors import DHError
+
     try:
         return int(args.func(args))
+    except BrokenPipeError:
+        raise  # handled by run_quietly
     except DHError as err:
         print(f"dhsym: error: {err}", file=sys.stderr)
         return 2
     except (OSError, IndexError) as err:
         print(f"dhsym: error: {err}", file=sys.stderr)
         return 2
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status."""
+    parser = build_parser()
+    argv = _glue_negative_values(list(sys.argv[1:] if argv is None else argv))
+    try:
+        return run_quietly(lambda: _run(parser.parse_args(argv)))
+    except KeyboardInterrupt:
+        print(file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":  # pragma: no cover

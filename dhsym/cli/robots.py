@@ -13,24 +13,19 @@ from __future__ import annotations
 import argparse
 import json
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
-import numpy as np
+from .common import add_command, emit, load_robot
 
-from dhsym import __version__
-from dhsym.errors import DHError
-from dhsym.kinematics.robot import Robot, load
-from dhsym.model.library import builtin_names, builtin_table
-from dhsym.model.parsing import parse_number_list
-from dhsym.model.tablefile import dump_table
-from dhsym.notation.printers import TrigStyle
-from dhsym.notation.tables import table_markdown
-
-from .common import emit
+if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
+    from dhsym.kinematics.robot import Robot
 
 __all__ = ["JSON_SCHEMA_VERSION", "derive_json", "register"]
 
 
 def _cmd_list(args: argparse.Namespace) -> int:
+    from dhsym.model.library import builtin_names, builtin_table
+
     for name in builtin_names():
         t = builtin_table(name)
         kinds = "".join(r.joint.value for r in t.rows)
@@ -40,6 +35,10 @@ def _cmd_list(args: argparse.Namespace) -> int:
 
 
 def _cmd_show(args: argparse.Namespace) -> int:
+    from dhsym.kinematics.robot import load
+    from dhsym.model.tablefile import dump_table
+    from dhsym.notation.tables import table_markdown
+
     robot = load(args.robot)
     t = robot.table
     if args.format == "yaml":
@@ -53,6 +52,8 @@ def _cmd_show(args: argparse.Namespace) -> int:
 
 
 def _frames(robot: Robot, args: argparse.Namespace) -> tuple[int, int]:
+    from dhsym.errors import DHError
+
     i = 0 if args.frm is None else args.frm
     j = robot.n if args.to is None else args.to
     for k in (i, j):
@@ -74,6 +75,8 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
     >>> d["compact"][0][3], d["matrix"][0][3]
     ('a1*C1 + a2*C12', 'a1*cos(theta1) + a2*cos(theta1 + theta2)')
     """
+    from dhsym._version import __version__
+
     j = robot.n if j is None else j
     pose = robot.transform(i, j)
     full = robot.notation.__class__(robot.notation.labels, compact=False)
@@ -115,6 +118,8 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
+    from dhsym.kinematics.robot import load
+
     robot = load(args.robot, compact=not args.full, style=args.notation)
     i, j = _frames(robot, args)
     if args.format == "json":
@@ -128,16 +133,23 @@ def _cmd_derive(args: argparse.Namespace) -> int:
 
 
 def _parse_q(text: str, n: int) -> list[float]:
+    import math
+
+    from dhsym.errors import DHError
+    from dhsym.model.parsing import parse_number_list
+
     values = parse_number_list(text, "--q")
     if len(values) != n:
         raise DHError(f"--q needs {n} values (one per joint), got {len(values)}")
-    if not all(np.isfinite(values)):
+    if not all(math.isfinite(v) for v in values):
         raise DHError("--q values must be finite numbers")
     return values
 
 
 def _cmd_fk(args: argparse.Namespace) -> int:
-    robot = load(args.robot)
+    import numpy as np
+
+    robot = load_robot(args.robot, args.values, need_numbers=True)
     q = _parse_q(args.q, len(robot.variables))
     T = robot.fk(q, deg=args.deg)
     if args.json:
@@ -158,33 +170,53 @@ def _cmd_fk(args: argparse.Namespace) -> int:
     return 0
 
 
+ROBOT_HELP = "built-in robot name (dhsym list) or table file"
+VALUES_HELP = "numbers for the table's symbolic lengths, e.g. a2=0.43,d3=0.15"
+
+
 def register(sub: argparse._SubParsersAction) -> None:
     """Add ``list``, ``show``, ``derive`` and ``fk``."""
-    sub.add_parser("list", help="built-in robots").set_defaults(func=_cmd_list)
+    add_command(sub, "list", "list the built-in robots").set_defaults(func=_cmd_list)
 
-    s = sub.add_parser("show", help="print a DH table")
-    s.add_argument("robot", help="built-in name or table file")
-    s.add_argument("--format", choices=["markdown", "yaml"], default="markdown")
+    s = add_command(sub, "show", "print a DH table")
+    s.add_argument("robot", help=ROBOT_HELP)
+    s.add_argument(
+        "--format", choices=["markdown", "yaml"], default="markdown", help="output format"
+    )
     s.set_defaults(func=_cmd_show)
 
-    d = sub.add_parser("derive", help="link matrices and the arm matrix in closed form")
-    d.add_argument("robot", help="built-in name or table file")
-    d.add_argument("--format", choices=["text", "markdown", "latex", "json"], default="text")
-    d.add_argument("--from", dest="frm", type=int, default=None, help="frame i of ^iT_j")
-    d.add_argument("--to", type=int, default=None, help="frame j of ^iT_j")
+    d = add_command(
+        sub,
+        "derive",
+        "link matrices and the arm matrix in closed form",
+        description="Derive ^iT_j step by step, the way the lecture does: the DH table, each\n"
+        "link matrix, the products and the arm matrix in lecture notation (C12, S23).",
+    )
+    d.add_argument("robot", help=ROBOT_HELP)
+    d.add_argument(
+        "--format",
+        choices=["text", "markdown", "latex", "json"],
+        default="text",
+        help="text for the terminal, markdown ($...$ math), a LaTeX fragment, or JSON",
+    )
+    d.add_argument("--from", dest="frm", type=int, default=None, help="frame i of ^iT_j (0)")
+    d.add_argument("--to", type=int, default=None, help="frame j of ^iT_j (n, the last frame)")
     d.add_argument("--full", action="store_true", help="full cos/sin instead of C12/S12")
     d.add_argument(
         "--notation",
-        choices=[s.value for s in TrigStyle],
-        default=TrigStyle.UPPER.value,
-        help="C1: C12, S23 (default); c1: c12, s23 (Craig, Spong); c_theta: c_{θ12} in LaTeX",
+        choices=("C1", "c1", "c_theta"),
+        default="C1",
+        help="C1: C12, S23; c1: c12, s23 (Craig, Spong); c_theta: c_{θ12} in LaTeX",
     )
-    d.add_argument("-o", "--output", help="write to this file instead of standard output")
+    d.add_argument(
+        "-o", "--output", metavar="FILE", help="write to FILE (- or none: standard output)"
+    )
     d.set_defaults(func=_cmd_derive)
 
-    f = sub.add_parser("fk", help="numeric forward kinematics")
-    f.add_argument("robot", help="built-in name or table file")
-    f.add_argument("--q", required=True, help="joint values, comma separated")
+    f = add_command(sub, "fk", "numeric forward kinematics: the tool pose at joint values")
+    f.add_argument("robot", help=ROBOT_HELP)
+    f.add_argument("--q", required=True, help="joint values, comma separated (radians, lengths)")
     f.add_argument("--deg", action="store_true", help="revolute values in degrees")
+    f.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
     f.add_argument("--json", action="store_true", help="JSON output")
     f.set_defaults(func=_cmd_fk)

@@ -22,6 +22,8 @@ __getattr__, __dir__ = lazy_exports(
         "render": "rendering",
         "render_derivation": "documents",
         "render_handout": "documents",
+        "run_latex": "latex",
+        "LatexRun": "latex",
         "tex_available": "latex",
         "write_handout": "documents",
     },
@@ -29,6 +31,7 @@ __getattr__, __dir__ = lazy_exports(
 
 __all__ = [
     "Derivation",
+    "LatexRun",
     "build_notebook",
     "builtin_dir",
     "check_log",
@@ -41,6 +44,7 @@ __all__ = [
     "render",
     "render_derivation",
     "render_handout",
+    "run_latex",
     "tex_available",
     "write_handout",
 ]

@@ -51,7 +51,8 @@ class Identity:
 
 @dataclass(frozen=True)
 class Factor:
-    """One elementary transform of the general link matrix (seed 002, Transformations 1–4)."""
+    """One elementary transform of the general link matrix (Mohan, Lecture 9,
+    Transformations 1–4)."""
 
     kind: str
     axis: str
@@ -168,6 +169,10 @@ class Derivation:
         return self.to_markdown()
 
     def _repr_latex_(self) -> str:
+        return self.to_latex()
+
+    def _latex(self, printer: object) -> str:
+        """``sympy.latex(derivation)``: the LaTeX fragment."""
         return self.to_latex()
 
     def __str__(self) -> str:

@@ -1,4 +1,5 @@
-r"""A derivation as plain data, in the order the lectures teach it (seeds 001 and 002).
+r"""A derivation as plain data, in the order the lectures teach it (IRob2305
+Lecture 5; Mohan, Lecture 9).
 
 :func:`derive` builds a :class:`Derivation` from a robot: the DH table with
 the convention's own headers, the general link matrix as the product of its

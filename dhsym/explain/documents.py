@@ -172,12 +172,14 @@ def write_handout(
     *,
     pdf: bool = False,
     figure: bool = False,
+    keep_aux: bool = False,
     **options: object,
 ) -> Path:
     """Write the handout's ``.tex`` (and figures); with ``pdf=True`` compile it.
 
     ``options`` are those of :func:`render_handout`. Returns the path of the
-    PDF when compiled, else of the ``.tex``.
+    PDF when compiled, else of the ``.tex``. LaTeX's auxiliary files stay in a
+    temporary folder unless ``keep_aux``.
     """
     out = Path(output)
     if out.suffix != ".tex":
@@ -192,4 +194,4 @@ def write_handout(
         figures = _figures(loaded, _unique_keys(ds), out.parent, stem)
     style = (derive_opts.get("notation") or loaded[0].notation.style) if loaded else None
     out.write_text(render_handout(ds, figures=figures, notation=style, **options), encoding="utf-8")
-    return compile_pdf(out) if pdf else out
+    return compile_pdf(out, keep_aux=keep_aux) if pdf else out

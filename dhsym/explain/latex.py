@@ -2,7 +2,10 @@ r"""LaTeX to PDF, safely: running latexmk/pdflatex and reading the log.
 
 * :func:`compile_pdf` runs ``latexmk`` (or ``pdflatex``) with
   ``-no-shell-escape -halt-on-error -interaction=nonstopmode``, rc files
-  ignored, ``openin_any=p``/``openout_any=p``, stdin closed and a timeout.
+  ignored, ``openin_any=p``/``openout_any=p``, stdin closed and a timeout. The
+  auxiliary files (``.aux``, ``.log``, ``.fls``, ``.fdb_latexmk``) go to a temporary
+  folder, so only the PDF appears beside the ``.tex`` (``keep_aux=True`` keeps them
+  there instead); :func:`run_latex` also returns the log and its issues.
 * :func:`check_log` lists errors, missing characters and ``Overfull \hbox``
   warnings wider than a tolerance (5pt by default).
 
@@ -21,7 +24,9 @@ import re
 import shutil
 import signal
 import subprocess
+import tempfile
 import time
+from contextlib import nullcontext
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,9 +34,11 @@ from dhsym.errors import DHError
 
 __all__ = [
     "TEX_PACKAGES",
+    "LatexRun",
     "LogIssue",
     "check_log",
     "compile_pdf",
+    "run_latex",
     "tex_available",
 ]
 
@@ -139,11 +146,13 @@ def tex_available() -> bool:
 _SAFE_FLAGS = ("-no-shell-escape", "-halt-on-error", "-interaction=nonstopmode", "-file-line-error")
 
 
-def _commands(name: str) -> list[list[str]]:
+def _commands(name: str, outdir: Path | None) -> list[list[str]]:
     if shutil.which("latexmk"):
-        return [["latexmk", "-pdf", "-norc", "-silent", *_SAFE_FLAGS, name]]
+        out = [f"-outdir={outdir}"] if outdir else []
+        return [["latexmk", "-pdf", "-norc", "-silent", *_SAFE_FLAGS, *out, name]]
     if shutil.which("pdflatex"):
-        return [["pdflatex", *_SAFE_FLAGS, name]] * 3  # at most 3 passes (references)
+        out = [f"-output-directory={outdir}"] if outdir else []
+        return [["pdflatex", *_SAFE_FLAGS, *out, name]] * 3  # at most 3 passes (references)
     raise DHError(
         "cannot compile the handout: neither latexmk nor pdflatex is installed. "
         f"On Debian/Ubuntu: apt-get install --no-install-recommends {TEX_PACKAGES}"
@@ -168,36 +177,67 @@ def _run(cmd: list[str], cwd: Path, env: dict[str, str], timeout: float) -> None
         raise DHError(f"LaTeX did not finish within {timeout:.0f} s on {cmd[-1]}") from None
 
 
-def compile_pdf(tex_path: str | os.PathLike[str], *, timeout: float = 180.0) -> Path:
-    """Compile ``tex_path`` to PDF next to it, safely; return the PDF's path.
+@dataclass(frozen=True)
+class LatexRun:
+    """A compiled document: the PDF, the text of the log, and the issues found in it."""
 
-    Shell escape is always off, rc files are ignored, TeX may only read and
-    write files below the source's folder (``openin_any=p``), stdin is closed
-    and the whole run is killed after ``timeout`` seconds. Raises
-    :class:`~dhsym.errors.DHError` naming the first LaTeX errors (and the
-    Debian packages to install when TeX is missing).
+    pdf: Path
+    log: str
+    issues: tuple[LogIssue, ...]
+
+
+def run_latex(
+    tex_path: str | os.PathLike[str], *, timeout: float = 180.0, keep_aux: bool = False
+) -> LatexRun:
+    """Compile ``tex_path`` to PDF next to it, safely; the PDF, its log and the log's issues.
+
+    Shell escape is always off, rc files are ignored, TeX may only read files below
+    the source's folder and write to its output folder (``openin_any=p``), stdin is
+    closed and the whole run is killed after ``timeout`` seconds. The auxiliary files
+    are written to a temporary folder that is removed afterwards, unless ``keep_aux``
+    (then they stay beside the ``.tex``). Raises :class:`~dhsym.errors.DHError`
+    naming the first LaTeX errors (the log is then copied beside the ``.tex``), and
+    the Debian packages to install when TeX is missing.
     """
     tex = Path(tex_path).resolve()
     if not tex.is_file():
         raise DHError(f"no such file: {tex_path}")
-    env = dict(
-        os.environ,
-        openin_any="p",
-        openout_any="p",
-        shell_escape="f",
-        max_print_line="10000",
-        TEXMFOUTPUT=str(tex.parent),
-    )
-    deadline = time.monotonic() + timeout
-    log = tex.with_suffix(".log")
-    for cmd in _commands(tex.name):
-        _run(cmd, tex.parent, env, max(1.0, deadline - time.monotonic()))
-        text = log.read_text(encoding="latin-1") if log.exists() else ""
-        if cmd[0] == "latexmk" or not re.search(r"Rerun to get|may have changed", text):
-            break
-    errors = [i for i in check_log(text) if i.kind == "error"]
-    pdf = tex.with_suffix(".pdf")
-    if errors or not pdf.exists():
-        detail = "; ".join(str(e) for e in errors[:3]) or "no PDF was written"
-        raise DHError(f"LaTeX failed: {detail} (see {log})", file=str(tex_path))
-    return pdf
+    folder = nullcontext(None) if keep_aux else tempfile.TemporaryDirectory(prefix="dhsym-tex-")
+    with folder as tmp:
+        aux = Path(tmp) if tmp else tex.parent
+        env = dict(
+            os.environ,
+            openin_any="p",
+            openout_any="p",
+            shell_escape="f",
+            max_print_line="10000",
+            TEXMFOUTPUT=str(aux),
+        )
+        deadline = time.monotonic() + timeout
+        log = aux / f"{tex.stem}.log"
+        text = ""
+        for cmd in _commands(tex.name, Path(tmp) if tmp else None):
+            _run(cmd, tex.parent, env, max(1.0, deadline - time.monotonic()))
+            text = log.read_text(encoding="latin-1") if log.exists() else ""
+            if cmd[0] == "latexmk" or not re.search(r"Rerun to get|may have changed", text):
+                break
+        issues = tuple(check_log(text))
+        errors = [i for i in issues if i.kind == "error"]
+        built = aux / f"{tex.stem}.pdf"
+        pdf = tex.with_suffix(".pdf")
+        if errors or not built.exists():
+            if tmp and log.exists():
+                shutil.copyfile(log, tex.with_suffix(".log"))
+            detail = "; ".join(str(e) for e in errors[:3]) or "no PDF was written"
+            where = os.path.join(os.path.dirname(os.fspath(tex_path)), log.name)
+            raise DHError(f"LaTeX failed: {detail} (see {where})", file=str(tex_path))
+        if built != pdf:
+            shutil.move(built, pdf)
+    return LatexRun(pdf, text, issues)
+
+
+def compile_pdf(
+    tex_path: str | os.PathLike[str], *, timeout: float = 180.0, keep_aux: bool = False
+) -> Path:
+    """Compile ``tex_path`` to PDF next to it, safely (see :func:`run_latex`); the PDF's path."""
+    return run_latex(tex_path, timeout=timeout, keep_aux=keep_aux).pdf

@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING
 
 from dhsym.errors import DHError
 from dhsym.notation.escape import TeX, _clean_text, escape_latex, escape_markdown
+from dhsym.notation.tables import text_table
 
 from .templates import loader
 
@@ -57,16 +58,6 @@ def _text_grid(rows: Sequence[Sequence[object]]) -> list[str]:
         "[ " + "  ".join(str(c).rjust(w) for c, w in zip(r, widths, strict=True)) + " ]"
         for r in cells
     ]
-
-
-def _text_table(heads: Sequence[str], rows: Sequence[Sequence[str]]) -> list[str]:
-    """A plain-text table with ``|`` separators."""
-    widths = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(heads)]
-
-    def line(cells: Sequence[str]) -> str:
-        return " | ".join(str(c).ljust(w) for c, w in zip(cells, widths, strict=True)).rstrip()
-
-    return [line(heads), "-+-".join("-" * w for w in widths), *map(line, rows)]
 
 
 def _text_columns(items: Sequence[str], width: int = 96) -> list[str]:
@@ -97,7 +88,7 @@ def environment(kind: str = "latex", template_dir: str | Path | None = None) -> 
     )
     if kind == "text":
         env = jinja2.Environment(autoescape=False, finalize=_clean_text, **common)
-        env.filters.update(grid=_text_grid, table=_text_table, columns=_text_columns)
+        env.filters.update(grid=_text_grid, table=text_table, columns=_text_columns)
         return env
     escape = escape_latex if kind == "latex" else escape_markdown
 

@@ -2,10 +2,10 @@
 
 A joint axis is a line in space (a point and a unit direction) with a joint
 type: ``R`` (the link turns about the line) or ``P`` (the link slides along
-it; only the direction matters, seed 003). Two consecutive axes are *skew*
+it; only the direction matters, Issac, Lecture 19). Two consecutive axes are *skew*
 (one common normal), *intersecting* (a = 0), *parallel* (infinitely many common
-normals, seed 000) or *coincident*. :func:`common_normal` finds the common
-normal with its feet, exactly (Dimentberg's link length, seed 003).
+normals, Ghosal, Lecture 5) or *coincident*. :func:`common_normal` finds the common
+normal with its feet, exactly (Dimentberg's link length, Issac, Lecture 19).
 
 Numbers are exact sympy values. Floats are read as the simplest exact number
 within 1e-12 (a fraction with denominator at most 1000, or such a fraction times
@@ -275,7 +275,7 @@ class JointAxis:
 
 
 class Relation(str, Enum):
-    """How two lines lie: the cases of seed 000's DH special cases."""
+    """How two lines lie: the DH special cases (Ghosal, Lecture 5)."""
 
     SKEW = "skew"
     INTERSECTING = "intersecting"
@@ -412,7 +412,7 @@ class Frame:
 
 @dataclass(frozen=True)
 class Tool:
-    """Tool point with approach ``a`` (z_n) and sliding ``s`` (y_n) vectors (seed 004).
+    """Tool point with approach ``a`` (z_n) and sliding ``s`` (y_n) vectors (Asokan, Lecture 2.6).
 
     >>> Tool((0, 0, 1), (0, 0, 1), (1, 0, 1))  # doctest: +ELLIPSIS
     Traceback (most recent call last):

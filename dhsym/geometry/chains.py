@@ -1,12 +1,12 @@
 """Frames for a task: named frames, known transforms, composition, inversion and loops.
 
-Seed 003's pick-and-place: the part frame {2} is known in the global frame
-{1}, the gripper {3} in the part frame, the inclined plane {4} in {1}, the
-part's final place {5} in {4}, and the grip does not change, so
-``^5T_6 = ^2T_3``. Then ``^1T_3 = ^1T_2 ^2T_3`` and
-``^1T_6 = ^1T_4 ^4T_5 ^5T_6``: each a path in the graph of known transforms,
-walked forwards (a known transform) or backwards (its rigid inverse).
-Approach and depart frames are the gripper frame moved along its own z axis.
+The pick-and-place task of Issac (IIT Bombay), Robotics, Lecture 19: the part frame {2}
+is known in the global frame {1}, the gripper {3} in the part frame, the inclined plane
+{4} in {1}, the part's final place {5} in {4}, and the grip does not change, so
+``^5T_6 = ^2T_3``. Then ``^1T_3 = ^1T_2 ^2T_3`` and ``^1T_6 = ^1T_4 ^4T_5 ^5T_6``: each
+a path in the graph of known transforms, walked forwards (a known transform) or
+backwards (its rigid inverse). Approach and depart frames are the gripper frame moved
+along its own z axis.
 
 A :class:`FrameChain` is a value: :meth:`FrameChain.known` returns a new chain.
 Adding a transform between frames that are already connected closes a loop;
@@ -313,8 +313,8 @@ class FrameChain:
     def approach(self, frame: object, distance: object, name: object | None = None) -> FrameChain:
         """The approach (or depart) frame: ``frame`` backed off by ``distance`` along −z.
 
-        The gripper's approach vector a = z points into the work (seed 004), so
-        the frame a distance h before it is ``T · Tz(−h)`` (seed 003: a
+        The gripper's approach vector a = z points into the work (Asokan, Lecture 2.6), so
+        the frame a distance h before it is ``T · Tz(−h)`` (Issac, Lecture 19: a
         translation along z with nothing else changing).
         """
         from .axes import exact_number

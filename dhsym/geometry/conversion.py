@@ -1,6 +1,6 @@
 """Standard ↔ modified DH conversion that keeps the tool pose, and rigid transforms as words.
 
-The two link matrices (seed 002) are words of the same four elementaries:
+The two link matrices (Mohan, Lecture 9) are words of the same four elementaries:
 
 * standard  ``A_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i)``
 * modified  ``^{i-1}T_i = Rx(α_{i-1}) Tx(a_{i-1}) Rz(θ_i) Tz(d_i)``

@@ -2,18 +2,18 @@
 
 The algorithm follows the lectures step by step:
 
-* **standard** (seed 004, Schilling/Spong): ``z_k`` along the axis of joint
+* **standard** (Asokan, Lecture 2.6; Schilling/Spong): ``z_k`` along the axis of joint
   *k + 1*; ``O_k`` at the intersection of ``z_{k−1}`` and ``z_k`` or at the foot
   of their common normal on ``z_k``; ``x_k`` along the common normal, away from
   ``z_{k−1}`` (``x_k = ±z_{k−1} × z_k / ‖…‖`` when they intersect); the last
   frame at the tool point with ``z_n`` along the approach vector and ``y_n``
   along the sliding vector; points ``b_k`` where ``x_k`` meets ``z_{k−1}``.
-* **modified** (seed 000, Craig): ``z_i`` along the axis of joint *i*, ``x_i``
+* **modified** (Ghosal, Lecture 5; Craig): ``z_i`` along the axis of joint *i*, ``x_i``
   along the common normal from axis *i* to axis *i + 1*, with the first-link
   rule (frame 0 coincident with frame 1 at home) and the last-link rule
   (``d_n = 0``, ``θ_n = 0`` at home); the tool is a constant tool transform.
 
-Special cases (seed 000): parallel axes (the common normal through the previous
+Special cases (Ghosal, Lecture 5): parallel axes (the common normal through the previous
 origin, so the offset d is zero), intersecting axes (a = 0, the sign of x chosen
 to keep the joint angle small), a revolute and a prismatic joint on one line (a
 cylindrical pair: a = 0, x kept). Coincident revolute axes and parallel
@@ -32,7 +32,7 @@ Examples
 >>> [(r.theta, r.d, r.a, r.alpha) for r in fa.table.rows]
 [(theta1, 0, 1, 0), (theta2, 0, 1, 0)]
 >>> print(textwrap.fill(fa.steps[2].text, 90))
-z0 and z1 are parallel: the common normal is not unique (seed 000); we choose the one
+z0 and z1 are parallel: the common normal is not unique; we choose the one
 through O0 = (0, 0, 0), so that d1 = 0; it meets z1 at O1 = (1, 0, 0), x1 = (1, 0, 0) points
 away from z0, and a1 = 1.
 """
@@ -147,12 +147,12 @@ def assign_frames(
         The joint axes, joint 1 first: :class:`~dhsym.geometry.axes.JointAxis` or
         ``(point, direction, 'R'|'P')`` tuples, in world coordinates.
     convention
-        ``'standard'`` (seed 004) or ``'modified'`` (seed 000).
+        ``'standard'`` (Asokan, Lecture 2.6) or ``'modified'`` (Ghosal, Lecture 5).
     base
         Frame 0 (a :class:`~dhsym.geometry.axes.Frame` or 4×4 matrix) with z along axis 1
         (same sense), origin on it. Default: standard, the point of axis 1
         nearest the world origin, x the world x made perpendicular; modified,
-        frame 1 at home (seed 000). World → frame 0 becomes ``table.base``.
+        frame 1 at home (Ghosal, Lecture 5). World → frame 0 becomes ``table.base``.
     tool
         A :class:`~dhsym.geometry.axes.Tool` or ``(point, approach, sliding)``; what the
         last DH frame cannot hold becomes ``table.tool``.
@@ -200,7 +200,7 @@ def assign_frames(
         tuple(rows),
         conv,
         name=name,
-        source="dhsym.geometry.frames.assign_frames (seeds 000, 004)",
+        source="dhsym.geometry.frames.assign_frames",
         values=tuple((k, v) for k, v in vals.items() if k in consts),
         base=base_word,
         tool=tool_word,
@@ -264,7 +264,7 @@ def _check_pairs(axes: tuple[JointAxis, ...], vals: dict) -> None:
         if L1.joint == L2.joint == "P" and rel in (Relation.PARALLEL, Relation.COINCIDENT):
             raise GeometryError(
                 f"joints {L1.name} and {L2.name} are both prismatic with parallel axes: their "
-                "displacements are not independent (seed 000: two consecutive parallel P joints "
+                "displacements are not independent (two consecutive parallel P joints "
                 "act as one); merge them into one prismatic joint",
                 row=k + 1,
             )
@@ -281,7 +281,7 @@ def _base(base: object, axis: JointAxis, vals: dict) -> Frame:
     if not is_zero_vector(simplify_vector(f.z - axis.direction)):
         raise GeometryError(
             f"base frame: z0 = {tuple(f.z)} must point along the axis of joint 1, "
-            f"{tuple(axis.direction)} (seed 004)",
+            f"{tuple(axis.direction)}",
             row=1,
         )
     if not axis.contains(f.origin, vals):

@@ -1,10 +1,10 @@
-"""Joint types (seed 000), multi-DOF joints as 1-DOF joints, and the mobility of mechanisms.
+"""Joint types, multi-DOF joints as 1-DOF joints, and the mobility of mechanisms.
 
-Seed 000's table of pairs: a joint with m constraints leaves 6 − m degrees of
-freedom. Serial robots use 1-DOF R and P joints (one DH row each); a
-cylindrical (C), Hooke (U/T), spherical (S) or planar (E) joint is written as
-intersecting or coincident 1-DOF joints ("a spherical joint can be represented
-by 3 intersecting rotary joints") and then gets a DH table like any other
+The table of pairs of Ghosal (IISc), Lecture 5 "Elements of robot – Joints, Links": a
+joint with m constraints leaves 6 − m degrees of freedom. Serial robots use 1-DOF R and
+P joints (one DH row each); a cylindrical (C), Hooke (U/T), spherical (S) or planar (E)
+joint is written as intersecting or coincident 1-DOF joints ("a spherical joint can be
+represented by 3 intersecting rotary joints") and then gets a DH table like any other
 robot. A screw (H) couples θ and d, so it has no DH row of its own.
 
 The Grübler–Kutzbach count for a mechanism with N links (the ground
@@ -52,7 +52,7 @@ __all__ = [
 
 @dataclass(frozen=True)
 class PairType:
-    """One row of seed 000's table of pairs: symbol, name, DOF, constraints (6 − DOF)."""
+    """One row of the table of pairs (Ghosal, Lecture 5): symbol, name, DOF, constraints."""
 
     symbol: str
     name: str
@@ -125,7 +125,7 @@ class Joint:
         object.__setattr__(self, "kind", pair(self.kind).symbol)
 
     def axes(self) -> tuple[JointAxis, ...]:
-        """The equivalent 1-DOF joint axes, in order (seed 000).
+        """The equivalent 1-DOF joint axes, in order (Ghosal, Lecture 5).
 
         >>> [(a.joint, tuple(a.direction)) for a in Joint("S", (0, 0, 0), (0, 0, 1)).axes()]
         [('R', (0, 0, 1)), ('R', (1, 0, 0)), ('R', (0, 1, 0))]
@@ -284,7 +284,7 @@ def mobility(links: int, joints: Sequence[str | int], space: str = "spatial", id
 
 
 def four_bar() -> Mechanism:
-    """The planar four-bar linkage (seed 000): ground, crank, coupler, rocker; 4 R → M = 1."""
+    """The planar four-bar linkage (Ghosal, Lecture 5): ground, crank, coupler, rocker; M = 1."""
     links = ("ground", "crank", "coupler", "rocker")
     joints = (
         ("R", "ground", "crank"),

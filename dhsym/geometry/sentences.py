@@ -1,8 +1,10 @@
 """The lecture's sentences for :func:`dhsym.geometry.frames.assign_frames`: one template per step.
 
-Each template states a rule of seed 000 (modified, Craig) or seed 004 (standard,
-Schilling/Spong); :func:`say` fills it in for link ``k`` with the numbers of the
-case at hand and returns a :class:`~dhsym.geometry.chains.Step`.
+Each template states a rule of the DH algorithm as the lectures teach it: Ghosal (IISc),
+Lecture 5, for the modified (Craig) convention, and Asokan (IIT Madras), Introduction to
+Robotics, Lecture 2.6 "DH algorithm", for the standard (Schilling/Spong) one; :func:`say`
+fills it in for link ``k`` with the numbers of the case at hand and returns a
+:class:`~dhsym.geometry.chains.Step`.
 
 Examples
 --------
@@ -30,60 +32,60 @@ __all__ = ["SENTENCES", "say"]
 
 _SENTENCES = {
     "standard numbering": (
-        "Seed 004, step 1: number the joints 1 … {n} from the base to the tool; frame k has its "
-        "z axis along the axis of joint k + 1."
+        "Step 1 of the DH algorithm: number the joints 1 … {n} from the base to the tool; frame"
+        " k has its z axis along the axis of joint k + 1."
     ),
     "modified numbering": (
-        "Number the joints 1 … {n} from the base to the tool (seed 000): frame i has its z axis "
-        "along the axis of joint i and is attached to link i."
+        "Number the joints 1 … {n} from the base to the tool: frame i has its z axis along the "
+        "axis of joint i and is attached to link i."
     ),
     "standard base": (
-        "Frame 0 (base, seed 004): {zk} = {z} along the axis of joint 1; we place {Ok} = {o}, "
-        "the point of that axis nearest the world origin, and take {xk} = {x}, the world x axis "
-        "made perpendicular to {zk} (any perpendicular would do)."
+        "Frame 0 (base): {zk} = {z} along the axis of joint 1; we place {Ok} = {o}, the point "
+        "of that axis nearest the world origin, and take {xk} = {x}, the world x axis made "
+        "perpendicular to {zk} (any perpendicular would do)."
     ),
     "given base": (
-        "Frame 0 is the given base frame: {zk} = {z} along the axis of joint 1, {Ok} = {o}, {xk} "
-        "= {x}."
+        "Frame 0 is the given base frame: {zk} = {z} along the axis of joint 1, {Ok} = {o}, "
+        "{xk} = {x}."
     ),
     "standard skew": (
-        "{zp} and {zk} are skew: the common normal is unique (Dimentberg, seed 003); it meets "
-        "{zp} at {bk} = {foot} and {zk} at {Ok} = {o}, the origin of frame {k}; {xk} = {x} "
-        "points along it away from {zp}, and {ak} = {len}."
+        "{zp} and {zk} are skew: the common normal is unique (Dimentberg); it meets {zp} at "
+        "{bk} = {foot} and {zk} at {Ok} = {o}, the origin of frame {k}; {xk} = {x} points along"
+        " it away from {zp}, and {ak} = {len}."
     ),
     "modified skew": (
-        "{zk} and {zn} are skew: the common normal is unique (Dimentberg, seed 003); its foot on "
-        "{zk} is {Ok} = {o}, {xk} = {x} points along it towards {zn}, and {ak} = {len}."
+        "{zk} and {zn} are skew: the common normal is unique (Dimentberg); its foot on {zk} is "
+        "{Ok} = {o}, {xk} = {x} points along it towards {zn}, and {ak} = {len}."
     ),
     "standard intersecting": (
-        "{zp} and {zk} intersect at {o}: {Ok} is the intersection and {ak} = 0; {xk} = ±({zp} × "
-        "{zk})/‖{zp} × {zk}‖, and we take the sign {sgn} so that {xk} = {x} stays closest to "
+        "{zp} and {zk} intersect at {o}: {Ok} is the intersection and {ak} = 0; {xk} = ±({zp} ×"
+        " {zk})/‖{zp} × {zk}‖, and we take the sign {sgn} so that {xk} = {x} stays closest to "
         "{xp}."
     ),
     "modified intersecting": (
-        "{zk} and {zn} intersect at {o}: {Ok} is the intersection and {ak} = 0; {xk} = ±({zk} × "
-        "{zn})/‖{zk} × {zn}‖, normal to their plane, with the sign {sgn} so that {xk} = {x} "
+        "{zk} and {zn} intersect at {o}: {Ok} is the intersection and {ak} = 0; {xk} = ±({zk} ×"
+        " {zn})/‖{zk} × {zn}‖, normal to their plane, with the sign {sgn} so that {xk} = {x} "
         "stays closest to {xp}."
     ),
     "standard parallel": (
-        "{zp} and {zk} are parallel: the common normal is not unique (seed 000); we choose the "
-        "one through {Op} = {start}, so that {dk} = 0{home}; it meets {zk} at {Ok} = {o}, {xk} = "
-        "{x} points away from {zp}, and {ak} = {len}."
+        "{zp} and {zk} are parallel: the common normal is not unique; we choose the one through"
+        " {Op} = {start}, so that {dk} = 0{home}; it meets {zk} at {Ok} = {o}, {xk} = {x} "
+        "points away from {zp}, and {ak} = {len}."
     ),
     "modified parallel": (
-        "{zk} and {zn} are parallel: the common normal is not unique (seed 000); we choose the "
-        "one through {Ok} = {o}, where {xp} meets {zk}, so that {dk} = 0{home}; {xk} = {x} "
-        "points away from {zk}, and {ak} = {len}."
+        "{zk} and {zn} are parallel: the common normal is not unique; we choose the one through"
+        " {Ok} = {o}, where {xp} meets {zk}, so that {dk} = 0{home}; {xk} = {x} points away "
+        "from {zk}, and {ak} = {len}."
     ),
     "standard coincident": (
-        "{zp} and {zk} lie on one line: joints {k} and {n1} form a cylindrical pair (C = R + P, "
-        "seed 000); every perpendicular is a common normal, so we keep {Ok} = {Op} and {xk} = "
-        "{xp} ({ak} = 0)."
+        "{zp} and {zk} lie on one line: joints {k} and {n1} form a cylindrical pair (C = R + "
+        "P); every perpendicular is a common normal, so we keep {Ok} = {Op} and {xk} = {xp} "
+        "({ak} = 0)."
     ),
     "modified coincident": (
-        "{zk} and {zn} lie on one line: joints {k} and {n1} form a cylindrical pair (C = R + P, "
-        "seed 000); every perpendicular is a common normal, so we keep {Ok} = {o} and {xk} = "
-        "{xp} ({ak} = 0)."
+        "{zk} and {zn} lie on one line: joints {k} and {n1} form a cylindrical pair (C = R + "
+        "P); every perpendicular is a common normal, so we keep {Ok} = {o} and {xk} = {xp} "
+        "({ak} = 0)."
     ),
     "no tool": (
         "Last frame: no tool was given, so frame {k} is frame {m} at the home pose ({ak} = 0, "
@@ -91,12 +93,12 @@ _SENTENCES = {
         "tip."
     ),
     "tool": (
-        "Last frame (seed 004): {Ok} at the tool point {p}, {zk} along the approach vector a = "
-        "{a}, {yk} along the sliding vector s = {s}, {xk} = s × a = {nv}. "
+        "Last frame: {Ok} at the tool point {p}, {zk} along the approach vector a = {a}, {yk} "
+        "along the sliding vector s = {s}, {xk} = s × a = {nv}. "
     ),
     "tool is DH": (
-        "{xk} is perpendicular to {zp} and meets it at {bk} = {b}, so this is a DH frame and no "
-        "tool transform is needed."
+        "{xk} is perpendicular to {zp} and meets it at {bk} = {b}, so this is a DH frame and no"
+        " tool transform is needed."
     ),
     "tool is not DH": (
         "It breaks a DH rule ({xk} must be perpendicular to {zp} and meet it), so frame {k} is "
@@ -104,29 +106,31 @@ _SENTENCES = {
         "the tool transform."
     ),
     "last link": (
-        "Last link (seed 000): there is no {zn}; joint {k} is {kind}, so {Ok} = {o} is where "
-        "{xp} meets {zk} and {xk} = {xp} at the home pose: {dk} = 0 and {thk} = 0 at home."
+        "Last link (modified convention): there is no {zn}; joint {k} is {kind}, so {Ok} = {o} "
+        "is where {xp} meets {zk} and {xk} = {xp} at the home pose: {dk} = 0 and {thk} = 0 at "
+        "home."
     ),
     "first link R": (
-        "First link (seed 000): {zk} is not fixed by any joint; joint 1 is revolute, so frame 0 "
-        "is chosen coincident with frame 1 at home: {alk} = 0, {ak} = 0, {dn} = 0, {thn} = 0."
+        "First link (modified convention): {zk} is not fixed by any joint; joint 1 is revolute,"
+        " so frame 0 is chosen coincident with frame 1 at home: {alk} = 0, {ak} = 0, {dn} = 0, "
+        "{thn} = 0."
     ),
     "first link P": (
-        "First link (seed 000): {zk} is not fixed by any joint; joint 1 is prismatic, so frame 0 "
-        "is chosen parallel to frame 1 (and at its home position): {alk} = 0, {ak} = 0, {thn} = "
-        "0, {dn} = 0 at home."
+        "First link (modified convention): {zk} is not fixed by any joint; joint 1 is "
+        "prismatic, so frame 0 is chosen parallel to frame 1 (and at its home position): {alk} "
+        "= 0, {ak} = 0, {thn} = 0, {dn} = 0 at home."
     ),
     "standard row": (
-        "Row {k} (seed 004): {thk} = angle from {xp} to {xk} about {zp} = {th} at home; {dk} = "
-        "distance from {Op} to {bk} = {b} along {zp} = {d} at home; {ak} = distance from {bk} to "
-        "{Ok} along {xk} = {a}; {alk} = angle from {zp} to {zk} about {xk} = {al}. The joint "
-        "variable {v} is {zero} at the home pose."
+        "Row {k} (standard convention): {thk} = angle from {xp} to {xk} about {zp} = {th} at "
+        "home; {dk} = distance from {Op} to {bk} = {b} along {zp} = {d} at home; {ak} = "
+        "distance from {bk} to {Ok} along {xk} = {a}; {alk} = angle from {zp} to {zk} about "
+        "{xk} = {al}. The joint variable {v} is {zero} at the home pose."
     ),
     "modified row": (
-        "Row {k} (seed 000): {alp} = angle from {zp} to {zk} about {xp} = {al}; {ap} = distance "
-        "from {zp} to {zk} along {xp} = {a}; {dk} = distance from {xp} to {xk} along {zk} = {d} "
-        "at home; {thk} = angle from {xp} to {xk} about {zk} = {th} at home. The joint variable "
-        "{v} is {zero} at the home pose."
+        "Row {k} (modified convention): {alp} = angle from {zp} to {zk} about {xp} = {al}; {ap}"
+        " = distance from {zp} to {zk} along {xp} = {a}; {dk} = distance from {xp} to {xk} "
+        "along {zk} = {d} at home; {thk} = angle from {xp} to {xk} about {zk} = {th} at home. "
+        "The joint variable {v} is {zero} at the home pose."
     ),
     "base transform": ("World → frame 0: {w} (the base transform)."),
     "no base transform": ("World → frame 0: frame 0 is the world frame; no base transform."),

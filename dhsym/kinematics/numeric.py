@@ -58,7 +58,9 @@ def compile_pose(
     """
     M = _substituted(matrix, variables, values)
     exprs = [M[i, j] for i in range(3) for j in range(4)]
-    fn = sp.lambdify(list(variables), exprs, modules="numpy", cse=True)
+    # numpy's namespace as a module: modules="numpy" would run `from numpy import *`, which
+    # imports all of numpy's lazy submodules (as long as importing numpy itself)
+    fn = sp.lambdify(list(variables), exprs, modules=[np], cse=True)
     n = len(variables)
 
     def fk(q: object) -> np.ndarray:

@@ -1,4 +1,33 @@
-"""A homogeneous transform ``^iT_j`` as a value that prints in lecture notation.
+r"""A homogeneous transform ``^iT_j``: a sympy ``ImmutableMatrix`` that prints in lecture notation.
+
+Why a subclass of :class:`sympy.ImmutableMatrix` rather than a wrapper that implements
+the sympy protocols (``_sympy_``, ``__array__``, ``_latex``, ``_sympystr``, ``_pretty``):
+sympy decides many things by ``isinstance``. :func:`sympy.lambdify` prints only
+``Basic``/``MatrixBase`` objects and refuses any other iterable; ``sympy.Matrix(x)``
+reads a wrapper through ``__array__`` (numpy) or else as a flat sequence (the 16×1
+column of old); equality, hashing, ``free_symbols``, slicing, iteration, ``.T``,
+``.det()``, ``simplify`` and every other matrix function would each need a delegate.
+As a subclass, a pose *is* the 4×4 matrix to all of sympy, and only what makes it a
+pose is added: the frames ``frm``/``to``, the notation it prints in, and (when it
+comes from a DH table) the word of elementary transforms it is the product of.
+
+The rules that follow from that choice:
+
+* Anything sympy computes from a pose (``simplify``, ``pose.T``, ``pose[:3, :3]``,
+  ``2 * pose``, ``xreplace``) is a plain ``ImmutableMatrix``: a label would be a
+  guess there.
+* ``P * Q`` and ``P @ Q`` of two poses whose frames chain (``P.to == Q.frm``, both
+  named, same symbol) is the pose ``^{P.frm}T_{Q.to}``, in compact form: two poses of
+  a robot compose their words (so ``A1 * A2`` is *identical* to ``robot.transform(0,
+  2)``), other poses fold the sum-angle pairs of the product. Frames that do not chain
+  give the plain matrix product (a product of unrelated transforms is still a
+  matrix, but not a pose with a meaningful label).
+* ``P.inv()`` is the exact rigid inverse ``^{to}T_{frm}`` (``Rᵀ``, ``−Rᵀp``).
+* ``P == M`` compares the 4×4 entries only (as for any sympy matrix), and the hash
+  is the plain matrix's: a pose and its matrix are interchangeable as dict keys.
+* ``P.subs(...)`` keeps the labels; ``P.evalf(values)`` gives numbers.
+* ``sympy.latex``, ``sympy.pprint`` and ``str`` print the lecture notation
+  (``C_{12}``, ``a_{1} C_{1}``); code printers (``lambdify``) print the plain matrix.
 
 Examples
 --------
@@ -20,61 +49,159 @@ Matrix([
 [0],
 [0],
 [1]])
+>>> P.shape, sp.Matrix(P).shape, P.inv().label_text
+((4, 4), (4, 4), 'T1_0')
+>>> sp.latex(P[0, 0]), sp.latex(P)[:29]
+('\\cos{\\left(\\theta_{1} \\right)}', '\\begin{bmatrix}C_{1} & -S_{1}')
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Mapping, Sequence
 
 import sympy as sp
+from sympy.core.basic import Basic
 
+from dhsym.model.table import Elementary
 from dhsym.notation.printers import Notation
 
 __all__ = ["Pose"]
 
+_Matrix = sp.ImmutableDenseMatrix
 
-@dataclass(frozen=True)
-class Pose:
-    """``^{frm}T_{to}``: pose of frame ``to`` in frame ``frm``, an exact 4×4 matrix.
 
-    Indexing, ``rotation``, ``position`` and the n, s, a columns (normal,
-    sliding, approach; seed 004) read the matrix; printing goes through
-    :class:`~dhsym.notation.Notation`.
+class Pose(_Matrix):  # type: ignore[misc]
+    """``^{frm}T_{to}``: pose of frame ``to`` in frame ``frm``, an exact 4×4 ``ImmutableMatrix``.
+
+    Parameters
+    ----------
+    matrix
+        The 4×4 homogeneous transform (anything ``sympy.ImmutableMatrix`` accepts).
+    frm, to
+        The frames (numbers, or names such as ``"W"``, ``"tool"``, ``"table"``).
+    notation
+        How it prints (:class:`~dhsym.notation.Notation`: which angles are joints).
+    symbol
+        The letter of its label (``T``; ``R_z`` for a factor).
+    word
+        The elementary transforms whose product it is, when known (poses of a
+        :class:`~dhsym.kinematics.robot.Robot`): products and inverses are then
+        rebuilt in the same compact form as ``robot.transform``.
+
+    ``rotation``, ``position`` and the n, s, a columns (normal, sliding, approach)
+    read the matrix; ``matrix`` is the plain ``ImmutableMatrix``.
+
+    >>> import dhsym, sympy as sp
+    >>> robot = dhsym.load("planar2r")
+    >>> A1, A2 = robot.link_matrix(1), robot.link_matrix(2)
+    >>> (A1 * A2).label_text, A1 * A2 == robot.transform(0, 2), (A1 @ A2).inv()[0, 3]
+    ('T0_2', True, -a1*cos(theta2) - a2)
+    >>> robot.table.constants
+    (a1, a2)
+    >>> f = sp.lambdify([*robot.variables, *robot.table.constants], A1 * A2)
+    >>> f(0, 0, 1.0, 0.8)[0, 3]
+    np.float64(1.8)
     """
 
-    matrix: sp.ImmutableMatrix
-    frm: int | str
-    to: int | str
-    notation: Notation = field(default_factory=Notation, compare=False)
-    symbol: str = "T"
+    _op_priority = 10.02  # above Matrix (10.01): M * pose and pose * M come here
 
-    def __getitem__(self, key: object) -> object:
-        return self.matrix[key]  # type: ignore[index]
+    def __new__(
+        cls,
+        matrix: object,
+        frm: int | str = "",
+        to: int | str = "",
+        notation: Notation | None = None,
+        symbol: str = "T",
+        word: Sequence[Elementary] | None = None,
+    ) -> Pose:
+        plain = _Matrix(matrix)
+        if plain.shape != (4, 4):
+            raise ValueError(f"a pose is a 4×4 homogeneous transform, got shape {plain.shape}")
+        obj = Basic.__new__(cls, *plain.args)
+        obj._rows, obj._cols, obj._rep = 4, 4, plain._rep
+        obj._plain = plain
+        obj._frm, obj._to, obj._symbol = frm, to, symbol
+        obj._notation = notation if notation is not None else Notation()
+        obj._word = tuple(word) if word is not None else None
+        return obj
+
+    # -- what sympy builds from a pose is a plain matrix ---------------------------------
+    @classmethod
+    def _new(cls, *args: object, **kwargs: object) -> _Matrix:
+        return _Matrix._new(*args, **kwargs)
+
+    @classmethod
+    def _fromrep(cls, rep: object) -> _Matrix:
+        return _Matrix._fromrep(rep)
+
+    @property
+    def func(self) -> type:
+        """sympy rebuilds ``func(*args)``: a plain ``ImmutableMatrix``."""
+        return _Matrix
+
+    def __hash__(self) -> int:
+        return hash(self._plain)
+
+    __eq__ = _Matrix.__eq__
+
+    def __reduce__(self) -> tuple[object, ...]:
+        return (Pose, (self._plain, self._frm, self._to, self._notation, self._symbol, self._word))
+
+    # -- the pose ------------------------------------------------------------------------
+    @property
+    def matrix(self) -> sp.ImmutableMatrix:
+        """The plain 4×4 ``ImmutableMatrix``."""
+        return self._plain
+
+    @property
+    def frm(self) -> int | str:
+        """The reference frame ``i`` of ``^iT_j``."""
+        return self._frm
+
+    @property
+    def to(self) -> int | str:
+        """The frame ``j`` of ``^iT_j`` whose pose this is."""
+        return self._to
+
+    @property
+    def notation(self) -> Notation:
+        """How the entries print (``C12``, ``S1``, …)."""
+        return self._notation
+
+    @property
+    def symbol(self) -> str:
+        """The letter of the label (``T``)."""
+        return self._symbol
+
+    @property
+    def word(self) -> tuple[Elementary, ...] | None:
+        """The elementary transforms whose product this is, when known."""
+        return self._word
 
     @property
     def rotation(self) -> sp.ImmutableMatrix:
         """The 3×3 rotation ``R``."""
-        return self.matrix[:3, :3]
+        return self._plain[:3, :3]
 
     @property
     def position(self) -> sp.ImmutableMatrix:
         """The origin ``p`` of frame ``to`` in frame ``frm`` (3×1)."""
-        return self.matrix[:3, 3]
+        return self._plain[:3, 3]
 
     @property
-    def n(self) -> sp.ImmutableMatrix:
-        """Normal vector: the x axis of frame ``to``."""
-        return self.matrix[:3, 0]
+    def n(self) -> sp.ImmutableMatrix:  # type: ignore[override]
+        """Normal vector: the x axis of frame ``to`` (``sympy.N(pose)`` still evaluates)."""
+        return self._plain[:3, 0]
 
     @property
     def s(self) -> sp.ImmutableMatrix:
         """Sliding vector: the y axis of frame ``to``."""
-        return self.matrix[:3, 1]
+        return self._plain[:3, 1]
 
     @property
     def a(self) -> sp.ImmutableMatrix:
         """Approach vector: the z axis of frame ``to``."""
-        return self.matrix[:3, 2]
+        return self._plain[:3, 2]
 
     @property
     def label_latex(self) -> str:
@@ -86,37 +213,116 @@ class Pose:
         """``T0_2`` style label for plain text."""
         return f"{self.symbol}{self.frm}_{self.to}"
 
-    def count_ops(self) -> int:
-        """``sympy.count_ops`` over the entries (a size measure)."""
-        return int(sum(sp.count_ops(e) for e in self.matrix))
+    def count_ops(self, visual: bool | None = None) -> int:  # type: ignore[override]
+        """``sympy.count_ops`` summed over the 16 entries (a size measure)."""
+        if visual:
+            return sp.count_ops(self._plain, visual=True)
+        return int(sum(sp.count_ops(e) for e in self._plain))
 
-    def subs(self, values: dict) -> Pose:
-        """A copy with values substituted (symbols to numbers or expressions)."""
+    def subs(self, *args: object, **kwargs: object) -> Pose:  # type: ignore[override]
+        """A copy with values substituted (symbols to numbers or expressions), labels kept.
+
+        Takes what ``sympy.Matrix.subs`` takes: a dict, pairs, or ``old, new``.
+        """
         return Pose(
-            sp.ImmutableMatrix(self.matrix.subs(values)),
-            self.frm,
-            self.to,
-            self.notation,
-            self.symbol,
+            self._plain.subs(*args, **kwargs), self.frm, self.to, self.notation, self.symbol
         )
 
-    def evalf(self, values: dict | None = None) -> sp.ImmutableMatrix:
-        """Numerical matrix (sympy floats) at ``values``."""
-        return sp.ImmutableMatrix(self.matrix.evalf(subs=values or {}))
+    def evalf(  # type: ignore[override]
+        self, values: Mapping[object, object] | int | None = None, *args: object, **kwargs: object
+    ) -> sp.ImmutableMatrix:
+        """Numerical matrix (sympy floats) at ``values`` (a dict of symbol values).
 
+        ``sympy.N(pose, 5)`` and ``pose.evalf(5, subs=…)`` work as for any matrix.
+        """
+        if isinstance(values, Mapping) or values is None:
+            kwargs.setdefault("subs", dict(values or {}))
+            return _Matrix(self._plain.evalf(*args, **kwargs))
+        return _Matrix(self._plain.evalf(values, *args, **kwargs))
+
+    # -- composition -----------------------------------------------------------------------
+    def _chains_with(self, other: object) -> bool:
+        return (
+            isinstance(other, Pose)
+            and other.symbol == self.symbol
+            and self.to not in ("", None)
+            and self.to == other.frm
+        )
+
+    def __mul__(self, other: object) -> object:
+        if self._chains_with(other):
+            return self._compose(other)  # type: ignore[arg-type]
+        if isinstance(other, Pose):
+            return self._plain * other._plain
+        return _Matrix.__mul__(self, other)
+
+    def __matmul__(self, other: object) -> object:
+        if isinstance(other, Pose):
+            return self * other
+        return _Matrix.__matmul__(self, other)
+
+    def __rmul__(self, other: object) -> object:
+        return _Matrix.__rmul__(self, other)
+
+    def __rmatmul__(self, other: object) -> object:
+        return _Matrix.__rmatmul__(self, other)
+
+    def _compose(self, other: Pose) -> Pose:
+        from .simplification import compose
+
+        notation = _merge(self.notation, other.notation)
+        if self.word is not None and other.word is not None:
+            word = self.word + other.word
+            return Pose(compose(word), self.frm, other.to, notation, self.symbol, word)
+        product = self._plain * other._plain
+        return Pose(_tidy(product), self.frm, other.to, notation, self.symbol)
+
+    def inv(self, *args: object, **kwargs: object) -> Pose:  # type: ignore[override]
+        """``^{to}T_{frm}``, the exact rigid inverse ``[Rᵀ, −Rᵀp; 0 0 0 1]``.
+
+        (Arguments of ``sympy.Matrix.inv`` are accepted and not needed: no generic
+        matrix inverse is computed.)
+        """
+        from .simplification import compose
+        from .transforms import rigid_inverse
+
+        if self.word is not None:
+            word = tuple(e.inverse() for e in reversed(self.word))
+            return Pose(compose(word), self.to, self.frm, self.notation, self.symbol, word)
+        return Pose(
+            _tidy(rigid_inverse(self._plain)), self.to, self.frm, self.notation, self.symbol
+        )
+
+    # -- printing --------------------------------------------------------------------------
     def latex(self) -> str:
         """The matrix in LaTeX (``bmatrix``) in this pose's notation."""
-        return self.notation.latex(self.matrix)
+        return self.notation.latex(self._plain)
 
     def text(self) -> str:
         """The matrix in plain text in this pose's notation."""
-        return self.notation.text(self.matrix)
+        return self.notation.text(self._plain)
 
     def _latex(self, printer: object) -> str:
         return self.latex()
 
     def _sympystr(self, printer: object) -> str:
+        from sympy.printing.codeprinter import CodePrinter
+
+        if isinstance(printer, CodePrinter):  # code must evaluate: cos(theta1), not C1
+            return printer._print(self._plain)
         return self.text()
+
+    def _sympyrepr(self, printer: object) -> str:
+        return printer._print(self._plain)  # type: ignore[attr-defined]
+
+    def _pretty(self, printer: object) -> object:
+        """``sympy.pprint``: the matrix with the abbreviations as symbols (C₁₂, S₁)."""
+        short = {}
+        for f in self._plain.atoms(sp.cos, sp.sin):
+            name = self.notation.text(f)
+            if name != sp.sstr(f):
+                short[f] = sp.Symbol(name)
+        return printer._print(self._plain.xreplace(short))  # type: ignore[attr-defined]
 
     def _repr_latex_(self) -> str:
         return f"$${self.label_latex} = {self.latex()}$$"
@@ -126,3 +332,23 @@ class Pose:
 
     def __str__(self) -> str:
         return f"{self.label_text} = {self.text()}"
+
+    def __repr__(self) -> str:
+        return self.text()
+
+
+def _merge(a: Notation, b: Notation) -> Notation:
+    """The notation of a product: the joint labels of both factors."""
+    if a == b or not b.labels:
+        return a
+    labels = dict(a.labels)
+    for sym, lab in b.labels:
+        labels.setdefault(sym, lab)
+    return Notation(tuple(labels.items()), compact=a.compact, upper=a.upper)
+
+
+def _tidy(M: sp.MatrixBase) -> sp.ImmutableMatrix:
+    """Fold the sum-angle pairs of a product (``C1C2 − S1S2`` → ``C12``): exact."""
+    from .simplification import fold_sum_angles, tidy_signs
+
+    return _Matrix(M.applyfunc(lambda e: tidy_signs(fold_sum_angles(sp.expand(e)))))

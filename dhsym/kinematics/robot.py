@@ -96,6 +96,10 @@ class Robot:
     def _repr_markdown_(self) -> str:
         return f"**{self.name}** ({self.convention.value} DH)\n\n" + self.table._repr_markdown_()
 
+    def _latex(self, printer: object) -> str:
+        """``sympy.latex(robot)``: the robot's DH table as a LaTeX ``array``."""
+        return self.table._latex(printer)
+
     # -- symbolic --------------------------------------------------------------------
     def link_factors(self, i: int) -> tuple[Pose, ...]:
         """The four elementary factors of link matrix ``i`` (1-based), each a 4×4 Pose."""
@@ -121,8 +125,10 @@ class Robot:
         return self._transform(i, j)
 
     def _compute_transform(self, i: int, j: int) -> Pose:
-        matrix = compose(chain_word(self.table, i, j))
-        return Pose(matrix, _frame_name(i, self.n), _frame_name(j, self.n), self.notation)
+        word = chain_word(self.table, i, j)
+        return Pose(
+            compose(word), _frame_name(i, self.n), _frame_name(j, self.n), self.notation, word=word
+        )
 
     def plain_transform(self, i: int, j: int) -> sp.ImmutableMatrix:
         """``^iT_j`` as the plain product of the elementary matrices (the reference)."""

@@ -1,6 +1,6 @@
 """Elementary 4×4 transforms, link matrices as words of elementaries, plain products.
 
-A link matrix is the product of four elementary transforms (seed 002,
+A link matrix is the product of four elementary transforms (Mohan, Lecture 9,
 Transformations 1–4):
 
 * standard:  ``A_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i)``

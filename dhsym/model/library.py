@@ -10,10 +10,15 @@ True
 8
 >>> load_table("planar20r").n
 20
+>>> load_table("puma650")
+Traceback (most recent call last):
+...
+dhsym.errors.DHError: no built-in robot or table file 'puma650': did you mean 'puma560'? ...
 """
 
 from __future__ import annotations
 
+import difflib
 import re
 from importlib import resources
 from pathlib import Path
@@ -35,7 +40,8 @@ def builtin_names() -> list[str]:
 
 
 def planar_chain(n: int) -> DHTable:
-    """A planar nR chain: ``θ_k``, ``d = 0``, ``a_k``, ``α = 0`` (seed 001's 2R and 4R, any n)."""
+    """A planar nR chain: ``θ_k``, ``d = 0``, ``a_k``, ``α = 0`` (the 2R and 4R of IRob2305,
+    Lecture 5, for any n)."""
     if not 1 <= n <= 60:
         raise DHError(f"planar chains have 1 to 60 joints; got {n}")
     rows = [DHRow.revolute(f"theta{k}", a=f"a{k}") for k in range(1, n + 1)]
@@ -43,7 +49,8 @@ def planar_chain(n: int) -> DHTable:
         rows,
         name=f"Planar {n}R",
         angles="deg",
-        source="seed 001, Examples 2 and 3, extended to n joints",
+        source="IRob2305 Introduction to Robotics, Lecture 5 (Denavit-Hartenberg parameters, "
+        "forward kinematics), Examples 2 and 3, extended to n joints",
     )
 
 
@@ -56,9 +63,12 @@ def builtin_table(name: str) -> DHTable:
         return read_table_text(text, file=f"{key}.yaml")
     if m:
         return planar_chain(int(m.group(1)))
+    names = builtin_names()
+    close = difflib.get_close_matches(key, names, n=1, cutoff=0.6)
+    hint = f"did you mean {close[0]!r}? " if close else ""
     raise DHError(
-        f"no built-in robot or table file {name!r}: built-in robots are "
-        + ", ".join(builtin_names())
+        f"no built-in robot or table file {name!r}: {hint}built-in robots are "
+        + ", ".join(names)
         + ", planarNr"
     )
 

@@ -1,6 +1,6 @@
 """The DH table: conventions, joint types, rows and tables as frozen values.
 
-Two conventions are first class (seed 001 and seed 002):
+Two conventions are first class (IRob2305 Lecture 5; Mohan, Lecture 9):
 
 * ``standard`` (distal; Spong, Corke): ``A_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i)``;
 * ``modified`` (proximal; Craig, Ghosal): ``^{i-1}T_i = Rx(α_{i-1}) Tx(a_{i-1}) Rz(θ_i) Tz(d_i)``.
@@ -381,9 +381,13 @@ class DHTable:
         return replace(self, rows=rows, base=base, tool=tool, values=())
 
     def _repr_latex_(self) -> str:
+        return "$$" + self._latex(None) + "$$"
+
+    def _latex(self, printer: object) -> str:
+        """``sympy.latex(table)``: the table as a LaTeX ``array``."""
         from dhsym.notation.tables import table_latex
 
-        return "$$" + table_latex(self) + "$$"
+        return table_latex(self)
 
     def _repr_markdown_(self) -> str:
         from dhsym.notation.tables import table_markdown

@@ -3,7 +3,7 @@
 The format (every key but ``joints`` optional)::
 
     name: Planar 2R
-    source: seed 001, Example 2          # where the numbers come from
+    source: IRob2305 Lecture 5, Example 2   # where the numbers come from
     convention: standard                 # or modified (Craig): rows hold alpha_{i-1}, a_{i-1}
     angles: deg                          # or rad
     joints:

@@ -11,11 +11,13 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from dhsym.model.kinds import AngleUnit, Convention
 
 from .printers import Notation, format_angle
 
-__all__ = ["table_latex", "table_markdown"]
+__all__ = ["table_latex", "table_markdown", "text_table"]
 
 
 def _table_rows(table: object, latex: bool, box: bool = True) -> tuple[list[str], list[list[str]]]:
@@ -92,3 +94,21 @@ def table_markdown(table: object) -> str:
         cells = [r[0]] + [f"${c}$" for c in r[1:-1]] + [r[-1]]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
+
+
+def text_table(heads: Sequence[object], rows: Sequence[Sequence[object]]) -> list[str]:
+    """A plain-text table with ``|`` separators, one string per line.
+
+    >>> print("\\n".join(text_table(["i", "theta_i"], [["1", "theta1 - 90°"]])))
+    i | theta_i
+    --+-------------
+    1 | theta1 - 90°
+    """
+    heads = [str(h) for h in heads]
+    cells = [[str(c) for c in r] for r in rows]
+    widths = [max([len(h), *(len(r[k]) for r in cells)]) for k, h in enumerate(heads)]
+
+    def line(row: Sequence[str]) -> str:
+        return " | ".join(c.ljust(w) for c, w in zip(row, widths, strict=True)).rstrip()
+
+    return [line(heads), "-+-".join("-" * w for w in widths), *map(line, cells)]

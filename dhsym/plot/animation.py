@@ -1,4 +1,4 @@
-"""Animate the arm along a joint-space path (seed 001: "We can animate a path").
+"""Animate the arm along a joint-space path (IRob2305 Lecture 5: "We can animate a path").
 
 The file type follows the writers that exist: a ``.gif`` with matplotlib's
 ``PillowWriter`` (Pillow comes with matplotlib), an ``.mp4`` with

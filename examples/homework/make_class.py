@@ -14,25 +14,25 @@ from pathlib import Path
 import sympy as sp
 
 import dhsym
-from dhsym.notation.printers import Notation
 from dhsym.kinematics.transforms import link_word, plain_product
+from dhsym.notation.printers import Notation
 
 HERE = Path(__file__).resolve().parent
-SEED002 = [  # seed 002's two slides of ^{i-1}T_i: the first prints +d_i sin(alpha_{i-1}) (wrong)
+SLIDES = [  # Mohan, Lecture 9: two slides of ^{i-1}T_i: the first prints +d_i sin(alpha_{i-1})
     r"$${}^{i-1}T_i = \begin{bmatrix} \cos \theta_i & -\sin \theta_i & 0 & a_{i-1} \\ "
     r"\sin \theta_i \cos \alpha_{i-1} & \cos \theta_i \cos \alpha_{i-1} & -\sin \alpha_{i-1} & "
     r"d_i \sin \alpha_{i-1} \\ \sin \theta_i \sin \alpha_{i-1} & \cos \theta_i \sin \alpha_{i-1} "
     r"& \cos \alpha_{i-1} & d_i \cos \alpha_{i-1} \\ 0 & 0 & 0 & 1 \end{bmatrix}$$",
 ]
-SEED002.append(SEED002[0].replace(r"& d_i \sin \alpha_{i-1}", r"& -d_i \sin \alpha_{i-1}"))
+SLIDES.append(SLIDES[0].replace(r"& d_i \sin \alpha_{i-1}", r"& -d_i \sin \alpha_{i-1}"))
 
-BOB_Q4 = (  # the right link matrix in seed 001's c_{theta_i} notation
+BOB_Q4 = (  # the right link matrix in the c_{theta_i} notation of IRob2305 Lecture 5
     r"\begin{bmatrix} c_{\theta_i} & -s_{\theta_i} & 0 & a_{i-1} \\ "
     r"s_{\theta_i} c_{\alpha_{i-1}} & c_{\theta_i} c_{\alpha_{i-1}} & -s_{\alpha_{i-1}} & "
     r"-s_{\alpha_{i-1}} d_i \\ s_{\theta_i} s_{\alpha_{i-1}} & c_{\theta_i} s_{\alpha_{i-1}} & "
     r"c_{\alpha_{i-1}} & c_{\alpha_{i-1}} d_i \\ 0 & 0 & 0 & 1 \end{bmatrix}"
 )
-# seed 002's standard link matrix: alpha_i, a_i where alpha_{i-1}, a_{i-1} belong
+# Mohan's standard link matrix: alpha_i, a_i where alpha_{i-1}, a_{i-1} belong
 STANDARD_GENERIC = (
     r"\begin{bmatrix} \cos \theta_i & -\sin \theta_i \cos \alpha_i & \sin \theta_i \sin \alpha_i "
     r"& a_i \cos \theta_i \\ \sin \theta_i & \cos \theta_i \cos \alpha_i & -\cos \theta_i "
@@ -98,7 +98,7 @@ def answers() -> dict[str, tuple[str, dict[str, str]]]:
         "q1": TABLE,
         "q2": plain(T02, nota),
         "q3": plain(A3, ex4.notation),
-        "q4": SEED002[1],
+        "q4": SLIDES[1],
         "q5": px,
     }
     deg_rows = [r.__class__(r.joint, r.theta, r.d, r.a, r.alpha * 180 / sp.pi) for r in rows[:2]]
@@ -126,7 +126,7 @@ def answers() -> dict[str, tuple[str, dict[str, str]]]:
                 "q5": px.replace("C", "c").replace("S", "s"),
             },
         ),
-        "carol": ("Carol Chen", {**right, "q2": plain(T02.T, nota), "q4": SEED002[0]}),
+        "carol": ("Carol Chen", {**right, "q2": plain(T02.T, nota), "q4": SLIDES[0]}),
         "dave": (
             "Dave Diaz",
             {
@@ -202,7 +202,7 @@ def main() -> None:
                 right["q1"],
                 "",
                 "",
-                SEED002[0],
+                SLIDES[0],
                 "1e999999",
             ]
         )

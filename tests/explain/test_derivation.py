@@ -322,7 +322,7 @@ def test_derivation_is_frozen_plain_data():
     d = derive("planar2r")
     with pytest.raises(AttributeError):
         d.name = "x"  # type: ignore[misc]
-    assert d.key == "planar-2r" and d.source.startswith("Seed 001")
+    assert d.key == "planar-2r" and d.source.startswith("IRob2305 Introduction to Robotics")
 
 
 def test_a_notebook_shows_the_derivation_as_markdown():

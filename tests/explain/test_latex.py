@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 import dhsym
 from dhsym.errors import DHError
 from dhsym.explain.documents import write_handout
-from dhsym.explain.latex import check_log, compile_pdf
+from dhsym.explain.latex import check_log, compile_pdf, run_latex
 from dhsym.notation.escape import TeX, escape_latex
 from dhsym.notation.layout import math_width
 
@@ -196,8 +196,8 @@ def test_a_runaway_document_is_killed_after_the_timeout(tmp_path, need_tex):
 
 def _compile(path: Path, robots: list[str], **options: object) -> tuple[Path, list, float]:
     start = time.monotonic()
-    pdf = write_handout(robots, path, pdf=True, **options)
-    return pdf, check_log(pdf.with_suffix(".log")), time.monotonic() - start
+    run = run_latex(write_handout(robots, path, **options))
+    return run.pdf, list(run.issues), time.monotonic() - start
 
 
 @pytest.fixture(scope="module")
@@ -267,8 +267,8 @@ def test_a_fragment_fits_a_default_article_with_a_narrower_width(tmp_path, need_
         "\\documentclass{article}\n\\usepackage{amsmath}\n\\allowdisplaybreaks\n"
         "\\begin{document}\n\\input{frag}\n\\end{document}\n"
     )
-    pdf = compile_pdf(main)
-    assert pdf.exists() and check_log(main.with_suffix(".log")) == []
+    run = run_latex(main)
+    assert run.pdf.exists() and run.issues == ()
 
 
 @pytest.mark.tex
@@ -355,16 +355,43 @@ def test_environment_of_the_compiler_is_locked_down(tmp_path, monkeypatch):
     import dhsym.explain.latex as L
 
     calls = []
-    monkeypatch.setattr(L, "_run", lambda cmd, cwd, env, timeout: calls.append((cmd, env)))
+
+    def run(cmd, cwd, env, timeout):
+        calls.append((cmd, env))
+        out = Path(env["TEXMFOUTPUT"])
+        (out / "a.pdf").write_bytes(b"%PDF")
+        (out / "a.log").write_text("ok")
+
+    monkeypatch.setattr(L, "_run", run)
     monkeypatch.setattr(shutil, "which", lambda name: "/usr/bin/" + name)
     tex = tmp_path / "a.tex"
     tex.write_text(_doc("x"))
-    tex.with_suffix(".pdf").write_bytes(b"%PDF")
-    tex.with_suffix(".log").write_text("ok")
-    compile_pdf(tex)
+    assert compile_pdf(tex) == tex.with_suffix(".pdf")
     cmd, env = calls[0]
     assert cmd[0] == "latexmk" and "-norc" in cmd and cmd[-1] == "a.tex"
+    assert cmd[-2] == f"-outdir={env['TEXMFOUTPUT']}" and Path(cmd[-2][8:]) != tmp_path
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.pdf", "a.tex"]
     for flag in ("-no-shell-escape", "-halt-on-error", "-interaction=nonstopmode"):
         assert flag in cmd
     assert env["openin_any"] == env["openout_any"] == "p" and env["shell_escape"] == "f"
     assert "openin_any" not in os.environ  # set for TeX only, not in our own process
+
+
+@pytest.mark.tex
+def test_auxiliary_files_stay_in_a_temporary_folder_unless_kept(tmp_path, need_tex):
+    tex = tmp_path / "doc.tex"
+    tex.write_text(_doc("x \\label{a}\\ref{a}"))
+    assert compile_pdf(tex) == tex.with_suffix(".pdf")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["doc.pdf", "doc.tex"]
+    compile_pdf(tex, keep_aux=True)
+    assert {"doc.aux", "doc.log", "doc.pdf", "doc.tex"} <= {p.name for p in tmp_path.iterdir()}
+
+
+@pytest.mark.tex
+def test_a_failed_compilation_leaves_its_log_beside_the_source(tmp_path, need_tex):
+    tex = tmp_path / "bad.tex"
+    tex.write_text(_doc("\\undefinedcommand"))
+    with pytest.raises(DHError, match="see .*bad.log"):
+        compile_pdf(tex)
+    assert "Undefined control sequence" in (tmp_path / "bad.log").read_text(encoding="latin-1")
+    assert not (tmp_path / "bad.aux").exists()

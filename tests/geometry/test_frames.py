@@ -225,7 +225,7 @@ def test_last_link_modified_has_d_and_theta_zero_at_home(kind):
     assert last.offset == 0 and (last.theta if kind == "P" else last.d) == 0
     assert fa.frames[-1].x == fa.frames[-2].x
     assert fa.table.tool  # the tool point is 3 along the last axis: a tool transform
-    assert said(fa, "last link").startswith("Last link (seed 000)")
+    assert said(fa, "last link").startswith("Last link (modified convention)")
 
 
 def test_last_frame_standard_is_the_tool_frame_when_it_obeys_the_dh_rules():

@@ -54,3 +54,11 @@ def test_puma260_keeps_l_and_t_symbolic():
     names = {s.name for s in r.table.constants}
     assert names == {"l", "t"}
     assert "l" in str(r.arm_matrix()[0, 3]) or "l" in str(r.arm_matrix()[1, 3])
+
+
+def test_a_mistyped_name_gets_the_closest_built_in():
+    with pytest.raises(dhsym.DHError, match=r"'stanfrod': did you mean 'stanford'\?"):
+        dhsym.load("stanfrod")
+    with pytest.raises(dhsym.DHError) as err:
+        dhsym.load_table("nothing-like-it")
+    assert "did you mean" not in str(err.value) and "built-in robots are" in str(err.value)
