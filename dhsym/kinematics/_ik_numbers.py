@@ -197,9 +197,9 @@ def _pull_signs(
     A step ``x = σ·E`` becomes ``x' = E`` with ``x = σ x'`` downstream, a step
     ``x = E + π(1 − σ)/2`` becomes ``x' = E`` with ``x = x' + π(1 − σ)/2`` downstream, and
     ``atan2(σa Y, σb X) ≡ σa σb atan2(Y, X) + π(1 − σb)/2`` (mod 2π), so that each
-    ``atan2`` (and each sine and cosine, :func:`_trig_signs`) runs once for the branches
-    it does not depend on. Only used for numbers: the angles it changes are wrapped to
-    [−π, π] afterwards.
+    ``atan2`` (and each sine and cosine, :func:`_trig_signs`; ``|σx| = |x|``,
+    ``wrap(σx) = σ wrap(x)``) runs once for the branches it does not depend on. Only
+    used for numbers: the angles it changes are wrapped to [−π, π] afterwards.
     """
     sset = set(signs)
 
@@ -217,8 +217,18 @@ def _pull_signs(
                 return t
             return sx * sy * sp.atan2(Y, X) + sp.pi * (1 - sx) / 2
 
+        def odd(t: Wrap) -> sp.Expr:  # the wrap is odd (exactly, in floats too)
+            sigma, rest = _signed(t.args[0], sset)
+            return sigma * Wrap(rest)
+
         e = e.replace(lambda t: isinstance(t, sp.atan2), rewrite)
-        return square_free(_trig_signs(square_free(e), sset))
+        e = square_free(_trig_signs(square_free(e), sset))
+
+        def unsigned(t: sp.Abs) -> sp.Expr:  # |σx| = |x|
+            return sp.Abs(_signed(t.args[0], sset)[1])
+
+        e = e.replace(lambda t: isinstance(t, sp.Abs), unsigned)
+        return e.replace(lambda t: isinstance(t, Wrap), odd)
 
     sub: dict[sp.Symbol, sp.Expr] = {}
     out = []
@@ -379,24 +389,25 @@ class Solver:
     def _outputs(self, kind: str) -> list[sp.Expr]:
         """What a program computes for each branch (``kind`` as in :meth:`_program`).
 
-        ``"raw"``: the joint values (angles wrapped) and the wrist's sines. ``"checked"``:
+        ``"raw"``: the joint values (angles wrapped) and ``|sin θ5|``. ``"checked"``:
         also the 12 entries of ``fk`` minus the target pose (column by column) and the
-        singular factors. ``"scalar"``: instead of the entries, the residual over all 12
-        (and over the position, for an arm without a wrist), and the factors as fractions
-        of their largest values.
+        singular factors as fractions of their largest values. ``"scalar"``: instead of
+        the entries, the residual over all 12 (and over the position, for an arm without
+        a wrist).
         """
         joints = [Wrap(v) if r else v for v, r in zip(self.robot.variables, self.revolute)]
+        joints += [sp.Abs(s) for s in self._wrist_s]
         if kind == "raw":
-            return joints + self._wrist_s
+            return joints
         factors = self._singular_factors()
         M = self.robot.tool_pose().matrix.xreplace(self.values)
         diffs = [M[i, j] - t for (i, j), t in zip(_CELLS, self.targets)]
+        closeness = [sp.Abs(e) / sp.Float(s) for e, (_, _, s) in zip(self._factor_exprs, factors)]
         if kind == "checked":
-            return joints + self._wrist_s + diffs + list(self._factor_exprs)
+            return joints + diffs + closeness
         kinds = (_ALL,) if self.ik.decoupling.wrist else (_ALL, _POSITION)  # see solve
         residuals = [Residual(*[diffs[c] for c in cells]) for cells in kinds]
-        closeness = [sp.Abs(e) / sp.Float(s) for e, (_, _, s) in zip(self._factor_exprs, factors)]
-        return joints + self._wrist_s + residuals + closeness
+        return joints + residuals + closeness
 
     def _program(self, kind: str) -> Callable[..., list[object]]:
         """The compiled program of one ``kind``, built on first use.
@@ -465,41 +476,41 @@ class Solver:
         full = (*self.shape, N)
         q = np.empty((n, K, N))
         qv = q.reshape(n, *full)
-        Ti = np.ascontiguousarray(inner[:, :3].transpose(2, 1, 0)).reshape(12, N)
         if checked:
             assert target is not None and cells is not None
-            Tt = Ti if target is inner else target[:, :3].transpose(2, 1, 0).reshape(12, N)
             residual = np.empty((K, N))
             rv = residual.reshape(full)
             F = len(self._factor_exprs)
             closeness = np.empty((F, K, N))
             cv = closeness.reshape(F, *full)
-            inv_scale = [1.0 / s for _, _, s in self._singular_factors()]
         w = len(self._wrist_s)
         rows, wrists = [], []
+        chunk = _CHUNK // 2 if checked else _CHUNK
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            for start in range(0, N, _CHUNK):
-                sl = slice(start, min(start + _CHUNK, N))
-                args = [*Ti[:, sl], *self._sign_arrays]
+            for start in range(0, N, chunk):
+                sl = slice(start, min(start + chunk, N))
+                # the 12 entries column by column, each contiguous over the poses
+                args = [*_entries(inner[sl]), *self._sign_arrays]
                 if checked:
-                    args += list(Tt[:, sl])
+                    args += args[:12] if target is inner else _entries(target[sl])  # type: ignore[index]
                 res = fn(*args)
                 for k in range(n):
                     qv[k, ..., sl] = res[k]
-                if w:
-                    s = np.broadcast_to(res[n], (*self.shape, sl.stop - start)).reshape(K, -1)
-                    near = np.nonzero((np.abs(s) < _WRIST_NEAR).any(axis=0))[0]
-                    if near.size:
-                        rows.append(near + start)
-                        wrists.append(s[:, near])
+                if w:  # |sin θ5| near 0: θ4 and θ6 from the whole rotation, below
+                    small = np.asarray(res[n] < _WRIST_NEAR)
+                    hit = np.nonzero(small.reshape(-1, small.shape[-1]).any(axis=0))[0]
+                    if hit.size:
+                        s = np.broadcast_to(res[n], (*self.shape, sl.stop - start))
+                        rows.append(hit + start)
+                        wrists.append(s.reshape(K, -1)[:, hit])
                 if checked:
                     diffs = sorted((np.abs(res[n + w + c]) for c in cells), key=np.size)
                     acc = diffs[0]
                     for d in diffs[1:-1]:
                         acc = np.maximum(acc, d)
                     np.maximum(acc, diffs[-1], out=rv[..., sl])
-                    for f, scale in enumerate(inv_scale):
-                        np.multiply(np.abs(res[n + w + 12 + f]), scale, out=cv[f, ..., sl])
+                    for f in range(F):
+                        cv[f, ..., sl] = res[n + w + 12 + f]
         if rows:
             at = np.concatenate(rows)
             self._singular_wrist(inner[at], q, at, np.concatenate(wrists, axis=1))
@@ -514,17 +525,18 @@ class Solver:
     def _singular_wrist(
         self, inner: np.ndarray, q: np.ndarray, rows: np.ndarray, wrist: np.ndarray
     ) -> None:
-        """Near ``sin θ5 = 0``: θ6 from the whole wrist rotation; at 0 also θ4 = 0."""
+        """Near ``sin θ5 = 0``: θ6 from the whole wrist rotation; at 0 also θ4 = 0.
+
+        ``inner`` are the poses of ``rows``, ``wrist`` ``(K, rows)`` their ``|sin θ5|``.
+        """
         m = len(rows)
-        Ti = inner[:, :3].transpose(2, 1, 0).reshape(12, m)
         with np.errstate(invalid="ignore", divide="ignore"):
             zero4, whole6, whole6_zero4 = (
                 np.broadcast_to(np.asarray(v, dtype=float), (*self.shape, m)).reshape(self.K, m)
-                for v in self._program("singular")(*Ti, *self._sign_arrays)
+                for v in self._program("singular")(*_entries(inner), *self._sign_arrays)
             )
-        s = np.abs(wrist)
         i4, i6 = self.singular_vars
-        near, zero = s < _WRIST_NEAR, s < _WRIST_ZERO
+        near, zero = wrist < _WRIST_NEAR, wrist < _WRIST_ZERO
         q6, q4 = q[i6], q[i4]
         q6[:, rows] = np.where(
             zero, _wrap(whole6_zero4), np.where(near, _wrap(whole6), q6[:, rows])
@@ -665,7 +677,7 @@ class Solver:
         at = K if check == "position" else 0
         residual = out[at : at + K]
         start = len(out) - K * (n + F)
-        if w and _smallest([abs(v) for v in out[start - K : start]]) < _WRIST_NEAR:
+        if w and _smallest(out[start - K : start]) < _WRIST_NEAR:
             return None  # a singular wrist: θ4 and θ6 from the whole rotation (numpy)
         if check is None:
             kept = [k for k, r in enumerate(residual) if r - r == 0]
@@ -732,6 +744,12 @@ class Solver:
             self._factor_exprs = tuple(f.expr.xreplace(self.values) for f in named)
             self._factors = tuple(found)
         return self._factors
+
+
+def _entries(poses: np.ndarray) -> list[np.ndarray]:
+    """The 12 entries of poses ``(m, 4, 4)`` column by column, each a contiguous ``(m,)``."""
+    block = np.ascontiguousarray(poses[:, :3].transpose(2, 1, 0))
+    return list(block.reshape(12, -1))
 
 
 def _smallest(values: Sequence[float]) -> float:
