@@ -56,9 +56,20 @@ class Wrap(sp.Function):
 
 
 class Residual(sp.Function):
-    """``max |d|`` over its arguments, NaN when one is NaN or infinite (printed inline
-    for floats only: ``max(0.0 * (d1 + d2 + …), abs(d1), abs(d2), …)``, where the first
-    term, NaN or ±0, is kept by ``max`` when NaN)."""
+    """``max |d|`` over its arguments, NaN when one is NaN (compile-time only).
+
+    For numpy ``maximum(maximum(abs(d1), abs(d2)), …)``, one difference at a time (NaN
+    propagates); for floats ``max(0.0 * (d1 + d2 + …), abs(d1), abs(d2), …)``, whose
+    first term, NaN or ±0, is kept by ``max`` when it is NaN (also for an infinity).
+    """
+
+    def _numpycode(self, printer: object) -> str:
+        maximum = printer._module_format("numpy.maximum")  # type: ignore[attr-defined]
+        args = [f"abs({printer._print(a)})" for a in self.args]  # type: ignore[attr-defined]
+        out = args[0]
+        for a in args[1:]:
+            out = f"{maximum}({out}, {a})"
+        return out
 
     def _pythoncode(self, printer: object) -> str:
         args = [printer._print(a) for a in self.args]  # type: ignore[attr-defined]
@@ -293,11 +304,51 @@ def _per_branch(
     return lines, outs
 
 
+def _reuse_names(
+    program: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
+) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
+    """The program with a line's name bound again once its value is no longer needed.
+
+    For numpy: rebinding a name frees the array it held, so a block's temporaries are
+    few at any time and reused (fewer cache misses and page faults than when every
+    intermediate array lives until the function returns).
+    """
+    alias: dict[sp.Symbol, sp.Expr] = {}  # lines x = y: y itself (lambdify reads a line
+    lines = []  # x = argument as "x is that argument" everywhere, so x must not be reused)
+    for sym, e in program:
+        e = e.xreplace(alias)
+        if e.is_Symbol:
+            alias[sym] = e
+        else:
+            lines.append((sym, e))
+    program, outputs = lines, [o.xreplace(alias) for o in outputs]
+    last: dict[sp.Symbol, int] = {}
+    for i, (_, e) in enumerate(program):
+        for x in e.free_symbols:
+            last[x] = i
+    for o in outputs:
+        for x in o.free_symbols:
+            last[x] = len(program)
+    defined = {sym for sym, _ in program}
+    rename: dict[sp.Symbol, sp.Symbol] = {}
+    free: list[sp.Symbol] = []
+    out = []
+    for i, (sym, e) in enumerate(program):
+        free += [rename[x] for x in e.free_symbols if x in defined and last[x] == i]
+        name = free.pop() if free else sym
+        out.append((name, e.xreplace(rename)))
+        rename[sym] = name
+        if sym not in last:  # never used: its name is free again at once
+            free.append(name)
+    return out, [o.xreplace(rename) for o in outputs]
+
+
 def _lift_residuals(
-    program: list[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
-) -> list[sp.Expr]:
-    """Each argument of a :class:`Residual` output becomes a line of ``program`` (it is
-    printed twice: in the sum that catches NaN and in its ``abs``)."""
+    program: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
+) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
+    """Each argument of a :class:`Residual` output becomes a line of the program (for
+    floats it is printed twice: in the sum that catches NaN and in its ``abs``)."""
+    program = list(program)
     names = sp.numbered_symbols("_d")
     lifted = []
     for o in outputs:
@@ -311,7 +362,7 @@ def _lift_residuals(
                 args.append(a)
             o = Residual(*args)
         lifted.append(o)
-    return lifted
+    return program, lifted
 
 
 class Solver:
@@ -389,11 +440,10 @@ class Solver:
     def _outputs(self, kind: str) -> list[sp.Expr]:
         """What a program computes for each branch (``kind`` as in :meth:`_program`).
 
-        ``"raw"``: the joint values (angles wrapped) and ``|sin θ5|``. ``"checked"``:
-        also the 12 entries of ``fk`` minus the target pose (column by column) and the
-        singular factors as fractions of their largest values. ``"scalar"``: instead of
-        the entries, the residual over all 12 (and over the position, for an arm without
-        a wrist).
+        ``"raw"``: the joint values (angles wrapped) and ``|sin θ5|``. ``"checked"`` and
+        ``"scalar"``: also the residual of ``fk`` against the target pose over its 12
+        entries (and over the position, for an arm without a wrist) and the singular
+        factors as fractions of their largest values.
         """
         joints = [Wrap(v) if r else v for v, r in zip(self.robot.variables, self.revolute)]
         joints += [sp.Abs(s) for s in self._wrist_s]
@@ -403,8 +453,6 @@ class Solver:
         M = self.robot.tool_pose().matrix.xreplace(self.values)
         diffs = [M[i, j] - t for (i, j), t in zip(_CELLS, self.targets)]
         closeness = [sp.Abs(e) / sp.Float(s) for e, (_, _, s) in zip(self._factor_exprs, factors)]
-        if kind == "checked":
-            return joints + diffs + closeness
         kinds = (_ALL,) if self.ik.decoupling.wrist else (_ALL, _POSITION)  # see solve
         residuals = [Residual(*[diffs[c] for c in cells]) for cells in kinds]
         return joints + residuals + closeness
@@ -427,9 +475,10 @@ class Solver:
             program, reduced = _schedule(*_pull_signs(self._steps, outputs, self.signs))
             if kind == "scalar":
                 # the wrap inline: one C call, no Python function
+                program, reduced = _lift_residuals(program, reduced)
                 reduced = [
                     e.replace(lambda t: isinstance(t, Wrap), lambda t: _REMAINDER(t.args[0], _TAU))
-                    for e in _lift_residuals(program, reduced)
+                    for e in reduced
                 ]
                 program, per_branch = _per_branch(program, reduced, self.signs)
                 # grouped for _solve_one: residuals and wrist sines of all branches first,
@@ -447,8 +496,10 @@ class Solver:
                 reduced += [o[i] for o in per_branch for i in groups[3]]
                 args, modules = self.pose_args + self.targets, _MATH
             elif kind == "checked":
+                program, reduced = _reuse_names(program, reduced)
                 args, modules = self.pose_args + self.signs + self.targets, _NUMPY
             else:
+                program, reduced = _reuse_names(program, reduced)
                 args, modules = self.pose_args + self.signs, _NUMPY
             self._compiled[kind] = sp.lambdify(  # type: ignore[assignment]
                 args, reduced, modules=modules, cse=lambda exprs: (program, exprs)
@@ -504,13 +555,9 @@ class Solver:
                         rows.append(hit + start)
                         wrists.append(s.reshape(K, -1)[:, hit])
                 if checked:
-                    diffs = sorted((np.abs(res[n + w + c]) for c in cells), key=np.size)
-                    acc = diffs[0]
-                    for d in diffs[1:-1]:
-                        acc = np.maximum(acc, d)
-                    np.maximum(acc, diffs[-1], out=rv[..., sl])
+                    rv[..., sl] = res[n + w + (cells is _POSITION)]
                     for f in range(F):
-                        cv[f, ..., sl] = res[n + w + 12 + f]
+                        cv[f, ..., sl] = res[len(res) - F + f]
         if rows:
             at = np.concatenate(rows)
             self._singular_wrist(inner[at], q, at, np.concatenate(wrists, axis=1))
