@@ -83,7 +83,7 @@ _INV_TWO_PI = 1 / _TWO_PI
 
 def _safe_sqrt(x: np.ndarray) -> np.ndarray:
     x = np.asarray(x, dtype=float)
-    return np.sqrt(np.where((x < 0) & (x > -_ROUNDING), 0.0, x))
+    return np.sqrt(np.where(x > -_ROUNDING, np.maximum(x, 0.0), x))  # NaN stays NaN
 
 
 def _wrap(x: np.ndarray) -> np.ndarray:
@@ -452,7 +452,9 @@ class Solver:
         factors = self._singular_factors()
         M = self.robot.tool_pose().matrix.xreplace(self.values)
         diffs = [M[i, j] - t for (i, j), t in zip(_CELLS, self.targets)]
-        closeness = [sp.Abs(e) / sp.Float(s) for e, (_, _, s) in zip(self._factor_exprs, factors)]
+        closeness = [
+            sp.Float(1 / s, 17) * sp.Abs(e) for e, (_, _, s) in zip(self._factor_exprs, factors)
+        ]
         kinds = (_ALL,) if self.ik.decoupling.wrist else (_ALL, _POSITION)  # see solve
         residuals = [Residual(*[diffs[c] for c in cells]) for cells in kinds]
         return joints + residuals + closeness
