@@ -713,11 +713,15 @@ class InverseKinematics:
 
     def solver(self, values: Mapping[object, object] | None = None) -> Solver:
         """The compiled solver (built once per set of values, then cached on the robot)."""
+        cache = self.robot._extra_cache
+        if not values and ("ik-solver", None) in cache:  # the table's own values: no key to build
+            return cache[("ik-solver", None)]  # type: ignore[no-any-return]
         vals = _values(self.robot, values)
         key = ("ik-solver", tuple(sorted((str(k), str(v)) for k, v in vals.items())))
-        cache = self.robot._extra_cache
         if key not in cache:
             cache[key] = Solver(self, vals)
+        if not values:
+            cache[("ik-solver", None)] = cache[key]
         return cache[key]  # type: ignore[no-any-return]
 
     def solve(
