@@ -1,11 +1,21 @@
 """The closed form in numbers: the compiled solver over all branches, its results, and a
 numeric Levenberg–Marquardt reference (see :mod:`dhsym.kinematics.inverse` for the derivation).
 
-The steps of a derivation are compiled once into one straight-line numpy program (the
-steps are its common subexpressions); all branches of a batch of poses are computed at
-once by broadcasting the branch signs, each ``atan2`` only over the branches it depends
-on. Every branch is then checked by ``fk`` and the singular factors of
-:mod:`dhsym.kinematics.singularities` are evaluated at it.
+The steps of a derivation, the ``fk`` of their solutions and the singular factors of
+:mod:`dhsym.kinematics.singularities` are compiled once into one straight-line program
+(the steps are its common subexpressions), in two forms:
+
+* numpy, for a batch: all branches at once by broadcasting the branch signs (branches on
+  the leading axes, poses on the last), each ``atan2``, sine and cosine only over the
+  branches it depends on; the residual of ``fk`` is reduced inside the program;
+* plain floats (``math``), for one pose: the program written out once per branch, a
+  few microseconds for the eight branches of a PUMA, checks included.
+
+Both keep a branch only when its ``fk`` reproduces the pose (``check="pose"``, default).
+The ``fk`` in the check is the robot's own compact matrix at the computed angles, with
+``cos(σx) = cos x``, ``sin(x + π) = −sin x`` and the like used exactly for the signs
+σ = ±1 of the branches (so the two wrist flips share one evaluation, as they share the
+pose).
 
 Examples
 --------
@@ -14,6 +24,9 @@ Examples
 >>> batch = r.ik(r.fk([[0.3, 0.5, 0.1, 0.2], [1.0, -0.4, 0.2, 0.0]]))
 >>> batch.q.shape, batch.count.tolist()
 ((2, 2, 4), [2, 2])
+>>> one = r.ik(r.fk([0.3, 0.5, 0.1, 0.2]))  # one pose: the program for floats
+>>> len(one), bool(np.abs(one.q - batch.q[0]).max() < 1e-12)
+(2, True)
 """
 
 from __future__ import annotations
