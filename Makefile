@@ -36,6 +36,7 @@ notebooks: $(STAMP)
 
 bench: $(STAMP)
 	$(PY) benchmarks/bench_core.py
+	$(PY) benchmarks/bench_inverse.py
 
 clean:
 	rm -rf $(VENV) build .pytest_cache
