@@ -361,23 +361,28 @@ def _reuse_names(
 def _lift_residuals(
     program: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
 ) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
-    """Each argument of a :class:`Residual` output becomes a line of the program (for
-    floats it is printed twice: in the sum that catches NaN and in its ``abs``)."""
-    program = list(program)
+    """Each argument of a :class:`Residual` (a line or an output) becomes a line of the
+    program of its own (for floats it is printed twice: in the sum that catches NaN and
+    in its ``abs``)."""
     names = sp.numbered_symbols("_d")
-    lifted = []
-    for o in outputs:
-        if isinstance(o, Residual):
-            args = []
-            for a in o.args:
-                if not a.is_Symbol:
-                    sym = next(names)
-                    program.append((sym, a))
-                    a = sym
-                args.append(a)
-            o = Residual(*args)
-        lifted.append(o)
-    return program, lifted
+    lines: list[tuple[sp.Symbol, sp.Expr]] = []
+
+    def lift(e: sp.Expr) -> sp.Expr:
+        if not isinstance(e, Residual):
+            return e
+        args = []
+        for a in e.args:
+            if not a.is_Symbol:
+                sym = next(names)
+                lines.append((sym, a))
+                a = sym
+            args.append(a)
+        return Residual(*args)
+
+    for sym, e in program:
+        e = lift(e)
+        lines.append((sym, e))
+    return lines, [lift(o) for o in outputs]
 
 
 class Solver:
@@ -457,8 +462,8 @@ class Solver:
 
         ``"raw"``: the joint values (angles wrapped) and ``|sin θ5|``. ``"checked"`` and
         ``"scalar"``: also the residual of ``fk`` against the target pose over its 12
-        entries (and over the position, for an arm without a wrist) and the singular
-        factors as fractions of their largest values.
+        entries and over its position, and the singular factors as fractions of their
+        largest values.
         """
         joints = [Wrap(v) if r else v for v, r in zip(self.robot.variables, self.revolute)]
         joints += [sp.Abs(s) for s in self._wrist_s]
@@ -470,9 +475,9 @@ class Solver:
         closeness = [
             sp.Float(1 / s, 17) * sp.Abs(e) for e, (_, _, s) in zip(self._factor_exprs, factors)
         ]
-        kinds = (_ALL,) if self.ik.decoupling.wrist else (_ALL, _POSITION)  # see solve
-        residuals = [Residual(*[diffs[c] for c in cells]) for cells in kinds]
-        return joints + residuals + closeness
+        position = Residual(*[diffs[c] for c in _POSITION])  # one line, shared (cse)
+        whole = Residual(*[diffs[c] for c in _ALL if c not in _POSITION], position)
+        return joints + [whole, position] + closeness
 
     def _program(self, kind: str) -> Callable[..., list[object]]:
         """The compiled program of one ``kind``, built on first use.
@@ -572,7 +577,7 @@ class Solver:
                         rows.append(hit + start)
                         wrists.append(s.reshape(K, -1)[:, hit])
                 if checked:
-                    rv[..., sl] = res[n + w + (cells is _POSITION)]
+                    rv[..., sl] = res[n + w + (cells is _POSITION)]  # see _outputs
                     for f in range(F):
                         cv[f, ..., sl] = res[len(res) - F + f]
         if rows:
@@ -736,8 +741,8 @@ class Solver:
         n, w, K = self.n, len(self._wrist_s), self.K
         factors = self._singular_factors()
         F = len(factors)
-        # the layout of _program("scalar"): residuals (all 12 entries, then the position
-        # for an arm without a wrist), wrist sines, joint values, factors
+        # the layout of _program("scalar"): residuals (all 12 entries, then the position),
+        # wrist sines, joint values, factors
         at = K if check == "position" else 0
         residual = out[at : at + K]
         start = len(out) - K * (n + F)

@@ -312,7 +312,7 @@ def test_one_pose_by_floats_equals_the_batch(name: str) -> None:
         _same_solutions(robot, robot.ik(T[i]), one)
 
 
-@pytest.mark.parametrize("check", ["pose", None])
+@pytest.mark.parametrize("check", ["pose", "position", None])
 def test_one_pose_by_floats_equals_the_batch_unchecked_and_unreachable(check: str | None) -> None:
     robot = _robot("puma560")
     T = robot.fk(_random_q(robot, 20, seed=9))
@@ -323,6 +323,10 @@ def test_one_pose_by_floats_equals_the_batch_unchecked_and_unreachable(check: st
         for i in range(len(poses)):
             _same_solutions(robot, robot.ik(poses[i], check=check), batch.solution(i))
     assert robot.ik(far[0]).q.shape == (0, 6)
+    if check == "position":  # the residual is the position's error only
+        one = robot.ik(T[0], check=check)
+        error = np.abs(robot.fk(one.q)[:, :3, 3] - T[0, :3, 3]).max(axis=1)
+        assert np.abs(one.residual - error).max() < 1e-13
 
 
 def test_positions_by_floats_equal_the_batch() -> None:
