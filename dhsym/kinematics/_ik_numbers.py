@@ -558,10 +558,9 @@ class Solver:
             cv = closeness.reshape(F, *full)
         w = len(self._wrist_s)
         rows, wrists = [], []
-        chunk = _CHUNK
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            for start in range(0, N, chunk):
-                sl = slice(start, min(start + chunk, N))
+            for start in range(0, N, _CHUNK):
+                sl = slice(start, min(start + _CHUNK, N))
                 # the 12 entries column by column, each contiguous over the poses
                 args = [*_entries(inner[sl]), *self._sign_arrays]
                 if checked:
@@ -577,7 +576,7 @@ class Solver:
                         rows.append(hit + start)
                         wrists.append(s.reshape(K, -1)[:, hit])
                 if checked:
-                    rv[..., sl] = res[n + w + (cells is _POSITION)]  # see _outputs
+                    rv[..., sl] = res[n + w + (tuple(cells) == _POSITION)]  # see _outputs
                     for f in range(F):
                         cv[f, ..., sl] = res[len(res) - F + f]
         if rows:
