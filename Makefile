@@ -40,6 +40,7 @@ notebooks: $(STAMP)
 bench: $(STAMP)
 	$(PY) benchmarks/bench_core.py
 	$(PY) benchmarks/bench_cli.py
+	$(PY) benchmarks/bench_inverse.py
 
 lab: $(STAMP)
 	$(VENV)/bin/jupyter lab notebooks/

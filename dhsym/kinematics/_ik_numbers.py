@@ -1,11 +1,21 @@
 """The closed form in numbers: the compiled solver over all branches, its results, and a
 numeric Levenberg–Marquardt reference (see :mod:`dhsym.kinematics.inverse` for the derivation).
 
-The steps of a derivation are compiled once into one straight-line numpy program (the
-steps are its common subexpressions); all branches of a batch of poses are computed at
-once by broadcasting the branch signs, each ``atan2`` only over the branches it depends
-on. Every branch is then checked by ``fk`` and the singular factors of
-:mod:`dhsym.kinematics.singularities` are evaluated at it.
+The steps of a derivation, the ``fk`` of their solutions and the singular factors of
+:mod:`dhsym.kinematics.singularities` are compiled once into one straight-line program
+(the steps are its common subexpressions), in two forms:
+
+* numpy, for a batch: all branches at once by broadcasting the branch signs (branches on
+  the leading axes, poses on the last), each ``atan2``, sine and cosine only over the
+  branches it depends on; the residual of ``fk`` is reduced inside the program;
+* plain floats (``math``), for one pose: the program written out once per branch, a
+  few microseconds for the eight branches of a PUMA, checks included.
+
+Both keep a branch only when its ``fk`` reproduces the pose (``check="pose"``, default).
+The ``fk`` in the check is the robot's own compact matrix at the computed angles, with
+``cos(σx) = cos x``, ``sin(x + π) = −sin x`` and the like used exactly for the signs
+σ = ±1 of the branches (so the two wrist flips share one evaluation, as they share the
+pose).
 
 Examples
 --------
@@ -14,12 +24,16 @@ Examples
 >>> batch = r.ik(r.fk([[0.3, 0.5, 0.1, 0.2], [1.0, -0.4, 0.2, 0.0]]))
 >>> batch.q.shape, batch.count.tolist()
 ((2, 2, 4), [2, 2])
+>>> one = r.ik(r.fk([0.3, 0.5, 0.1, 0.2]))  # one pose: the program for floats
+>>> len(one), bool(np.abs(one.q - batch.q[0]).max() < 1e-12)
+(2, True)
 """
 
 from __future__ import annotations
 
 import functools
 import itertools
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -50,12 +64,62 @@ class SafeSqrt(sp.Function):
     """``sqrt`` that reads a radicand within rounding of 0 as 0 (compile-time only)."""
 
 
+class Wrap(sp.Function):
+    """An angle wrapped to [−π, π] (compile-time only)."""
+
+
+class Residual(sp.Function):
+    """``max |d|`` over its arguments, NaN when one is NaN (compile-time only).
+
+    For numpy ``maximum(maximum(abs(d1), abs(d2)), …)``, one difference at a time (NaN
+    propagates); for floats ``max(0.0 * (d1 + d2 + …), abs(d1), abs(d2), …)``, whose
+    first term, NaN or ±0, is kept by ``max`` when it is NaN (also for an infinity).
+    """
+
+    def _numpycode(self, printer: object) -> str:
+        maximum = printer._module_format("numpy.maximum")  # type: ignore[attr-defined]
+        args = [f"abs({printer._print(a)})" for a in self.args]  # type: ignore[attr-defined]
+        out = args[0]
+        for a in args[1:]:
+            out = f"{maximum}({out}, {a})"
+        return out
+
+    def _pythoncode(self, printer: object) -> str:
+        args = [printer._print(a) for a in self.args]  # type: ignore[attr-defined]
+        return f"max(0.0 * ({' + '.join(args)}), {', '.join(f'abs({a})' for a in args)})"
+
+
 _ROUNDING = 1e-10
+_TWO_PI = 2 * np.pi
+_INV_TWO_PI = 1 / _TWO_PI
 
 
 def _safe_sqrt(x: np.ndarray) -> np.ndarray:
     x = np.asarray(x, dtype=float)
-    return np.sqrt(np.where((x < 0) & (x > -_ROUNDING), 0.0, x))
+    return np.sqrt(np.where(x > -_ROUNDING, np.maximum(x, 0.0), x))  # NaN stays NaN
+
+
+def _wrap(x: np.ndarray) -> np.ndarray:
+    """Angles to [−π, π] (faster than ``np.remainder``)."""
+    return x - _TWO_PI * np.rint(x * _INV_TWO_PI)
+
+
+def _safe_sqrt_float(x: float) -> float:
+    """:func:`_safe_sqrt` of one float."""
+    if x >= 0.0:
+        return math.sqrt(x)
+    return 0.0 if x > -_ROUNDING else math.nan
+
+
+#: the wrap for floats, inline: ``math.remainder(x, 2π)`` is in [−π, π] and keeps NaN; it
+#: equals :func:`_wrap` except within rounding of ±π, where either end may come out
+_REMAINDER = sp.Function("remainder")
+_TAU = sp.Symbol("TWO_PI")
+_NUMPY = [{"SafeSqrt": _safe_sqrt, "Wrap": _wrap}, "numpy"]
+_MATH = [
+    {"SafeSqrt": _safe_sqrt_float, "TWO_PI": _TWO_PI},
+    "math",
+]
 
 
 def _with_safe_sqrt(e: sp.Expr) -> sp.Expr:
@@ -64,19 +128,15 @@ def _with_safe_sqrt(e: sp.Expr) -> sp.Expr:
     )
 
 
-_CHUNK = 1024
-_CHECK_CHUNK = 32768  # poses checked at once (bounds the memory of the fk of all branches)
-_TWO_PI = 2 * np.pi
-
-
-def _wrap(x: np.ndarray) -> np.ndarray:
-    """Angles to [−π, π] (faster than ``np.remainder``)."""
-    return x - _TWO_PI * np.rint(x * (1 / _TWO_PI))
-
+#: poses per block: large enough that numpy's cost per call is small against its work,
+#: small enough that a block's temporaries stay in the cache (measured: 1024-4096 alike)
+_CHUNK = 2048
 
 #: |sin θ5| below which θ6 comes from the whole wrist rotation, and below which θ4 = 0
 _WRIST_NEAR = 1e-5
 _WRIST_ZERO = 1e-12
+#: fraction of a singular factor's largest value below which branches may coincide
+_SUSPECT = 1e-4
 
 
 def _schedule(
@@ -115,17 +175,57 @@ def _signed(e: sp.Expr, signs: set[sp.Symbol]) -> tuple[sp.Expr, sp.Expr]:
     return sigma, (e / sigma if sigma != 1 else e)
 
 
+def _shifted(e: sp.Expr, signs: set[sp.Symbol]) -> tuple[sp.Expr, sp.Expr]:
+    """``e = rest + shift`` with ``shift = d (σ − 1)`` for each sign σ that ``e`` depends on
+    only through a constant multiple of π/2 (e.g. ``π(1 − σ)/2``: the atan2 of −Y, −X)."""
+    shift = sp.S.Zero
+    for s in sorted(e.free_symbols & signs, key=str):
+        d = sp.diff(e, s)
+        if not d.free_symbols and (2 * d / sp.pi).is_Integer:
+            shift += d * (s - 1)
+            e = e.xreplace({s: 1})
+    return shift, e
+
+
+def _trig_signs(e: sp.Expr, signs: set[sp.Symbol]) -> sp.Expr:
+    """``sin`` and ``cos`` with the branch signs σ = ±1 taken out of their arguments.
+
+    An argument odd in σ: ``cos(σx) = cos x``, ``sin(σx) = σ sin x``; an argument that moves
+    by kπ between σ = +1 and σ = −1: ``cos(x + kπ(1 − σ)/2) = σᵏ cos x`` (the same for sin).
+    Both are identities for σ = ±1, so each sine and cosine is computed only over the
+    branches its argument really depends on.
+    """
+
+    def rule(t: sp.Expr) -> sp.Expr:
+        arg = t.args[0]
+        for s in sorted(arg.free_symbols & signs, key=str):
+            plus, minus = arg.xreplace({s: 1}), arg.xreplace({s: -1})
+            if sp.expand(plus + minus) == 0:
+                factor = s if isinstance(t, sp.sin) else sp.S.One
+                return factor * _trig_signs(t.func(plus), signs)
+            k = sp.expand((minus - plus) / sp.pi)
+            if k.is_Integer:
+                return s ** (int(k) % 2) * _trig_signs(t.func(plus), signs)
+        return t
+
+    return e.replace(
+        lambda t: isinstance(t, (sp.sin, sp.cos)) and bool(t.args[0].free_symbols & signs), rule
+    )
+
+
 def _pull_signs(
     steps: Sequence[tuple[sp.Symbol, sp.Expr]],
     outputs: Sequence[sp.Expr],
     signs: Sequence[sp.Symbol],
 ) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
-    """Move branch signs σ = ±1 out of square roots' neighbours and ``atan2``.
+    """Move branch signs σ = ±1 out of square roots' neighbours, ``atan2``, sin and cos.
 
-    A step ``x = σ·E`` becomes ``x' = E`` with ``x = σ x'`` downstream, and
+    A step ``x = σ·E`` becomes ``x' = E`` with ``x = σ x'`` downstream, a step
+    ``x = E + π(1 − σ)/2`` becomes ``x' = E`` with ``x = x' + π(1 − σ)/2`` downstream, and
     ``atan2(σa Y, σb X) ≡ σa σb atan2(Y, X) + π(1 − σb)/2`` (mod 2π), so that each
-    ``atan2`` runs once for the branches it does not depend on. Only used for numbers:
-    the angles it changes are wrapped to (−π, π] afterwards.
+    ``atan2`` (and each sine and cosine, :func:`_trig_signs`; ``|σx| = |x|``,
+    ``wrap(σx) = σ wrap(x)``) runs once for the branches it does not depend on. Only
+    used for numbers: the angles it changes are wrapped to [−π, π] afterwards.
     """
     sset = set(signs)
 
@@ -143,29 +243,161 @@ def _pull_signs(
                 return t
             return sx * sy * sp.atan2(Y, X) + sp.pi * (1 - sx) / 2
 
-        return e.replace(lambda t: isinstance(t, sp.atan2), rewrite)
+        def odd(t: Wrap) -> sp.Expr:  # the wrap is odd (exactly, in floats too)
+            sigma, rest = _signed(t.args[0], sset)
+            return sigma * Wrap(rest)
+
+        e = e.replace(lambda t: isinstance(t, sp.atan2), rewrite)
+        e = square_free(_trig_signs(square_free(e), sset))
+
+        def unsigned(t: sp.Abs) -> sp.Expr:  # |σx| = |x|
+            return sp.Abs(_signed(t.args[0], sset)[1])
+
+        e = e.replace(lambda t: isinstance(t, sp.Abs), unsigned)
+        return e.replace(lambda t: isinstance(t, Wrap), odd)
 
     sub: dict[sp.Symbol, sp.Expr] = {}
     out = []
     for lhs, rhs in steps:
-        e = square_free(pull(square_free(rhs.xreplace(sub))))
+        e = pull(square_free(rhs.xreplace(sub)))
         sigma, rest = _signed(e, sset)
-        if sigma != 1:
+        shift = sp.S.Zero
+        if sigma == 1:
+            shift, rest = _shifted(e, sset)
+        if sigma != 1 or shift != 0:
             bare = sp.Symbol(f"{lhs.name}_", **_REAL)
             out.append((bare, rest))
-            sub[lhs] = sigma * bare
+            sub[lhs] = sigma * bare + shift
         else:
             out.append((lhs, e))
-    return out, [square_free(pull(square_free(o.xreplace(sub)))) for o in outputs]
+    return out, [pull(square_free(o.xreplace(sub))) for o in outputs]
+
+
+def _per_branch(
+    program: Sequence[tuple[sp.Symbol, sp.Expr]],
+    outputs: Sequence[sp.Expr],
+    signs: Sequence[sp.Symbol],
+) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[list[sp.Expr]]]:
+    """The program written out for every branch, for scalars: the signs become numbers.
+
+    A line that depends on the signs S (directly or through earlier lines) is repeated
+    once per combination of S; a line that does not is computed once. The outputs are
+    lines too (an angle that depends on one sign is wrapped twice, not once per branch)
+    and are returned as one list per branch, in the order of :attr:`Solver.branch_signs`.
+    """
+    sset = set(signs)
+    deps: dict[sp.Symbol, tuple[sp.Symbol, ...]] = {}
+    bound: dict[tuple[sp.Symbol, tuple[int, ...]], sp.Expr] = {}
+
+    def bind(e: sp.Expr, choice: Mapping[sp.Symbol, int]) -> sp.Expr:
+        rep: dict[sp.Symbol, sp.Expr] = {s: sp.Integer(choice[s]) for s in e.free_symbols & sset}
+        for x in e.free_symbols:
+            if x in deps:
+                rep[x] = bound[(x, tuple(choice[s] for s in deps[x]))]
+        return e.xreplace(rep)
+
+    names = [sp.Symbol(f"_out{i}") for i in range(len(outputs))]
+    lines = []
+    for sym, e in [*program, *zip(names, outputs)]:
+        used = set(e.free_symbols & sset).union(*(deps[x] for x in e.free_symbols if x in deps))
+        d = deps[sym] = tuple(s for s in signs if s in used)
+        for combo in itertools.product((1, -1), repeat=len(d)):
+            value = bind(e, dict(zip(d, combo)))
+            if value.is_Number or value.is_Symbol:
+                bound[(sym, combo)] = value
+                continue
+            name = sym
+            if d:
+                tag = "".join("p" if c > 0 else "m" for c in combo)
+                name = sp.Symbol(f"{sym.name}__{tag}", **sym.assumptions0)
+            lines.append((name, value))
+            bound[(sym, combo)] = name
+    outs = []
+    for combo in itertools.product((1, -1), repeat=len(signs)):
+        choice = dict(zip(signs, combo))
+        outs.append([bound[(o, tuple(choice[s] for s in deps[o]))] for o in names])
+    return lines, outs
+
+
+def _reuse_names(
+    program: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
+) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
+    """The program with a line's name bound again once its value is no longer needed.
+
+    For numpy: rebinding a name frees the array it held, so a block's temporaries are
+    few at any time and reused (fewer cache misses and page faults than when every
+    intermediate array lives until the function returns).
+    """
+    alias: dict[sp.Symbol, sp.Expr] = {}  # lines x = y: y itself (lambdify reads a line
+    lines = []  # x = argument as "x is that argument" everywhere, so x must not be reused)
+    for sym, e in program:
+        e = e.xreplace(alias)
+        if e.is_Symbol:
+            alias[sym] = e
+        else:
+            lines.append((sym, e))
+    program, outputs = lines, [o.xreplace(alias) for o in outputs]
+    last: dict[sp.Symbol, int] = {}
+    for i, (_, e) in enumerate(program):
+        for x in e.free_symbols:
+            last[x] = i
+    for o in outputs:
+        for x in o.free_symbols:
+            last[x] = len(program)
+    defined = {sym for sym, _ in program}
+    rename: dict[sp.Symbol, sp.Symbol] = {}
+    free: list[sp.Symbol] = []
+    out = []
+    for i, (sym, e) in enumerate(program):
+        free += [rename[x] for x in e.free_symbols if x in defined and last[x] == i]
+        name = free.pop() if free else sym
+        out.append((name, e.xreplace(rename)))
+        rename[sym] = name
+        if sym not in last:  # never used: its name is free again at once
+            free.append(name)
+    return out, [o.xreplace(rename) for o in outputs]
+
+
+def _lift_residuals(
+    program: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
+) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
+    """Each argument of a :class:`Residual` (a line or an output) becomes a line of the
+    program of its own (for floats it is printed twice: in the sum that catches NaN and
+    in its ``abs``)."""
+    names = sp.numbered_symbols("_d")
+    lines: list[tuple[sp.Symbol, sp.Expr]] = []
+
+    def lift(e: sp.Expr) -> sp.Expr:
+        if not isinstance(e, Residual):
+            return e
+        args = []
+        for a in e.args:
+            if not a.is_Symbol:
+                sym = next(names)
+                lines.append((sym, a))
+                a = sym
+            args.append(a)
+        return Residual(*args)
+
+    for sym, e in program:
+        e = lift(e)
+        lines.append((sym, e))
+    return lines, [lift(o) for o in outputs]
 
 
 class Solver:
-    """The steps of an :class:`InverseKinematics`, compiled for numpy.
+    """The steps of an :class:`InverseKinematics`, compiled for numbers.
 
     :meth:`solve` takes one pose ``(4, 4)`` (an :class:`IKSolution`) or a batch
     ``(N, 4, 4)`` (an :class:`IKBatch`: padded arrays with a validity mask). Poses are
     world-to-tool, as ``fk`` gives them; base and tool transforms are undone first.
-    Every branch is computed at once by broadcasting the signs.
+
+    The steps, the ``fk`` of the solutions and the singular factors at them are compiled
+    into one straight-line program (``lambdify`` with the steps as the common
+    subexpressions), twice: for numpy, where every branch of a block of poses is
+    computed at once by broadcasting the signs (branches on the leading axes, poses on
+    the last, contiguous one), and for plain floats (``math``), where the program is
+    written out once per branch and one pose costs a few microseconds.
     """
 
     def __init__(self, ik: InverseKinematics, values: Mapping[sp.Symbol, sp.Expr]) -> None:
@@ -178,39 +410,40 @@ class Solver:
             [r.joint is JointType.REVOLUTE for r in robot.table.rows if r.variable is not None]
         )
         self.pose_args = [ik.pose[i, j] for j in range(4) for i in range(3)]
+        self.targets = [sp.Dummy(f"T{i + 1}{j + 1}", **_REAL) for j in range(4) for i in range(3)]
         self.signs = [b.symbol for b in ik.branches]
-        wrist_s = [s.lhs for s in ik.steps if s.branch is not None and s.branch.role == "wrist"]
-        steps = [(st.lhs, _with_safe_sqrt(st.rhs.xreplace(self.values))) for st in ik.steps]
-        singular = {st.lhs: st.singular for st in ik.steps if st.singular is not None}
-        self.singular_vars = [robot.variables.index(v) for v in singular]
-        free = set().union(*(e.free_symbols for _, e in steps)) if steps else set()
-        defined = {lhs for lhs, _ in steps}
+        self._wrist_s = [
+            s.lhs for s in ik.steps if s.branch is not None and s.branch.role == "wrist"
+        ]
+        self._steps = [(st.lhs, _with_safe_sqrt(st.rhs.xreplace(self.values))) for st in ik.steps]
+        self._singular = {st.lhs: st.singular for st in ik.steps if st.singular is not None}
+        self.singular_vars = [robot.variables.index(v) for v in self._singular]
+        free = set().union(*(e.free_symbols for _, e in self._steps)) if self._steps else set()
+        defined = {lhs for lhs, _ in self._steps}
         missing = free - defined - set(self.pose_args) - set(self.signs)
         if missing:
             names = ", ".join(sorted(str(s) for s in missing))
             raise DHError(f"no numeric value for {names}: give values for these symbols")
-        self._fn = self._compile(steps, list(robot.variables) + wrist_s)
-        self._alt = None
-        if singular and wrist_s:
-            # θ4 at sin θ5 = 0, θ6 from the whole rotation with θ4 as computed, and with θ4 = 0
-            (t4, zero4), (t6, whole6) = list(singular.items())
-            alts = [zero4, whole6, whole6.xreplace({t4: zero4})]
-            alts = [_with_safe_sqrt(e.xreplace(self.values)) for e in alts]
-            self._alt = self._compile(steps, alts)
         B = len(self.signs)
         self.shape = (2,) * B
+        self.K = 2**B
         self._sign_arrays = []
         for k in range(B):
             shape = [1] * (B + 1)
-            shape[k + 1] = 2
+            shape[k] = 2
             self._sign_arrays.append(np.array([1.0, -1.0]).reshape(shape))
         self.branch_signs = np.array(list(itertools.product([1, -1], repeat=B)), dtype=int).reshape(
-            2**B, B
+            self.K, B
         )
+        self.branch_signs.flags.writeable = False  # shared by the solutions that keep all
         self._base = self._constant(-1, 0) if robot.table.base else None
         self._tool = self._constant(robot.n, robot.n + 1) if robot.table.tool else None
+        self._base_inv = None if self._base is None else np.linalg.inv(self._base)
+        self._tool_inv = None if self._tool is None else np.linalg.inv(self._tool)
         self._factors: tuple[tuple[str, Callable[[object], np.ndarray], float], ...] | None = None
+        self._factor_exprs: tuple[sp.Expr, ...] = ()
         self._frames: dict[int | None, Callable[[object], np.ndarray]] = {}
+        self._compiled: dict[str, Callable[..., list[object]]] = {}
 
     def frame(self, k: int | None = None) -> Callable[[object], np.ndarray]:
         """The compiled ``^0T_k`` (``None``: the whole ``fk``, world to tool), cached."""
@@ -219,66 +452,183 @@ class Solver:
             self._frames[k] = fk(values=self.values) if k is None else fk(0, k, self.values)
         return self._frames[k]
 
-    def _compile(
-        self, steps: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
-    ) -> Callable[..., list[object]]:
-        program, reduced = _schedule(*_pull_signs(steps, outputs, self.signs))
-        return sp.lambdify(  # type: ignore[no-any-return]
-            self.pose_args + self.signs,
-            reduced,
-            modules=[{"SafeSqrt": _safe_sqrt}, "numpy"],
-            cse=lambda exprs: (program, exprs),
-        )
-
     def _constant(self, i: int, j: int) -> np.ndarray:
         M = self.robot.transform(i, j).matrix.xreplace(self.values)
         return np.array(M.evalf(), dtype=float)
 
+    # -- the compiled programs ----------------------------------------------------------------
+    def _outputs(self, kind: str) -> list[sp.Expr]:
+        """What a program computes for each branch (``kind`` as in :meth:`_program`).
+
+        ``"raw"``: the joint values (angles wrapped) and ``|sin θ5|``. ``"checked"`` and
+        ``"scalar"``: also the residual of ``fk`` against the target pose over its 12
+        entries and over its position, and the singular factors as fractions of their
+        largest values.
+        """
+        joints = [Wrap(v) if r else v for v, r in zip(self.robot.variables, self.revolute)]
+        joints += [sp.Abs(s) for s in self._wrist_s]
+        if kind == "raw":
+            return joints
+        factors = self._singular_factors()
+        M = self.robot.tool_pose().matrix.xreplace(self.values)
+        diffs = [M[i, j] - t for (i, j), t in zip(_CELLS, self.targets)]
+        closeness = [
+            sp.Float(1 / s, 17) * sp.Abs(e) for e, (_, _, s) in zip(self._factor_exprs, factors)
+        ]
+        position = Residual(*[diffs[c] for c in _POSITION])  # one line, shared (cse)
+        whole = Residual(*[diffs[c] for c in _ALL if c not in _POSITION], position)
+        return joints + [whole, position] + closeness
+
+    def _program(self, kind: str) -> Callable[..., list[object]]:
+        """The compiled program of one ``kind``, built on first use.
+
+        ``"raw"`` and ``"checked"`` (numpy, all branches by broadcasting), ``"scalar"``
+        (floats, every branch written out), ``"singular"`` (numpy: θ4 and θ6 at a
+        singular wrist).
+        """
+        if kind not in self._compiled:
+            if kind == "singular":
+                # θ4 at sin θ5 = 0, θ6 from the whole rotation with θ4 as computed, and with θ4 = 0
+                (t4, zero4), (_, whole6) = list(self._singular.items())
+                alts = [zero4, whole6, whole6.xreplace({t4: zero4})]
+                outputs = [_with_safe_sqrt(e.xreplace(self.values)) for e in alts]
+            else:
+                outputs = self._outputs(kind)
+            program, reduced = _schedule(*_pull_signs(self._steps, outputs, self.signs))
+            if kind == "scalar":
+                # the wrap inline: one C call, no Python function
+                program, reduced = _lift_residuals(program, reduced)
+                reduced = [
+                    e.replace(lambda t: isinstance(t, Wrap), lambda t: _REMAINDER(t.args[0], _TAU))
+                    for e in reduced
+                ]
+                program, per_branch = _per_branch(program, reduced, self.signs)
+                # grouped for _solve_one: residuals and wrist sines of all branches first,
+                # then the joint values branch by branch, then the factors branch by branch
+                n, w = self.n, len(self._wrist_s)
+                groups = [range(n + w, len(reduced) - len(self._factor_exprs))]
+                groups += [
+                    range(n, n + w),
+                    range(n),
+                    range(len(reduced) - len(self._factor_exprs), len(reduced)),
+                ]
+                reduced = [o[i] for i in groups[0] for o in per_branch]
+                reduced += [o[i] for i in groups[1] for o in per_branch]
+                reduced += [o[i] for o in per_branch for i in groups[2]]
+                reduced += [o[i] for o in per_branch for i in groups[3]]
+                args, modules = self.pose_args + self.targets, _MATH
+            elif kind == "checked":
+                program, reduced = _reuse_names(program, reduced)
+                args, modules = self.pose_args + self.signs + self.targets, _NUMPY
+            else:
+                program, reduced = _reuse_names(program, reduced)
+                args, modules = self.pose_args + self.signs, _NUMPY
+            self._compiled[kind] = sp.lambdify(  # type: ignore[assignment]
+                args, reduced, modules=modules, cse=lambda exprs: (program, exprs)
+            )
+        return self._compiled[kind]
+
     # -- raw closed form ----------------------------------------------------------------------
     def raw(self, T: np.ndarray) -> np.ndarray:
-        """All branches for poses ``(N, 4, 4)`` (frame 0 to frame n): ``(N, K, n)``, unchecked."""
-        N = T.shape[0]
-        K = len(self.branch_signs)
-        out = np.empty((self.n, N, K))
-        tail = (1,) * len(self.signs)
-        with np.errstate(invalid="ignore", divide="ignore"):
+        """All branches for poses ``(N, 4, 4)`` (frame 0 to frame n): ``(N, K, n)``, unchecked.
+
+        The result is a view of an array laid out joint by joint (branches, then poses).
+        """
+        q, _, _ = self._evaluate(np.asarray(T, dtype=float), None, None)
+        return q.transpose(2, 1, 0)
+
+    def _evaluate(
+        self, inner: np.ndarray, target: np.ndarray | None, cells: Sequence[int] | None
+    ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
+        """Every branch of every pose: ``q`` ``(n, K, N)``; with a ``target`` (the poses
+        before base and tool were undone) also the residual ``(K, N)`` over ``cells`` (of
+        the 12, column by column) and each singular factor's closeness ``(F, K, N)``."""
+        N, K, n = inner.shape[0], self.K, self.n
+        checked = target is not None
+        fn = self._program("checked" if checked else "raw")
+        full = (*self.shape, N)
+        q = np.empty((n, K, N))
+        qv = q.reshape(n, *full)
+        if checked:
+            assert target is not None and cells is not None
+            residual = np.empty((K, N))
+            rv = residual.reshape(full)
+            F = len(self._factor_exprs)
+            closeness = np.empty((F, K, N))
+            cv = closeness.reshape(F, *full)
+        w = len(self._wrist_s)
+        rows, wrists = [], []
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             for start in range(0, N, _CHUNK):
-                block = np.ascontiguousarray(T[start : start + _CHUNK, :3].transpose(2, 1, 0))
-                m = block.shape[-1]
-                args = [block[j, i].reshape((m,) + tail) for j in range(4) for i in range(3)]
-                res = self._fn(*args, *self._sign_arrays)
-                full = (m,) + self.shape
-                dest = out[:, start : start + m]
-                for k in range(self.n):
-                    col = np.broadcast_to(np.asarray(res[k], dtype=float), full).reshape(m, K)
-                    dest[k] = _wrap(col) if self.revolute[k] else col
-                if self._alt is not None:
-                    wrist = np.broadcast_to(np.asarray(res[self.n], dtype=float), full)
-                    wrist = wrist.reshape(m, K)
-                    rows = np.nonzero((np.abs(wrist) < _WRIST_NEAR).any(axis=1))[0]
-                    if rows.size:
-                        self._singular_wrist(block[..., rows], dest, rows, wrist)
-        return out.transpose(1, 2, 0)
+                sl = slice(start, min(start + _CHUNK, N))
+                # the 12 entries column by column, each contiguous over the poses
+                args = [*_entries(inner[sl]), *self._sign_arrays]
+                if checked:
+                    args += args[:12] if target is inner else _entries(target[sl])  # type: ignore[index]
+                res = fn(*args)
+                for k in range(n):
+                    qv[k, ..., sl] = res[k]
+                if w:  # |sin θ5| near 0: θ4 and θ6 from the whole rotation, below
+                    small = np.asarray(res[n] < _WRIST_NEAR)
+                    hit = np.nonzero(small.reshape(-1, small.shape[-1]).any(axis=0))[0]
+                    if hit.size:
+                        s = np.broadcast_to(res[n], (*self.shape, sl.stop - start))
+                        rows.append(hit + start)
+                        wrists.append(s.reshape(K, -1)[:, hit])
+                if checked:
+                    rv[..., sl] = res[n + w + (tuple(cells) == _POSITION)]  # see _outputs
+                    for f in range(F):
+                        cv[f, ..., sl] = res[len(res) - F + f]
+        if rows:
+            at = np.concatenate(rows)
+            self._singular_wrist(inner[at], q, at, np.concatenate(wrists, axis=1))
+            if checked:
+                assert target is not None and cells is not None
+                qs = q[:, :, at].transpose(2, 1, 0)
+                residual[:, at], closeness[:, :, at] = self._check(qs, target[at], cells)
+        if not checked:
+            return q, None, None
+        return q, residual, closeness
 
     def _singular_wrist(
-        self, block: np.ndarray, dest: np.ndarray, rows: np.ndarray, wrist: np.ndarray
+        self, inner: np.ndarray, q: np.ndarray, rows: np.ndarray, wrist: np.ndarray
     ) -> None:
-        """Near ``sin θ5 = 0``: θ6 from the whole wrist rotation; at 0 also θ4 = 0."""
-        m = block.shape[-1]
-        tail = (1,) * len(self.signs)
-        args = [block[j, i].reshape((m,) + tail) for j in range(4) for i in range(3)]
-        zero4, whole6, whole6_zero4 = (
-            np.broadcast_to(np.asarray(v, dtype=float), (m,) + self.shape).reshape(m, -1)
-            for v in self._alt(*args, *self._sign_arrays)  # type: ignore[misc]
-        )
-        s = np.abs(wrist[rows])
+        """Near ``sin θ5 = 0``: θ6 from the whole wrist rotation; at 0 also θ4 = 0.
+
+        ``inner`` are the poses of ``rows``, ``wrist`` ``(K, rows)`` their ``|sin θ5|``.
+        """
+        m = len(rows)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            zero4, whole6, whole6_zero4 = (
+                np.broadcast_to(np.asarray(v, dtype=float), (*self.shape, m)).reshape(self.K, m)
+                for v in self._program("singular")(*_entries(inner), *self._sign_arrays)
+            )
         i4, i6 = self.singular_vars
-        wrap = _wrap
-        near, zero = s < _WRIST_NEAR, s < _WRIST_ZERO
-        dest[i6, rows] = np.where(
-            zero, wrap(whole6_zero4), np.where(near, wrap(whole6), dest[i6, rows])
+        near, zero = wrist < _WRIST_NEAR, wrist < _WRIST_ZERO
+        q6, q4 = q[i6], q[i4]
+        q6[:, rows] = np.where(
+            zero, _wrap(whole6_zero4), np.where(near, _wrap(whole6), q6[:, rows])
         )
-        dest[i4, rows] = np.where(zero, wrap(zero4), dest[i4, rows])
+        q4[:, rows] = np.where(zero, _wrap(zero4), q4[:, rows])
+
+    def _check(
+        self, q: np.ndarray, target: np.ndarray, cells: Sequence[int]
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Residual ``(K, m)`` and closeness ``(F, K, m)`` of solutions ``q`` ``(m, K, n)``
+        by the compiled ``fk`` and singular factors (for the few poses a program could not
+        finish: a singular wrist)."""
+        m, K, n = q.shape
+        flat = q.reshape(-1, n)
+        factors = self._singular_factors()
+        closeness = np.empty((len(factors), K, m))
+        with np.errstate(invalid="ignore"):
+            got = self.frame()(flat).reshape(m, K, 4, 4)
+            want = target.reshape(m, 1, 4, 4)
+            diff = np.stack([got[..., i, j] - want[..., i, j] for i, j in _CELLS], axis=-1)
+            residual = np.abs(diff[..., list(cells)]).max(axis=-1)
+            for f, (_, fn, s) in enumerate(factors):
+                closeness[f] = (np.abs(fn(flat)) / s).reshape(m, K).T
+        return residual.T, closeness
 
     # -- checked solutions --------------------------------------------------------------------
     def solve(
@@ -303,6 +653,9 @@ class Solver:
         singular_tol
             A solution is flagged near a singularity when a factor of the Jacobian
             determinant is below this fraction of its largest value.
+
+        One pose is solved by the program for floats; the few it cannot finish (a
+        singular wrist, a division by zero) and batches by the program for numpy.
         """
         arr = np.asarray(T, dtype=float)
         if arr.shape[-1] == 3 and arr.ndim in (1, 2):
@@ -316,63 +669,130 @@ class Solver:
         single = arr.ndim == 2
         if arr.shape[-2:] != (4, 4) or arr.ndim not in (2, 3):
             raise DHError(f"expected poses of shape (4, 4) or (N, 4, 4), got {arr.shape}")
-        poses = arr.reshape(-1, 4, 4)
-        inner = poses
-        if self._base is not None:
-            inner = np.linalg.inv(self._base) @ inner
-        if self._tool is not None:
-            inner = inner @ np.linalg.inv(self._tool)
-        parts = [
-            self._checked(inner[k : k + _CHECK_CHUNK], poses[k : k + _CHECK_CHUNK], check, tol)
-            for k in range(0, max(len(poses), 1), _CHECK_CHUNK)
-        ]
-        q, valid, residual, closeness = (np.concatenate(x) for x in zip(*parts))
-        names = tuple(f[0] for f in self._singular_factors())
-        near = (closeness < singular_tol) & valid[..., None]
-        batch = IKBatch(q, valid, residual, near, names, self.branch_signs, self)
+        cells = _POSITION if check == "position" else _ALL
+        if single:
+            one = self._solve_one(arr, check, cells, tol, singular_tol)
+            if one is not None:
+                return one
+        batch = self._solve_batch(arr.reshape(-1, 4, 4), check, cells, tol, singular_tol)
         return batch.solution(0) if single else batch
 
-    def _checked(
-        self, inner: np.ndarray, poses: np.ndarray, check: str | None, tol: float
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Solve a block of poses; residuals, validity and distance from singular factors."""
-        q = self.raw(inner)
-        N, K, n = q.shape
-        with np.errstate(invalid="ignore"):
-            got = self.frame()(q.reshape(-1, n)).reshape(N, K, 16)  # NaN rows stay NaN
-            cells = [3, 7, 11] if check == "position" else slice(0, 12)
-            diff = got[:, :, cells] - poses.reshape(N, 1, 16)[:, :, cells]
-            residual = np.abs(diff, out=diff).max(axis=-1, initial=0.0)
-            valid = np.isfinite(residual)
-            if check is not None:
-                valid &= residual <= tol
-        _, closeness = self._closeness(q)
+    def _inner(self, poses: np.ndarray) -> np.ndarray:
+        """Poses from frame 0 to frame n: base and tool undone."""
+        if self._base_inv is not None:
+            poses = self._base_inv @ poses
+        if self._tool_inv is not None:
+            poses = poses @ self._tool_inv
+        return poses
+
+    def _solve_batch(
+        self,
+        poses: np.ndarray,
+        check: str | None,
+        cells: Sequence[int],
+        tol: float,
+        singular_tol: float,
+    ) -> IKBatch:
+        inner = self._inner(poses)
+        q, residual, closeness = self._evaluate(inner, poses, cells)
+        assert residual is not None and closeness is not None
+        valid = np.isfinite(residual) if check is None else residual <= tol
         # two branches coincide only where a radicand vanishes, i.e. at a singularity: look
         # for repeats (angles compared by cos and sin) only among poses near one
-        suspects = np.nonzero((closeness < 1e-4).any(axis=(1, 2)) & valid.any(axis=1))[0]
+        suspects = np.nonzero((closeness < _SUSPECT).any(axis=(0, 1)) & valid.any(axis=0))[0]
         if suspects.size:
-            qs, vs = q[suspects], valid[suspects]
+            qs, vs = q[:, :, suspects].transpose(2, 1, 0), valid[:, suspects].T
             rev = qs[..., self.revolute]
             key = np.concatenate([np.cos(rev), np.sin(rev), qs[..., ~self.revolute]], axis=-1)
-            for k in range(1, K):
+            for k in range(1, self.K):
                 close = np.abs(key[:, k : k + 1] - key[:, :k]).max(axis=-1) < 1e-9
                 vs[:, k] &= ~(vs[:, :k] & close).any(axis=1)
-            valid[suspects] = vs
-        q[~valid] = np.nan
-        return q, valid, residual, closeness
+            valid[:, suspects] = vs.T
+        np.copyto(q, np.nan, where=~valid)
+        near = (closeness < singular_tol) & valid
+        names = tuple(f[0] for f in self._singular_factors())
+        return IKBatch(
+            q.transpose(2, 1, 0),
+            valid.T,
+            residual.T,
+            near.transpose(2, 1, 0),
+            names,
+            self.branch_signs,
+            self,
+        )
 
-    def _closeness(self, q: np.ndarray) -> tuple[tuple[str, ...], np.ndarray]:
-        """Each singular factor at each solution, as a fraction of its largest value."""
+    def _solve_one(
+        self,
+        pose: np.ndarray,
+        check: str | None,
+        cells: Sequence[int],
+        tol: float,
+        singular_tol: float,
+    ) -> IKSolution | None:
+        """One pose with the program for floats; ``None`` when it cannot finish it."""
+        inner = self._inner(pose)
+        args = inner[:3].T.ravel().tolist()
+        args += args if inner is pose else pose[:3].T.ravel().tolist()
+        try:
+            out = self._program("scalar")(*args)
+        except (ArithmeticError, ValueError):  # a division by zero, sin(inf): numpy decides
+            return None
+        n, w, K = self.n, len(self._wrist_s), self.K
         factors = self._singular_factors()
-        N, K, n = q.shape
-        out = np.full((N, K, len(factors)), np.inf)
-        flat = q.reshape(-1, n)
-        with np.errstate(invalid="ignore"):
-            for i, (_, fn, scale) in enumerate(factors):
-                out[..., i] = np.nan_to_num(np.abs(fn(flat)) / scale, nan=np.inf).reshape(N, K)
-        return tuple(f[0] for f in factors), out
+        F = len(factors)
+        # the layout of _program("scalar"): residuals (all 12 entries, then the position),
+        # wrist sines, joint values, factors
+        at = K if check == "position" else 0
+        residual = out[at : at + K]
+        start = len(out) - K * (n + F)
+        if w and _smallest(out[start - K : start]) < _WRIST_NEAR:
+            return None  # a singular wrist: θ4 and θ6 from the whole rotation (numpy)
+        if check is None:
+            kept = [k for k, r in enumerate(residual) if r - r == 0]
+        else:
+            kept = [k for k, r in enumerate(residual) if r <= tol]
+        values = out[start : start + K * n]
+        close = out[start + K * n :]
+        low = _smallest(close)
+        if len(kept) > 1 and low < _SUSPECT:  # two branches coincide only at a singularity
+            kept = self._distinct(kept, values)
+        if len(kept) == K:
+            signs = self.branch_signs
+        else:
+            values = [v for k in kept for v in values[k * n : k * n + n]]
+            residual = [residual[k] for k in kept]
+            signs = self.branch_signs[kept]
+        singular: tuple[tuple[str, ...], ...] = ((),) * len(kept)
+        if low < singular_tol:
+            kinds = [kind for kind, _, _ in factors]
+            singular = tuple(
+                tuple(kind for kind, c in zip(kinds, close[k * F : k * F + F]) if c < singular_tol)
+                for k in kept
+            )
+        return IKSolution(
+            np.array(values).reshape(len(kept), n), np.array(residual), singular, signs, self
+        )
+
+    def _distinct(self, kept: list[int], values: Sequence[float]) -> list[int]:
+        """The branches of ``kept`` whose joint values (angles by cos and sin) differ from
+        every earlier one's by more than 1e-9 (one pose; ``values`` branch by branch)."""
+        n = self.n
+        chosen: list[int] = []
+        keys: list[list[float]] = []
+        for k in kept:
+            key = [
+                v
+                for x, rev in zip(values[k * n : k * n + n], self.revolute)
+                for v in ((math.cos(x), math.sin(x)) if rev else (x,))
+            ]
+            if not any(max(abs(a - b) for a, b in zip(key, other)) < 1e-9 for other in keys):
+                chosen.append(k)
+                keys.append(key)
+        return chosen
 
     def _singular_factors(self) -> tuple[tuple[str, Callable[[object], np.ndarray], float], ...]:
+        """The non-constant factors of the Jacobian determinant: kind, compiled function and
+        largest value over a sample (the scale of closeness); their exprs for the programs."""
         if self._factors is None:
             from .singularities import singularities
 
@@ -389,8 +809,29 @@ class Solver:
             for f, fn in zip(named, sing.factor_functions(self.values)):
                 scale = float(np.nanmax(np.abs(fn(sample)))) or 1.0
                 found.append((f.kind, fn, scale))
+            self._factor_exprs = tuple(f.expr.xreplace(self.values) for f in named)
             self._factors = tuple(found)
         return self._factors
+
+
+def _entries(poses: np.ndarray) -> list[np.ndarray]:
+    """The 12 entries of poses ``(m, 4, 4)`` column by column, each a contiguous ``(m,)``."""
+    block = np.ascontiguousarray(poses[:, :3].transpose(2, 1, 0))
+    return list(block.reshape(12, -1))
+
+
+def _smallest(values: Sequence[float]) -> float:
+    """The smallest of ``values`` that is not NaN (``inf`` when none is)."""
+    low = min(values, default=math.inf)
+    if low != low:  # min keeps a NaN that comes first
+        low = min((v for v in values if v == v), default=math.inf)
+    return low
+
+
+#: the 12 entries of a pose's top three rows, column by column (the order of the pose args)
+_CELLS = [(i, j) for j in range(4) for i in range(3)]
+_ALL = tuple(range(12))
+_POSITION = (9, 10, 11)
 
 
 # --- results --------------------------------------------------------------------------------

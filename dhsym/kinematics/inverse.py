@@ -22,8 +22,9 @@ Craig, *Introduction to Robotics*, §4.7):
 
 Every step is a :class:`Step` — a sentence and exact sympy expressions; ``atan2`` and
 the signs ``σ = ±1`` of each branch are explicit. :meth:`InverseKinematics.solver`
-compiles the steps once (``lambdify`` with the steps as the common subexpressions) into a
-numpy function over a batch of poses and all branches at once.
+compiles the steps once (``lambdify`` with the steps as the common subexpressions), with
+the ``fk`` check, into a numpy function over a batch of poses and all branches at once and
+into a function of plain floats for one pose (see :mod:`dhsym.kinematics._ik_numbers`).
 
 Results. One pose ``(4, 4)`` gives an :class:`IKSolution`: ``q`` is ``(k, n)`` (k ≤ 8,
 only real, checked, distinct solutions) with a name per solution and the singularities
@@ -713,11 +714,15 @@ class InverseKinematics:
 
     def solver(self, values: Mapping[object, object] | None = None) -> Solver:
         """The compiled solver (built once per set of values, then cached on the robot)."""
+        cache = self.robot._extra_cache
+        if not values and ("ik-solver", None) in cache:  # the table's own values: no key to build
+            return cache[("ik-solver", None)]  # type: ignore[no-any-return]
         vals = _values(self.robot, values)
         key = ("ik-solver", tuple(sorted((str(k), str(v)) for k, v in vals.items())))
-        cache = self.robot._extra_cache
         if key not in cache:
             cache[key] = Solver(self, vals)
+        if not values:
+            cache[("ik-solver", None)] = cache[key]
         return cache[key]  # type: ignore[no-any-return]
 
     def solve(

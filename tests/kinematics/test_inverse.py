@@ -168,7 +168,8 @@ def test_wrist_singularity_is_reported_and_still_exact() -> None:
         assert "wrist" in sol.singular[k]
     # at sin(theta5) = 0 only theta4 + theta6 is defined: theta4 is set to 0
     sol = robot.ik(robot.fk([0.3, -0.5, 0.4, 0.2, 0.0, -1.1]))
-    k = int(np.argmin(np.abs(sol.q[:, 5] - (-0.9))))
+    # the solution with the same arm and θ5 = 0 (another branch may share θ6 = -0.9)
+    k = int(np.argmin(np.abs(sol.q[:, :3] - [0.3, -0.5, 0.4]).max(axis=1) + np.abs(sol.q[:, 4])))
     assert np.allclose(sol.q[k, 3:], [0.0, 0.0, -0.9])
 
 
@@ -282,3 +283,113 @@ def test_inputs_are_checked() -> None:
 def test_empty_batch() -> None:
     batch = _robot("puma560").ik(np.zeros((0, 4, 4)))
     assert batch.q.shape == (0, 8, 6) and batch.count.shape == (0,)
+
+
+# --- the two compiled programs: one pose by floats, a batch by numpy ------------------------
+
+
+def _same_solutions(robot: dhsym.Robot, one: IKSolution, other: IKSolution) -> None:
+    assert len(one) == len(other)
+    assert (one.signs == other.signs).all()
+    if len(one):
+        assert _angle_error(robot, one.q, other.q).max() < 1e-12  # angles mod 2π
+    assert np.allclose(one.residual, other.residual, rtol=0, atol=1e-12)
+    assert one.singular == other.singular
+
+
+@pytest.mark.parametrize("name", SPEC + MORE)
+def test_one_pose_by_floats_equals_the_batch(name: str) -> None:
+    robot = _robot(name)
+    solver = robot.inverse().solver()
+    q = _random_q(robot, 40, seed=5)
+    T = robot.fk(q)
+    batch = robot.ik(T)
+    for i in range(len(T)):
+        one = solver._solve_one(T[i], "pose", tuple(range(12)), 1e-9, 1e-6)
+        assert one is not None  # generic poses: the float program finishes them
+        _same_solutions(robot, one, batch.solution(i))
+        # ... and it is what robot.ik gives for one pose
+        _same_solutions(robot, robot.ik(T[i]), one)
+
+
+@pytest.mark.parametrize("check", ["pose", "position", None])
+def test_one_pose_by_floats_equals_the_batch_unchecked_and_unreachable(check: str | None) -> None:
+    robot = _robot("puma560")
+    T = robot.fk(_random_q(robot, 20, seed=9))
+    far = T.copy()
+    far[:, :3, 3] *= 3.0  # out of reach: no real branch
+    for poses in (T, far):
+        batch = robot.ik(poses, check=check)
+        for i in range(len(poses)):
+            _same_solutions(robot, robot.ik(poses[i], check=check), batch.solution(i))
+    assert robot.ik(far[0]).q.shape == (0, 6)
+    if check == "position":  # the residual is the position's error only
+        one = robot.ik(T[0], check=check)
+        error = np.abs(robot.fk(one.q)[:, :3, 3] - T[0, :3, 3]).max(axis=1)
+        assert np.abs(one.residual - error).max() < 1e-13
+
+
+def test_positions_by_floats_equal_the_batch() -> None:
+    robot = _robot("planar2r")
+    p = robot.fk(_random_q(robot, 20, seed=3))[:, :3, 3]
+    batch = robot.ik(p)
+    assert (batch.count == 2).all()
+    for i in range(len(p)):
+        _same_solutions(robot, robot.ik(p[i]), batch.solution(i))
+
+
+def test_reported_residual_is_the_fk_error_of_the_returned_angles() -> None:
+    for name in ("puma560", "stanford", "puma560_base_tool", "scara"):
+        robot = _robot(name)
+        T = robot.fk(_random_q(robot, 200, seed=13))
+        batch = robot.ik(T, check=None)
+        got = robot.fk(batch.q[batch.valid])
+        want = np.repeat(T[:, None], batch.q.shape[1], axis=1)[batch.valid]
+        independent = np.abs(got - want)[:, :3].reshape(len(got), -1).max(axis=1)
+        assert np.abs(batch.residual[batch.valid] - independent).max() < 1e-13
+        one = robot.ik(T[0], check=None)
+        assert np.abs(one.residual - np.abs(robot.fk(one.q) - T[0]).max(axis=(1, 2))).max() < 1e-13
+
+
+def test_poses_that_are_not_numbers_have_no_solution() -> None:
+    robot = _robot("puma560")
+    for bad in (np.full((4, 4), np.nan), np.full((4, 4), np.inf)):
+        assert len(robot.ik(bad)) == 0
+        assert robot.ik(bad[None]).count.tolist() == [0]
+
+
+def test_raw_branches_are_the_unchecked_solutions() -> None:
+    robot = _robot("puma560")
+    T = robot.fk(_random_q(robot, 50, seed=17))
+    raw = robot.inverse().solver().raw(T)
+    unchecked = robot.ik(T, check=None)
+    assert raw.shape == unchecked.q.shape == (50, 8, 6)
+    assert unchecked.valid.all()  # generic poses: all eight are real
+    # two programs (one without the check), so equal up to rounding
+    assert _angle_error(robot, raw, unchecked.q).max() < 1e-12
+
+
+def test_signs_come_out_of_sines_cosines_and_wraps_exactly() -> None:
+    from dhsym.kinematics._ik_numbers import _pull_signs, _trig_signs
+
+    s, t = sp.symbols("sigma_1 sigma_2", real=True)
+    x, y = sp.symbols("x y", real=True)
+    for e, inside in [
+        (sp.cos(s * x), set()),
+        (sp.sin(s * x) * sp.cos(t * y), set()),
+        (sp.sin(x + sp.pi * (1 - s) / 2), set()),
+        (sp.cos(x - sp.pi * (1 - s) / 2 + t * y), {t}),  # x + σ2·y is neither odd nor shifted
+        (sp.sin(s * t * x), set()),
+        (sp.cos(x + s * y), {s}),
+    ]:
+        rewritten = _trig_signs(e, {s, t})
+        for a, b in [(1, 1), (1, -1), (-1, 1), (-1, -1)]:
+            at = {s: a, t: b, x: 0.37, y: -1.21}
+            assert abs(float(e.subs(at)) - float(rewritten.subs(at))) < 1e-15
+        left = set().union(*(f.args[0].free_symbols for f in rewritten.atoms(sp.sin, sp.cos)))
+        assert left & {s, t} == inside
+    # a step x = π(1 − σ)/2 + atan2(Y, X) keeps the shift out of the stored value
+    steps = [(x, sp.pi * (1 - s) / 2 + sp.atan2(y, 2))]
+    program, (out,) = _pull_signs(steps, [sp.cos(x)], [s])
+    assert program[0][1] == sp.atan2(y, 2)
+    assert out.has(s) and not any(f.args[0].has(s) for f in out.atoms(sp.cos))
