@@ -47,6 +47,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import GeometryError
+from dhsym.kinematics.numeric import compile_pose, float_constants, to_float
 from dhsym.kinematics.transforms import chain_word, plain_product, rigid_inverse
 from dhsym.model.parsing import symbol
 from dhsym.model.table import AngleUnit, Convention, DHRow, DHTable, Elementary
@@ -362,43 +363,34 @@ def _check_home_exact(fa: FrameAssignment) -> None:
             )
 
 
-def _numeric(kind: str, axis: str, v: float) -> np.ndarray:
-    M = np.eye(4)
-    i = "xyz".index(axis)
-    if kind == "T":
-        M[i, 3] = v
-    else:
-        j, k = (i + 1) % 3, (i + 2) % 3
-        M[j, j], M[j, k], M[k, j], M[k, k] = np.cos(v), -np.sin(v), np.sin(v), np.cos(v)
-    return M
-
-
 def _verify(fa: FrameAssignment, samples: int, seed: int, tol: float) -> float:
     rng = np.random.default_rng(seed)
     table, n = fa.table, fa.table.n
     vals = dict(fa.values)
     for s in sorted(table.constants, key=str):
         vals.setdefault(s, sp.Float(rng.uniform(0.5, 1.5)))
-    full = chain_word(table, -1, n + 1)
-    values = sp.lambdify(list(table.variables), [e.value.subs(vals) for e in full], "numpy")
-    cut = [len(table.base) + 4 * k for k in range(n + 1)] + [len(full)]
+
+    def numeric(e: Elementary) -> Elementary:  # constants as floats, joint variables kept
+        return Elementary(e.kind, e.axis, float_constants(e.value.subs(vals)))
+
+    poses = [  # world -> frame k (k = 0 … n) and world -> tool, plain products, compiled once
+        compile_pose(plain_product([numeric(e) for e in chain_word(table, -1, k)]), table.variables)
+        for k in range(n + 2)
+    ]
     homes = [
-        np.array(f.matrix.subs(vals).evalf(), dtype=float)
+        np.array([[to_float(x) for x in row] for row in f.matrix.subs(vals).tolist()])
         for f in [*fa.frames, fa.tool.frame if fa.tool else fa.frames[-1]]
     ]
-    offsets = [float(vm.offset.subs(vals)) for vm in fa.variable_map]
+    offsets = [to_float(vm.offset.subs(vals)) for vm in fa.variable_map]
     worst = 0.0
     for m in range(samples + 1):
         q = np.zeros(n) if m == 0 else rng.uniform(-np.pi, np.pi, n)
-        now = values(*(vm.sign * q[k] + offsets[k] for k, vm in enumerate(fa.variable_map)))
-        prefix = [np.eye(4)]
-        for e, v in zip(full, now, strict=True):
-            prefix.append(prefix[-1] @ _numeric(e.kind, e.axis, float(v)))
+        now = [vm.sign * q[k] + offsets[k] for k, vm in enumerate(fa.variable_map)]
         motion = np.eye(4)
         for k in range(n + 2):
             if 1 <= k <= n:
                 motion = motion @ fa.axes[k - 1].motion(q[k - 1], vals)
-            worst = max(worst, float(np.max(np.abs(prefix[cut[k]] - motion @ homes[k]))))
+            worst = max(worst, float(np.max(np.abs(poses[k](now) - motion @ homes[k]))))
     if worst > tol:
         raise GeometryError(f"the table does not reproduce the joint axes (error {worst:.3g})")
     return worst
