@@ -1,11 +1,11 @@
-"""What every command shares: writing its result to a file or standard output."""
+"""What every command shares: writing its result to a file or standard output, notes on stderr."""
 
 from __future__ import annotations
 
 import sys
 from pathlib import Path
 
-__all__ = ["emit"]
+__all__ = ["emit", "note_warnings"]
 
 
 def emit(text: str, output: str | None) -> None:
@@ -16,3 +16,9 @@ def emit(text: str, output: str | None) -> None:
         print(f"wrote {output}", file=sys.stderr)
     else:
         print(text)
+
+
+def note_warnings(table: object) -> None:
+    """Print what the reader did to the input (``table.warnings``) on standard error, once."""
+    for text in getattr(table, "warnings", ()):
+        print(f"dhsym: note: {text}", file=sys.stderr)

@@ -7,6 +7,8 @@ import sys
 
 from dhsym.model.kinds import Convention
 
+from .common import note_warnings
+
 __all__ = ["register"]
 
 
@@ -18,6 +20,7 @@ def _cmd_convert(args: argparse.Namespace) -> int:
     from dhsym.model.tablefile import dump_table
 
     table = load_table(args.robot)
+    note_warnings(table)
     target = Convention.parse(args.to)
     if table.convention is target:
         print(

@@ -19,12 +19,13 @@ import numpy as np
 from dhsym import __version__
 from dhsym.errors import DHError
 from dhsym.kinematics.robot import Robot, load
+from dhsym.model.entries import exact_decimal
 from dhsym.model.library import builtin_names, builtin_table
 from dhsym.model.parsing import parse_number_list
 from dhsym.model.tablefile import dump_table
 from dhsym.notation.tables import table_markdown
 
-from .common import emit
+from .common import emit, note_warnings
 
 __all__ = ["JSON_SCHEMA_VERSION", "derive_json", "register"]
 
@@ -41,13 +42,14 @@ def _cmd_list(args: argparse.Namespace) -> int:
 def _cmd_show(args: argparse.Namespace) -> int:
     robot = load(args.robot)
     t = robot.table
+    note_warnings(t)
     if args.format == "yaml":
         print(dump_table(t), end="")
     else:
         print(f"# {t.name}\n\n{t.convention.value} DH convention; source: {t.source}\n")
         print(table_markdown(t))
         if t.values:
-            print("\nvalues: " + ", ".join(f"{k} = {v}" for k, v in t.values))
+            print("\nvalues: " + ", ".join(f"{k} = {exact_decimal(v) or v}" for k, v in t.values))
     return 0
 
 
@@ -115,6 +117,7 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
 
 def _cmd_derive(args: argparse.Namespace) -> int:
     robot = load(args.robot, compact=not args.full)
+    note_warnings(robot.table)
     i, j = _frames(robot, args)
     if args.format == "json":
         out = json.dumps(derive_json(robot, i, j), indent=2)

@@ -79,6 +79,7 @@ class _Name:
 
 
 _GREEK_TEXT = {"theta": "θ", "alpha": "α"}
+_NOTATION = Notation(compact=False)  # decimals as written (0.4, not 2/5)
 
 
 def name(base: str, index: object) -> _Name:
@@ -109,7 +110,7 @@ def _fmt(value: object, md: bool) -> str:
         text = format_angle(value.value, degrees=nice, latex=md)
         return f"${text}$" if md else text
     if isinstance(value, _Vec):
-        parts = [sp.latex(c) if md else sp.sstr(c) for c in value.value]
+        parts = [_NOTATION.latex(c) if md else _NOTATION.text(c) for c in value.value]
         return f"$({', '.join(parts)})$" if md else f"({', '.join(parts)})"
     if isinstance(value, _Name):
         if md:
@@ -119,11 +120,13 @@ def _fmt(value: object, md: bool) -> str:
         if md:
             return (
                 "$"
-                + r"\,".join(f"{e.kind}_{{{e.axis}}}({sp.latex(e.value)})" for e in value.value)
+                + r"\,".join(
+                    f"{e.kind}_{{{e.axis}}}({_NOTATION.latex(e.value)})" for e in value.value
+                )
                 + "$"
             )
-        return " ".join(repr(e) for e in value.value)
-    return f"${sp.latex(value)}$" if md else sp.sstr(value)
+        return " ".join(f"{e.kind}{e.axis}({_NOTATION.text(e.value)})" for e in value.value)
+    return f"${_NOTATION.latex(value)}$" if md else _NOTATION.text(value)
 
 
 @dataclass(frozen=True)

@@ -39,7 +39,7 @@ import sympy as sp
 from dhsym.model.table import Elementary
 
 from .numeric import compile_exprs
-from .transforms import plain_product
+from .transforms import cos_sin, plain_product
 
 __all__ = [
     "Segment",
@@ -53,6 +53,7 @@ __all__ = [
 ]
 
 Matrix = sp.ImmutableMatrix
+_FLOAT_TOL = 1e-12
 
 
 def _is_zero_turn(e: Elementary) -> bool:
@@ -137,7 +138,7 @@ class Segment:
         if not self.planar:
             return plain_product(self.word)
         phi, sigma, p = _planar(self.word)
-        c, s = sp.cos(phi), sp.sin(phi)
+        c, s = cos_sin(phi)
         return Matrix(
             [
                 [c, -sigma * s, 0, p[0]],
@@ -167,11 +168,13 @@ def _planar(word: Sequence[Elementary]) -> tuple[sp.Expr, int, list[sp.Expr]]:
         elif e.axis == "z":
             p[2] += sigma * e.value
         elif e.axis == "x":
-            p[0] += e.value * sp.cos(phi)
-            p[1] += e.value * sp.sin(phi)
+            c, s = cos_sin(phi)
+            p[0] += e.value * c
+            p[1] += e.value * s
         else:
-            p[0] += -sigma * e.value * sp.sin(phi)
-            p[1] += sigma * e.value * sp.cos(phi)
+            c, s = cos_sin(phi)
+            p[0] += -sigma * e.value * s
+            p[1] += sigma * e.value * c
     return phi, sigma, p
 
 
@@ -386,6 +389,10 @@ def prove_equal(A: sp.MatrixBase, B: sp.MatrixBase) -> bool:
 
     Each entry of ``A − B`` is expanded into a polynomial in ``cos x``, ``sin x``
     and reduced modulo ``sin² x + cos² x − 1``; all remainders must vanish.
+    Floats (the cosine and sine of a measured twist, see
+    :func:`~dhsym.kinematics.transforms.cos_sin`) are taken at their exact binary
+    values; then remainder coefficients up to 1e-12 (float rounding of the
+    same products in another order) are allowed.
 
     >>> t = sp.Symbol("t", real=True)
     >>> prove_equal(sp.Matrix([sp.cos(2 * t)]), sp.Matrix([1 - 2 * sp.sin(t)**2]))
@@ -399,14 +406,26 @@ def prove_equal(A: sp.MatrixBase, B: sp.MatrixBase) -> bool:
         diff = a - b
         if diff == 0:
             continue
+        floats = diff.atoms(sp.Float)
+        if floats:  # cos/sin of a measured twist: exact arithmetic on the floats' values
+            diff = diff.xreplace({f: sp.Rational(f) for f in floats})
         poly, relations, gens = _trig_polynomial(diff)
         if poly == 0:
             continue
-        if not relations:
-            return False
         others = sorted(poly.free_symbols - set(gens), key=sp.default_sort_key)
-        _, rem = sp.reduced(poly, relations, *gens, *others, order="lex")
-        if sp.expand(rem) != 0:
+        if relations:
+            _, rem = sp.reduced(poly, relations, *gens, *others, order="lex")
+        else:
+            rem = poly
+        rem = sp.expand(rem)
+        if rem == 0:
+            continue
+        if not floats:
+            return False
+        # the two sides multiplied the same floats in another order: allow their rounding
+        scale = 1 + max(abs(float(f)) for f in (a.atoms(sp.Float) | b.atoms(sp.Float) | floats))
+        coeffs = sp.Poly(rem, *gens, *others).coeffs() if gens or others else [rem]
+        if max(abs(float(c)) for c in coeffs) > _FLOAT_TOL * scale:
             return False
     return True
 
