@@ -56,7 +56,7 @@ __all__ = [
 FkFunction = Callable[[object], np.ndarray]
 _CHUNK = 4096
 _DIGITS = 30  # working precision of constant evaluation (decimal digits)
-_SCALARS = (float, int, np.floating, np.integer)
+_FLOAT = np.dtype(float)
 _EXACT_INT = 2**53
 
 
@@ -201,20 +201,27 @@ class PoseFunction:
 
     def __call__(self, q: object) -> np.ndarray:
         kind = type(q)
-        if kind is np.ndarray:
-            if q.ndim == 1 and q.shape[0] == self.n:  # type: ignore[union-attr]
-                return self.single(q.tolist())  # type: ignore[union-attr]
-        elif (kind is list or kind is tuple) and len(q) == self.n:  # type: ignore[arg-type]
-            if all(isinstance(x, _SCALARS) for x in q):  # type: ignore[union-attr]
+        if kind is list or kind is tuple:
+            if len(q) == self.n:  # type: ignore[arg-type]
                 return self.single(q)  # type: ignore[arg-type]
+        elif kind is np.ndarray and q.ndim == 1 and q.shape[0] == self.n:  # type: ignore[union-attr]
+            return self.single(q.tolist())  # type: ignore[union-attr]
         return self.batch(q)  # type: ignore[arg-type]
 
     def single(self, q: Sequence[float]) -> np.ndarray:
-        """One configuration (a sequence of n floats) → ``(4, 4)``, in pure Python floats."""
+        """One configuration (a sequence of n numbers) → ``(4, 4)``, in pure Python floats.
+
+        Anything else (nested lists, text, complex numbers, ±inf) goes the numpy way
+        of :meth:`batch`, with numpy's rules and errors.
+        """
         try:
-            return np.array(self._single(*q)).reshape(4, 4)
-        except (TypeError, ValueError, OverflowError, ZeroDivisionError):  # numpy's semantics
-            return self.batch(np.asarray(q, dtype=float))
+            out = np.array(self._single(*q))
+        except (TypeError, ValueError, OverflowError, ZeroDivisionError):
+            return self.batch(q)  # type: ignore[arg-type]
+        if out.dtype != _FLOAT or out.shape != (16,):  # e.g. a list was added to a list
+            return self.batch(q)  # type: ignore[arg-type]
+        out.shape = (4, 4)
+        return out
 
     def batch(self, q: np.ndarray) -> np.ndarray:
         """A batch ``(N, n)`` → ``(N, 4, 4)`` (one configuration ``(n,)`` → ``(4, 4)``)."""

@@ -61,6 +61,7 @@ class Robot:
         )
         self._transform = cache(self._compute_transform)
         self._fk_cache: dict[tuple[object, object, object], PoseFunction] = {}
+        self._fk_default: PoseFunction | None = None  # world -> tool with the table's values
 
     # -- description -----------------------------------------------------------------
     @property
@@ -179,9 +180,11 @@ class Robot:
         With ``deg=True`` revolute joint values are in degrees. One configuration
         runs in pure Python floats (a few µs), a batch in numpy.
         """
-        f = self._fk_cache.get((None, None, None)) if values is None else None
+        f = self._fk_default if values is None else None
         if f is None:
             f = self.fk_function(values=values)
+            if values is None:
+                self._fk_default = f
         if deg:
             import numpy as np
 
