@@ -61,12 +61,10 @@ _EXACT_INT = 2**53
 
 
 class _PlusZero(sp.Function):
-    """``x + 0.0`` in generated code: turns ``-0.0`` into ``0.0`` so printed poses read cleanly."""
+    """``x + 0.0`` in the float code: ``-0.0`` becomes ``0.0``, so printed poses read cleanly."""
 
     def _pythoncode(self, printer: object) -> str:
         return f"({printer._print(self.args[0])} + 0.0)"  # type: ignore[attr-defined]
-
-    _numpycode = _pythoncode
 
 
 def to_float(expr: object) -> float:
@@ -240,6 +238,7 @@ class PoseFunction:
             block = flat[start : start + _CHUNK]
             for k, v in enumerate(self._batch(*Q[start : start + _CHUNK].T)):
                 block[:, k] = v  # cells are the first 12 entries of the row-major 4x4
+            block[:, :12] += 0.0  # -0.0 -> 0.0, so printed poses read cleanly
         return out[0] if single else out
 
 
@@ -271,7 +270,7 @@ def compile_pose(
     variables = tuple(variables)
     last_row = [sp.Float(0.0), sp.Float(0.0), sp.Float(0.0), sp.Float(1.0)]
     single = compile_exprs([*cells, *last_row], variables, floats=True)
-    batch = compile_exprs(cells, variables)
+    batch = compile_exprs(folded, variables)
     return PoseFunction(single, batch, len(variables))
 
 
