@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from dhsym.errors import ChainError
+from dhsym.kinematics.numeric import to_float
 from dhsym.kinematics.pose import Pose
 from dhsym.kinematics.transforms import Tz, rigid_inverse
 from dhsym.model.entries import as_expr
@@ -215,7 +216,7 @@ def _label(a: str, b: str, inverted: bool, latex: bool) -> str:
 
 def _nonzero(x: sp.Expr, tol: float = 1e-9) -> bool:
     x = sp.simplify(x)
-    return x != 0 and (bool(x.free_symbols) or abs(sp.N(x)) > tol)
+    return x != 0 and (bool(x.free_symbols) or abs(to_float(x)) > tol)
 
 
 def _as_matrix(matrix: object, frm: str, to: str) -> Matrix:
@@ -333,13 +334,13 @@ class FrameChain:
         if k.frm in self.frames and k.to in self.frames and self._path(k.frm, k.to) is not None:
             existing = self.derive(k.frm, k.to)
             diff = [sp.simplify(x) for x in existing.pose.matrix - k.matrix]
-            off = [x for x in diff if x != 0 and (x.free_symbols or abs(sp.N(x)) > self.tol)]
+            off = [x for x in diff if x != 0 and (x.free_symbols or abs(to_float(x)) > self.tol)]
             if off:
                 loop = " → ".join((*existing.path, k.frm))
                 size = (
                     ""
                     if any(x.free_symbols for x in off)
-                    else (f" (difference up to {max(abs(sp.N(x)) for x in off):.3g})")
+                    else (f" (difference up to {max(abs(to_float(x)) for x in off):.3g})")
                 )
                 raise ChainError(
                     f"the loop {loop} does not close: T[{k.frm}←{k.to}] given differs from "

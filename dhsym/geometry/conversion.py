@@ -45,7 +45,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError, TableError
-from dhsym.kinematics.numeric import compile_word
+from dhsym.kinematics.numeric import compile_word, to_float
 from dhsym.kinematics.transforms import chain_word
 from dhsym.model.table import Convention, DHRow, DHTable, Elementary
 
@@ -347,7 +347,7 @@ def rotation_word(R: sp.MatrixBase) -> tuple[Elementary, ...]:
     R = sp.Matrix(R)
     if R.free_symbols:
         raise DHError(f"rotation_word needs a numeric rotation, got symbols {R.free_symbols}")
-    Rn = np.array(R.evalf(), dtype=float)
+    Rn = np.array([[to_float(x) for x in row] for row in R.tolist()])
     if not np.allclose(Rn.T @ Rn, np.eye(3), atol=1e-9) or np.linalg.det(Rn) < 0:
         raise DHError(f"not a rotation matrix: {R.tolist()}")
     ranked = []
