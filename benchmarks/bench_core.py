@@ -27,6 +27,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import gc
 import math
 import os
 import statistics
@@ -39,6 +40,7 @@ from pathlib import Path
 
 import numpy as np
 import sympy as sp
+from sympy.core.cache import clear_cache
 from sympy.simplify.fu import fu
 
 import dhsym
@@ -144,49 +146,70 @@ def _arm10(twist: str, snap: bool = True) -> str:
     return f"{head}joints:\n" + "\n".join(rows) + f"\nvalues: {{{values}}}\n"
 
 
-def typed_tables() -> None:
-    print("\n## Tables as typed from a toolbox printout (median of 5, table reading included)")
+def typed_tables(rounds: int = 9) -> None:
+    print(
+        f"\n## Tables as typed from a toolbox printout (median of {rounds} interleaved rounds, "
+        "table reading included, sympy's cache emptied before each)"
+    )
 
     def derive(text: str) -> dhsym.Pose:
         return dhsym.Robot(read_table_text(text)).arm_matrix()
 
-    exact_text = _puma_typed("pi/2")
-    derive(exact_text)  # sympy's cache warm for every variant alike
-    t_exact = statistics.median(timed(lambda: derive(exact_text))[0] for _ in range(5))
-    ops_exact = derive(exact_text).count_ops()
-    print(f"{'PUMA 560, alpha = pi/2 (built-in)':44s} {t_exact:.3f} s, ops {ops_exact}")
-    for label, text in (
-        ("alpha = 1.5708 (toolbox printout)", _puma_typed("1.5708")),
-        ("alpha = 1.5707963267948966 (Python float)", _puma_typed("1.5707963267948966")),
-        ("alpha = 1.5708, snap_angles: false", "snap_angles: false\n" + _puma_typed("1.5708")),
-    ):
-        t = statistics.median(timed(lambda text=text: derive(text))[0] for _ in range(5))
-        P = derive(text)
-        odd = "cos(3927" in str(P.matrix)
-        print(
-            f"{label:44s} {t:.3f} s, ops {P.count_ops()}, ratio to exact {t / t_exact:.2f}"
-            f"{', has cos(3927/2500)' if odd else ''}",
-            flush=True,
-        )
+    variants = {
+        "PUMA 560, alpha = pi/2 (built-in)": _puma_typed("pi/2"),
+        "alpha = 1.5708 (toolbox printout)": _puma_typed("1.5708"),
+        "alpha = 1.5707963267948966 (Python float)": _puma_typed("1.5707963267948966"),
+        "alpha = 1.5708, snap_angles: false": "snap_angles: false\n" + _puma_typed("1.5708"),
+    }
+    _interleaved(
+        variants,
+        derive,
+        rounds,
+        lambda P: (
+            f"ops {P.count_ops()}" + (", has cos(3927/2500)" if "cos(3927" in str(P.matrix) else "")
+        ),
+    )
 
-    print("\n## dhsym convert of a 10-joint arm (convert, fk check at 20 q, YAML), median of 3")
+    print(
+        f"\n## dhsym convert of a 10-joint arm (convert, fk check at 20 q, YAML), median of "
+        f"{rounds} interleaved rounds"
+    )
 
-    def run(text: str) -> float:
+    def run(text: str) -> str:
         table = read_table_text(text)
         new = convert(table, "modified")
         check_conversion(table, new)
-        dump_table(new)
-        return 0.0
+        return dump_table(new)
 
-    t_exact = statistics.median(timed(lambda: run(_arm10("pi/2")))[0] for _ in range(3))
-    print(f"{'alpha = pi/2':36s} {t_exact:.3f} s")
-    for label, text in (
-        ("alpha = 1.5707963267948966", _arm10("1.5707963267948966")),
-        ("alpha = 1.5707963267948966, kept", _arm10("1.5707963267948966", snap=False)),
-        ("alpha = 1.2 (near no multiple)", _arm10("1.2")),
-    ):
-        t = statistics.median(timed(lambda text=text: run(text))[0] for _ in range(3))
-        print(f"{label:36s} {t:.3f} s, ratio to exact {t / t_exact:.2f}", flush=True)
+    variants = {
+        "alpha = pi/2": _arm10("pi/2"),
+        "alpha = 1.5707963267948966": _arm10("1.5707963267948966"),
+        "alpha = 1.5707963267948966, kept": _arm10("1.5707963267948966", snap=False),
+        "alpha = 1.2 (near no multiple)": _arm10("1.2"),
+    }
+    _interleaved(variants, run, rounds, lambda out: "")
+
+
+def _interleaved(
+    variants: Mapping[str, str], fn: Callable[[str], object], rounds: int, describe: Callable
+) -> None:
+    """Time ``fn`` on each variant once per round (so load changes hit all alike); medians."""
+    times: dict[str, list[float]] = {label: [] for label in variants}
+    for _ in range(rounds):
+        for label, text in variants.items():
+            clear_cache()  # each variant starts from sympy's empty cache: no order effects
+            gc.collect()  # and the garbage of the previous variant is not charged to it
+            times[label].append(timed(lambda text=text: fn(text))[0])
+    first = statistics.median(next(iter(times.values())))
+    for label, text in variants.items():
+        t = statistics.median(times[label])
+        extra = describe(fn(text))
+        print(
+            f"{label:44s} {t:.3f} s"
+            + (f", {extra}" if extra else "")
+            + (f", ratio to the first {t / first:.2f}" if t is not first else ""),
+            flush=True,
+        )
 
 
 # --- numbers: single configurations and batches ----------------------------------------------
