@@ -10,6 +10,8 @@
   :func:`add_command`).
 * Every "wrote" line names the path the way the user gave it (:func:`wrote`).
 * ``--values a2=0.43,d3=0.15`` gives numbers to a table's symbols (:func:`load_robot`).
+* What the reader did to the input (decimal angles read as exact) is a note on standard
+  error (:func:`note_warnings`).
 
 Only the standard library is imported here: ``dhsym --help`` must start fast.
 
@@ -37,6 +39,7 @@ __all__ = [
     "emit",
     "emit_bytes",
     "load_robot",
+    "note_warnings",
     "parse_values",
     "run_quietly",
     "wrote",
@@ -201,3 +204,9 @@ def load_robot(name: str, values: str | None = None, *, need_numbers: bool = Fal
                 f"line with --values {example}"
             )
     return Robot(table)
+
+
+def note_warnings(table: object) -> None:
+    """Print what the reader did to the input (``table.warnings``) on standard error, once."""
+    for text in getattr(table, "warnings", ()):
+        print(f"dhsym: note: {text}", file=sys.stderr)

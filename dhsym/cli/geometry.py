@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .common import add_command, emit
+from .common import add_command, emit, note_warnings
 
 __all__ = ["register"]
 
@@ -17,6 +17,7 @@ def _cmd_convert(args: argparse.Namespace) -> int:
     from dhsym.model.tablefile import dump_table
 
     table = load_table(args.robot)
+    note_warnings(table)
     target = Convention.parse(args.to)
     if table.convention is target:
         print(

@@ -15,7 +15,7 @@ import json
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from .common import add_command, emit, load_robot
+from .common import add_command, emit, load_robot, note_warnings
 
 if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
     from dhsym.kinematics.robot import Robot
@@ -36,18 +36,20 @@ def _cmd_list(args: argparse.Namespace) -> int:
 
 def _cmd_show(args: argparse.Namespace) -> int:
     from dhsym.kinematics.robot import load
+    from dhsym.model.entries import exact_decimal
     from dhsym.model.tablefile import dump_table
     from dhsym.notation.tables import table_markdown
 
     robot = load(args.robot)
     t = robot.table
+    note_warnings(t)
     if args.format == "yaml":
         print(dump_table(t), end="")
     else:
         print(f"# {t.name}\n\n{t.convention.value} DH convention; source: {t.source}\n")
         print(table_markdown(t))
         if t.values:
-            print("\nvalues: " + ", ".join(f"{k} = {v}" for k, v in t.values))
+            print("\nvalues: " + ", ".join(f"{k} = {exact_decimal(v) or v}" for k, v in t.values))
     return 0
 
 
@@ -121,6 +123,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     from dhsym.kinematics.robot import load
 
     robot = load(args.robot, compact=not args.full, style=args.notation)
+    note_warnings(robot.table)
     i, j = _frames(robot, args)
     if args.format == "json":
         out = json.dumps(derive_json(robot, i, j), indent=2)

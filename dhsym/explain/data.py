@@ -132,6 +132,7 @@ class Derivation:
     legend: tuple[LegendLine, ...]
     check: NumericCheck | None = field(default=None)
     width: float = LATEX_WIDTH
+    warnings: tuple[str, ...] = ()  # how the reader read the input (decimal angles snapped)
 
     @property
     def legend_columns(self) -> int:

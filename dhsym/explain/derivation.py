@@ -351,6 +351,7 @@ def derive(
         key=re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-") or "robot",
         source=table.source,
         notes=table.notes,
+        warnings=table.warnings,
         convention=robot.convention.value,
         n=n,
         compact=compact,

@@ -38,6 +38,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import GeometryError
+from dhsym.kinematics.numeric import to_float
 from dhsym.model.table import JointType, as_expr
 
 __all__ = [
@@ -262,8 +263,8 @@ class JointAxis:
         array([2., 0., 0.])
         """
         subs = dict(values or {})
-        p = np.array([float(sp.N(c.subs(subs))) for c in self.point])
-        u = np.array([float(c) for c in self.direction])
+        p = np.array([to_float(c.subs(subs)) for c in self.point])
+        u = np.array([to_float(c) for c in self.direction])
         M = np.eye(4)
         if self.joint == "P":
             M[:3, 3] = q * u

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from dhsym.errors import ChainError
+from dhsym.kinematics.numeric import to_float
 from dhsym.kinematics.pose import Pose
 from dhsym.kinematics.transforms import Tz, rigid_inverse
 from dhsym.model.entries import as_expr
@@ -79,6 +80,7 @@ class _Name:
 
 
 _GREEK_TEXT = {"theta": "θ", "alpha": "α"}
+_NOTATION = Notation(compact=False)  # decimals as written (0.4, not 2/5)
 
 
 def name(base: str, index: object) -> _Name:
@@ -109,7 +111,7 @@ def _fmt(value: object, md: bool) -> str:
         text = format_angle(value.value, degrees=nice, latex=md)
         return f"${text}$" if md else text
     if isinstance(value, _Vec):
-        parts = [sp.latex(c) if md else sp.sstr(c) for c in value.value]
+        parts = [_NOTATION.latex(c) if md else _NOTATION.text(c) for c in value.value]
         return f"$({', '.join(parts)})$" if md else f"({', '.join(parts)})"
     if isinstance(value, _Name):
         if md:
@@ -119,11 +121,13 @@ def _fmt(value: object, md: bool) -> str:
         if md:
             return (
                 "$"
-                + r"\,".join(f"{e.kind}_{{{e.axis}}}({sp.latex(e.value)})" for e in value.value)
+                + r"\,".join(
+                    f"{e.kind}_{{{e.axis}}}({_NOTATION.latex(e.value)})" for e in value.value
+                )
                 + "$"
             )
-        return " ".join(repr(e) for e in value.value)
-    return f"${sp.latex(value)}$" if md else sp.sstr(value)
+        return " ".join(f"{e.kind}{e.axis}({_NOTATION.text(e.value)})" for e in value.value)
+    return f"${_NOTATION.latex(value)}$" if md else _NOTATION.text(value)
 
 
 @dataclass(frozen=True)
@@ -212,7 +216,7 @@ def _label(a: str, b: str, inverted: bool, latex: bool) -> str:
 
 def _nonzero(x: sp.Expr, tol: float = 1e-9) -> bool:
     x = sp.simplify(x)
-    return x != 0 and (bool(x.free_symbols) or abs(sp.N(x)) > tol)
+    return x != 0 and (bool(x.free_symbols) or abs(to_float(x)) > tol)
 
 
 def _as_matrix(matrix: object, frm: str, to: str) -> Matrix:
@@ -330,13 +334,13 @@ class FrameChain:
         if k.frm in self.frames and k.to in self.frames and self._path(k.frm, k.to) is not None:
             existing = self.derive(k.frm, k.to)
             diff = [sp.simplify(x) for x in existing.pose.matrix - k.matrix]
-            off = [x for x in diff if x != 0 and (x.free_symbols or abs(sp.N(x)) > self.tol)]
+            off = [x for x in diff if x != 0 and (x.free_symbols or abs(to_float(x)) > self.tol)]
             if off:
                 loop = " → ".join((*existing.path, k.frm))
                 size = (
                     ""
                     if any(x.free_symbols for x in off)
-                    else (f" (difference up to {max(abs(sp.N(x)) for x in off):.3g})")
+                    else (f" (difference up to {max(abs(to_float(x)) for x in off):.3g})")
                 )
                 raise ChainError(
                     f"the loop {loop} does not close: T[{k.frm}←{k.to}] given differs from "

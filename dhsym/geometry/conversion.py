@@ -16,8 +16,13 @@ Standard → modified: row *i* gets α_{i−1}, a_{i−1} of standard row *i −
 Modified → standard: the reverse; ``Rx(α_0) Tx(a_0)`` moves into the base.
 The joint variables, their offsets and limits do not change, so the tool
 pose is the same function of q (``check_conversion`` confirms it at random q).
-When the base ends (or the tool starts) with ``Rx``/``Tx``, they are absorbed
-back into the first (last) row, so a round trip gives back the table.
+When the base ends with ``Rx Tx`` (or the tool starts with ``Tx Rx``; either
+factor alone, in that order) they are absorbed into the first (last) row. Where
+that would take a factor that is not the row's own, the converted table keeps a
+zero step as a marker (a standard row with a_n = α_n = 0 and a tool ``Tx(t)``
+becomes the modified tool ``Tx(0) Tx(t)``), so a round trip gives back the table
+exactly; only explicit zero steps at that end of a base or tool, which do nothing,
+are dropped.
 
 Examples
 --------
@@ -40,6 +45,8 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError, TableError
+from dhsym.kinematics.numeric import compile_word, to_float
+from dhsym.kinematics.transforms import chain_word
 from dhsym.model.table import Convention, DHRow, DHTable, Elementary
 
 __all__ = [
@@ -62,22 +69,63 @@ def _word(*elems: Elementary) -> tuple[Elementary, ...]:
     return tuple(e for e in elems if _nonzero(e))
 
 
-def _take(seq: Sequence[Elementary], from_end: bool) -> tuple[list[Elementary], dict[str, sp.Expr]]:
-    """Split off at most one ``Rx`` and one ``Tx`` at one end of a word (they commute)."""
+_KEYS = {("R", "x"): "alpha", ("T", "x"): "a"}
+
+
+def _take(seq: Sequence[Elementary], at_end: bool) -> tuple[list[Elementary], dict[str, sp.Expr]]:
+    """Split off the row's own ``Rx(α) Tx(a)`` from one end of a base or tool word.
+
+    The end of a base may hold ``Rx(α0) Tx(a0)`` (modified row 1), the start of
+    a tool ``Tx(an) Rx(αn)`` (standard row n), each factor optional, in that
+    order; values may be zero (a zero step marks a factor that is absent).
+    """
     rest = list(seq)
     taken: dict[str, sp.Expr] = {}
-    while rest:
-        e = rest[-1] if from_end else rest[0]
-        key = {("R", "x"): "alpha", ("T", "x"): "a"}.get((e.kind, e.axis))
-        if key is None or key in taken:
+    for key in ("a", "alpha"):  # the Tx next to the row, then the Rx
+        if not rest:
             break
+        e = rest[-1] if at_end else rest[0]
+        if _KEYS.get((e.kind, e.axis)) != key:
+            continue
         taken[key] = e.value
-        rest.pop(-1 if from_end else 0)
+        rest.pop(-1 if at_end else 0)
     return rest, taken
+
+
+def _emit(
+    rest: Sequence[Elementary], taken: dict[str, sp.Expr], at_end: bool
+) -> tuple[Elementary, ...]:
+    """The shortest ``Rx(α) Tx(a)`` (base end) or ``Tx(a) Rx(α)`` (tool start) that
+    :func:`_take` splits back into exactly ``rest`` and ``taken``.
+
+    Zero factors are left out unless the way back would otherwise take a factor
+    of ``rest`` for the row's own: then a zero step (``Tx(0)``) marks the place.
+    """
+    factors = {
+        "alpha": Elementary("R", "x", taken.get("alpha", sp.Integer(0))),
+        "a": Elementary("T", "x", taken.get("a", sp.Integer(0))),
+    }
+    order = ("alpha", "a") if at_end else ("a", "alpha")
+    options = [[k for k in order if _nonzero(factors[k]) or k in extra] for extra in _EXTRAS]
+    for keys in sorted(options, key=len):
+        word = tuple(factors[k] for k in keys)
+        trial = [*rest, *word] if at_end else [*word, *rest]
+        back_rest, back = _take(trial, at_end)
+        if back_rest == list(rest) and all(
+            sp.simplify(back.get(k, 0) - taken.get(k, 0)) == 0 for k in ("a", "alpha")
+        ):
+            return word
+    return tuple(factors[k] for k in order)  # both factors: always split back exactly
+
+
+_EXTRAS = ((), ("a",), ("alpha",), ("a", "alpha"))
 
 
 def to_modified(table: DHTable, *, absorb: bool = True) -> DHTable:
     """The same robot in the modified (Craig) convention; the tool pose is unchanged.
+
+    ``to_standard(to_modified(t)) == t`` for every standard table ``t`` (a base
+    that ends with an explicit zero step ``Rx(0)``/``Tx(0)`` comes back without it).
 
     >>> from dhsym import load_table
     >>> m = to_modified(load_table("puma560"))
@@ -86,21 +134,29 @@ def to_modified(table: DHTable, *, absorb: bool = True) -> DHTable:
     """
     if table.convention is Convention.MODIFIED:
         return table
-    base = list(table.base)
+    base: list[Elementary] = list(table.base)
     first: dict[str, sp.Expr] = {}
     if absorb:
-        base, first = _take(base, from_end=True)
+        base, first = _take(base, at_end=True)
     rows = []
     prev_a, prev_alpha = first.get("a", sp.Integer(0)), first.get("alpha", sp.Integer(0))
     for row in table.rows:
         rows.append(replace(row, a=prev_a, alpha=prev_alpha))
         prev_a, prev_alpha = row.a, row.alpha
-    tool = _word(Elementary("T", "x", prev_a), Elementary("R", "x", prev_alpha)) + table.tool
-    return _rebuild(table, rows, Convention.MODIFIED, tuple(base), tool)
+    last = {"a": prev_a, "alpha": prev_alpha}
+    own = (
+        _emit(table.tool, last, at_end=False)
+        if absorb
+        else _word(Elementary("T", "x", prev_a), Elementary("R", "x", prev_alpha))
+    )
+    return _rebuild(table, rows, Convention.MODIFIED, tuple(base), own + table.tool)
 
 
 def to_standard(table: DHTable, *, absorb: bool = True) -> DHTable:
     """The same robot in the standard convention; the tool pose is unchanged.
+
+    ``to_modified(to_standard(m)) == m`` for every modified table ``m`` (a tool
+    that starts with an explicit zero step ``Tx(0)``/``Rx(0)`` comes back without it).
 
     >>> from dhsym import load_table
     >>> s = to_standard(load_table("puma560_modified"))
@@ -109,12 +165,16 @@ def to_standard(table: DHTable, *, absorb: bool = True) -> DHTable:
     """
     if table.convention is Convention.STANDARD:
         return table
-    first = table.rows[0]
-    base = table.base + _word(Elementary("R", "x", first.alpha), Elementary("T", "x", first.a))
-    tool = list(table.tool)
+    first = {"a": table.rows[0].a, "alpha": table.rows[0].alpha}
+    own = (
+        _emit(table.base, first, at_end=True)
+        if absorb
+        else _word(Elementary("R", "x", first["alpha"]), Elementary("T", "x", first["a"]))
+    )
+    tool: list[Elementary] = list(table.tool)
     last: dict[str, sp.Expr] = {}
     if absorb:
-        tool, last = _take(tool, from_end=False)
+        tool, last = _take(tool, at_end=False)
     rows = []
     for k, row in enumerate(table.rows):
         if k + 1 < table.n:
@@ -124,7 +184,7 @@ def to_standard(table: DHTable, *, absorb: bool = True) -> DHTable:
             rows.append(
                 replace(row, a=last.get("a", sp.Integer(0)), alpha=last.get("alpha", sp.Integer(0)))
             )
-    return _rebuild(table, rows, Convention.STANDARD, base, tuple(tool))
+    return _rebuild(table, rows, Convention.STANDARD, table.base + own, tuple(tool))
 
 
 def convert(table: DHTable, to: Convention | str) -> DHTable:
@@ -171,8 +231,6 @@ def check_conversion(
     for symbols without a value, the same for both tables). Raises
     :class:`~dhsym.errors.TableError` when the difference exceeds ``tol``.
     """
-    from dhsym.kinematics.robot import Robot
-
     if before.variables != after.variables:
         raise TableError(
             f"the tables have different joint variables: {before.variables} vs {after.variables}"
@@ -183,8 +241,10 @@ def check_conversion(
         for s in sorted(set(before.constants) | set(after.constants), key=str)
     }
     q = rng.uniform(-np.pi, np.pi, size=(samples, len(before.variables)))
-    A = Robot(before).fk(q, values={**missing, **before.value_map})
-    B = Robot(after).fk(q, values={**missing, **after.value_map})
+    A, B = (
+        compile_word(chain_word(t, -1, t.n + 1), t.variables, {**missing, **t.value_map})(q)
+        for t in (before, after)
+    )
     err = float(np.max(np.abs(A - B))) if samples else 0.0
     if err > tol:
         raise TableError(
@@ -287,7 +347,7 @@ def rotation_word(R: sp.MatrixBase) -> tuple[Elementary, ...]:
     R = sp.Matrix(R)
     if R.free_symbols:
         raise DHError(f"rotation_word needs a numeric rotation, got symbols {R.free_symbols}")
-    Rn = np.array(R.evalf(), dtype=float)
+    Rn = np.array([[to_float(x) for x in row] for row in R.tolist()])
     if not np.allclose(Rn.T @ Rn, np.eye(3), atol=1e-9) or np.linalg.det(Rn) < 0:
         raise DHError(f"not a rotation matrix: {R.tolist()}")
     ranked = []

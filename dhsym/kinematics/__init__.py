@@ -11,7 +11,9 @@ __getattr__, __dir__ = lazy_exports(
     __name__,
     {
         "chain_word": "transforms",
+        "compile_exprs": "numeric",
         "compile_pose": "numeric",
+        "compile_word": "numeric",
         "compose": "simplification",
         "link_word": "transforms",
         "load": "robot",
@@ -26,6 +28,7 @@ __getattr__, __dir__ = lazy_exports(
         "prove_equal": "simplification",
         "rigid_inverse": "transforms",
         "Robot": "robot",
+        "to_float": "numeric",
         "Rx": "transforms",
         "Ry": "transforms",
         "Rz": "transforms",
@@ -48,7 +51,9 @@ __all__ = [
     "Tz",
     "analytic_jacobian",
     "chain_word",
+    "compile_exprs",
     "compile_pose",
+    "compile_word",
     "compose",
     "geometric_jacobian",
     "link_word",
@@ -58,4 +63,5 @@ __all__ = [
     "plain_product",
     "prove_equal",
     "rigid_inverse",
+    "to_float",
 ]

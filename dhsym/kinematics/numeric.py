@@ -1,13 +1,25 @@
-"""Numbers from the symbolic result: code generated once with CSE, vectorised.
+"""The one numeric evaluator of exact expressions: constants folded to floats, code compiled once.
 
-There is no second numeric kinematics path: :func:`compile_pose` lambdifies
-the simplified symbolic matrix (with common-subexpression elimination) into a
-function that takes one configuration ``(n,)`` or a batch ``(N, n)`` and gives
-``(4, 4)`` or ``(N, 4, 4)``.
+Every numeric path of dhsym (``fk``, compiled poses, :func:`numeric_equal
+<dhsym.kinematics.simplification.numeric_equal>`, the checks of frame assignment
+and conversion) goes through this module:
+
+* :func:`to_float` evaluates an exact constant (huge integers, nested roots, π)
+  with arbitrary precision and returns a float, or raises :class:`~dhsym.errors.DHError`;
+* :func:`float_constants` replaces every constant subtree of an expression by its
+  float, at compile time, so generated code sees floats only (never a Python
+  integer beyond 2⁶³ under ``sqrt``);
+* :func:`compile_exprs` generates code once (common-subexpression elimination)
+  for numpy arrays or for plain Python floats;
+* :func:`compile_pose` builds a :class:`PoseFunction` for a 4×4 homogeneous
+  matrix: a pure-float path for one configuration ``(n,)`` → ``(4, 4)`` and a
+  numpy path for a batch ``(N, n)`` → ``(N, 4, 4)``;
+* :func:`compile_word` multiplies a word of elementary transforms numerically
+  (no symbolic product at all: the check of a 10-joint conversion takes
+  milliseconds whatever its twists).
 
 Examples
 --------
->>> import sympy as sp
 >>> q1, a1 = sp.symbols("q1 a1", real=True)
 >>> M = sp.ImmutableMatrix([[sp.cos(q1), -sp.sin(q1), 0, a1 * sp.cos(q1)],
 ...                         [sp.sin(q1), sp.cos(q1), 0, a1 * sp.sin(q1)],
@@ -17,10 +29,14 @@ Examples
 np.float64(2.0)
 >>> f(np.zeros((5, 1))).shape
 (5, 4, 4)
+>>> huge = sp.sqrt(sp.Integer(10) ** 40 + 1) / 10**20
+>>> to_float(huge), float_constants(huge * q1)
+(1.0, 1.0*q1)
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
@@ -28,18 +44,213 @@ import sympy as sp
 
 from dhsym.errors import DHError
 
-__all__ = ["compile_matrix", "compile_pose"]
+__all__ = [
+    "PoseFunction",
+    "compile_exprs",
+    "compile_matrix",
+    "compile_pose",
+    "compile_word",
+    "float_constants",
+    "to_float",
+]
 
 FkFunction = Callable[[object], np.ndarray]
 _CHUNK = 4096
+_DIGITS = 30  # working precision of constant evaluation (decimal digits)
+_FLOAT = np.dtype(float)
+_EXACT_INT = 2**53
+
+
+class _PlusZero(sp.Function):
+    """``x + 0.0`` in the float code: ``-0.0`` becomes ``0.0``, so printed poses read cleanly."""
+
+    def _pythoncode(self, printer: object) -> str:
+        return f"({printer._print(self.args[0])} + 0.0)"  # type: ignore[attr-defined]
+
+
+def to_float(expr: object) -> float:
+    """The value of an exact real constant as a float (evaluated at 30 digits first).
+
+    Safe for integers far beyond 2⁶³, nested roots and π; raises
+    :class:`~dhsym.errors.DHError` for symbols, non-real or non-finite values.
+
+    >>> to_float(sp.sqrt(2) / 2), to_float(sp.pi), to_float(sp.Integer(7) ** 400 / 7 ** 399)
+    (0.7071067811865476, 3.141592653589793, 7.0)
+    >>> to_float(sp.Integer(10) ** 400)
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: the number 1000000000000...0000000000000 is too large for a float
+    """
+    if isinstance(expr, (int, float)) and not isinstance(expr, bool):
+        value = float(expr)
+    else:
+        e = _basic(expr)
+        if e.free_symbols:
+            raise DHError(f"no numeric value for {', '.join(sorted(map(str, e.free_symbols)))}")
+        if e.is_Rational:
+            value = _rational_float(e)
+        else:
+            v = sp.N(e, _DIGITS)
+            re, im = v.as_real_imag()
+            if not (re.is_Number and im.is_Number) or abs(im) > abs(re) * 1e-20 + 1e-40:
+                raise DHError(f"{_short(e)} is not a real number")
+            value = float(re) if re.is_finite else math.inf
+    if not math.isfinite(value):
+        raise DHError(f"the number {_short(expr)} is too large for a float")
+    return value
+
+
+def _rational_float(r: sp.Rational) -> float:
+    try:
+        return int(r.p) / int(r.q)  # exact rounding, even for huge integers
+    except OverflowError:
+        return math.inf
+
+
+def _short(expr: object) -> str:
+    s = str(expr)
+    return s if len(s) <= 60 else f"{s[:30]}...{s[-30:]}"
+
+
+def float_constants(expr: sp.Basic) -> sp.Basic:
+    """``expr`` with every constant subtree replaced by its float (integer exponents kept).
+
+    >>> x = sp.Symbol("x")
+    >>> float_constants(sp.sqrt(2) * sp.cos(x + sp.pi / 3) - x**2 / 4)
+    -0.25*x**2 + 1.4142135623730951*cos(x + 1.0471975511965979)
+    """
+    memo: dict[sp.Basic, sp.Basic] = {}
+
+    def walk(e: sp.Basic) -> sp.Basic:
+        hit = memo.get(e)
+        if hit is not None:
+            return hit
+        if not e.free_symbols:
+            small = e.is_Integer and abs(int(e)) <= _EXACT_INT  # ±1, 2: exact in floats too
+            out: sp.Basic = e if small or not isinstance(e, sp.Expr) else sp.Float(to_float(e), 17)
+        elif e.is_Atom:
+            out = e
+        elif e.is_Pow and e.exp.is_Integer:
+            out = sp.Pow(walk(e.base), e.exp)
+        elif e.is_Add or e.is_Mul:  # fold the constant part as one number
+            const, rest = e.as_independent(*e.free_symbols, as_Add=e.is_Add)
+            out = e.func(walk(const), *(walk(a) for a in e.func.make_args(rest)))
+        else:
+            out = e.func(*(walk(a) for a in e.args))
+        memo[e] = out
+        return out
+
+    return walk(_basic(expr))
+
+
+def _basic(value: object) -> sp.Basic:
+    """A sympy object for a sympy object or a Python/numpy number (never parses text)."""
+    if hasattr(value, "dtype") and hasattr(value, "item"):  # numpy scalar
+        value = value.item()  # type: ignore[union-attr]
+    if isinstance(value, sp.Basic):
+        return value
+    if isinstance(value, int) and not isinstance(value, bool):
+        return sp.Integer(value)
+    if isinstance(value, float):
+        return sp.Float(value)
+    raise TypeError(f"expected a sympy expression or a number, got {type(value).__name__}")
+
+
+def compile_exprs(
+    exprs: Sequence[sp.Basic], variables: Sequence[sp.Symbol], *, floats: bool = False
+) -> Callable[..., list]:
+    """Compile ``exprs`` once into ``f(*variables) -> list`` (numpy arrays, or plain floats).
+
+    Constants are folded to floats first (:func:`float_constants`); symbols
+    other than ``variables`` raise :class:`~dhsym.errors.DHError`. With
+    ``floats=True`` the code uses :mod:`math` and takes Python floats (fast for
+    one point); otherwise numpy, elementwise over arrays.
+
+    >>> x, y = sp.symbols("x y")
+    >>> compile_exprs([sp.sqrt(3) * x, x + y], (x, y), floats=True)(2.0, 1.0)
+    [3.4641016151377544, 3.0]
+    >>> compile_exprs([x * y], (x,))
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: no numeric value for y: give values for these symbols
+    """
+    folded = [float_constants(e) for e in exprs]
+    missing = set().union(*(e.free_symbols for e in folded)) - set(variables)
+    if missing:
+        names = ", ".join(sorted(str(s) for s in missing))
+        raise DHError(f"no numeric value for {names}: give values for these symbols")
+    # numpy's namespace as a module: modules="numpy" would run `from numpy import *`, which
+    # imports all of numpy's lazy submodules (as long as importing numpy itself)
+    module = "math" if floats else [np]
+    return sp.lambdify(list(variables), folded, modules=module, cse=True)
+
+
+class PoseFunction:
+    """A compiled 4×4 homogeneous transform of the joint variables.
+
+    ``f(q)`` takes one configuration ``(n,)`` (pure Python floats: a few µs)
+    or a batch ``(N, n)`` (numpy, in cache-sized chunks) and returns ``(4, 4)``
+    or ``(N, 4, 4)``; ``-0.0`` entries come out as ``0.0``.
+    """
+
+    __slots__ = ("_batch", "_single", "n")
+
+    def __init__(self, single: Callable[..., list], batch: Callable[..., list], n: int) -> None:
+        self._single = single
+        self._batch = batch
+        self.n = n
+
+    def __call__(self, q: object) -> np.ndarray:
+        kind = type(q)
+        if kind is list or kind is tuple:
+            if len(q) == self.n:  # type: ignore[arg-type]
+                return self.single(q)  # type: ignore[arg-type]
+        elif kind is np.ndarray and q.ndim == 1 and q.shape[0] == self.n:  # type: ignore[union-attr]
+            return self.single(q.tolist())  # type: ignore[union-attr]
+        return self.batch(q)  # type: ignore[arg-type]
+
+    def single(self, q: Sequence[float]) -> np.ndarray:
+        """One configuration (a sequence of n numbers) → ``(4, 4)``, in pure Python floats.
+
+        Anything else (nested lists, text, complex numbers, ±inf) goes the numpy way
+        of :meth:`batch`, with numpy's rules and errors.
+        """
+        try:
+            out = np.array(self._single(*q))
+        except (TypeError, ValueError, OverflowError, ZeroDivisionError):
+            return self.batch(q)  # type: ignore[arg-type]
+        if out.dtype != _FLOAT or out.shape != (16,):  # e.g. a list was added to a list
+            return self.batch(q)  # type: ignore[arg-type]
+        out.shape = (4, 4)
+        return out
+
+    def batch(self, q: np.ndarray) -> np.ndarray:
+        """A batch ``(N, n)`` → ``(N, 4, 4)`` (one configuration ``(n,)`` → ``(4, 4)``)."""
+        arr = np.asarray(q, dtype=float)
+        single = arr.ndim <= 1
+        Q = arr.reshape(1, -1) if single else arr
+        if Q.shape[-1] != self.n:
+            raise DHError(f"expected {self.n} joint values per configuration, got {Q.shape[-1]}")
+        N = Q.shape[0]
+        out = np.empty((N, 4, 4))
+        flat = out.reshape(N, 16)
+        flat[:, 12:15] = 0.0
+        flat[:, 15] = 1.0
+        # cache-sized chunks: the temporaries stay in L2 (about 2x faster for large N)
+        for start in range(0, N, _CHUNK):
+            block = flat[start : start + _CHUNK]
+            for k, v in enumerate(self._batch(*Q[start : start + _CHUNK].T)):
+                block[:, k] = v  # cells are the first 12 entries of the row-major 4x4
+            block[:, :12] += 0.0  # -0.0 -> 0.0, so printed poses read cleanly
+        return out[0] if single else out
 
 
 def compile_pose(
     matrix: sp.MatrixBase,
     variables: Sequence[sp.Symbol],
     values: Mapping[sp.Symbol, sp.Expr] | None = None,
-) -> FkFunction:
-    """Generate a vectorised numpy function for a 4×4 homogeneous ``matrix``.
+) -> PoseFunction:
+    """Compile a 4×4 homogeneous ``matrix`` into a :class:`PoseFunction` of ``variables``.
 
     Parameters
     ----------
@@ -56,53 +267,76 @@ def compile_pose(
     DHError
         When a constant symbol has no value.
     """
-    M = _substituted(matrix, variables, values)
-    exprs = [M[i, j] for i in range(3) for j in range(4)]
-    # numpy's namespace as a module: modules="numpy" would run `from numpy import *`, which
-    # imports all of numpy's lazy submodules (as long as importing numpy itself)
-    fn = sp.lambdify(list(variables), exprs, modules=[np], cse=True)
+    M = sp.Matrix(matrix).subs(dict(values or {}))
+    folded = [float_constants(M[i, j]) for i in range(3) for j in range(4)]
+    cells = [_PlusZero(c) if c.free_symbols else c for c in folded]
+    variables = tuple(variables)
+    last_row = [sp.Float(0.0), sp.Float(0.0), sp.Float(0.0), sp.Float(1.0)]
+    single = compile_exprs([*cells, *last_row], variables, floats=True)
+    batch = compile_exprs(folded, variables)
+    return PoseFunction(single, batch, len(variables))
+
+
+def _elementary_stack(kind: str, axis: str, value: np.ndarray) -> np.ndarray:
+    """The (N, 4, 4) matrices of one elementary transform at N values."""
+    out = np.zeros((value.shape[0], 4, 4))
+    out[:, 0, 0] = out[:, 1, 1] = out[:, 2, 2] = out[:, 3, 3] = 1.0
+    i = "xyz".index(axis)
+    if kind == "T":
+        out[:, i, 3] = value
+        return out
+    j, k = (i + 1) % 3, (i + 2) % 3
+    c, s = np.cos(value), np.sin(value)
+    out[:, j, j] = out[:, k, k] = c
+    out[:, j, k], out[:, k, j] = -s, s
+    return out
+
+
+def compile_word(
+    word: Sequence[object],
+    variables: Sequence[sp.Symbol],
+    values: Mapping[sp.Symbol, sp.Expr] | None = None,
+    *,
+    prefixes: bool = False,
+) -> Callable[[object], np.ndarray]:
+    """The product of a word of elementary transforms as numbers: ``Q (N, n) -> (N, 4, 4)``.
+
+    ``word`` holds :class:`~dhsym.model.table.Elementary` transforms (kind, axis,
+    value); their values are compiled once (:func:`compile_exprs`) and the
+    4×4 factors multiplied numerically, so the cost grows linearly with the
+    length of the word. One configuration ``(n,)`` gives ``(4, 4)``. With
+    ``prefixes=True`` every partial product is returned: ``(N, len(word) + 1, 4, 4)``,
+    the identity first.
+
+    >>> from dhsym.model.table import Elementary as E
+    >>> q1, a = sp.symbols("q1 a", real=True)
+    >>> f = compile_word([E("R", "z", q1), E("T", "x", a)], (q1,), {a: 2})
+    >>> f([np.pi / 2]).round(12)[:2, 3] + 0.0
+    array([0., 2.])
+    >>> f(np.zeros((3, 1))).shape
+    (3, 4, 4)
+    """
+    vals = dict(values or {})
+    variables = tuple(variables)
+    exprs = [e.value.subs(vals) for e in word]  # type: ignore[attr-defined]
+    fn = compile_exprs(exprs, variables)
     n = len(variables)
 
-    def fk(q: object) -> np.ndarray:
-        Q, single = _configurations(q, n)
+    def product(q: object) -> np.ndarray:
+        arr = np.asarray(q, dtype=float)
+        single = arr.ndim <= 1
+        Q = arr.reshape(1, -1) if single else arr
+        if Q.shape[-1] != n:
+            raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
         N = Q.shape[0]
-        out = np.empty((N, 4, 4))
-        flat = out.reshape(N, 16)
-        flat[:, 12:15] = 0.0
-        flat[:, 15] = 1.0
-        # cache-sized chunks: the temporaries stay in L2 (about 2x faster for large N)
-        for start in range(0, N, _CHUNK):
-            block = flat[start : start + _CHUNK]
-            for k, v in enumerate(fn(*Q[start : start + _CHUNK].T)):
-                block[:, k] = v  # cells are the first 12 entries of the row-major 4x4
-            block[:, :12] += 0.0  # -0.0 -> 0.0, so printed poses read cleanly
-        return out[0] if single else out
+        out = [np.broadcast_to(np.eye(4), (N, 4, 4))]
+        for e, v in zip(word, fn(*Q.T), strict=True):
+            factor = _elementary_stack(e.kind, e.axis, np.broadcast_to(v, (N,)))  # type: ignore[attr-defined]
+            out.append(out[-1] @ factor)
+        result = np.stack(out, axis=1) if prefixes else out[-1]
+        return result[0] if single else result
 
-    return fk
-
-
-def _configurations(q: object, n: int) -> tuple[np.ndarray, bool]:
-    """``q`` as a batch ``(N, n)``, and whether it was one configuration."""
-    arr = np.asarray(q, dtype=float)
-    single = arr.ndim <= 1
-    Q = arr.reshape(1, -1) if single else arr
-    if Q.shape[-1] != n:
-        raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
-    return Q, single
-
-
-def _substituted(
-    matrix: sp.MatrixBase,
-    variables: Sequence[sp.Symbol],
-    values: Mapping[sp.Symbol, sp.Expr] | None,
-) -> sp.Matrix:
-    """``matrix`` with ``values`` substituted; every other symbol must be a variable."""
-    M = sp.Matrix(matrix).subs(dict(values or {}))
-    missing = M.free_symbols - set(variables)
-    if missing:
-        names = ", ".join(sorted(str(s) for s in missing))
-        raise DHError(f"no numeric value for {names}: give values for these symbols")
-    return M
+    return product
 
 
 def compile_matrix(
@@ -122,13 +356,18 @@ def compile_matrix(
     >>> f(np.zeros((3, 1))).shape
     (3, 2, 2)
     """
-    M = _substituted(matrix, variables, values)
+    M = sp.Matrix(matrix).subs(dict(values or {}))
     rows, cols = M.shape
-    fn = sp.lambdify(list(variables), list(M), modules="numpy", cse=True)
+    variables = tuple(variables)
+    fn = compile_exprs(list(M), variables)
     n = len(variables)
 
     def evaluate(q: object) -> np.ndarray:
-        Q, single = _configurations(q, n)
+        arr = np.asarray(q, dtype=float)
+        single = arr.ndim <= 1
+        Q = arr.reshape(1, -1) if single else arr
+        if Q.shape[-1] != n:
+            raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
         N = Q.shape[0]
         flat = np.empty((N, rows * cols))
         for start in range(0, N, _CHUNK):

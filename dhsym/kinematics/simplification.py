@@ -38,7 +38,8 @@ import sympy as sp
 
 from dhsym.model.table import Elementary
 
-from .transforms import plain_product
+from .numeric import compile_exprs
+from .transforms import cos_sin, plain_product
 
 __all__ = [
     "Segment",
@@ -53,6 +54,7 @@ __all__ = [
 ]
 
 Matrix = sp.ImmutableMatrix
+_FLOAT_TOL = 1e-12
 
 
 def _is_zero_turn(e: Elementary) -> bool:
@@ -137,7 +139,7 @@ class Segment:
         if not self.planar:
             return plain_product(self.word)
         phi, sigma, p = _planar(self.word)
-        c, s = sp.cos(phi), sp.sin(phi)
+        c, s = cos_sin(phi)
         return Matrix(
             [
                 [c, -sigma * s, 0, p[0]],
@@ -167,11 +169,13 @@ def _planar(word: Sequence[Elementary]) -> tuple[sp.Expr, int, list[sp.Expr]]:
         elif e.axis == "z":
             p[2] += sigma * e.value
         elif e.axis == "x":
-            p[0] += e.value * sp.cos(phi)
-            p[1] += e.value * sp.sin(phi)
+            c, s = cos_sin(phi)
+            p[0] += e.value * c
+            p[1] += e.value * s
         else:
-            p[0] += -sigma * e.value * sp.sin(phi)
-            p[1] += sigma * e.value * sp.cos(phi)
+            c, s = cos_sin(phi)
+            p[0] += -sigma * e.value * s
+            p[1] += sigma * e.value * c
     return phi, sigma, p
 
 
@@ -406,6 +410,10 @@ def prove_equal(A: sp.MatrixBase, B: sp.MatrixBase) -> bool:
 
     Each entry of ``A − B`` is expanded into a polynomial in ``cos x``, ``sin x``
     and reduced modulo ``sin² x + cos² x − 1``; all remainders must vanish.
+    Floats (the cosine and sine of a measured twist, see
+    :func:`~dhsym.kinematics.transforms.cos_sin`) are taken at their exact binary
+    values; then remainder coefficients up to 1e-12 (float rounding of the
+    same products in another order) are allowed.
 
     >>> t = sp.Symbol("t", real=True)
     >>> prove_equal(sp.Matrix([sp.cos(2 * t)]), sp.Matrix([1 - 2 * sp.sin(t)**2]))
@@ -419,14 +427,26 @@ def prove_equal(A: sp.MatrixBase, B: sp.MatrixBase) -> bool:
         diff = a - b
         if diff == 0:
             continue
+        floats = diff.atoms(sp.Float)
+        if floats:  # cos/sin of a measured twist: exact arithmetic on the floats' values
+            diff = diff.xreplace({f: sp.Rational(f) for f in floats})
         poly, relations, gens = _trig_polynomial(diff)
         if poly == 0:
             continue
-        if not relations:
-            return False
         others = sorted(poly.free_symbols - set(gens), key=sp.default_sort_key)
-        _, rem = sp.reduced(poly, relations, *gens, *others, order="lex")
-        if sp.expand(rem) != 0:
+        if relations:
+            _, rem = sp.reduced(poly, relations, *gens, *others, order="lex")
+        else:
+            rem = poly
+        rem = sp.expand(rem)
+        if rem == 0:
+            continue
+        if not floats:
+            return False
+        # the two sides multiplied the same floats in another order: allow their rounding
+        scale = 1 + max(abs(float(f)) for f in (a.atoms(sp.Float) | b.atoms(sp.Float) | floats))
+        coeffs = sp.Poly(rem, *gens, *others).coeffs() if gens or others else [rem]
+        if max(abs(float(c)) for c in coeffs) > _FLOAT_TOL * scale:
             return False
     return True
 
@@ -439,17 +459,19 @@ def numeric_equal(
     >>> t = sp.Symbol("t", real=True)
     >>> numeric_equal(sp.Matrix([sp.sin(t)**2]), sp.Matrix([1 - sp.cos(t)**2]))
     True
+    >>> huge = sp.sqrt(sp.Integer(10) ** 40 + 1)  # evaluated once, as a float
+    >>> numeric_equal(sp.Matrix([huge * t]), sp.Matrix([10**20 * t]))
+    True
     """
     if A.shape != B.shape:
         return False
     syms = sorted(A.free_symbols | B.free_symbols, key=sp.default_sort_key)
-    fa = sp.lambdify(syms, list(A), "math")
-    fb = sp.lambdify(syms, list(B), "math")
+    fa = compile_exprs(list(A), syms, floats=True)
+    fb = compile_exprs(list(B), syms, floats=True)
     rng = random.Random(seed)
     for _ in range(points):
         vals = [rng.uniform(-3.0, 3.0) for _ in syms]
-        ma, mb = fa(*vals), fb(*vals)
-        for x, y in zip(ma, mb):
-            if abs(float(x) - float(y)) > tol * max(1.0, abs(float(x))):
+        for x, y in zip(fa(*vals), fb(*vals)):
+            if abs(x - y) > tol * max(1.0, abs(x)):
                 return False
     return True

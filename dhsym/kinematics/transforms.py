@@ -31,6 +31,8 @@ import sympy as sp
 
 from dhsym.model.table import Convention, DHRow, DHTable, Elementary
 
+from .numeric import to_float
+
 __all__ = [
     "Rx",
     "Ry",
@@ -39,6 +41,7 @@ __all__ = [
     "Ty",
     "Tz",
     "chain_word",
+    "cos_sin",
     "elementary_matrix",
     "link_matrix",
     "link_word",
@@ -47,6 +50,27 @@ __all__ = [
 ]
 
 Matrix = sp.ImmutableMatrix
+
+
+def cos_sin(angle: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
+    """``cos`` and ``sin`` of an angle: exact, except for a number that is not a multiple of π.
+
+    A twist written as a decimal that stands for no multiple of π/12 (1.2 rad,
+    see :mod:`dhsym.model.angles`) is a measured number: its cosine and sine are
+    floats, so products fold into numbers instead of ``cos(6/5)`` terms.
+
+    >>> cos_sin(sp.pi / 3), cos_sin(sp.Symbol("t"))
+    ((1/2, sqrt(3)/2), (cos(t), sin(t)))
+    >>> cos_sin(sp.Rational(6, 5))
+    (0.362357754476674, 0.932039085967226)
+    """
+    angle = sp.sympify(angle) if isinstance(angle, (int, float)) else angle  # a Python number
+    c, s = sp.cos(angle), sp.sin(angle)
+    if angle.free_symbols or not (c.has(sp.cos, sp.sin) or s.has(sp.cos, sp.sin)):
+        return c, s
+    if (angle / sp.pi).is_rational:  # an exact angle such as pi/7 stays exact
+        return c, s
+    return sp.Float(to_float(c)), sp.Float(to_float(s))
 
 
 def Rx(angle: sp.Expr) -> Matrix:
@@ -59,13 +83,13 @@ def Rx(angle: sp.Expr) -> Matrix:
     [0, 1,  0, 0],
     [0, 0,  0, 1]])
     """
-    c, s = sp.cos(angle), sp.sin(angle)
+    c, s = cos_sin(angle)
     return Matrix([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1]])
 
 
 def Ry(angle: sp.Expr) -> Matrix:
     """Rotation about y by ``angle`` (4×4)."""
-    c, s = sp.cos(angle), sp.sin(angle)
+    c, s = cos_sin(angle)
     return Matrix([[c, 0, s, 0], [0, 1, 0, 0], [-s, 0, c, 0], [0, 0, 0, 1]])
 
 
@@ -77,7 +101,7 @@ def Rz(angle: sp.Expr) -> Matrix:
     [cos(t), -sin(t)],
     [sin(t),  cos(t)]])
     """
-    c, s = sp.cos(angle), sp.sin(angle)
+    c, s = cos_sin(angle)
     return Matrix([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
 
 

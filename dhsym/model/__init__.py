@@ -9,6 +9,7 @@ from dhsym._lazy import lazy_exports
 __getattr__, __dir__ = lazy_exports(
     __name__,
     {
+        "AngleSnap": "angles",
         "AngleUnit": "kinds",
         "as_expr": "entries",
         "builtin_names": "library",
@@ -34,6 +35,7 @@ __getattr__, __dir__ = lazy_exports(
 )
 
 __all__ = [
+    "AngleSnap",
     "AngleUnit",
     "Convention",
     "DHRow",

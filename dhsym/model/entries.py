@@ -13,7 +13,7 @@ from dhsym.errors import TableError
 from .kinds import AngleUnit
 from .parsing import DEFAULT_LIMITS, numeral_problem, parse_expression
 
-__all__ = ["as_expr", "check_radians", "to_radians"]
+__all__ = ["as_expr", "check_radians", "exact_decimal", "to_radians"]
 
 Expr = sp.Expr
 
@@ -98,9 +98,25 @@ def check_radians(expr: Expr, *, row: int | None, field: str) -> None:
             )
 
 
-def exact_decimal(r: sp.Rational) -> str | None:
-    """Print a rational whose denominator is 2^a 5^b as a finite decimal."""
-    q = int(r.q)
+def exact_decimal(value: object, max_digits: int | None = None) -> str | None:
+    """The finite decimal an exact number was written as (``2159/5000`` → ``0.4318``), or None.
+
+    The one formatter of exact decimals: a rational whose denominator is
+    2^a 5^b prints as its finite decimal, an integer as itself; anything else
+    (``1/3``, ``sqrt(2)``, symbols, or more than ``max_digits`` decimals) gives None.
+
+    >>> exact_decimal(sp.Rational(2159, 5000)), exact_decimal(sp.Rational(-3, 10))
+    ('0.4318', '-0.3')
+    >>> exact_decimal(sp.Integer(3)), exact_decimal(sp.Rational(1, 3)), exact_decimal(sp.sqrt(2))
+    ('3', None, None)
+    >>> exact_decimal(sp.Rational(1, 2**20)), exact_decimal(sp.Rational(1, 2**20), max_digits=6)
+    ('0.00000095367431640625', None)
+    """
+    if not isinstance(value, sp.Rational):
+        return None
+    p, q = int(value.p), int(value.q)
+    if q == 1:
+        return str(p)
     twos = fives = 0
     while q % 2 == 0:
         q //= 2
@@ -108,10 +124,10 @@ def exact_decimal(r: sp.Rational) -> str | None:
     while q % 5 == 0:
         q //= 5
         fives += 1
-    if q != 1:
-        return None
     digits = max(twos, fives)
-    scaled = int(r.p) * 10**digits // int(r.q)
+    if q != 1 or (max_digits is not None and digits > max_digits):
+        return None
+    scaled = p * 10**digits // int(value.q)
     sign = "-" if scaled < 0 else ""
     s = str(abs(scaled)).rjust(digits + 1, "0")
     return f"{sign}{s[:-digits]}.{s[-digits:]}"

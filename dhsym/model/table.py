@@ -30,6 +30,7 @@ import sympy as sp
 
 from dhsym.errors import TableError
 
+from .angles import AngleSnap, Snapped, snap_entry, snap_note
 from .entries import as_expr, check_radians, to_radians
 from .kinds import AngleUnit, Convention, JointType
 from .parsing import symbol
@@ -222,6 +223,11 @@ class DHTable:
         as sequences of :class:`Elementary`.
     angles
         The unit the table was *written* in (for display); entries are radians.
+    notes
+        Free text from the table file.
+    warnings
+        What the reader did to the input that the user should know, one
+        sentence each (decimal angles read as multiples of π/12).
     """
 
     rows: tuple[DHRow, ...]
@@ -233,6 +239,7 @@ class DHTable:
     tool: tuple[Elementary, ...] = ()
     angles: AngleUnit = AngleUnit.RAD
     notes: str = field(default="", compare=False)
+    warnings: tuple[str, ...] = field(default=(), compare=False)
 
     @classmethod
     def from_rows(
@@ -242,36 +249,61 @@ class DHTable:
         convention: Convention | str = Convention.STANDARD,
         angles: AngleUnit | str = AngleUnit.RAD,
         values: Mapping[object, object] | None = None,
+        snap_angles: AngleSnap | bool | float | None = True,
         **kw: object,
     ) -> DHTable:
         """Build a table from rows; with ``angles='deg'`` θ, α and revolute limits are degrees.
 
+        Decimal angles in radians that stand for a multiple of π/12 (``1.5708``)
+        are read as that multiple, and :attr:`warnings` says so
+        (:mod:`dhsym.model.angles`); ``snap_angles=False`` keeps the decimals,
+        a number sets the tolerance in radians.
+
         >>> t = DHTable.from_rows([DHRow.revolute("q1", alpha=90)], angles="deg")
         >>> t.rows[0].alpha
         pi/2
+        >>> t = DHTable.from_rows([DHRow.revolute("q1", alpha=-1.5708)])
+        >>> t.rows[0].alpha, t.warnings[0][:60]
+        (-pi/2, 'Decimal angles read as exact: alpha -1.5708 in row 1 as -π/2')
         """
         unit = AngleUnit.parse(angles)
+        rule = AngleSnap.parse(snap_angles)
         converted = []
+        found: list[Snapped] = []
         for i, row in enumerate(rows, start=1):
             try:
-                changes: dict[str, object] = {
-                    "theta": to_radians(row.theta, unit),
-                    "alpha": to_radians(row.alpha, unit),
-                }
+                changes: dict[str, object] = {}
+                for name in ("theta", "alpha"):
+                    entry, snapped = snap_entry(to_radians(getattr(row, name), unit), rule, name, i)
+                    changes[name] = entry
+                    found += [snapped] if snapped else []
                 if row.limits is not None and row.joint is JointType.REVOLUTE:
                     changes["limits"] = tuple(to_radians(v, unit) for v in row.limits)
             except TableError as err:
                 raise err.located(row=i) from None
             converted.append(replace(row, **changes))  # type: ignore[arg-type]
+        for where in ("base", "tool"):
+            if kw.get(where):
+                steps = []
+                for e in kw[where]:  # type: ignore[attr-defined]
+                    snapped = None
+                    if e.kind == "R":
+                        value, snapped = snap_entry(e.value, rule, f"{where} R{e.axis}", None)
+                        e = Elementary(e.kind, e.axis, value)
+                    found += [snapped] if snapped else []
+                    steps.append(e)
+                kw[where] = tuple(steps)
         pairs = tuple(
             (symbol(k) if isinstance(k, str) else k, as_expr(v, field="values"))
             for k, v in (values or {}).items()
         )
+        warnings = (snap_note(found),) if found else ()
         return cls(
             tuple(converted),
             Convention.parse(convention),
             values=pairs,  # type: ignore[arg-type]
             angles=unit,
+            warnings=warnings + tuple(kw.pop("warnings", ())),  # type: ignore[arg-type]
             **kw,  # type: ignore[arg-type]
         )
 

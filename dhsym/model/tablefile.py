@@ -11,6 +11,7 @@ The format (every key but ``joints`` optional)::
       - {type: R, theta: theta2, d: 0, a: a2, alpha: 0, limits: [-150, 150]}
       - {type: P, theta: 0, d: a5 + d3, a: 0, alpha: 180, q: d3}
     values: {a1: 1.0, a2: 0.8}           # numbers for symbolic lengths
+    snap_angles: true                    # 1.5708 -> pi/2 (false: keep; a number: tolerance)
     base: [{Tz: 0.5}]                    # constant transforms before joint 1 ...
     tool: [{Tz: t}]                      # ... and after the last frame
 
@@ -44,10 +45,13 @@ from pathlib import Path
 
 import sympy as sp
 import yaml
+from sympy.printing.str import StrPrinter
 
 from dhsym.errors import DHError, TableError
 
+from .angles import AngleSnap, snap_entry
 from .entries import exact_decimal as _exact_decimal
+from .parsing import DEFAULT_LIMITS
 from .table import (
     AngleUnit,
     Convention,
@@ -73,6 +77,7 @@ _TOP_KEYS = (
     "base",
     "tool",
     "notes",
+    "snap_angles",
 )
 _ALIASES = {"θ": "theta", "α": "alpha", "joint": "type", "variable": "q", "th": "theta"}
 
@@ -164,6 +169,7 @@ def _from_data(data: object, file: str | None) -> DHTable:
         notes=str(top.get("notes") or ""),
         base=_elementaries(top.get("base"), "base", unit),
         tool=_elementaries(top.get("tool"), "tool", unit),
+        snap_angles=AngleSnap.parse(top.get("snap_angles", True)),
     )
 
 
@@ -234,12 +240,45 @@ def _elementaries(data: object, where: str, unit: AngleUnit) -> tuple[Elementary
     return tuple(out)
 
 
+class _Reader(StrPrinter):
+    """sympy's text, in the words the table reader knows (``atan(x)`` as ``atan2(x, 1)``)."""
+
+    def _print_atan(self, expr: sp.Expr) -> str:
+        return f"atan2({self._print(expr.args[0])}, 1)"
+
+
+def _text(value: sp.Expr) -> str:
+    """Text of an entry that :func:`read_table_text` reads back to the same value.
+
+    >>> _text(sp.atan(sp.Rational(1, 3)) + sp.Symbol("q1"))
+    'q1 + atan2(1/3, 1)'
+    """
+    return _Reader().doprint(value)
+
+
 def _plain(value: sp.Expr) -> object:
+    """A YAML scalar that reads back as ``value``: 0.4318 stays 0.4318, not 2159/5000.
+
+    A number with more digits than the reader takes (the exact forms of measured
+    geometry) is written to 17 significant digits instead.
+    """
+    limit = DEFAULT_LIMITS.max_digits
+    if any(len(str(abs(n))) > limit for r in value.atoms(sp.Rational) for n in (r.p, r.q)):
+        value = value.evalf(17)
+        return float(value) if value.is_Number else _text(value)
     if value.is_Integer:
         return int(value)
-    if value.is_Rational and _exact_decimal(value) is not None:
-        return float(_exact_decimal(value))  # type: ignore[arg-type]
-    return str(value)
+    dec = _exact_decimal(value)
+    if dec is None:
+        return _text(value)
+    as_float = float(dec)
+    return as_float if sp.Rational(repr(as_float)) == value else dec
+
+
+def _would_snap(table: DHTable) -> bool:
+    entries = [(r.theta, r.alpha) for r in table.rows]
+    entries += [(e.value,) for e in table.base + table.tool if e.kind == "R"]
+    return any(snap_entry(v, AngleSnap(), "", None)[1] for vs in entries for v in vs)
 
 
 def dump_table(table: DHTable, *, angles: str | None = None) -> str:
@@ -264,13 +303,16 @@ def dump_table(table: DHTable, *, angles: str | None = None) -> str:
         const = sp.nsimplify(sp.expand((v - sym) * 180 / sp.pi))
         if sym == 0:
             return _plain(const)
-        return str(sym) if const == 0 else f"{sym} + {const}".replace("+ -", "- ")
+        return _text(sym) if const == 0 else f"{_text(sym)} + {const}".replace("+ -", "- ")
 
     lines = []
     for key in ("name", "source"):
         if getattr(table, key):
             lines.append(f"{key}: {json.dumps(getattr(table, key), ensure_ascii=False)}")
-    lines += [f"convention: {table.convention.value}", f"angles: {unit.value}", "joints:"]
+    lines += [f"convention: {table.convention.value}", f"angles: {unit.value}"]
+    if _would_snap(table):  # decimals kept on purpose stay decimals when read back
+        lines.append("snap_angles: false")
+    lines.append("joints:")
     for row in table.rows:
         cells = {
             "type": row.joint.value,

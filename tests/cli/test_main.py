@@ -87,3 +87,33 @@ def test_console_script_runs_without_traceback(tmp_path):
 def test_complex_joint_value_is_a_clean_error(capsys):
     assert main(["fk", "planar2r", "--q", "sqrt(-1),0"]) == 2
     assert "--q value 1 (sqrt(-1)) must be a real number" in capsys.readouterr().err
+
+
+def test_show_prints_lengths_as_the_decimals_written(capsys):
+    assert main(["show", "puma560"]) == 0
+    out = capsys.readouterr().out
+    assert "values: a2 = 0.4318, a3 = 0.0203, d3 = 0.15005, d4 = 0.4318" in out
+    assert "2159/5000" not in out
+
+
+def test_decimal_angles_read_as_exact_are_noted_on_stderr(tmp_path, capsys):
+    from pathlib import Path
+
+    import dhsym
+
+    puma = (Path(dhsym.__file__).parent / "model" / "robots" / "puma560.yaml").read_text()
+    path = tmp_path / "puma.yaml"
+    path.write_text(puma.replace("alpha: pi/2", "alpha: 1.5708").replace("pi/2", "1.5708"))
+    note = "dhsym: note: Decimal angles read as exact: alpha ±1.5708 in rows 1, 3, 4, 5 as ±π/2"
+    for argv in (
+        ["show", str(path)],
+        ["derive", str(path)],
+        ["convert", str(path), "--to", "modified"],
+    ):
+        assert main(argv) == 0
+        captured = capsys.readouterr()
+        assert captured.err.count(note) == 1 and "cos(3927" not in captured.out
+    assert main(["derive", str(path), "--format", "markdown"]) == 0
+    assert "*Note:* Decimal angles read as exact" in capsys.readouterr().out
+    assert main(["show", "puma560"]) == 0
+    assert "note" not in capsys.readouterr().err

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import dhsym
@@ -39,7 +39,8 @@ pi = sp.pi
 
 def max_fk_difference(a: DHTable, b: DHTable, samples: int = 25, seed: int = 1) -> float:
     q = np.random.default_rng(seed).uniform(-np.pi, np.pi, (samples, len(a.variables)))
-    return float(np.max(np.abs(Robot(a).fk(q) - Robot(b).fk(q))))
+    free = {s: 0.7 for s in a.constants if s not in a.value_map}  # e.g. a symbolic base step
+    return float(np.max(np.abs(Robot(a).fk(q, values=free) - Robot(b).fk(q, values=free))))
 
 
 @pytest.mark.parametrize("name", dhsym.builtin_names())
@@ -88,6 +89,7 @@ def test_check_conversion_catches_a_different_robot():
 
 _angles = st.sampled_from([0, 15, -30, 45, 90, -90, 120, 180]).map(lambda d: sp.pi * d / 180)
 _lengths = st.sampled_from([0, 1, sp.Rational(1, 2), -2, sp.Rational(3, 10)])
+_step_values = st.sampled_from([0, 1, -2, sp.pi / 2, sp.Symbol("b", real=True)])
 
 
 @st.composite
@@ -104,7 +106,8 @@ def random_tables(draw):
             rows.append(
                 DHRow.prismatic(sp.Symbol(f"q{k}", real=True) + d, theta=theta, a=a, alpha=alpha)
             )
-    elem = st.builds(Elementary, st.sampled_from("RT"), st.sampled_from("xyz"), _lengths)
+    axes = st.sampled_from("xxxyz")  # x steps often: they meet the row's own Rx, Tx
+    elem = st.builds(Elementary, st.sampled_from("RT"), axes, _step_values)
     base = tuple(draw(st.lists(elem, max_size=3)))
     tool = tuple(draw(st.lists(elem, max_size=3)))
     convention = draw(st.sampled_from(["standard", "modified"]))
@@ -113,7 +116,7 @@ def random_tables(draw):
 
 def word_pose(table: DHTable, q: np.ndarray) -> np.ndarray:
     """World → tool by multiplying the elementary matrices numerically (independent of fk)."""
-    at = dict(zip(table.variables, q, strict=True))
+    at = {**dict(zip(table.variables, q, strict=True)), sp.Symbol("b", real=True): 0.7}
     out = np.eye(4)
     for e in chain_word(table, -1, table.n + 1):
         out = out @ np.array(
@@ -135,6 +138,57 @@ def test_random_tables_keep_their_tool_pose_both_ways(table, seed):
         assert np.max(np.abs(word_pose(there, q) - reference)) < 1e-12
         assert np.max(np.abs(word_pose(back, q) - reference)) < 1e-12
     assert back.rows[1:-1] == table.rows[1:-1]
+
+
+def _zero_step_at_the_row_end(table: DHTable) -> bool:
+    """True when the base (standard) ends / the tool (modified) starts with an explicit zero step
+    ``Rx(0)`` or ``Tx(0)`` next to the row (a step that does nothing: the round trip drops it)."""
+    word = list(reversed(table.base)) if table.convention is Convention.STANDARD else table.tool
+    head = [e for e in word[:2] if e.axis == "x"]
+    if head and head[0].kind == "R":
+        head = head[:1]
+    elif len(head) == 2 and head[1].kind != "R":
+        head = head[:1]
+    return any(e.value == 0 for e in head)
+
+
+@settings(max_examples=150, deadline=None)
+@given(random_tables())
+def test_round_trip_gives_back_every_table_with_its_base_and_tool(table):
+    """to_standard(to_modified(t)) == t and to_modified(to_standard(m)) == m, base and tool
+    included (tool Tx with a zero last twist, base Rx with a zero first twist, ...)."""
+    assume(not _zero_step_at_the_row_end(table))
+    other = "modified" if table.convention is Convention.STANDARD else "standard"
+    there = convert(table, other)
+    back = convert(there, table.convention)
+    assert back == table
+    assert back.base == table.base and back.tool == table.tool  # the very same words
+    assert max_fk_difference(table, there, samples=3) < 1e-12
+
+
+def test_round_trip_of_the_cases_that_used_to_move_into_a_row():
+    q1, q2, t, b = sp.symbols("q1 q2 t b", real=True)
+    # standard: a tool Tx with a2 = alpha2 = 0 used to come back as a2 = t
+    std = DHTable((DHRow.revolute(q1, a=1), DHRow.revolute(q2)), tool=(Elementary("T", "x", t),))
+    mod = to_modified(std)
+    assert mod.tool == (Elementary("T", "x", 0), Elementary("T", "x", t))  # Tx(0) marks a2 = 0
+    assert to_standard(mod) == std
+    # modified: a base Rx with alpha0 = 0 used to come back as alpha0 = b
+    m = DHTable((DHRow.revolute(q1), DHRow.revolute(q2, a=1)), "modified", base=(Rx_(b),))
+    s = to_standard(m)
+    assert s.base == (Rx_(b), Rx_(0)) and to_modified(s) == m
+    assert max_fk_difference(m, s) < 1e-12 and max_fk_difference(std, mod) < 1e-12
+
+
+def Rx_(angle: object) -> Elementary:
+    return Elementary("R", "x", angle)
+
+
+def test_an_explicit_zero_step_at_the_row_end_is_dropped_by_a_round_trip():
+    std = DHTable((DHRow.revolute("q1", a=1),), base=(Elementary("T", "z", 1), Rx_(0)))
+    back = to_standard(to_modified(std))
+    assert back.base == (Elementary("T", "z", 1),) and back.rows == std.rows
+    assert _zero_step_at_the_row_end(std)
 
 
 @settings(max_examples=40, deadline=None)

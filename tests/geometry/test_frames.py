@@ -308,3 +308,46 @@ def test_steps_render_as_markdown_with_the_table():
     assert "$z_{0}$ and $z_{1}$ are parallel" in md
     assert "| $i$ | $\\theta_i$ | $d_i$ | $a_i$ | $\\alpha_i$ | joint |" in md
     assert fa.step_texts[-1].startswith("Check: at the home pose and at 5 random configurations")
+
+
+MEASURED = [  # a measured arm: 12 decimals, generic directions, huge integers in the exact forms
+    ((0, 0, 0.431800000003), (0.000000000001, 0.000000000002, 0.999999999999), "R"),
+    (
+        (0.123456789012, -0.150050000007, 0.650000000001),
+        (0.267261241912, -0.534522483825, 0.801783725737),
+        "R",
+    ),
+    (
+        (0.554321098765, 0.203000000004, 0.350000000003),
+        (0.912870929175, 0.36514837167, -0.182574185835),
+        "P",
+    ),
+]
+
+
+def test_measured_geometry_works_through_frames_fk_and_convert(capsys, tmp_path):
+    from dhsym.cli.main import main
+    from dhsym.geometry.conversion import check_conversion, convert
+    from dhsym.model.tablefile import dump_table
+
+    approach = (0.267261241912, -0.534522483825, 0.801783725737)
+    tool = ((0.9, 0.1, 0.2), approach, (0.534522483825, 0.267261241912, 0))  # a·s = 0 exactly
+    fa = assign_frames(MEASURED, tool=tool)  # verified at home and 5 random configurations
+    big = [n for r in fa.table.rows for n in r.a.atoms(sp.Integer) if abs(n) > 2**63]
+    assert big  # the exact forms hold integers that numpy cannot take the root of
+    robot = fa.robot()
+    q = np.array([0.3, -1.1, 0.05])
+    T = robot.fk(q)
+    np.testing.assert_allclose(T, robot.fk([q, q])[1], atol=1e-15)
+    # the tool pose equals the geometry: the tool frame moved by the joints' screw motions
+    motion = np.eye(4)
+    for axis, value in zip(fa.axes, q, strict=True):
+        motion = motion @ axis.motion(value)
+    home = np.array(fa.tool.frame.matrix.evalf(), dtype=float)
+    np.testing.assert_allclose(T, motion @ home, atol=1e-9)
+    modified = convert(fa.table, "modified")
+    assert check_conversion(fa.table, modified) < 1e-12
+    path = tmp_path / "measured.yaml"
+    path.write_text(dump_table(fa.table))
+    assert main(["convert", str(path), "--to", "modified"]) == 0
+    assert "tool pose agrees" in capsys.readouterr().err

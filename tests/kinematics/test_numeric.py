@@ -62,3 +62,87 @@ def test_constant_entries_broadcast_in_batches():
     f = compile_pose(sp.ImmutableMatrix(sp.eye(4)).row_insert(0, sp.zeros(0, 4)), (q1,))
     out = f(np.zeros((3, 1)))
     np.testing.assert_array_equal(out, np.broadcast_to(np.eye(4), (3, 4, 4)))
+
+
+# --- the one evaluator: floats only, safe for huge integers -----------------------------------
+
+
+def test_to_float_is_safe_for_huge_integers_nested_roots_and_pi():
+    from dhsym.kinematics.numeric import to_float
+
+    big = sp.Integer(10) ** 30 + 7
+    assert to_float(sp.sqrt(big**2 + 1) / big) == 1.0
+    assert to_float(sp.sqrt(2 + sp.sqrt(3)) - (sp.sqrt(6) + sp.sqrt(2)) / 2) == pytest.approx(0)
+    assert to_float(sp.Rational(2**70 + 1, 2**70)) == 1.0
+    assert to_float(sp.pi / 2) == np.pi / 2
+    with pytest.raises(dhsym.DHError, match="too large"):
+        to_float(sp.Integer(10) ** 400)
+    with pytest.raises(dhsym.DHError, match="not a real number"):
+        to_float(sp.sqrt(-2))
+    with pytest.raises(dhsym.DHError, match="no numeric value for x"):
+        to_float(sp.Symbol("x") + 1)
+
+
+def test_compiled_code_sees_floats_only():
+    from dhsym.kinematics.numeric import compile_exprs, float_constants
+
+    x = sp.Symbol("x", real=True)
+    huge = sp.sqrt(sp.Integer(10) ** 40 + 1)  # numpy's sqrt fails on Python ints > 2**63
+    e = huge * x / 10**20 + sp.Rational(1, 3) * sp.cos(x + sp.sqrt(2))
+    folded = float_constants(e)
+    assert all(a.is_Float or (a.is_Integer and abs(a) < 2**53) for a in folded.atoms(sp.Number))
+    for fn in (compile_exprs([e], [x]), compile_exprs([e], [x], floats=True)):
+        assert float(np.asarray(fn(0.5)[0])) == pytest.approx(0.5 + np.cos(0.5 + 2**0.5) / 3)
+
+
+def test_one_configuration_takes_the_float_path_and_equals_the_batch():
+    robot = dhsym.load("puma560")
+    f = robot.fk_function()
+    q = [0.1, -0.4, 0.3, 1.2, -0.5, 2.0]
+    batch = f.batch(np.array([q, q]))
+    for single in (f(q), f(tuple(q)), f(np.array(q)), robot.fk(q), f([int(x) for x in q])):
+        assert single.shape == (4, 4) and single.dtype == float
+    np.testing.assert_allclose(f(q), batch[0], rtol=0, atol=1e-15)
+    np.testing.assert_array_equal(f(np.array(q)), f(q))
+
+
+def test_printed_poses_have_no_negative_zeros():
+    for q in ([0.0] * 6, [-0.0] * 6):
+        single, batch = dhsym.load("puma560").fk(q), dhsym.load("puma560").fk([q])
+        assert not np.signbit(single[single == 0]).any()
+        assert not np.signbit(batch[batch == 0]).any()
+
+
+def test_non_finite_joint_values_behave_like_numpy():
+    f = dhsym.load("planar2r").fk_function()
+    with np.errstate(invalid="ignore"):
+        out = f([np.inf, 0.0])
+        assert np.isnan(out[0, 0]) and out[3, 3] == 1.0
+        assert np.isnan(f([np.nan, 0.0])[0, 3])
+
+
+def test_the_cache_is_keyed_by_what_changes():
+    robot = dhsym.load("puma560")
+    assert robot.fk_function(values={"a2": 1}) is robot.fk_function(values={"a2": 1})
+    assert robot.fk_function(0, 3) is robot.fk_function(0, 3)
+    assert robot.fk_function(0, 3) is not robot.fk_function(0, 4)
+    q = [0.1] * 6
+    np.testing.assert_allclose(
+        robot.fk(q, values={"a2": 1.0})[:3, 3], robot.fk_function(values={"a2": 1})(q)[:3, 3]
+    )
+
+
+def test_compile_word_multiplies_elementaries_numerically():
+    from dhsym.kinematics.numeric import compile_word
+    from dhsym.kinematics.transforms import chain_word
+
+    robot = dhsym.load("stanford")
+    word = chain_word(robot.table, -1, robot.n + 1)
+    f = compile_word(word, robot.variables, robot.table.value_map)
+    Q = np.random.default_rng(0).uniform(-1, 1, (7, robot.n))
+    np.testing.assert_allclose(f(Q), robot.fk(Q), atol=1e-12)
+    np.testing.assert_allclose(f(Q[0]), robot.fk(Q[0]), atol=1e-12)
+    prefixes = compile_word(word, robot.variables, robot.table.value_map, prefixes=True)(Q)
+    assert prefixes.shape == (7, len(word) + 1, 4, 4)
+    np.testing.assert_allclose(prefixes[:, -1], f(Q))
+    np.testing.assert_array_equal(prefixes[:, 0], np.broadcast_to(np.eye(4), (7, 4, 4)))
