@@ -114,9 +114,18 @@ def _frame_range(robot: Any) -> tuple[int, list[int], list[str]]:
     return first, ks, [names.get(k, str(k)) for k in ks]
 
 
+_LONG_CHAIN = 12  # frames; beyond, ^0T_k is built up link by link (numbers, not closed forms)
+
+
 def _poses(robot: Any, qv: np.ndarray) -> tuple[np.ndarray, list[str]]:
     first, ks, labels = _frame_range(robot)
-    return np.stack([robot.fk_function(first, k)(qv) for k in ks]), labels
+    if len(ks) <= _LONG_CHAIN:
+        return np.stack([robot.fk_function(first, k)(qv) for k in ks]), labels
+    from .numeric import compile_chain
+
+    links = [robot.transform(a, b).matrix for a, b in zip(ks, ks[1:])]
+    frames = compile_chain(links, robot.variables, robot.table.value_map, cumulative=True)
+    return np.concatenate([np.eye(4)[None], frames(qv)]), labels
 
 
 def frame_origins(robot: Any, q: object = None, *, deg: bool = False) -> np.ndarray:

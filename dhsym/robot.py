@@ -26,19 +26,27 @@ from typing import TYPE_CHECKING
 
 import sympy as sp
 
+from .errors import DHError
 from .notation import Notation
 from .parsing import symbol
 from .pose import Pose
-from .simplification import compose, numeric_equal, prove_equal
+from .simplification import closed_form_size, compose, numeric_equal, prove_equal
 from .table import Convention, DHTable, Elementary, JointType, as_expr
 from .transforms import chain_word, link_word, plain_product
 
 if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `import sympy`
     import numpy as np
 
-__all__ = ["Robot"]
+__all__ = ["MAX_CLOSED_FORM", "Robot"]
 
 FkFunction = Callable[[object], "np.ndarray"]
+
+#: Largest estimated size (expression nodes, :func:`~dhsym.simplification.closed_form_size`)
+#: of a ``^iT_j`` written out in closed form.  Every lecture robot is below 1,500, a
+#: 10-joint chain of twisted joints about 27,000; above, a derivation would run for
+#: minutes and print pages per entry, so it is refused (numbers, ``fk``, still work).
+MAX_CLOSED_FORM = 30_000
+_NUMERIC_PART = 400  # size of the parts of a chain compiled piecewise for numbers
 
 
 class Robot:
@@ -57,7 +65,7 @@ class Robot:
             upper=upper,
         )
         self._transform = cache(self._compute_transform)
-        self._fk_cache: dict[tuple[int, int], FkFunction] = {}
+        self._fk_cache: dict[tuple[int, int, tuple], FkFunction] = {}
 
     # -- description -----------------------------------------------------------------
     @property
@@ -108,10 +116,44 @@ class Robot:
         return self.transform(i - 1, i)
 
     def transform(self, i: int, j: int) -> Pose:
-        """``^iT_j`` in compact form, for any frames ``i``, ``j`` (inverse when ``j < i``)."""
+        """``^iT_j`` in compact form, for any frames ``i``, ``j`` (inverse when ``j < i``).
+
+        Raises :class:`~dhsym.errors.DHError` when its closed form would be too large
+        (see :meth:`check_transform_size`).
+        """
         return self._transform(i, j)
 
+    def transform_size(self, i: int, j: int) -> int:
+        """Estimated size of ``^iT_j`` in closed form (expression nodes), found in microseconds."""
+        return closed_form_size(chain_word(self.table, i, j))
+
+    def check_transform_size(self, i: int, j: int) -> None:
+        """Refuse a ``^iT_j`` whose closed form would explode, naming the parts that fit.
+
+        >>> from dhsym.table import DHRow, DHTable
+        >>> rows = [DHRow.revolute(f"q{k}", d=f"d{k}", a=f"a{k}", alpha=(-1) ** k * sp.pi / 2)
+        ...         for k in range(1, 17)]
+        >>> Robot(DHTable.from_rows(rows, name="snake")).transform(0, 16)
+        Traceback (most recent call last):
+        ...
+        dhsym.errors.DHError: ^0T_16 of snake is too large to write out in closed form ...
+        """
+        size = self.transform_size(i, j)
+        if size <= MAX_CLOSED_FORM:
+            return
+        step = 1 if j > i else -1
+        k = i + step
+        while k != j and self.transform_size(i, k + step) <= MAX_CLOSED_FORM:
+            k += step
+        raise DHError(
+            f"^{i}T_{j} of {self.name or 'this robot'} is too large to write out in closed form "
+            f"(an estimated {size:.3g} expression nodes; at most {MAX_CLOSED_FORM}): derive a "
+            f"shorter part of the chain with --from/--to (frm=/to= in Python), e.g. "
+            f"^{i}T_{k}, and name the parts: ^{i}T_{j} = ^{i}T_{k} ^{k}T_{j}"
+        )
+
     def _compute_transform(self, i: int, j: int) -> Pose:
+        self.check_transform_size(i, j)
         matrix = compose(chain_word(self.table, i, j))
         return Pose(matrix, _frame_name(i, self.n), _frame_name(j, self.n), self.notation)
 
@@ -143,20 +185,39 @@ class Robot:
         j: int | None = None,
         values: Mapping[object, object] | None = None,
     ) -> FkFunction:
-        """A compiled numeric function ``q -> ^iT_j`` (defaults: world to tool)."""
-        pose = (
-            self.tool_pose()
-            if i is None and j is None
-            else self.transform(i or 0, self.n if j is None else j)
-        )
+        """A compiled numeric function ``q -> ^iT_j`` (defaults: world to tool).
+
+        A chain too large for one closed form (:data:`MAX_CLOSED_FORM`) is compiled in
+        small parts that are multiplied numerically.
+        """
+        if i is None and j is None:
+            i = -1 if self.table.base else 0
+            j = self.n + 1 if self.table.tool else self.n
+        i, j = (i or 0), (self.n if j is None else j)
         vals = dict(self.table.value_map)
         for k, v in (values or {}).items():
             vals[symbol(k) if isinstance(k, str) else k] = as_expr(v, field="values")  # type: ignore[index]
-        key = (pose.frm, pose.to, tuple(sorted((str(k), str(v)) for k, v in vals.items())))
-        if key not in self._fk_cache:
-            from .numeric import compile_pose
+        return self._compiled(i, j, vals, tuple(sorted((str(k), str(v)) for k, v in vals.items())))
 
-            self._fk_cache[key] = compile_pose(pose.matrix, self.variables, vals)  # type: ignore[index]
+    def _compiled(self, i: int, j: int, vals: dict, tag: tuple) -> FkFunction:
+        key = (i, j, tag)
+        if key not in self._fk_cache:
+            from .numeric import compile_chain, compile_pose, compose_numeric
+
+            if self.transform_size(i, j) <= MAX_CLOSED_FORM:
+                fn = compile_pose(self.transform(i, j).matrix, self.variables, vals)
+            elif j < i:
+                fn = compose_numeric([self._compiled(j, i, vals, tag)], invert=True)
+            else:  # small parts, quick to derive, compiled at once and multiplied numerically
+                parts, a = [], i
+                while a < j:
+                    b = a + 1
+                    while b < j and self.transform_size(a, b + 1) <= _NUMERIC_PART:
+                        b += 1
+                    parts.append(self.transform(a, b).matrix)
+                    a = b
+                fn = compile_chain(parts, self.variables, vals)
+            self._fk_cache[key] = fn  # type: ignore[index]
         return self._fk_cache[key]  # type: ignore[index]
 
     def fk(
