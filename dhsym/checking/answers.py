@@ -54,6 +54,7 @@ __all__ = [
 
 _UNICODE = str.maketrans({"−": "-", "–": "-", "·": "*", "×": "*", "⋅": "*", "\u00a0": " "})
 _MATRIX_WRAPPER = re.compile(r"^\s*(?:sp\.|sympy\.)?(?:Immutable)?Matrix\s*\((.*)\)\s*$", re.DOTALL)
+_YAML_TABLE = re.compile(r"^[ \t]*joints[ \t]*:", re.MULTILINE)  # [ \t]: one line, linear
 
 
 def read_text(data: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
@@ -251,7 +252,7 @@ def read_table(
     """
     text = read_text(text, limits)
     try:
-        if re.search(r"^\s*joints\s*:", text, re.MULTILINE):
+        if _YAML_TABLE.search(text):
             return yaml_table(text, ctx, Convention.parse(convention), limits)
         return grid_table(text, ctx, Convention.parse(convention), limits)
     except (TableError, ParseError, UnreadableAnswer):
