@@ -231,14 +231,18 @@ def read_limited(
         flags |= getattr(os, "O_NOFOLLOW", 0)
     if not follow_links and p.is_symlink():
         raise FileRefused(
-            f"{what} is a symbolic link (links are not read)", kind="link", file=str(p)
+            f"{what} is not a regular file (a symbolic link: links are not read)",
+            kind="link",
+            file=str(p),
         )
     try:
         fd = os.open(p, flags)
     except OSError as err:
         if err.errno == errno.ELOOP:
             raise FileRefused(
-                f"{what} is a symbolic link (links are not read)", kind="link", file=str(p)
+                f"{what} is not a regular file (a symbolic link: links are not read)",
+                kind="link",
+                file=str(p),
             ) from None
         raise FileRefused(f"cannot read {what}: {err.strerror}", file=str(p)) from None
     with os.fdopen(fd, "rb", buffering=0) as fh:
@@ -251,7 +255,8 @@ def read_limited(
             )
         if not hard_links and st.st_nlink > 1:
             raise FileRefused(
-                f"{what} has {st.st_nlink} hard links: hard-linked files are not read",
+                f"{what} is not read: it has {st.st_nlink} hard links "
+                "(a hard link can stand for any file of its owner)",
                 kind="link",
                 file=str(p),
             )
