@@ -239,11 +239,32 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return int(args.func(args))
     except DHError as err:
-        print(f"dhsym: error: {err}", file=sys.stderr)
+        print(f"dhsym: error: {_one_line(err)}", file=sys.stderr)
         return 2
     except (OSError, IndexError) as err:
-        print(f"dhsym: error: {err}", file=sys.stderr)
+        print(f"dhsym: error: {_one_line(err)}", file=sys.stderr)
         return 2
+    except (RecursionError, MemoryError) as err:
+        print(
+            f"dhsym: error: the input is too large or too deeply nested ({type(err).__name__})",
+            file=sys.stderr,
+        )
+        return 2
+    except KeyboardInterrupt:
+        print("dhsym: interrupted", file=sys.stderr)
+        return 130
+    except Exception as err:  # noqa: BLE001 - a user never sees a traceback
+        print(
+            f"dhsym: internal error: {type(err).__name__}: {_one_line(err)} "
+            "(please report this with the command that caused it)",
+            file=sys.stderr,
+        )
+        return 70
+
+
+def _one_line(err: BaseException) -> str:
+    text = " ".join(str(err).split())
+    return text if len(text) <= 2000 else text[:1999] + "…"
 
 
 if __name__ == "__main__":  # pragma: no cover

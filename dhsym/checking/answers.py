@@ -34,6 +34,7 @@ import sympy as sp
 from dhsym.errors import DHError, ParseError, TableError
 from dhsym.parsing import parse_expression
 from dhsym.table import Convention, DHTable
+from dhsym.yamlsafe import FileRefused, read_limited
 
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
 from ._table_text import grid_table, yaml_table
@@ -86,18 +87,11 @@ def read_text(data: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -
 
 
 def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
-    """Read an answer file: its size is checked before anything is read."""
-    p = Path(path)
+    """Read an answer file: a regular file only, at most ``limits.max_bytes`` of it."""
     try:
-        size = p.stat().st_size
-        if size > limits.max_bytes:
-            raise UnreadableAnswer(
-                f"the answer file is {size} bytes; at most {limits.max_bytes} are read"
-            )
-        with p.open("rb") as fh:
-            data = fh.read(limits.max_bytes + 1)
-    except OSError as err:
-        raise UnreadableAnswer(f"cannot read the answer file: {err.strerror}") from None
+        data = read_limited(path, limits.max_bytes, what="the answer file")
+    except FileRefused as err:
+        raise UnreadableAnswer(err.message) from None
     return read_text(data, limits)
 
 

@@ -39,13 +39,21 @@ def _read_answer(source: str, limit: int) -> bytes | str:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
+    from dhsym.robot import Robot
+
+    from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer, check_seconds
     from .checker import Key, check_answer
     from .feedback import render_check
     from .verdict import CheckResult, Verdict
 
+    limits = (
+        AnswerLimits(seconds=check_seconds(args.timeout, "--timeout"))
+        if args.timeout is not None
+        else DEFAULT_ANSWER_LIMITS
+    )
     key = Key.load(args.key, args.question, tool_free=args.tool_free)
-    limits = AnswerLimits(seconds=args.timeout) if args.timeout else DEFAULT_ANSWER_LIMITS
+    if key.question.kind != "table":
+        Robot(key.table).check_transform_size(key.question.frm, key.question.to)
     try:
         answer = _read_answer(args.answer, limits.max_bytes)
         result = check_answer(key, answer, limits=limits)
@@ -78,9 +86,13 @@ def _cmd_grade(args: argparse.Namespace) -> int:
         dask=args.dask,
         progress=not args.quiet,
     )
+    for warning in report.warnings:
+        print(f"dhsym: warning: {warning}", file=sys.stderr)
+    flagged = sum(bool(r.get("flags")) for r in report.records)
     print(
         f"graded {report.graded} submission(s), {report.skipped} already graded, "
-        f"{report.failed} failed (timeout or error); mean score {report.mean:.2f}"
+        f"{report.failed} failed (timeout or error), {flagged} flagged; "
+        f"mean score {report.mean:.2f}"
     )
     print(f"gradebook: {report.gradebook}")
     print(f"summary:   {report.summary}")
@@ -110,12 +122,19 @@ def register_cli(subparsers: argparse._SubParsersAction) -> None:
     g.add_argument("assignment", help="assignment YAML file")
     g.add_argument("submissions", help="folder of submissions, or a CSV file")
     g.add_argument("-o", "--output", required=True, help="report folder (created)")
-    g.add_argument("--workers", type=int, default=2, help="worker processes (0: none)")
+    g.add_argument(
+        "--workers",
+        type=int,
+        default=2,
+        help="worker processes, each killed and replaced when a submission overruns "
+        "(0: grade in this process, without isolation)",
+    )
     g.add_argument(
         "--timeout",
         type=float,
         default=None,
-        help="time limit of one answer in seconds (default: the assignment's, 5)",
+        help="time limit of one answer in seconds, above 0 and at most 3600 "
+        "(default: the assignment's, 5)",
     )
     g.add_argument(
         "--dask", default=None, metavar="ADDRESS", help="run on a Dask cluster (scheduler address)"
