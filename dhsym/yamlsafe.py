@@ -245,14 +245,15 @@ def read_limited(
                 file=str(p),
             ) from None
         raise FileRefused(f"cannot read {what}: {err.strerror}", file=str(p)) from None
+    st = os.fstat(fd)
+    if not stat.S_ISREG(st.st_mode):
+        os.close(fd)
+        raise FileRefused(
+            f"{what} is not a regular file (a device, FIFO, socket or folder)",
+            kind="special",
+            file=str(p),
+        )
     with os.fdopen(fd, "rb", buffering=0) as fh:
-        st = os.fstat(fd)
-        if not stat.S_ISREG(st.st_mode):
-            raise FileRefused(
-                f"{what} is not a regular file (a device, FIFO, socket or folder)",
-                kind="special",
-                file=str(p),
-            )
         if not hard_links and st.st_nlink > 1:
             raise FileRefused(
                 f"{what} is not read: it has {st.st_nlink} hard links "
