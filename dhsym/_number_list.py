@@ -2,7 +2,8 @@
 
 Each value goes through the whitelist parser :func:`dhsym.parsing.parse_expression`,
 so ``pi/2`` and ``sqrt(2)/2`` are numbers and nothing is evaluated. Used by the
-sub-commands of :mod:`dhsym.cli`, :mod:`dhsym.plotting` and :mod:`dhsym.rendering`.
+sub-commands of :mod:`dhsym.cli`, :mod:`dhsym.plotting` and :mod:`dhsym.rendering`, with
+:func:`check_count` for counts such as ``--samples``.
 
 Examples
 --------
@@ -19,7 +20,25 @@ from __future__ import annotations
 from .errors import DHError
 from .parsing import parse_expression
 
-__all__ = ["parse_number_list"]
+__all__ = ["check_count", "parse_number_list"]
+
+
+def check_count(value: int, option: str, low: int, high: int) -> int:
+    """``value`` if ``low <= value <= high``; otherwise a one-line error naming ``option``.
+
+    Counts the user chooses (samples, dots per inch) size arrays and pictures: an
+    unbounded one is gigabytes of memory or an hour of work.
+
+    >>> check_count(20, "--samples", 0, 100_000)
+    20
+    >>> check_count(10**11, "--samples", 0, 100_000)
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: --samples must be from 0 to 100000, got 100000000000
+    """
+    if not low <= value <= high:
+        raise DHError(f"{option} must be from {low} to {high}, got {value}")
+    return value
 
 
 def parse_number_list(text: str, option: str) -> list[float]:

@@ -332,9 +332,11 @@ def transform_word(T: sp.MatrixBase) -> tuple[Elementary, ...]:
 def _cmd_convert(args: argparse.Namespace) -> int:
     from pathlib import Path
 
+    from ._number_list import check_count
     from .library import load_table
     from .tablefile import dump_table
 
+    check_count(args.samples, "--samples", 0, 100_000)
     table = load_table(args.robot)
     target = Convention.parse(args.to)
     if table.convention is target:

@@ -351,12 +351,14 @@ def plot_workspace(
 
 # -- command line ------------------------------------------------------------------------
 def _cmd_plot(args: argparse.Namespace) -> int:
-    from ._number_list import parse_number_list
+    from ._number_list import check_count, parse_number_list
     from .library import load
 
     out = Path(args.output)
     if out.suffix.lower() not in (".png", ".pdf", ".svg"):
         raise DHError(f"-o {out}: the picture must be .png, .pdf or .svg")
+    check_count(args.samples, "--samples", 1, 1_000_000)
+    check_count(args.dpi, "--dpi", 10, 1200)
     robot = load(args.robot)
     if args.workspace:
         fig = plot_workspace(robot, args.samples, view=args.view)
