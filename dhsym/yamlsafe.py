@@ -13,7 +13,8 @@ through :func:`read_limited`:
   nesting depth, the number of values with every alias counted each time it is
   used, and the characters those values expand to are all bounded, so a
   400-byte "billion laughs" file is refused before anything is constructed or
-  turned into text. Only then is it loaded with ``yaml.SafeLoader`` (no tags,
+  turned into text; an alias inside its own anchor (a list that contains
+  itself) is refused too. Only then is it loaded with ``yaml.SafeLoader`` (no tags,
   no objects), with integers longer than :attr:`YAMLLimits.max_digits` digits
   refused (Python refuses to convert them to text beyond 4300 digits anyway).
 
@@ -152,6 +153,11 @@ def _check_events(text: str, limits: YAMLLimits) -> None:
             stack[-1][1] += chars
             total_nodes, total_chars = total_nodes + nodes, total_chars + chars
         elif isinstance(event, yaml.AliasEvent):
+            if event.anchor in opened:
+                raise YAMLInputError(
+                    f"{_line(event)}the alias *{event.anchor} is inside its own anchor "
+                    "(a structure that contains itself)"
+                )
             nodes, chars = anchors.get(event.anchor, (1, 0))
             stack[-1][0] += nodes
             stack[-1][1] += chars

@@ -36,6 +36,11 @@ def test_aliases_count_every_time_they_are_used():
         load_yaml(laughs(3, leaf=long))  # few values, but 5 * 10**6 characters
 
 
+def test_a_structure_that_contains_itself_is_refused():
+    with pytest.raises(YAMLInputError, match=r"line 1: the alias \*a is inside its own anchor"):
+        load_yaml("joints: &a [*a, *a, *a]\nname: &b [*a, *a]")
+
+
 def test_depth_digits_size_and_tags():
     with pytest.raises(YAMLInputError, match="nested more than 64 levels"):
         load_yaml("a: " + "{b: " * 65 + "1" + "}" * 65)

@@ -74,8 +74,11 @@ class AnswerTimeout(BaseException):  # noqa: N818 - an interruption, like Keyboa
     """
 
 
-def check_seconds(value: object, what: str) -> float:
-    """``value`` as a time limit in seconds: finite, above 0, at most :data:`MAX_SECONDS`."""
+def check_seconds(value: object, what: str, *, file: str | None = None) -> float:
+    """``value`` as a time limit in seconds: finite, above 0, at most :data:`MAX_SECONDS`.
+
+    ``what`` names the option (``--timeout``), or with ``file`` the field of that file.
+    """
     number: float | None = None
     if isinstance(value, (int, float, str)) and not isinstance(value, bool):
         try:
@@ -84,10 +87,12 @@ def check_seconds(value: object, what: str) -> float:
             number = None
     if number is None or not (0 < number <= MAX_SECONDS):  # also refuses nan and inf
         shown = value if isinstance(value, (int, float)) else repr(value)
-        raise DHError(
-            f"{what}: expected a time limit in seconds above 0 and at most {MAX_SECONDS:g}, "
-            f"got {shown}"
+        problem = (
+            f"expected a time limit in seconds above 0 and at most {MAX_SECONDS:g}, got {shown}"
         )
+        if file is not None:
+            raise DHError(problem, file=file, field=what)
+        raise DHError(f"{what}: {problem}")
     return number
 
 

@@ -127,12 +127,7 @@ class Assignment:
             raise DHError("the assignment is not UTF-8 text", file=str(p)) from None
         if not isinstance(data, Mapping) or not isinstance(data.get("questions"), list):
             raise DHError("expected 'questions: [...]' (and 'key:') in the assignment", file=str(p))
-        try:
-            seconds = check_seconds(data.get("time_limit", 5.0), "time_limit")
-        except DHError as err:
-            raise DHError(
-                err.message.removeprefix("time_limit: "), file=str(p), field="time_limit"
-            ) from None
+        seconds = check_seconds(data.get("time_limit", 5.0), "time_limit", file=str(p))
         default = data.get("key")
         questions, seen, digest = [], set(), [text]
         for k, q in enumerate(data["questions"], 1):
@@ -231,14 +226,15 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
     answers, problems = dict(sub.answers), dict(sub.problems)
     inner = replace(limits, seconds=0)  # the limit is the one below: a timeout stays one
     feedback, scores, verdicts, kinds = [], {}, {}, []
-    status = "graded"
+    timed_out = set()
     for q in assignment.questions:
         if q.id in answers:
             try:
                 with time_limit(limits.seconds, AnswerTimeout):
                     result = check_answer(q.key, answers[q.id], limits=inner)
             except AnswerTimeout:
-                result, status = _timed_out(q, limits.seconds), "timeout"
+                result = _timed_out(q, limits.seconds)
+                timed_out.add(q.id)
         elif q.id in problems:
             result = CheckResult(
                 q.ask,
@@ -251,7 +247,7 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
             result = None
         score = q.points if result is not None and result.correct else 0.0
         scores[q.id] = score
-        if result is not None and result.reason == "timeout":
+        if q.id in timed_out:
             verdicts[q.id] = "timeout"
             kinds.append("timeout")
         else:
@@ -262,6 +258,7 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
                 )
         feedback.append(QuestionFeedback(q.id, q.ask, q.points, score, result))
     student = {"id": sub.student, "name": sub.name}
+    status = "timeout" if timed_out else "graded"
     pages = {
         fmt: render_feedback(
             student, feedback, title=assignment.title, fmt=fmt, status=status, flags=sub.flags
