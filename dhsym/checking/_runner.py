@@ -287,6 +287,8 @@ def run_pool(
             return k, JobFailure("error", "the run was stopped")
         box = boxes.get()
         try:
+            if stop.is_set():  # stopped while this job waited for a free process
+                return k, JobFailure("error", "the run was stopped")
             return k, box.call(fn, jobs[k], deadline)
         finally:
             boxes.put(box)
