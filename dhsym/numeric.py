@@ -61,11 +61,7 @@ def compile_pose(
     n = len(variables)
 
     def fk(q: object) -> np.ndarray:
-        arr = np.asarray(q, dtype=float)
-        single = arr.ndim <= 1
-        Q = arr.reshape(1, -1) if single else arr
-        if Q.shape[-1] != n:
-            raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
+        Q, single = _configurations(q, n)
         N = Q.shape[0]
         out = np.empty((N, 4, 4))
         flat = out.reshape(N, 16)
@@ -80,6 +76,16 @@ def compile_pose(
         return out[0] if single else out
 
     return fk
+
+
+def _configurations(q: object, n: int) -> tuple[np.ndarray, bool]:
+    """``q`` as an ``(N, n)`` batch, and whether it was one configuration."""
+    arr = np.asarray(q, dtype=float)
+    single = arr.ndim <= 1
+    Q = arr.reshape(1, -1) if single else arr
+    if Q.shape[-1] != n:
+        raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
+    return Q, single
 
 
 def _lambdify(
@@ -124,11 +130,7 @@ def compile_chain(
     n, k = len(variables), len(matrices)
 
     def fk(q: object) -> np.ndarray:
-        arr = np.asarray(q, dtype=float)
-        single = arr.ndim <= 1
-        Q = arr.reshape(1, -1) if single else arr
-        if Q.shape[-1] != n:
-            raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
+        Q, single = _configurations(q, n)
         cells = fn(*Q.T)
         parts = np.zeros((k, Q.shape[0], 4, 4))
         parts[:, :, 3, 3] = 1.0

@@ -143,7 +143,7 @@ contents = st.one_of(
 
 
 def _write(path: Path, data: str | bytes) -> None:
-    path.write_bytes(data if isinstance(data, bytes) else data.encode("utf-8", "surrogatepass"))
+    path.write_bytes(_bytes(data))
 
 
 @contextlib.contextmanager
@@ -300,19 +300,25 @@ def command_lines(draw: st.DrawFn) -> list[str]:
     return argv
 
 
+def budget(examples: int) -> settings:
+    """A fixed number of inputs, the same on every run (no deadline: hangs are timed above)."""
+    return settings(
+        max_examples=examples,
+        deadline=None,
+        derandomize=True,
+        suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
+    )
+
+
+def _bytes(data: str | bytes) -> bytes:
+    return data if isinstance(data, bytes) else data.encode("utf-8", "surrogatepass")
+
+
 @pytest.mark.slow
-@settings(
-    max_examples=CLI_EXAMPLES,
-    deadline=None,
-    derandomize=True,
-    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
-)
+@budget(CLI_EXAMPLES)
 @given(
     argv=command_lines(),
-    stdin=st.one_of(
-        st.binary(max_size=300),
-        contents.map(lambda c: c if isinstance(c, bytes) else c.encode("utf-8", "surrogatepass")),
-    ),
+    stdin=st.one_of(st.binary(max_size=300), contents.map(_bytes)),
     gen=contents,
 )
 def test_any_command_line_is_answered_or_refused_in_one_line(argv, stdin, gen):
@@ -341,9 +347,8 @@ def _load_all(root: Path, data: str | bytes) -> None:
     a = Assignment.load(HW / "assignment.yaml")
     subs = read_submissions(folder, a)
     assert [s.student for s in subs] == ["eve", "zoe"]
-    text = data if isinstance(data, bytes) else data.encode("utf-8", "surrogatepass")
     for key in KEYS:
-        result = check_answer(key, text)
+        result = check_answer(key, _bytes(data))
         assert result.verdict.value in ("correct", "incorrect", "unreadable")
 
 
@@ -351,12 +356,7 @@ KEYS = [Key.load("planar2r", q) for q in ("table", "T0_2", "T0_2[0,3]")]
 
 
 @pytest.mark.slow
-@settings(
-    max_examples=FILE_EXAMPLES,
-    deadline=None,
-    derandomize=True,
-    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
-)
+@budget(FILE_EXAMPLES)
 @given(data=contents)
 def test_every_file_loader_gives_a_result_or_a_clear_error(data):
     with tempfile.TemporaryDirectory() as tmp, time_limit(PER_INPUT_SECONDS, Hang):
