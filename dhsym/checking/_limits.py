@@ -4,7 +4,12 @@ Everything a student typed is bounded three ways: its size (bytes, cells),
 the whitelist parser's :class:`~dhsym.model.parsing.ParseLimits`, and the symbolic
 work done on it — an *estimate* of the expansion size refuses hopeless
 expressions before sympy starts, and :func:`time_limit` stops what slips
-through (``SIGALRM``; in a non-main thread only the estimate applies).
+through (``SIGALRM``; in a non-main thread only the estimate applies).  Grading
+adds process isolation on top (:mod:`dhsym.checking._runner`): a process that
+overruns its deadline is killed, whatever it was doing.
+
+Time limits come from users (``--timeout``, ``time_limit:``) and are checked by
+:func:`check_seconds`: finite, above 0, at most :data:`MAX_SECONDS`.
 
 Examples
 --------
@@ -14,6 +19,12 @@ Examples
 (4, 2)
 >>> AnswerLimits().max_bytes
 100000
+>>> check_seconds("2.5", "--timeout")
+2.5
+>>> check_seconds(float("inf"), "--timeout")
+Traceback (most recent call last):
+...
+dhsym.errors.DHError: --timeout: expected a time limit in seconds above 0 and at most 3600, got inf
 """
 
 from __future__ import annotations
@@ -21,7 +32,8 @@ from __future__ import annotations
 import math
 import signal
 import threading
-from collections.abc import Iterator
+import time
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 
@@ -32,12 +44,17 @@ from dhsym.model.parsing import ParseLimits
 
 __all__ = [
     "AnswerLimits",
+    "AnswerTimeout",
     "CheckTimeout",
     "DEFAULT_ANSWER_LIMITS",
+    "MAX_SECONDS",
     "UnreadableAnswer",
+    "check_seconds",
     "expansion_terms",
     "time_limit",
 ]
+
+MAX_SECONDS = 3600.0
 
 
 class UnreadableAnswer(DHError):
@@ -46,6 +63,37 @@ class UnreadableAnswer(DHError):
 
 class CheckTimeout(DHError):
     """Checking one answer took longer than its time limit."""
+
+
+class AnswerTimeout(BaseException):  # noqa: N818 - an interruption, like KeyboardInterrupt
+    """The grading time limit of one answer ran out.
+
+    Not an ``Exception``: no ``except Exception`` inside sympy or the checker can
+    swallow it, so the grader always learns that the answer timed out (a timeout is
+    never mistaken for a verdict, and never cached).
+    """
+
+
+def check_seconds(value: object, what: str, *, file: str | None = None) -> float:
+    """``value`` as a time limit in seconds: finite, above 0, at most :data:`MAX_SECONDS`.
+
+    ``what`` names the option (``--timeout``), or with ``file`` the field of that file.
+    """
+    number: float | None = None
+    if isinstance(value, (int, float, str)) and not isinstance(value, bool):
+        try:
+            number = float(value)
+        except (ValueError, OverflowError):
+            number = None
+    if number is None or not (0 < number <= MAX_SECONDS):  # also refuses nan and inf
+        shown = value if isinstance(value, (int, float)) else repr(value)
+        problem = (
+            f"expected a time limit in seconds above 0 and at most {MAX_SECONDS:g}, got {shown}"
+        )
+        if file is not None:
+            raise DHError(problem, file=file, field=what)
+        raise DHError(f"{what}: {problem}")
+    return number
 
 
 @dataclass(frozen=True)
@@ -78,16 +126,29 @@ class AnswerLimits:
     seconds: float = 5.0
     proof_seconds: float = 1.0
 
+    def __post_init__(self) -> None:
+        for name in ("max_bytes", "max_rows", "max_columns", "max_terms"):
+            value = getattr(self, name)
+            if not isinstance(value, int) or isinstance(value, bool) or value < 1:
+                raise DHError(f"AnswerLimits.{name}: expected a positive integer, got {value!r}")
+        if self.seconds != 0:  # 0: no limit inside the check (the caller enforces one)
+            check_seconds(self.seconds, "time limit")
+        check_seconds(self.proof_seconds, "proof time limit")
+
 
 DEFAULT_ANSWER_LIMITS = AnswerLimits()
 
 
 @contextmanager
-def time_limit(seconds: float | None) -> Iterator[None]:
-    """Raise :class:`CheckTimeout` in the block after ``seconds`` (main thread, POSIX).
+def time_limit(
+    seconds: float | None, error: Callable[[str], BaseException] = CheckTimeout
+) -> Iterator[None]:
+    """Raise ``error`` (:class:`CheckTimeout`) in the block after ``seconds`` (main thread, POSIX).
 
     Elsewhere (a worker thread, Windows) the block runs unlimited: callers keep
-    their work bounded with :func:`expansion_terms` there.
+    their work bounded with :func:`expansion_terms` there.  Limits nest: an
+    outer limit gets back what is left of it (it fires at once if the inner block
+    outlived it).
 
     >>> with time_limit(1.0):
     ...     sum(range(10))
@@ -104,18 +165,20 @@ def time_limit(seconds: float | None) -> Iterator[None]:
         return
 
     def expire(signum: int, frame: object) -> None:
-        raise CheckTimeout(f"checking took longer than the time limit of {seconds:g} s")
+        raise error(f"checking took longer than the time limit of {seconds:g} s")
 
     previous = signal.signal(signal.SIGALRM, expire)
     old_delay, _ = signal.getitimer(signal.ITIMER_REAL)
+    start = time.monotonic()
     signal.setitimer(signal.ITIMER_REAL, float(seconds))
     try:
         yield
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
-        if old_delay:  # an outer limit was running: give it back (approximately)
-            signal.setitimer(signal.ITIMER_REAL, old_delay)
+        if old_delay:  # an outer limit was running: give it what is left of it
+            left = old_delay - (time.monotonic() - start)
+            signal.setitimer(signal.ITIMER_REAL, max(left, 1e-4))
 
 
 def expansion_terms(expr: sp.Basic, cap: int = 10**9) -> int:

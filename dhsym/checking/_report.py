@@ -36,14 +36,18 @@ if TYPE_CHECKING:
     from .grading import Assignment
 
 __all__ = [
+    "CACHE_NAME",
     "csv_cell",
     "inside",
+    "name_base",
     "question_picture",
     "safe_name",
     "write_atomic",
     "write_gradebook",
     "write_summary",
 ]
+
+CACHE_NAME = ".dhsym-grading-cache.json"
 
 _RESERVED = frozenset(
     {
@@ -57,9 +61,18 @@ _RESERVED = frozenset(
 )
 
 
+def name_base(student: str) -> str:
+    """The file-name form of a student id before it is made unique (ids equal here collide).
+
+    >>> name_base("Ann Lee"), name_base("ann_lee"), name_base("../..")
+    ('Ann_Lee', 'ann_lee', 'student')
+    """
+    return re.sub(r"[^A-Za-z0-9._-]+", "_", student).strip("._-")[:60] or "student"
+
+
 def safe_name(student: str, used: set[str]) -> str:
     """A file name for a student id: ``[A-Za-z0-9._-]``, no leading dot, unique, short."""
-    base = re.sub(r"[^A-Za-z0-9._-]+", "_", student).strip("._-")[:60] or "student"
+    base = name_base(student)
     name = base
     if name != student or name.lower() in used or name.lower() in _RESERVED:
         name = f"{base}-{hashlib.sha1(student.encode('utf-8', 'replace')).hexdigest()[:8]}"
@@ -78,9 +91,13 @@ def inside(root: Path, *parts: str) -> Path:
 
 
 def write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to a temporary file beside ``path``, then rename it over ``path``."""
+    """Write ``text`` to a temporary file beside ``path``, then rename it over ``path``.
+
+    Text that is not valid Unicode (a lone surrogate from a file name that is not
+    UTF-8) is written with ``\\x`` escapes, never an encoding error.
+    """
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(text, encoding="utf-8")
+    tmp.write_bytes(text.encode("utf-8", "backslashreplace"))
     os.replace(tmp, path)
 
 
@@ -95,7 +112,17 @@ def write_gradebook(root: Path, a: Assignment, records: list[dict], files: dict)
     buf = io.StringIO()
     w = csv.writer(buf)
     w.writerow(
-        ["student", "name", *[q.id for q in a.questions], "total", "max", "status", "feedback"]
+        [
+            "student",
+            "name",
+            *[q.id for q in a.questions],
+            "total",
+            "max",
+            "status",
+            "flags",
+            "source",
+            "feedback",
+        ]
     )
     for r in records:
         w.writerow(
@@ -105,8 +132,10 @@ def write_gradebook(root: Path, a: Assignment, records: list[dict], files: dict)
                 *[f"{r['scores'].get(q.id, 0):g}" for q in a.questions],
                 f"{r['score']:g}",
                 f"{a.max_score:g}",
-                r["status"],
-                f"feedback/{files[r['student']]}.md",
+                csv_cell(r["status"]),
+                csv_cell("; ".join(r.get("flags", ()))),
+                csv_cell(r.get("source", "")),
+                f"feedback/{files[r['uid']]}.md",
             ]
         )
     path = inside(root, "gradebook.csv")
@@ -149,8 +178,9 @@ def question_picture(a: Assignment, records: list[dict], files: dict, top: int =
 
     >>> from types import SimpleNamespace as NS
     >>> a = NS(questions=[NS(id="q1", ask="A1", points=2)])
-    >>> recs = [{"student": s, "verdicts": {"q1": v}, "scores": {"q1": 2 * (v == "correct")},
-    ...          "wrong": {"q1": w}} for s, v, w in [("ann", "correct", []),
+    >>> recs = [{"student": s, "uid": s, "verdicts": {"q1": v},
+    ...          "scores": {"q1": 2 * (v == "correct")}, "wrong": {"q1": w}}
+    ...         for s, v, w in [("ann", "correct", []),
     ...          ("bo", "incorrect", [["(1,4)", "d1"]]), ("cy", "incorrect", [["(1,4)", "-d2"]])]]
     >>> q = question_picture(a, recs, {"ann": "ann", "bo": "bo", "cy": "cy"})[0]
     >>> q["share"], q["difficulty"], q["wrong"][0]["where"], q["wrong"][0]["count"]
@@ -163,12 +193,12 @@ def question_picture(a: Assignment, records: list[dict], files: dict, top: int =
     for q in a.questions:
         v = Counter(r["verdicts"].get(q.id, "missing") for r in records)
         where: Counter = Counter()
-        example: dict[str, tuple[str, str]] = {}
+        example: dict[str, tuple[str, str, str]] = {}  # place -> (answer, student, uid)
         mistakes = Counter(k for r in records for k in r.get("mistakes", {}).get(q.id, []))
         for r in records:
             for place, text in r.get("wrong", {}).get(q.id, []):
                 where[place] += 1
-                example.setdefault(place, (text, r["student"]))
+                example.setdefault(place, (text, r["student"], r.get("uid", r["student"])))
         share = v["correct"] / n
         out.append(
             {
@@ -178,7 +208,8 @@ def question_picture(a: Assignment, records: list[dict], files: dict, top: int =
                 "correct": v["correct"],
                 "incorrect": v["incorrect"],
                 "unreadable": v["unreadable"],
-                "missing": v["missing"] + v["timeout"] + v["error"],
+                "missing": v["missing"] + v["error"],
+                "timeout": v["timeout"],
                 "share": share,
                 "mean_points": sum(r["scores"].get(q.id, 0) for r in records) / n,
                 "difficulty": _difficulty(share),
@@ -189,7 +220,7 @@ def question_picture(a: Assignment, records: list[dict], files: dict, top: int =
                         "count": count,
                         "example": example[place][0],
                         "student": example[place][1],
-                        "feedback_html": f"feedback/{files[example[place][1]]}.html",
+                        "feedback_html": f"feedback/{files[example[place][2]]}.html",
                     }
                     for place, count in where.most_common(top)
                 ],
@@ -211,8 +242,10 @@ def write_summary(root: Path, a: Assignment, records: list[dict], files: dict) -
             "name": r["name"],
             "score": r["score"],
             "status": r["status"],
-            "feedback_html": f"feedback/{files[r['student']]}.html",
-            "feedback_md": f"feedback/{files[r['student']]}.md",
+            "flags": list(r.get("flags", ())),
+            "source": r.get("source", ""),
+            "feedback_html": f"feedback/{files[r['uid']]}.html",
+            "feedback_md": f"feedback/{files[r['uid']]}.md",
         }
         for r in records
     ]
@@ -224,6 +257,7 @@ def write_summary(root: Path, a: Assignment, records: list[dict], files: dict) -
             "mean": statistics.fmean(scores) if scores else 0.0,
             "median": statistics.median(scores) if scores else 0.0,
             "problems": sum(r["status"] != "graded" for r in records),
+            "flagged": sum(bool(r.get("flags")) for r in records),
             "chart": chart.name,
             "per_question": per_q,
             "reteach": sorted(

@@ -1,14 +1,32 @@
 """Reading submissions: a folder (a sub-folder or a YAML file per student) or a CSV file.
 
-Nothing is followed or read in full that could be hostile: links and special
-files are skipped, and every file is read only up to a size limit (an answer
-that is too long becomes a read problem of that question, not an error). The
-public names are re-exported by :mod:`dhsym.checking.grading`.
+Nothing is followed or read in full that could be hostile: symbolic links,
+hard-linked files and special files are refused, and every file is read only up
+to a size limit (:func:`dhsym.model.yamlsafe.read_limited`; an answer that cannot be
+read becomes a read problem of that question). Each submission is read inside
+its own guard: whatever goes wrong becomes that submission's ``error`` and the
+others are read on. The rules a teaching assistant relies on:
+
+- **Answer files.** The answer to question ``q5`` is the file ``q5`` or
+  ``q5.<anything>`` in the student's folder. With several (``q5.md`` and
+  ``q5.txt``) the first in alphabetical order of the file name is graded and the
+  others are named in the feedback and the gradebook's ``flags``.
+- **Duplicate ids.** Two submissions with the same student id (a folder
+  ``alice/`` and a file ``alice.yaml``, two CSV rows, or ids that differ only in
+  case or in characters a file name cannot hold) are never merged: both are
+  graded, each under its own feedback file, and both are flagged ``duplicate id``.
+- **Names.** A folder or file name that is not UTF-8 becomes an id with
+  ``\\xNN`` escapes; the report folder itself (``-o`` inside the submissions) and
+  hidden entries are skipped.
+
+The public names are re-exported by :mod:`dhsym.checking.grading`.
 
 Examples
 --------
 >>> Submission("alice", "Alice", (("q1", "T = I"),)).answers
 (('q1', 'T = I'),)
+>>> student_id("caf\\udce9")
+'caf\\\\xe9'
 """
 
 from __future__ import annotations
@@ -16,98 +34,139 @@ from __future__ import annotations
 import csv
 import hashlib
 import io
-from collections.abc import Iterator, Mapping
-from dataclasses import dataclass
+import os
+from collections import defaultdict
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-import yaml
-
 from dhsym.errors import DHError
+from dhsym.model.yamlsafe import FileRefused, YAMLLimits, load_yaml, read_limited
 
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
+from ._report import CACHE_NAME, name_base
 
 if TYPE_CHECKING:
     from .grading import Assignment
 
-__all__ = ["Submission", "read_submissions"]
+__all__ = ["Submission", "read_submissions", "student_id"]
 
 _MAX_SUBMISSION_FILE = 2_000_000
 _MAX_CSV = 500_000_000
+_MAX_NAME_FILE = 1_000
+_SUBMISSION_YAML = YAMLLimits(max_bytes=_MAX_SUBMISSION_FILE, max_nodes=20_000, max_depth=32)
 
 
 @dataclass(frozen=True)
 class Submission:
-    """One student's answers (question id → raw text or bytes) and read problems."""
+    """One student's answers (question id → raw text or bytes), read problems and flags.
+
+    ``source`` says where it came from (``alice/``, ``alice.yaml``, ``row 3``);
+    ``uid`` is unique in a run (the student id, or ``id [source]`` for a
+    duplicate id); ``flags`` are notes for the teaching assistant (duplicate id,
+    answer files not graded); ``error`` is set when the submission could not be
+    read at all.
+    """
 
     student: str
     name: str
     answers: tuple[tuple[str, str | bytes], ...] = ()
     problems: tuple[tuple[str, str], ...] = ()
+    source: str = ""
+    flags: tuple[str, ...] = ()
+    error: str = ""
+    uid: str = ""
 
-    def fingerprint(self, assignment: Assignment) -> str:
-        """Changes when the assignment or any answer changes."""
-        h = hashlib.sha256(assignment.fingerprint.encode())
+    def __post_init__(self) -> None:
+        if not self.uid:
+            object.__setattr__(self, "uid", self.student)
+
+    def fingerprint(self, assignment: Assignment, salt: str = "") -> str:
+        """Changes when the assignment, ``salt`` (the limits), an answer, a flag or the name do."""
+        h = hashlib.sha256(assignment.fingerprint.encode() + b"\0" + salt.encode())
         for qid, text in self.answers + self.problems:
             h.update(qid.encode() + b"\0")
             h.update(text if isinstance(text, bytes) else text.encode("utf-8", "replace"))
             h.update(b"\0")
-        h.update(self.name.encode("utf-8", "replace"))
+        for part in (self.name, self.uid, self.error, *self.flags):
+            h.update(part.encode("utf-8", "replace") + b"\0")
         return h.hexdigest()[:20]
 
 
-def _read_limited(path: Path, limit: int) -> str | bytes:
-    """File content, or a problem text for links, specials and oversized files."""
-    if path.is_symlink() or not path.is_file():
-        raise UnreadableAnswer(f"{path.name} is not a regular file (links are not read)")
-    size = path.stat().st_size
-    if size > limit:
-        raise UnreadableAnswer(f"the file {path.name} is {size} bytes; at most {limit} are read")
-    with path.open("rb") as fh:
-        return fh.read(limit + 1)
+def student_id(name: str) -> str:
+    """A printable id for a file or folder name: bytes that are not UTF-8 become ``\\xNN``."""
+    text = os.fsencode(name).decode("utf-8", "backslashreplace")
+    return "".join(ch if ch.isprintable() else f"\\x{ord(ch):02x}" for ch in text)
+
+
+def _read_answer(path: Path, limit: int) -> bytes:
+    try:
+        what = f"the file {student_id(path.name)}"
+        return read_limited(path, limit, follow_links=False, hard_links=False, what=what)
+    except FileRefused as err:
+        raise UnreadableAnswer(err.message) from None
+
+
+def _answer_files(names: list[str], qid: str) -> list[str]:
+    """The files that answer ``qid``, in the documented order (alphabetical by name)."""
+    return sorted(n for n in names if n == qid or n.startswith(qid + "."))
 
 
 def _from_folder(folder: Path, qids: list[str], limits: AnswerLimits) -> Submission:
-    answers, problems = [], []
-    name = folder.name
+    student = student_id(folder.name)
+    answers, problems, flags = [], [], []
+    names = sorted(os.listdir(folder))
     for qid in qids:
-        files = sorted(p for p in folder.iterdir() if p.name == qid or p.name.startswith(qid + "."))
+        files = _answer_files(names, qid)
         if not files:
             continue
+        if len(files) > 1:
+            others = ", ".join(student_id(n) for n in files[1:])
+            flags.append(
+                f"{qid}: graded {student_id(files[0])}; not graded: {others} "
+                "(one answer file per question: the first in alphabetical order counts)"
+            )
         try:
-            answers.append((qid, _read_limited(files[0], limits.max_bytes)))
-        except (UnreadableAnswer, OSError) as err:
+            answers.append((qid, _read_answer(folder / files[0], limits.max_bytes)))
+        except UnreadableAnswer as err:
             problems.append((qid, str(err)))
-    name_file = folder / "name.txt"
-    if name_file.is_file() and not name_file.is_symlink() and name_file.stat().st_size < 1000:
-        name = name_file.read_text("utf-8", "replace").strip() or name
-    return Submission(folder.name, name, tuple(answers), tuple(problems))
+    name = student
+    if "name.txt" in names:
+        try:
+            raw = _read_answer(folder / "name.txt", _MAX_NAME_FILE)
+            name = " ".join(raw.decode("utf-8", "replace").split())[:200] or student
+        except UnreadableAnswer:
+            pass
+    return Submission(student, name, tuple(answers), tuple(problems), f"{student}/", tuple(flags))
 
 
 def _from_file(path: Path, qids: list[str]) -> Submission:
-    student = path.stem
+    student = student_id(path.stem)
+    source = student_id(path.name)
     try:
-        raw = _read_limited(path, _MAX_SUBMISSION_FILE)
-        data = yaml.safe_load(raw)
+        raw = _read_answer(path, _MAX_SUBMISSION_FILE)
+        data = load_yaml(raw, limits=_SUBMISSION_YAML)
         if not isinstance(data, Mapping) or not isinstance(data.get("answers"), Mapping):
             raise UnreadableAnswer("expected 'answers: {q1: …}' in the submission file")
-    except (UnreadableAnswer, yaml.YAMLError, OSError) as err:
-        return Submission(student, student, (), tuple((q, str(err)) for q in qids))
+    except DHError as err:  # unreadable, refused, or YAML over a limit
+        reason = err.message if isinstance(err, FileRefused) else str(err)
+        return Submission(student, student, (), tuple((q, reason) for q in qids), source)
     answers = []
     for qid in qids:
         value = data["answers"].get(qid)
         if isinstance(value, (str, int, float)) and not isinstance(value, bool):
             answers.append((qid, str(value)))
     name = data.get("name")
-    return Submission(
-        student, str(name) if isinstance(name, (str, int)) else student, tuple(answers)
-    )
+    shown = " ".join(str(name).split())[:200] if isinstance(name, (str, int)) else ""
+    return Submission(student, shown or student, tuple(answers), (), source)
 
 
 def _from_csv(path: Path, qids: list[str]) -> Iterator[Submission]:
-    if path.stat().st_size > _MAX_CSV:
-        raise DHError(f"the CSV file is larger than {_MAX_CSV} bytes", file=str(path))
-    text = path.read_bytes().decode("utf-8", "replace")
+    try:
+        text = read_limited(path, _MAX_CSV, what="the CSV file").decode("utf-8", "replace")
+    except FileRefused as err:
+        raise DHError(err.message, file=str(path)) from None
     old = csv.field_size_limit()
     csv.field_size_limit(_MAX_CSV)
     try:
@@ -119,31 +178,81 @@ def _from_csv(path: Path, qids: list[str]) -> Iterator[Submission]:
         namecol = next((f for f in fields if f.strip().lower() == "name"), None)
         for k, row in enumerate(reader, 2):
             student = (row.get(idcol) or "").strip() or f"row{k}"
-            answers = tuple((q, row[q]) for q in qids if row.get(q))
-            yield Submission(
-                student, (row.get(namecol) or student).strip() if namecol else student, answers
-            )
+            answers = tuple((q, row[q]) for q in qids if isinstance(row.get(q), str) and row[q])
+            name = (row.get(namecol) or "").strip() if namecol else ""
+            yield Submission(student, name or student, answers, (), f"row {k}")
+    except csv.Error as err:
+        raise DHError(f"not a valid CSV file: {err}", file=str(path)) from None
     finally:
         csv.field_size_limit(old)
 
 
+def _guarded(read: Callable[[], Submission], student: str, source: str) -> Submission:
+    """``read()``, or a submission whose ``error`` says why it could not be read."""
+    try:
+        return read()
+    except Exception as err:  # noqa: BLE001 - one submission never stops the others
+        reason = f"could not be read ({type(err).__name__}: {err})"
+        return Submission(student, student, source=source, error=reason)
+
+
+def _flag_duplicates(subs: list[Submission]) -> list[Submission]:
+    """Give every submission of a shared id (up to case and file-name characters) a flag."""
+    groups: dict[str, list[int]] = defaultdict(list)
+    for k, s in enumerate(subs):
+        groups[name_base(s.student).lower()].append(k)
+    out = list(subs)
+    for members in groups.values():
+        if len(members) < 2:
+            continue
+        shown = ", ".join(f"{subs[k].student} ({subs[k].source})" for k in members)
+        for k in members:
+            s = subs[k]
+            out[k] = replace(
+                s,
+                uid=f"{s.student} [{s.source}]",
+                flags=(f"duplicate id: {len(members)} submissions: {shown}", *s.flags),
+            )
+    return out
+
+
 def read_submissions(
-    source: str | Path, assignment: Assignment, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+    source: str | Path,
+    assignment: Assignment,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    *,
+    exclude: tuple[Path, ...] = (),
+    warnings: list[str] | None = None,
 ) -> list[Submission]:
-    """All submissions of a folder or CSV file, sorted by student id."""
+    """All submissions of a folder or CSV file, sorted by student id (then source).
+
+    Entries in ``exclude`` (the report folder) and folders holding a grading cache
+    are skipped, with a note in ``warnings``.
+    """
     src = Path(source)
     qids = [q.id for q in assignment.questions]
+    notes = warnings if warnings is not None else []
+    skip = {p.resolve() for p in exclude}
     if src.is_file():
         subs = list(_from_csv(src, qids))
     elif src.is_dir():
         subs = []
-        for p in sorted(src.iterdir()):
-            if p.name.startswith(".") or p.is_symlink():
+        for entry in sorted(os.scandir(src), key=lambda e: e.name):
+            path = Path(entry.path)
+            student, shown = student_id(Path(entry.name).stem), student_id(entry.name)
+            if entry.name.startswith(".") or entry.is_symlink():
                 continue
-            if p.is_dir():
-                subs.append(_from_folder(p, qids, limits))
-            elif p.suffix.lower() in (".yaml", ".yml", ".json"):
-                subs.append(_from_file(p, qids))
+            if entry.is_dir(follow_symlinks=False):
+                if path.resolve() in skip or (path / CACHE_NAME).exists():
+                    notes.append(f"skipped {shown}/: it is a grading report folder")
+                    continue
+                subs.append(
+                    _guarded(
+                        lambda p=path: _from_folder(p, qids, limits), student_id(entry.name), shown
+                    )
+                )
+            elif path.suffix.lower() in (".yaml", ".yml", ".json"):
+                subs.append(_guarded(lambda p=path: _from_file(p, qids), student, shown))
     else:
         raise DHError(f"no submissions folder or CSV file at {src}")
-    return sorted(subs, key=lambda s: s.student)
+    return sorted(_flag_duplicates(subs), key=lambda s: (s.student, s.source))

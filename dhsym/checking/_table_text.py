@@ -15,12 +15,12 @@ from collections.abc import Mapping
 from dataclasses import replace
 
 import sympy as sp
-import yaml
 
 from dhsym.errors import DHError, ParseError, TableError
 from dhsym.model.parsing import normalize_name, parse_expression
 from dhsym.model.table import Convention, DHRow, DHTable, JointType, to_radians
 from dhsym.model.tablefile import table_from_data
+from dhsym.model.yamlsafe import YAMLInputError, YAMLLimits, load_yaml
 
 from ._limits import AnswerLimits, UnreadableAnswer
 from .latex_input import flatten_subscripts, is_latex, latex_to_text
@@ -39,28 +39,52 @@ _COLUMNS = {
     "q": {"q", "variable", "var", "jointvariable"},
 }
 _LOOKUP = {alias: col for col, aliases in _COLUMNS.items() for alias in aliases}
-_SEPARATOR = re.compile(r"^\s*\|?\s*:?-{2,}:?\s*(\|\s*:?-{2,}:?\s*)*\|?\s*$")
+# Every pattern here runs on student text: none may backtrack more than linearly (no two
+# neighbouring parts that can match the same characters); tests feed each 1 MB worst cases.
+_SEPARATOR_CELL = re.compile(r":?-{2,}:?")
 _DEGREE_MARK = re.compile(
-    r"\^\s*\{?\s*\\circ\s*\}?|[°º˚]|\\(?:text)?degree|\bdeg(rees?)?\b"
+    r"\^\s*(?:\{\s*)?\\circ(?:\s*\})?|[°º˚]|\\(?:text)?degree|\bdeg(rees?)?\b"
     r"|(?<=[0-9.])\s*\^\s*(?:o|\{\s*o\s*\})(?![A-Za-z0-9_])",  # 90^o
     re.IGNORECASE,
 )
+_RAD = re.compile(r"rad", re.IGNORECASE)
+_BRACKETED = re.compile(r"[(\[]([^()\[\]]*)[)\]]")
+_UNIT = re.compile(r"deg|rad|°|m|mm|cm|in", re.IGNORECASE)
+_COMMAND = re.compile(r"\\(?:var)?([A-Za-z]+)")
+_MINUS_ONE = re.compile(r"i\s*-\s*1|im1")
+_INDEX_I = re.compile(r"_\{?\s*i\s*\}?$")
+_KEY_JUNK = re.compile(r"[_{}\s()\[\]$.^]")
+_INDEX_SUFFIX = re.compile(r"(i-1|im1|i\+1|i)$")
+_TOKENS = re.compile(r"\$[^$]*\$|\S+")
+_CONVENTION_LINE = re.compile(r"^\s*convention\s*[:=]\s*(\S+)\s*$", re.IGNORECASE)
+_WIDE_GAP = re.compile(r"\s{2,}")
 _TWO_PI = 2 * math.pi + 1e-6
-_MAX_YAML_NODES = 20_000
+_YAML = YAMLLimits(max_bytes=200_000, max_nodes=20_000, max_chars=200_000, max_depth=16)
+
+
+def _is_separator(line: str) -> bool:
+    """A Markdown rule line like ``|---|:--:|``, read without a regular expression over the line."""
+    body = line.strip()
+    if body.startswith("|"):
+        body = body[1:]
+    if body.endswith("|"):
+        body = body[:-1]
+    cells = body.split("|")
+    return bool(cells) and all(_SEPARATOR_CELL.fullmatch(c.strip()) for c in cells)
 
 
 def _column(header: str) -> tuple[str, str | None, bool | None]:
     """(column name, unit, modified?) of one header cell."""
     t = header.strip().strip("$").strip()
-    unit = "deg" if _DEGREE_MARK.search(t) else ("rad" if re.search(r"rad", t, re.I) else None)
-    t = re.sub(r"[(\[][^)\]]*(deg|rad|°|m|mm|cm|in)[^)\]]*[)\]]", "", t, flags=re.I)
-    t = re.sub(r"\\(?:var)?([A-Za-z]+)", r"\1", t)
+    unit = "deg" if _DEGREE_MARK.search(t) else ("rad" if _RAD.search(t) else None)
+    t = _BRACKETED.sub(lambda m: "" if _UNIT.search(m[1]) else m[0], t)
+    t = _COMMAND.sub(r"\1", t)
     t = normalize_name(t)
-    modified = True if re.search(r"i\s*-\s*1|im1", t) else None
-    if modified is None and re.search(r"_\{?\s*i\s*\}?\s*$", t):
+    modified = True if _MINUS_ONE.search(t) else None
+    if modified is None and _INDEX_I.search(t.rstrip()):
         modified = False
-    key = re.sub(r"[_{}\s()\[\]$.^]", "", t).lower()
-    key = re.sub(r"(i-1|im1|i\+1|i)$", "", key) if key not in ("i",) else ""
+    key = _KEY_JUNK.sub("", t).lower()
+    key = _INDEX_SUFFIX.sub("", key) if key not in ("i",) else ""
     if key not in _LOOKUP:
         shown = header.strip()[:40]
         raise TableError(
@@ -77,7 +101,7 @@ def _split(line: str, mode: str) -> list[str]:
         return line.rstrip("\r\n ").split("\t")
     if mode in ",;":
         return next(csv.reader([line], delimiter=mode))
-    return re.findall(r"\$[^$]*\$|\S+", line)
+    return _TOKENS.findall(line)
 
 
 def _mode(header: str) -> str:
@@ -137,14 +161,9 @@ def grid_table(
     lines = []
     for line in text.splitlines():
         stripped = line.strip()
-        if (
-            not stripped
-            or stripped.startswith("```")
-            or stripped in ("$$",)
-            or _SEPARATOR.match(line)
-        ):
+        if not stripped or stripped.startswith("```") or stripped in ("$$",) or _is_separator(line):
             continue
-        m = re.match(r"^\s*convention\s*[:=]\s*(\S+)\s*$", line, re.I)
+        m = _CONVENTION_LINE.match(line)
         if m:
             convention = Convention.parse(m[1])
             continue
@@ -177,7 +196,7 @@ def grid_table(
     for r, line in enumerate(lines[1:], start=1):
         cells = _split(line, mode)
         if len(cells) != len(headers) and mode == " ":
-            cells = re.split(r"\s{2,}", line.strip())
+            cells = _WIDE_GAP.split(line.strip())
         if len(cells) != len(headers):
             raise TableError(f"{len(cells)} cells, but the header has {len(headers)}", row=r)
         raw_rows.append(dict(zip(names, cells)))
@@ -227,24 +246,6 @@ def grid_table(
         raise TableError(err.message, row=err.row, field=err.field) from None
 
 
-def _count_nodes(data: object, budget: int) -> int:
-    """Visit a YAML value (aliases counted every time they are used); stop past ``budget``."""
-    todo, seen = [data], 0
-    while todo:
-        item = todo.pop()
-        seen += 1
-        if seen > budget:
-            raise UnreadableAnswer("the YAML answer is too large (too many values or aliases)")
-        if isinstance(item, Mapping):
-            todo.extend(item.keys())
-            todo.extend(item.values())
-        elif isinstance(item, (list, tuple)):
-            todo.extend(item)
-        elif isinstance(item, str) and len(item) > 20_000:
-            raise UnreadableAnswer("a YAML value is too long")
-    return seen
-
-
 def _renamed(table: DHTable, ctx: NameContext) -> DHTable:
     """The table with the student's spellings of symbols (``a_2``, ``q1``) as the key's."""
     syms = set(table.variables) | set(table.constants)
@@ -266,14 +267,11 @@ def yaml_table(
 ) -> DHTable:
     """Read the YAML table format (:mod:`dhsym.model.tablefile`); no convention means the key's."""
     try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as err:
-        mark = getattr(err, "problem_mark", None)
-        where = f" (line {mark.line + 1})" if mark else ""
-        raise TableError(f"not valid YAML{where}: {getattr(err, 'problem', err)}") from None
-    except ValueError:  # an integer of thousands of digits (Python's int conversion limit)
-        raise TableError("a number with thousands of digits: at most 40 digits") from None
-    _count_nodes(data, _MAX_YAML_NODES)
+        data = load_yaml(text, limits=_YAML)
+    except YAMLInputError as err:
+        if "too large" in err.message or "nested" in err.message:
+            raise UnreadableAnswer(f"the YAML answer: {err.message}") from None
+        raise TableError(err.message) from None
     if not isinstance(data, Mapping):
         raise TableError("expected a mapping with a 'joints' list at the top level")
     if isinstance(data.get("joints"), list) and len(data["joints"]) > limits.max_rows:

@@ -34,6 +34,7 @@ import sympy as sp
 from dhsym.errors import DHError, ParseError, TableError
 from dhsym.model.parsing import parse_expression
 from dhsym.model.table import Convention, DHTable
+from dhsym.model.yamlsafe import FileRefused, read_limited
 
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
 from ._table_text import grid_table, yaml_table
@@ -69,6 +70,7 @@ _DEGREE_O = re.compile(  # 90^o, 90^{o}: degrees where the base is a number
     r"(?![A-Za-z0-9_])"
 )
 _MATRIX_WRAPPER = re.compile(r"^\s*(?:sp\.|sympy\.)?(?:Immutable)?Matrix\s*\((.*)\)\s*$", re.DOTALL)
+_YAML_TABLE = re.compile(r"^[ \t]*joints[ \t]*:", re.MULTILINE)  # [ \t]: one line, linear
 
 
 def read_text(data: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
@@ -116,18 +118,11 @@ def normalize_unicode(text: str) -> str:
 
 
 def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
-    """Read an answer file: its size is checked before anything is read."""
-    p = Path(path)
+    """Read an answer file: a regular file only, at most ``limits.max_bytes`` of it."""
     try:
-        size = p.stat().st_size
-        if size > limits.max_bytes:
-            raise UnreadableAnswer(
-                f"the answer file is {size} bytes; at most {limits.max_bytes} are read"
-            )
-        with p.open("rb") as fh:
-            data = fh.read(limits.max_bytes + 1)
-    except OSError as err:
-        raise UnreadableAnswer(f"cannot read the answer file: {err.strerror}") from None
+        data = read_limited(path, limits.max_bytes, what="the answer file")
+    except FileRefused as err:
+        raise UnreadableAnswer(err.message) from None
     return read_text(data, limits)
 
 
@@ -325,7 +320,7 @@ def read_table(
     """
     text = read_text(text, limits)
     try:
-        if re.search(r"^\s*joints\s*:", text, re.MULTILINE):
+        if _YAML_TABLE.search(text):
             return yaml_table(text, ctx, Convention.parse(convention), limits)
         return grid_table(text, ctx, Convention.parse(convention), limits)
     except (TableError, ParseError, UnreadableAnswer):

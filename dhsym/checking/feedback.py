@@ -36,6 +36,7 @@ __all__ = [
     "md_code",
     "md_escape",
     "check_text",
+    "md_math",
     "render_check",
     "render_feedback",
     "render_question_text",
@@ -78,6 +79,15 @@ def md_code(text: object) -> str:
     return f"{fence}{pad}{s}{pad}{fence}"
 
 
+def md_math(tex: object) -> str:
+    r"""LaTeX for ``$…$`` inside a Markdown table: ``|`` would end the cell, ``\vert`` does not.
+
+    >>> md_math(r"\left|{a_{1}}\right| + \|x\|")
+    '\\left\\vert {a_{1}}\\right\\vert  + \\Vert x\\Vert '
+    """
+    return " ".join(str(tex).splitlines()).replace("\\|", "\\Vert ").replace("|", "\\vert ")
+
+
 def _points(x: float) -> str:
     return f"{x:g}"
 
@@ -96,6 +106,7 @@ def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
     )
     env.filters["md"] = md_escape
     env.filters["code"] = md_code
+    env.filters["mdmath"] = md_math
     env.filters["points"] = _points
     return env
 
@@ -107,9 +118,10 @@ def render_feedback(
     title: str = "DH homework",
     fmt: str = "md",
     status: str = "graded",
+    flags: Sequence[str] = (),
     mathjax_url: str | None = None,
 ) -> str:
-    """One student's feedback page (``fmt`` is ``md`` or ``html``)."""
+    """One student's feedback page (``fmt`` is ``md`` or ``html``); ``flags`` are notes."""
     if fmt not in ("md", "html"):
         raise DHError(f"unknown feedback format {fmt!r}: expected md or html")
     template = _environment(fmt).get_template(f"feedback.{fmt}.j2")
@@ -120,6 +132,7 @@ def render_feedback(
         score=sum(q.score for q in questions),
         max_score=sum(q.points for q in questions),
         status=status,
+        flags=[str(f) for f in flags],
         mathjax_url=mathjax_url,
     )
 

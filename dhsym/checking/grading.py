@@ -4,6 +4,7 @@ The assignment (YAML) names the key and the questions::
 
     title: Homework 3, forward kinematics
     key: puma560                  # built-in robot or table file (relative to this file)
+    time_limit: 5                 # seconds per answer (above 0, at most 3600)
     rounding: digits=3            # accepted rounding of decimals (Rounding); per question too
     questions:
       - {id: q1, ask: table, points: 4, tool: free}   # tool: free accepts another tool frame
@@ -12,12 +13,21 @@ The assignment (YAML) names the key and the questions::
 
 Submissions are a folder (one sub-folder per student with files ``q1.md``,
 ``q2.txt`` …, and/or one ``<student>.yaml`` with ``name:`` and ``answers: {q1: …}``)
-or a CSV file (columns ``student``, optional ``name``, one per question id).
+or a CSV file (columns ``student``, optional ``name``, one per question id); the
+rules for answer files and duplicate ids are in :mod:`dhsym.checking._submissions`.
 
 The report folder gets ``gradebook.csv``, ``feedback/<student>.md|.html``,
 ``summary.html`` with ``summary.png``, and ``.dhsym-grading-cache.json`` (rewritten
 atomically) so that a rerun skips what is already graded.  Nothing is written
 outside it: student ids become safe file names.
+
+Every submission is isolated: it is read inside its own guard and graded in a
+process that is killed when it overruns (:mod:`dhsym.checking._runner`).  Its
+outcome is its ``status``: ``graded``, ``timeout`` (an answer or the whole
+submission ran out of time) or ``error: …`` (with the reason); the gradebook and
+the summary are written whatever happens.  Only final verdicts are cached: a
+timeout or an error is graded again on the next run, and the cache is keyed by the
+assignment, its keys and every limit (a corrupted cache is ignored with a warning).
 
 Examples
 --------
@@ -31,19 +41,26 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import re
 import statistics
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-import yaml
-
 from dhsym.errors import DHError
+from dhsym.model.yamlsafe import FileRefused, YAMLInputError, load_yaml, read_limited
 
-from ._limits import AnswerLimits
-from ._report import inside, safe_name, write_atomic, write_gradebook, write_summary
+from ._limits import AnswerLimits, AnswerTimeout, check_seconds, time_limit
+from ._report import (
+    CACHE_NAME,
+    inside,
+    safe_name,
+    write_atomic,
+    write_gradebook,
+    write_summary,
+)
 from ._runner import JobFailure, Progress, run_dask, run_pool, run_serial
 from ._submissions import Submission, read_submissions
 from .checker import Key, check_answer
@@ -51,19 +68,23 @@ from .feedback import QuestionFeedback, render_feedback
 from .verdict import CheckResult, Verdict
 
 __all__ = [
+    "CACHE_NAME",
+    "check_submission",
     "Assignment",
     "AssignmentQuestion",
     "GradeReport",
     "Submission",
-    "check_submission",
     "grade",
     "grade_submission",
     "read_submissions",
     "safe_name",
 ]
 
-CACHE_NAME = ".dhsym-grading-cache.json"
 _ID = re.compile(r"^[A-Za-z0-9_-]{1,40}$")
+_MAX_ASSIGNMENT = 1_000_000
+_MAX_CACHE = 500_000_000
+_MAX_POINTS = 1e6
+_SLACK_SECONDS = 10.0  # reading, rendering and start-up around the answers' own limits
 
 
 @dataclass(frozen=True)
@@ -92,51 +113,109 @@ class Assignment:
 
     @classmethod
     def load(cls, path: str | Path) -> Assignment:
-        """Read an assignment YAML file (keys given as files are relative to it)."""
+        """Read an assignment YAML file (keys given as files are relative to it).
+
+        Every problem is a :class:`~dhsym.errors.DHError` naming the file and the
+        question (row) or field.
+        """
         p = Path(path)
         try:
-            text = p.read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as err:
-            raise DHError(f"cannot read the assignment: {err}", file=str(p)) from None
-        data = yaml.safe_load(text)
+            raw = read_limited(p, _MAX_ASSIGNMENT, what="the assignment")
+            text = raw.decode("utf-8")
+            data = load_yaml(text)
+        except (FileRefused, YAMLInputError) as err:
+            raise DHError(err.message, file=str(p)) from None
+        except UnicodeDecodeError:
+            raise DHError("the assignment is not UTF-8 text", file=str(p)) from None
         if not isinstance(data, Mapping) or not isinstance(data.get("questions"), list):
             raise DHError("expected 'questions: [...]' (and 'key:') in the assignment", file=str(p))
+        seconds = check_seconds(data.get("time_limit", 5.0), "time_limit", file=str(p))
         default = data.get("key")
         questions, seen, digest = [], set(), [text]
         for k, q in enumerate(data["questions"], 1):
             if not isinstance(q, Mapping) or "ask" not in q or "id" not in q:
                 raise DHError("each question needs 'id' and 'ask'", file=str(p), row=k)
-            qid = str(q["id"])
+            qid = str(q["id"]) if isinstance(q["id"], (str, int)) else ""
             if not _ID.match(qid) or qid in seen or qid in ("student", "name"):
                 raise DHError(
-                    f"question id {qid!r}: use letters, digits, '_' or '-', once",
+                    f"question id {str(q['id'])[:60]!r}: use letters, digits, '_' or '-', once",
                     file=str(p),
                     row=k,
+                    field="id",
                 )
             seen.add(qid)
+            points = _points(q.get("points", 1), p, k)
             ref = q.get("key", default)
-            if ref is None:
+            if not isinstance(ref, str) or not ref.strip():
                 raise DHError(
-                    "no key: give 'key:' for the assignment or the question", file=str(p), row=k
+                    "no key: give 'key:' (a robot name or table file) for the assignment "
+                    "or the question",
+                    file=str(p),
+                    row=k,
+                    field="key",
                 )
-            local = p.parent / str(ref)
-            ref = local if local.suffix.lower() in (".yaml", ".yml") or local.exists() else str(ref)
+            local = p.parent / ref
+            where: str | Path = (
+                local if local.suffix.lower() in (".yaml", ".yml") or local.exists() else ref
+            )
             tool = str(q.get("tool", "fixed")).lower() in ("free", "any", "true")
+            ask = q["ask"]
+            if not isinstance(ask, (str, int)):
+                raise DHError("'ask' must be text like T0_2", file=str(p), row=k, field="ask")
             rounding = q.get("rounding", data.get("rounding"))
             try:
-                key = Key.load(ref, str(q["ask"]), tool_free=tool, rounding=rounding)
-                points = float(q.get("points", 1))
-            except (DHError, ValueError) as err:
-                raise DHError(str(err), file=str(p), row=k) from None
+                key = Key.load(where, str(ask), tool_free=tool, rounding=rounding)
+                _check_key_size(key)
+            except DHError as err:
+                raise DHError(err.message, file=str(p), row=k, field=err.field or "ask") from None
             digest.append(repr(key))
-            questions.append(AssignmentQuestion(qid, str(q["ask"]), points, key))
+            questions.append(AssignmentQuestion(qid, str(ask), points, key))
         fp = hashlib.sha256("\n".join(digest).encode()).hexdigest()[:16]
+        title = data.get("title")
         return cls(
-            str(data.get("title") or p.stem),
+            " ".join(str(title).split())[:200] if isinstance(title, (str, int)) else p.stem,
             tuple(questions),
-            float(data.get("time_limit", 5.0)),
+            seconds,
             fp,
         )
+
+
+def _points(value: object, path: Path, row: int) -> float:
+    """Points of a question: a finite number, at least 0."""
+    number = None
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        number = float(value)
+    elif isinstance(value, str):
+        try:
+            number = float(value)
+        except ValueError:
+            number = None
+    if number is None or not math.isfinite(number) or not 0 <= number <= _MAX_POINTS:
+        shown = value if isinstance(value, (int, float)) else repr(value)[:60]
+        raise DHError(
+            f"expected a number of points from 0 to {_MAX_POINTS:g}, got {shown}",
+            file=str(path),
+            row=row,
+            field="points",
+        )
+    return number
+
+
+def _check_key_size(key: Key) -> None:
+    """Refuse a question whose expected matrix has no printable closed form."""
+    from dhsym.kinematics.robot import Robot
+
+    q = key.question
+    if q.kind != "table":
+        Robot(key.table).check_transform_size(q.frm, q.to)
+
+
+def _timed_out(q: AssignmentQuestion, seconds: float) -> CheckResult:
+    text = (
+        f"Checking took longer than the time limit of {seconds:g} s. The answer is checked "
+        "again on the next run; nothing is kept for now."
+    )
+    return CheckResult(q.ask, Verdict.UNREADABLE, text, reason="timeout", key=q.key.name)
 
 
 def check_submission(
@@ -145,13 +224,20 @@ def check_submission(
     """Check every question of one submission: its result (``None`` if missing) and score.
 
     An answer scores the question's points when it is correct and 0 otherwise; an
-    answer that could not be read from its file is ``unreadable``.
+    answer that could not be read from its file is ``unreadable``. Each answer runs
+    under the time limit ``limits.seconds``; one that runs out gets an unreadable
+    result whose ``reason`` is ``timeout`` (see :func:`grade_submission`).
     """
     answers, problems = dict(sub.answers), dict(sub.problems)
+    inner = replace(limits, seconds=0)  # the limit is the one below: a timeout stays one
     out = []
     for q in assignment.questions:
         if q.id in answers:
-            result = check_answer(q.key, answers[q.id], limits=limits)
+            try:
+                with time_limit(limits.seconds, AnswerTimeout):
+                    result = check_answer(q.key, answers[q.id], limits=inner)
+            except AnswerTimeout:
+                result = _timed_out(q, limits.seconds)
         elif q.id in problems:
             result = CheckResult(
                 q.ask,
@@ -180,13 +266,23 @@ def _wrong_parts(result: CheckResult) -> list[list[str]]:
 
 
 def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
-    """Grade one submission (runs in a worker): scores, verdicts, kinds and both feedback pages."""
+    """Grade one submission (runs in a worker): scores, verdicts, kinds and both feedback pages.
+
+    An answer that runs out of time gets the verdict ``timeout`` and the record the
+    status ``timeout`` (never cached, so the next run checks it again).
+    """
     assignment, sub, limits = job
     feedback = check_submission(assignment, sub, limits)
     scores, verdicts, kinds, wrong, mistakes = {}, {}, [], {}, {}
+    timed_out = False
     for qf in feedback:
         result = qf.result
         scores[qf.id] = qf.score
+        if result is not None and result.reason == "timeout":
+            timed_out = True
+            verdicts[qf.id] = "timeout"
+            kinds.append("timeout")
+            continue
         verdicts[qf.id] = result.verdict.value if result is not None else "missing"
         if result is not None:
             unread = ["unreadable"] if verdicts[qf.id] == "unreadable" else []
@@ -194,15 +290,16 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
             wrong[qf.id] = _wrong_parts(result)
             mistakes[qf.id] = list(result.kinds)
     student = {"id": sub.student, "name": sub.name}
+    status = "timeout" if timed_out else "graded"
     pages = {
-        fmt: render_feedback(student, feedback, title=assignment.title, fmt=fmt)
+        fmt: render_feedback(
+            student, feedback, title=assignment.title, fmt=fmt, status=status, flags=sub.flags
+        )
         for fmt in ("md", "html")
     }
     return {
-        "student": sub.student,
-        "name": sub.name,
-        "fingerprint": sub.fingerprint(assignment),
-        "status": "graded",
+        **_identity(sub),
+        "status": status,
         "scores": scores,
         "verdicts": verdicts,
         "kinds": kinds,
@@ -211,6 +308,16 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
         "score": sum(scores.values()),
         "max": assignment.max_score,
         "pages": pages,
+    }
+
+
+def _identity(sub: Submission) -> dict:
+    return {
+        "uid": sub.uid,
+        "student": sub.student,
+        "name": sub.name,
+        "source": sub.source,
+        "flags": list(sub.flags),
     }
 
 
@@ -227,29 +334,101 @@ class GradeReport:
     gradebook: Path
     summary: Path
     records: tuple[dict, ...] = field(default=(), repr=False)
+    warnings: tuple[str, ...] = ()
 
 
 def _failed_record(sub: Submission, assignment: Assignment, failure: JobFailure) -> dict:
+    """The record of a submission that has no verdicts: ``timeout`` or ``error: reason``."""
+    short = "timeout" if failure.kind == "timeout" else "error"
+    status = "timeout" if short == "timeout" else f"error: {failure.message}"
     student = {"id": sub.student, "name": sub.name}
     qs = [QuestionFeedback(q.id, q.ask, q.points, 0.0, None) for q in assignment.questions]
-    status = "timeout" if failure.kind == "timeout" else "error"
-    pages = {
-        fmt: render_feedback(student, qs, title=assignment.title, fmt=fmt, status=status)
-        for fmt in ("md", "html")
-    }
+    pages = {}
+    for fmt in ("md", "html"):
+        try:
+            pages[fmt] = render_feedback(
+                student, qs, title=assignment.title, fmt=fmt, status=status, flags=sub.flags
+            )
+        except Exception:  # noqa: BLE001 - the page of a failure must never fail in turn
+            pages[fmt] = f"Feedback: {status}\n"
     return {
-        "student": sub.student,
-        "name": sub.name,
-        "fingerprint": "",
+        **_identity(sub),
         "status": status,
         "scores": {q.id: 0.0 for q in assignment.questions},
-        "verdicts": {q.id: status for q in assignment.questions},
-        "kinds": [status],
+        "verdicts": {q.id: short for q in assignment.questions},
+        "kinds": [short],
         "score": 0.0,
         "max": assignment.max_score,
         "pages": pages,
         "error": failure.message,
     }
+
+
+def _run_fingerprint(a: Assignment, limits: AnswerLimits, deadline: float) -> str:
+    """What a cached verdict depends on besides the answers: assignment, keys, every limit."""
+    from dhsym._version import __version__
+
+    text = "\n".join([a.fingerprint, repr(a.questions), repr(limits), f"{deadline!r}", __version__])
+    return hashlib.sha256(text.encode("utf-8", "replace")).hexdigest()[:16]
+
+
+_RECORD_FIELDS = {
+    "uid": str,
+    "student": str,
+    "name": str,
+    "source": str,
+    "flags": list,
+    "fingerprint": str,
+    "status": str,
+    "scores": dict,
+    "verdicts": dict,
+    "kinds": list,
+    "score": (int, float),
+    "max": (int, float),
+}
+
+
+def _cached_record(value: object, a: Assignment) -> bool:
+    """True for a well-formed record of a final verdict for this assignment's questions."""
+    if not isinstance(value, dict) or value.get("status") != "graded":
+        return False
+    if not all(isinstance(value.get(k), t) for k, t in _RECORD_FIELDS.items()):
+        return False
+    ids = {q.id for q in a.questions}
+    scores, verdicts = value["scores"], value["verdicts"]
+    return (
+        set(scores) == ids
+        and set(verdicts) == ids
+        and all(isinstance(x, (int, float)) and math.isfinite(x) for x in scores.values())
+        and all(v in ("correct", "incorrect", "unreadable", "missing") for v in verdicts.values())
+        and all(isinstance(x, str) for x in value["kinds"] + value["flags"])
+        and math.isfinite(value["score"])
+    )
+
+
+def _load_cache(path: Path, run_fp: str, a: Assignment, warnings: list[str]) -> dict:
+    """The cached records of this run's fingerprint; anything malformed is ignored (a warning)."""
+    if not path.exists():
+        return {}
+    try:
+        data = json.loads(read_limited(path, _MAX_CACHE, what="the grading cache"))
+    except (FileRefused, ValueError, RecursionError) as err:
+        reason = err.message if isinstance(err, DHError) else f"not valid JSON ({err})"
+        warnings.append(f"ignoring the grading cache {path.name}: {reason}; grading everything")
+        return {}
+    if not isinstance(data, dict) or not isinstance(data.get("records"), dict):
+        warnings.append(
+            f"ignoring the grading cache {path.name}: it is not a cache written by dhsym; "
+            "grading everything"
+        )
+        return {}
+    if data.get("assignment") != run_fp:
+        return {}  # another assignment, key, limit or dhsym version: everything is regraded
+    records = {k: r for k, r in data["records"].items() if _cached_record(r, a)}
+    bad = len(data["records"]) - len(records)
+    if bad:
+        warnings.append(f"ignoring {bad} malformed record(s) of the grading cache {path.name}")
+    return records
 
 
 def grade(
@@ -265,37 +444,43 @@ def grade(
 ) -> GradeReport:
     """Grade every submission and write the report folder (see the module docstring).
 
-    ``workers`` processes (0: in this process), or a Dask cluster with ``dask``
-    (an address or a ``Client``).  ``timeout`` is the time limit of one answer.
+    ``workers`` processes (0: in this process, without isolation), or a Dask cluster
+    with ``dask`` (an address or a ``Client``).  ``timeout`` is the time limit of
+    one answer (default: the assignment's ``time_limit``); a whole submission gets
+    the sum over its questions plus a few seconds before its process is killed.
     """
     a = assignment if isinstance(assignment, Assignment) else Assignment.load(assignment)
-    seconds = float(timeout if timeout is not None else a.seconds)
+    seconds = check_seconds(timeout, "--timeout") if timeout is not None else a.seconds
     lim = limits or AnswerLimits(seconds=seconds)
-    subs = read_submissions(submissions, a, lim)
+    if not isinstance(workers, int) or not 0 <= workers <= 1024:
+        raise DHError(f"--workers: expected a number of processes from 0 to 1024, got {workers}")
     root = Path(out_dir).resolve()
+    warnings: list[str] = []
+    subs = read_submissions(submissions, a, lim, exclude=(root,), warnings=warnings)
     root.mkdir(parents=True, exist_ok=True)
     (root / "feedback").mkdir(exist_ok=True)
+    deadline = lim.seconds * max(1, len(a.questions)) + _SLACK_SECONDS
+    run_fp = _run_fingerprint(a, lim, deadline)
     cache_path = inside(root, CACHE_NAME)
-    cache = {}
-    if cache_path.is_file():
-        try:
-            data = json.loads(cache_path.read_text(encoding="utf-8"))
-            if data.get("assignment") == a.fingerprint:
-                cache = data.get("records", {})
-        except (OSError, ValueError):
-            cache = {}
+    cache = _load_cache(cache_path, run_fp, a, warnings)
     used: set[str] = set()
-    files = {s.student: safe_name(s.student, used) for s in subs}
-    todo, records = [], {}
+    files = {s.uid: safe_name(s.uid, used) for s in subs}
+    todo, records, failed = [], {}, 0
     for s in subs:
-        old = cache.get(s.student)
-        names = [inside(root, "feedback", files[s.student] + ext) for ext in (".md", ".html")]
-        if old and old.get("fingerprint") == s.fingerprint(a) and all(p.is_file() for p in names):
-            records[s.student] = old
+        old = cache.get(s.uid)
+        names = [inside(root, "feedback", files[s.uid] + ext) for ext in (".md", ".html")]
+        if s.error:
+            records[s.uid] = _failed_record(s, a, JobFailure("error", s.error))
+            failed += 1
+        elif (
+            old
+            and old.get("fingerprint") == s.fingerprint(a, run_fp)
+            and all(p.is_file() for p in names)
+        ):
+            records[s.uid] = old
         else:
             todo.append(s)
     jobs = [(a, s, lim) for s in todo]
-    deadline = seconds * max(1, len(a.questions)) + 10.0
     if dask is not None:
         runner = run_dask(grade_submission, jobs, dask, deadline)
     elif workers > 0:
@@ -306,26 +491,30 @@ def grade(
     last_save = time.monotonic()
 
     def save() -> None:
-        write_atomic(cache_path, json.dumps({"assignment": a.fingerprint, "records": records}))
+        final = {k: r for k, r in records.items() if _cached_record(r, a)}
+        write_atomic(cache_path, json.dumps({"assignment": run_fp, "records": final}))
 
-    failed = 0
+    for s in subs:  # the pages of submissions that could not be read at all
+        if s.error:
+            _write_pages(root, files[s.uid], records[s.uid].pop("pages"))
     try:
         for k, outcome in runner:
             sub = todo[k]
             if isinstance(outcome, JobFailure):
                 outcome = _failed_record(sub, a, outcome)
+            if outcome["status"] != "graded":
                 failed += 1
-            pages = outcome.pop("pages")
-            for ext, fmt in ((".md", "md"), (".html", "html")):
-                write_atomic(inside(root, "feedback", files[sub.student] + ext), pages[fmt])
-            records[sub.student] = outcome
+            else:
+                outcome["fingerprint"] = sub.fingerprint(a, run_fp)
+            _write_pages(root, files[sub.uid], outcome.pop("pages"))
+            records[sub.uid] = outcome
             bar.step()
             if time.monotonic() - last_save > 5.0:
                 save()
                 last_save = time.monotonic()
     finally:
         save()
-    ordered = [records[s.student] for s in subs if s.student in records]
+    ordered = [records[s.uid] for s in subs if s.uid in records]
     gradebook = write_gradebook(root, a, ordered, files)
     summary = write_summary(root, a, ordered, files)
     scores = [r["score"] for r in ordered]
@@ -333,10 +522,16 @@ def grade(
         root,
         len(subs),
         len(jobs),
-        len(subs) - len(jobs),
+        len(subs) - len(jobs) - sum(bool(s.error) for s in subs),
         failed,
         statistics.fmean(scores) if scores else 0.0,
         gradebook,
         summary,
         tuple(ordered),
+        tuple(warnings),
     )
+
+
+def _write_pages(root: Path, name: str, pages: Mapping[str, str]) -> None:
+    for ext, fmt in ((".md", "md"), (".html", "html")):
+        write_atomic(inside(root, "feedback", name + ext), pages[fmt])

@@ -50,9 +50,12 @@ _FONTS = frozenset(
 _SIZES = frozenset("big Big bigg Bigg bigl bigr Bigl Bigr biggl biggr Biggl Biggr".split())
 _DEGREES = frozenset({"degree", "textdegree", "circ"})
 _ABBREVIATION_HEADS = frozenset("cCsS")  # Craig's c\theta_i, s\alpha_{i-1}
+_NUMBER = re.compile(r"[0-9]+(?:\.[0-9]+)?|\.[0-9]+")  # unambiguous: linear on any text
 _ROW_SPACING = re.compile(r"^\s*\[\s*-?[0-9.]+\s*(?:pt|em|ex|mm|cm|in|bp|mu)\s*\]")
 _MATRIX_ENVS = "bmatrix|pmatrix|matrix|Bmatrix|vmatrix|Vmatrix|smallmatrix|array"
-_MATRIX = re.compile(r"\\begin\{(" + _MATRIX_ENVS + r")\}(?P<body>.*?)\\end\{\1\}", re.DOTALL)
+_MATRIX = re.compile(  # the body stops at the next \begin: linear on any text
+    r"\\begin\{(" + _MATRIX_ENVS + r")\}(?P<body>(?:(?!\\begin\{).)*?)\\end\{\1\}", re.DOTALL
+)
 _LETTER = "A-Za-z\u0370-\u03ff"
 _TOKEN = re.compile(
     r"(?P<space>\s+)|(?P<cmd>\\[A-Za-z]+)|(?P<esc>\\.)|(?P<num>[0-9]*\.?[0-9]+)"
@@ -60,7 +63,8 @@ _TOKEN = re.compile(
     re.DOTALL,
 )
 _FLAT_NAME = re.compile(rf"[{_LETTER}_][{_LETTER}0-9_]*")
-_PLAIN_SUB = re.compile(rf"([{_LETTER}][{_LETTER}0-9_]*)_\{{([^{{}}]*)\}}")
+# a name of at most 64 characters: each start scans a bounded run (linear on any text)
+_PLAIN_SUB = re.compile(rf"([{_LETTER}][{_LETTER}0-9_]{{0,63}})_\{{([^{{}}]*)\}}")
 _DELIMS = ("$$", "$", r"\[", r"\]", r"\(", r"\)")
 
 
@@ -294,7 +298,7 @@ class _Translator:
         return False
 
     def postfix(self, base: str) -> str:
-        number = re.fullmatch(r"[0-9]*\.?[0-9]+", base) is not None
+        number = _NUMBER.fullmatch(base) is not None
         while self.peek()[1] in ("^", "'", "°", "º", "˚", r"\degree", r"\textdegree"):
             if self.degree_mark(number=number):
                 base, number = f"{base}°", False

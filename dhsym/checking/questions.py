@@ -19,10 +19,11 @@ from dhsym.errors import DHError
 
 __all__ = ["Question"]
 
-_TRANSFORM = re.compile(
-    r"^(?:\^\{?(?P<a>\d+)\}?T_\{?(?P<b>\d+)\}?|[TH]_?\{?(?P<i>\d+)\}?[_,]\{?(?P<j>\d+)\}?"
-    r"|[TH](?P<ij>\d\d)|[AH]_?\{?(?P<k>\d+)\}?|(?P<arm>arm|T0_n|T_?0_?n)|p_?(?P<p>[xyz]))"
-    r"(?:\s*\[\s*(?P<r>\d+)\s*,\s*(?P<c>\d+)\s*\])?$"
+_TRANSFORM = re.compile(  # frame numbers have at most 4 digits (no 5000-digit int() ever)
+    r"^(?:\^\{?(?P<a>\d{1,4})\}?T_\{?(?P<b>\d{1,4})\}?"
+    r"|[TH]_?\{?(?P<i>\d{1,4})\}?[_,]\{?(?P<j>\d{1,4})\}?"
+    r"|[TH](?P<ij>\d\d)|[AH]_?\{?(?P<k>\d{1,4})\}?|(?P<arm>arm|T0_n|T_?0_?n)|p_?(?P<p>[xyz]))"
+    r"(?:\s*\[\s*(?P<r>\d{1,4})\s*,\s*(?P<c>\d{1,4})\s*\])?$"
 )
 
 
@@ -40,6 +41,8 @@ class Question:
     def parse(cls, spec: str, n: int) -> Question:
         """Read ``table``, ``T0_2``, ``T02``, ``^0T_2``, ``A3``, ``arm``, ``px`` and ``…[r,c]``."""
         text = str(spec).strip()
+        if len(text) > 200:
+            raise DHError(f"unknown question {text[:40]!r}…: a question is at most 200 characters")
         if text.lower() in ("table", "dh", "dh table", "dh_table"):
             return cls(text, "table")
         m = _TRANSFORM.match(text.replace(" ", ""))

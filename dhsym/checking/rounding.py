@@ -46,7 +46,8 @@ from ._numeric import EvaluationError, evaluate
 __all__ = ["DEFAULT_ROUNDING", "Literal", "Rounding", "decimal_places", "rounding_accepts"]
 
 _MODES = ("digits", "abs", "rel", "off")
-_SPEC = re.compile(r"^\s*(digits|abs|rel)\s*[=:]?\s*([0-9.eE+-]+)\s*$|^\s*([0-9]+)\s*digits?\s*$")
+# Matched on the stripped text; no two neighbouring parts can take the same characters.
+_SPEC = re.compile(r"(digits|abs|rel)\s*(?:[=:]\s*)?([0-9.eE+-]+)|([0-9]+)\s*digits?")
 _LITERAL = re.compile(r"^(?P<whole>[0-9]*)(?:\.(?P<frac>[0-9]*))?(?:[eE](?P<exp>[+-]?[0-9]+))?$")
 _SLACK = 1e-9  # relative: double precision and the linear sum of the decimals' effects
 
@@ -120,7 +121,7 @@ class Rounding:
         if isinstance(spec, Mapping) and len(spec) == 1:
             ((mode, value),) = spec.items()
             spec = f"{mode}={value}"
-        m = _SPEC.match(spec) if isinstance(spec, str) else None
+        m = _SPEC.fullmatch(spec.strip()[:100]) if isinstance(spec, str) else None
         if m is None:
             raise DHError(f"unknown rounding {spec!r}: expected digits=N, abs=T, rel=T or off")
         try:

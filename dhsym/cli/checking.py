@@ -45,13 +45,25 @@ def _read_answer(source: str, limit: int) -> bytes | str:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    from dhsym.checking._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
+    from dhsym.checking._limits import (
+        DEFAULT_ANSWER_LIMITS,
+        AnswerLimits,
+        UnreadableAnswer,
+        check_seconds,
+    )
     from dhsym.checking.checker import Key, check_answer
     from dhsym.checking.feedback import render_check
     from dhsym.checking.verdict import CheckResult, Verdict
+    from dhsym.kinematics.robot import Robot
 
+    limits = (
+        AnswerLimits(seconds=check_seconds(args.timeout, "--timeout"))
+        if args.timeout is not None
+        else DEFAULT_ANSWER_LIMITS
+    )
     key = Key.load(args.key, args.question, tool_free=args.tool_free, rounding=args.rounding)
-    limits = AnswerLimits(seconds=args.timeout) if args.timeout else DEFAULT_ANSWER_LIMITS
+    if key.question.kind != "table":
+        Robot(key.table).check_transform_size(key.question.frm, key.question.to)
     try:
         answer = _read_answer(args.answer, limits.max_bytes)
         result = check_answer(key, answer, limits=limits)
@@ -97,9 +109,13 @@ def _cmd_grade(args: argparse.Namespace) -> int:
         dask=args.dask,
         progress=not args.quiet,
     )
+    for warning in report.warnings:
+        print(f"dhsym: warning: {warning}", file=sys.stderr)
+    flagged = sum(bool(r.get("flags")) for r in report.records)
     print(
         f"graded {report.graded} submission(s), {report.skipped} already graded, "
-        f"{report.failed} failed (timeout or error); mean score {report.mean:.2f}"
+        f"{report.failed} failed (timeout or error), {flagged} flagged; "
+        f"mean score {report.mean:.2f}"
     )
     # the paths as the user gave the report folder, not resolved
     print(f"gradebook: {os.path.join(args.output, Path(report.gradebook).name)}")
@@ -211,12 +227,19 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     g.add_argument(
         "-o", "--output", required=True, metavar="REPORT", help="report folder (created)"
     )
-    g.add_argument("--workers", type=int, default=2, help="worker processes (0: none)")
+    g.add_argument(
+        "--workers",
+        type=int,
+        default=2,
+        help="worker processes, each killed and replaced when a submission overruns "
+        "(0: grade in this process, without isolation)",
+    )
     g.add_argument(
         "--timeout",
         type=float,
         default=None,
-        help="time limit of one answer in seconds (default: the assignment's, 5)",
+        help="time limit of one answer in seconds, above 0 and at most 3600 "
+        "(default: the assignment's, 5)",
     )
     g.add_argument(
         "--dask", default=None, metavar="ADDRESS", help="run on a Dask cluster (scheduler address)"

@@ -14,8 +14,10 @@ def _cmd_convert(args: argparse.Namespace) -> int:
     from dhsym.geometry.conversion import check_conversion, convert
     from dhsym.model.kinds import Convention
     from dhsym.model.library import load_table
+    from dhsym.model.parsing import check_count
     from dhsym.model.tablefile import dump_table
 
+    check_count(args.samples, "--samples", 0, 100_000)
     table = load_table(args.robot)
     note_warnings(table)
     target = Convention.parse(args.to)

@@ -90,11 +90,30 @@ def _run(args: argparse.Namespace) -> int:
     except BrokenPipeError:
         raise  # handled by run_quietly
     except DHError as err:
-        print(f"dhsym: error: {err}", file=sys.stderr)
+        print(f"dhsym: error: {_one_line(err)}", file=sys.stderr)
         return 2
     except (OSError, IndexError) as err:
-        print(f"dhsym: error: {err}", file=sys.stderr)
+        print(f"dhsym: error: {_one_line(err)}", file=sys.stderr)
         return 2
+    except (RecursionError, MemoryError) as err:
+        print(
+            f"dhsym: error: the input is too large or too deeply nested ({type(err).__name__})",
+            file=sys.stderr,
+        )
+        return 2
+    except Exception as err:  # noqa: BLE001 - a user never sees a traceback
+        print(
+            f"dhsym: internal error: {type(err).__name__}: {_one_line(err)} "
+            "(please report this with the command that caused it)",
+            file=sys.stderr,
+        )
+        return 70
+
+
+def _one_line(err: BaseException) -> str:
+    """The error's message on one line, at most 2,000 characters."""
+    text = " ".join(str(err).split())
+    return text if len(text) <= 2000 else text[:1999] + "…"
 
 
 def main(argv: Sequence[str] | None = None) -> int:

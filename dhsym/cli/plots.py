@@ -30,10 +30,13 @@ def _format(args: argparse.Namespace) -> str:
 def _cmd_plot(args: argparse.Namespace) -> int:
     import io
 
-    fmt = _format(args)
-    robot = load_robot(args.robot, args.values, need_numbers=True)
-    from dhsym.model.parsing import parse_number_list
+    from dhsym.model.parsing import check_count, parse_number_list
     from dhsym.plot.figures import plot_robot, plot_workspace
+
+    fmt = _format(args)
+    check_count(args.samples, "--samples", 1, 1_000_000)
+    check_count(args.dpi, "--dpi", 10, 1200)
+    robot = load_robot(args.robot, args.values, need_numbers=True)
 
     if args.workspace:
         fig = plot_workspace(robot, args.samples, view=args.view)

@@ -68,6 +68,7 @@ from .data import (
 )
 
 __all__ = [
+    "MAX_LINKS",
     "Derivation",
     "Equation",
     "Factor",
@@ -85,6 +86,9 @@ __all__ = [
     "derive",
     "general_link",
 ]
+
+#: Links one derivation shows step by step (a 60-row planar chain takes seconds).
+MAX_LINKS = 60
 
 # --- the general link matrix ------------------------------------------------------------
 
@@ -331,6 +335,13 @@ def derive(
     if frm == to:
         raise DHError(f"^{frm}T_{to} is the identity: choose two different frames")
     lo, hi = min(frm, to), max(frm, to)
+    if hi - lo > MAX_LINKS:
+        raise DHError(
+            f"^{frm}T_{to} spans {hi - lo} links; a derivation shows at most {MAX_LINKS}: "
+            f"derive parts of the chain with --from/--to (frm=/to= in Python), e.g. "
+            f"^{lo}T_{lo + MAX_LINKS} and ^{lo + MAX_LINKS}T_{hi}"
+        )
+    robot.check_transform_size(frm, to)
     links = []
     for k in range(lo + 1, hi + 1):
         pose, word = robot.transform(k - 1, k), chain_word(table, k - 1, k)

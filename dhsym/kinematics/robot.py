@@ -34,7 +34,7 @@ from dhsym.model.table import Convention, DHTable, Elementary, JointType, as_exp
 from dhsym.notation.printers import Notation, TrigStyle
 
 from .pose import Pose
-from .simplification import compose, numeric_equal, prove_equal
+from .simplification import closed_form_size, compose, numeric_equal, prove_equal
 from .transforms import chain_word, link_word, plain_product
 
 if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `import sympy`
@@ -42,7 +42,15 @@ if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `im
 
     from .numeric import PoseFunction
 
-__all__ = ["Robot"]
+__all__ = ["MAX_CLOSED_FORM", "Robot"]
+
+
+#: Largest estimated size (expression nodes, :func:`.simplification.closed_form_size`) of
+#: a ``^iT_j`` written out in closed form. Every lecture robot is below 1,500, a 10-joint
+#: chain of twisted joints about 27,000; above, a derivation would run for minutes and
+#: print pages per entry, so it is refused (numbers, ``fk``, still work: they multiply the
+#: chain's elementary transforms numerically, :func:`.numeric.compile_word`).
+MAX_CLOSED_FORM = 30_000
 
 
 class Robot:
@@ -122,10 +130,44 @@ class Robot:
         return self.transform(i - 1, i)
 
     def transform(self, i: int, j: int) -> Pose:
-        """``^iT_j`` in compact form, for any frames ``i``, ``j`` (inverse when ``j < i``)."""
+        """``^iT_j`` in compact form, for any frames ``i``, ``j`` (inverse when ``j < i``).
+
+        Raises :class:`~dhsym.errors.DHError` when its closed form would be too large
+        (see :meth:`check_transform_size`).
+        """
         return self._transform(i, j)
 
+    def transform_size(self, i: int, j: int) -> int:
+        """Estimated size of ``^iT_j`` in closed form (expression nodes), found in microseconds."""
+        return closed_form_size(chain_word(self.table, i, j))
+
+    def check_transform_size(self, i: int, j: int) -> None:
+        """Refuse a ``^iT_j`` whose closed form would explode, naming the parts that fit.
+
+        >>> from dhsym.model.table import DHRow, DHTable
+        >>> rows = [DHRow.revolute(f"q{k}", d=f"d{k}", a=f"a{k}", alpha=(-1) ** k * sp.pi / 2)
+        ...         for k in range(1, 17)]
+        >>> Robot(DHTable.from_rows(rows, name="snake")).transform(0, 16)
+        Traceback (most recent call last):
+        ...
+        dhsym.errors.DHError: ^0T_16 of snake is too large to write out in closed form ...
+        """
+        size = self.transform_size(i, j)
+        if size <= MAX_CLOSED_FORM:
+            return
+        step = 1 if j > i else -1
+        k = i + step
+        while k != j and self.transform_size(i, k + step) <= MAX_CLOSED_FORM:
+            k += step
+        raise DHError(
+            f"^{i}T_{j} of {self.name or 'this robot'} is too large to write out in closed form "
+            f"(an estimated {size:.3g} expression nodes; at most {MAX_CLOSED_FORM}): derive a "
+            f"shorter part of the chain with --from/--to (frm=/to= in Python), e.g. "
+            f"^{i}T_{k}, and name the parts: ^{i}T_{j} = ^{i}T_{k} ^{k}T_{j}"
+        )
+
     def _compute_transform(self, i: int, j: int) -> Pose:
+        self.check_transform_size(i, j)
         word = chain_word(self.table, i, j)
         return Pose(
             compose(word), _frame_name(i, self.n), _frame_name(j, self.n), self.notation, word=word
@@ -171,18 +213,21 @@ class Robot:
         key = (i, j, _values_key(values))
         f = self._fk_cache.get(key)
         if f is None:
-            from .numeric import compile_pose
+            from .numeric import compile_pose, compile_word
 
-            pose = (
-                self.tool_pose()
-                if i is None and j is None
-                else self.transform(i or 0, self.n if j is None else j)
-            )
+            if i is None and j is None:
+                i = -1 if self.table.base else 0
+                j = self.n + 1 if self.table.tool else self.n
+            i, j = (i or 0), (self.n if j is None else j)
             vals = dict(self.table.value_map)
             for k, v in (values or {}).items():
                 vals[symbol(k) if isinstance(k, str) else k] = as_expr(v, field="values")  # type: ignore[index]
-            f = self._fk_cache[key] = compile_pose(pose.matrix, self.variables, vals)
-        return f
+            if self.transform_size(i, j) <= MAX_CLOSED_FORM:
+                f = compile_pose(self.transform(i, j).matrix, self.variables, vals)
+            else:  # too long for a closed form: the elementary transforms, multiplied as numbers
+                f = compile_word(chain_word(self.table, i, j), self.variables, vals)  # type: ignore[assignment]
+            self._fk_cache[key] = f  # type: ignore[assignment]
+        return f  # type: ignore[return-value]
 
     def fk(
         self, q: object, *, deg: bool = False, values: Mapping[object, object] | None = None

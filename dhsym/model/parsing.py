@@ -33,6 +33,7 @@ from dhsym.errors import DHError, ParseError
 __all__ = [
     "DEFAULT_LIMITS",
     "ParseLimits",
+    "check_count",
     "normalize_name",
     "numeral_problem",
     "parse_expression",
@@ -540,3 +541,21 @@ def parse_number_list(text: str, option: str) -> list[float]:
             raise DHError(f"{option} value {k} ({part.strip()}) must be a real number")
         values.append(float(expr))
     return values
+
+
+def check_count(value: int, option: str, low: int, high: int) -> int:
+    """``value`` if ``low <= value <= high``; otherwise a one-line error naming ``option``.
+
+    Counts the user chooses (samples, dots per inch) size arrays and pictures: an
+    unbounded one is gigabytes of memory or an hour of work.
+
+    >>> check_count(20, "--samples", 0, 100_000)
+    20
+    >>> check_count(10**11, "--samples", 0, 100_000)
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: --samples must be from 0 to 100000, got 100000000000
+    """
+    if not low <= value <= high:
+        raise DHError(f"{option} must be from {low} to {high}, got {value}")
+    return value

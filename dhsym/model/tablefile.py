@@ -62,6 +62,7 @@ from .table import (
     as_expr,
     to_radians,
 )
+from .yamlsafe import FileRefused, YAMLInputError, YAMLLimits, load_yaml, read_limited
 
 __all__ = ["MAX_FILE_BYTES", "dump_table", "read_table", "read_table_text", "table_from_data"]
 
@@ -83,35 +84,31 @@ _ALIASES = {"θ": "theta", "α": "alpha", "joint": "type", "variable": "q", "th"
 
 
 def read_table(path: str | Path) -> DHTable:
-    """Read a table file (YAML). Errors name the file, row and field."""
+    """Read a table file (YAML). Errors name the file, row and field.
+
+    Only a regular file is read (``/dev/zero`` or a FIFO is refused at once), and
+    at most :data:`MAX_FILE_BYTES` of it.
+    """
     p = Path(path)
     try:
-        size = p.stat().st_size
-    except OSError as err:
-        raise TableError(f"cannot read table file: {err.strerror}", file=str(p)) from None
-    if size > MAX_FILE_BYTES:
-        raise TableError(f"file is {size} bytes; tables are at most {MAX_FILE_BYTES}", file=str(p))
+        data = read_limited(p, MAX_FILE_BYTES, what="table file")
+    except FileRefused as err:
+        raise TableError(err.message, file=str(p)) from None
     try:
-        text = p.read_text(encoding="utf-8")
+        text = data.decode("utf-8")
     except UnicodeDecodeError:
         raise TableError("not a UTF-8 text file", file=str(p)) from None
     return read_table_text(text, file=str(p))
 
 
 def read_table_text(text: str, *, file: str | None = None) -> DHTable:
-    """Read a table from YAML text."""
+    """Read a table from YAML text (through the bounded loader :func:`.yamlsafe.load_yaml`)."""
     if len(text) > MAX_FILE_BYTES:
         raise TableError("table text is too large", file=file)
     try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as err:
-        mark = getattr(err, "problem_mark", None)
-        where = f" (line {mark.line + 1}, column {mark.column + 1})" if mark else ""
-        raise TableError(
-            f"not valid YAML{where}: {getattr(err, 'problem', err)}", file=file
-        ) from None
-    except ValueError:  # an integer of thousands of digits (Python's int conversion limit)
-        raise TableError(_LONG_NUMBER, file=file) from None
+        data = load_yaml(text, limits=YAMLLimits(max_bytes=MAX_FILE_BYTES))
+    except YAMLInputError as err:
+        raise TableError(err.message, file=file) from None
     return table_from_data(data, file=file)
 
 

@@ -267,7 +267,6 @@ def render(tokens: Sequence[Token], latex: bool) -> str:
 
 # --- the notation -------------------------------------------------------------------------------
 
-_TRAILING_INDEX = re.compile(r"([0-9]+)$")
 
 
 @dataclass(frozen=True)
@@ -403,8 +402,8 @@ class Notation:
     def _index(self, s: sp.Symbol) -> int:
         if s in self._joint_index:
             return self._joint_index[s]
-        m = _TRAILING_INDEX.search(s.name)
-        return int(m.group(1)) if m else 0
+        digits = s.name[len(s.name.rstrip("0123456789")) :]  # a trailing index, linear time
+        return int(digits[-18:]) if digits else 0
 
     def _angle(self, arg: sp.Expr) -> tuple[int, ...] | None:
         """Joint numbers of a sum of joint angles (``θ2 + θ3`` → (2, 3)), None otherwise."""

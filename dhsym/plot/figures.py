@@ -109,9 +109,22 @@ def _frame_range(robot: Any) -> tuple[int, list[int], list[str]]:
     return first, ks, [names.get(k, str(k)) for k in ks]
 
 
+_LONG_CHAIN = 12  # frames; beyond, ^0T_k is built up link by link (numbers, not closed forms)
+
+
 def _poses(robot: Any, qv: np.ndarray) -> tuple[np.ndarray, list[str]]:
     first, ks, labels = _frame_range(robot)
-    return np.stack([robot.fk_function(first, k)(qv) for k in ks]), labels
+    if len(ks) <= _LONG_CHAIN:
+        return np.stack([robot.fk_function(first, k)(qv) for k in ks]), labels
+    from dhsym.kinematics.numeric import compile_word
+    from dhsym.kinematics.transforms import chain_word
+
+    words = [chain_word(robot.table, a, b) for a, b in zip(ks, ks[1:])]
+    ends = np.cumsum([0] + [len(w) for w in words])  # where each frame's prefix ends
+    prefixes = compile_word(
+        [e for w in words for e in w], robot.variables, robot.table.value_map, prefixes=True
+    )
+    return prefixes(qv)[ends], labels
 
 
 def frame_origins(robot: Any, q: object = None, *, deg: bool = False) -> np.ndarray:

@@ -34,3 +34,14 @@ def test_html_escapes_names_and_answers():
 def test_markdown_helpers():
     assert md_escape("[x](javascript:1) $\\input$") == "\\[x\\](javascript:1) \\$\\\\input\\$"
     assert md_code("a|b") == "`a\\|b`"
+
+
+def test_absolute_value_bars_do_not_break_the_markdown_table():
+    answer = BAD.replace("a1*C1 - a2*C12", "sqrt(a1^2)*C1 + a2*C12")  # |a1|: printed with bars
+    md = render_check(check_answer(Key.load("planar2r", "T0_2"), answer))
+    rows = [line for line in md.splitlines() if line.startswith("| (")]
+    assert rows == [
+        r"| (1,4) | $C_{1} \left\vert {a_{1}}\right\vert  + a_{2} C_{12}$ | "
+        r"$a_{1} C_{1} + a_{2} C_{12}$ |"
+    ]
+    assert all(row.count("|") == 4 for row in rows)

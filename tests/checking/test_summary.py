@@ -51,6 +51,7 @@ def test_wrong_examples_are_escaped(tmp_path):
     a = Assignment.load(HW / "assignment.yaml")
     rec = {
         "student": "<img src=x>",
+        "uid": "<img src=x>",
         "name": "n",
         "score": 0.0,
         "status": "graded",

@@ -95,3 +95,41 @@ def test_rounding_option_both_ways(monkeypatch, capsys):
     assert run_check(monkeypatch, capsys, short, "--rounding", "digits=2")[0] == 0
     code, _, err = run_check(monkeypatch, capsys, answer, "--rounding", "roughly")
     assert code == 2 and "unknown rounding 'roughly'" in err
+
+
+def _one_error_line(capsys) -> str:
+    err = capsys.readouterr().err
+    assert err.startswith("dhsym: error: ") and err.count("\n") == 1, err
+    return err
+
+
+def test_a_question_with_a_huge_frame_number_is_a_clean_error(capsys):
+    question = "T0_" + "9" * 5000
+    assert main(["check", "--key", "planar2r", "--question", question, "--answer", "-"]) == 2
+    assert "unknown question" in _one_error_line(capsys)
+
+
+def test_time_limits_from_the_command_line_are_validated(tmp_path, capsys):
+    for bad in ("inf", "nan", "-1", "0", "1e300"):
+        argv = ["check", "--key", "planar2r", "--question", "T0_2", "--answer", "-"]
+        assert main([*argv, "--timeout", bad]) == 2
+        assert "--timeout: expected a time limit in seconds above 0" in _one_error_line(capsys)
+        argv = ["grade", str(HW / "assignment.yaml"), str(HW / "submissions")]
+        assert main([*argv, "-o", str(tmp_path / "o"), "--timeout", bad, "--quiet"]) == 2
+        assert "--timeout: expected a time limit in seconds above 0" in _one_error_line(capsys)
+
+
+def test_an_answer_that_is_a_fifo_is_unreadable_at_once(tmp_path):
+    import os
+    import subprocess
+
+    fifo = tmp_path / "answer.txt"
+    os.mkfifo(fifo)
+    out = subprocess.run(
+        [sys.executable, "-m", "dhsym", "check", "--key", "planar2r", "--question", "T0_2"]
+        + ["--answer", str(fifo)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert out.returncode == 2 and "not a regular file" in out.stderr

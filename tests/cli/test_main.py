@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 
@@ -117,3 +118,67 @@ def test_decimal_angles_read_as_exact_are_noted_on_stderr(tmp_path, capsys):
     assert "*Note:* Decimal angles read as exact" in capsys.readouterr().out
     assert main(["show", "puma560"]) == 0
     assert "note" not in capsys.readouterr().err
+
+
+def _dhsym(*argv: str, timeout: float = 120) -> subprocess.CompletedProcess:
+    """The console command in a fresh process; a hang fails the test instead of the suite."""
+    return subprocess.run(
+        [sys.executable, "-m", "dhsym", *argv], capture_output=True, text=True, timeout=timeout
+    )
+
+
+def test_show_refuses_devices_and_fifos_at_once(tmp_path):
+    fifo = tmp_path / "pipe.yaml"
+    os.mkfifo(fifo)
+    for path in ("/dev/zero", str(fifo)):
+        out = _dhsym("show", path)
+        assert out.returncode == 2 and "Traceback" not in out.stderr
+        assert out.stderr == f"dhsym: error: {path}: table file is not a regular file " + (
+            "(a device, FIFO, socket or folder)\n"
+        )
+
+
+def _long_table(tmp_path, n: int, twisted: bool) -> str:
+    rows = [
+        f"  - {{type: R, theta: q{k}, d: 0.1, a: 0.2, alpha: {(-1) ** k * 90 if twisted else 0}}}"
+        for k in range(1, n + 1)
+    ]
+    p = tmp_path / f"{'twisted' if twisted else 'planar'}{n}.yaml"
+    p.write_text("angles: deg\njoints:\n" + "\n".join(rows) + "\n")
+    return str(p)
+
+
+def test_derive_of_a_long_or_exploding_chain_is_a_one_line_refusal(tmp_path):
+    out = _dhsym("derive", _long_table(tmp_path, 250, twisted=False))
+    assert out.returncode == 2 and out.stderr.count("\n") == 1
+    assert "spans 250 links; a derivation shows at most 60" in out.stderr
+    out = _dhsym("derive", _long_table(tmp_path, 24, twisted=True))
+    assert out.returncode == 2 and out.stderr.count("\n") == 1
+    assert "too large to write out in closed form" in out.stderr and "--from/--to" in out.stderr
+
+
+def test_every_command_answers_on_a_sixty_row_twisted_table(tmp_path):
+    table = _long_table(tmp_path, 60, twisted=True)
+    q = ",".join(["0.1"] * 60)
+    answer = tmp_path / "answer.txt"
+    answer.write_text("[[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]\n")
+    runs = [
+        ("list",),
+        ("show", table),
+        ("show", table, "--format", "yaml"),
+        ("derive", table),
+        ("derive", table, "--from", "55", "--to", "60", "--format", "json"),
+        ("fk", table, "--q", q),
+        ("convert", table, "--to", "modified"),
+        ("check", "--key", table, "--question", "T0_60", "--answer", str(answer)),
+        ("check", "--key", table, "--question", "T3_5", "--answer", str(answer)),
+        ("handout", table, "-o", str(tmp_path / "h.tex")),
+        ("plot", table, "--view", "2d", "-o", str(tmp_path / "p.png")),
+    ]
+    for argv in runs:
+        out = _dhsym(*argv)
+        assert "Traceback" not in out.stderr, argv
+        assert out.returncode in (0, 1, 2), (argv, out.stderr)
+        if out.returncode == 2:
+            assert out.stderr.startswith("dhsym: error: ") and out.stderr.count("\n") == 1, argv
+    assert _dhsym("fk", table, "--q", q).returncode == 0

@@ -331,3 +331,30 @@ def test_a_notebook_shows_the_derivation_as_markdown():
     assert {"text/markdown", "text/latex", "text/plain"} <= set(data)
     assert "### The result" in data["text/markdown"]
     assert r"C_{12} & -S_{12} & 0 & a_{1} C_{1} + a_{2} C_{12} \\" in data["text/markdown"]
+
+
+# --- chains whose closed form would explode -----------------------------------------------
+
+
+def _snake(n: int) -> dhsym.DHTable:
+    """n revolute joints with alternating ±90° twists: no two axes parallel, no planar runs."""
+    rows = [
+        dhsym.DHRow.revolute(f"q{k}", d=f"d{k}", a=f"a{k}", alpha=(-1) ** k * sp.pi / 2)
+        for k in range(1, n + 1)
+    ]
+    return dhsym.DHTable.from_rows(rows, name=f"snake {n}")
+
+
+def test_spatial_chain_too_large_in_closed_form_is_refused_with_the_parts_that_fit():
+    with pytest.raises(DHError, match=r"--from/--to") as info:
+        derive(_snake(16))
+    message = str(info.value)
+    assert "^0T_16 of snake 16 is too large" in message and "^0T_10 ^10T_16" in message
+    d = derive(_snake(16), frm=10, to=16)  # the part it suggests is derived
+    assert d.result.rows[0][0].text
+
+
+def test_a_derivation_shows_at_most_sixty_links():
+    rows = [dhsym.DHRow.prismatic(f"d{k}") for k in range(1, 251)]
+    with pytest.raises(DHError, match=r"spans 250 links; a derivation shows at most 60"):
+        derive(dhsym.DHTable.from_rows(rows, name="long"))

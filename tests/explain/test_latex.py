@@ -11,6 +11,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
+import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -395,3 +396,17 @@ def test_a_failed_compilation_leaves_its_log_beside_the_source(tmp_path, need_te
         compile_pdf(tex)
     assert "Undefined control sequence" in (tmp_path / "bad.log").read_text(encoding="latin-1")
     assert not (tmp_path / "bad.aux").exists()
+
+
+@pytest.mark.tex
+def test_symbol_names_with_sympy_modifiers_compile(tmp_path, need_tex):
+    """sympy prints thetascr as \\mathscr{\\theta}, qfrak as \\mathfrak{q}, …: all compile."""
+    from sympy.printing.latex import modifier_dict
+
+    mods = sorted(modifier_dict)
+    rows = [dhsym.DHRow.revolute(f"theta{m}", a=f"a{m}") for m in mods[:12]]
+    rows += [dhsym.DHRow.prismatic(f"d{m}", alpha=sp.pi / 2) for m in mods[12:]]
+    table = dhsym.DHTable.from_rows(rows, name="modifiers")
+    pdf, issues, _ = _compile(tmp_path / "mods.tex", [dhsym.Robot(table)], mode="problems")
+    assert pdf.exists() and [i for i in issues if i.kind != "overfull"] == []
+    assert r"\mathscr{\theta}" in (tmp_path / "mods.tex").read_text()

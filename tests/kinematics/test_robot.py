@@ -7,6 +7,9 @@ import pytest
 import sympy as sp
 
 import dhsym
+from dhsym.errors import DHError
+from dhsym.kinematics.robot import Robot
+from dhsym.model.table import DHRow, DHTable
 
 S = lambda n: sp.Symbol(n, real=True)  # noqa: E731
 t1, t2, t3, t4, t5, t6 = (S(f"theta{i}") for i in range(1, 7))
@@ -200,3 +203,34 @@ def test_fk_needs_values_for_symbols():
     with pytest.raises(dhsym.DHError, match="no numeric value for a1, a2"):
         r.fk([0, 0])
     np.testing.assert_allclose(r.fk([0, 0], values={"a1": 1, "a2": 2})[0, 3], 3)
+
+
+def _dh(theta: float, d: float, a: float, alpha: float) -> np.ndarray:
+    ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
+    return np.array(
+        [
+            [ct, -st * ca, st * sa, a * ct],
+            [st, ct * ca, -ct * sa, a * st],
+            [0, sa, ca, d],
+            [0, 0, 0, 1],
+        ]
+    )
+
+
+def test_sixty_twisted_joints_fk_without_a_closed_form():
+    """The closed form of ^0T_60 would be astronomically large: fk multiplies small parts."""
+    n = 60
+    rows = [
+        DHRow.revolute(f"q{k}", d=0.1, a=0.2, alpha=(-1) ** k * sp.pi / 2) for k in range(1, n + 1)
+    ]
+    robot = Robot(DHTable.from_rows(rows, name="snake"))
+    assert robot.transform_size(0, n) > 10**12
+    with pytest.raises(DHError, match="too large to write out in closed form"):
+        robot.transform(0, n)
+    q = np.linspace(-1.0, 1.0, n)
+    expected = np.eye(4)
+    for k in range(n):
+        expected = expected @ _dh(q[k], 0.1, 0.2, (-1) ** (k + 1) * np.pi / 2)
+    assert np.allclose(robot.fk(q), expected, atol=1e-12)
+    assert np.allclose(robot.fk(np.stack([q, q]))[1], expected, atol=1e-12)
+    assert np.allclose(robot.fk_function(n, 0)(q) @ expected, np.eye(4), atol=1e-12)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import pytest
 import sympy as sp
 
@@ -193,7 +195,7 @@ def test_missing_and_binary_and_huge_files(tmp_path):
         read_table(junk)
     big = tmp_path / "big.yaml"
     big.write_text("# " + "x" * 2_000_000)
-    with pytest.raises(TableError, match="big.yaml: file is 2000002 bytes"):
+    with pytest.raises(TableError, match="big.yaml: table file is 2000002 bytes"):
         read_table(big)
 
 
@@ -202,3 +204,35 @@ def test_file_path_appears_in_errors(tmp_path):
     p.write_text("joints: [{type: R, theta: q1, d: 0, a: 0, alpha: 0, twist: 1}]")
     with pytest.raises(TableError, match=r"bad\.yaml: row 1, field twist"):
         read_table(p)
+
+
+def _alias_bomb(levels: int = 8) -> str:
+    """About 400 bytes of YAML whose value ``name`` expands to 10**levels strings."""
+    lines = ["l0: &l0 [x, x, x, x, x, x, x, x, x, x]"]
+    for k in range(1, levels):
+        lines.append(f"l{k}: &l{k} [" + ", ".join([f"*l{k - 1}"] * 10) + "]")
+    return "\n".join(lines) + f"\nname: *l{levels - 1}\njoints: []\n"
+
+
+def test_alias_bomb_table_is_refused_before_it_expands(tmp_path):
+    bomb = _alias_bomb()
+    assert len(bomb) < 600
+    p = tmp_path / "bomb.yaml"
+    p.write_text(bomb)
+    with pytest.raises(TableError, match=r"bomb\.yaml: line \d+: the YAML is too large"):
+        read_table(p)
+
+
+def test_deep_nesting_and_huge_integers_are_clear_errors(tmp_path):
+    assert "nested more than 64 levels" in _err("joints: " + "[" * 5000 + "]" * 5000)
+    msg = _err("joints: [{type: R, theta: q1, d: " + "9" * 5000 + ", a: 0, alpha: 0}]")
+    assert "arm.yaml: line 1: a number with 5000 digits" in msg
+
+
+def test_special_files_are_refused_without_reading(tmp_path):
+    with pytest.raises(TableError, match="/dev/zero: table file is not a regular file"):
+        read_table("/dev/zero")
+    fifo = tmp_path / "pipe.yaml"
+    os.mkfifo(fifo)
+    with pytest.raises(TableError, match="pipe.yaml: table file is not a regular file"):
+        read_table(fifo)

@@ -1,0 +1,52 @@
+"""Small jobs for the runner tests, in a module that imports only the standard library.
+
+A sandbox's child imports this module when it unpickles a job: it must be quick,
+since that happens inside the job's deadline.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+
+
+def stuck_or_square(n: int) -> int:
+    """``n * n``; for a negative ``n`` a regular expression that backtracks for ages.
+
+    No signal interrupts a regular expression (it runs in C): only killing the
+    process stops it, which is what a job of a hostile answer needs.
+    """
+    if n < 0:
+        re.match(r"(a+)+$", "a" * 40 + "b")
+    return n * n
+
+
+def die(_: object) -> None:
+    """End the process at once, as a crash would."""
+    os._exit(3)
+
+
+def regex_worst_case(job: tuple[str, int, tuple[str, ...], str, str, str, int]) -> float:
+    """Run the matching functions ``ops`` of a pattern on a built worst-case text; seconds."""
+    import time
+
+    pattern, flags, ops, prefix, filler, kind, n = job
+    p = re.compile(pattern, flags)
+    text = worst_case_text(prefix, filler, kind, n)
+    start = time.perf_counter()
+    for op in ops:
+        if op in ("sub", "subn"):
+            getattr(p, op)("", text)
+        elif op == "finditer":
+            list(p.finditer(text))
+        else:
+            getattr(p, op)(text)
+    return time.perf_counter() - start
+
+
+def worst_case_text(prefix: str, filler: str, kind: str, n: int) -> str:
+    """``n`` characters: a matching prefix then a long run, or a repeated unit; never a match."""
+    if kind == "run":
+        return prefix + filler * n + "\x00"
+    unit = prefix + filler if kind == "pairs" else prefix
+    return unit * max(1, n // max(1, len(unit))) + "\x00"
