@@ -268,7 +268,6 @@ def render(tokens: Sequence[Token], latex: bool) -> str:
 # --- the notation -------------------------------------------------------------------------------
 
 
-
 @dataclass(frozen=True)
 class Notation:
     """How to print: which symbols are joint angles, their labels, the case of C/S.
