@@ -46,6 +46,7 @@ __all__ = [
     "Term",
     "as_decimal",
     "as_math",
+    "component_names",
     "equation",
     "fill",
     "homogeneous_names",
@@ -401,17 +402,35 @@ def homogeneous_names(r: int, c: int) -> Math | None:
     return Math(TeX(tex), text)
 
 
-def indexed_names(symbol: str, columns: bool = False) -> Callable[[int, int], Math | None]:
-    """Entry names ``J_{11}``, ``J_{12}`` … (1-based); ``columns`` orders them column by column.
+def indexed_names(
+    symbol: str, columns: bool = False, start: tuple[int, int] = (1, 1)
+) -> Callable[[int, int], Math | None]:
+    """Entry names ``J_{11}``, ``J_{12}`` …; ``columns`` orders them column by column;
+    ``start`` is the index of the first entry (``(1, 3)``: a block of column 3).
 
-    >>> indexed_names("J")(0, 1)
-    Math(latex='J_{12}', text='J12')
+    >>> indexed_names("J")(0, 1), indexed_names("J", start=(1, 3))(1, 0).text
+    (Math(latex='J_{12}', text='J12'), 'J23')
     """
 
     def name(r: int, c: int) -> Math | None:
-        return Math(TeX(f"{symbol}_{{{r + 1}{c + 1}}}"), f"{symbol}{r + 1}{c + 1}")
+        i, j = r + start[0], c + start[1]
+        return Math(TeX(f"{symbol}_{{{i}{j}}}"), f"{symbol}{i}{j}")
 
     name.columns = columns  # type: ignore[attr-defined]
+    return name
+
+
+def component_names(label: Math) -> Callable[[int, int], Math | None]:
+    """Names of a vector's components: ``(o_{6} - o_{0})_{x}`` … (rows x, y, z, then 4, 5 …).
+
+    >>> component_names(Math(TeX("z_{0}"), "z_0"))(2, 0)
+    Math(latex='(z_{0})_{z}', text='(z_0)_z')
+    """
+
+    def name(r: int, c: int) -> Math | None:
+        k = "xyz"[r] if r < 3 else str(r + 1)
+        return Math(TeX(f"({label.latex})_{{{k}}}"), f"({label.text})_{k}")
+
     return name
 
 
