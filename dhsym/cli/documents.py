@@ -45,6 +45,7 @@ def _cmd_handout(args: argparse.Namespace) -> int:
         numeric=args.numeric,
         notation=args.notation,
         check=check,
+        sections=args.sections,
     )
     print(f"wrote {args.output}", file=sys.stderr)
     if args.pdf:
@@ -89,6 +90,12 @@ def _register_handout(subparsers: argparse._SubParsersAction) -> None:
     )
     h.add_argument("--numeric", action="store_true", help="substitute the numeric lengths")
     h.add_argument(
+        "--sections",
+        default="fk",
+        metavar="LIST",
+        help="comma separated, any of fk, jacobian, singularities, ik (default fk)",
+    )
+    h.add_argument(
         "--figure",
         action="store_true",
         help="include a picture of each robot at its home configuration",
@@ -99,7 +106,8 @@ def _register_handout(subparsers: argparse._SubParsersAction) -> None:
         const="zero",
         default=None,
         metavar="Q",
-        help="numeric check of the arm matrix at Q (comma separated; default zero)",
+        help="numeric check of the arm matrix at Q (comma separated; default zero); the ik "
+        "section lists every solution of the pose at Q (default: away from singularities)",
     )
     h.set_defaults(func=_cmd_handout)
 

@@ -116,6 +116,9 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
 
 def _cmd_derive(args: argparse.Namespace) -> int:
     robot = load(args.robot, compact=not args.full, style=args.notation)
+    what = getattr(args, "what", "fk")
+    if what != "fk":
+        return _derive_more(robot, what, args)
     i, j = _frames(robot, args)
     if args.format == "json":
         out = json.dumps(derive_json(robot, i, j), indent=2)
@@ -123,6 +126,22 @@ def _cmd_derive(args: argparse.Namespace) -> int:
         from dhsym.explain.documents import render_derivation
 
         out = render_derivation(robot, fmt=args.format, frm=i, to=j)
+    emit(out, args.output)
+    return 0
+
+
+def _derive_more(robot: Robot, what: str, args: argparse.Namespace) -> int:
+    """``derive --what jacobian|singularities|ik`` (``--from``/``--to`` belong to fk)."""
+    if args.frm is not None or args.to is not None:
+        raise DHError(f"--from and --to choose ^iT_j of the forward kinematics, not --what {what}")
+    if args.format == "json":
+        from .derivations import derivation_json
+
+        out = json.dumps(derivation_json(robot, what), indent=2)
+    else:
+        from dhsym.explain.documents import render_derivation
+
+        out = render_derivation(robot, fmt=args.format, what=what)
     emit(out, args.output)
     return 0
 
@@ -178,6 +197,13 @@ def register(sub: argparse._SubParsersAction) -> None:
         choices=[s.value for s in TrigStyle],
         default=TrigStyle.UPPER.value,
         help="C1: C12, S23 (default); c1: c12, s23 (Craig, Spong); c_theta: c_{θ12} in LaTeX",
+    )
+    d.add_argument(
+        "--what",
+        choices=["fk", "jacobian", "singularities", "ik"],
+        default="fk",
+        help="fk: forward kinematics (default); jacobian: column by column; singularities: "
+        "det J factored and named; ik: closed-form inverse kinematics, every branch",
     )
     d.add_argument("-o", "--output", help="write to this file instead of standard output")
     d.set_defaults(func=_cmd_derive)
