@@ -548,7 +548,7 @@ def test_literal_hook_sees_every_number_outside_exponents() -> None:
 
 
 def test_inverse_functions_for_inverse_kinematics_answers():
-    x, y = sp.symbols("x y", real=True)
-    assert parse_expression("atan(y/x) + arctan(1)") == sp.atan(y / x) + sp.pi / 4
-    assert parse_expression("acos(x) - arcsin(x)") == sp.acos(x) - sp.asin(x)
-    assert parse_expression("atan y", textbook=True) == sp.atan(y)
+    x, y = sympy.symbols("x y", real=True)
+    assert parse_expression("atan(y/x) + arctan(1)") == sympy.atan(y / x) + sympy.pi / 4
+    assert parse_expression("acos(x) - arcsin(x)") == sympy.acos(x) - sympy.asin(x)
+    assert parse_expression("atan y", textbook=True) == sympy.atan(y)
