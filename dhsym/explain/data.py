@@ -60,6 +60,23 @@ class Document:
     """
 
     kind = "derivation"
+    convention: str
+    legend: tuple[LegendLine, ...]
+    width: float
+
+    @property
+    def modified(self) -> bool:
+        """True for the modified (Craig) convention."""
+        return self.convention == Convention.MODIFIED.value
+
+    @property
+    def legend_columns(self) -> int:
+        """How many ``abbreviation = meaning`` pairs fit side by side on a page (1 to 3)."""
+        w = max(
+            (math_width(e.abbrev.latex) + math_width(e.meaning.latex) + 3 for e in self.legend),
+            default=0.0,
+        )
+        return 3 if 3 * w + 4 <= self.width else (2 if 2 * w + 2 <= self.width else 1)
 
     def to_text(self) -> str:
         """The derivation as terminal text."""
@@ -182,24 +199,6 @@ class Derivation(Document):
     check: NumericCheck | None = field(default=None)
     width: float = LATEX_WIDTH
 
-    @property
-    def legend_columns(self) -> int:
-        """How many ``abbreviation = meaning`` pairs fit side by side on a page (1 to 3)."""
-        return _legend_columns(self.legend, self.width)
-
-    @property
-    def modified(self) -> bool:
-        """True for the modified (Craig) convention."""
-        return self.convention == Convention.MODIFIED.value
-
-
-def _legend_columns(legend: tuple[LegendLine, ...], width: float) -> int:
-    w = max(
-        (math_width(e.abbrev.latex) + math_width(e.meaning.latex) + 3 for e in legend),
-        default=0.0,
-    )
-    return 3 if 3 * w + 4 <= width else (2 if 2 * w + 2 <= width else 1)
-
 
 # --- the Jacobian -----------------------------------------------------------------------------
 
@@ -249,16 +248,6 @@ class JacobianDerivation(Document):
     result: MatrixBlock
     legend: tuple[LegendLine, ...]
     width: float = LATEX_WIDTH
-
-    @property
-    def modified(self) -> bool:
-        """True for the modified (Craig) convention."""
-        return self.convention == Convention.MODIFIED.value
-
-    @property
-    def legend_columns(self) -> int:
-        """How many ``abbreviation = meaning`` pairs fit side by side on a page (1 to 3)."""
-        return _legend_columns(self.legend, self.width)
 
 
 # --- singularities -----------------------------------------------------------------------------
@@ -316,11 +305,6 @@ class SingularityDerivation(Document):
     factors: tuple[FactorData, ...]
     legend: tuple[LegendLine, ...]
     width: float = LATEX_WIDTH
-
-    @property
-    def legend_columns(self) -> int:
-        """How many ``abbreviation = meaning`` pairs fit side by side on a page (1 to 3)."""
-        return _legend_columns(self.legend, self.width)
 
 
 # --- inverse kinematics --------------------------------------------------------------------------
@@ -401,8 +385,3 @@ class IKDerivation(Document):
     legend: tuple[LegendLine, ...]
     check: IKCheck | None = None
     width: float = LATEX_WIDTH
-
-    @property
-    def legend_columns(self) -> int:
-        """How many ``abbreviation = meaning`` pairs fit side by side on a page (1 to 3)."""
-        return _legend_columns(self.legend, self.width)
