@@ -32,6 +32,9 @@ except ImportError:  # pragma: no cover - Python 3.10
     import sre_parse
 
 MODULES = [
+    "dhsym.checking._ik_mistakes",
+    "dhsym.checking._ik_values",
+    "dhsym.checking._jacobian_mistakes",
     "dhsym.checking._report",
     "dhsym.checking._submissions",
     "dhsym.checking._table_text",
@@ -40,6 +43,7 @@ MODULES = [
     "dhsym.checking.feedback",
     "dhsym.checking.gradebooks",
     "dhsym.checking.grading",
+    "dhsym.checking.inverse",
     "dhsym.checking.latex_input",
     "dhsym.checking.names",
     "dhsym.checking.questions",
@@ -48,6 +52,8 @@ MODULES = [
     "dhsym.cli.common",
     "dhsym.explain.derivation",
     "dhsym.explain.documents",
+    "dhsym.explain.inverse",
+    "dhsym.explain.jacobian",
     "dhsym.explain.latex",
     "dhsym.explain.rendering",
     "dhsym.model.angles",

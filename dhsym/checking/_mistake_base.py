@@ -18,7 +18,7 @@ from __future__ import annotations
 from abc import ABC
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 import sympy as sp
@@ -40,8 +40,8 @@ class MatrixCase:
     """A wrong matrix (or entry) answer and the key it is judged against.
 
     ``expected``/``answer`` are 4×4 (or 1×1 for an entry question at ``entry``,
-    0-based); ``wrong`` lists the 0-based positions that differ; ``cache`` keeps
-    the variants of one key between answers.
+    0-based; 6×n for a Jacobian); ``wrong`` lists the 0-based positions that differ;
+    ``cache`` keeps the variants of one key between answers; ``robot`` is the key's robot.
     """
 
     rows: tuple[DHRow, ...]
@@ -57,6 +57,7 @@ class MatrixCase:
     wrong: tuple[tuple[int, int], ...]
     notation: Notation = field(default_factory=Notation)
     cache: dict = field(default_factory=dict)
+    robot: Any = None  # the key's Robot (Jacobian and determinant variants)
 
     def chain_values(
         self, rows: tuple[DHRow, ...], convention: Convention, reverse: str = ""

@@ -26,6 +26,7 @@ from dhsym.model.table import DHTable, Elementary
 __all__ = ["EvaluationError", "evaluate", "frames", "word_product"]
 
 _UNARY = {sp.sin: np.sin, sp.cos: np.cos, sp.tan: np.tan}
+_UNARY |= {sp.atan: np.arctan, sp.asin: np.arcsin, sp.acos: np.arccos}
 
 
 class EvaluationError(ValueError):

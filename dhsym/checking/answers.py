@@ -283,8 +283,12 @@ def read_matrix(
     return sp.ImmutableMatrix(entries)
 
 
-def matrix_cells(text: str, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> list[list[str]]:
-    """The cells of a matrix answer as the student wrote them (3 or 4 rows of 4).
+def matrix_cells(
+    text: str,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    shapes: tuple[tuple[int, int], ...] = ((4, 4), (3, 4)),
+) -> list[list[str]]:
+    """The cells of a matrix answer as the student wrote them (3 or 4 rows of 4, or ``shapes``).
 
     >>> matrix_cells(r"$\\begin{pmatrix} c_1 & -s_1 & 0 & 0 \\\\ s_1 & c_1 & 0 & 0 \\\\"
     ...              r" 0&0&1&0 \\end{pmatrix}$")[1]
@@ -297,12 +301,15 @@ def matrix_cells(text: str, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> lis
     if len(cells) > limits.max_rows or any(len(r) > limits.max_columns for r in cells):
         raise UnreadableAnswer("the matrix has too many rows or columns")
     shape = (len(cells), len({len(r) for r in cells}) == 1 and len(cells[0]) or 0)
-    if shape not in ((4, 4), (3, 4)):
+    if shape not in shapes:
         widths = sorted({len(r) for r in cells})
         got = f"{len(cells)} row{'s' * (len(cells) != 1)} of " + "/".join(map(str, widths))
-        raise UnreadableAnswer(
-            f"expected a 4×4 matrix (or its top 3 rows), got {got} cell" + ("s" * (widths != [1]))
+        wanted = (
+            "a 4×4 matrix (or its top 3 rows)"
+            if shapes == ((4, 4), (3, 4))
+            else "a " + " or ".join(f"{r}×{c}" for r, c in shapes) + " matrix"
         )
+        raise UnreadableAnswer(f"expected {wanted}, got {got} cell" + ("s" * (widths != [1])))
     return cells
 
 

@@ -29,13 +29,21 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.kinematics.robot import Robot
 from dhsym.model.library import load_table
-from dhsym.model.table import AngleUnit, Convention, DHTable
+from dhsym.model.table import AngleUnit, Convention, DHTable, JointType
 from dhsym.notation.printers import format_angle
 
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
 from .answers import cell_literals, expression_cell, matrix_cells, parse_cell, read_table
 from .equivalence import EXACT_RTOL, Sample, agree_precisely, close, prove_entry, values
-from .mistakes import MatrixCase, TableCase, diagnose_matrix, diagnose_table
+from .mistakes import (
+    DET_MISTAKES,
+    JACOBIAN_MISTAKES,
+    MATRIX_MISTAKES,
+    MatrixCase,
+    TableCase,
+    diagnose_matrix,
+    diagnose_table,
+)
 from .names import NameContext
 from .questions import Question
 from .rounding import DEFAULT_ROUNDING, Rounding, rounding_accepts
@@ -116,7 +124,11 @@ def prepare(key: Key) -> PreparedKey:
     q = key.question
     if q.kind == "table":
         return pk
-    full = robot.transform(q.frm, q.to).matrix
+    if q.kind == "ik":
+        from .inverse import prepare_ik
+
+        return prepare_ik(pk)
+    full = _expected(pk)
     pk.expected = sp.ImmutableMatrix([[full[q.entry]]]) if q.entry else full
     nota = robot.notation
     pk.expected_text = tuple((nota.text(e), nota.latex(e)) for e in pk.expected)
@@ -127,6 +139,24 @@ def prepare(key: Key) -> PreparedKey:
     for name, s in pk.samples.items():
         pk.key_values[name] = values(pk.expected, s)
     return pk
+
+
+def _expected(pk: PreparedKey) -> sp.ImmutableMatrix:
+    """The key's matrix: ``^iT_j``, the geometric Jacobian (base frame, tool point), or
+    ``[det J]`` factored (the measure of :func:`~dhsym.kinematics.singularities.singularities`)."""
+    q, robot = pk.key.question, pk.robot
+    if q.kind == "jacobian":
+        J = robot.jacobian().matrix  # type: ignore[attr-defined]
+        if q.entry is not None and not q.entry[1] < J.cols:
+            raise DHError(f"question {q.spec!r}: the columns of J are 0 … {J.cols - 1}")
+        return sp.ImmutableMatrix(J)
+    if q.kind == "det":
+        from dhsym.kinematics.singularities import singularities
+
+        s = singularities(robot)
+        pk.cache["singularities"] = s
+        return sp.ImmutableMatrix([[s.determinant]])
+    return robot.transform(q.frm, q.to).matrix
 
 
 def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
@@ -180,6 +210,10 @@ def check_answer(
             pk = prepare(key)
             if key.question.kind == "table":
                 return _check_table(pk, answer, limits)
+            if key.question.kind == "ik":
+                from .inverse import check_ik
+
+                return check_ik(pk, answer, limits)
             return _check_matrix(pk, answer, limits)
     except CheckTimeout as err:
         return _unreadable(key, str(err))
@@ -275,8 +309,10 @@ def _diagnosis_values(pk: PreparedKey, ans: sp.ImmutableMatrix, unknown: list) -
     return sample, pk.key_values[which], values(ans, sample)
 
 
-def _pos(k: int, q: Question) -> str:
-    return "the answer" if q.kind == "entry" else f"entry ({k // 4 + 1},{k % 4 + 1})"
+def _pos(k: int, q: Question, cols: int = 4) -> str:
+    if q.entry is not None or q.kind == "det":
+        return "the answer"
+    return f"entry ({k // cols + 1},{k % cols + 1})"
 
 
 def _index_renames(unknown: list[sp.Symbol], names: NameContext) -> dict[sp.Symbol, sp.Symbol]:
@@ -292,17 +328,54 @@ def _index_renames(unknown: list[sp.Symbol], names: NameContext) -> dict[sp.Symb
     return out
 
 
-def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
-    key, q, nota = pk.key, pk.key.question, pk.robot.notation
-    if q.kind == "entry":
+def _answer_matrix(
+    pk: PreparedKey, answer: str | bytes, limits: AnswerLimits
+) -> tuple[sp.ImmutableMatrix, list[str], tuple[Diagnosis, ...]]:
+    """The answer as a matrix of the key's shape, its cells, and what its shape tells.
+
+    A Jacobian with one column too few gets a zero column where a prismatic joint's column
+    belongs (its diagnosis names the missing column)."""
+    key, q, expected = pk.key, pk.key.question, pk.expected
+    assert expected is not None
+    if q.entry is not None or q.kind == "det":
         cells = [expression_cell(answer, limits)]
-    else:
+        parsed = [parse_cell(cells[0], pk.names, limits, "the answer")]
+        return sp.ImmutableMatrix(1, 1, parsed), cells, ()
+    if q.kind != "jacobian":
         grid = matrix_cells(answer, limits)
         cells = [c for row in grid for c in row] + ["0", "0", "0", "1"] * (len(grid) == 3)
-    parsed = [parse_cell(c, pk.names, limits, _pos(k, q)) for k, c in enumerate(cells)]
-    ans = (
-        sp.ImmutableMatrix(1, 1, parsed) if q.kind == "entry" else sp.ImmutableMatrix(4, 4, parsed)
+        parsed = [parse_cell(c, pk.names, limits, _pos(k, q)) for k, c in enumerate(cells)]
+        return sp.ImmutableMatrix(4, 4, parsed), cells, ()
+    n = expected.cols
+    joints = [r.joint for r in key.table.rows if r.variable is not None]
+    prismatic = [k for k, j in enumerate(joints) if j is JointType.PRISMATIC]
+    shapes = ((6, n), (6, n - 1)) if prismatic else ((6, n),)
+    grid = matrix_cells(answer, limits, shapes)
+    cols = len(grid[0])
+    parsed = [
+        [parse_cell(c, pk.names, limits, f"entry ({i},{j})") for j, c in enumerate(row, 1)]
+        for i, row in enumerate(grid, 1)
+    ]
+    if cols == n:
+        return sp.ImmutableMatrix(parsed), [c for row in grid for c in row], ()
+    k = prismatic[0]  # one column short: the prismatic joint's column left out
+    for row, cells_row in zip(parsed, grid, strict=True):
+        row.insert(k, sp.Integer(0))
+        cells_row.insert(k, "0")
+    var = pk.robot.variables[k]
+    lead = Diagnosis(
+        "missing_column",
+        "column of a prismatic joint missing",
+        f"The answer has {n - 1} columns; J has one per joint, {n}: column {k + 1} belongs to "
+        f"the prismatic joint {var}, whose column is its axis over zero (no rotation).",
+        tuple((i + 1, k + 1) for i in range(6)),
     )
+    return sp.ImmutableMatrix(parsed), [c for row in grid for c in row], (lead,)
+
+
+def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
+    key, q, nota = pk.key, pk.key.question, pk.robot.notation
+    ans, cells, shape_lead = _answer_matrix(pk, answer, limits)
     entries, wrong, unknown = _compare(pk, ans, cells, limits)
     total = len(entries)
     lead: tuple[Diagnosis, ...] = ()
@@ -331,7 +404,19 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
                 lead,
                 key=key.name,
             )
-    if not wrong:
+    if wrong and q.kind == "det":
+        flipped = _compare(pk, -ans, cells, limits)
+        if not flipped[1]:  # -det J: the rows of J in the other order ([ω; v]) or the joints
+            return CheckResult(
+                q.spec,
+                Verdict.CORRECT,
+                "The determinant is right up to its sign, which depends on the order of the "
+                "rows of J ([v; ω] or [ω; v]) and of its columns; the singular configurations "
+                "are the same.",
+                tuple(flipped[0]),
+                key=key.name,
+            )
+    if not wrong and not shape_lead:
         what = "The entry is right" if total == 1 else f"All {total} entries are right"
         rounded = [e for e in entries if e.proof == "rounding"]
         if rounded:
@@ -354,8 +439,10 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
         tuple(wrong),
         nota,
         pk.cache,
+        pk.robot,
     )
-    diagnoses = lead + diagnose_matrix(case)
+    kinds = {"jacobian": JACOBIAN_MISTAKES, "det": DET_MISTAKES}
+    diagnoses = shape_lead + lead + diagnose_matrix(case, kinds.get(q.kind, MATRIX_MISTAKES))
     if unknown:
         names = ", ".join(str(s) for s in unknown)
         known = ", ".join(str(s) for s in sorted(pk.names.symbols, key=sp.default_sort_key))

@@ -9,7 +9,9 @@ then builds the sympy objects.  Supported: ``\cos\theta_1``, ``\cos(\theta_1 +
 degree signs (``90°``, ``90^\circ``, ``90^{\circ}``, ``90\degree``, ``90^o``: a ``°`` in the
 output, which the parser reads with ``textbook=True``), function arguments without brackets
 (``\sin\frac{\pi}{2}``, ``\cos\theta_{1}``, ``\sin 90^\circ``, ``\cos{\theta_1}``),
-Craig's ``c\theta_i``, Greek letters, font commands, and the matrix environments
+Craig's ``c\theta_i``, Greek letters, font commands, the inverse functions (``\arctan``,
+``\operatorname{atan2}(y, x)``) and ``\pm``/``\mp`` (left as ``±``/``∓`` for the
+inverse-kinematics checker), and the matrix environments
 ``bmatrix pmatrix matrix Bmatrix vmatrix array``.  Any other command
 (``\input``, ``\def``, ``\write18`` …) is refused with a :class:`ParseError`.
 
@@ -41,6 +43,10 @@ _GREEK = frozenset(
     "Gamma Delta Theta Lambda Xi Sigma Upsilon Phi Psi Omega".split()
 )
 _FUNCTIONS = frozenset({"sin", "cos", "tan"})
+#: inverse functions, as LaTeX and \operatorname spell them, and what the parser reads
+_INVERSE = {"arctan": "atan", "arcsin": "asin", "arccos": "acos"}
+_OPERATORS = {"atan2": "atan2", "atan": "atan", "asin": "asin", "acos": "acos"} | _INVERSE
+_SIGNS = {"pm": "±", "mp": "∓"}  # ± of an inverse-kinematics answer (both branches)
 _FRACTIONS = frozenset({"frac", "dfrac", "tfrac", "cfrac"})
 _TIMES = frozenset({"cdot", "times", "ast"})
 _SPACES = frozenset({"quad", "qquad", "displaystyle", "textstyle", "hline", "nonumber"})
@@ -193,11 +199,19 @@ class _Translator:
             return self.postfix("pi")
         if name in _FUNCTIONS:
             return self.function(name)
+        if name in _INVERSE:
+            return self.function(_INVERSE[name])
+        if name in _SIGNS:
+            return _SIGNS[name]
         if name == "operatorname":
             inner = re.sub(r"[\s()]", "", self.argument())
             if inner in _FUNCTIONS:
                 return self.function(inner)
-            raise self.error(f"unknown operator {inner!r}", "expected sin, cos or tan")
+            if inner in _OPERATORS:
+                return self.function(_OPERATORS[inner])
+            raise self.error(
+                f"unknown operator {inner!r}", "expected sin, cos, tan, atan2, atan, asin or acos"
+            )
         if name in _FRACTIONS:
             num, den = self.argument(), self.argument()
             return self.postfix(f"(({num})/({den}))")

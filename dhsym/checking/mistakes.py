@@ -10,7 +10,10 @@ variants are tables compared cell by cell or as robots
 
 Kinds: ``wrong_sign``, ``sin_cos_swapped``, ``transposed``, ``other_convention``,
 ``degrees_as_radians``, ``index_shift``, ``offset_missing``, ``reverse_order``,
-``single_wrong_row``.
+``single_wrong_row``; for the Jacobian ``tool_frame``, ``next_axis``,
+``prismatic_as_revolute`` (and ``missing_column``, from the shape of the answer); for
+``det J`` ``missing_factor``, ``block_determinant``; for inverse kinematics
+``atan_for_atan2``, ``lost_branch``, ``wrong_root_sign``.
 
 Examples
 --------
@@ -30,6 +33,16 @@ from dhsym.kinematics.transforms import link_word
 from dhsym.model.table import Convention
 
 from ._entry_mistakes import SinCosSwapped, WrongSign
+from ._ik_mistakes import IK_MISTAKES, AtanForAtan2, IKCase, IKMistake, LostBranch, WrongRootSign
+from ._jacobian_mistakes import (
+    DET_MISTAKES,
+    JACOBIAN_MISTAKES,
+    BlockDeterminant,
+    MissingFactor,
+    NextAxis,
+    PrismaticColumn,
+    ToolFrame,
+)
 from ._mistake_base import MatrixCase, Mistake, TableCase
 from ._numeric import word_product
 from ._row_mistakes import DegreesAsRadians, IndexShift, OffsetMissing, SingleWrongRow
@@ -37,7 +50,20 @@ from .tables import Chain, compare_tables
 from .verdict import Diagnosis
 
 __all__ = [
+    "DET_MISTAKES",
+    "IK_MISTAKES",
+    "JACOBIAN_MISTAKES",
+    "AtanForAtan2",
+    "BlockDeterminant",
     "DegreesAsRadians",
+    "IKCase",
+    "IKMistake",
+    "LostBranch",
+    "MissingFactor",
+    "NextAxis",
+    "PrismaticColumn",
+    "ToolFrame",
+    "WrongRootSign",
     "IndexShift",
     "MATRIX_MISTAKES",
     "MatrixCase",
@@ -184,14 +210,20 @@ TABLE_MISTAKES: tuple[Mistake, ...] = (
 )
 
 
-def diagnose_matrix(case: MatrixCase) -> tuple[Diagnosis, ...]:
-    """Explain a wrong matrix: one mistake for all wrong entries, else entry by entry."""
-    for m in MATRIX_MISTAKES:
+def diagnose_matrix(
+    case: MatrixCase, mistakes: tuple[Mistake, ...] = MATRIX_MISTAKES
+) -> tuple[Diagnosis, ...]:
+    """Explain a wrong matrix: one mistake for all wrong entries, else entry by entry.
+
+    ``mistakes`` are the kinds of the question (``^iT_j``: :data:`MATRIX_MISTAKES`;
+    ``J``: :data:`JACOBIAN_MISTAKES`; ``det J``: :data:`DET_MISTAKES`).
+    """
+    for m in mistakes:
         d = m.explain_matrix(case)
         if d is not None:
             return (d,)
     found, left = [], list(case.wrong)
-    for m in (*ENTRY_MISTAKES, *MATRIX_MISTAKES):
+    for m in (*ENTRY_MISTAKES, *mistakes):
         if not left:
             break
         sub = replace(case, wrong=tuple(left))

@@ -24,6 +24,7 @@ Examples
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -91,6 +92,19 @@ class NameContext:
                         labels.setdefault(low[len(prefix) :], var)
                         break
         return cls(tuple(aliases.items()), tuple(labels.items()))
+
+    def extended(self, names: Iterable[tuple[str, sp.Symbol]]) -> NameContext:
+        """This context with more names (``p_x``, a helper ``D`` of an answer); they win
+        over the abbreviations (a helper ``c2`` is not ``cos θ2``).
+
+        >>> from dhsym import load_table
+        >>> px = sp.Symbol("p_x", real=True)
+        >>> ctx = NameContext.from_table(load_table("planar2r")).extended([("p_x", px)])
+        >>> ctx.resolve("px"), ctx.resolve("p_x") == px, ctx.resolve("C1")
+        (p_x, True, cos(theta1))
+        """
+        extra = tuple((_canon(name), s) for name, s in names)
+        return NameContext(self.aliases + extra, self.labels)  # later names win in the dict
 
     @cached_property
     def _aliases(self) -> dict[str, sp.Symbol]:

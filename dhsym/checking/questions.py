@@ -1,13 +1,18 @@
-"""What is asked: a DH table, a transform ``^iT_j``, a link matrix ``A_k`` or one entry.
+"""What is asked: a DH table, a transform ``^iT_j``, a link matrix ``A_k`` or one entry; the
+Jacobian ``J`` or one entry ``J[r,c]``, its determinant ``det J``, or the inverse kinematics
+``ik`` (symbolic in the pose; ``ik all`` asks for every branch, ``ik@q1,…,qn`` for the numbers
+of the pose that these joint values reach).
 
 Examples
 --------
 >>> Question.parse("T0_6[0,3]", n=6)
-Question(spec='T0_6[0,3]', kind='entry', frm=0, to=6, entry=(0, 3))
+Question(spec='T0_6[0,3]', kind='entry', frm=0, to=6, entry=(0, 3), pose=None, every=False)
 >>> Question.parse("A3", n=6).label, Question.parse("arm", n=6).label, Question.parse("px", 6).label
 ('T2_3', 'T0_6', 'T0_6[0,3]')
 >>> Question.parse("^0T_2", n=6).label_latex
 '{}^{0}T_{2}'
+>>> [Question.parse(s, 2).label for s in ("J", "J[1,0]", "det(J)", "IK", "ik all", "ik@pi/2,0")]
+['J', 'J[1,0]', 'det J', 'ik', 'ik all', 'ik@1.5707963267949,0']
 """
 
 from __future__ import annotations
@@ -16,6 +21,7 @@ import re
 from dataclasses import dataclass
 
 from dhsym.errors import DHError
+from dhsym.model.parsing import parse_number_list
 
 __all__ = ["Question"]
 
@@ -25,32 +31,59 @@ _TRANSFORM = re.compile(  # frame numbers have at most 4 digits (no 5000-digit i
     r"|[TH](?P<ij>\d\d)|[AH]_?\{?(?P<k>\d{1,4})\}?|(?P<arm>arm|T0_n|T_?0_?n)|p_?(?P<p>[xyz]))"
     r"(?:\s*\[\s*(?P<r>\d{1,4})\s*,\s*(?P<c>\d{1,4})\s*\])?$"
 )
+_JACOBIAN = re.compile(r"^(?:J|J0|J_0|jacobian)(?:\[(?P<r>\d+),(?P<c>\d+)\])?$", re.IGNORECASE)
+_DET = re.compile(r"^det(?:J|\(J\)|_J|\{J\})$", re.IGNORECASE)
+_IK = re.compile(r"^(?:ik|inverse)(?P<all>:?all|\*)?(?:@(?P<q>.+))?$", re.IGNORECASE)
+_KINDS = (
+    "table, T<i>_<j>, A<k>, arm, px/py/pz, optionally with [row,col] (0-based), e.g. T0_6[0,3]; "
+    "J, J[row,col], det J, ik, ik all, ik@q1,...,qn"
+)
 
 
 @dataclass(frozen=True)
 class Question:
-    """One question: ``kind`` is ``table``, ``matrix`` (``^frm T_to``) or ``entry`` (0-based)."""
+    """One question: ``kind`` is ``table``, ``matrix`` (``^frm T_to``), ``entry`` (0-based),
+    ``jacobian`` (``J``, or its ``entry``), ``det`` (``det J``) or ``ik``.
+
+    For ``ik``, ``pose`` holds the joint values whose pose is to be solved (None: a
+    symbolic answer in the pose ``n s a p``) and ``every`` asks for every branch.
+    """
 
     spec: str
     kind: str
     frm: int = 0
     to: int = 0
     entry: tuple[int, int] | None = None
+    pose: tuple[float, ...] | None = None
+    every: bool = False
 
     @classmethod
     def parse(cls, spec: str, n: int) -> Question:
-        """Read ``table``, ``T0_2``, ``T02``, ``^0T_2``, ``A3``, ``arm``, ``px`` and ``…[r,c]``."""
+        """Read ``table``, ``T0_2``, ``T02``, ``^0T_2``, ``A3``, ``arm``, ``px``, ``…[r,c]``,
+        ``J``, ``J[r,c]``, ``det J``, ``ik``, ``ik all`` and ``ik@q1,…,qn``."""
         text = str(spec).strip()
         if len(text) > 200:
             raise DHError(f"unknown question {text[:40]!r}…: a question is at most 200 characters")
         if text.lower() in ("table", "dh", "dh table", "dh_table"):
             return cls(text, "table")
-        m = _TRANSFORM.match(text.replace(" ", ""))
+        compact = text.replace(" ", "")
+        m = _JACOBIAN.match(compact)
+        if m is not None:
+            entry = (int(m["r"]), int(m["c"])) if m["r"] is not None else None
+            if entry is not None and not 0 <= entry[0] < 6:
+                raise DHError(f"question {text!r}: the rows of J are 0 … 5")
+            return cls(text, "jacobian", 0, n, entry)
+        if _DET.match(compact):
+            return cls(text, "det", 0, n)
+        m = _IK.match(compact)
+        if m is not None:
+            pose = None
+            if m["q"] is not None:
+                pose = tuple(parse_number_list(m["q"], f"question {text!r}"))
+            return cls(text, "ik", 0, n, None, pose, m["all"] is not None)
+        m = _TRANSFORM.match(compact)
         if m is None:
-            raise DHError(
-                f"unknown question {text!r}: expected table, T<i>_<j>, A<k>, arm, px/py/pz, "
-                "optionally with [row,col] (0-based), e.g. T0_6[0,3]"
-            )
+            raise DHError(f"unknown question {text!r}: expected {_KINDS}")
         if m["k"] is not None:
             frm, to = int(m["k"]) - 1, int(m["k"])
         elif m["arm"] is not None or m["p"] is not None:
@@ -72,18 +105,27 @@ class Question:
 
     @property
     def label(self) -> str:
-        """Canonical text: ``table``, ``T0_2`` or ``T0_6[0,3]``."""
+        """Canonical text: ``table``, ``T0_2``, ``T0_6[0,3]``, ``J[1,0]``, ``det J``, ``ik``."""
         if self.kind == "table":
             return "table"
-        base = f"T{self.frm}_{self.to}"
+        if self.kind == "det":
+            return "det J"
+        if self.kind == "ik":
+            head = "ik all" if self.every else "ik"
+            return head + ("@" + ",".join(f"{x:.15g}" for x in self.pose) if self.pose else "")
+        base = "J" if self.kind == "jacobian" else f"T{self.frm}_{self.to}"
         return f"{base}[{self.entry[0]},{self.entry[1]}]" if self.entry else base
 
     @property
     def label_latex(self) -> str:
-        """``{}^{0}T_{2}`` (or ``\\text{DH table}``), for headings."""
+        """``{}^{0}T_{2}`` (or ``\\text{DH table}``, ``J``, ``\\det J``), for headings."""
         if self.kind == "table":
             return r"\text{DH table}"
-        base = f"{{}}^{{{self.frm}}}T_{{{self.to}}}"
+        if self.kind == "det":
+            return r"\det J"
+        if self.kind == "ik":
+            return r"\text{inverse kinematics}"
+        base = "J" if self.kind == "jacobian" else f"{{}}^{{{self.frm}}}T_{{{self.to}}}"
         if self.entry:
             return f"{base}[{self.entry[0] + 1},{self.entry[1] + 1}]"
         return base

@@ -40,6 +40,7 @@ def _cmd_handout(args: argparse.Namespace) -> int:
         numeric=args.numeric,
         notation=args.notation,
         check=_parse_check(args.check),
+        sections=args.sections,
     )
     if args.output == STDOUT:
         for flag in ("pdf", "figure", "keep_aux"):
@@ -106,6 +107,12 @@ def _register_handout(subparsers: argparse._SubParsersAction) -> None:
     )
     h.add_argument("--numeric", action="store_true", help="substitute the numeric lengths")
     h.add_argument(
+        "--sections",
+        default="fk",
+        metavar="LIST",
+        help="comma separated, any of fk, jacobian, singularities, ik (default fk)",
+    )
+    h.add_argument(
         "--figure",
         action="store_true",
         help="include a picture of each robot at its home configuration",
@@ -116,7 +123,8 @@ def _register_handout(subparsers: argparse._SubParsersAction) -> None:
         const="zero",
         default=None,
         metavar="Q",
-        help="numeric check of the arm matrix at Q (comma separated; default zero)",
+        help="numeric check of the arm matrix at Q (comma separated; default zero); the ik "
+        "section lists every solution of the pose at Q (default: away from singularities)",
     )
     h.set_defaults(func=_cmd_handout)
 

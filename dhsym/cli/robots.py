@@ -124,6 +124,9 @@ def _cmd_derive(args: argparse.Namespace) -> int:
 
     robot = load(args.robot, compact=not args.full, style=args.notation)
     note_warnings(robot.table)
+    what = getattr(args, "what", "fk")
+    if what != "fk":
+        return _derive_more(robot, what, args)
     i, j = _frames(robot, args)
     if args.format == "json":
         out = json.dumps(derive_json(robot, i, j), indent=2)
@@ -131,6 +134,24 @@ def _cmd_derive(args: argparse.Namespace) -> int:
         from dhsym.explain.documents import render_derivation
 
         out = render_derivation(robot, fmt=args.format, frm=i, to=j)
+    emit(out, args.output)
+    return 0
+
+
+def _derive_more(robot: Robot, what: str, args: argparse.Namespace) -> int:
+    """``derive --what jacobian|singularities|ik`` (``--from``/``--to`` belong to fk)."""
+    from dhsym.errors import DHError
+
+    if args.frm is not None or args.to is not None:
+        raise DHError(f"--from and --to choose ^iT_j of the forward kinematics, not --what {what}")
+    if args.format == "json":
+        from .derivations import derivation_json
+
+        out = json.dumps(derivation_json(robot, what), indent=2)
+    else:
+        from dhsym.explain.documents import render_derivation
+
+        out = render_derivation(robot, fmt=args.format, what=what)
     emit(out, args.output)
     return 0
 
@@ -213,6 +234,13 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     d.add_argument(
         "-o", "--output", metavar="FILE", help="write to FILE (- or none: standard output)"
+    )
+    d.add_argument(
+        "--what",
+        choices=["fk", "jacobian", "singularities", "ik"],
+        default="fk",
+        help="fk: forward kinematics (default); jacobian: column by column; singularities: "
+        "det J factored and named; ik: closed-form inverse kinematics, every branch",
     )
     d.set_defaults(func=_cmd_derive)
 

@@ -1,9 +1,11 @@
 r"""Documents of robots: a derivation as text/Markdown/LaTeX, and handouts (LaTeX and PDF).
 
-:func:`render_derivation` derives a robot and renders it (``dhsym derive``);
-:func:`render_handout` puts one or more derivations into a standalone LaTeX
-document (answers or problems mode, optional figures of the arm), and
-:func:`write_handout` writes it and compiles it to PDF (``dhsym handout``).
+:func:`document` derives one of the four derivations of a robot (:data:`WHAT`: forward
+kinematics, the Jacobian, its singularities, the inverse kinematics);
+:func:`render_derivation` renders it (``dhsym derive --what``); :func:`render_handout`
+puts the asked sections of one or more robots into a standalone LaTeX document (answers
+or problems mode, optional figures of the arm), and :func:`write_handout` writes it and
+compiles it to PDF (``dhsym handout --sections``).
 
 Examples
 --------
@@ -11,6 +13,8 @@ Examples
 >>> out = render_derivation(dhsym.load("planar2r"), fmt="latex")
 >>> "C_{12} & -S_{12} & 0 & a_{1} C_{1} + a_{2} C_{12}" in out
 True
+>>> print(render_derivation("planar2r", what="singularities").splitlines()[0])
+Planar 2R: singular configurations (standard DH convention)
 """
 
 from __future__ import annotations
@@ -18,19 +22,87 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 from pathlib import Path
+from types import MappingProxyType
 
 import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.kinematics.robot import Robot
+from dhsym.model.table import DHTable
 from dhsym.notation.escape import TeX
 from dhsym.notation.printers import Notation, TrigStyle
 
+from .data import Document
 from .derivation import Derivation, as_robot, derive, general_link
+from .inverse import derive_inverse
+from .jacobian import derive_jacobian, derive_singularities
 from .latex import compile_pdf
 from .rendering import environment, render, render_template
 
-__all__ = ["render_derivation", "render_handout", "write_handout"]
+__all__ = [
+    "SECTION_TITLES",
+    "WHAT",
+    "document",
+    "render_derivation",
+    "render_handout",
+    "write_handout",
+]
+
+#: What can be derived: forward kinematics, the Jacobian, its singularities, the inverse.
+WHAT = ("fk", "jacobian", "singularities", "ik")
+
+#: Headings of the handout sections.
+SECTION_TITLES = MappingProxyType(
+    {
+        "fk": "Forward kinematics",
+        "jacobian": "The Jacobian",
+        "singularities": "Singular configurations",
+        "ik": "Inverse kinematics",
+    }
+)
+
+_DERIVE_OPTIONS = ("frm", "to", "factors", "numeric", "compact", "notation", "check", "width")
+#: the options each derivation takes (the forward kinematics takes all of _DERIVE_OPTIONS)
+_OPTIONS = MappingProxyType(
+    {
+        "jacobian": ("frame", "point", "compact", "notation", "width", "numeric"),
+        "singularities": ("compact", "notation", "width", "numeric"),
+        "ik": ("compact", "notation", "width", "check", "numeric"),
+    }
+)
+
+
+def _what(what: str) -> str:
+    key = str(what).strip().lower()
+    if key not in WHAT:
+        raise DHError(f"unknown derivation {what!r}: expected one of {', '.join(WHAT)}")
+    return key
+
+
+def document(robot: Robot | str | Path | DHTable, what: str = "fk", **options: object) -> Document:
+    """One derivation of ``robot``: ``what`` is ``fk``, ``jacobian``, ``singularities`` or ``ik``.
+
+    ``options`` are those of :func:`~dhsym.explain.derivation.derive` (``fk``),
+    :func:`~dhsym.explain.jacobian.derive_jacobian` (``frame``, ``point``),
+    :func:`~dhsym.explain.jacobian.derive_singularities` or
+    :func:`~dhsym.explain.inverse.derive_inverse` (``check``); ``numeric`` substitutes the
+    table's numbers for its lengths. Options a derivation does not take are refused.
+
+    >>> document("planar2r", "ik").count
+    2
+    """
+    what = _what(what)
+    if what == "fk":
+        return derive(robot, **options)  # type: ignore[arg-type]
+    unknown = set(options) - set(_OPTIONS[what])
+    if unknown:
+        raise DHError(f"option(s) {', '.join(sorted(unknown))} do not apply to --what {what}")
+    opts = dict(options)
+    r = as_robot(robot)
+    if opts.pop("numeric", False):
+        r = Robot(r.table.substituted(), compact=r.notation.compact, style=r.notation.style)
+    build = {"jacobian": derive_jacobian, "singularities": derive_singularities}
+    return build.get(what, derive_inverse)(r, **opts)  # type: ignore[operator]
 
 
 def render_derivation(
@@ -38,44 +110,66 @@ def render_derivation(
     fmt: str = "text",
     frm: int = 0,
     to: int | None = None,
+    *,
+    what: str = "fk",
     **options: object,
 ) -> str:
-    """``^{frm}T_{to}`` of ``robot`` derived step by step, as text, Markdown or LaTeX.
+    """A derivation of ``robot`` step by step, as text, Markdown or LaTeX.
 
-    ``options`` go to :func:`dhsym.explain.derivation.derive` (``factors``, ``numeric``,
-    ``compact``, ``notation``, ``check``, ``width``) except ``template_dir``.
+    ``what`` is ``fk`` (``^{frm}T_{to}``, the default), ``jacobian``, ``singularities`` or
+    ``ik``; ``options`` go to :func:`document` except ``template_dir``.
     """
     template_dir = options.pop("template_dir", None)
-    d = derive(robot, frm=frm, to=to, **options)  # type: ignore[arg-type]
+    if _what(what) == "fk":
+        options.update(frm=frm, to=to)
+    d = document(robot, what, **options)
     return render(d, fmt, template_dir=template_dir)  # type: ignore[arg-type]
 
 
-_DERIVE_OPTIONS = ("frm", "to", "factors", "numeric", "compact", "notation", "check", "width")
+def _sections(sections: Sequence[str] | str) -> tuple[str, ...]:
+    """The asked sections, each once, in the order of :data:`WHAT`."""
+    asked = [sections] if isinstance(sections, str) else list(sections)
+    keys = {_what(k) for part in asked for k in str(part).split(",") if k.strip()}
+    if not keys:
+        raise DHError(f"no handout sections given: choose from {', '.join(WHAT)}")
+    return tuple(k for k in WHAT if k in keys)
 
 
-def _derivations(
-    robots: Sequence[Robot | str | Path | Derivation], options: dict[str, object]
-) -> list[Derivation]:
-    """Derive each robot; ``check=True`` applies to those with numbers for every length."""
-    out = []
-    for r in robots:
-        if isinstance(r, Derivation):
-            out.append(r)
-            continue
-        opts = dict(options)
-        robot = as_robot(r)
-        if opts.get("check") is True and set(robot.table.constants) - set(robot.table.value_map):
-            opts["check"] = None
-        out.append(derive(robot, **opts))  # type: ignore[arg-type]
-    return out
+def _options_for(what: str, robot: Robot, options: dict[str, object]) -> dict[str, object]:
+    """The handout's options that ``what`` takes; ``check=True`` only with numbers for all
+    lengths; the inverse kinematics is checked at a configuration away from singularities."""
+    allowed = _DERIVE_OPTIONS if what == "fk" else _OPTIONS[what]
+    opts = {k: v for k, v in options.items() if k in allowed}
+    if opts.get("check") is True and set(robot.table.constants) - set(robot.table.value_map):
+        opts["check"] = None
+    return opts
 
 
-def _unique_keys(derivations: Sequence[Derivation]) -> list[str]:
+def _item_documents(
+    r: Robot | str | Path | Derivation, sections: Sequence[str], options: dict[str, object]
+) -> tuple[Derivation, list[tuple[str, Document]]]:
+    """The forward kinematics (always: it holds the table) and the asked sections."""
+    if isinstance(r, Derivation):
+        if set(sections) != {"fk"}:
+            raise DHError("sections other than fk need robots, not derivations")
+        return r, [("fk", r)]
+    robot = as_robot(r)
+    fk = derive(robot, **_options_for("fk", robot, options))  # type: ignore[arg-type]
+    docs: list[tuple[str, Document]] = []
+    for what in sections:
+        doc = fk if what == "fk" else document(robot, what, **_options_for(what, robot, options))
+        docs.append((what, doc))
+    return fk, docs
+
+
+def _unique_keys(names: Sequence[str]) -> list[str]:
+    """One key per robot (its name in lower case, ``-`` separated), numbered when repeated."""
     keys: list[str] = []
-    for d in derivations:
-        key, k = d.key, 2
+    for name in names:
+        base = re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-") or "robot"
+        key, k = base, 2
         while key in keys:
-            key, k = f"{d.key}-{k}", k + 1
+            key, k = f"{base}-{k}", k + 1
         keys.append(key)
     return keys
 
@@ -88,6 +182,7 @@ def render_handout(
     author: str = "",
     date: str = "",
     mode: str = "answers",
+    sections: Sequence[str] | str = ("fk",),
     convention_note: bool = False,
     template_dir: str | Path | None = None,
     figures: dict[str, str] | None = None,
@@ -96,34 +191,50 @@ def render_handout(
     r"""A standalone LaTeX handout for one or more robots.
 
     ``mode`` is ``answers`` (full derivations) or ``problems`` (table and
-    questions with space for answers). ``figures`` maps a robot's key (its
-    name in lower case, ``-`` separated) to a graphics file next to the
-    ``.tex``. Other options go to :func:`~dhsym.explain.derivation.derive`;
-    ``check=True`` checks the robots whose lengths all have numbers.
+    questions with space for answers). ``sections`` are any of :data:`WHAT`
+    (``fk,jacobian,singularities,ik``; default ``fk``), each a part of every robot's
+    section. ``figures`` maps a robot's key (its name in lower case, ``-`` separated)
+    to a graphics file next to the ``.tex``. Other options go to the derivations
+    (:func:`document`); ``check=True`` checks the robots whose lengths all have numbers.
 
     >>> tex = render_handout(["planar2r"], title=r"\input{/etc/passwd}")
     >>> r"\textbackslash{}input\{/etc/passwd\}" in tex, r"\input{/etc" in tex
     (True, False)
+    >>> tex = render_handout(["planar2r"], sections="fk,ik")
+    >>> r"\subsection{Inverse kinematics}" in tex, r"\subsubsection{Position: joints 1, 2}" in tex
+    (True, True)
     """
     if mode not in ("answers", "problems"):
         raise DHError(f"unknown mode {mode!r}: expected 'answers' or 'problems'")
-    unknown = set(options) - set(_DERIVE_OPTIONS)
+    unknown = set(options) - set(_DERIVE_OPTIONS) - {"frame", "point"}
     if unknown:
         raise DHError(f"unknown handout option(s): {', '.join(sorted(unknown))}")
-    ds = _derivations(robots, options)
+    wanted = _sections(sections)
+    built = [_item_documents(r, wanted, options) for r in robots]
     own = (r.notation.style for r in robots if isinstance(r, Robot))
     nota = Notation(style=options.get("notation") or next(own, TrigStyle.UPPER))  # type: ignore[arg-type]
+    keys = _unique_keys([fk.name for fk, _ in built])
     items = [
-        {"d": d, "key": k, "figure": _graphic((figures or {}).get(k))}
-        for d, k in zip(ds, _unique_keys(ds), strict=True)
+        {
+            "d": fk,
+            "key": k,
+            "figure": _graphic((figures or {}).get(k)),
+            "sections": [
+                {"kind": what, "title": SECTION_TITLES[what], "doc": doc} for what, doc in docs
+            ],
+        }
+        for (fk, docs), k in zip(built, keys, strict=True)
     ]
     if title is None:
-        title = "Forward kinematics: " + ", ".join(d.name for d in ds)
+        heads = [SECTION_TITLES[w] for w in wanted]
+        heads = heads[:1] + [h[:1].lower() + h[1:] for h in heads[1:]]
+        title = ", ".join(heads) + ": " + ", ".join(fk.name for fk, _ in built)
     env = environment("latex", template_dir)
     return render_template(
         env,
         "handout.tex.j2",
         items=items,
+        sections=wanted,
         title=title,
         course=course,
         author=author,
@@ -186,12 +297,12 @@ def write_handout(
         raise DHError(f"the handout file must end in .tex, got {out.name}")
     out.parent.mkdir(parents=True, exist_ok=True)
     loaded = [as_robot(r) for r in robots]
-    derive_opts = {k: options.pop(k) for k in _DERIVE_OPTIONS if k in options}
-    ds = _derivations(loaded, derive_opts)
     figures = None
     if figure:
         stem = re.sub(r"[^A-Za-z0-9-]+", "-", out.stem).strip("-") or "handout"
-        figures = _figures(loaded, _unique_keys(ds), out.parent, stem)
-    style = (derive_opts.get("notation") or loaded[0].notation.style) if loaded else None
-    out.write_text(render_handout(ds, figures=figures, notation=style, **options), encoding="utf-8")
+        keys = _unique_keys([r.name or "robot" for r in loaded])
+        figures = _figures(loaded, keys, out.parent, stem)
+    style = options.pop("notation", None) or (loaded[0].notation.style if loaded else None)
+    tex = render_handout(loaded, figures=figures, notation=style, **options)
+    out.write_text(tex, encoding="utf-8")
     return compile_pdf(out, keep_aux=keep_aux) if pdf else out

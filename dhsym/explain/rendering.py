@@ -39,7 +39,7 @@ from dhsym.notation.tables import text_table
 from .templates import loader
 
 if TYPE_CHECKING:  # a derivation renders itself through render(): no import at run time
-    from .data import Derivation
+    from .data import Document
 
 __all__ = [
     "environment",
@@ -126,13 +126,18 @@ def render_template(env: object, name: str, **context: object) -> str:
 
 
 def render(
-    derivation: Derivation, fmt: str = "text", *, template_dir: str | Path | None = None
+    derivation: Document, fmt: str = "text", *, template_dir: str | Path | None = None
 ) -> str:
-    """One derivation as text, Markdown or a LaTeX fragment."""
+    """One derivation as text, Markdown or a LaTeX fragment.
+
+    The templates are those of the document's ``kind`` (``derivation.txt.j2``,
+    ``jacobian.md.j2``, …); a LaTeX fragment is ``fragment.tex.j2`` around ``<kind>.tex.j2``.
+    """
     env = environment(fmt, template_dir)
+    kind = derivation.kind
     name = {
         "latex": "fragment.tex.j2",
-        "markdown": "derivation.md.j2",
-        "text": "derivation.txt.j2",
+        "markdown": f"{kind}.md.j2",
+        "text": f"{kind}.txt.j2",
     }[fmt]
     return render_template(env, name, d=derivation)

@@ -71,6 +71,7 @@ from typing import TYPE_CHECKING
 import sympy as sp
 
 from dhsym.model.table import Elementary, JointType
+from dhsym.notation.layout import Sentence, sentence, word_expr
 
 from ._ik_numbers import IKBatch, IKSolution, NumericSolution, Solver, numeric_ik
 from ._structure import ArmGeometry, Decoupling, StructureError, arm_geometry, decouple
@@ -119,32 +120,45 @@ class Branch:
     """A choice of sign ``symbol = ±1`` made by one step.
 
     ``role`` is ``"arm"`` (left/right), ``"elbow"`` (up/down), ``"reach"`` (the sign of
-    a prismatic ``±√``) or ``"wrist"`` (flip); ``joint`` is the joint it decides.
+    a prismatic ``±√``) or ``"wrist"`` (flip); ``joint`` is the joint it decides;
+    ``sentence`` says what each sign means (a :class:`~dhsym.notation.layout.Sentence`).
     """
 
     symbol: sp.Symbol
     role: str
     joint: int
-    sentence: str
+    sentence: Sentence
+
+    @property
+    def text(self) -> str:
+        """The sentence in plain text."""
+        return self.sentence.text()
 
 
 @dataclass(frozen=True)
 class Step:
     """One line of the derivation: ``lhs = rhs``, exact, with the sentence that explains it.
 
-    ``part`` is ``"wrist centre"``, ``"position"`` or ``"orientation"``; ``equation`` is
-    the equation this step solves (when it solves one); ``branch`` the sign it
-    introduces; ``singular`` the value used instead when the wrist is singular
-    (``sin θ5 = 0``: only ``θ4 + θ6`` is determined, so ``θ4`` is set to 0).
+    ``part`` is ``"wrist centre"``, ``"position"`` or ``"orientation"``; ``sentence``
+    the words with their math (a :class:`~dhsym.notation.layout.Sentence`, printed by
+    each format); ``equation`` is the equation this step solves (when it solves one);
+    ``branch`` the sign it introduces; ``singular`` the value used instead when the
+    wrist is singular (``sin θ5 = 0``: only ``θ4 + θ6`` is determined, so ``θ4`` is set
+    to 0).
     """
 
     part: str
-    text: str
+    sentence: Sentence
     lhs: sp.Symbol
     rhs: sp.Expr
     equation: sp.Eq | None = None
     branch: Branch | None = None
     singular: sp.Expr | None = None
+
+    @property
+    def text(self) -> str:
+        """The sentence in plain text."""
+        return self.sentence.text()
 
 
 # --- equations of the position sub-problem ------------------------------------------------
@@ -202,18 +216,28 @@ class _Builder:
         self.revolute = [r.variable for r in rows if r.joint is JointType.REVOLUTE]
         self.kind = {r.variable: r.joint for r in rows if r.variable is not None}
 
-    def add(self, part: str, text: str, lhs: sp.Symbol, rhs: sp.Expr, **kw: object) -> sp.Symbol:
-        self.steps.append(Step(part, text, lhs, rhs, **kw))  # type: ignore[arg-type]
+    def add(
+        self, part: str, text: Sentence | str, lhs: sp.Symbol, rhs: sp.Expr, **kw: object
+    ) -> sp.Symbol:
+        words = text if isinstance(text, Sentence) else Sentence(text)
+        self.steps.append(Step(part, words, lhs, rhs, **kw))  # type: ignore[arg-type]
         return lhs
 
-    def branch(self, role: str, var: sp.Symbol, sentence: str) -> Branch:
+    def branch(self, role: str, var: sp.Symbol, template: str, **math: object) -> Branch:
+        """A new sign σ_j; ``template`` may use ``{s}`` (σ_j), ``{plus}``, ``{minus}``."""
         j = self.number[var]
-        b = Branch(sp.Symbol(f"sigma_{j}", **_REAL), role, j, sentence)
+        sigma = sp.Symbol(f"sigma_{j}", **_REAL)
+        words = sentence(template, s=sigma, plus=sp.Eq(sigma, 1), minus=sp.Eq(sigma, -1), **math)
+        b = Branch(sigma, role, j, words)
         self.branches.append(b)
         return b
 
     def tidy(self, e: sp.Expr) -> sp.Expr:
         return compact(sp.factor_terms(e))
+
+
+def _capital(words: str) -> str:
+    return words[:1].upper() + words[1:]
 
 
 def _solve_joint_from_entry(value: sp.Expr, x: sp.Expr, var: sp.Symbol) -> sp.Expr:
@@ -257,15 +281,20 @@ def _position(b: _Builder, geo: ArmGeometry, target: Matrix) -> None:
             arm = b.branch(
                 "arm",
                 q1,
-                "σ = +1: right arm (the wrist centre in front of the shoulder, "
-                "r > 0); σ = −1: left arm",
+                "{plus}: right arm (the point in front of the shoulder, {front}); "
+                "{minus}: left arm",
+                front=sp.Gt(r, 0),
             )
             sigma = arm.symbol
             reach = sp.sqrt(ux**2 + uy**2 - e**2)
             b.add(
                 "position",
-                "Joint 1 turns the arm about z0; the point keeps the shoulder offset "
-                f"e = {sp.sstr(e)} from the plane of the arm, so its reach in that plane is",
+                sentence(
+                    "Joint 1 turns the arm about {z0}; the point keeps the shoulder offset "
+                    "{e} from the plane of the arm, so its reach in that plane is",
+                    z0=sp.Symbol("z_0"),
+                    e=sp.Eq(sp.Symbol("e"), e),
+                ),
                 r,
                 sigma * reach,
                 equation=sp.Eq(ux**2 + uy**2, r**2 + e**2),
@@ -280,7 +309,10 @@ def _position(b: _Builder, geo: ArmGeometry, target: Matrix) -> None:
                 x1 = sp.atan2(uy, ux) - sp.atan2(gy, gx)
             b.add(
                 "position",
-                "The angle of the point minus the angle of (r, e) in the arm's frame:",
+                sentence(
+                    "The angle of the point minus the angle of {re} in the arm's frame:",
+                    re=sp.Tuple(r, sp.Symbol("e")),
+                ),
                 q1,
                 _solve_joint_from_entry(x1, geo.first.value, q1),
             )
@@ -400,14 +432,22 @@ def _try_pair(
                 delta = sp.Symbol(f"Delta_{b.number[var]}", **_REAL)
                 b.add(
                     "position",
-                    f"The determinant of the two linear equations in cos and sin of {var}:",
+                    sentence(
+                        "The determinant of the two linear equations in {c} and {s}:",
+                        c=sp.cos(var),
+                        s=sp.sin(var),
+                    ),
                     delta,
                     t(det),
                 )
                 value = sp.atan2(t(A1 * R2 - A2 * R1) / delta, t(R1 * B2 - R2 * B1) / delta)
-            text = (
-                f"With the joints before known, {equations[i].name} and {equations[j].name} "
-                f"are linear in cos {var} and sin {var}: one atan2."
+            text = sentence(
+                "With the joints before known, {one} and {two} are linear in {c} and {s}: "
+                "one atan2.",
+                one=equations[i].name,
+                two=equations[j].name,
+                c=sp.cos(var),
+                s=sp.sin(var),
             )
             b.add("position", text, var, value, equation=sp.Eq(_show(A1, B1, var), b.tidy(R1)))
             return var, (i, j)
@@ -444,7 +484,7 @@ def _solve_single(b: _Builder, eq: _Equation, e: sp.Expr, var: sp.Symbol, two: b
             A, C = coeffs
             b.add(
                 "position",
-                f"{eq.name[0].upper() + eq.name[1:]} is linear in {var}:",
+                sentence("{eq} is linear in {v}:", eq=_capital(eq.name), v=var),
                 var,
                 b.tidy(-C / A),
                 equation=eq.shown,
@@ -452,14 +492,14 @@ def _solve_single(b: _Builder, eq: _Equation, e: sp.Expr, var: sp.Symbol, two: b
             return True
         if len(coeffs) == 3 and two:
             A, B, C = coeffs
-            br = b.branch("reach", var, f"σ = ±1: the sign of the square root for {var}")
+            br = b.branch("reach", var, "{s} = ±1: the sign of the square root for {v}", v=var)
             if B == 0:
                 value = br.symbol * sp.sqrt(b.tidy(-C / A))
             else:
                 value = (-B + br.symbol * sp.sqrt(b.tidy(B**2 - 4 * A * C))) / (2 * A)
             b.add(
                 "position",
-                f"{eq.name[0].upper() + eq.name[1:]} is quadratic in {var}:",
+                sentence("{eq} is quadratic in {v}:", eq=_capital(eq.name), v=var),
                 var,
                 value,
                 equation=eq.shown,
@@ -477,14 +517,15 @@ def _solve_single(b: _Builder, eq: _Equation, e: sp.Expr, var: sp.Symbol, two: b
     g = sp.gcd(A, B) if A != 0 and B != 0 else (A if B == 0 else B)
     if g != 0 and not (g.free_symbols & set(b.variables)):
         A, B, K = (sp.cancel(v / g) for v in (A, B, K))
-    br = b.branch("elbow", var, "σ = +1 and σ = −1: the two elbow configurations (up/down)")
+    br = b.branch("elbow", var, "{plus} and {minus}: the two elbow configurations (up and down)")
     s = br.symbol
-    text = f"{eq.name[0].upper() + eq.name[1:]} leaves {var} alone (the law of cosines): "
+    text = "{eq} leaves {v} alone (the law of cosines): {name} with"
     if B == 0 or A == 0:
         D = sp.Symbol(f"D_{j}", **_REAL)
+        trig = sp.cos(var) if B == 0 else sp.sin(var)
         b.add(
             "position",
-            text + ("cos" if B == 0 else "sin") + f" {var} = D_{j} with",
+            sentence(text, eq=_capital(eq.name), v=var, name=sp.Eq(trig, D)),
             D,
             b.tidy(K / (A if B == 0 else B)),
             equation=sp.Eq(_show(A, B, var), b.tidy(K)),
@@ -496,7 +537,7 @@ def _solve_single(b: _Builder, eq: _Equation, e: sp.Expr, var: sp.Symbol, two: b
     Ks = sp.Symbol(f"K_{j}", **_REAL)
     b.add(
         "position",
-        text + f"{sp.sstr(_show(A, B, var))} = K_{j} with",
+        sentence(text, eq=_capital(eq.name), v=var, name=sp.Eq(_show(A, B, var), Ks)),
         Ks,
         b.tidy(K),
         equation=sp.Eq(_show(A, B, var), b.tidy(K)),
@@ -543,8 +584,12 @@ def _orientation(b: _Builder, pose: Matrix) -> None:
             names[(i, j)] = sym
             b.add(
                 "orientation",
-                f"Entry ({i + 1}, {j + 1}) of the wrist's rotation "
-                "(arm rotation transposed times R):",
+                sentence(
+                    "An entry of the wrist's rotation {Rw} (the arm's rotation transposed "
+                    "times {R}):",
+                    Rw=sp.Symbol("R_w"),
+                    R=sp.Symbol("R"),
+                ),
                 sym,
                 b.tidy(M[i, j]),
             )
@@ -565,15 +610,27 @@ def _orientation(b: _Builder, pose: Matrix) -> None:
     s4, c4, s5, c5 = sp.sin(a4), sp.cos(a4), sp.sin(a5), sp.cos(a5)
     if s4 == 0 or s5 == 0:
         raise StructureError("two neighbouring wrist axes are parallel: not a spherical wrist")
-    j4, j5, j6 = (b.number[v] for v in wvars)
+    j5 = b.number[wvars[1]]
     cx5 = sp.Symbol(f"c_{j5}", **_REAL)
+    wrist_word = [Elementary("R", "z", xs[0]), Elementary("R", "x", a4)]
+    wrist_word += [Elementary("R", "z", xs[1]), Elementary("R", "x", a5)]
+    wrist_word += [Elementary("R", "z", xs[2])]
     b.add(
         "orientation",
-        f"Entry (3, 3) of Rz(θ{j4}) Rx(α) Rz(θ{j5}) Rx(α') Rz(θ{j6}) depends on θ{j5} alone:",
+        sentence(
+            "Entry (3, 3) of {word} depends on {v} alone:",
+            word=word_expr(wrist_word),
+            v=wvars[1],
+        ),
         cx5,
         b.tidy((c4 * c5 - m(2, 2)) / (s4 * s5)),
     )
-    br = b.branch("wrist", wvars[1], "σ = +1: wrist not flipped (sin > 0); σ = −1: flipped")
+    br = b.branch(
+        "wrist",
+        wvars[1],
+        "{plus}: wrist not flipped ({up}); {minus}: flipped",
+        up=sp.Gt(sp.sin(wvars[1]), 0),
+    )
     sg = br.symbol
     sx5 = sp.Symbol(f"s_{j5}", **_REAL)
     v = sp.expand(-(c4 * s5 * cx5 + s4 * c5))
@@ -581,7 +638,10 @@ def _orientation(b: _Builder, pose: Matrix) -> None:
     if v == 0:  # twists of ±90°: the third column is (±s cos θ4, ±s sin θ4, c)
         b.add(
             "orientation",
-            f"The rest of column 3 has length |sin θ{j5}|; two signs: the wrist flip.",
+            sentence(
+                "The rest of column 3 has length {length}; two signs: the wrist flip.",
+                length=sp.Abs(sp.sin(wvars[1])),
+            ),
             sx5,
             sg * sp.sqrt(m(0, 2) ** 2 + m(1, 2) ** 2),
             branch=br,
@@ -596,7 +656,7 @@ def _orientation(b: _Builder, pose: Matrix) -> None:
         )
     b.add(
         "orientation",
-        f"θ{j5} from its sine and cosine:",
+        sentence("{v} from its sine and cosine:", v=wvars[1]),
         wvars[1],
         _solve_joint_from_entry(sp.atan2(sx5, cx5), xs[1], wvars[1]),
     )
@@ -616,14 +676,14 @@ def _orientation(b: _Builder, pose: Matrix) -> None:
     x6_singular = sp.atan2(b.tidy(N[1, 0]), b.tidy(N[0, 0]))
     b.add(
         "orientation",
-        f"Column 3 of the wrist's rotation gives θ{j4}:",
+        sentence("Column 3 of the wrist's rotation gives {v}:", v=wvars[0]),
         wvars[0],
         _solve_joint_from_entry(x4, xs[0], wvars[0]),
         singular=_solve_joint_from_entry(sp.Integer(0), xs[0], wvars[0]),
     )
     b.add(
         "orientation",
-        f"Row 3 of the wrist's rotation gives θ{j6}:",
+        sentence("Row 3 of the wrist's rotation gives {v}:", v=wvars[2]),
         wvars[2],
         _solve_joint_from_entry(x6, xs[2], wvars[2]),
         singular=_solve_joint_from_entry(x6_singular, xs[2], wvars[2]),
@@ -789,11 +849,20 @@ def _wrist_centre(b: _Builder, pose: Matrix) -> Matrix:
     c = pose[:3, 3] + pose[:3, :3] * v
     names = [sp.Symbol(f"c_{k}", **_REAL) for k in "xyz"]
     point = "wrist centre" if len(b.dec.wrist) == 3 else "point of the last joint's axis"
+    cs, ps, rs = sp.symbols("c p R")
     if v == Matrix.zeros(3, 1):
-        text = f"The {point} is the origin of frame {b.robot.n}: c = p."
+        text = sentence(
+            f"The {point} is the origin of frame {b.robot.n}: {{same}}.", same=sp.Eq(cs, ps)
+        )
     else:
-        where = ", ".join(b.robot.notation.text(x) for x in v)
-        text = f"The {point} sits at ({where}) in frame {b.robot.n}: c = p + R·({where})."
+        text = sentence(
+            f"The {point} sits at {{v}} in frame {b.robot.n}: {{c}} = {{p}} + {{R}} {{v}}, with "
+            "{R} the rotation of the pose.",
+            v=sp.Tuple(*v),
+            c=cs,
+            p=ps,
+            R=rs,
+        )
     for name, value in zip(names, c):
         b.add("wrist centre", text, name, sp.expand(value))
     return Matrix(names)

@@ -2,7 +2,8 @@
 
 The only way text enters the engine (DH tables, homework answers).  A hand-written
 tokenizer and a depth-checked recursive-descent parser build sympy ``Add``, ``Mul``,
-``Pow``, ``Rational``, real ``Symbol``, ``pi`` and ``sin cos tan sqrt atan2`` only::
+``Pow``, ``Rational``, real ``Symbol``, ``pi`` and ``sin cos tan sqrt atan2`` (and the
+inverse functions ``atan asin acos``, also spelt ``arctan arcsin arccos``) only::
 
     expr   := term (('+' | '-') term)*
     term   := factor (('*' | '/') factor | factor)*      # juxtaposition multiplies
@@ -57,6 +58,9 @@ _GLUED_CALL = re.compile(r"^(?P<head>.*[0-9])(?P<func>atan2|cos|sin|sqrt|tan)$")
 _FUNCTIONS: MappingProxyType[str, tuple[Callable[..., sympy.Expr], int]] = MappingProxyType(
     {"atan2": (sympy.atan2, 2), "cos": (sympy.cos, 1), "sin": (sympy.sin, 1)}
     | {"sqrt": (sympy.sqrt, 1), "tan": (sympy.tan, 1)}
+    # inverse functions: answers to inverse-kinematics questions (atan where atan2 belongs)
+    | {"atan": (sympy.atan, 1), "asin": (sympy.asin, 1), "acos": (sympy.acos, 1)}
+    | {"arctan": (sympy.atan, 1), "arcsin": (sympy.asin, 1), "arccos": (sympy.acos, 1)}
 )
 _NON_FINITE_NAMES = frozenset({"nan", "inf", "infinity", "oo", "zoo"})
 _BUILTINS = "eval exec compile open input globals locals vars getattr setattr delattr breakpoint"

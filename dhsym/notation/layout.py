@@ -41,15 +41,23 @@ __all__ = [
     "Math",
     "MatrixBlock",
     "Piece",
+    "Run",
+    "Sentence",
     "Term",
     "as_decimal",
     "as_math",
+    "component_names",
     "equation",
     "fill",
+    "homogeneous_names",
+    "indexed_names",
     "legend_lines",
     "math_width",
     "matrix_block",
     "pieces",
+    "sentence",
+    "sentence_runs",
+    "word_expr",
     "word_math",
 ]
 
@@ -99,7 +107,11 @@ class Equation:
 
 @dataclass(frozen=True)
 class MatrixBlock:
-    """A labelled 4×4 matrix: ``label = prefix… = [rows]``, or entry equations when wide."""
+    """A labelled matrix: ``label = prefix… = [rows]``, or entry equations when wide.
+
+    ``names`` is the matrix of the wide form: entry names (``r_{11}``, ``J_{21}``) where
+    ``entries`` give their values, the values themselves elsewhere (``0 0 0 1``).
+    """
 
     label: Math
     prefix: tuple[Math, ...]
@@ -107,6 +119,7 @@ class MatrixBlock:
     entries: tuple[Equation, ...]
     wide: bool
     wide_text: bool
+    names: tuple[tuple[Math, ...], ...] = ()  # the symbolic matrix of the wide form
 
 
 @dataclass(frozen=True)
@@ -293,10 +306,21 @@ def as_decimal(value: sp.Expr, nota: Notation) -> Math:
     return as_math(value, nota)
 
 
+def word_expr(word: Sequence[Elementary]) -> sp.Expr:
+    """A word of elementary transforms as a product ``R_z(θ_i) T_z(d_i) …`` the printers print
+    (non-commuting factors, zero factors left out).
+
+    >>> t = sp.Symbol("theta4", real=True)
+    >>> Notation().text(word_expr([Elementary("R", "z", t), Elementary("R", "x", -sp.pi / 2)]))
+    'R_z(theta4)*R_x(-pi/2)'
+    """
+    factors = [_OPS[(e.kind, e.axis)](e.value) for e in word if e.value != 0]
+    return sp.Mul(*factors) if factors else sp.Integer(1)
+
+
 def word_math(word: Sequence[Elementary], nota: Notation) -> Math:
     """A word of elementary transforms as ``R_z(θ_i) T_z(d_i) …`` (zero factors left out)."""
-    factors = [_OPS[(e.kind, e.axis)](e.value) for e in word if e.value != 0]
-    return as_math(sp.Mul(*factors) if factors else sp.Integer(1), nota)
+    return as_math(word_expr(word), nota)
 
 
 def equation(name: Math, expr: sp.Expr, whole: Math, nota: Notation, width: float) -> Equation:
@@ -312,30 +336,155 @@ def equation(name: Math, expr: sp.Expr, whole: Math, nota: Notation, width: floa
     return Equation(name, tuple(TeX(x) for x in latex_lines), tuple(text_lines))
 
 
+@dataclass(frozen=True)
+class Sentence:
+    """Words with named math in them, printed by a notation as text or as runs of words and math.
+
+    ``template`` holds plain words and ``{name}`` slots; ``args`` the sympy objects (or
+    plain strings) that fill them. A derivation keeps its prose this way, so each format
+    prints the math with the printers and escapes only the words.
+
+    >>> d3 = sp.Symbol("d3", real=True)
+    >>> s = sentence("The height is linear in {v}.", v=d3)
+    >>> s.text()
+    'The height is linear in d3.'
+    >>> [(r.words, r.math and r.math.latex) for r in sentence_runs(s, Notation())]
+    [('The height is linear in ', None), ('', 'd_{3}'), ('.', None)]
+    """
+
+    template: str
+    args: tuple[tuple[str, object], ...] = ()
+
+    def text(self, nota: Notation | None = None) -> str:
+        """The sentence in plain text."""
+        runs = sentence_runs(self, nota)
+        return "".join(r.words if r.math is None else r.math.text for r in runs)
+
+    def __str__(self) -> str:
+        return self.text()
+
+
+def sentence(template: str, **args: object) -> Sentence:
+    """A :class:`Sentence` from a template and its named math."""
+    return Sentence(template, tuple(args.items()))
+
+
+@dataclass(frozen=True)
+class Run:
+    """A piece of a sentence: words (plain text, escaped by each format) or math."""
+
+    words: str = ""
+    math: Math | None = None
+
+
+def sentence_runs(s: Sentence, nota: Notation | None = None) -> tuple[Run, ...]:
+    """The runs of ``s``: its words, and its math printed by ``nota`` (cos/sin by default)."""
+    import string
+
+    nota = nota or Notation(compact=False)
+    args = dict(s.args)
+    out: list[Run] = []
+    for words, name, _, _ in string.Formatter().parse(s.template):
+        if words:
+            out.append(Run(words))
+        if name is None:
+            continue
+        value = args[name]
+        out.append(Run(value) if isinstance(value, str) else Run(math=as_math(value, nota)))
+    return tuple(out)
+
+
+def homogeneous_names(r: int, c: int) -> Math | None:
+    """``r_{11}`` … ``p_{z}``: the names of a 4×4 pose's entries (None in the last row)."""
+    if r == 3:
+        return None
+    tex, text = _ENTRY_NAMES[3 * r + c] if c < 3 else _ENTRY_NAMES[9 + r]
+    return Math(TeX(tex), text)
+
+
+def indexed_names(
+    symbol: str, columns: bool = False, start: tuple[int, int] = (1, 1)
+) -> Callable[[int, int], Math | None]:
+    """Entry names ``J_{11}``, ``J_{12}`` …; ``columns`` orders them column by column;
+    ``start`` is the index of the first entry (``(1, 3)``: a block of column 3).
+
+    >>> indexed_names("J")(0, 1), indexed_names("J", start=(1, 3))(1, 0).text
+    (Math(latex='J_{12}', text='J12'), 'J23')
+    """
+
+    def name(r: int, c: int) -> Math | None:
+        i, j = r + start[0], c + start[1]
+        return Math(TeX(f"{symbol}_{{{i}{j}}}"), f"{symbol}{i}{j}")
+
+    name.columns = columns  # type: ignore[attr-defined]
+    return name
+
+
+def component_names(label: Math) -> Callable[[int, int], Math | None]:
+    """Names of a vector's components: ``(o_{6} - o_{0})_{x}`` … (rows x, y, z, then 4, 5 …).
+
+    >>> component_names(Math(TeX("z_{0}"), "z_0"))(2, 0)
+    Math(latex='(z_{0})_{z}', text='(z_0)_z')
+    """
+
+    def name(r: int, c: int) -> Math | None:
+        k = "xyz"[r] if r < 3 else str(r + 1)
+        return Math(TeX(f"({label.latex})_{{{k}}}"), f"({label.text})_{k}")
+
+    return name
+
+
 def matrix_block(
     label: Math,
     matrix: sp.MatrixBase,
     nota: Notation,
     prefix: Sequence[Math] = (),
     width: float = LATEX_WIDTH,
+    names: Callable[[int, int], Math | None] | None = None,
 ) -> MatrixBlock:
-    """``label = prefix… = matrix``, with entry equations when it is too wide for a line."""
-    rows = tuple(tuple(as_math(matrix[r, c], nota) for c in range(4)) for r in range(4))
-    cols = [max(math_width(rows[r][c].latex) for r in range(4)) for c in range(4)]
+    """``label = prefix… = matrix``, with entry equations when it is too wide for a line.
+
+    ``names`` names the entries for the wide form (``r_{11}`` … ``p_{z}`` for a 4×4 pose by
+    default, :func:`indexed_names` for others); an entry named None, or a number, stands
+    for itself in the symbolic matrix and gets no equation.
+
+    >>> t = sp.Symbol("theta1", real=True)
+    >>> b = matrix_block(Math(TeX("v"), "v"), sp.Matrix([sp.cos(t), 0]),
+    ...                  Notation.from_variables([t]), names=indexed_names("v"))
+    >>> [[m.text for m in row] for row in b.names], b.wide
+    ([['v11'], ['0']], False)
+    """
+    nr, nc = matrix.shape
+    if names is None:
+        names = homogeneous_names if (nr, nc) == (4, 4) else indexed_names("M")
+    rows = tuple(tuple(as_math(matrix[r, c], nota) for c in range(nc)) for r in range(nr))
+    cols = [max(math_width(rows[r][c].latex) for r in range(nr)) for c in range(nc)]
     lead = sum(math_width(m.latex) + 2.2 for m in (label, *prefix))
-    wide = lead + sum(cols) + 6 > width + 6
-    tcols = [max(len(rows[r][c].text) for r in range(4)) for c in range(4)]
-    wide_text = len(label.text) + sum(tcols) + 16 > TEXT_WIDTH
-    order = [(r, c) for r in range(3) for c in range(3)] + [(r, 3) for r in range(3)]
+    wide = lead + sum(cols) + 1.5 * nc > width + 6
+    tcols = [max(len(rows[r][c].text) for r in range(nr)) for c in range(nc)]
+    wide_text = len(label.text) + sum(tcols) + 4 * nc > TEXT_WIDTH
+    named = [
+        [None if matrix[r, c].is_number else names(r, c) for c in range(nc)] for r in range(nr)
+    ]
+    if names is homogeneous_names:
+        order = [(r, c) for r in range(3) for c in range(3)] + [(r, 3) for r in range(3)]
+    elif getattr(names, "columns", False):
+        order = [(r, c) for c in range(nc) for r in range(nr)]
+    else:
+        order = [(r, c) for r in range(nr) for c in range(nc)]
+    if names is homogeneous_names:  # a pose names every entry of R and p, zero or not
+        named = [[names(r, c) for c in range(nc)] for r in range(nr)]
     entries = (
         tuple(
-            equation(Math(TeX(tn), nn), matrix[r, c], rows[r][c], nota, width)
-            for (tn, nn), (r, c) in zip(_ENTRY_NAMES, order, strict=True)
+            equation(named[r][c], matrix[r, c], rows[r][c], nota, width)  # type: ignore[arg-type]
+            for r, c in order
+            if named[r][c] is not None
         )
         if wide or wide_text
         else ()
     )
-    return MatrixBlock(label, tuple(prefix), rows, entries, wide, wide_text)
+    symbolic = tuple(tuple(named[r][c] or rows[r][c] for c in range(nc)) for r in range(nr))
+    return MatrixBlock(label, tuple(prefix), rows, entries, wide, wide_text, symbolic)
 
 
 def legend_lines(exprs: Sequence[sp.Expr], nota: Notation) -> tuple[LegendLine, ...]:

@@ -595,6 +595,11 @@ class _OrderedLatexPrinter(_LayoutMixin, LatexPrinter):
         super().__init__({"mat_str": "bmatrix", "mat_delim": ""})
         self._nota = notation
 
+    def _print_atan2(self, expr: sp.atan2, exp: str | None = None) -> str:
+        y, x = (self._print(a) for a in expr.args)
+        head = r"\operatorname{atan2}" + (f"^{{{exp}}}" if exp else "")
+        return rf"{head}\left({y}, {x}\right)"
+
 
 class _DHLatexPrinter(_OrderedLatexPrinter):
     """The lecture's LaTeX: ``C_{12}``, ``s_{\alpha_{1}}``."""
@@ -625,6 +630,12 @@ class _DHStrPrinter(_LayoutMixin, StrPrinter):
 
     _print_cos = _print_trig
     _print_sin = _print_trig
+
+    def _print_Equality(self, expr: sp.Equality) -> str:
+        return f"{self._print(expr.lhs)} = {self._print(expr.rhs)}"
+
+    def _print_Abs(self, expr: sp.Abs) -> str:
+        return f"|{self._print(expr.args[0])}|"
 
 
 # --- tables ---------------------------------------------------------------------------

@@ -124,3 +124,12 @@ def test_craig_c_theta_and_powers_of_functions():
 def test_matrix_rows_with_spacing_and_left_right_brackets():
     src = r"\left[ \begin{matrix} 1 & 0 \\[2pt] 0 & 1 \end{matrix} \right]"
     assert latex_matrix_cells(src) == [["1", "0"], ["0", "1"]]
+
+
+def test_inverse_functions_and_plus_minus_for_inverse_kinematics():
+    assert latex_to_text(r"\operatorname{atan2}(p_y, p_x)") == "atan2(p_y , p_x)"
+    assert latex_to_text(r"\arctan\frac{p_y}{p_x}") == "atan(((p_y)/(p_x)))"
+    assert latex_to_text(r"\arccos x") == "acos(x)"
+    assert latex_to_text(r"a \pm b \mp c") == "a ± b ∓ c"
+    with pytest.raises(ParseError, match="unknown operator 'argh'"):
+        latex_to_text(r"\operatorname{argh}(x)")

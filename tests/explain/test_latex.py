@@ -214,12 +214,17 @@ def handouts(tmp_path_factory):
             ["puma560_modified"],
             {"convention_note": True},
         ),
+        "sections": (
+            folder / "sections.tex",
+            SECTION_ROBOTS,
+            {"check": True, "sections": "fk,jacobian,singularities,ik"},
+        ),
     }
     done: dict[str, tuple[Path, list, float]] = {}
 
     def compiled() -> dict[str, tuple[Path, list, float]]:
         if not done:
-            with ThreadPoolExecutor(max_workers=3) as pool:
+            with ThreadPoolExecutor(max_workers=4) as pool:
                 futures = {k: pool.submit(_compile, *j[:2], **j[2]) for k, j in jobs.items()}
                 done.update({k: f.result() for k, f in futures.items()})
         return done
@@ -247,6 +252,26 @@ def test_every_builtin_robot_compiles_without_errors_or_overfull_boxes(handouts,
         check=True,
     ).stdout
     assert "The two DH conventions" in modified and "αi−1" in modified
+
+
+#: the robots whose Jacobian, singularities and inverse kinematics the suite compiles
+SECTION_ROBOTS = ["puma560", "puma560_modified", "stanford", "planar2r", "scara"]
+
+
+@pytest.mark.tex
+def test_jacobian_singularity_and_ik_sections_compile_and_print(handouts, need_tex):
+    pdf, issues, _ = handouts()["sections"]
+    assert issues == [], [str(i) for i in issues]
+    text = subprocess.run(
+        ["pdftotext", str(pdf), "-"], capture_output=True, text=True, check=True
+    ).stdout
+    for heading in ("Forward kinematics", "The Jacobian", "Singular configurations"):
+        assert text.count(heading) >= len(SECTION_ROBOTS)
+    assert text.count("Inverse kinematics") >= len(SECTION_ROBOTS)
+    assert "wrist singularity" in text and "elbow singularity" in text
+    assert "right arm, elbow down, wrist not flipped" in text  # the PUMA 560's 8 solutions
+    assert "elbow up" in text and "wrist flipped" in text
+    assert "atan2" in text
 
 
 @pytest.mark.tex

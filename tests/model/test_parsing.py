@@ -545,3 +545,10 @@ def test_literal_hook_sees_every_number_outside_exponents() -> None:
     value = parse_expression("0.7071*x^2 + 1.5°", literal=hook, textbook=True)
     assert seen == [("0.7071", sympy.Rational(7071, 10000)), ("1.5", sympy.Rational(3, 2))]
     assert value == symbol("n1") * x**2 + symbol("n2") * sympy.pi / 180
+
+
+def test_inverse_functions_for_inverse_kinematics_answers():
+    x, y = sympy.symbols("x y", real=True)
+    assert parse_expression("atan(y/x) + arctan(1)") == sympy.atan(y / x) + sympy.pi / 4
+    assert parse_expression("acos(x) - arcsin(x)") == sympy.acos(x) - sympy.asin(x)
+    assert parse_expression("atan y", textbook=True) == sympy.atan(y)

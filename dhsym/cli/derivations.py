@@ -1,0 +1,184 @@
+"""``dhsym derive --what jacobian|singularities|ik --format json``: the derivations as JSON.
+
+Each object has ``schema``, ``dhsym`` (version), ``robot``, ``convention``, ``what`` and
+``variables``; every formula comes three ways: ``compact`` (C/S notation), ``full``
+(cos/sin, ``atan2``, ``sqrt``: readable back by the parser) and ``latex``. The README
+documents the fields.
+
+Examples
+--------
+>>> from dhsym import load
+>>> d = jacobian_json(load("planar2r"))
+>>> d["what"], d["compact"][0], d["columns"][1]["axis"]
+('jacobian', ['-a1*S1 - a2*S12', '-a2*S12'], ['0', '0', '1'])
+>>> s = singularities_json(load("planar2r"))
+>>> s["measure"], s["determinant"]["compact"], [f["kind"] for f in s["factors"]]
+('det J_v', 'a1*a2*S2', ['constant', 'constant', 'elbow'])
+>>> ik = ik_json(load("planar2r"))
+>>> ik["count"], ik["steps"][-1]["lhs"], ik["steps"][-1]["rhs"]["full"]
+(2, 'theta1', 'atan2(p_y, p_x) - atan2(a2*sin(theta2), a1 + a2*cos(theta2))')
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from dhsym import __version__
+from dhsym.kinematics.jacobian import geometric_jacobian
+from dhsym.kinematics.robot import Robot
+from dhsym.kinematics.singularities import singularities
+from dhsym.notation.printers import Notation
+
+__all__ = [
+    "JSON_SCHEMA_VERSION",
+    "derivation_json",
+    "ik_json",
+    "jacobian_json",
+    "singularities_json",
+]
+
+JSON_SCHEMA_VERSION = 1
+
+
+def _formula(robot: Robot, expr: object) -> dict[str, str]:
+    """One formula three ways: compact, full (parser-readable) and LaTeX."""
+    full = Notation(robot.notation.labels, compact=False)
+    return {
+        "compact": robot.notation.text(expr),
+        "full": full.text(expr),
+        "latex": robot.notation.latex(expr),
+    }
+
+
+def _head(robot: Robot, what: str) -> dict[str, object]:
+    return {
+        "schema": JSON_SCHEMA_VERSION,
+        "dhsym": __version__,
+        "robot": robot.name,
+        "convention": robot.convention.value,
+        "what": what,
+        "variables": [str(v) for v in robot.variables],
+    }
+
+
+def _grid(fn: object, M: sp.MatrixBase) -> list[list[str]]:
+    return [[fn(M[r, c]) for c in range(M.cols)] for r in range(M.rows)]  # type: ignore[operator]
+
+
+def _legend(robot: Robot, exprs: list[sp.Expr]) -> list[dict[str, str]]:
+    return [{"abbrev": e.text, "meaning": e.meaning_text} for e in robot.notation.legend(exprs)]
+
+
+def jacobian_json(
+    robot: Robot, frame: int | str = "base", point: int | str = "tool"
+) -> dict[str, object]:
+    """The geometric Jacobian: ``frame``, ``point``, ``columns`` (each ``index``, ``joint``,
+    ``variable``, ``axis_frame``, ``axis``, ``lever`` (null for a prismatic joint),
+    ``column``), ``compact``/``matrix``/``latex`` (6×n) and ``legend``."""
+    J = geometric_jacobian(robot, frame, point)
+    full = Notation(robot.notation.labels, compact=False)
+    text = robot.notation.text
+    columns = [
+        {
+            "index": i,
+            "joint": c.joint.value,
+            "variable": str(c.variable),
+            "axis_frame": c.axis_frame,
+            "axis": [text(x) for x in c.axis],
+            "lever": [text(x) for x in c.lever] if c.joint.value == "R" else None,
+            "column": [text(x) for x in (*c.linear, *c.angular)],
+        }
+        for i, c in enumerate(J.columns, start=1)
+    ]
+    return {
+        **_head(robot, "jacobian"),
+        "frame": J.frame,
+        "point": J.point,
+        "columns": columns,
+        "compact": _grid(text, J.matrix),
+        "matrix": _grid(full.text, J.matrix),
+        "latex": _grid(robot.notation.latex, J.matrix),
+        "legend": _legend(robot, list(J.matrix)),
+    }
+
+
+def singularities_json(robot: Robot) -> dict[str, object]:
+    """The factored determinant: ``measure``, ``method``, ``determinant`` (a formula),
+    ``blocks`` (``name``, ``frame``, ``determinant``) and ``factors`` (``kind``, ``name``,
+    ``description``, ``factor``, ``power``, ``zeros``: ``[{variable, value}]``)."""
+    s = singularities(robot)
+    return {
+        **_head(robot, "singularities"),
+        "measure": s.measure,
+        "method": s.method,
+        "determinant": _formula(robot, s.determinant),
+        "blocks": [
+            {"name": b.name, "frame": b.frame, "determinant": _formula(robot, b.determinant)}
+            for b in s.blocks
+        ],
+        "factors": [
+            {
+                "kind": f.kind,
+                "name": f.name,
+                "description": f.description,
+                "factor": _formula(robot, f.expr),
+                "power": f.power,
+                "zeros": [
+                    {"variable": str(v), "value": _formula(robot, z)} for v, z in f.solutions
+                ],
+            }
+            for f in s.factors
+        ],
+        "legend": _legend(robot, [s.determinant]),
+    }
+
+
+def ik_json(robot: Robot) -> dict[str, object]:
+    """The closed-form inverse kinematics: ``structure``, ``pose`` (the 4×4 pose symbols),
+    ``branches`` (``symbol``, ``role``, ``joint``, ``meaning``), ``count`` and ``steps``
+    (``part``, ``sentence``, ``lhs``, ``rhs``, ``equation`` (``{lhs, rhs}`` or null),
+    ``branch`` (the sign it introduces, or null), ``singular`` (or null))."""
+    ik = robot.inverse()
+    steps = []
+    for st in ik.steps:
+        steps.append(
+            {
+                "part": st.part,
+                "sentence": st.sentence.text(robot.notation),
+                "lhs": str(st.lhs),
+                "rhs": _formula(robot, st.rhs),
+                "equation": (
+                    {
+                        "lhs": _formula(robot, st.equation.lhs),
+                        "rhs": _formula(robot, st.equation.rhs),
+                    }
+                    if st.equation is not None
+                    else None
+                ),
+                "branch": str(st.branch.symbol) if st.branch is not None else None,
+                "singular": _formula(robot, st.singular) if st.singular is not None else None,
+            }
+        )
+    return {
+        **_head(robot, "ik"),
+        "structure": ik.structure,
+        "pose": [[str(x) for x in row] for row in ik.pose.tolist()],
+        "branches": [
+            {
+                "symbol": str(b.symbol),
+                "role": b.role,
+                "joint": b.joint,
+                "meaning": b.sentence.text(robot.notation),
+            }
+            for b in ik.branches
+        ],
+        "count": ik.count,
+        "steps": steps,
+        "legend": _legend(robot, [st.rhs for st in ik.steps]),
+    }
+
+
+def derivation_json(robot: Robot, what: str) -> dict[str, object]:
+    """The JSON of ``what`` (``jacobian``, ``singularities`` or ``ik``)."""
+    build = {"jacobian": jacobian_json, "singularities": singularities_json, "ik": ik_json}
+    return build[what](robot)  # type: ignore[operator]
