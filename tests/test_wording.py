@@ -25,19 +25,24 @@ from dhsym.explain.rendering import render
 
 ROOT = Path(__file__).resolve().parent.parent
 HW = ROOT / "examples" / "homework"
-INTERNAL = re.compile(r"seeds?[ _-]?0\d", re.IGNORECASE)
+# "seed 002", "Seed_001", "seeds 000 and 004", also broken across a line ("seed\n002")
+INTERNAL = re.compile(r"seeds?[\s_-]*0\d", re.IGNORECASE)
 ROBOTS = [*dhsym.builtin_names(), "planar3r"]
 
 
 def internal_words(text: str) -> list[str]:
-    """The lines of ``text`` that speak of seeds."""
-    return [line.strip() for line in text.splitlines() if INTERNAL.search(line)]
+    """The places in ``text`` that speak of seeds (a little context around each)."""
+    return [
+        " ".join(text[max(m.start() - 30, 0) : m.end() + 10].split())
+        for m in INTERNAL.finditer(text)
+    ]
 
 
 def test_the_pattern_finds_what_it_must():
     assert internal_words("one slide of Seed 002 prints\nfine\nseeds 000 and 004, SEED001")
     assert len(internal_words("Seed 001 (x)\nseed_002\nseeds 003")) == 3
     assert not internal_words("the lectures (Ghosal, Lecture 5; Mohan, Lecture 9), seedling")
+    assert internal_words("one slide of seed\n002 prints")
 
 
 @pytest.fixture(scope="module")
@@ -149,11 +154,6 @@ def test_sources_docstrings_templates_examples_and_readme():
     assert {k: v for k, v in found.items() if v} == {}
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="the notebooks are being converted to text sources, with their wording fixed, "
-    "on another branch; until that is merged their committed text still says 'seed 00x'",
-)
 def test_notebooks_read_from_disk():
     notebooks = sorted((ROOT / "notebooks").glob("*.ipynb"))
     assert notebooks
