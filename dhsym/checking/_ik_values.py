@@ -1,7 +1,7 @@
 """The closed-form inverse kinematics in numbers, at many poses at once, for the checker.
 
 A *pose sample* draws configurations (and, for a symbolic answer, lengths) and computes
-their poses ``^0T_n`` with the checker's own evaluator (:mod:`dhsym.checking._numeric`);
+their poses ``^0T_n`` with the numeric kernel's tree walker (:mod:`dhsym.kinematics.numeric`);
 the pose symbols ``n_x … p_z`` of the derivation get those values. :func:`key_values`
 evaluates the derivation's steps there for every choice of the branch signs ``σ = ±1``,
 optionally rewritten (a mistake recomputed: ``atan`` for ``atan2``, a sign under a root).

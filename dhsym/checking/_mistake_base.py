@@ -23,11 +23,11 @@ from typing import Any, ClassVar
 import numpy as np
 import sympy as sp
 
-from dhsym.kinematics.transforms import link_word
+from dhsym.kinematics.numeric import word_product
+from dhsym.kinematics.transforms import inverse_word, link_word
 from dhsym.model.table import AngleUnit, Convention, DHRow, DHTable
 from dhsym.notation.printers import Notation, format_angle
 
-from ._numeric import word_product
 from .equivalence import Sample, close
 from .tables import Chain, same_cells
 from .verdict import Diagnosis
@@ -63,6 +63,12 @@ class MatrixCase:
         self, rows: tuple[DHRow, ...], convention: Convention, reverse: str = ""
     ) -> np.ndarray:
         """Values of ``^frm T_to`` of ``rows`` at the sample (``reverse``: links or factors)."""
+        return self.project(self.full_values(rows, convention, reverse))
+
+    def full_values(
+        self, rows: tuple[DHRow, ...], convention: Convention, reverse: str = ""
+    ) -> np.ndarray:
+        """Values of the whole 4×4 ``^frm T_to`` (also for entry questions)."""
         lo, hi = sorted((self.frm, self.to))
         links = [list(link_word(rows[k - 1], convention)) for k in range(lo + 1, hi + 1)]
         if reverse == "links":
@@ -71,8 +77,8 @@ class MatrixCase:
         if reverse == "factors":
             word = word[::-1]
         if self.frm > self.to:
-            word = [e.inverse() for e in reversed(word)]
-        return self.project(word_product(word, self.sample.env, self.sample.size))
+            word = inverse_word(word)
+        return word_product(word, self.sample.env, self.sample.size)
 
     def project(self, full: np.ndarray) -> np.ndarray:
         """Cut full 4×4 values down to the asked entry (if any)."""

@@ -1,7 +1,7 @@
 """Are two expressions equal? An exact proof when affordable, numbers at fresh random points.
 
 :class:`Sample` holds random values for a set of symbols; :func:`values` evaluates
-an expression or matrix at all of them at once (:mod:`dhsym.checking._numeric`).
+an expression or matrix at all of them at once (:mod:`dhsym.kinematics.numeric`).
 Entries that agree numerically are confirmed with
 :func:`dhsym.kinematics.simplification.prove_equal` under a time limit, after
 :func:`~dhsym.checking._limits.expansion_terms` has shown the proof is affordable;
@@ -98,7 +98,7 @@ class Sample:
 
     @property
     def env(self) -> dict[sp.Symbol, np.ndarray]:
-        """Symbol → values, for :func:`dhsym.checking._numeric.evaluate`."""
+        """Symbol → values, for :func:`dhsym.kinematics.numeric.evaluate`."""
         return dict(zip(self.symbols, self.table))
 
     @classmethod

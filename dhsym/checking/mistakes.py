@@ -4,7 +4,7 @@ A :class:`Mistake` takes the key (its table rows, the frames asked, the random
 sample) and produces *variants*: what a student who made that mistake would have
 written.  When the student's wrong entries (or wrong table) equal a variant, the
 mistake is the diagnosis.  Matrix variants are numbers at the sample points
-(:func:`dhsym.checking._numeric.word_product` of the core's link words); table
+(:func:`dhsym.kinematics.numeric.word_product` of the core's link words); table
 variants are tables compared cell by cell or as robots
 (:func:`dhsym.checking.tables.compare_tables`).
 
@@ -29,7 +29,6 @@ from dataclasses import replace
 
 import numpy as np
 
-from dhsym.kinematics.transforms import link_word
 from dhsym.model.table import Convention
 
 from ._entry_mistakes import SinCosSwapped, WrongSign
@@ -44,7 +43,6 @@ from ._jacobian_mistakes import (
     ToolFrame,
 )
 from ._mistake_base import MatrixCase, Mistake, TableCase
-from ._numeric import word_product
 from ._row_mistakes import DegreesAsRadians, IndexShift, OffsetMissing, SingleWrongRow
 from .tables import Chain, compare_tables
 from .verdict import Diagnosis
@@ -114,11 +112,7 @@ class Transposed(Mistake):
 
 def _full(case: MatrixCase) -> np.ndarray:
     """Values of the full 4×4 key matrix at the sample (also for entry questions)."""
-    lo, hi = sorted((case.frm, case.to))
-    word = [e for k in range(lo + 1, hi + 1) for e in link_word(case.rows[k - 1], case.convention)]
-    if case.frm > case.to:
-        word = [e.inverse() for e in reversed(word)]
-    return word_product(word, case.sample.env, case.sample.size)
+    return case.full_values(case.rows, case.convention)
 
 
 class ReverseOrder(Mistake):

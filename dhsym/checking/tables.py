@@ -7,7 +7,7 @@ variable changes sign), x0 chosen differently or frame 0 moved along z0 (a
 constant base transform about/along z0), another common normal between parallel
 axes (d values shift), and another tool frame when the question allows it.
 
-The check is numeric (:mod:`dhsym.checking._numeric`, the core's link words):
+The check is numeric (:mod:`dhsym.kinematics.numeric`, the core's link words):
 frame 0 of the answer is matched to the key's from the joint axes at the zero
 configuration, then joint by joint at random configurations the axes are
 compared and each joint's sign found; the first joint whose axis is elsewhere is
@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
+from dhsym.kinematics.numeric import elementary_stack, numeric_rigid_inverse
 from dhsym.model.table import Convention, DHRow, DHTable, JointType
 
 from ._numeric import EvaluationError, evaluate, frames
@@ -150,19 +151,13 @@ def _axes(F: np.ndarray, chain: Chain, joints: list) -> tuple[np.ndarray, np.nda
     return G[..., :3, 3], G[..., :3, 2]
 
 
-def _inv(T: np.ndarray) -> np.ndarray:
-    out = np.zeros_like(T)
-    R = np.swapaxes(T[..., :3, :3], -1, -2)
-    out[..., :3, :3] = R
-    out[..., :3, 3] = -(R @ T[..., :3, 3, None])[..., 0]
-    out[..., 3, 3] = 1.0
-    return out
-
-
 def _rz_tz(phi: float, t: float, flip: bool) -> np.ndarray:
-    c, s = math.cos(phi), math.sin(phi)
-    M = np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, t], [0, 0, 0, 1.0]])
-    return M @ np.diag([1.0, -1.0, -1.0, 1.0]) if flip else M
+    """``Rz(phi) Tz(t)``, followed by a half turn about x when ``flip``."""
+    word = [("R", "z", phi), ("T", "z", t)] + ([("R", "x", math.pi)] if flip else [])
+    out = np.eye(4)
+    for kind, axis, value in word:
+        out = out @ elementary_stack(kind, axis, [value])[0]
+    return out
 
 
 def _normalizer(p: np.ndarray, u: np.ndarray) -> np.ndarray:
@@ -193,11 +188,11 @@ def _foot(p: np.ndarray, u: np.ndarray) -> tuple[float, np.ndarray] | None:
 
 def _candidates(Fk: np.ndarray, Fa: np.ndarray, key: Chain, ans: Chain, jk: list, ja: list):
     """Base transforms worth trying: from the tool at zero, then from the axes at zero."""
-    yield Fa[0, -1] @ _inv(Fk[0, -1])
+    yield Fa[0, -1] @ numeric_rigid_inverse(Fk[0, -1])
     Pk, Uk = _axes(Fk[:1], key, jk)
     Pa, Ua = _axes(Fa[:1], ans, ja)
     Nk, Na = _normalizer(Pk[0, 0], Uk[0, 0]), _normalizer(Pa[0, 0], Ua[0, 0])
-    iNk, iNa = _inv(Nk), _inv(Na)
+    iNk, iNa = numeric_rigid_inverse(Nk), numeric_rigid_inverse(Na)
     for flip in (False, True):
         F = _rz_tz(0.0, 0.0, flip)
         phis: list[float] = []
@@ -247,7 +242,7 @@ def _verify(B, key, ans, jk, ja, Fk, env_a, size, tol):
             Fa = frames(ans, env_a(signs), size)
         elif (dots < 0).any():
             return k, signs, dirs, None
-    E = _inv(B @ Fk[:, -1]) @ Fa[:, -1]
+    E = numeric_rigid_inverse(B @ Fk[:, -1]) @ Fa[:, -1]
     if (np.abs(E - E[0]) > tol).any():
         return len(ja), signs, dirs, None
     return len(ja), signs, dirs, E[0]

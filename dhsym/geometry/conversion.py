@@ -45,8 +45,8 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError, TableError
-from dhsym.kinematics.numeric import compile_word, to_float
-from dhsym.kinematics.transforms import chain_word
+from dhsym.kinematics.numeric import compile_word, elementary_stack, to_float
+from dhsym.kinematics.transforms import chain_word, elementary_matrix
 from dhsym.model.table import Convention, DHRow, DHTable, Elementary
 
 __all__ = [
@@ -257,13 +257,11 @@ def check_conversion(
 
 
 def _rot(axis: int, angle: object, exact: bool = True) -> object:
-    """3×3 rotation about x/y/z: exact (sympy) or numeric (numpy)."""
-    cos, sin = (sp.cos, sp.sin) if exact else (np.cos, np.sin)
-    c, s = cos(angle), sin(angle)
-    j, k = (axis + 1) % 3, (axis + 2) % 3
-    M = sp.eye(3) if exact else np.eye(3)
-    M[j, j], M[j, k], M[k, j], M[k, k] = c, -s, s, c
-    return M
+    """3×3 rotation about x/y/z: exact (sympy) or numeric (numpy), from the one kernel."""
+    name = "xyz"[axis]
+    if exact:
+        return elementary_matrix(Elementary("R", name, angle))[:3, :3]
+    return elementary_stack("R", name, [angle])[0, :3, :3]
 
 
 def _same(A: object, B: object, exact: bool) -> bool:

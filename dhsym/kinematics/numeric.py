@@ -16,7 +16,15 @@ and conversion) goes through this module:
   numpy path for a batch ``(N, n)`` → ``(N, 4, 4)``;
 * :func:`compile_word` multiplies a word of elementary transforms numerically
   (no symbolic product at all: the check of a 10-joint conversion takes
-  milliseconds whatever its twists).
+  milliseconds whatever its twists);
+* :func:`evaluate` walks one expression at many points at once, without code
+  generation (the checker's one-off expressions: a student's answer at 64 random
+  points), its constants through :func:`to_float`; :func:`word_product` is the same
+  for a word of elementary transforms;
+* :func:`elementary_stack` is the numeric twin of
+  :func:`~dhsym.kinematics.transforms.elementary_matrix` (the word is shared: words
+  come from :mod:`dhsym.kinematics.transforms`), and :func:`numeric_rigid_inverse`
+  the twin of :func:`~dhsym.kinematics.transforms.rigid_inverse`.
 
 Examples
 --------
@@ -45,13 +53,18 @@ import sympy as sp
 from dhsym.errors import DHError
 
 __all__ = [
+    "EvaluationError",
     "PoseFunction",
     "compile_exprs",
     "compile_matrix",
     "compile_pose",
     "compile_word",
+    "elementary_stack",
+    "evaluate",
     "float_constants",
+    "numeric_rigid_inverse",
     "to_float",
+    "word_product",
 ]
 
 FkFunction = Callable[[object], np.ndarray]
@@ -80,19 +93,26 @@ def to_float(expr: object) -> float:
     Traceback (most recent call last):
     ...
     dhsym.errors.DHError: the number 1000000000000...0000000000000 is too large for a float
+    >>> to_float(sp.zoo)
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: zoo is not a real number
     """
-    if isinstance(expr, (int, float)) and not isinstance(expr, bool):
-        value = float(expr)
+    if isinstance(expr, float):
+        value = expr
     else:
         e = _basic(expr)
         if e.free_symbols:
             raise DHError(f"no numeric value for {', '.join(sorted(map(str, e.free_symbols)))}")
         if e.is_Rational:
             value = _rational_float(e)
+        elif e.is_Float:
+            value = float(e)
         else:
             v = sp.N(e, _DIGITS)
             re, im = v.as_real_imag()
-            if not (re.is_Number and im.is_Number) or abs(im) > abs(re) * 1e-20 + 1e-40:
+            real = re.is_Number and im.is_Number and sp.nan not in (re, im)
+            if not real or abs(im) > abs(re) * 1e-20 + 1e-40:  # below the 30 digits: round-off
                 raise DHError(f"{_short(e)} is not a real number")
             value = float(re) if re.is_finite else math.inf
     if not math.isfinite(value):
@@ -226,11 +246,7 @@ class PoseFunction:
 
     def batch(self, q: np.ndarray) -> np.ndarray:
         """A batch ``(N, n)`` → ``(N, 4, 4)`` (one configuration ``(n,)`` → ``(4, 4)``)."""
-        arr = np.asarray(q, dtype=float)
-        single = arr.ndim <= 1
-        Q = arr.reshape(1, -1) if single else arr
-        if Q.shape[-1] != self.n:
-            raise DHError(f"expected {self.n} joint values per configuration, got {Q.shape[-1]}")
+        Q, single = _configurations(q, self.n)
         N = Q.shape[0]
         out = np.empty((N, 4, 4))
         flat = out.reshape(N, 16)
@@ -277,21 +293,6 @@ def compile_pose(
     return PoseFunction(single, batch, len(variables))
 
 
-def _elementary_stack(kind: str, axis: str, value: np.ndarray) -> np.ndarray:
-    """The (N, 4, 4) matrices of one elementary transform at N values."""
-    out = np.zeros((value.shape[0], 4, 4))
-    out[:, 0, 0] = out[:, 1, 1] = out[:, 2, 2] = out[:, 3, 3] = 1.0
-    i = "xyz".index(axis)
-    if kind == "T":
-        out[:, i, 3] = value
-        return out
-    j, k = (i + 1) % 3, (i + 2) % 3
-    c, s = np.cos(value), np.sin(value)
-    out[:, j, j] = out[:, k, k] = c
-    out[:, j, k], out[:, k, j] = -s, s
-    return out
-
-
 def compile_word(
     word: Sequence[object],
     variables: Sequence[sp.Symbol],
@@ -318,22 +319,14 @@ def compile_word(
     """
     vals = dict(values or {})
     variables = tuple(variables)
+    word = tuple(word)
     exprs = [e.value.subs(vals) for e in word]  # type: ignore[attr-defined]
     fn = compile_exprs(exprs, variables)
     n = len(variables)
 
     def product(q: object) -> np.ndarray:
-        arr = np.asarray(q, dtype=float)
-        single = arr.ndim <= 1
-        Q = arr.reshape(1, -1) if single else arr
-        if Q.shape[-1] != n:
-            raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
-        N = Q.shape[0]
-        out = [np.broadcast_to(np.eye(4), (N, 4, 4))]
-        for e, v in zip(word, fn(*Q.T), strict=True):
-            factor = _elementary_stack(e.kind, e.axis, np.broadcast_to(v, (N,)))  # type: ignore[attr-defined]
-            out.append(out[-1] @ factor)
-        result = np.stack(out, axis=1) if prefixes else out[-1]
+        Q, single = _configurations(q, n)
+        result = _multiply(word, fn(*Q.T), Q.shape[0], prefixes)
         return result[0] if single else result
 
     return product
@@ -363,11 +356,7 @@ def compile_matrix(
     n = len(variables)
 
     def evaluate(q: object) -> np.ndarray:
-        arr = np.asarray(q, dtype=float)
-        single = arr.ndim <= 1
-        Q = arr.reshape(1, -1) if single else arr
-        if Q.shape[-1] != n:
-            raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
+        Q, single = _configurations(q, n)
         N = Q.shape[0]
         flat = np.empty((N, rows * cols))
         for start in range(0, N, _CHUNK):
@@ -379,3 +368,206 @@ def compile_matrix(
         return out[0] if single else out
 
     return evaluate
+
+
+def _configurations(q: object, n: int) -> tuple[np.ndarray, bool]:
+    """Joint values as a batch ``(N, n)``, and whether one configuration ``(n,)`` was given."""
+    arr = np.asarray(q, dtype=float)
+    single = arr.ndim <= 1
+    Q = arr.reshape(1, -1) if single else arr
+    if Q.shape[-1] != n:
+        raise DHError(f"expected {n} joint values per configuration, got {Q.shape[-1]}")
+    return Q, single
+
+
+# --- the numeric twin of the transform kernel ---------------------------------------------
+
+
+def elementary_stack(kind: str, axis: str, value: object) -> np.ndarray:
+    """The ``(N, 4, 4)`` matrices of one elementary transform at ``N`` values.
+
+    The numeric twin of :func:`~dhsym.kinematics.transforms.elementary_matrix`
+    (``kind`` ``"R"`` or ``"T"``, ``axis`` ``"x"``, ``"y"`` or ``"z"``).
+
+    >>> elementary_stack("R", "z", [np.pi / 2])[0].round(12) + 0.0
+    array([[ 0., -1.,  0.,  0.],
+           [ 1.,  0.,  0.,  0.],
+           [ 0.,  0.,  1.,  0.],
+           [ 0.,  0.,  0.,  1.]])
+    >>> elementary_stack("T", "x", np.array([2.0, 3.0]))[:, 0, 3]
+    array([2., 3.])
+    """
+    value = np.asarray(value, dtype=float)
+    out = np.zeros((value.shape[0], 4, 4))
+    out[:, 0, 0] = out[:, 1, 1] = out[:, 2, 2] = out[:, 3, 3] = 1.0
+    i = "xyz".index(axis)
+    if kind == "T":
+        out[:, i, 3] = value
+        return out
+    j, k = (i + 1) % 3, (i + 2) % 3
+    c, s = np.cos(value), np.sin(value)
+    out[:, j, j] = out[:, k, k] = c
+    out[:, j, k], out[:, k, j] = -s, s
+    return out
+
+
+def _multiply(word: Sequence[object], values: Sequence[object], size: int, prefixes: bool):
+    """The product of ``word`` (``(size, 4, 4)``; with ``prefixes`` every partial product,
+    ``(size, len(word) + 1, 4, 4)``, the identity first) given each factor's values.
+
+    A factor whose exact value is zero is the identity and is not multiplied.
+    """
+    out = [np.broadcast_to(np.eye(4), (size, 4, 4))]
+    for e, v in zip(word, values, strict=True):
+        if e.value == 0:  # type: ignore[attr-defined]
+            out.append(out[-1])
+            continue
+        factor = elementary_stack(e.kind, e.axis, np.broadcast_to(v, (size,)))  # type: ignore[attr-defined]
+        out.append(out[-1] @ factor)
+    return np.stack(out, axis=1) if prefixes else np.array(out[-1])
+
+
+def word_product(
+    word: Sequence[object],
+    env: Mapping[sp.Basic, np.ndarray],
+    size: int,
+    *,
+    prefixes: bool = False,
+    memo: dict | None = None,
+) -> np.ndarray:
+    """The product of a word of elementary transforms at ``size`` points: ``(size, 4, 4)``.
+
+    ``env`` maps each symbol to its values (:func:`evaluate`); with ``prefixes`` every
+    partial product is returned, ``(size, len(word) + 1, 4, 4)``, the identity first;
+    ``memo`` is :func:`evaluate`'s, shared by words with the same ``env``. For one-off
+    words (no code generation); :func:`compile_word` compiles a word used often.
+
+    >>> from dhsym.model.table import Elementary as E
+    >>> t = sp.Symbol("t")
+    >>> M = word_product([E("R", "z", t), E("T", "x", 2)], {t: np.array([0.0, np.pi / 2])}, 2)
+    >>> np.round(M[:, :2, 3], 12) + 0.0
+    array([[2., 0.],
+           [0., 2.]])
+    """
+    memo = {} if memo is None else memo
+    values = [evaluate(e.value, env, size, memo) for e in word]  # type: ignore[attr-defined]
+    return _multiply(word, values, size, prefixes)
+
+
+def numeric_rigid_inverse(T: np.ndarray) -> np.ndarray:
+    """Inverse of homogeneous transforms ``(..., 4, 4)`` as ``[Rᵀ, −Rᵀp; 0 0 0 1]``.
+
+    The numeric twin of :func:`~dhsym.kinematics.transforms.rigid_inverse`.
+
+    >>> T = elementary_stack("R", "z", [0.3]) @ elementary_stack("T", "x", [2.0])
+    >>> np.allclose(numeric_rigid_inverse(T) @ T, np.eye(4))
+    True
+    """
+    T = np.asarray(T, dtype=float)
+    out = np.zeros_like(T)
+    R = np.swapaxes(T[..., :3, :3], -1, -2)
+    out[..., :3, :3] = R
+    out[..., :3, 3] = -(R @ T[..., :3, 3, None])[..., 0]
+    out[..., 3, 3] = 1.0
+    return out
+
+
+# --- one-off expressions at many points ----------------------------------------------------
+
+
+class EvaluationError(DHError, ValueError):
+    """An expression that has no numeric value: an unknown function, a symbol without
+    values, a constant that is not a real float (``zoo``, ``10**400``)."""
+
+
+_UNARY = {sp.sin: np.sin, sp.cos: np.cos, sp.tan: np.tan}
+_UNARY |= {sp.atan: np.arctan, sp.asin: np.arcsin, sp.acos: np.arccos}
+_CONSTANT = object()  # the walker's mark of a subtree without symbols
+
+
+def evaluate(
+    expr: sp.Basic, env: Mapping[sp.Basic, np.ndarray], size: int, memo: dict | None = None
+) -> np.ndarray:
+    """Values of ``expr`` at ``size`` points (``(size,)``); ``env`` maps each symbol to its values.
+
+    A tree walker (no code generation, no ``lambdify``): each node is one numpy
+    operation over all points, shared subtrees are computed once, and every subtree
+    without symbols is one constant evaluated exactly by :func:`to_float` (huge
+    integers, nested roots). Non-finite results (division by zero, overflow at a
+    point) come out as ``nan``/``inf``; an expression without a value raises
+    :class:`EvaluationError`. ``memo`` (subtree → values) may be shared by calls with
+    the same ``env`` (the entries of one matrix).
+
+    >>> x = sp.Symbol("x")
+    >>> evaluate(sp.cos(x) ** 2 + sp.sin(x) ** 2, {x: np.array([0.3, 1.2])}, 2)
+    array([1., 1.])
+    >>> evaluate(x * sp.sqrt(sp.Integer(10) ** 40 + 1) / 10**20, {x: np.array([2.0])}, 1)
+    array([2.])
+    """
+    memo = {} if memo is None else memo
+    try:
+        with np.errstate(all="ignore"):
+            out = _walk(expr, env, memo)
+            if out is _CONSTANT:
+                out = _constant(expr, memo)
+    except (OverflowError, ZeroDivisionError) as err:  # e.g. x**(10**400)
+        raise EvaluationError(f"cannot evaluate numerically ({type(err).__name__})") from None
+    return np.broadcast_to(np.asarray(out, dtype=float), (size,)).copy()
+
+
+def _constant(e: sp.Basic, memo: dict) -> np.ndarray:
+    key = ("constant", e)
+    hit = memo.get(key)
+    if hit is None:
+        try:
+            hit = memo[key] = np.asarray(to_float(e))
+        except DHError as err:
+            raise EvaluationError(err.message) from None
+    return hit
+
+
+def _walk(e: sp.Basic, env: Mapping, memo: dict) -> object:
+    """Values of ``e`` at every point, or :data:`_CONSTANT` for a subtree without symbols."""
+    hit = memo.get(e)
+    if hit is not None:
+        return hit
+    if e.is_Symbol:
+        if e not in env:
+            raise EvaluationError(f"no value for symbol {e}")
+        memo[e] = val = np.asarray(env[e], dtype=float)
+        return val
+    if not e.args:  # a number, pi, I, zoo, ...
+        return _CONSTANT
+    parts = [_walk(a, env, memo) for a in e.args]
+    if all(p is _CONSTANT for p in parts):
+        return _CONSTANT
+    if e.is_Pow and parts[1] is _CONSTANT and e.exp.is_Integer:
+        base, k = parts[0], int(e.exp)
+        val = base**k if k >= 0 else 1.0 / base ** (-k)
+    elif e.is_Pow and parts[1] is _CONSTANT and e.exp == sp.S.Half:
+        val = np.sqrt(parts[0])
+    else:
+        args = [_constant(a, memo) if p is _CONSTANT else p for a, p in zip(e.args, parts)]
+        val = _apply(e, args)
+    memo[e] = val
+    return val
+
+
+def _apply(e: sp.Basic, args: list) -> object:
+    if e.is_Add:
+        val = args[0]
+        for a in args[1:]:
+            val = val + a
+        return val
+    if e.is_Mul:
+        val = args[0]
+        for a in args[1:]:
+            val = val * a
+        return val
+    if e.is_Pow:
+        return np.power(args[0], args[1])
+    if type(e) in _UNARY:
+        return _UNARY[type(e)](args[0])
+    if isinstance(e, sp.atan2):
+        return np.arctan2(args[0], args[1])
+    raise EvaluationError(f"cannot evaluate {type(e).__name__} numerically")

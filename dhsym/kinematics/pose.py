@@ -284,10 +284,10 @@ class Pose(_Matrix):  # type: ignore[misc]
         matrix inverse is computed.)
         """
         from .simplification import compose
-        from .transforms import rigid_inverse
+        from .transforms import inverse_word, rigid_inverse
 
         if self.word is not None:
-            word = tuple(e.inverse() for e in reversed(self.word))
+            word = inverse_word(self.word)
             return Pose(compose(word), self.to, self.frm, self.notation, self.symbol, word)
         return Pose(
             _tidy(rigid_inverse(self._plain)), self.to, self.frm, self.notation, self.symbol

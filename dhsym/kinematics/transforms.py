@@ -186,6 +186,15 @@ def link_matrix(row: DHRow, convention: Convention) -> Matrix:
     return plain_product(link_word(row, convention))
 
 
+def inverse_word(word: Sequence[Elementary]) -> tuple[Elementary, ...]:
+    """The word of the inverse transform: the factors reversed, each inverted.
+
+    >>> inverse_word((Elementary("R", "z", sp.Symbol("q")), Elementary("T", "x", 2)))
+    (Tx(-2), Rz(-q))
+    """
+    return tuple(e.inverse() for e in reversed(word))
+
+
 def chain_word(table: DHTable, i: int, j: int) -> tuple[Elementary, ...]:
     """The elementary word of ``^iT_j`` between DH frames ``i`` and ``j`` (0 … n).
 
@@ -203,7 +212,7 @@ def chain_word(table: DHTable, i: int, j: int) -> tuple[Elementary, ...]:
     if not (-1 <= i <= n + 1 and -1 <= j <= n + 1):
         raise IndexError(f"frames are numbered -1 (world) … {n + 1} (tool); got {i}, {j}")
     if j < i:
-        return tuple(e.inverse() for e in reversed(chain_word(table, j, i)))
+        return inverse_word(chain_word(table, j, i))
     word: list[Elementary] = []
     if i == -1 and j >= 0:
         word.extend(table.base)
