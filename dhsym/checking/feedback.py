@@ -14,8 +14,6 @@ Examples
 ...                        [QuestionFeedback("q1", "T0_2", 2, 0, r)], fmt="html")
 >>> "<script>" in page, "&lt;script&gt;x&lt;/script&gt;" in page
 (False, True)
->>> md_escape("a_1 *b* <i>")
-'a\\_1 \\*b\\* &lt;i&gt;'
 """
 
 from __future__ import annotations
@@ -28,13 +26,13 @@ from pathlib import Path
 
 from dhsym.errors import DHError
 from dhsym.explain.templates import loader
+from dhsym.notation.escape import escape_markdown
 
 from .verdict import CheckResult
 
 __all__ = [
     "QuestionFeedback",
     "md_code",
-    "md_escape",
     "check_text",
     "md_math",
     "render_check",
@@ -43,8 +41,6 @@ __all__ = [
     "render_summary",
     "render_template",
 ]
-
-_MD_SPECIAL = re.compile(r"([\\`*_\[\]|~$])")
 
 
 @dataclass(frozen=True)
@@ -56,14 +52,6 @@ class QuestionFeedback:
     points: float
     score: float
     result: CheckResult | None
-
-
-def md_escape(text: object) -> str:
-    """Escape a string for Markdown inline text: ``\\ ` * _ [ ] | ~ $`` get a backslash,
-    ``< > &`` become entities (no HTML, links, emphasis or math can form)."""
-    s = str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-    s = _MD_SPECIAL.sub(r"\\\1", s)
-    return " ".join(s.splitlines())
 
 
 def md_code(text: object) -> str:
@@ -104,7 +92,7 @@ def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
         trim_blocks=False,
         keep_trailing_newline=True,
     )
-    env.filters["md"] = md_escape
+    env.filters["md"] = escape_markdown
     env.filters["code"] = md_code
     env.filters["mdmath"] = md_math
     env.filters["points"] = _points

@@ -20,7 +20,7 @@ Examples
 >>> print(escape_latex("Übung: α_1"))
 \"{U}bung: \ensuremath{\alpha}{\ttfamily\char95}1
 >>> print(escape_markdown("a_1 *b* <script>"))
-a\_1 \*b\* \<script\>
+a\_1 \*b\* &lt;script&gt;
 """
 
 from __future__ import annotations
@@ -214,16 +214,22 @@ def escape_latex(text: object) -> TeX:
     return TeX("".join(_char(ch) for ch in unicodedata.normalize("NFC", str(text))))
 
 
-_MD_SPECIAL = re.compile(r"([\\`*_\[\]<>#|$~{}!])")
+_MD_SPECIAL = re.compile(r"([\\`*_\[\]#|$~{}!])")
+_MD_ENTITIES = str.maketrans({"&": "&amp;", "<": "&lt;", ">": "&gt;"})
 
 
 def escape_markdown(text: object) -> str:
-    r"""Markdown that shows ``text`` literally (no emphasis, links, HTML or math).
+    r"""Markdown inline text that shows ``text`` literally (no emphasis, links, HTML or math).
 
-    >>> print(escape_markdown("a_1 *b* <script> $x$"))
-    a\_1 \*b\* \<script\> \$x\$
+    ``< > &`` become entities, the other Markdown specials get a backslash, control and
+    format characters (terminal escapes, bidi overrides) are dropped and line breaks
+    become spaces. The one Markdown escaper of dhsym (derivations, handouts, feedback).
+
+    >>> print(escape_markdown("a_1 *b* <script> $x$ [a](b)"))
+    a\_1 \*b\* &lt;script&gt; \$x\$ \[a\](b)
     """
-    return _MD_SPECIAL.sub(r"\\\1", _clean_text(text).replace("\n", " "))
+    s = _clean_text(text).translate(_MD_ENTITIES)
+    return " ".join(_MD_SPECIAL.sub(r"\\\1", s).splitlines())
 
 
 def _clean_text(text: object) -> str:

@@ -6,10 +6,10 @@ from dhsym.checking import Key, check_answer
 from dhsym.checking.feedback import (
     QuestionFeedback,
     md_code,
-    md_escape,
     render_check,
     render_feedback,
 )
+from dhsym.notation.escape import escape_markdown
 
 BAD = "[[C12, -S12, 0, a1*C1 - a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0, 0, 1, 0]]"
 
@@ -32,7 +32,7 @@ def test_html_escapes_names_and_answers():
 
 
 def test_markdown_helpers():
-    assert md_escape("[x](javascript:1) $\\input$") == "\\[x\\](javascript:1) \\$\\\\input\\$"
+    assert escape_markdown("[x](javascript:1) $\\input$") == "\\[x\\](javascript:1) \\$\\\\input\\$"
     assert md_code("a|b") == "`a\\|b`"
 
 

@@ -199,7 +199,7 @@ def test_user_strings_are_escaped_in_markdown_and_cleaned_in_text():
     robot = _hostile_robot("*bold* <script>alert(1)</script> $x$ [a](b)\x1b[31m")
     md = render_derivation(robot, fmt="markdown")
     assert md.splitlines()[0] == (
-        r"## \*bold\* \<script\>alert(1)\</script\> \$x\$ \[a\](b)\[31m: "
+        r"## \*bold\* &lt;script&gt;alert(1)&lt;/script&gt; \$x\$ \[a\](b)\[31m: "
         "forward kinematics (standard DH convention)"
     )
     text = render_derivation(robot, fmt="text")
