@@ -36,6 +36,7 @@ __all__ = [
     "STDOUT",
     "HelpFormatter",
     "add_command",
+    "add_notation_options",
     "emit",
     "emit_bytes",
     "load_robot",
@@ -84,6 +85,17 @@ def add_command(
         description=description or help[:1].upper() + help[1:] + ".",
         epilog=epilog,
         formatter_class=HelpFormatter,
+    )
+
+
+def add_notation_options(parser: argparse.ArgumentParser) -> None:
+    """``--full`` and ``--notation``: how cosines and sines are written (derive, handout)."""
+    parser.add_argument("--full", action="store_true", help="full cos/sin instead of C12/S12")
+    parser.add_argument(
+        "--notation",
+        choices=("C1", "c1", "c_theta"),
+        default="C1",
+        help="C1: C12, S23; c1: c12, s23 (Craig, Spong); c_theta: c_{θ12} in LaTeX",
     )
 
 

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from .common import STDOUT, add_command, emit, wrote
+from .common import STDOUT, add_command, add_notation_options, emit, wrote
 
 __all__ = ["register"]
 
@@ -98,13 +98,7 @@ def _register_handout(subparsers: argparse._SubParsersAction) -> None:
         metavar="DIR",
         help="folder of templates that override the built-in ones",
     )
-    h.add_argument("--full", action="store_true", help="full cos/sin instead of C12/S12")
-    h.add_argument(
-        "--notation",
-        choices=("C1", "c1", "c_theta"),
-        default="C1",
-        help="C1: C12, S23; c1: c12, s23 (Craig, Spong); c_theta: c_{θ12} in LaTeX",
-    )
+    add_notation_options(h)
     h.add_argument("--numeric", action="store_true", help="substitute the numeric lengths")
     h.add_argument(
         "--sections",

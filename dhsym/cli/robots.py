@@ -15,7 +15,7 @@ import json
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from .common import add_command, emit, load_robot, note_warnings
+from .common import add_command, add_notation_options, emit, load_robot, note_warnings
 
 if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
     from dhsym.kinematics.robot import Robot
@@ -225,13 +225,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     d.add_argument("--from", dest="frm", type=int, default=None, help="frame i of ^iT_j (0)")
     d.add_argument("--to", type=int, default=None, help="frame j of ^iT_j (n, the last frame)")
-    d.add_argument("--full", action="store_true", help="full cos/sin instead of C12/S12")
-    d.add_argument(
-        "--notation",
-        choices=("C1", "c1", "c_theta"),
-        default="C1",
-        help="C1: C12, S23; c1: c12, s23 (Craig, Spong); c_theta: c_{θ12} in LaTeX",
-    )
+    add_notation_options(d)
     d.add_argument(
         "-o", "--output", metavar="FILE", help="write to FILE (- or none: standard output)"
     )
