@@ -33,6 +33,7 @@ from dhsym.kinematics.inverse import pose_symbols
 from dhsym.model.table import JointType
 
 from ._numeric import EvaluationError, evaluate, frames
+from .tolerances import TOLERANCES
 
 __all__ = [
     "PoseSample",
@@ -44,7 +45,7 @@ __all__ = [
 ]
 
 #: Tolerance of a symbolic answer's joint values (radians, or lengths relative to 1 + |q|).
-ATOL = 1e-8
+ATOL = TOLERANCES.ik_atol
 
 Rewrite = Callable[[sp.Expr], sp.Expr]
 
@@ -87,8 +88,8 @@ def pose_sample(
     if q is None:
         q = np.where(
             revolute,
-            rng.uniform(-np.pi, np.pi, size=(size, len(rows))),
-            rng.uniform(0.2, 1.5, size=(size, len(rows))),
+            rng.uniform(*TOLERANCES.revolute_range, size=(size, len(rows))),
+            rng.uniform(*TOLERANCES.prismatic_range, size=(size, len(rows))),
         )
     q = np.atleast_2d(np.asarray(q, dtype=float))
     size = len(q)
@@ -97,7 +98,7 @@ def pose_sample(
         if values is not None and s in values:
             env[s] = np.full(size, float(values[s]))  # type: ignore[arg-type]
         else:
-            env[s] = rng.uniform(0.3, 1.5, size=size)
+            env[s] = rng.uniform(*TOLERANCES.length_range, size=size)
     for k, v in enumerate(robot.variables):
         env[v] = q[:, k]
     T = frames(robot.table, env, size)[:, -1]

@@ -57,6 +57,7 @@ from ._limits import (
     time_limit,
 )
 from ._numeric import EvaluationError, evaluate
+from .tolerances import TOLERANCES
 
 __all__ = [
     "EXACT_RTOL",
@@ -68,7 +69,7 @@ __all__ = [
     "values",
 ]
 
-EXACT_RTOL = 1e-9
+EXACT_RTOL = TOLERANCES.agree_rtol
 POINTS = 64
 _POLY_FUNCS = (sp.sin, sp.cos)
 _TRIG = (sp.sin, sp.cos, sp.tan)
@@ -109,12 +110,13 @@ class Sample:
         seed: int | None = None,
         fixed: Mapping[sp.Symbol, float] | None = None,
     ) -> Sample:
-        """Uniform values in [-2.5, 2.5]; symbols in ``fixed`` keep one value at every point.
+        """Uniform values in ``TOLERANCES.symbol_range`` ([-2.5, 2.5]); symbols in ``fixed``
+        keep one value at every point.
 
         Without ``seed`` the points are fresh and unpredictable (seeded from OS entropy).
         """
         syms = tuple(sorted(set(symbols), key=sp.default_sort_key))
-        table = _generator(seed).uniform(-2.5, 2.5, size=(len(syms), size))
+        table = _generator(seed).uniform(*TOLERANCES.symbol_range, size=(len(syms), size))
         for k, s in enumerate(syms):
             if fixed and s in fixed:
                 table[k] = float(fixed[s])
@@ -125,7 +127,7 @@ class Sample:
         new = sorted(set(symbols) - set(self.symbols), key=sp.default_sort_key)
         if not new:
             return self
-        extra = _generator(seed).uniform(-2.5, 2.5, size=(len(new), self.size))
+        extra = _generator(seed).uniform(*TOLERANCES.symbol_range, size=(len(new), self.size))
         return Sample(self.symbols + tuple(new), np.vstack([self.table, extra]), self.origin)
 
 
@@ -233,7 +235,7 @@ def agree_precisely(
     syms = sorted(answer.free_symbols | key.free_symbols, key=sp.default_sort_key)
     rng = _generator(seed)
     for _ in range(points):
-        subs = {s: sp.Float(rng.uniform(-2.5, 2.5), digits) for s in syms}
+        subs = {s: sp.Float(rng.uniform(*TOLERANCES.symbol_range), digits) for s in syms}
         try:
             a, k = answer.evalf(digits, subs=subs), key.evalf(digits, subs=subs)
             if not (a.is_number and k.is_number):

@@ -64,6 +64,7 @@ from ._numeric import EvaluationError, evaluate, frames
 from .answers import _split_top, parse_cell, read_text
 from .latex_input import flatten_subscripts, is_latex, latex_to_text
 from .mistakes import IK_MISTAKES
+from .tolerances import TOLERANCES
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
 if TYPE_CHECKING:
@@ -316,7 +317,7 @@ def _reaches(robot: object, q: np.ndarray, sample: PoseSample, position: bool) -
     got = T[:, :3, :]
     if position:
         got, goal = got[:, :, 3], goal[:, :, 3]
-    return bool(np.allclose(got, goal, atol=1e-7))
+    return bool(np.allclose(got, goal, atol=TOLERANCES.reach_atol))
 
 
 def _branch_name(ik: object, k: int, nota: object) -> str:
@@ -345,7 +346,7 @@ def _numeric_names(robot: object, ik: object, sample: PoseSample, key: np.ndarra
         found = [
             name
             for name, q in zip(sol.branches, sol.q, strict=True)
-            if same_joints(key[k], q[None, :], sample.revolute, 1e-7)
+            if same_joints(key[k], q[None, :], sample.revolute, TOLERANCES.reach_atol)
         ]
         names.append(found[0] if found else f"branch {k + 1}")
     return names

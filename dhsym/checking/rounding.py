@@ -42,6 +42,7 @@ import sympy as sp
 from dhsym.errors import DHError
 
 from ._numeric import EvaluationError, evaluate
+from .tolerances import TOLERANCES
 
 __all__ = ["DEFAULT_ROUNDING", "Literal", "Rounding", "decimal_places", "rounding_accepts"]
 
@@ -49,7 +50,6 @@ _MODES = ("digits", "abs", "rel", "off")
 # Matched on the stripped text; no two neighbouring parts can take the same characters.
 _SPEC = re.compile(r"(digits|abs|rel)\s*(?:[=:]\s*)?([0-9.eE+-]+)|([0-9]+)\s*digits?")
 _LITERAL = re.compile(r"^(?P<whole>[0-9]*)(?:\.(?P<frac>[0-9]*))?(?:[eE](?P<exp>[+-]?[0-9]+))?$")
-_SLACK = 1e-9  # relative: double precision and the linear sum of the decimals' effects
 
 
 def decimal_places(text: str) -> tuple[int, float]:
@@ -211,11 +211,12 @@ def rounding_accepts(
         diff = key - answer
         if not (np.isfinite(answer).all() and np.isfinite(key).all()):
             return None
+        room = 1 + TOLERANCES.agree_rtol
         if rounding.mode == "abs":
-            ok = np.abs(diff) <= rounding.tolerance * (1 + _SLACK)
+            ok = np.abs(diff) <= rounding.tolerance * room
             return rounding.describe(0) if ok.all() else None
         if rounding.mode == "rel":
-            ok = np.abs(diff) <= rounding.tolerance * float(np.abs(key).max()) * (1 + _SLACK)
+            ok = np.abs(diff) <= rounding.tolerance * float(np.abs(key).max()) * room
             return rounding.describe(0) if ok.all() else None
         low = high = np.zeros(size)
         used: list[int] = []
@@ -233,6 +234,8 @@ def rounding_accepts(
             low, high = low + lo, high + hi
             if (hi - lo).max() > 0:
                 used.append(lit.digits)
-        slack = _SLACK * (1 + np.abs(key)) + 1e-3 * (high - low)
+        slack = TOLERANCES.agree_rtol * (1 + np.abs(key)) + TOLERANCES.rounding_margin * (
+            high - low
+        )
         ok = (diff >= low - slack) & (diff <= high + slack)
     return rounding.describe(min(used)) if used and ok.all() else None

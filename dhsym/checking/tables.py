@@ -42,6 +42,7 @@ from dhsym.kinematics.numeric import elementary_stack, numeric_rigid_inverse
 from dhsym.model.table import Convention, DHRow, DHTable, JointType
 
 from ._numeric import EvaluationError, evaluate, frames
+from .tolerances import TOLERANCES
 
 __all__ = ["Chain", "TableMatch", "compare_tables", "same_cells"]
 
@@ -139,7 +140,7 @@ def _constant_env(
             env[s] = float(values[s])
         else:  # one value per name, whatever else is in the tables
             rng = np.random.default_rng([seed, zlib.crc32(s.name.encode())])
-            env[s] = float(rng.uniform(0.3, 1.5))
+            env[s] = float(rng.uniform(*TOLERANCES.length_range))
     return env
 
 
@@ -165,7 +166,7 @@ def _normalizer(p: np.ndarray, u: np.ndarray) -> np.ndarray:
     z = u / np.linalg.norm(u)
     o = p - np.dot(p, z) * z
     x = np.array([1.0, 0, 0]) - z[0] * z
-    if np.linalg.norm(x) < 1e-6:
+    if np.linalg.norm(x) < TOLERANCES.pick_axis_eps:
         x = np.array([0, 1.0, 0]) - z[1] * z
     x /= np.linalg.norm(x)
     N = np.eye(4)
@@ -176,12 +177,12 @@ def _normalizer(p: np.ndarray, u: np.ndarray) -> np.ndarray:
 def _foot(p: np.ndarray, u: np.ndarray) -> tuple[float, np.ndarray] | None:
     """Height on the z axis and horizontal normal towards a non-vertical line (p, u)."""
     uz = u[2]
-    if abs(uz * uz - 1) < 1e-9:
+    if abs(uz * uz - 1) < TOLERANCES.vertical_eps:
         return None
     s = (np.dot(u, p) - p[2] * uz) / (uz * uz - 1)
     h = p[2] + s * uz
     n = p + s * u - np.array([0, 0, h])
-    if np.linalg.norm(n[:2]) < 1e-7:
+    if np.linalg.norm(n[:2]) < TOLERANCES.short_length:
         n = np.cross([0, 0, 1.0], u)
     return float(h), n
 
@@ -208,7 +209,12 @@ def _candidates(Fk: np.ndarray, Fa: np.ndarray, key: Chain, ans: Chain, jk: list
                 phis = phis or [base, base + math.pi]
                 t = fa[0] - fk[0]
                 break
-            if fk is None and fa is None and not phis and np.linalg.norm(pk[:2]) > 1e-7:
+            if (
+                fk is None
+                and fa is None
+                and not phis
+                and np.linalg.norm(pk[:2]) > TOLERANCES.short_length
+            ):
                 phis = [math.atan2(pa[1], pa[0]) - math.atan2(pk[1], pk[0])]
         if t is None:
             tk = (F @ iNk @ Fk[0, -1])[2, 3]
@@ -303,7 +309,7 @@ def same_cells(
     for rk, ra in zip(k.rows, a.rows):
         if rk.joint is not ra.joint:
             return False
-        q = np.array([rng.uniform(-2, 2)])
+        q = np.array([rng.uniform(*TOLERANCES.symbol_range)])
         env_k = {**env, rk.variable: q} if rk.variable is not None else env
         env_a = {**env, ra.variable: q} if ra.variable is not None else env
         for name in ("theta", "d", "a", "alpha"):
@@ -313,9 +319,9 @@ def same_cells(
             except EvaluationError:
                 return False
             if name in ("theta", "alpha"):
-                if not abs(math.remainder(vk - va, 2 * math.pi)) <= 1e-6:
+                if not abs(math.remainder(vk - va, 2 * math.pi)) <= TOLERANCES.cell_atol:
                     return False
-            elif not abs(vk - va) <= 1e-6 * (1 + abs(vk)):
+            elif not abs(vk - va) <= TOLERANCES.cell_atol * (1 + abs(vk)):
                 return False
     return True
 
@@ -355,9 +361,9 @@ def compare_tables(
     Q = np.zeros((size, len(jk)))
     for j, (_, kind, _, _) in enumerate(jk):
         Q[1:, j] = (
-            rng.uniform(-np.pi, np.pi, _CONFIGS)
+            rng.uniform(*TOLERANCES.revolute_range, _CONFIGS)
             if kind is JointType.REVOLUTE
-            else rng.uniform(0.1, 1.0, _CONFIGS)
+            else rng.uniform(*TOLERANCES.prismatic_range, _CONFIGS)
         )
     env_k = {**consts, **{jt[2]: Q[:, j] for j, jt in enumerate(jk)}}
 
@@ -372,7 +378,7 @@ def compare_tables(
     if not (np.isfinite(Fk).all() and np.isfinite(Fa0).all()):
         return TableMatch(False, diverges_at=0, reason="the table has undefined values")
     scale = 1.0 + float(np.abs(Fk[0, :, :3, 3]).max())
-    tol = 1e-3 * scale
+    tol = TOLERANCES.frame_rtol * scale
     best, found = -1, []
     for B in _candidates(Fk, Fa0, kc, ac, jk, ja):
         got, signs, dirs, E = _verify(B, kc, ac, jk, ja, Fk, env_a, size, tol)
