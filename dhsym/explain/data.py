@@ -28,6 +28,7 @@ from dhsym.notation.layout import (
     Term,
     math_width,
 )
+from dhsym.notation.tables import TableCell
 
 __all__ = [
     "Block",
@@ -149,14 +150,6 @@ class Step:
     block: MatrixBlock
     identities: tuple[Identity, ...]
     final: bool
-
-
-@dataclass(frozen=True)
-class TableCell:
-    """A table cell; ``variable`` marks the joint variable's entry."""
-
-    math: Math
-    variable: bool = False
 
 
 @dataclass(frozen=True)

@@ -54,7 +54,8 @@ from dhsym.notation.layout import (
     matrix_block,
     word_math,
 )
-from dhsym.notation.printers import Notation, TrigStyle, format_angle
+from dhsym.notation.printers import Notation, TrigStyle
+from dhsym.notation.tables import table_view
 
 from .data import (
     Derivation,
@@ -121,46 +122,13 @@ def _general_row(modified: bool) -> tuple[_General, ...]:
 
 
 def _table(table: DHTable) -> TableData:
-    modified = table.convention is Convention.MODIFIED
-    deg = table.angles is AngleUnit.DEG
-    if modified:
-        heads = [
-            ("i", "i"),
-            (r"\alpha_{i-1}", "alpha_{i-1}"),
-            ("a_{i-1}", "a_{i-1}"),
-            ("d_i", "d_i"),
-            (r"\theta_i", "theta_i"),
-            (r"\text{joint}", "joint"),
-        ]
-        order = ["alpha", "a", "d", "theta"]
-    else:
-        heads = [
-            ("i", "i"),
-            (r"\theta_i", "theta_i"),
-            ("d_i", "d_i"),
-            ("a_i", "a_i"),
-            (r"\alpha_i", "alpha_i"),
-            (r"\text{joint}", "joint"),
-        ]
-        order = ["theta", "d", "a", "alpha"]
+    heads, rows = table_view(table)
     plain = Notation()
-    rows = []
-    for i, row in enumerate(table.rows, start=1):
-        cells = [TableCell(Math(TeX(str(i)), str(i)))]
-        for name in order:
-            value = getattr(row, name)
-            if name in ("theta", "alpha"):
-                m = Math(TeX(format_angle(value, deg)), format_angle(value, deg, latex=False))
-            else:
-                m = Math(TeX(plain.latex(value)), plain.text(value))
-            cells.append(TableCell(m, row.variable_field == name))
-        cells.append(TableCell(Math(TeX(row.joint.value), row.joint.value)))
-        rows.append(tuple(cells))
     values = tuple((as_math(s, plain), as_decimal(v, plain)) for s, v in table.values)
     return TableData(
-        tuple(Math(TeX(a), b) for a, b in heads),
-        tuple(rows),
-        deg,
+        heads,
+        rows,
+        table.angles is AngleUnit.DEG,
         values,
         tuple(as_math(v, plain) for v in table.variables),
     )

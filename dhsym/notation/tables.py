@@ -12,46 +12,67 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 from dhsym.model.kinds import AngleUnit, Convention
 
+from .escape import TeX
+from .layout import Math
 from .printers import Notation, format_angle
 
-__all__ = ["table_latex", "table_markdown", "text_table"]
+__all__ = ["TableCell", "table_latex", "table_markdown", "table_view", "text_table"]
 
 
-def _table_rows(table: object, latex: bool, box: bool = True) -> tuple[list[str], list[list[str]]]:
+@dataclass(frozen=True)
+class TableCell:
+    """A cell of the DH table; ``variable`` marks the joint variable's entry."""
+
+    math: Math
+    variable: bool = False
+
+
+_HEADS = {
+    Convention.STANDARD: (("theta", r"\theta_i", "theta_i"), ("d", "d_i", "d_i"))
+    + (("a", "a_i", "a_i"), ("alpha", r"\alpha_i", "alpha_i")),
+    Convention.MODIFIED: (("alpha", r"\alpha_{i-1}", "alpha_{i-1}"), ("a", "a_{i-1}", "a_{i-1}"))
+    + (("d", "d_i", "d_i"), ("theta", r"\theta_i", "theta_i")),
+}
+
+
+def table_view(table: object) -> tuple[tuple[Math, ...], tuple[tuple[TableCell, ...], ...]]:
+    """The one view of a DH table: the convention's headers and each row's cells.
+
+    Columns ``i``, the four parameters in the convention's order, ``joint``; angles in
+    the table's unit; every cell printed as LaTeX and as text. :func:`table_latex`,
+    :func:`table_markdown` and the derivations all print this view.
+
+    >>> from dhsym.model.table import DHTable, DHRow
+    >>> heads, rows = table_view(DHTable.from_rows([DHRow.revolute("theta1", a="a1")]))
+    >>> [h.text for h in heads], [c.math.text for c in rows[0]], rows[0][1].variable
+    (['i', 'theta_i', 'd_i', 'a_i', 'alpha_i', 'joint'], ['1', 'theta1', '0', 'a1', '0', 'R'], True)
+    """
     t = table  # a DHTable
     deg = t.angles is AngleUnit.DEG  # type: ignore[attr-defined]
-    mod = t.convention is Convention.MODIFIED  # type: ignore[attr-defined]
-    if latex:
-        heads = (
-            ["i", r"\alpha_{i-1}", "a_{i-1}", "d_i", r"\theta_i", r"\text{joint}"]
-            if mod
-            else ["i", r"\theta_i", "d_i", "a_i", r"\alpha_i", r"\text{joint}"]
-        )
-    else:
-        heads = (
-            ["i", "alpha_{i-1}", "a_{i-1}", "d_i", "theta_i", "joint"]
-            if mod
-            else ["i", "theta_i", "d_i", "a_i", "alpha_i", "joint"]
-        )
-    order = ["alpha", "a", "d", "theta"] if mod else ["theta", "d", "a", "alpha"]
+    columns = _HEADS[Convention(t.convention)]  # type: ignore[attr-defined]
+    heads = (
+        Math(TeX("i"), "i"),
+        *(Math(TeX(latex), text) for _, latex, text in columns),
+        Math(TeX(r"\text{joint}"), "joint"),
+    )
+    plain = Notation()
     rows = []
     for i, row in enumerate(t.rows, start=1):  # type: ignore[attr-defined]
-        cells = [str(i)]
-        for name in order:
+        cells = [TableCell(Math(TeX(str(i)), str(i)))]
+        for name, _, _ in columns:
             value = getattr(row, name)
             if name in ("theta", "alpha"):
-                cell = format_angle(value, deg, latex)
+                m = Math(TeX(format_angle(value, deg)), format_angle(value, deg, latex=False))
             else:
-                cell = Notation().latex(value) if latex else Notation().text(value)
-            if row.variable_field == name and latex and box:
-                cell = rf"\boxed{{{cell}}}"
-            cells.append(cell)
-        cells.append(row.joint.value)
-        rows.append(cells)
-    return heads, rows
+                m = Math(TeX(plain.latex(value)), plain.text(value))
+            cells.append(TableCell(m, row.variable_field == name))
+        cells.append(TableCell(Math(TeX(row.joint.value), row.joint.value)))
+        rows.append(tuple(cells))
+    return heads, tuple(rows)
 
 
 def table_latex(table: object) -> str:
@@ -64,7 +85,7 @@ def table_latex(table: object) -> str:
     1 & \boxed{\theta_{1}} & 0 & a_{1} & 0 & R
     \end{array}
     """
-    heads, rows = _table_rows(table, latex=True)
+    heads, rows = _latex_cells(table, box=True)
     body = " \\\\\n".join(" & ".join(r) for r in rows)
     return (
         "\\begin{array}{"
@@ -86,7 +107,7 @@ def table_markdown(table: object) -> str:
     |---|---|---|---|---|---|
     | 1 | $\\theta_{1}$ | $0$ | $a_{1}$ | $0$ | R |
     """
-    heads, rows = _table_rows(table, latex=True, box=False)
+    heads, rows = _latex_cells(table, box=False)
     head = "| " + " | ".join(f"${h}$" if h != r"\text{joint}" else "joint" for h in heads) + " |"
     sep = "|" + "---|" * len(heads)
     lines = [head, sep]
@@ -94,6 +115,15 @@ def table_markdown(table: object) -> str:
         cells = [r[0]] + [f"${c}$" for c in r[1:-1]] + [r[-1]]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
+
+
+def _latex_cells(table: object, box: bool) -> tuple[list[str], list[list[str]]]:
+    """The view in LaTeX: header strings and cell strings (variables boxed if ``box``)."""
+    heads, rows = table_view(table)
+    return [str(h.latex) for h in heads], [
+        [rf"\boxed{{{c.math.latex}}}" if c.variable and box else str(c.math.latex) for c in row]
+        for row in rows
+    ]
 
 
 def text_table(heads: Sequence[object], rows: Sequence[Sequence[object]]) -> list[str]:
