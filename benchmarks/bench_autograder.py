@@ -102,7 +102,7 @@ def main() -> None:
         t0 = time.perf_counter()
         report = grade(HW / "assignment.yaml", tmp / "class", tmp / "grade", progress=False)
         ref = time.perf_counter() - t0
-        wrong = sum(abs(r["score"] - scores[r["student"]]) > 1e-9 for r in report.records)
+        wrong = sum(abs(r.score - scores[r.student]) > 1e-9 for r in report.records)
         print(
             f"  reference, dhsym grade on the same class (2 workers): {ref:.1f} s; "
             f"score mismatches: {wrong} of {len(report.records)}"

@@ -25,6 +25,7 @@ import os
 import re
 import statistics
 from collections import Counter
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -34,6 +35,7 @@ from .feedback import render_summary
 
 if TYPE_CHECKING:
     from .grading import Assignment
+    from .records import GradeRecord
 
 __all__ = [
     "CACHE_NAME",
@@ -107,7 +109,7 @@ def csv_cell(value: object) -> str:
     return "'" + s if s[:1] in ("=", "+", "-", "@", "\t", "\r") else s
 
 
-def write_gradebook(root: Path, a: Assignment, records: list[dict], files: dict) -> Path:
+def write_gradebook(root: Path, a: Assignment, records: Sequence[GradeRecord], files: dict) -> Path:
     """``gradebook.csv``: a row per student, the points per question, total and feedback file."""
     buf = io.StringIO()
     w = csv.writer(buf)
@@ -127,15 +129,15 @@ def write_gradebook(root: Path, a: Assignment, records: list[dict], files: dict)
     for r in records:
         w.writerow(
             [
-                csv_cell(r["student"]),
-                csv_cell(r["name"]),
-                *[f"{r['scores'].get(q.id, 0):g}" for q in a.questions],
-                f"{r['score']:g}",
+                csv_cell(r.student),
+                csv_cell(r.name),
+                *[f"{r.scores.get(q.id, 0):g}" for q in a.questions],
+                f"{r.score:g}",
                 f"{a.max_score:g}",
-                csv_cell(r["status"]),
-                csv_cell("; ".join(r.get("flags", ()))),
-                csv_cell(r.get("source", "")),
-                f"feedback/{files[r['uid']]}.md",
+                csv_cell(r.status),
+                csv_cell("; ".join(r.flags)),
+                csv_cell(r.source),
+                f"feedback/{files[r.uid]}.md",
             ]
         )
     path = inside(root, "gradebook.csv")
@@ -143,14 +145,14 @@ def write_gradebook(root: Path, a: Assignment, records: list[dict], files: dict)
     return path
 
 
-def _chart(root: Path, a: Assignment, records: list[dict], kinds: Counter) -> Path:
+def _chart(root: Path, a: Assignment, records: Sequence[GradeRecord], kinds: Counter) -> Path:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(10, 4))
     FigureCanvasAgg(fig)
     ax1, ax2 = fig.subplots(1, 2)
-    scores = [r["score"] for r in records]
+    scores = [r.score for r in records]
     top = max(a.max_score, 1.0)
     bins = min(20, max(1, int(math.ceil(top))))
     ax1.hist(scores, bins=bins, range=(0, top), color="#4a7bb7", edgecolor="white")
@@ -172,16 +174,19 @@ def _difficulty(share: float) -> str:
     return "easy" if share >= 0.8 else "medium" if share >= 0.5 else "hard"
 
 
-def question_picture(a: Assignment, records: list[dict], files: dict, top: int = 5) -> list[dict]:
+def question_picture(
+    a: Assignment, records: Sequence[GradeRecord], files: dict, top: int = 5
+) -> list[dict]:
     """Per question: verdict counts, share right, difficulty, and the most common wrong
     entries (matrix entries, or table rows) with one example answer and its student.
 
     >>> from types import SimpleNamespace as NS
+    >>> from dhsym.checking.records import GradeRecord
     >>> a = NS(questions=[NS(id="q1", ask="A1", points=2)])
-    >>> recs = [{"student": s, "uid": s, "verdicts": {"q1": v},
-    ...          "scores": {"q1": 2 * (v == "correct")}, "wrong": {"q1": w}}
-    ...         for s, v, w in [("ann", "correct", []),
-    ...          ("bo", "incorrect", [["(1,4)", "d1"]]), ("cy", "incorrect", [["(1,4)", "-d2"]])]]
+    >>> recs = [GradeRecord(s, s, s, f"{s}/", (), "graded", {"q1": p}, {"q1": v}, (), p, 2,
+    ...                     wrong={"q1": w})
+    ...         for s, v, p, w in [("ann", "correct", 2, ()), ("bo", "incorrect", 0,
+    ...          (("(1,4)", "d1"),)), ("cy", "incorrect", 0, (("(1,4)", "-d2"),))]]
     >>> q = question_picture(a, recs, {"ann": "ann", "bo": "bo", "cy": "cy"})[0]
     >>> q["share"], q["difficulty"], q["wrong"][0]["where"], q["wrong"][0]["count"]
     (0.333..., 'hard', '(1,4)', 2)
@@ -191,14 +196,14 @@ def question_picture(a: Assignment, records: list[dict], files: dict, top: int =
     out = []
     n = max(len(records), 1)
     for q in a.questions:
-        v = Counter(r["verdicts"].get(q.id, "missing") for r in records)
+        v = Counter(r.verdicts.get(q.id, "missing") for r in records)
         where: Counter = Counter()
         example: dict[str, tuple[str, str, str]] = {}  # place -> (answer, student, uid)
-        mistakes = Counter(k for r in records for k in r.get("mistakes", {}).get(q.id, []))
+        mistakes = Counter(k for r in records for k in r.mistakes.get(q.id, ()))
         for r in records:
-            for place, text in r.get("wrong", {}).get(q.id, []):
+            for place, text in r.wrong.get(q.id, ()):
                 where[place] += 1
-                example.setdefault(place, (text, r["student"], r.get("uid", r["student"])))
+                example.setdefault(place, (text, r.student, r.uid))
         share = v["correct"] / n
         out.append(
             {
@@ -211,7 +216,7 @@ def question_picture(a: Assignment, records: list[dict], files: dict, top: int =
                 "missing": v["missing"] + v["error"],
                 "timeout": v["timeout"],
                 "share": share,
-                "mean_points": sum(r["scores"].get(q.id, 0) for r in records) / n,
+                "mean_points": sum(r.scores.get(q.id, 0) for r in records) / n,
                 "difficulty": _difficulty(share),
                 "mistakes": [(k.replace("_", " "), c) for k, c in mistakes.most_common(top)],
                 "wrong": [
@@ -229,23 +234,23 @@ def question_picture(a: Assignment, records: list[dict], files: dict, top: int =
     return out
 
 
-def write_summary(root: Path, a: Assignment, records: list[dict], files: dict) -> Path:
+def write_summary(root: Path, a: Assignment, records: Sequence[GradeRecord], files: dict) -> Path:
     """``summary.html`` and its chart ``summary.png``: scores, verdicts, mistake kinds, and
     per question its difficulty and most common wrong entries (what to re-teach)."""
-    kinds: Counter = Counter(k for r in records for k in r["kinds"])
+    kinds: Counter = Counter(k for r in records for k in r.kinds)
     chart = _chart(root, a, records, kinds)
     per_q = question_picture(a, records, files)
-    scores = [r["score"] for r in records]
+    scores = [r.score for r in records]
     rows = [
         {
-            "student": r["student"],
-            "name": r["name"],
-            "score": r["score"],
-            "status": r["status"],
-            "flags": list(r.get("flags", ())),
-            "source": r.get("source", ""),
-            "feedback_html": f"feedback/{files[r['uid']]}.html",
-            "feedback_md": f"feedback/{files[r['uid']]}.md",
+            "student": r.student,
+            "name": r.name,
+            "score": r.score,
+            "status": r.status,
+            "flags": list(r.flags),
+            "source": r.source,
+            "feedback_html": f"feedback/{files[r.uid]}.html",
+            "feedback_md": f"feedback/{files[r.uid]}.md",
         }
         for r in records
     ]
@@ -256,8 +261,8 @@ def write_summary(root: Path, a: Assignment, records: list[dict], files: dict) -
             "max_score": a.max_score,
             "mean": statistics.fmean(scores) if scores else 0.0,
             "median": statistics.median(scores) if scores else 0.0,
-            "problems": sum(r["status"] != "graded" for r in records),
-            "flagged": sum(bool(r.get("flags")) for r in records),
+            "problems": sum(r.status != "graded" for r in records),
+            "flagged": sum(bool(r.flags) for r in records),
             "chart": chart.name,
             "per_question": per_q,
             "reteach": sorted(

@@ -61,6 +61,7 @@ from ._report import csv_cell, inside, write_atomic
 
 if TYPE_CHECKING:
     from .grading import Assignment, GradeReport
+    from .records import GradeRecord
 
 __all__ = [
     "CANVAS_HEADER",
@@ -201,10 +202,10 @@ class Roster:
         ]
 
 
-def _roster_for(records: Sequence[dict], roster: Roster | None) -> Roster:
+def _roster_for(records: Sequence[GradeRecord], roster: Roster | None) -> Roster:
     if roster is not None:
         return roster
-    return Roster(tuple(RosterEntry(r["student"], r["name"]) for r in records), "")
+    return Roster(tuple(RosterEntry(r.student, r.name) for r in records), "")
 
 
 def _need(entries: Sequence[RosterEntry], what: Sequence[str], lms: str, file: str) -> None:
@@ -217,12 +218,12 @@ def _need(entries: Sequence[RosterEntry], what: Sequence[str], lms: str, file: s
 
 
 def canvas_rows(
-    records: Sequence[dict], entries: Sequence[RosterEntry], column: str, points: float
+    records: Sequence[GradeRecord], entries: Sequence[RosterEntry], column: str, points: float
 ) -> list[list[str]]:
     """The Canvas import: header, the ``Points Possible`` row, one row per student."""
     rows = [[*CANVAS_HEADER, csv_cell(column)], ["Points Possible", "", "", "", "", f"{points:g}"]]
     for r, e in zip(records, entries):
-        name = e.name or r["name"]
+        name = e.name or r.name
         rows.append(
             [
                 csv_cell(name),
@@ -230,27 +231,27 @@ def canvas_rows(
                 e.sis_user_id,
                 e.sis_login_id,
                 csv_cell(e.section),
-                f"{r['score']:g}",
+                f"{r.score:g}",
             ]
         )
     return rows
 
 
 def moodle_rows(
-    records: Sequence[dict], entries: Sequence[RosterEntry], column: str
+    records: Sequence[GradeRecord], entries: Sequence[RosterEntry], column: str
 ) -> list[list[str]]:
     """The Moodle import: the identifier columns every student has, name, grade."""
     ids = [(key, head) for key, head in _MOODLE_IDS if all(getattr(e, key) for e in entries)]
     rows = [[*(head for _, head in ids), "Full name", csv_cell(column)]]
     for r, e in zip(records, entries):
         rows.append(
-            [*(getattr(e, key) for key, _ in ids), csv_cell(e.name or r["name"]), f"{r['score']:g}"]
+            [*(getattr(e, key) for key, _ in ids), csv_cell(e.name or r.name), f"{r.score:g}"]
         )
     return rows
 
 
 def generic_rows(
-    records: Sequence[dict], entries: Sequence[RosterEntry], question_ids: Sequence[str]
+    records: Sequence[GradeRecord], entries: Sequence[RosterEntry], question_ids: Sequence[str]
 ) -> list[list[str]]:
     """The generic import: ids, per-question points, total, maximum and status."""
     rows = [["student", "name", "email", "lms_id", *question_ids, "total", "max", "status"]]
@@ -258,14 +259,14 @@ def generic_rows(
         lms_id = e.canvas_id or e.sis_user_id or e.idnumber or e.username or e.sis_login_id
         rows.append(
             [
-                csv_cell(r["student"]),
-                csv_cell(e.name or r["name"]),
+                csv_cell(r.student),
+                csv_cell(e.name or r.name),
                 e.email,
                 lms_id,
-                *(f"{r['scores'].get(q, 0):g}" for q in question_ids),
-                f"{r['score']:g}",
-                f"{r['max']:g}",
-                r["status"],
+                *(f"{r.scores.get(q, 0):g}" for q in question_ids),
+                f"{r.score:g}",
+                f"{r.max_score:g}",
+                r.status,
             ]
         )
     return rows
@@ -295,7 +296,7 @@ def write_lms_gradebook(
     r = _roster_for(records, roster)
     if kind != "generic" and roster is None:
         raise DHError(f"the {kind} import needs a roster (LMS ids per student)")
-    entries, absent = r.match(x["student"] for x in records)
+    entries, absent = r.match(x.student for x in records)
     title = column or assignment.title
     if kind == "canvas":
         _need(entries, ("canvas_id", "sis_user_id", "sis_login_id"), "Canvas", r.file)

@@ -65,6 +65,7 @@ from ._runner import JobFailure, Progress, run_dask, run_pool, run_serial
 from ._submissions import Submission, read_submissions
 from .checker import Key, check_answer
 from .feedback import QuestionFeedback, render_feedback
+from .records import GradeRecord
 from .verdict import CheckResult, Verdict
 
 __all__ = [
@@ -253,19 +254,19 @@ def check_submission(
     return tuple(out)
 
 
-def _wrong_parts(result: CheckResult) -> list[list[str]]:
+def _wrong_parts(result: CheckResult) -> tuple[tuple[str, str], ...]:
     """Where an incorrect answer went wrong, for the class summary: ``[where, example]``
     per wrong matrix entry (the student's entry) or per wrong table row (the mistake)."""
     if result.correct:
-        return []
-    out = [[f"({e.row},{e.col})", e.answer[:120]] for e in result.entries if not e.correct]
+        return ()
+    out = [(f"({e.row},{e.col})", e.answer[:120]) for e in result.entries if not e.correct]
     if not out:
         for d in result.diagnoses:
-            out.extend([f"row {r}", d.title] for r in d.rows)
-    return out[:16]
+            out.extend((f"row {r}", d.title) for r in d.rows)
+    return tuple(out[:16])
 
 
-def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
+def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> GradeRecord:
     """Grade one submission (runs in a worker): scores, verdicts, kinds and both feedback pages.
 
     An answer that runs out of time gets the verdict ``timeout`` and the record the
@@ -288,7 +289,7 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
             unread = ["unreadable"] if verdicts[qf.id] == "unreadable" else []
             kinds.extend(result.kinds or unread)
             wrong[qf.id] = _wrong_parts(result)
-            mistakes[qf.id] = list(result.kinds)
+            mistakes[qf.id] = tuple(result.kinds)
     student = {"id": sub.student, "name": sub.name}
     status = "timeout" if timed_out else "graded"
     pages = {
@@ -297,18 +298,18 @@ def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> dict:
         )
         for fmt in ("md", "html")
     }
-    return {
+    return GradeRecord(
         **_identity(sub),
-        "status": status,
-        "scores": scores,
-        "verdicts": verdicts,
-        "kinds": kinds,
-        "wrong": wrong,
-        "mistakes": mistakes,
-        "score": sum(scores.values()),
-        "max": assignment.max_score,
-        "pages": pages,
-    }
+        status=status,
+        scores=scores,
+        verdicts=verdicts,
+        kinds=tuple(kinds),
+        score=sum(scores.values()),
+        max_score=assignment.max_score,
+        wrong=wrong,
+        mistakes=mistakes,
+        pages=pages,
+    )
 
 
 def _identity(sub: Submission) -> dict:
@@ -317,7 +318,7 @@ def _identity(sub: Submission) -> dict:
         "student": sub.student,
         "name": sub.name,
         "source": sub.source,
-        "flags": list(sub.flags),
+        "flags": tuple(sub.flags),
     }
 
 
@@ -333,11 +334,11 @@ class GradeReport:
     mean: float
     gradebook: Path
     summary: Path
-    records: tuple[dict, ...] = field(default=(), repr=False)
+    records: tuple[GradeRecord, ...] = field(default=(), repr=False)
     warnings: tuple[str, ...] = ()
 
 
-def _failed_record(sub: Submission, assignment: Assignment, failure: JobFailure) -> dict:
+def _failed_record(sub: Submission, assignment: Assignment, failure: JobFailure) -> GradeRecord:
     """The record of a submission that has no verdicts: ``timeout`` or ``error: reason``."""
     short = "timeout" if failure.kind == "timeout" else "error"
     status = "timeout" if short == "timeout" else f"error: {failure.message}"
@@ -351,17 +352,17 @@ def _failed_record(sub: Submission, assignment: Assignment, failure: JobFailure)
             )
         except Exception:  # noqa: BLE001 - the page of a failure must never fail in turn
             pages[fmt] = f"Feedback: {status}\n"
-    return {
+    return GradeRecord(
         **_identity(sub),
-        "status": status,
-        "scores": {q.id: 0.0 for q in assignment.questions},
-        "verdicts": {q.id: short for q in assignment.questions},
-        "kinds": [short],
-        "score": 0.0,
-        "max": assignment.max_score,
-        "pages": pages,
-        "error": failure.message,
-    }
+        status=status,
+        scores={q.id: 0.0 for q in assignment.questions},
+        verdicts={q.id: short for q in assignment.questions},
+        kinds=(short,),
+        score=0.0,
+        max_score=assignment.max_score,
+        error=failure.message,
+        pages=pages,
+    )
 
 
 def _run_fingerprint(a: Assignment, limits: AnswerLimits, deadline: float) -> str:
@@ -372,41 +373,33 @@ def _run_fingerprint(a: Assignment, limits: AnswerLimits, deadline: float) -> st
     return hashlib.sha256(text.encode("utf-8", "replace")).hexdigest()[:16]
 
 
-_RECORD_FIELDS = {
-    "uid": str,
-    "student": str,
-    "name": str,
-    "source": str,
-    "flags": list,
-    "fingerprint": str,
-    "status": str,
-    "scores": dict,
-    "verdicts": dict,
-    "kinds": list,
-    "score": (int, float),
-    "max": (int, float),
-}
+_FINAL = ("correct", "incorrect", "unreadable", "missing")
 
 
-def _cached_record(value: object, a: Assignment) -> bool:
-    """True for a well-formed record of a final verdict for this assignment's questions."""
-    if not isinstance(value, dict) or value.get("status") != "graded":
-        return False
-    if not all(isinstance(value.get(k), t) for k, t in _RECORD_FIELDS.items()):
-        return False
+def _final(record: GradeRecord, a: Assignment) -> bool:
+    """True for a graded record (fingerprinted) with a final verdict for each question of ``a``."""
     ids = {q.id for q in a.questions}
-    scores, verdicts = value["scores"], value["verdicts"]
     return (
-        set(scores) == ids
-        and set(verdicts) == ids
-        and all(isinstance(x, (int, float)) and math.isfinite(x) for x in scores.values())
-        and all(v in ("correct", "incorrect", "unreadable", "missing") for v in verdicts.values())
-        and all(isinstance(x, str) for x in value["kinds"] + value["flags"])
-        and math.isfinite(value["score"])
+        record.status == "graded"
+        and bool(record.fingerprint)
+        and set(record.scores) == ids
+        and set(record.verdicts) == ids
+        and all(v in _FINAL for v in record.verdicts.values())
     )
 
 
-def _load_cache(path: Path, run_fp: str, a: Assignment, warnings: list[str]) -> dict:
+def _cached_record(value: object, a: Assignment) -> GradeRecord | None:
+    """The record of a cache entry, ``None`` unless it is a well-formed final record for ``a``."""
+    try:
+        record = GradeRecord.from_dict(value)
+    except ValueError:
+        return None
+    return record if _final(record, a) else None
+
+
+def _load_cache(
+    path: Path, run_fp: str, a: Assignment, warnings: list[str]
+) -> dict[str, GradeRecord]:
     """The cached records of this run's fingerprint; anything malformed is ignored (a warning)."""
     if not path.exists():
         return {}
@@ -424,8 +417,9 @@ def _load_cache(path: Path, run_fp: str, a: Assignment, warnings: list[str]) -> 
         return {}
     if data.get("assignment") != run_fp:
         return {}  # another assignment, key, limit or dhsym version: everything is regraded
-    records = {k: r for k, r in data["records"].items() if _cached_record(r, a)}
-    bad = len(data["records"]) - len(records)
+    cached = {k: _cached_record(r, a) for k, r in data["records"].items()}
+    records = {k: r for k, r in cached.items() if r is not None}
+    bad = len(cached) - len(records)
     if bad:
         warnings.append(f"ignoring {bad} malformed record(s) of the grading cache {path.name}")
     return records
@@ -465,7 +459,9 @@ def grade(
     cache = _load_cache(cache_path, run_fp, a, warnings)
     used: set[str] = set()
     files = {s.uid: safe_name(s.uid, used) for s in subs}
-    todo, records, failed = [], {}, 0
+    todo: list[Submission] = []
+    records: dict[str, GradeRecord] = {}
+    failed = 0
     for s in subs:
         old = cache.get(s.uid)
         names = [inside(root, "feedback", files[s.uid] + ext) for ext in (".md", ".html")]
@@ -473,9 +469,7 @@ def grade(
             records[s.uid] = _failed_record(s, a, JobFailure("error", s.error))
             failed += 1
         elif (
-            old
-            and old.get("fingerprint") == s.fingerprint(a, run_fp)
-            and all(p.is_file() for p in names)
+            old and old.fingerprint == s.fingerprint(a, run_fp) and all(p.is_file() for p in names)
         ):
             records[s.uid] = old
         else:
@@ -491,23 +485,24 @@ def grade(
     last_save = time.monotonic()
 
     def save() -> None:
-        final = {k: r for k, r in records.items() if _cached_record(r, a)}
+        final = {k: r.to_dict() for k, r in records.items() if _final(r, a)}
         write_atomic(cache_path, json.dumps({"assignment": run_fp, "records": final}))
 
     for s in subs:  # the pages of submissions that could not be read at all
         if s.error:
-            _write_pages(root, files[s.uid], records[s.uid].pop("pages"))
+            _write_pages(root, files[s.uid], records[s.uid].pages)
+            records[s.uid] = replace(records[s.uid], pages={})
     try:
         for k, outcome in runner:
             sub = todo[k]
             if isinstance(outcome, JobFailure):
                 outcome = _failed_record(sub, a, outcome)
-            if outcome["status"] != "graded":
+            if outcome.status != "graded":
                 failed += 1
             else:
-                outcome["fingerprint"] = sub.fingerprint(a, run_fp)
-            _write_pages(root, files[sub.uid], outcome.pop("pages"))
-            records[sub.uid] = outcome
+                outcome = replace(outcome, fingerprint=sub.fingerprint(a, run_fp))
+            _write_pages(root, files[sub.uid], outcome.pages)
+            records[sub.uid] = replace(outcome, pages={})
             bar.step()
             if time.monotonic() - last_save > 5.0:
                 save()
@@ -517,7 +512,7 @@ def grade(
     ordered = [records[s.uid] for s in subs if s.uid in records]
     gradebook = write_gradebook(root, a, ordered, files)
     summary = write_summary(root, a, ordered, files)
-    scores = [r["score"] for r in ordered]
+    scores = [r.score for r in ordered]
     return GradeReport(
         root,
         len(subs),

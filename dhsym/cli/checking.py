@@ -111,7 +111,7 @@ def _cmd_grade(args: argparse.Namespace) -> int:
     )
     for warning in report.warnings:
         print(f"dhsym: warning: {warning}", file=sys.stderr)
-    flagged = sum(bool(r.get("flags")) for r in report.records)
+    flagged = sum(bool(r.flags) for r in report.records)
     print(
         f"graded {report.graded} submission(s), {report.skipped} already graded, "
         f"{report.failed} failed (timeout or error), {flagged} flagged; "

@@ -26,6 +26,7 @@ from dhsym.checking.autograder import (
     run_autograder,
 )
 from dhsym.checking.grading import grade
+from dhsym.checking.records import GradeRecord
 from dhsym.errors import DHError
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -47,7 +48,7 @@ def source(autograder_zip, tmp_path_factory) -> Path:
 
 
 @pytest.fixture(scope="module")
-def class_scores(tmp_path_factory) -> dict[str, dict]:
+def class_scores(tmp_path_factory) -> dict[str, GradeRecord]:
     report = grade(
         HW / "assignment.yaml",
         HW / "submissions",
@@ -55,7 +56,7 @@ def class_scores(tmp_path_factory) -> dict[str, dict]:
         workers=0,
         progress=False,
     )
-    return {r["student"]: r for r in report.records}
+    return {r.student: r for r in report.records}
 
 
 def _run(source: Path, submission: Path, results: Path, **env: str) -> subprocess.CompletedProcess:
@@ -104,13 +105,13 @@ def test_run_autograder_matches_dhsym_grade(student, source, class_scores, tmp_p
     data = json.loads((tmp_path / "results.json").read_text(encoding="utf-8"))
     jsonschema.validate(data, RESULTS_SCHEMA)
     expected = class_scores[student]
-    assert data["score"] == pytest.approx(expected["score"])
-    assert [t["name"].split(":")[0] for t in data["tests"]] == list(expected["scores"])
+    assert data["score"] == pytest.approx(expected.score)
+    assert [t["name"].split(":")[0] for t in data["tests"]] == list(expected.scores)
     for t in data["tests"]:
         qid = t["name"].split(":")[0]
-        assert t["score"] == pytest.approx(expected["scores"][qid])
+        assert t["score"] == pytest.approx(expected.scores[qid])
         assert 0 <= t["score"] <= t["max_score"]
-        verdict = expected["verdicts"][qid]
+        verdict = expected.verdicts[qid]
         assert t["output"].startswith(verdict.upper()), (qid, t["output"][:80])
 
 

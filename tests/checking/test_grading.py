@@ -44,9 +44,12 @@ def test_example_class_in_process(tmp_path):
     assert "<script>alert" not in summary and "&lt;script&gt;alert" in summary
     assert (out / "summary.png").stat().st_size > 1000
     assert tree(tmp_path) - before <= {str(Path("report") / p) for p in tree(out)} | {"report"}
-    # a rerun skips everything; a changed answer is graded again
+    # a rerun skips everything (and writes the same cache); a changed answer is graded again
+    cached = (out / CACHE_NAME).read_bytes()
     again = grade(HW / "assignment.yaml", HW / "submissions", out, workers=0, progress=False)
     assert (again.graded, again.skipped) == (0, 10)
+    assert (out / CACHE_NAME).read_bytes() == cached
+    assert again.records == report.records
     subs = tmp_path / "subs"
     shutil.copytree(HW / "submissions", subs)
     (subs / "ivan" / "q5.txt").write_text("a2*C1*C2\n", encoding="utf-8")
@@ -82,7 +85,7 @@ def test_submission_reading_skips_links_and_limits_size(tmp_path):
     problems = dict(subs[0].problems)
     assert "10000000 bytes" in problems["q1"] and "not a regular file" in problems["q2"]
     report = grade(a, s, tmp_path / "out", workers=0, progress=False)
-    verdicts = report.records[0]["verdicts"]
+    verdicts = report.records[0].verdicts
     assert verdicts["q1"] == verdicts["q2"] == verdicts["q5"] == "unreadable"
 
 
@@ -216,12 +219,12 @@ def test_a_timeout_is_never_kept_and_every_limit_is_in_the_fingerprint(tmp_path)
     first = grade(
         HW / "assignment.yaml", HW / "submissions", out, workers=0, progress=False, timeout=0.001
     )
-    timed_out = [r for r in first.records if r["status"] == "timeout"]
-    assert timed_out and all("timeout" in r["verdicts"].values() for r in timed_out)
+    timed_out = [r for r in first.records if r.status == "timeout"]
+    assert timed_out and all("timeout" in r.verdicts.values() for r in timed_out)
     cache = json.loads((out / CACHE_NAME).read_text(encoding="utf-8"))
     assert all(r["status"] == "graded" for r in cache["records"].values())
     assert "Checking took longer than the time limit of 0.001 s" in (
-        out / "feedback" / f"{timed_out[0]['student']}.md"
+        out / "feedback" / f"{timed_out[0].student}.md"
     ).read_text(encoding="utf-8")
     second = grade(HW / "assignment.yaml", HW / "submissions", out, workers=0, progress=False)
     assert second.graded == 10 and _totals(out) == EXPECTED  # another limit: all graded again
@@ -317,11 +320,13 @@ def test_a_cache_with_malformed_records_regrades_them(tmp_path):
     data = json.loads((out / CACHE_NAME).read_text(encoding="utf-8"))
     data["records"]["bob"]["scores"] = "all of them"
     data["records"]["carol"]["score"] = 1e999
+    data["records"]["dave"]["wrong"] = {"q1": 5}
+    del data["records"]["erin"]["verdicts"]
     (out / CACHE_NAME).write_text(json.dumps(data), encoding="utf-8")
     report = grade(HW / "assignment.yaml", HW / "submissions", out, workers=0, progress=False)
-    assert (report.graded, report.skipped) == (2, 8) and _totals(out) == EXPECTED
+    assert (report.graded, report.skipped) == (4, 6) and _totals(out) == EXPECTED
     assert report.warnings == (
-        "ignoring 2 malformed record(s) of the grading cache .dhsym-grading-cache.json",
+        "ignoring 4 malformed record(s) of the grading cache .dhsym-grading-cache.json",
     )
 
 

@@ -65,7 +65,7 @@ def test_otter_grades_the_example_class_as_dhsym_does(
 
     assignment = Assignment.load(HW / "assignment.yaml")
     report = grade(assignment, HW / "submissions", tmp_path / "dhsym", workers=0, progress=False)
-    expected = {r["student"]: r for r in report.records}
+    expected = {r.student: r for r in report.records}
     subs = read_submissions(HW / "submissions", assignment)
     assert len(subs) == 10
     for sub in subs:
@@ -77,11 +77,11 @@ def test_otter_grades_the_example_class_as_dhsym_does(
         results = grade_submission(str(nb), str(autograder), quiet=True)
         want = expected[sub.student]
         got = {name: float(r.score) for name, r in results.results.items()}
-        assert got == pytest.approx(want["scores"]), sub.student
-        assert results.total == pytest.approx(want["score"]) and results.possible == 10
+        assert got == pytest.approx(want.scores), sub.student
+        assert results.total == pytest.approx(want.score) and results.possible == 10
         for q in assignment.questions:
             messages = " ".join(tc.message for tc in results.results[q.id].test_case_results)
-            if want["verdicts"][q.id] == "missing":
+            if want.verdicts[q.id] == "missing":
                 assert "No answer yet" in messages
-            elif want["verdicts"][q.id] != "correct":
-                assert want["verdicts"][q.id].upper() in messages  # dhsym's feedback
+            elif want.verdicts[q.id] != "correct":
+                assert want.verdicts[q.id].upper() in messages  # dhsym's feedback

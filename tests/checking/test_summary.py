@@ -9,6 +9,7 @@ import pytest
 
 from dhsym.checking._report import question_picture, write_summary
 from dhsym.checking.grading import Assignment, grade
+from dhsym.checking.records import GradeRecord
 
 ROOT = Path(__file__).resolve().parents[2]
 HW = ROOT / "examples" / "homework"
@@ -24,16 +25,16 @@ def report(tmp_path_factory):
 def test_difficulty_is_the_share_of_the_class_right(report):
     a, rep = report
     records = list(rep.records)
-    files = {r["student"]: r["student"] for r in records}
+    files = {r.uid: r.student for r in records}
     for q in question_picture(a, records, files):
-        right = sum(r["verdicts"][q["id"]] == "correct" for r in records)
+        right = sum(r.verdicts[q["id"]] == "correct" for r in records)
         assert q["share"] == right / len(records)
         assert q["difficulty"] == ("easy" if right >= 8 else "medium" if right >= 5 else "hard")
-        wrong = [w for r in records for w in r["wrong"].get(q["id"], [])]
+        wrong = [w for r in records for w in r.wrong.get(q["id"], ())]
         for w in q["wrong"]:
             assert w["count"] == sum(place == w["where"] for place, _ in wrong)
-            first = next(r for r in records if w["where"] in [p for p, _ in r["wrong"][q["id"]]])
-            assert w["student"] == first["student"]  # the example comes from that student
+            first = next(r for r in records if w["where"] in [p for p, _ in r.wrong[q["id"]]])
+            assert w["student"] == first.student  # the example comes from that student
 
 
 def test_summary_page_lists_what_to_reteach_hardest_first(report):
@@ -49,18 +50,21 @@ def test_summary_page_lists_what_to_reteach_hardest_first(report):
 
 def test_wrong_examples_are_escaped(tmp_path):
     a = Assignment.load(HW / "assignment.yaml")
-    rec = {
-        "student": "<img src=x>",
-        "uid": "<img src=x>",
-        "name": "n",
-        "score": 0.0,
-        "status": "graded",
-        "kinds": ["wrong_sign"],
-        "verdicts": {q.id: "incorrect" for q in a.questions},
-        "scores": {q.id: 0.0 for q in a.questions},
-        "wrong": {"q2": [["(1,4)", "<script>alert(1)</script>"]]},
-        "mistakes": {"q2": ["wrong_sign"]},
-    }
+    rec = GradeRecord(
+        uid="<img src=x>",
+        student="<img src=x>",
+        name="n",
+        source="",
+        flags=(),
+        status="graded",
+        scores={q.id: 0.0 for q in a.questions},
+        verdicts={q.id: "incorrect" for q in a.questions},
+        kinds=("wrong_sign",),
+        score=0.0,
+        max_score=a.max_score,
+        wrong={"q2": (("(1,4)", "<script>alert(1)</script>"),)},
+        mistakes={"q2": ("wrong_sign",)},
+    )
     page = write_summary(tmp_path, a, [rec], {"<img src=x>": "img_src_x"}).read_text()
     assert "<script>alert" not in page and "&lt;script&gt;alert(1)&lt;/script&gt;" in page
     assert "<img src=x>" not in page
