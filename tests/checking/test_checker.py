@@ -53,3 +53,21 @@ def test_prepared_key_is_shared():
 
     assert prepare(Key.load("planar2r", "T0_2")) is prepare(KEY)
     assert dhsym.load("planar2r").n == 2
+
+
+def test_a_bug_in_dhsym_is_raised_not_graded_unreadable(monkeypatch):
+    from dhsym.checking import checker
+
+    def bug(*args, **kwargs):
+        raise TypeError("a bug of dhsym")
+
+    monkeypatch.setattr(checker, "_check_matrix", bug)
+    key = Key.load("planar2r", "T0_2[0,3]")
+    try:
+        check_answer(key, "a1*C1 + a2*C12")
+    except TypeError as err:
+        assert "a bug of dhsym" in str(err)
+    else:  # pragma: no cover - the test fails here
+        raise AssertionError("a TypeError inside dhsym was turned into a verdict")
+    monkeypatch.undo()
+    assert check_answer(key, "a1*C1 + (").verdict.value == "unreadable"  # parse errors still are

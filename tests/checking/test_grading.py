@@ -364,3 +364,24 @@ def test_hard_links_and_special_files_are_refused_like_symbolic_links(tmp_path):
     page = (out / "feedback" / "bob.md").read_text(encoding="utf-8")
     assert "TOPSECRET" not in page and "hard links" in page and "not a regular file" in page
     assert _totals(out)["bob"] == EXPECTED["bob"] - 4 - 2
+
+
+def test_a_dhsym_bug_while_checking_is_an_internal_error_of_that_submission(tmp_path, monkeypatch):
+    from dhsym.checking import checker
+
+    real = checker._check_matrix
+
+    def buggy(pk, answer, limits):
+        if "d4*s23" in str(answer):  # some answers reach a (simulated) bug of dhsym
+            raise TypeError("simulated bug")
+        return real(pk, answer, limits)
+
+    monkeypatch.setattr(checker, "_check_matrix", buggy)
+    out = tmp_path / "out"
+    report = grade(HW / "assignment.yaml", HW / "submissions", out, workers=0, progress=False)
+    status = {r["student"]: r["status"] for r in _book(out)}
+    hit = {s for s, v in status.items() if v.startswith("error: ")}
+    assert hit and all("TypeError: simulated bug" in status[s] for s in hit)
+    assert report.failed == len(hit) and (out / "summary.html").is_file()
+    for student in set(status) - hit:
+        assert _totals(out)[student] == EXPECTED.get(student, _totals(out)[student])
