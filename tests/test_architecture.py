@@ -21,3 +21,54 @@ def test_the_check_finds_a_circle():
     graph = _graph()
     assert graph.cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
     assert graph.cycles({"a": {"b"}, "b": set()}) == []
+
+
+# --- no code reads text by evaluating it ----------------------------------------------------
+
+EVALUATING = {"eval", "exec", "sympify", "parse_expr", "S", "lambdastr"}
+
+
+def _evaluating_calls(source: str) -> list[str]:
+    import ast
+
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Call):
+            f = node.func
+            name = getattr(f, "id", None) or getattr(f, "attr", "")
+            if name in EVALUATING:
+                found.append(f"{name} (line {node.lineno})")
+    return found
+
+
+def test_no_module_evaluates_text():
+    package = SCRIPT.parents[1] / "dhsym"
+    hits = {
+        str(p.relative_to(package)): calls
+        for p in sorted(package.rglob("*.py"))
+        if (calls := _evaluating_calls(p.read_text(encoding="utf-8")))
+    }
+    assert hits == {}, "text is read by the whitelist parser, never evaluated"
+
+
+def test_the_scan_sees_an_evaluating_call():
+    assert _evaluating_calls("import sympy as sp\nsp.sympify(x)\neval(y)") == [
+        "sympify (line 2)",
+        "eval (line 3)",
+    ]
+
+
+def test_builders_and_printers_refuse_text_or_parse_it_safely():
+    import pytest
+
+    from dhsym.errors import ParseError
+    from dhsym.kinematics.transforms import Rx, Tz, cos_sin
+    from dhsym.notation.printers import Notation
+
+    hostile = "__import__('os').system('echo owned')"
+    for build in (Rx, Tz, cos_sin):
+        with pytest.raises(TypeError, match="got str"):
+            build(hostile)
+    with pytest.raises(ParseError, match="double underscores"):
+        Notation().tokens(hostile, latex=False)
+    assert [t.text for t in Notation().tokens("a1 + 1", latex=False)] == ["a1", " + ", "1"]

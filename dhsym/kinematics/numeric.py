@@ -54,6 +54,7 @@ from dhsym.errors import DHError
 
 __all__ = [
     "EvaluationError",
+    "as_basic",
     "PoseFunction",
     "compile_exprs",
     "compile_matrix",
@@ -101,7 +102,7 @@ def to_float(expr: object) -> float:
     if isinstance(expr, float):
         value = expr
     else:
-        e = _basic(expr)
+        e = as_basic(expr)
         if e.free_symbols:
             raise DHError(f"no numeric value for {', '.join(sorted(map(str, e.free_symbols)))}")
         if e.is_Rational:
@@ -160,11 +161,22 @@ def float_constants(expr: sp.Basic) -> sp.Basic:
         memo[e] = out
         return out
 
-    return walk(_basic(expr))
+    return walk(as_basic(expr))
 
 
-def _basic(value: object) -> sp.Basic:
-    """A sympy object for a sympy object or a Python/numpy number (never parses text)."""
+def as_basic(value: object) -> sp.Basic:
+    """A sympy object for a sympy object or a Python/numpy number; text is refused.
+
+    Nothing here parses or evaluates a string (``sympy.sympify`` would): text goes
+    through :func:`dhsym.model.parsing.parse_expression` first.
+
+    >>> as_basic(3), as_basic(0.5), as_basic(sp.Symbol("t"))
+    (3, 0.500000000000000, t)
+    >>> as_basic("__import__('os')")
+    Traceback (most recent call last):
+    ...
+    TypeError: expected a sympy expression or a number, got str
+    """
     if hasattr(value, "dtype") and hasattr(value, "item"):  # numpy scalar
         value = value.item()  # type: ignore[union-attr]
     if isinstance(value, sp.Basic):

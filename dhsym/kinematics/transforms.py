@@ -31,7 +31,7 @@ import sympy as sp
 
 from dhsym.model.table import Convention, DHRow, DHTable, Elementary
 
-from .numeric import to_float
+from .numeric import as_basic, to_float
 
 __all__ = [
     "Rx",
@@ -64,7 +64,7 @@ def cos_sin(angle: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
     >>> cos_sin(sp.Rational(6, 5))
     (0.362357754476674, 0.932039085967226)
     """
-    angle = sp.sympify(angle) if isinstance(angle, (int, float)) else angle  # a Python number
+    angle = as_basic(angle)  # a Python number becomes sympy's; text is refused
     c, s = sp.cos(angle), sp.sin(angle)
     if angle.free_symbols or not (c.has(sp.cos, sp.sin) or s.has(sp.cos, sp.sin)):
         return c, s
@@ -106,6 +106,7 @@ def Rz(angle: sp.Expr) -> Matrix:
 
 
 def _translation(x: sp.Expr = 0, y: sp.Expr = 0, z: sp.Expr = 0) -> Matrix:
+    x, y, z = as_basic(x), as_basic(y), as_basic(z)  # never text: Matrix would sympify it
     return Matrix([[1, 0, 0, x], [0, 1, 0, y], [0, 0, 1, z], [0, 0, 0, 1]])
 
 

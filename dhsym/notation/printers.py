@@ -69,7 +69,7 @@ from sympy.printing.latex import LatexPrinter
 from sympy.printing.str import StrPrinter
 
 from dhsym.errors import DHError
-from dhsym.model.entries import exact_decimal
+from dhsym.model.entries import as_expr, exact_decimal
 
 __all__ = [
     "LegendEntry",
@@ -332,7 +332,8 @@ class Notation:
         ['1', ' - ', 'a1', '*C1']
         """
         printer = _DHLatexPrinter(self) if latex else _DHStrPrinter(self)
-        return printer.tokens(self.arrange(sp.sympify(expr)))
+        expr = expr if isinstance(expr, sp.Basic) else as_expr(expr)  # text: whitelist parser
+        return printer.tokens(self.arrange(expr))
 
     def legend(self, exprs: Iterable[object]) -> list[LegendEntry]:
         """The abbreviations used in ``exprs``, in order of first appearance (sorted).
