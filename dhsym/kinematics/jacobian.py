@@ -413,13 +413,7 @@ def analytic_jacobian(
 
 
 def _values(robot: Robot, values: Mapping[object, object] | None) -> dict[sp.Symbol, sp.Expr]:
-    from dhsym.model.parsing import symbol
-    from dhsym.model.table import as_expr
-
-    vals = dict(robot.table.value_map)
-    for key, v in (values or {}).items():
-        vals[symbol(key) if isinstance(key, str) else key] = as_expr(v, field="values")  # type: ignore[index]
-    return vals
+    return robot.table.with_values(values or {}).value_map
 
 
 def jacobian_function(

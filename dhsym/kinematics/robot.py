@@ -29,8 +29,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.model.library import load_table
-from dhsym.model.parsing import symbol
-from dhsym.model.table import Convention, DHTable, Elementary, JointType, as_expr
+from dhsym.model.table import Convention, DHTable, Elementary, JointType
 from dhsym.notation.printers import Notation, TrigStyle
 
 from .pose import Pose
@@ -219,9 +218,7 @@ class Robot:
                 i = -1 if self.table.base else 0
                 j = self.n + 1 if self.table.tool else self.n
             i, j = (i or 0), (self.n if j is None else j)
-            vals = dict(self.table.value_map)
-            for k, v in (values or {}).items():
-                vals[symbol(k) if isinstance(k, str) else k] = as_expr(v, field="values")  # type: ignore[index]
+            vals = self.table.with_values(values or {}).value_map
             if self.transform_size(i, j) <= MAX_CLOSED_FORM:
                 f = compile_pose(self.transform(i, j).matrix, self.variables, vals)
             else:  # too long for a closed form: the elementary transforms, multiplied as numbers

@@ -293,10 +293,7 @@ class DHTable:
                     found += [snapped] if snapped else []
                     steps.append(e)
                 kw[where] = tuple(steps)
-        pairs = tuple(
-            (symbol(k) if isinstance(k, str) else k, as_expr(v, field="values"))
-            for k, v in (values or {}).items()
-        )
+        pairs = tuple(_value_map(values).items())
         warnings = (snap_note(found),) if found else ()
         return cls(
             tuple(converted),
@@ -397,10 +394,7 @@ class DHTable:
 
     def with_values(self, values: Mapping[object, object]) -> DHTable:
         """A copy with more (or replaced) numeric values for constant symbols."""
-        merged = self.value_map
-        for k, v in values.items():
-            merged[symbol(k) if isinstance(k, str) else k] = as_expr(v, field="values")  # type: ignore[index]
-        return replace(self, values=tuple(merged.items()))
+        return replace(self, values=tuple({**self.value_map, **_value_map(values)}.items()))
 
     def substituted(self) -> DHTable:
         """A copy with the numeric values substituted into the rows (values emptied)."""
@@ -425,3 +419,12 @@ class DHTable:
         from dhsym.notation.tables import table_markdown
 
         return table_markdown(self)
+
+
+def _value_map(values: Mapping[object, object] | None) -> dict[sp.Symbol, Expr]:
+    """Symbol → exact value for values as given (names or symbols; numbers or text, which
+    goes through the whitelist parser)."""
+    return {
+        (symbol(k) if isinstance(k, str) else k): as_expr(v, field="values")  # type: ignore[misc]
+        for k, v in (values or {}).items()
+    }
