@@ -488,9 +488,11 @@ class Solver:
         """
         if kind not in self._compiled:
             if kind == "singular":
-                # θ4 at sin θ5 = 0, θ6 from the whole rotation with θ4 as computed, and with θ4 = 0
+                # θ4 as this program computes it, θ4 at sin θ5 = 0, θ6 from the whole rotation
+                # with that θ4 (the pair stays consistent: near sin θ5 = 0 each alone is
+                # ill-conditioned, their sum is not), and θ6 with θ4 = 0
                 (t4, zero4), (_, whole6) = list(self._singular.items())
-                alts = [zero4, whole6, whole6.xreplace({t4: zero4})]
+                alts = [t4, zero4, whole6, whole6.xreplace({t4: zero4})]
                 outputs = [_with_safe_sqrt(e.xreplace(self.values)) for e in alts]
             else:
                 outputs = self._outputs(kind)
@@ -599,7 +601,7 @@ class Solver:
         """
         m = len(rows)
         with np.errstate(invalid="ignore", divide="ignore"):
-            zero4, whole6, whole6_zero4 = (
+            own4, zero4, whole6, whole6_zero4 = (
                 np.broadcast_to(np.asarray(v, dtype=float), (*self.shape, m)).reshape(self.K, m)
                 for v in self._program("singular")(*_entries(inner), *self._sign_arrays)
             )
@@ -609,7 +611,7 @@ class Solver:
         q6[:, rows] = np.where(
             zero, _wrap(whole6_zero4), np.where(near, _wrap(whole6), q6[:, rows])
         )
-        q4[:, rows] = np.where(zero, _wrap(zero4), q4[:, rows])
+        q4[:, rows] = np.where(zero, _wrap(zero4), np.where(near, _wrap(own4), q4[:, rows]))
 
     def _check(
         self, q: np.ndarray, target: np.ndarray, cells: Sequence[int]

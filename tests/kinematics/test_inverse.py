@@ -8,7 +8,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 import sympy as sp
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import dhsym
@@ -258,6 +258,7 @@ def test_numeric_solver_is_labelled_and_converges_nearby() -> None:
 
 @settings(max_examples=60, deadline=None)
 @given(st.lists(st.floats(-3.1, 3.1), min_size=6, max_size=6))
+@example([0.0, 0.5, -0.75, 1.0, 1.192092896e-07, 0.0])  # found by hypothesis: θ4, θ6 mixed programs
 def test_property_every_solution_reproduces_the_pose(q: list[float]) -> None:
     robot = _robot("puma560_modified")
     T = robot.fk(q)
@@ -393,3 +394,18 @@ def test_signs_come_out_of_sines_cosines_and_wraps_exactly() -> None:
     program, (out,) = _pull_signs(steps, [sp.cos(x)], [s])
     assert program[0][1] == sp.atan2(y, 2)
     assert out.has(s) and not any(f.args[0].has(s) for f in out.atoms(sp.cos))
+
+
+@pytest.mark.parametrize("name", ["puma560", "puma560_modified", "stanford", "example4_6dof"])
+def test_near_a_singular_wrist_theta4_and_theta6_stay_consistent(name: str) -> None:
+    robot = _robot(name)
+    rng = np.random.default_rng(3)
+    q = rng.uniform(-3, 3, (400, 6))
+    q[:, 4] = rng.choice([0.0, 1e-9, 1.192092896e-07, 1e-6, 9e-6], 400) * rng.choice([-1, 1], 400)
+    T = robot.fk(q)
+    for check in (None, "pose"):
+        batch = robot.ik(T, check=check)
+        for k in range(len(q)):
+            sol = batch.solution(k) if hasattr(batch, "solution") else batch[k]
+            assert len(sol.q) >= 1
+            assert np.abs(robot.fk(sol.q) - T[k]).max() < 1e-9
