@@ -71,4 +71,13 @@ def test_builders_and_printers_refuse_text_or_parse_it_safely():
             build(hostile)
     with pytest.raises(ParseError, match="double underscores"):
         Notation().tokens(hostile, latex=False)
+    import dhsym
+
+    rows = [[hostile, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+    with pytest.raises(TypeError, match="got str"):
+        dhsym.Pose(rows)
+    link = dhsym.load("planar2r").link_matrix(1)
+    for call in (lambda: link.subs({"a1": hostile}), lambda: link.evalf({"a1": hostile})):
+        with pytest.raises(ParseError):
+            call()
     assert [t.text for t in Notation().tokens("a1 + 1", latex=False)] == ["a1", " + ", "1"]

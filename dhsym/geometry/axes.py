@@ -46,6 +46,7 @@ __all__ = [
     "Frame",
     "JointAxis",
     "Relation",
+    "exact_matrix",
     "Tool",
     "classify",
     "common_normal",
@@ -61,6 +62,20 @@ __all__ = [
 Vector = sp.ImmutableMatrix
 Values = Mapping[sp.Symbol, sp.Expr]
 _SURDS = (sp.Integer(1), sp.sqrt(2), sp.sqrt(3), sp.sqrt(6))
+
+
+def exact_matrix(matrix: object) -> sp.Matrix:
+    """A sympy matrix for ``matrix``: a sympy matrix as it is, else rows of values each read
+    by :func:`exact_number` (text through the whitelist parser, never sympified).
+
+    >>> exact_matrix([[0.5, "a2"], [0, 1]])
+    Matrix([
+    [1/2, a2],
+    [  0,  1]])
+    """
+    if isinstance(matrix, sp.MatrixBase):
+        return sp.Matrix(matrix)
+    return sp.Matrix([[exact_number(v) for v in row] for row in matrix])  # type: ignore[attr-defined]
 
 
 def exact_number(value: object, *, field: str | None = None) -> sp.Expr:

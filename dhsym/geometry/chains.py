@@ -220,14 +220,10 @@ def _nonzero(x: sp.Expr, tol: float = 1e-9) -> bool:
 
 
 def _as_matrix(matrix: object, frm: str, to: str) -> Matrix:
-    from .axes import exact_number
+    from .axes import exact_matrix
 
     try:
-        M = (
-            sp.Matrix(matrix)
-            if isinstance(matrix, sp.MatrixBase)
-            else sp.Matrix([[exact_number(v) for v in row] for row in matrix])
-        )  # type: ignore[union-attr]
+        M = exact_matrix(matrix)
     except (TypeError, ValueError) as err:
         raise ChainError(f"T[{frm}←{to}]: expected a 4×4 matrix ({err})") from None
     if M.shape != (4, 4) or any(sp.simplify(M[3, j] - (1 if j == 3 else 0)) != 0 for j in range(4)):

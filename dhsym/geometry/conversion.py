@@ -49,6 +49,8 @@ from dhsym.kinematics.numeric import compile_word, elementary_stack, to_float
 from dhsym.kinematics.transforms import chain_word, elementary_matrix
 from dhsym.model.table import Convention, DHRow, DHTable, Elementary
 
+from .axes import exact_matrix
+
 __all__ = [
     "check_conversion",
     "convert",
@@ -342,7 +344,7 @@ def rotation_word(R: sp.MatrixBase) -> tuple[Elementary, ...]:
     >>> rotation_word(sp.eye(3))
     ()
     """
-    R = sp.Matrix(R)
+    R = exact_matrix(R)  # text is read, never sympified
     if R.free_symbols:
         raise DHError(f"rotation_word needs a numeric rotation, got symbols {R.free_symbols}")
     Rn = np.array([[to_float(x) for x in row] for row in R.tolist()])
@@ -376,7 +378,7 @@ def transform_word(T: sp.MatrixBase) -> tuple[Elementary, ...]:
     >>> transform_word(Tz(sp.Symbol("h", real=True)) * Rx(sp.pi))
     (Tz(h), Rx(pi))
     """
-    T = sp.Matrix(T)
+    T = exact_matrix(T)
     trans = _word(*(Elementary("T", _AXES[i], sp.simplify(T[i, 3])) for i in range(3)))
     return trans + rotation_word(T[:3, :3])
 

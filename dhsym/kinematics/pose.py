@@ -62,7 +62,7 @@ from collections.abc import Mapping, Sequence
 import sympy as sp
 from sympy.core.basic import Basic
 
-from dhsym.model.table import Elementary
+from dhsym.model.table import Elementary, symbol_values
 from dhsym.notation.printers import Notation
 
 __all__ = ["Pose"]
@@ -114,7 +114,12 @@ class Pose(_Matrix):  # type: ignore[misc]
         symbol: str = "T",
         word: Sequence[Elementary] | None = None,
     ) -> Pose:
-        plain = _Matrix(matrix)
+        if isinstance(matrix, sp.MatrixBase):
+            plain = _Matrix(matrix)
+        else:  # rows of numbers or sympy objects; text is refused, never sympified
+            from .numeric import as_basic
+
+            plain = _Matrix([[as_basic(x) for x in row] for row in matrix])  # type: ignore[attr-defined]
         if plain.shape != (4, 4):
             raise ValueError(f"a pose is a 4×4 homogeneous transform, got shape {plain.shape}")
         obj = Basic.__new__(cls, *plain.args)
@@ -222,10 +227,19 @@ class Pose(_Matrix):  # type: ignore[misc]
     def subs(self, *args: object, **kwargs: object) -> Pose:  # type: ignore[override]
         """A copy with values substituted (symbols to numbers or expressions), labels kept.
 
-        Takes what ``sympy.Matrix.subs`` takes: a dict, pairs, or ``old, new``.
+        Takes what ``sympy.Matrix.subs`` takes: a dict, pairs, or ``old, new``; names may be
+        text and values text or numbers (read by the whitelist parser, never sympified).
+
+        >>> from dhsym import load
+        >>> load("planar2r").link_matrix(1).subs({"a1": "0.5"})[0, 3]
+        cos(theta1)/2
         """
         return Pose(
-            self._plain.subs(*args, **kwargs), self.frm, self.to, self.notation, self.symbol
+            self._plain.subs(*_safe_subs(args), **kwargs),
+            self.frm,
+            self.to,
+            self.notation,
+            self.symbol,
         )
 
     def evalf(  # type: ignore[override]
@@ -235,8 +249,10 @@ class Pose(_Matrix):  # type: ignore[misc]
 
         ``sympy.N(pose, 5)`` and ``pose.evalf(5, subs=…)`` work as for any matrix.
         """
+        if isinstance(kwargs.get("subs"), Mapping):
+            kwargs["subs"] = symbol_values(kwargs["subs"])  # type: ignore[arg-type]
         if isinstance(values, Mapping) or values is None:
-            kwargs.setdefault("subs", dict(values or {}))
+            kwargs.setdefault("subs", symbol_values(values))
             return _Matrix(self._plain.evalf(*args, **kwargs))
         return _Matrix(self._plain.evalf(values, *args, **kwargs))
 
@@ -352,3 +368,14 @@ def _tidy(M: sp.MatrixBase) -> sp.ImmutableMatrix:
     from .simplification import fold_sum_angles, tidy_signs
 
     return _Matrix(M.applyfunc(lambda e: tidy_signs(fold_sum_angles(sp.expand(e)))))
+
+
+def _safe_subs(args: tuple[object, ...]) -> tuple[object, ...]:
+    """``subs`` arguments with names and values read safely (:func:`symbol_values`)."""
+    if len(args) == 2:  # old, new
+        return tuple(symbol_values({args[0]: args[1]}).items())[0]
+    if len(args) == 1 and isinstance(args[0], Mapping):
+        return (symbol_values(args[0]),)
+    if len(args) == 1 and isinstance(args[0], (list, tuple)):  # pairs
+        return (list(symbol_values(dict(args[0])).items()),)  # type: ignore[arg-type]
+    return args

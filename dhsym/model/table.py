@@ -43,6 +43,7 @@ __all__ = [
     "Elementary",
     "JointType",
     "as_expr",
+    "symbol_values",
     "to_radians",
 ]
 
@@ -293,7 +294,7 @@ class DHTable:
                     found += [snapped] if snapped else []
                     steps.append(e)
                 kw[where] = tuple(steps)
-        pairs = tuple(_value_map(values).items())
+        pairs = tuple(symbol_values(values).items())
         warnings = (snap_note(found),) if found else ()
         return cls(
             tuple(converted),
@@ -394,7 +395,7 @@ class DHTable:
 
     def with_values(self, values: Mapping[object, object]) -> DHTable:
         """A copy with more (or replaced) numeric values for constant symbols."""
-        return replace(self, values=tuple({**self.value_map, **_value_map(values)}.items()))
+        return replace(self, values=tuple({**self.value_map, **symbol_values(values)}.items()))
 
     def substituted(self) -> DHTable:
         """A copy with the numeric values substituted into the rows (values emptied)."""
@@ -421,9 +422,13 @@ class DHTable:
         return table_markdown(self)
 
 
-def _value_map(values: Mapping[object, object] | None) -> dict[sp.Symbol, Expr]:
-    """Symbol → exact value for values as given (names or symbols; numbers or text, which
-    goes through the whitelist parser)."""
+def symbol_values(values: Mapping[object, object] | None) -> dict[sp.Symbol, Expr]:
+    """Symbol → exact value for values as given: names or symbols; numbers or text, which
+    goes through the whitelist parser (never ``sympify``).
+
+    >>> symbol_values({"a2": "0.4318", "d3": 0.15})
+    {a2: 2159/5000, d3: 3/20}
+    """
     return {
         (symbol(k) if isinstance(k, str) else k): as_expr(v, field="values")  # type: ignore[misc]
         for k, v in (values or {}).items()
