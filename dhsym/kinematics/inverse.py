@@ -76,6 +76,7 @@ from dhsym.notation.layout import Sentence, sentence, word_expr
 from ._ik_numbers import IKBatch, IKSolution, NumericSolution, Solver, numeric_ik
 from ._structure import ArmGeometry, Decoupling, StructureError, arm_geometry, decouple
 from .jacobian import _values, compact
+from .numeric import values_key
 from .simplification import compose, trig_coefficients
 from .transforms import chain_word, plain_product
 
@@ -775,14 +776,9 @@ class InverseKinematics:
     def solver(self, values: Mapping[object, object] | None = None) -> Solver:
         """The compiled solver (built once per set of values, then cached on the robot)."""
         cache = self.robot._extra_cache
-        if not values and ("ik-solver", None) in cache:  # the table's own values: no key to build
-            return cache[("ik-solver", None)]  # type: ignore[no-any-return]
-        vals = _values(self.robot, values)
-        key = ("ik-solver", tuple(sorted((str(k), str(v)) for k, v in vals.items())))
+        key = ("ik-solver", values_key(values))  # the values as given: converted only once
         if key not in cache:
-            cache[key] = Solver(self, vals)
-        if not values:
-            cache[("ik-solver", None)] = cache[key]
+            cache[key] = Solver(self, _values(self.robot, values))
         return cache[key]  # type: ignore[no-any-return]
 
     def solve(

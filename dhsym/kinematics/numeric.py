@@ -65,6 +65,7 @@ __all__ = [
     "float_constants",
     "numeric_rigid_inverse",
     "to_float",
+    "values_key",
     "word_product",
 ]
 
@@ -380,6 +381,21 @@ def compile_matrix(
         return out[0] if single else out
 
     return evaluate
+
+
+def values_key(values: Mapping[object, object] | None) -> object:
+    """A hashable cache key for ``values`` as given (None when none): what compiled
+    functions of a robot (fk, Jacobian, IK solver) are cached by.
+
+    >>> values_key(None), values_key({"a2": 0.43}) == values_key({"a2": 0.43})
+    (None, True)
+    """
+    if not values:
+        return None
+    try:
+        return frozenset(values.items())
+    except TypeError:  # an unhashable value: fall back to its text
+        return frozenset((str(k), str(v)) for k, v in values.items())
 
 
 def _configurations(q: object, n: int) -> tuple[np.ndarray, bool]:

@@ -209,11 +209,11 @@ class Robot:
         >>> r.fk_function() is r.fk_function(), r.fk_function(0, 1)([0.5, 0.0])[0, 3]
         (True, np.float64(0.8775825618903728))
         """
-        key = (i, j, _values_key(values))
+        from .numeric import compile_pose, compile_word, values_key
+
+        key = (i, j, values_key(values))
         f = self._fk_cache.get(key)
         if f is None:
-            from .numeric import compile_pose, compile_word
-
             if i is None and j is None:
                 i = -1 if self.table.base else 0
                 j = self.n + 1 if self.table.tool else self.n
@@ -271,12 +271,9 @@ class Robot:
             if euler is not None:
                 return jac.analytic_jacobian(self, euler, frame)
             return jac.geometric_jacobian(self, frame)
-        key = (
-            "jacobian",
-            frame,
-            euler,
-            tuple(sorted((str(k), str(v)) for k, v in (values or {}).items())),
-        )
+        from .numeric import values_key
+
+        key = ("jacobian", frame, euler, values_key(values))
         if key not in self._extra_cache:
             if euler is not None:
                 if frame != "base":
@@ -313,16 +310,6 @@ class Robot:
     def _check_row(self, i: int) -> None:
         if not 1 <= i <= self.n:
             raise IndexError(f"{self.name or 'robot'} has links 1 … {self.n}; got {i}")
-
-
-def _values_key(values: Mapping[object, object] | None) -> object:
-    """A hashable key for the ``values`` of :meth:`Robot.fk_function` (None when none)."""
-    if not values:
-        return None
-    try:
-        return frozenset(values.items())
-    except TypeError:  # an unhashable value: fall back to its text
-        return frozenset((str(k), str(v)) for k, v in values.items())
 
 
 def _frame_name(i: int, n: int) -> int | str:
