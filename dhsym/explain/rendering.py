@@ -29,6 +29,7 @@ Planar 2R: forward kinematics (standard DH convention)
 from __future__ import annotations
 
 from collections.abc import Sequence
+from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -72,7 +73,18 @@ def _text_columns(items: Sequence[str], width: int = 96) -> list[str]:
 
 
 def environment(kind: str = "latex", template_dir: str | Path | None = None) -> object:
-    """The Jinja2 environment for ``kind`` (``latex``, ``markdown`` or ``text``)."""
+    """The Jinja2 environment for ``kind`` (``latex``, ``markdown`` or ``text``).
+
+    Built once per kind and template folder (templates compile once; Jinja2 reloads a
+    template file that changes on disk).
+    """
+    if template_dir is not None:
+        template_dir = Path(template_dir).resolve()
+    return _environment(kind, template_dir)
+
+
+@lru_cache(maxsize=8)
+def _environment(kind: str, template_dir: Path | None) -> object:
     import jinja2
     from markupsafe import Markup
 

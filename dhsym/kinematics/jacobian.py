@@ -463,9 +463,11 @@ def analytic_jacobian_function(
     """The compiled analytic Jacobian in the base frame (angles read from ``fk``)."""
     import numpy as np
 
+    from .numeric import compile_exprs
+
     geometric = jacobian_function(robot, values=values)
     B = rate_matrix(euler)
-    inverse = sp.lambdify(euler_symbols(euler), list(B.inv().applyfunc(sp.trigsimp)), "numpy")
+    inverse = compile_exprs(list(B.inv().applyfunc(sp.trigsimp)), euler_symbols(euler))
     fk = robot.fk_function(values=values)
 
     def evaluate(q: object) -> np.ndarray:

@@ -75,13 +75,6 @@ def _is_half_turn(e: Elementary) -> bool:
     )
 
 
-def _commute(left: Elementary, right: Elementary) -> bool:
-    """True when ``left right == right left`` for these two elementaries."""
-    if left.kind == "T" and right.kind == "T":
-        return True
-    return left.axis == right.axis
-
-
 def normalize_word(word: Sequence[Elementary]) -> tuple[Elementary, ...]:
     """Drop identities, move translations left past rotations about their own axis, merge.
 
