@@ -84,7 +84,9 @@ class Key:
         table = ref if isinstance(ref, DHTable) else load_table(ref)
         q = question if isinstance(question, Question) else Question.parse(question, table.n)
         name = table.name or (Path(ref).stem if not isinstance(ref, DHTable) else "")
-        return cls(table, q, name, tool_free, Rounding.parse(rounding))
+        key = cls(table, q, name, tool_free, Rounding.parse(rounding))
+        prepare(key)  # a key that cannot be checked against (too large, wrong values) stops here
+        return key
 
 
 @dataclass(eq=False)
@@ -203,13 +205,14 @@ def check_answer(
     """Check one answer (text or bytes, untrusted) against ``key``.
 
     Never raises on bad answers: they come back ``unreadable`` with the reason (parse
-    errors, limits, answers too large to process). An exception of any other kind is a
-    bug of dhsym and is raised, never disguised as an unreadable answer.
+    errors, limits, answers too large to process). A key that cannot be prepared raises
+    its :class:`~dhsym.errors.DHError`; an exception of any other kind is a bug of dhsym
+    and is raised too, never disguised as an unreadable answer.
     The whole check runs under ``limits.seconds`` (where a time limit is possible).
     """
+    pk = prepare(key)  # a fault of the key raises here: it is never the answer's
     try:
         with time_limit(limits.seconds):
-            pk = prepare(key)
             if key.question.kind == "table":
                 return _check_table(pk, answer, limits)
             if key.question.kind == "ik":

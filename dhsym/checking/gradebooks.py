@@ -56,6 +56,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from dhsym.errors import DHError
+from dhsym.model.yamlsafe import read_limited
 
 from ._report import csv_cell, inside, write_atomic
 
@@ -127,11 +128,10 @@ class Roster:
     def load(cls, path: str | Path) -> Roster:
         """Read a roster CSV file (UTF-8, a byte-order mark is fine)."""
         p = Path(path)
+        data = read_limited(p, _MAX_ROSTER, what="the roster")  # regular files only, capped
         try:
-            if p.stat().st_size > _MAX_ROSTER:
-                raise DHError(f"the roster is larger than {_MAX_ROSTER} bytes", file=str(p))
-            text = p.read_bytes().decode("utf-8-sig")
-        except (OSError, UnicodeDecodeError) as err:
+            text = data.decode("utf-8-sig")
+        except UnicodeDecodeError as err:
             raise DHError(f"cannot read the roster: {err}", file=str(p)) from None
         return cls.from_text(text, str(p))
 

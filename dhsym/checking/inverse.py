@@ -77,7 +77,9 @@ _SIGN_NAME = "pmsign"
 _PLUS_MINUS = re.compile(r"\\pm(?![A-Za-z])|±|\+/-")
 _MINUS_PLUS = re.compile(r"\\mp(?![A-Za-z])|∓|-/\+")
 _WRAPPERS = re.compile(r"\\(?:begin|end)\{[A-Za-z*]+\}|\\\[|\\\]|\$|&")
-_NUMERAL = re.compile(r"(?<![A-Za-z_])([0-9]*)\.([0-9]+)|(?<![A-Za-z_.0-9])([0-9]+)(?![.0-9])")
+# a numeral starts only where no digit, name character or point precedes it, so each run of
+# digits is tried once (linear on any text)
+_NUMERAL = re.compile(r"(?<![A-Za-z_0-9.])([0-9]*)\.([0-9]+)|(?<![A-Za-z_.0-9])([0-9]+)(?![.0-9])")
 _IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
 

@@ -54,7 +54,6 @@ def _cmd_check(args: argparse.Namespace) -> int:
     from dhsym.checking.checker import Key, check_answer
     from dhsym.checking.feedback import render_check
     from dhsym.checking.verdict import CheckResult, Verdict
-    from dhsym.kinematics.robot import Robot
 
     limits = (
         AnswerLimits(seconds=check_seconds(args.timeout, "--timeout"))
@@ -62,8 +61,6 @@ def _cmd_check(args: argparse.Namespace) -> int:
         else DEFAULT_ANSWER_LIMITS
     )
     key = Key.load(args.key, args.question, tool_free=args.tool_free, rounding=args.rounding)
-    if key.question.kind != "table":
-        Robot(key.table).check_transform_size(key.question.frm, key.question.to)
     try:
         answer = _read_answer(args.answer, limits.max_bytes)
         result = check_answer(key, answer, limits=limits)

@@ -71,3 +71,12 @@ def test_a_bug_in_dhsym_is_raised_not_graded_unreadable(monkeypatch):
         raise AssertionError("a TypeError inside dhsym was turned into a verdict")
     monkeypatch.undo()
     assert check_answer(key, "a1*C1 + (").verdict.value == "unreadable"  # parse errors still are
+
+
+def test_a_key_that_cannot_be_checked_against_is_refused_not_blamed_on_answers():
+    import pytest
+
+    from dhsym.errors import DHError
+
+    with pytest.raises(DHError, match="2 joints, got 3 values"):
+        Key.load("planar2r", "ik@1,2,3")
