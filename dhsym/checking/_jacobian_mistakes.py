@@ -18,7 +18,7 @@ Matrix([[-a2*sin(theta1 + theta2), a2*cos(theta1 + theta2)]])
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any
+from typing import Any, TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -40,7 +40,7 @@ __all__ = [
     "next_axis_jacobian",
 ]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 
 
 def _cached(case: MatrixCase, key: str, build: Any) -> np.ndarray:

@@ -33,6 +33,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import Enum
 from fractions import Fraction
+from typing import TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -59,7 +60,7 @@ __all__ = [
     "vector",
 ]
 
-Vector = sp.ImmutableMatrix
+Vector: TypeAlias = sp.ImmutableMatrix
 Values = Mapping[sp.Symbol, sp.Expr]
 _SURDS = (sp.Integer(1), sp.sqrt(2), sp.sqrt(3), sp.sqrt(6))
 

@@ -41,7 +41,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -75,7 +75,7 @@ if TYPE_CHECKING:
 
 __all__ = ["FrameAssignment", "VariableMap", "assign_frames"]
 
-Vector = sp.ImmutableMatrix
+Vector: TypeAlias = sp.ImmutableMatrix
 _DIGITS, _AGREE = 50, 30  # numeric home check: 50 significant digits must agree to 1e-30
 
 
@@ -405,7 +405,6 @@ def _verify(fa: FrameAssignment, samples: int, seed: int, tol: float) -> float:
     return worst
 
 
-Vector = sp.ImmutableMatrix
 _EX, _EY = Vector([1, 0, 0]), Vector([0, 1, 0])
 
 

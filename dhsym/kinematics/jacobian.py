@@ -44,7 +44,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -76,7 +76,7 @@ __all__ = [
     "resolve_frame",
 ]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 
 #: Euler-angle sets for the analytic Jacobian: name → rotation axes in order.
 #: ``zyz``: R = Rz(φ) Ry(θ) Rz(ψ); ``rpy``: R = Rz(φ) Ry(θ) Rx(ψ) (roll ψ, pitch θ, yaw φ).

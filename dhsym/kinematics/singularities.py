@@ -43,7 +43,7 @@ import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -60,7 +60,7 @@ if TYPE_CHECKING:
 
 __all__ = ["Block", "SingularFactor", "Singularities", "factored_det", "singularities"]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 _MAX_MINORS = 5  # Cauchy–Binet beyond this takes seconds: one redundant joint at most
 
 

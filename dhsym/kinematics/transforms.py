@@ -26,6 +26,7 @@ Matrix([
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TypeAlias
 
 import sympy as sp
 
@@ -49,7 +50,7 @@ __all__ = [
     "rigid_inverse",
 ]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 
 
 def cos_sin(angle: sp.Expr) -> tuple[sp.Expr, sp.Expr]:

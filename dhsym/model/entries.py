@@ -6,6 +6,8 @@ q3 + pi/2
 
 from __future__ import annotations
 
+from typing import TypeAlias
+
 import sympy as sp
 
 from dhsym.errors import TableError
@@ -15,7 +17,7 @@ from .parsing import DEFAULT_LIMITS, numeral_problem, parse_expression
 
 __all__ = ["as_expr", "check_radians", "exact_decimal", "to_radians"]
 
-Expr = sp.Expr
+Expr: TypeAlias = sp.Expr
 
 
 def as_expr(value: object, *, field: str | None = None, row: int | None = None) -> Expr:
