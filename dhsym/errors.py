@@ -14,6 +14,8 @@ True
 
 from __future__ import annotations
 
+from typing import Any
+
 __all__ = ["DHError", "TableError", "ParseError", "GeometryError", "ChainError"]
 
 
@@ -44,11 +46,11 @@ class DHError(Exception):
 
     def located(self, **where: object) -> DHError:
         """Return a copy of this error with missing location parts filled in."""
-        loc = {"file": self.file, "row": self.row, "field": self.field}
+        loc: dict[str, Any] = {"file": self.file, "row": self.row, "field": self.field}
         for key, value in where.items():
             if loc.get(key) is None:
                 loc[key] = value
-        return type(self)(self.message, **loc)  # type: ignore[arg-type]
+        return type(self)(self.message, **loc)
 
     def __str__(self) -> str:
         parts = []

@@ -31,7 +31,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from functools import lru_cache
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from dhsym.errors import DHError
 from dhsym.notation.escape import TeX, _clean_text, escape_latex, escape_markdown
@@ -90,7 +90,7 @@ def _environment(kind: str, template_dir: Path | None) -> object:
 
     if kind not in _KINDS:
         raise DHError(f"unknown format {kind!r}: expected one of {', '.join(_KINDS)}")
-    common = dict(
+    common: dict[str, Any] = dict(
         loader=loader(template_dir),
         undefined=jinja2.StrictUndefined,
         trim_blocks=True,
@@ -111,7 +111,7 @@ def _environment(kind: str, template_dir: Path | None) -> object:
             return Markup(value)
         return Markup(escape(value))
 
-    delimiters = dict(
+    delimiters: dict[str, Any] = dict(
         block_start_string="((*",
         block_end_string="*))",
         variable_start_string="(((",
@@ -133,7 +133,8 @@ def render_template(env: object, name: str, **context: object) -> str:
     try:
         return env.get_template(name).render(**context)  # type: ignore[attr-defined]
     except jinja2.TemplateError as err:
-        where = f"{err.filename}:{err.lineno}: " if getattr(err, "lineno", None) else ""
+        line, file = getattr(err, "lineno", None), getattr(err, "filename", None)
+        where = f"{file}:{line}: " if line else ""
         raise DHError(f"template {name}: {where}{err.message or err}") from None
 
 

@@ -64,7 +64,7 @@ _FUNCTIONS: MappingProxyType[str, tuple[Callable[..., sympy.Expr], int]] = Mappi
 )
 _NON_FINITE_NAMES = frozenset({"nan", "inf", "infinity", "oo", "zoo"})
 _BUILTINS = "eval exec compile open input globals locals vars getattr setattr delattr breakpoint"
-_RESERVED = frozenset(keyword.kwlist + _BUILTINS.split()) - {"lambda"}  # λ is 'lambda'
+_RESERVED = frozenset([*keyword.kwlist, *_BUILTINS.split()]) - {"lambda"}  # λ is 'lambda'
 _NON_FINITE = (sympy.S.ComplexInfinity, sympy.S.NaN, sympy.S.Infinity, sympy.S.NegativeInfinity)
 _Resolve = Callable[[str], "sympy.Expr | None"]
 _CHARS = "expected a number, name, operator (+ - * / ^ **), '(', ')' or ','"
@@ -231,7 +231,8 @@ class _Parser:
         return self.error(f"unexpected {what.get(tok.kind, repr(tok.text))}", tok.pos, expected)
 
     def tokenize(self) -> list[_Token]:
-        text, tokens, i = self.text, [], 0
+        text, i = self.text, 0
+        tokens: list[_Token] = []
         while i < len(text):
             m = _TOKEN.match(text, i)
             if m is None:
@@ -322,7 +323,8 @@ class _Parser:
         return terms[0] if len(terms) == 1 else self.make(first, sympy.Add, *terms)
 
     def term(self) -> sympy.Expr:
-        first, factors = self.tokens[self.i], []
+        first = self.tokens[self.i]
+        factors: list[sympy.Expr] = []
         while not factors or self.is_op("*", "/", "(") or self.tokens[self.i].kind == "name":
             tok = self.take() if factors and self.is_op("*", "/") else self.tokens[self.i]
             sign, value = self.factor()  # a sign applies to the product: -(a+b)*c stays so

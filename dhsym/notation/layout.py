@@ -325,7 +325,7 @@ def word_math(word: Sequence[Elementary], nota: Notation) -> Math:
 
 def equation(name: Math, expr: sp.Expr, whole: Math, nota: Notation, width: float) -> Equation:
     """``name = expr`` (printed as ``whole``), split into lines when it is too wide."""
-    latex_lines = [whole.latex]
+    latex_lines: list[str] = [whole.latex]
     text_lines = [whole.text]
     if math_width(whole.latex) > width or len(whole.text) > TEXT_WIDTH - 12:
         ps = pieces(expr, nota)

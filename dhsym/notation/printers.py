@@ -97,7 +97,8 @@ def angle_label(arg: sp.Expr, labels: dict[sp.Symbol, str]) -> str | None:
     coeffs = arg.as_coefficients_dict()
     if sp.S.One in coeffs:
         return None
-    pos, neg = [], []
+    pos: list[sp.Expr] = []
+    neg: list[sp.Expr] = []
     for term, c in coeffs.items():
         if term not in labels or c not in (1, -1):
             return None

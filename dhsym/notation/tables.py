@@ -134,11 +134,11 @@ def text_table(heads: Sequence[object], rows: Sequence[Sequence[object]]) -> lis
     --+-------------
     1 | theta1 - 90°
     """
-    heads = [str(h) for h in heads]
+    names = [str(h) for h in heads]
     cells = [[str(c) for c in r] for r in rows]
-    widths = [max([len(h), *(len(r[k]) for r in cells)]) for k, h in enumerate(heads)]
+    widths = [max([len(h), *(len(r[k]) for r in cells)]) for k, h in enumerate(names)]
 
     def line(row: Sequence[str]) -> str:
         return " | ".join(c.ljust(w) for c, w in zip(row, widths, strict=True)).rstrip()
 
-    return [line(heads), "-+-".join("-" * w for w in widths), *map(line, cells)]
+    return [line(names), "-+-".join("-" * w for w in widths), *map(line, cells)]
