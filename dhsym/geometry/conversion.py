@@ -40,6 +40,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -258,7 +259,7 @@ def check_conversion(
 # --- rigid transforms as words of elementaries --------------------------------------------
 
 
-def _rot(axis: int, angle: object, exact: bool = True) -> object:
+def _rot(axis: int, angle: object, exact: bool = True) -> Any:
     """3×3 rotation about x/y/z: exact (sympy) or numeric (numpy), from the one kernel."""
     name = "xyz"[axis]
     if exact:
@@ -266,13 +267,13 @@ def _rot(axis: int, angle: object, exact: bool = True) -> object:
     return elementary_stack("R", name, [angle])[0, :3, :3]
 
 
-def _same(A: object, B: object, exact: bool) -> bool:
+def _same(A: Any, B: Any, exact: bool) -> bool:
     if exact:
         return all(sp.simplify(x) == 0 for x in sp.Matrix(A) - sp.Matrix(B))
     return bool(np.allclose(A, B, atol=1e-10))
 
 
-def _euler(R: object, seq: tuple[int, int, int], exact: bool, gimbal: bool | None = None):
+def _euler(R: Any, seq: tuple[int, int, int], exact: bool, gimbal: bool | None = None):
     """Angles (a, b, c) with ``R = R_i(a) R_j(b) R_k(c)`` (Tait–Bryan or proper Euler), or None.
 
     ``gimbal``: when the middle angle locks the outer two, c = 0 and a takes
@@ -300,7 +301,7 @@ def _euler(R: object, seq: tuple[int, int, int], exact: bool, gimbal: bool | Non
     return _checked(R, seq, (a, b, c), gimbal, exact)
 
 
-def _checked(R: object, seq: tuple[int, int, int], angles: tuple, gimbal: bool, exact: bool):
+def _checked(R: Any, seq: tuple[int, int, int], angles: tuple, gimbal: bool, exact: bool):
     i, j, k = seq
     a, b, c = angles
     ok = _same(_rot(i, a, exact) @ _rot(j, b, exact) @ _rot(k, c, exact), R, exact)

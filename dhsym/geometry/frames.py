@@ -41,7 +41,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -136,7 +136,7 @@ def assign_frames(
     convention: Convention | str = Convention.STANDARD,
     base: Frame | object | None = None,
     tool: Tool | Sequence[object] | None = None,
-    values: Mapping[object, object] | None = None,
+    values: Mapping[Any, object] | None = None,
     offsets: bool = True,
     name: str = "",
     verify: bool = True,

@@ -44,7 +44,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import sympy as sp
 
@@ -412,7 +412,7 @@ def analytic_jacobian(
 # --- numbers -----------------------------------------------------------------------------
 
 
-def _values(robot: Robot, values: Mapping[object, object] | None) -> dict[sp.Symbol, sp.Expr]:
+def _values(robot: Robot, values: Mapping[Any, object] | None) -> dict[sp.Symbol, sp.Expr]:
     return robot.table.with_values(values or {}).value_map
 
 
@@ -420,7 +420,7 @@ def jacobian_function(
     robot: Robot,
     frame: int | str = "base",
     point: int | str = "tool",
-    values: Mapping[object, object] | None = None,
+    values: Mapping[Any, object] | None = None,
 ) -> Callable[[object], np.ndarray]:
     """The compiled geometric Jacobian: ``(n,)`` → ``(6, n)``, ``(N, n)`` → ``(N, 6, n)``."""
     from .numeric import compile_matrix
@@ -458,7 +458,7 @@ def euler_angles(R: object, euler: str = "zyz") -> np.ndarray:
 def analytic_jacobian_function(
     robot: Robot,
     euler: str = "zyz",
-    values: Mapping[object, object] | None = None,
+    values: Mapping[Any, object] | None = None,
 ) -> Callable[[object], np.ndarray]:
     """The compiled analytic Jacobian in the base frame (angles read from ``fk``)."""
     import numpy as np

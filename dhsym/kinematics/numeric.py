@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -383,7 +384,7 @@ def compile_matrix(
     return evaluate
 
 
-def values_key(values: Mapping[object, object] | None) -> object:
+def values_key(values: Mapping[Any, object] | None) -> object:
     """A hashable cache key for ``values`` as given (None when none): what compiled
     functions of a robot (fk, Jacobian, IK solver) are cached by.
 

@@ -58,6 +58,7 @@ Matrix([
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from typing import Any
 
 import sympy as sp
 from sympy.core.basic import Basic
@@ -243,7 +244,7 @@ class Pose(_Matrix):  # type: ignore[misc]
         )
 
     def evalf(  # type: ignore[override]
-        self, values: Mapping[object, object] | int | None = None, *args: object, **kwargs: object
+        self, values: Mapping[Any, object] | int | None = None, *args: object, **kwargs: object
     ) -> sp.ImmutableMatrix:
         """Numerical matrix (sympy floats) at ``values`` (a dict of symbol values).
 

@@ -23,7 +23,7 @@ import math
 from collections.abc import Mapping
 from functools import cache
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 
@@ -198,7 +198,7 @@ class Robot:
         self,
         i: int | None = None,
         j: int | None = None,
-        values: Mapping[object, object] | None = None,
+        values: Mapping[Any, object] | None = None,
     ) -> PoseFunction:
         """A compiled numeric function ``q -> ^iT_j`` (defaults: world to tool), cached.
 
@@ -227,7 +227,7 @@ class Robot:
         return f  # type: ignore[return-value]
 
     def fk(
-        self, q: object, *, deg: bool = False, values: Mapping[object, object] | None = None
+        self, q: object, *, deg: bool = False, values: Mapping[Any, object] | None = None
     ) -> np.ndarray:
         """Tool pose: one configuration ``(n,)`` → ``(4, 4)``; a batch ``(N, n)`` → ``(N, 4, 4)``.
 
@@ -256,7 +256,7 @@ class Robot:
         *,
         frame: int | str = "base",
         euler: str | None = None,
-        values: Mapping[object, object] | None = None,
+        values: Mapping[Any, object] | None = None,
     ) -> object:
         """The Jacobian (see :mod:`.jacobian`): symbolic without ``q``, else numeric.
 

@@ -43,7 +43,7 @@ import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import sympy as sp
 
@@ -260,13 +260,13 @@ class Singularities:
         return prove_equal(Matrix([self.determinant]), Matrix([product]))
 
     def function(
-        self, values: Mapping[object, object] | None = None
+        self, values: Mapping[Any, object] | None = None
     ) -> Callable[[object], np.ndarray]:
         """The compiled measure: ``(n,)`` → scalar, ``(N, n)`` → ``(N,)``."""
         return _compile(self.determinant, self.robot, values)
 
     def factor_functions(
-        self, values: Mapping[object, object] | None = None
+        self, values: Mapping[Any, object] | None = None
     ) -> tuple[Callable[[object], np.ndarray], ...]:
         """One compiled function per non-constant factor (same order as ``factors``)."""
         return tuple(
@@ -275,7 +275,7 @@ class Singularities:
 
 
 def _compile(
-    expr: sp.Expr, robot: Robot, values: Mapping[object, object] | None
+    expr: sp.Expr, robot: Robot, values: Mapping[Any, object] | None
 ) -> Callable[[object], np.ndarray]:
     import numpy as np
 

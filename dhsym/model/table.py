@@ -25,7 +25,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
 import sympy as sp
 
@@ -250,7 +250,7 @@ class DHTable:
         *,
         convention: Convention | str = Convention.STANDARD,
         angles: AngleUnit | str = AngleUnit.RAD,
-        values: Mapping[object, object] | None = None,
+        values: Mapping[Any, object] | None = None,
         snap_angles: AngleSnap | bool | float | None = True,
         **kw: object,
     ) -> DHTable:
@@ -394,7 +394,7 @@ class DHTable:
         """The numeric values of constant symbols as a dict."""
         return dict(self.values)
 
-    def with_values(self, values: Mapping[object, object]) -> DHTable:
+    def with_values(self, values: Mapping[Any, object]) -> DHTable:
         """A copy with more (or replaced) numeric values for constant symbols."""
         return replace(self, values=tuple({**self.value_map, **symbol_values(values)}.items()))
 
@@ -423,7 +423,7 @@ class DHTable:
         return table_markdown(self)
 
 
-def symbol_values(values: Mapping[object, object] | None) -> dict[sp.Symbol, Expr]:
+def symbol_values(values: Mapping[Any, object] | None) -> dict[sp.Symbol, Expr]:
     """Symbol → exact value for values as given: names or symbols; numbers or text, which
     goes through the whitelist parser (never ``sympify``).
 
