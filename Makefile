@@ -28,11 +28,12 @@ demo: $(STAMP)
 	$(VENV)/bin/dhsym handout puma560 -o build/puma560.tex --pdf
 
 test: $(STAMP)
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q -n auto
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check dhsym tests benchmarks
 	$(VENV)/bin/ruff format --check dhsym tests benchmarks
+	$(VENV)/bin/mypy
 
 notebooks: $(STAMP)
 	$(VENV)/bin/dhsym notebooks build $(NB)

@@ -83,7 +83,7 @@ class IKMistake(Mistake):
         key = (self.kind, case.sample.origin)
         if key not in case.cache:
             case.cache[key] = list(self.ik_variants(case))
-        return case.cache[key]  # type: ignore[no-any-return]
+        return case.cache[key]
 
     def explain_ik(self, case: IKCase) -> Diagnosis | None:
         """A diagnosis when one of the student's wrong rows equals a variant's branch."""

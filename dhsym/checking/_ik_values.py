@@ -151,7 +151,7 @@ def joint_distance(a: np.ndarray, b: np.ndarray, revolute: np.ndarray) -> np.nda
     d = a - b
     with np.errstate(invalid="ignore"):
         d = np.where(revolute, np.abs(np.remainder(d + np.pi, 2 * np.pi) - np.pi), np.abs(d))
-    return d  # type: ignore[no-any-return]
+    return d
 
 
 def same_joints(

@@ -114,7 +114,7 @@ class IKAnswer:
 def prepare_ik(pk: PreparedKey) -> PreparedKey:
     """Derive the key's inverse kinematics once (and the pose of a numeric question)."""
     robot, q = pk.robot, pk.key.question
-    ik = robot.inverse()  # type: ignore[attr-defined]
+    ik = robot.inverse()
     pk.cache["ik"] = ik
     table = pk.key.table
     if q.pose is not None:
@@ -361,7 +361,7 @@ def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
     """The question's pose; or random poses, with the table's lengths when the answer writes
     none of them as symbols (it used their numbers)."""
     if "ik pose" in pk.cache:
-        return pk.cache["ik pose"]  # type: ignore[no-any-return]
+        return pk.cache["ik pose"]
     table = pk.key.table
     valued = set(table.constants) <= set(table.value_map) and not (
         ans.symbols & set(table.constants)
@@ -372,7 +372,7 @@ def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
     key = ("ik sample", valued)
     if key not in pk.cache:
         pk.cache[key] = pose_sample(pk.robot, values=values)
-    return pk.cache[key]  # type: ignore[no-any-return]
+    return pk.cache[key]
 
 
 def _entries(
@@ -520,7 +520,7 @@ def _close(a: np.ndarray, b: np.ndarray, revolute: np.ndarray, tol: np.ndarray) 
     d = joint_distance(a, b, revolute)
     scale = np.where(revolute, 1.0, 1.0 + np.abs(np.nan_to_num(b)))
     with np.errstate(invalid="ignore"):
-        return (d <= tol * scale).all(axis=-1)  # type: ignore[no-any-return]
+        return (d <= tol * scale).all(axis=-1)
 
 
 @dataclass(frozen=True, eq=False)

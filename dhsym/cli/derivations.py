@@ -181,4 +181,4 @@ def ik_json(robot: Robot) -> dict[str, object]:
 def derivation_json(robot: Robot, what: str) -> dict[str, object]:
     """The JSON of ``what`` (``jacobian``, ``singularities`` or ``ik``)."""
     build = {"jacobian": jacobian_json, "singularities": singularities_json, "ik": ik_json}
-    return build[what](robot)  # type: ignore[operator]
+    return build[what](robot)

@@ -83,19 +83,19 @@ class Document:
         """The derivation as terminal text."""
         from .rendering import render
 
-        return render(self, "text")  # type: ignore[arg-type]
+        return render(self, "text")
 
     def to_markdown(self) -> str:
         """The derivation as Markdown with ``$…$``/``$$…$$`` math."""
         from .rendering import render
 
-        return render(self, "markdown")  # type: ignore[arg-type]
+        return render(self, "markdown")
 
     def to_latex(self) -> str:
         """The derivation as a LaTeX fragment (needs ``amsmath``)."""
         from .rendering import render
 
-        return render(self, "latex")  # type: ignore[arg-type]
+        return render(self, "latex")
 
     def _repr_markdown_(self) -> str:
         return self.to_markdown()

@@ -342,7 +342,7 @@ def derive(
         result=matrix_block(label_math(pose), pose.matrix, nota, prefix, width),
         inverse=frm > to,
         legend=legend_lines(shown, nota),
-        check=_check(robot, frm, to, list(q)) if q is not None else None,  # type: ignore[arg-type]
+        check=_check(robot, frm, to, list(q)) if q is not None else None,
         width=width,
     )
 

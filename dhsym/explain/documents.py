@@ -272,7 +272,7 @@ def _figures(robots: Sequence[Robot], keys: Sequence[str], folder: Path, stem: s
     for robot, key in zip(robots, keys, strict=True):
         name = f"{stem}-{key}-home.pdf"
         fig = plot_robot(robot, None)
-        fig.savefig(folder / name, bbox_inches="tight")  # type: ignore[attr-defined]
+        fig.savefig(folder / name, bbox_inches="tight")
         out[key] = name
     return out
 

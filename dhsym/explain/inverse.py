@@ -234,6 +234,6 @@ def derive_inverse(
         count=ik.count,
         singular_when=as_math(sp.Eq(sp.sin(wrist_angle), 0), nota) if flip else None,
         legend=legend_lines(shown, nota),
-        check=_check(robot, list(q), nota) if q is not None else None,  # type: ignore[arg-type]
+        check=_check(robot, list(q), nota) if q is not None else None,
         width=width,
     )

@@ -417,7 +417,7 @@ class Frame:
         >>> Frame.from_matrix([[0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]).x.T
         Matrix([[0, 1, 0]])
         """
-        rows = T.tolist() if hasattr(T, "tolist") else list(T)  # type: ignore[union-attr]
+        rows = T.tolist() if hasattr(T, "tolist") else list(T)
         M = sp.Matrix([[exact_number(v) for v in row] for row in rows])
         if M.shape != (4, 4):
             raise GeometryError(f"frame {index}: expected a 4×4 matrix, got {M.shape}")

@@ -417,7 +417,7 @@ class FrameChain:
             if "←" not in key:
                 raise ChainError(f"write T[from←to], e.g. chain['world←table']; got {key!r}")
             key = tuple(part.strip() for part in key.split("←", 1))  # type: ignore[assignment]
-        frm, to = key  # type: ignore[misc]
+        frm, to = key
         return self.derive(frm, to).pose
 
     def solve(self, frm: object, to: object) -> tuple[FrameChain, ChainDerivation]:

@@ -225,7 +225,7 @@ class Jacobian:
         return self.robot.notation
 
     def __getitem__(self, key: object) -> object:
-        return self.matrix[key]  # type: ignore[index]
+        return self.matrix[key]
 
     def text(self) -> str:
         """The matrix in plain text, compact notation."""

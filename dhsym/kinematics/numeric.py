@@ -180,7 +180,7 @@ def as_basic(value: object) -> sp.Basic:
     TypeError: expected a sympy expression or a number, got str
     """
     if hasattr(value, "dtype") and hasattr(value, "item"):  # numpy scalar
-        value = value.item()  # type: ignore[union-attr]
+        value = value.item()
     if isinstance(value, sp.Basic):
         return value
     if isinstance(value, int) and not isinstance(value, bool):
@@ -239,8 +239,8 @@ class PoseFunction:
         if kind is list or kind is tuple:
             if len(q) == self.n:  # type: ignore[arg-type]
                 return self.single(q)  # type: ignore[arg-type]
-        elif kind is np.ndarray and q.ndim == 1 and q.shape[0] == self.n:  # type: ignore[union-attr]
-            return self.single(q.tolist())  # type: ignore[union-attr]
+        elif kind is np.ndarray and q.ndim == 1 and q.shape[0] == self.n:
+            return self.single(q.tolist())
         return self.batch(q)  # type: ignore[arg-type]
 
     def single(self, q: Sequence[float]) -> np.ndarray:

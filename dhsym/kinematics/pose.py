@@ -195,7 +195,7 @@ class Pose(_Matrix):  # type: ignore[misc]
         return self._plain[:3, 3]
 
     @property
-    def n(self) -> sp.ImmutableMatrix:  # type: ignore[override]
+    def n(self) -> sp.ImmutableMatrix:
         """Normal vector: the x axis of frame ``to`` (``sympy.N(pose)`` still evaluates)."""
         return self._plain[:3, 0]
 
@@ -219,13 +219,13 @@ class Pose(_Matrix):  # type: ignore[misc]
         """``T0_2`` style label for plain text."""
         return f"{self.symbol}{self.frm}_{self.to}"
 
-    def count_ops(self, visual: bool | None = None) -> int:  # type: ignore[override]
+    def count_ops(self, visual: bool | None = None) -> int:
         """``sympy.count_ops`` summed over the 16 entries (a size measure)."""
         if visual:
             return sp.count_ops(self._plain, visual=True)
         return int(sum(sp.count_ops(e) for e in self._plain))
 
-    def subs(self, *args: object, **kwargs: object) -> Pose:  # type: ignore[override]
+    def subs(self, *args: object, **kwargs: object) -> Pose:
         """A copy with values substituted (symbols to numbers or expressions), labels kept.
 
         Takes what ``sympy.Matrix.subs`` takes: a dict, pairs, or ``old, new``; names may be
@@ -243,7 +243,7 @@ class Pose(_Matrix):  # type: ignore[misc]
             self.symbol,
         )
 
-    def evalf(  # type: ignore[override]
+    def evalf(
         self, values: Mapping[Any, object] | int | None = None, *args: object, **kwargs: object
     ) -> sp.ImmutableMatrix:
         """Numerical matrix (sympy floats) at ``values`` (a dict of symbol values).
@@ -294,7 +294,7 @@ class Pose(_Matrix):  # type: ignore[misc]
         product = self._plain * other._plain
         return Pose(_tidy(product), self.frm, other.to, notation, self.symbol)
 
-    def inv(self, *args: object, **kwargs: object) -> Pose:  # type: ignore[override]
+    def inv(self, *args: object, **kwargs: object) -> Pose:
         """``^{to}T_{frm}``, the exact rigid inverse ``[Rᵀ, −Rᵀp; 0 0 0 1]``.
 
         (Arguments of ``sympy.Matrix.inv`` are accepted and not needed: no generic
@@ -378,5 +378,5 @@ def _safe_subs(args: tuple[object, ...]) -> tuple[object, ...]:
     if len(args) == 1 and isinstance(args[0], Mapping):
         return (symbol_values(args[0]),)
     if len(args) == 1 and isinstance(args[0], (list, tuple)):  # pairs
-        return (list(symbol_values(dict(args[0])).items()),)  # type: ignore[arg-type]
+        return (list(symbol_values(dict(args[0])).items()),)
     return args

@@ -154,7 +154,7 @@ def snap_entry(
         return entry, None
     exact, diff = found
     rest = sp.Add(*(t for t in terms if t.free_symbols))
-    return rest + exact, Snapped(where, row, const[0], exact, diff)  # type: ignore[arg-type]
+    return rest + exact, Snapped(where, row, const[0], exact, diff)
 
 
 def _pi_text(value: sp.Expr) -> str:

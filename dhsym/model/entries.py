@@ -58,7 +58,7 @@ def as_expr(value: object, *, field: str | None = None, row: int | None = None) 
         )
     if expr.has(sp.oo, -sp.oo, sp.zoo, sp.nan):
         raise TableError("non-finite number", row=row, field=field)
-    return expr  # type: ignore[return-value]
+    return expr
 
 
 def to_radians(expr: Expr, unit: AngleUnit | str) -> Expr:

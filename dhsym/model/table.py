@@ -124,7 +124,7 @@ class DHRow:
     @classmethod
     def fixed(cls, theta: object = 0, d: object = 0, a: object = 0, alpha: object = 0) -> DHRow:
         """A fixed row (constant transform, no joint variable)."""
-        return cls(JointType.FIXED, theta, d, a, alpha)  # type: ignore[arg-type]
+        return cls(JointType.FIXED, theta, d, a, alpha)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "joint", JointType.parse(self.joint))
@@ -300,7 +300,7 @@ class DHTable:
         return cls(
             tuple(converted),
             Convention.parse(convention),
-            values=pairs,  # type: ignore[arg-type]
+            values=pairs,
             angles=unit,
             warnings=warnings + tuple(kw.pop("warnings", ())),  # type: ignore[arg-type]
             **kw,  # type: ignore[arg-type]
@@ -431,6 +431,6 @@ def symbol_values(values: Mapping[Any, object] | None) -> dict[sp.Symbol, Expr]:
     {a2: 2159/5000, d3: 3/20}
     """
     return {
-        (symbol(k) if isinstance(k, str) else k): as_expr(v, field="values")  # type: ignore[misc]
+        (symbol(k) if isinstance(k, str) else k): as_expr(v, field="values")
         for k, v in (values or {}).items()
     }

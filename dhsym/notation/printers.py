@@ -509,7 +509,7 @@ def _coefficient(c: sp.Expr) -> str | None:
     if c.is_Integer:
         return str(c)
     if c.is_Rational:
-        return exact_decimal(c) if c.q % 10 == 0 else None  # type: ignore[attr-defined]
+        return exact_decimal(c) if c.q % 10 == 0 else None
     return None
 
 
@@ -560,7 +560,7 @@ class _LayoutMixin:
             top = render(
                 self._product_tokens(replace(p, coeff=sp.Integer(c.p)), depth), self._latex
             )
-            q = int(c.q)  # type: ignore[attr-defined]
+            q = int(c.q)
             return [
                 Token("atom", rf"\frac{{{top}}}{{{q}}}" if self._latex else f"{top}/{q}", depth)
             ]
