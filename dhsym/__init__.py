@@ -19,6 +19,7 @@ __getattr__, __dir__ = lazy_exports(
         "checking": "checking",
         "cli": "cli",
         "explain": "explain",
+        "formats": "formats",
         "geometry": "geometry",
         "kinematics": "kinematics",
         "model": "model",
@@ -76,6 +77,9 @@ __getattr__, __dir__ = lazy_exports(
         "mobility": "dhsym.geometry.joints",
         "inverse": "dhsym.kinematics.robot",
         "singularities": "dhsym.kinematics.singularities",
+        # formats
+        "from_urdf": "dhsym.formats.urdf",
+        "FormatError": "dhsym.errors",
         # errors, version
         "ChainError": "dhsym.errors",
         "DHError": "dhsym.errors",
@@ -96,6 +100,7 @@ __all__ = [
     "Derivation",
     "Elementary",
     "FrameAssignment",
+    "FormatError",
     "FrameChain",
     "GeometryError",
     "Joint",
@@ -122,6 +127,7 @@ __all__ = [
     "derive",
     "dump_table",
     "frame_origins",
+    "from_urdf",
     "grade",
     "inverse",
     "joint_path",

@@ -14,7 +14,7 @@ True
 
 from __future__ import annotations
 
-__all__ = ["DHError", "TableError", "ParseError", "GeometryError", "ChainError"]
+__all__ = ["DHError", "TableError", "ParseError", "GeometryError", "ChainError", "FormatError"]
 
 
 class DHError(Exception):
@@ -77,3 +77,7 @@ class GeometryError(DHError):
 
 class ChainError(DHError):
     """A chain of named frames is missing a link or does not close."""
+
+
+class FormatError(DHError):
+    """A file of another tool (URDF, XML) cannot be read: ``field`` names the element."""

@@ -1,0 +1,28 @@
+"""The formats room: files of other tools read into DH tables and written from them
+(URDF now). May import model, notation, kinematics and geometry.
+"""
+
+from dhsym._lazy import lazy_exports
+
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "UrdfImport": "urdf",
+        "UrdfModel": "urdf",
+        "from_urdf": "urdf",
+        "import_urdf": "urdf",
+        "read_urdf": "urdf",
+        "write_urdf": "urdf",
+        "read_xml": "xmlsafe",
+    },
+)
+
+__all__ = [
+    "UrdfImport",
+    "UrdfModel",
+    "from_urdf",
+    "import_urdf",
+    "read_urdf",
+    "read_xml",
+    "write_urdf",
+]
