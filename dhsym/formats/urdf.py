@@ -52,6 +52,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import textwrap
 from collections.abc import Iterable
 from dataclasses import dataclass, replace
 from fractions import Fraction
@@ -74,6 +75,7 @@ from dhsym.model.entries import exact_decimal
 from dhsym.model.kinds import Convention, JointType
 from dhsym.model.parsing import numeral_problem
 from dhsym.model.table import DHTable, Elementary
+from dhsym.model.tablefile import dump_table
 
 from .xmlsafe import read_xml, read_xml_file
 
@@ -90,6 +92,7 @@ __all__ = [
     "import_urdf",
     "is_urdf_source",
     "read_urdf",
+    "table_yaml",
     "write_urdf",
 ]
 
@@ -565,7 +568,7 @@ def import_urdf(
     ...   <joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint></robot>''')
     Traceback (most recent call last):
     ...
-    dhsym.errors.FormatError: field tip: the tree branches below link 'a': give tip= one of b ...
+    dhsym.errors.FormatError: field tip: the tree branches below link 'a': give the tip ... b ...
     """
     model = source if isinstance(source, UrdfModel) else read_urdf(source, snap_angles=snap_angles)
     if not model.links:
@@ -580,7 +583,8 @@ def import_urdf(
                 for leaf, c in zip(leaves, counts, strict=True)
             )
             raise FormatError(
-                f"the tree branches below link {start!r}: give tip= one of {choices}",
+                f"the tree branches below link {start!r}: give the tip link (tip=, --tip), one of "
+                f"{choices}",
                 file=model.file,
                 field="tip",
             )
@@ -684,6 +688,32 @@ def _exact(column: sp.MatrixBase) -> list[Expr]:
         v = sp.expand(v)
         out.append(exact_number(to_float(v)) if v.has(sp.Float) else v)
     return out
+
+
+def table_yaml(imp: UrdfImport) -> str:
+    """The table as a YAML table file, headed by comments on where it came from and the
+    frame-assignment sentences.
+
+    >>> imp = import_urdf('''<robot name="r"><link name="a"/><link name="b"/>
+    ...   <joint name="j" type="continuous"><parent link="a"/><child link="b"/>
+    ...   <axis xyz="0 0 1"/></joint></robot>''')
+    >>> print(table_yaml(imp).splitlines()[0])
+    # DH table (standard convention) of the URDF chain a -> b in URDF text, joints: j.
+    """
+    where = imp.model.file or "URDF text"
+    head = (
+        f"DH table ({imp.table.convention.value} convention) of the URDF chain {imp.base} -> "
+        f"{imp.tip} in {where}, joints: {', '.join(j.name for j in imp.moving)}. Derived by "
+        "dhsym from the joint axes at the URDF zero pose with the frame-assignment algorithm; "
+        "the variables keep the URDF's zero and direction, so fk(q) is the URDF pose of the "
+        "tip link in the base link for every q."
+    )
+    lines = textwrap.wrap(head, 88)
+    lines.append("Frame assignment:")
+    for k, text in enumerate(imp.steps, start=1):
+        lines += textwrap.wrap(f"{k}. {text}", 88, subsequent_indent="   ")
+    lines += [w for note in imp.table.warnings for w in textwrap.wrap(f"Note: {note}", 88)]
+    return "".join(f"# {line}\n" for line in lines) + dump_table(imp.table)
 
 
 # --- writing ----------------------------------------------------------------------------------
