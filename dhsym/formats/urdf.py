@@ -698,7 +698,7 @@ def table_yaml(imp: UrdfImport) -> str:
     ...   <joint name="j" type="continuous"><parent link="a"/><child link="b"/>
     ...   <axis xyz="0 0 1"/></joint></robot>''')
     >>> print(table_yaml(imp).splitlines()[0])
-    # DH table (standard convention) of the URDF chain a -> b in URDF text, joints: j.
+    # DH table (standard convention) of the URDF chain a -> b in URDF text, joints: j. Derived
     """
     where = imp.model.file or "URDF text"
     head = (
