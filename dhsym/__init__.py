@@ -78,6 +78,7 @@ __getattr__, __dir__ = lazy_exports(
         "inverse": "dhsym.kinematics.robot",
         "singularities": "dhsym.kinematics.singularities",
         # formats
+        "from_rtb": "dhsym.formats.rtb",
         "from_urdf": "dhsym.formats.urdf",
         "FormatError": "dhsym.errors",
         # errors, version
@@ -127,6 +128,7 @@ __all__ = [
     "derive",
     "dump_table",
     "frame_origins",
+    "from_rtb",
     "from_urdf",
     "grade",
     "inverse",

@@ -1,5 +1,5 @@
 """The formats room: files of other tools read into DH tables and written from them
-(URDF now). May import model, notation, kinematics and geometry.
+(URDF, roboticstoolbox DH robots). May import model, notation, kinematics and geometry.
 """
 
 from dhsym._lazy import lazy_exports
@@ -9,20 +9,24 @@ __getattr__, __dir__ = lazy_exports(
     {
         "UrdfImport": "urdf",
         "UrdfModel": "urdf",
+        "from_rtb": "rtb",
         "from_urdf": "urdf",
         "import_urdf": "urdf",
         "read_urdf": "urdf",
         "write_urdf": "urdf",
         "read_xml": "xmlsafe",
+        "to_rtb": "rtb",
     },
 )
 
 __all__ = [
     "UrdfImport",
     "UrdfModel",
+    "from_rtb",
     "from_urdf",
     "import_urdf",
     "read_urdf",
     "read_xml",
+    "to_rtb",
     "write_urdf",
 ]

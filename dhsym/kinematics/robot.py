@@ -311,6 +311,13 @@ class Robot:
 
         return write_urdf(self, name=name)
 
+    def to_rtb(self) -> object:
+        """A roboticstoolbox ``DHRobot`` of this robot (see :func:`dhsym.formats.rtb.to_rtb`;
+        needs ``pip install roboticstoolbox-python``)."""
+        from dhsym.formats.rtb import to_rtb
+
+        return to_rtb(self)
+
     def plot(self, q: object = None, **kw: object) -> object:
         """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plot.figures`)."""
         from dhsym.plot.figures import plot_robot
