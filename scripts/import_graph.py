@@ -35,12 +35,13 @@ RANK = {room: k for k, room in enumerate(ORDER)}
 RANK["plot"] = RANK["geometry"]  # siblings
 #: Upward edges with a documented reason: display hooks that reach the printer at call
 #: time (as sympy's own Basic._repr_latex_ does), Robot.plot, a notebook convenience, and
-#: load('x.urdf') / Robot.to_urdf, which reach the formats room.
+#: load('x.urdf') / Robot.to_urdf / Robot.to_rtb, which reach the formats room.
 #: Imports under ``if TYPE_CHECKING:`` are annotations only and are not counted.
 ALLOWED = {
     ("model.table", "notation.tables"),
     ("kinematics.robot", "plot.figures"),
     ("kinematics.robot", "formats.urdf"),  # load("x.urdf") and Robot.to_urdf, at call time
+    ("kinematics.robot", "formats.rtb"),  # Robot.to_rtb, at call time
 }
 
 
