@@ -83,6 +83,8 @@ if TYPE_CHECKING:
     from dhsym.kinematics.robot import Robot
 
 __all__ = [
+    "MAX_CHAIN",
+    "MAX_LINKS",
     "Inertial",
     "Origin",
     "UrdfImport",
@@ -103,6 +105,10 @@ _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _MOVING = {"revolute": "R", "continuous": "R", "prismatic": "P"}
 _KINDS = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 _SUFFIXES = (".urdf", ".xacro", ".xml")
+#: Most joints (fixed and moving) on the chain from base to tip; arms have 6 to 20.
+MAX_CHAIN = 100
+#: Most links (and most joints) in a URDF; a humanoid with hands has about 100.
+MAX_LINKS = 2000
 
 
 # --- the model: frozen values -----------------------------------------------------------
@@ -231,14 +237,28 @@ class UrdfModel:
         """The joint whose child is ``link`` (None for the root)."""
         return next((j for j in self.joints if j.child == link), None)
 
+    def below(self, start: str) -> dict[str, int]:
+        """Every link below ``start`` (inclusive), with the number of moving joints from
+        ``start`` to it (one pass down the tree)."""
+        children: dict[str, list[UrdfJoint]] = {}
+        for j in self.joints:
+            children.setdefault(j.parent, []).append(j)
+        counts, todo = {start: 0}, [start]
+        while todo:
+            link = todo.pop()
+            for j in children.get(link, ()):
+                if j.child not in counts:  # the tree is checked when read; be safe anyway
+                    counts[j.child] = counts[link] + int(j.moving)
+                    todo.append(j.child)
+        return counts
+
     def leaves(self, start: str) -> list[str]:
-        """Links below ``start`` (inclusive) that are no joint's parent, in file order."""
-        below = {start}
-        for _ in range(len(self.joints)):  # at most one level per pass; the tree is checked
-            grown = below | {j.child for j in self.joints if j.parent in below}
-            if grown == below:
-                break
-            below = grown
+        """Links below ``start`` (inclusive) that are no joint's parent, in file order.
+
+        >>> read_urdf("<robot name='r'><link name='a'/></robot>").leaves("a")
+        ['a']
+        """
+        below = self.below(start)
         parents = {j.parent for j in self.joints}
         return [n for n in self.link_names if n in below and n not in parents]
 
@@ -257,11 +277,12 @@ class UrdfModel:
                     file=self.file,
                     field=what,
                 )
+        parent = {j.child: j for j in self.joints}
         out: list[UrdfJoint] = []
         link = tip
         while link != base:
-            joint = self.parent_joint(link)
-            if joint is None:
+            joint = parent.get(link)
+            if joint is None or len(out) > len(parent):
                 raise FormatError(
                     f"link {base!r} is not above link {tip!r}: the path from the root "
                     f"{self.root!r} to {tip!r} does not pass through it",
@@ -360,23 +381,35 @@ def _model(root: Element, file: str | None, rule: AngleSnap) -> UrdfModel:
         raise FormatError(
             f"the root element is <{root.tag}>, expected <robot>", file=file, field=f"<{root.tag}>"
         )
+    for tag in ("link", "joint"):
+        count = sum(1 for _ in root.iterfind(tag))
+        if count > MAX_LINKS:
+            raise FormatError(
+                f"the robot has {count} {tag}s: at most {MAX_LINKS} are read",
+                file=file,
+                field=f"<{tag}>",
+            )
     snapped: list[Snapped] = []
     links: list[tuple[str, Inertial | None]] = []
+    names: set[str] = set()
     for el in root.findall("link"):
         name = _name(el, file)
-        if any(name == n for n, _ in links):
+        if name in names:
             raise FormatError("a second link with this name", file=file, field=_where(el))
+        names.add(name)
         inertial = el.find("inertial")
         links.append(
             (name, None if inertial is None else _inertial(inertial, el, file, rule, snapped))
         )
     joints: list[UrdfJoint] = []
-    names = {n for n, _ in links}
+    joint_names: set[str] = set()
+    parent_of: dict[str, UrdfJoint] = {}  # child link -> its joint (local to this read)
     for el in root.findall("joint"):
         joint = _joint(el, file, rule, snapped)
         where = _where(el)
-        if any(joint.name == j.name for j in joints):
+        if joint.name in joint_names:
             raise FormatError("a second joint with this name", file=file, field=where)
+        joint_names.add(joint.name)
         for role in ("parent", "child"):
             link = getattr(joint, role)
             if link not in names:
@@ -385,7 +418,7 @@ def _model(root: Element, file: str | None, rule: AngleSnap) -> UrdfModel:
             raise FormatError(
                 "the joint's parent and child are the same link", file=file, field=where
             )
-        other = next((j for j in joints if j.child == joint.child), None)
+        other = parent_of.get(joint.child)
         if other is not None:
             raise FormatError(
                 f"link {joint.child!r} is already the child of joint {other.name!r}: a URDF is a "
@@ -394,6 +427,7 @@ def _model(root: Element, file: str | None, rule: AngleSnap) -> UrdfModel:
                 field=where,
             )
         joints.append(joint)
+        parent_of[joint.child] = joint
     model = UrdfModel(root.get("name", ""), tuple(links), tuple(joints), file, tuple(snapped))
     if links:
         _check_acyclic(model)
@@ -401,19 +435,24 @@ def _model(root: Element, file: str | None, rule: AngleSnap) -> UrdfModel:
 
 
 def _check_acyclic(model: UrdfModel) -> None:
-    """Each link has at most one parent, so a cycle shows as a walk up that never ends."""
+    """Each link has at most one parent, so the links form a forest plus cycles: walk up from
+    every link once, marking links already known to reach the root (linear time)."""
     parent = {j.child: j for j in model.joints}
+    reaches_root: set[str] = set()
     for start in model.link_names:
-        link, steps = start, 0
-        while link in parent:
-            link = parent[link].parent
-            steps += 1
-            if steps > len(parent):
+        path, on_path, link = [], set(), start
+        while link in parent and link not in reaches_root:
+            if link in on_path:
                 raise FormatError(
-                    f"the links form a cycle through link {start!r}: a URDF is a tree",
+                    f"the links form a cycle through link {link!r}: a URDF is a tree",
                     file=model.file,
-                    field=_where_joint(parent[start].name),
+                    field=_where_joint(parent[link].name),
                 )
+            path.append(link)
+            on_path.add(link)
+            link = parent[link].parent
+        reaches_root.update(path)
+        reaches_root.add(link)
     _ = model.root  # exactly one root
 
 
@@ -577,7 +616,8 @@ def import_urdf(
     if tip is None:
         leaves = model.leaves(start)
         if len(leaves) != 1:
-            counts = [sum(j.moving for j in model.chain(start, leaf)) for leaf in leaves]
+            below = model.below(start)
+            counts = [below[leaf] for leaf in leaves]
             choices = ", ".join(
                 f"{leaf} ({c} moving joint{'s' if c != 1 else ''})"
                 for leaf, c in zip(leaves, counts, strict=True)
@@ -590,6 +630,13 @@ def import_urdf(
             )
         tip = leaves[0]
     joints = model.chain(start, tip)
+    if len(joints) > MAX_CHAIN:
+        raise FormatError(
+            f"the chain from {start!r} to {tip!r} has {len(joints)} joints: at most {MAX_CHAIN} "
+            "are read (choose base= and tip= closer together)",
+            file=model.file,
+            field="tip",
+        )
     moving = [j for j in joints if j.moving]
     for j in joints:
         if j.kind in ("floating", "planar"):

@@ -122,3 +122,22 @@ def test_coincident_revolute_axes_are_refused_with_the_file() -> None:
     with pytest.raises(GeometryError, match="row 2: the axes of joints j1 and j2 coincide"):
         import_urdf(same)
     assert import_urdf(text).table.n == 2
+
+
+def _long_chain(n: int, closing: str = "") -> str:
+    links = "".join(f'<link name="l{i}"/>' for i in range(n))
+    joints = "".join(joint(f"j{i}", f"l{i}", f"l{i + 1}", "fixed") for i in range(n - 1))
+    return f'<robot name="r">{links}{joints}{closing}</robot>'
+
+
+def test_too_many_links_are_refused_before_the_joints_are_read() -> None:
+    with pytest.raises(FormatError, match="field <link>: the robot has 2500 links: at most 2000"):
+        read_urdf(_long_chain(2500))
+
+
+def test_long_chains_and_far_cycles_are_found_in_one_pass() -> None:
+    with pytest.raises(FormatError, match="has 1999 joints: at most 100"):
+        import_urdf(_long_chain(2000))
+    cycle = joint("jc", "l1999", "l0", "fixed")
+    with pytest.raises(FormatError, match="<joint name='j.*'>: the links form a cycle"):
+        read_urdf(_long_chain(2000, cycle))
