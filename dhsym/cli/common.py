@@ -30,6 +30,10 @@ import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # the table loads when a command runs
+    from dhsym.model.table import DHTable
 
 __all__ = [
     "EXIT_BROKEN_PIPE",
@@ -202,7 +206,7 @@ def add_urdf_options(parser: argparse.ArgumentParser) -> None:
 
 def load_table_arg(
     name: str, tip: str | None = None, base: str | None = None, convention: str = "standard"
-) -> object:
+) -> DHTable:
     """The DH table of ``name``: a built-in name, a table file, or a URDF file (``--tip``)."""
     from dhsym.errors import DHError
 

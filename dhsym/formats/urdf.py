@@ -57,7 +57,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 from xml.etree.ElementTree import Element
 from xml.sax.saxutils import quoteattr
 
@@ -98,13 +98,13 @@ __all__ = [
     "write_urdf",
 ]
 
-Expr = sp.Expr
-Triple = tuple[sp.Expr, sp.Expr, sp.Expr]
+Expr: TypeAlias = sp.Expr
+Triple: TypeAlias = tuple[sp.Expr, sp.Expr, sp.Expr]
 _ZERO: Triple = (sp.Integer(0), sp.Integer(0), sp.Integer(0))
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _MOVING = {"revolute": "R", "continuous": "R", "prismatic": "P"}
 _KINDS = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
-_SUFFIXES = (".urdf", ".xacro", ".xml")
+_SUFFIXES = (".urdf", ".xacro")
 #: Most joints (fixed and moving) on the chain from base to tip; arms have 6 to 20.
 MAX_CHAIN = 100
 #: Most links (and most joints) in a URDF; a humanoid with hands has about 100.
