@@ -774,6 +774,7 @@ class _Joint:
     child: str
     origin: sp.ImmutableMatrix
     limits: tuple[Expr, Expr] | None = None
+    sign: int = 1  # -1: the variable turns about (slides along) -z (a flipped joint)
 
 
 def write_urdf(robot: Robot | DHTable, *, name: str | None = None) -> str:
@@ -816,17 +817,27 @@ def _urdf_joints(table: DHTable) -> list[_Joint]:
     parent = "link0"
     for k, row in enumerate(table.rows, start=1):
         word = list(link_word(row, table.convention))
+        if row.variable is None:  # a fixed row: one fixed joint
+            out.append(_Joint(f"joint{k}", "fixed", parent, f"link{k}", plain_product(word)))
+            parent = f"link{k}"
+            continue
         at = next(i for i, e in enumerate(word) if row.variable in e.value.free_symbols)
         motion, pre, post = word[at], word[:at], word[at + 1 :]
         while post and post[0].axis == "z":  # Rz and Tz commute with a motion about/along z
             pre.append(post.pop(0))
-        fixed_part = Elementary(motion.kind, "z", motion.value - row.variable)
+        slope = sp.expand(motion.value).coeff(row.variable)
+        if slope not in (1, -1):
+            raise DHError(
+                f"row {k}: {motion.value} is not ±{row.variable} plus a constant; a URDF joint "
+                "moves by its variable"
+            )
+        fixed_part = Elementary(motion.kind, "z", sp.expand(motion.value).subs(row.variable, 0))
         origin = plain_product([*pre[:at], fixed_part, *pre[at:]])
         kind = "prismatic" if row.joint is JointType.PRISMATIC else "revolute"
         if row.limits is None and kind == "revolute":
             kind = "continuous"
         body = f"link{k}" if not post else f"link{k}_joint"
-        out.append(_Joint(f"joint{k}", kind, parent, body, origin, row.limits))
+        out.append(_Joint(f"joint{k}", kind, parent, body, origin, row.limits, int(slope)))
         if post:
             out.append(_Joint(f"{body}_to_link{k}", "fixed", body, f"link{k}", plain_product(post)))
         parent = f"link{k}"
@@ -905,7 +916,7 @@ def _render(name: str, links: list[str], joints: list[_Joint], table: DHTable) -
             f'    <origin xyz="{xyz}" rpy="{rpy}"/>',
         ]
         if j.kind != "fixed":
-            lines.append('    <axis xyz="0 0 1"/>')
+            lines.append(f'    <axis xyz="0 0 {j.sign}"/>')
         if j.kind in ("revolute", "prismatic"):
             lo, hi = j.limits if j.limits is not None else (sp.Integer(-1), sp.Integer(1))
             note = "" if j.limits is not None else "  <!-- no limits in the DH table -->"

@@ -174,3 +174,20 @@ def test_robot_to_urdf_method_and_visuals() -> None:
     assert out.count("<cylinder") == 6 and "<box" in out
     with pytest.raises(dhsym.DHError, match="symbolic lengths a1, a2, a3"):
         dhsym.Robot(dhsym.planar_chain(3)).to_urdf()
+
+
+def test_fixed_rows_and_flipped_joints_are_written() -> None:
+    from dhsym.model.table import DHRow, DHTable
+
+    rows = [
+        DHRow.revolute("pi/2 - q1", d=0.3, a=0.2, alpha="pi/2"),
+        DHRow.fixed(theta="pi/6", d=0.1),
+        DHRow.prismatic("0.1 - d3", a=0.1, alpha="-pi/2"),
+    ]
+    for convention in ("standard", "modified"):
+        robot = dhsym.Robot(DHTable.from_rows(rows, convention=convention, name="odd"))
+        text = robot.to_urdf()
+        assert '<axis xyz="0 0 -1"/>' in text and 'name="joint2" type="fixed"' in text
+        again = from_urdf(text, tip="tool")
+        for q in ([0.3, 0.2], [-1.0, 0.6]):
+            assert np.abs(again.fk(q) - robot.fk(q)).max() < 1e-12
