@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["DHError", "TableError", "ParseError", "GeometryError", "ChainError"]
+__all__ = ["DHError", "TableError", "ParseError", "GeometryError", "ChainError", "FormatError"]
 
 
 class DHError(Exception):
@@ -79,3 +79,7 @@ class GeometryError(DHError):
 
 class ChainError(DHError):
     """A chain of named frames is missing a link or does not close."""
+
+
+class FormatError(DHError):
+    """A file of another tool (URDF, XML) cannot be read: ``field`` names the element."""

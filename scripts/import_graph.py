@@ -24,6 +24,7 @@ ORDER = [
     "kinematics",
     "geometry",
     "plot",
+    "formats",
     "explain",
     "checking",
     "__init__",
@@ -33,11 +34,14 @@ ORDER = [
 RANK = {room: k for k, room in enumerate(ORDER)}
 RANK["plot"] = RANK["geometry"]  # siblings
 #: Upward edges with a documented reason: display hooks that reach the printer at call
-#: time (as sympy's own Basic._repr_latex_ does), and Robot.plot, a notebook convenience.
+#: time (as sympy's own Basic._repr_latex_ does), Robot.plot, a notebook convenience, and
+#: load('x.urdf') / Robot.to_urdf / Robot.to_rtb, which reach the formats room.
 #: Imports under ``if TYPE_CHECKING:`` are annotations only and are not counted.
 ALLOWED = {
     ("model.table", "notation.tables"),
     ("kinematics.robot", "plot.figures"),
+    ("kinematics.robot", "formats.urdf"),  # load("x.urdf") and Robot.to_urdf, at call time
+    ("kinematics.robot", "formats.rtb"),  # Robot.to_rtb, at call time
 }
 
 

@@ -30,6 +30,10 @@ import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # the table loads when a command runs
+    from dhsym.model.table import DHTable
 
 __all__ = [
     "EXIT_BROKEN_PIPE",
@@ -39,7 +43,10 @@ __all__ = [
     "add_notation_options",
     "emit",
     "emit_bytes",
+    "URDF_SUFFIXES",
+    "add_urdf_options",
     "load_robot",
+    "load_table_arg",
     "note_warnings",
     "parse_values",
     "run_quietly",
@@ -184,17 +191,53 @@ def parse_values(text: str, option: str = "--values") -> dict[str, float]:
     return out
 
 
-def load_robot(name: str, values: str | None = None, *, need_numbers: bool = False) -> object:
-    """The robot ``name`` (built-in or file) with ``--values`` applied to its table.
+URDF_SUFFIXES = (".urdf", ".xacro")
+
+
+def add_urdf_options(parser: argparse.ArgumentParser) -> None:
+    """``--tip LINK`` and ``--base LINK`` for a robot given as a URDF file."""
+    parser.add_argument(
+        "--tip", metavar="LINK", help="URDF file: the link the chain ends at (the tool)"
+    )
+    parser.add_argument(
+        "--base", metavar="LINK", help="URDF file: the link the chain starts at (default: root)"
+    )
+
+
+def load_table_arg(
+    name: str, tip: str | None = None, base: str | None = None, convention: str = "standard"
+) -> DHTable:
+    """The DH table of ``name``: a built-in name, a table file, or a URDF file (``--tip``)."""
+    from dhsym.errors import DHError
+
+    if os.path.splitext(name)[1].lower() in URDF_SUFFIXES:
+        from dhsym.formats.urdf import import_urdf
+
+        return import_urdf(name, tip=tip, base=base, convention=convention).table
+    if tip is not None or base is not None:
+        raise DHError(f"--tip and --base choose a chain in a URDF file; {name} is not one")
+    from dhsym.model.library import load_table
+
+    return load_table(name)
+
+
+def load_robot(
+    name: str,
+    values: str | None = None,
+    *,
+    need_numbers: bool = False,
+    tip: str | None = None,
+    base: str | None = None,
+) -> object:
+    """The robot ``name`` (built-in, table file or URDF file) with ``--values`` applied.
 
     With ``need_numbers`` every symbolic length must have a number, from the table's
     ``values:`` or from ``--values``; the error names both ways.
     """
     from dhsym.errors import DHError
     from dhsym.kinematics.robot import Robot
-    from dhsym.model.library import load_table
 
-    table = load_table(name)
+    table = load_table_arg(name, tip, base)
     if values:
         given = parse_values(values)
         known = {str(s) for s in table.constants}

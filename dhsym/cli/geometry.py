@@ -1,33 +1,59 @@
-"""``dhsym convert``: standard <-> modified DH with the base/tool that keep the tool pose."""
+"""``dhsym convert``: standard <-> modified DH with the base/tool that keep the tool pose;
+a URDF file's chain to a DH table, and a DH table to a URDF."""
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
-from .common import add_command, emit, note_warnings
+from .common import (
+    URDF_SUFFIXES,
+    add_command,
+    add_urdf_options,
+    emit,
+    load_table_arg,
+    note_warnings,
+)
 
 __all__ = ["register"]
 
 
 def _cmd_convert(args: argparse.Namespace) -> int:
-    from dhsym.geometry.conversion import check_conversion, convert
-    from dhsym.model.kinds import Convention
-    from dhsym.model.library import load_table
     from dhsym.model.parsing import check_count
-    from dhsym.model.tablefile import dump_table
 
     check_count(args.samples, "--samples", 0, 100_000)
-    table = load_table(args.robot)
-    note_warnings(table)
-    target = Convention.parse(args.to)
-    if table.convention is target:
+    is_urdf = os.path.splitext(args.robot)[1].lower() in URDF_SUFFIXES
+    if is_urdf and args.to != "urdf":
+        from dhsym.formats.urdf import import_urdf, table_yaml
+
+        imp = import_urdf(args.robot, tip=args.tip, base=args.base, convention=args.to)
+        note_warnings(imp.table)
+        emit(table_yaml(imp), args.output)
+        err = imp.assignment.verify(args.samples)
         print(
-            f"{table.name or args.robot} is already in the {target.value} convention",
+            f"fk agrees with the URDF chain {imp.base} -> {imp.tip} at {args.samples} random "
+            f"configurations (max difference {err:.2g})",
             file=sys.stderr,
         )
-    new = convert(table, target)
-    err = check_conversion(table, new, samples=args.samples)
+        return 0
+    table = load_table_arg(args.robot, args.tip, args.base)
+    note_warnings(table)
+    if args.to == "urdf":
+        from dhsym.formats.urdf import write_urdf
+
+        emit(write_urdf(table), args.output)  # type: ignore[arg-type]
+        return 0
+    from dhsym.geometry.conversion import check_conversion, convert
+    from dhsym.model.kinds import Convention
+    from dhsym.model.tablefile import dump_table
+
+    target = Convention.parse(args.to)
+    if table.convention is target:  # type: ignore[attr-defined]
+        name = table.name or args.robot  # type: ignore[attr-defined]
+        print(f"{name} is already in the {target.value} convention", file=sys.stderr)
+    new = convert(table, target)  # type: ignore[arg-type]
+    err = check_conversion(table, new, samples=args.samples)  # type: ignore[arg-type]
     emit(dump_table(new), args.output)
     print(
         f"tool pose agrees at {args.samples} random configurations (max difference {err:.2g})",
@@ -47,14 +73,22 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     c = add_command(
         subparsers,
         "convert",
-        "standard <-> modified DH, with base/tool transforms that keep the tool pose",
-    )
-    c.add_argument("robot", help="built-in robot name (dhsym list) or table file")
-    c.add_argument(
-        "--to", required=True, choices=["standard", "modified"], help="target convention"
+        "standard <-> modified DH (base/tool keep the tool pose); URDF <-> DH table",
+        description="Convert a DH table to the other convention, a URDF file's chain (--tip)\n"
+        "to a DH table (--to standard|modified, YAML), or a DH table to a URDF (--to urdf).",
     )
     c.add_argument(
-        "-o", "--output", metavar="FILE", help="write the YAML table to FILE (- or none: stdout)"
+        "robot", help="built-in robot name (dhsym list), table file, or URDF file (with --tip)"
     )
+    c.add_argument(
+        "--to",
+        required=True,
+        choices=["standard", "modified", "urdf"],
+        help="target convention, or urdf",
+    )
+    c.add_argument(
+        "-o", "--output", metavar="FILE", help="write the result to FILE (- or none: stdout)"
+    )
+    add_urdf_options(c)
     c.add_argument("--samples", type=int, default=20, help="random configurations for the fk check")
     c.set_defaults(func=_cmd_convert)

@@ -32,7 +32,8 @@ Denavit-Hartenberg tables to closed-form kinematics in lecture notation
 (C12, S23, a1C1 + a2C12), lecture-style derivations and handouts, pictures,
 and homework checking.
 
-A robot is a built-in name (dhsym list) or a YAML table file."""
+A robot is a built-in name (dhsym list), a YAML table file, or a URDF file with
+--tip LINK (dhsym convert robot.urdf --tip tool0 --to standard -o table.yaml)."""
 
 _EPILOG = """\
 Options -o FILE write to FILE; -o - writes to standard output.

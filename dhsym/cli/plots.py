@@ -8,7 +8,7 @@ from typing import Any
 
 from dhsym.errors import DHError
 
-from .common import STDOUT, add_command, emit_bytes, load_robot
+from .common import STDOUT, add_command, add_urdf_options, emit_bytes, load_robot
 
 __all__ = ["register"]
 
@@ -36,7 +36,7 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     fmt = _format(args)
     check_count(args.samples, "--samples", 1, 1_000_000)
     check_count(args.dpi, "--dpi", 10, 1200)
-    robot = load_robot(args.robot, args.values, need_numbers=True)
+    robot = load_robot(args.robot, args.values, need_numbers=True, tip=args.tip, base=args.base)
 
     if args.workspace:
         fig = plot_workspace(robot, args.samples, view=args.view)
@@ -52,7 +52,10 @@ def _cmd_plot(args: argparse.Namespace) -> int:
 def register(subparsers: Any) -> None:
     """Add ``dhsym plot NAME|FILE [--q …] [--deg] [--view 2d|3d] [--workspace] -o FILE``."""
     p = add_command(subparsers, "plot", "draw the arm with its DH frames (PNG, PDF or SVG)")
-    p.add_argument("robot", help="built-in robot name (dhsym list) or table file")
+    p.add_argument(
+        "robot", help="built-in robot name (dhsym list), table file, or URDF file (with --tip)"
+    )
+    add_urdf_options(p)
     p.add_argument("--q", help="joint values, comma separated (default: all zero)")
     p.add_argument("--deg", action="store_true", help="revolute values in degrees")
     p.add_argument(

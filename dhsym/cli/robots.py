@@ -15,7 +15,15 @@ import json
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from .common import add_command, add_notation_options, emit, load_robot, note_warnings
+from .common import (
+    add_command,
+    add_notation_options,
+    add_urdf_options,
+    emit,
+    load_robot,
+    load_table_arg,
+    note_warnings,
+)
 
 if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
     from dhsym.kinematics.robot import Robot
@@ -35,12 +43,12 @@ def _cmd_list(args: argparse.Namespace) -> int:
 
 
 def _cmd_show(args: argparse.Namespace) -> int:
-    from dhsym.kinematics.robot import load
+    from dhsym.kinematics.robot import Robot
     from dhsym.model.entries import exact_decimal
     from dhsym.model.tablefile import dump_table
     from dhsym.notation.tables import table_markdown
 
-    robot = load(args.robot)
+    robot = Robot(load_table_arg(args.robot, args.tip, args.base))  # type: ignore[arg-type]
     t = robot.table
     note_warnings(t)
     if args.format == "yaml":
@@ -120,9 +128,10 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
-    from dhsym.kinematics.robot import load
+    from dhsym.kinematics.robot import Robot
 
-    robot = load(args.robot, compact=not args.full, style=args.notation)
+    table = load_table_arg(args.robot, args.tip, args.base)
+    robot = Robot(table, compact=not args.full, style=args.notation)  # type: ignore[arg-type]
     note_warnings(robot.table)
     what = getattr(args, "what", "fk")
     if what != "fk":
@@ -173,7 +182,7 @@ def _parse_q(text: str, n: int) -> list[float]:
 def _cmd_fk(args: argparse.Namespace) -> int:
     import numpy as np
 
-    robot = load_robot(args.robot, args.values, need_numbers=True)
+    robot = load_robot(args.robot, args.values, need_numbers=True, tip=args.tip, base=args.base)
     q = _parse_q(args.q, len(robot.variables))
     T = robot.fk(q, deg=args.deg)
     if args.json:
@@ -194,7 +203,7 @@ def _cmd_fk(args: argparse.Namespace) -> int:
     return 0
 
 
-ROBOT_HELP = "built-in robot name (dhsym list) or table file"
+ROBOT_HELP = "built-in robot name (dhsym list), table file, or URDF file (with --tip)"
 VALUES_HELP = "numbers for the table's symbolic lengths, e.g. a2=0.43,d3=0.15"
 
 
@@ -207,6 +216,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.add_argument(
         "--format", choices=["markdown", "yaml"], default="markdown", help="output format"
     )
+    add_urdf_options(s)
     s.set_defaults(func=_cmd_show)
 
     d = add_command(
@@ -236,6 +246,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="fk: forward kinematics (default); jacobian: column by column; singularities: "
         "det J factored and named; ik: closed-form inverse kinematics, every branch",
     )
+    add_urdf_options(d)
     d.set_defaults(func=_cmd_derive)
 
     f = add_command(sub, "fk", "numeric forward kinematics: the tool pose at joint values")
@@ -244,4 +255,5 @@ def register(sub: argparse._SubParsersAction) -> None:
     f.add_argument("--deg", action="store_true", help="revolute values in degrees")
     f.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
     f.add_argument("--json", action="store_true", help="JSON output")
+    add_urdf_options(f)
     f.set_defaults(func=_cmd_fk)

@@ -300,6 +300,24 @@ class Robot:
         """
         return self.inverse().solve(T, **kw)  # type: ignore[attr-defined]
 
+    def to_urdf(self, *, name: str | None = None) -> str:
+        """A URDF of this robot, one link per DH frame (see :func:`dhsym.formats.urdf.write_urdf`).
+
+        >>> arm = Robot(load("planar2r").table.with_values({"a1": 1, "a2": 0.5}))
+        >>> arm.to_urdf().count("<link ")
+        6
+        """
+        from dhsym.formats.urdf import write_urdf
+
+        return write_urdf(self, name=name)
+
+    def to_rtb(self) -> object:
+        """A roboticstoolbox ``DHRobot`` of this robot (see :func:`dhsym.formats.rtb.to_rtb`;
+        needs ``pip install roboticstoolbox-python``)."""
+        from dhsym.formats.rtb import to_rtb
+
+        return to_rtb(self)
+
     def plot(self, q: object = None, **kw: object) -> object:
         """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plot.figures`)."""
         from dhsym.plot.figures import plot_robot
@@ -323,9 +341,17 @@ def _frame_name(i: int, n: int) -> int | str:
 def load(name_or_path: str | Path, **kw: object) -> Robot:
     """A :class:`Robot` from a built-in name or a table file (``compact``, ``style`` as Robot).
 
+    A ``.urdf`` path (or URDF text) is read by :func:`dhsym.formats.urdf.from_urdf`, which
+    also takes ``tip``, ``base``, ``convention`` and ``snap_angles``.
+
     >>> load("planar2r").name
     'Planar 2R'
     """
+    text = str(name_or_path)
+    if text.lstrip().startswith("<") or Path(text).suffix.lower() in (".urdf", ".xacro"):
+        from dhsym.formats.urdf import from_urdf  # the formats room, at call time
+
+        return from_urdf(name_or_path, **kw)  # type: ignore[arg-type]
     return Robot(load_table(name_or_path), **kw)
 
 

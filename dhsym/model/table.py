@@ -148,10 +148,11 @@ class DHRow:
 
     @property
     def offset(self) -> Expr:
-        """Constant part of the variable's entry (``theta3 + pi/2`` gives ``pi/2``)."""
+        """Constant part of the variable's entry (``theta3 + pi/2`` gives ``pi/2``; a flipped
+        joint's ``pi/2 - theta3`` too)."""
         if self.variable is None or self.variable_field is None:
             return sp.Integer(0)
-        return sp.expand(getattr(self, self.variable_field) - self.variable)
+        return sp.expand(getattr(self, self.variable_field)).subs(self.variable, 0)
 
     def params(self) -> dict[str, Expr]:
         """The four parameters by name."""

@@ -1,0 +1,55 @@
+"""URDF files on the command line: convert both ways, show/derive/fk/plot with --tip."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from dhsym.cli.main import main
+from dhsym.formats.urdf import from_urdf
+from dhsym.model.tablefile import read_table
+
+UR5 = str(Path(__file__).resolve().parents[1] / "data" / "urdf" / "ur5_robot.urdf")
+
+
+def test_convert_urdf_to_a_table_file_with_its_origin(tmp_path: Path, capsys) -> None:
+    out = tmp_path / "ur5.yaml"
+    assert main(["convert", UR5, "--to", "modified", "--tip", "tool0", "-o", str(out)]) == 0
+    text = out.read_text()
+    assert text.startswith("# DH table (modified convention) of the URDF chain world -> tool0")
+    assert "# Frame assignment:" in text
+    table = read_table(out)
+    q = np.linspace(-1, 1, 6)
+    reference = from_urdf(UR5, tip="tool0").fk(q)
+    from dhsym.kinematics.robot import Robot
+
+    assert np.abs(Robot(table).fk(q) - reference).max() < 1e-9
+    assert "fk agrees with the URDF chain" in capsys.readouterr().err
+
+
+def test_convert_a_table_to_urdf_and_back(tmp_path: Path) -> None:
+    arm = tmp_path / "puma.urdf"
+    assert main(["convert", "stanford", "--to", "urdf", "-o", str(arm)]) == 0
+    assert arm.read_text().startswith('<?xml version="1.0"?>')
+    assert main(["show", str(arm), "--tip", "tool"]) == 0
+
+
+def test_show_derive_fk_plot_take_urdf_files(tmp_path: Path, capsys) -> None:
+    assert main(["show", UR5, "--tip", "tool0"]) == 0
+    assert "| 1 | $\\theta_{1}$ | $0.089159$ |" in capsys.readouterr().out
+    assert main(["derive", UR5, "--tip", "wrist_1_link", "--to", "1"]) == 0
+    assert "0.089159" in capsys.readouterr().out
+    assert main(["fk", UR5, "--tip", "tool0", "--q", "0,0,0,0,0,0", "--json"]) == 0
+    assert '"matrix"' in capsys.readouterr().out
+    picture = tmp_path / "ur5.svg"
+    assert main(["plot", UR5, "--tip", "tool0", "-o", str(picture)]) == 0
+    assert picture.stat().st_size > 1000
+
+
+def test_errors_are_one_line(capsys) -> None:
+    assert main(["show", UR5]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") <= 2 and "give the tip link" in err and "tool0" in err
+    assert main(["show", "puma560", "--tip", "x"]) == 2
+    assert "--tip and --base choose a chain in a URDF file" in capsys.readouterr().err

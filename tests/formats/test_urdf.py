@@ -1,0 +1,193 @@
+"""URDF in and out: real robot descriptions against an independent chain product."""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import dhsym
+from dhsym.errors import FormatError
+from dhsym.formats.urdf import from_urdf, import_urdf, write_urdf
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "urdf"
+
+# (file, tip, number of moving joints): a UR, a 7-joint arm, a 6-joint arm, an education arm
+ROBOTS = [
+    ("ur5_robot.urdf", "tool0", 6),
+    ("panda.urdf", "panda_hand", 7),
+    ("kinova.urdf", "j2s6s200_end_effector", 6),
+    ("so100.urdf", "gripper", 5),
+]
+
+
+# --- the independent reference: numpy, straight from the XML -------------------------------
+
+
+def _rot(axis: np.ndarray, angle: float) -> np.ndarray:
+    """Rodrigues' formula."""
+    u = axis / np.linalg.norm(axis)
+    K = np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
+
+
+def _origin(joint: ET.Element) -> np.ndarray:
+    el = joint.find("origin")
+    xyz = [0.0] * 3 if el is None else [float(v) for v in el.get("xyz", "0 0 0").split()]
+    r, p, y = [0.0] * 3 if el is None else [float(v) for v in el.get("rpy", "0 0 0").split()]
+    ex, ey, ez = np.eye(3)
+    T = np.eye(4)
+    T[:3, :3] = _rot(ez, y) @ _rot(ey, p) @ _rot(ex, r)
+    T[:3, 3] = xyz
+    return T
+
+
+def urdf_pose(path: Path, tip: str, q: np.ndarray) -> np.ndarray:
+    """Root link -> tip link at joint values q (moving joints in chain order)."""
+    root = ET.parse(path).getroot()
+    joints = {j.find("child").get("link"): j for j in root.findall("joint")}
+    chain = []
+    link = tip
+    while link in joints:
+        chain.append(joints[link])
+        link = joints[link].find("parent").get("link")
+    T = np.eye(4)
+    k = 0
+    for j in reversed(chain):
+        T = T @ _origin(j)
+        if j.get("type") in ("revolute", "continuous", "prismatic"):
+            axis_el = j.find("axis")
+            text = axis_el.get("xyz") if axis_el is not None else "1 0 0"
+            axis = np.array([float(v) for v in text.split()])
+            M = np.eye(4)
+            if j.get("type") == "prismatic":
+                M[:3, 3] = q[k] * axis / np.linalg.norm(axis)
+            else:
+                M[:3, :3] = _rot(axis, q[k])
+            T = T @ M
+            k += 1
+    return T
+
+
+# --- real robots ------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+@pytest.mark.parametrize(("file", "tip", "n"), ROBOTS)
+def test_fk_equals_the_urdf_chain(file: str, tip: str, n: int, convention: str) -> None:
+    robot = from_urdf(DATA / file, tip=tip, convention=convention)
+    assert robot.table.n == n
+    rng = np.random.default_rng(7)
+    for q in [np.zeros(n), *rng.uniform(-math.pi, math.pi, (6, n))]:
+        assert np.abs(robot.fk(q) - urdf_pose(DATA / file, tip, q)).max() < 1e-9
+
+
+@pytest.mark.parametrize(("file", "tip", "n"), ROBOTS)
+def test_round_trip_keeps_fk(file: str, tip: str, n: int) -> None:
+    robot = from_urdf(DATA / file, tip=tip)
+    for convention in ("standard", "modified"):
+        again = from_urdf(write_urdf(dhsym.convert(robot.table, convention)), tip="tool")
+        q = np.random.default_rng(3).uniform(-math.pi, math.pi, (5, n))
+        assert np.abs(again.fk(q) - robot.fk(q)).max() < 1e-9
+
+
+def test_ur5_is_the_ur_dh_table_with_exact_decimals() -> None:
+    imp = import_urdf(DATA / "ur5_robot.urdf", tip="tool0")
+    rows = imp.table.rows
+    assert [r.d for r in rows] == [
+        sp.Rational("0.089159"),
+        0,
+        0,
+        sp.Rational("0.10915"),
+        sp.Rational("0.09465"),
+        sp.Rational("0.0823"),
+    ]
+    assert [abs(r.a) for r in rows] == [0, sp.Rational("0.425"), sp.Rational("0.39225"), 0, 0, 0]
+    assert rows[0].alpha == -sp.pi / 2 and rows[0].label == "shoulder_pan_joint"
+    assert rows[0].limits == (sp.Rational("-6.28318530718"), sp.Rational("6.28318530718"))
+    assert "1.57079632679 as ±π/2" in imp.table.warnings[0]
+    assert any("parallel" in s for s in imp.steps)
+
+
+def test_continuous_joints_have_no_limits_and_inertials_are_recorded() -> None:
+    imp = import_urdf(DATA / "kinova.urdf", tip="j2s6s200_end_effector")
+    assert imp.table.rows[0].limits is None  # continuous
+    assert imp.table.rows[1].limits is not None
+    assert sum(bool(i.mass > 0) for _, i in imp.inertials) == 7  # the base link and the 6 arm links
+    assert all(bool(i.mass >= 0) for _, i in imp.inertials)
+
+
+def test_branching_tree_lists_the_tips() -> None:
+    with pytest.raises(FormatError, match="panda_leftfinger .*panda_rightfinger"):
+        import_urdf(DATA / "panda.urdf")
+
+
+def test_mimic_joint_on_the_chain_is_refused() -> None:
+    with pytest.raises(FormatError, match="finger_joint2.*mimics joint 'panda_finger_joint1'"):
+        import_urdf(DATA / "panda.urdf", tip="panda_rightfinger")
+
+
+def test_base_link_and_text_input() -> None:
+    text = (DATA / "ur5_robot.urdf").read_text()
+    r = from_urdf(text, tip="wrist_3_link", base="shoulder_link")
+    assert r.table.n == 5
+    with pytest.raises(FormatError, match="not above"):
+        import_urdf(text, tip="base", base="wrist_3_link")
+
+
+def test_load_reads_urdf_paths() -> None:
+    r = dhsym.load(DATA / "ur5_robot.urdf", tip="tool0")
+    assert r.table.n == 6 and r.table.source.startswith("URDF ur5_robot.urdf")
+
+
+def test_snap_angles_false_keeps_the_decimals() -> None:
+    imp = import_urdf(DATA / "ur5_robot.urdf", tip="tool0", snap_angles=False)
+    assert imp.table.warnings == ()
+
+
+def test_written_urdf_is_valid_for_yourdfpy() -> None:
+    import yourdfpy  # in the test extra: a missing validator is a failure, not a skip
+
+    robot = from_urdf(DATA / "panda.urdf", tip="panda_hand")
+    for convention in ("standard", "modified"):
+        text = write_urdf(dhsym.convert(robot.table, convention))
+        import io
+
+        model = yourdfpy.URDF.load(io.StringIO(text), load_meshes=False, build_scene_graph=True)
+        assert model.validate()
+        q = np.random.default_rng(1).uniform(-1, 1, 7)
+        names = [f"joint{k}" for k in range(1, 8)]
+        model.update_cfg(dict(zip(names, q, strict=True)))
+        T = model.get_transform("tool", model.base_link)
+        assert np.abs(T - robot.fk(q)).max() < 1e-9
+        links = {link.name for link in model.robot.links}
+        assert {f"link{k}" for k in range(8)} <= links
+
+
+def test_robot_to_urdf_method_and_visuals() -> None:
+    r = dhsym.load("puma560")
+    out = dhsym.Robot(r.table.with_values({s: 0.3 for s in r.table.constants})).to_urdf()
+    assert out.count("<cylinder") == 6 and "<box" in out
+    with pytest.raises(dhsym.DHError, match="symbolic lengths a1, a2, a3"):
+        dhsym.Robot(dhsym.planar_chain(3)).to_urdf()
+
+
+def test_fixed_rows_and_flipped_joints_are_written() -> None:
+    from dhsym.model.table import DHRow, DHTable
+
+    rows = [
+        DHRow.revolute("pi/2 - q1", d=0.3, a=0.2, alpha="pi/2"),
+        DHRow.fixed(theta="pi/6", d=0.1),
+        DHRow.prismatic("0.1 - d3", a=0.1, alpha="-pi/2"),
+    ]
+    for convention in ("standard", "modified"):
+        robot = dhsym.Robot(DHTable.from_rows(rows, convention=convention, name="odd"))
+        text = robot.to_urdf()
+        assert '<axis xyz="0 0 -1"/>' in text and 'name="joint2" type="fixed"' in text
+        again = from_urdf(text, tip="tool")
+        for q in ([0.3, 0.2], [-1.0, 0.6]):
+            assert np.abs(again.fk(q) - robot.fk(q)).max() < 1e-12

@@ -1,0 +1,143 @@
+"""Hostile and broken URDFs: one FormatError naming the element; meshes never opened."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from dhsym.errors import FormatError, GeometryError
+from dhsym.formats.urdf import from_urdf, import_urdf, read_urdf
+
+
+def urdf(joints: str, links: str = "abc") -> str:
+    return '<robot name="r">' + "".join(f'<link name="{n}"/>' for n in links) + joints + "</robot>"
+
+
+def joint(name: str, parent: str, child: str, kind: str = "revolute", body: str = "") -> str:
+    return (
+        f'<joint name="{name}" type="{kind}"><parent link="{parent}"/>'
+        f'<child link="{child}"/>{body}</joint>'
+    )
+
+
+@pytest.mark.parametrize(
+    ("value", "message"),
+    [
+        ("nan 0 0", "'nan' is not a finite decimal number"),
+        ("inf 0 0", "'inf' is not a finite decimal number"),
+        ("1e99999 0 0", "exponent"),
+        ("0.1 two 0", "'two' is not a finite decimal number"),
+        ("${d1} 0 0", "xacro expressions must be expanded first"),
+        ("0 0", "expected 3 numbers"),
+    ],
+)
+def test_bad_numbers_name_the_element(value: str, message: str) -> None:
+    text = urdf(joint("elbow", "a", "b", body=f'<origin xyz="{value}"/>'), "ab")
+    with pytest.raises(FormatError) as err:
+        read_urdf(text)
+    assert "field <joint name='elbow'> <origin> xyz" in str(err.value)
+    assert message in str(err.value)
+
+
+def test_zero_length_axis_is_refused() -> None:
+    text = urdf(joint("wrist", "a", "b", body='<axis xyz="0 0 0"/>'), "ab")
+    with pytest.raises(FormatError, match="<joint name='wrist'> <axis> xyz: the axis has zero"):
+        read_urdf(text)
+
+
+def test_fixed_joint_axis_is_ignored() -> None:
+    text = urdf(joint("j", "a", "b") + joint("f", "b", "c", "fixed", '<axis xyz="0 0 0"/>'))
+    assert from_urdf(text).table.n == 1
+
+
+def test_cycle_without_root_is_refused() -> None:
+    text = urdf(joint("j1", "a", "b") + joint("j2", "b", "a"), "ab")
+    with pytest.raises(FormatError, match="cycle through link 'a'"):
+        read_urdf(text)
+
+
+def test_second_parent_is_refused() -> None:
+    text = urdf(joint("j1", "a", "b") + joint("j2", "c", "b"))
+    with pytest.raises(FormatError, match="<joint name='j2'>: link 'b' is already the child"):
+        read_urdf(text)
+
+
+def test_two_roots_are_refused() -> None:
+    with pytest.raises(FormatError, match="links a, c are no joint's child"):
+        read_urdf(urdf(joint("j1", "a", "b")))
+
+
+@pytest.mark.parametrize("kind", ["floating", "planar"])
+def test_floating_and_planar_joints_are_refused(kind: str) -> None:
+    text = urdf(joint("free", "a", "b", kind) + joint("j", "b", "c"))
+    with pytest.raises(FormatError, match=f"<joint name='free'>: a {kind} joint"):
+        import_urdf(text)
+    assert import_urdf(text, base="b").table.n == 1  # below it, the chain is fine
+
+
+def test_unknown_kind_and_missing_links() -> None:
+    with pytest.raises(FormatError, match="unknown joint type 'ball'"):
+        read_urdf(urdf(joint("j", "a", "b", "ball"), "ab"))
+    with pytest.raises(FormatError, match="child link 'z' is not defined"):
+        read_urdf(urdf(joint("j", "a", "z"), "ab"))
+    with pytest.raises(FormatError, match="field tip: no link named 'z'"):
+        import_urdf(urdf(joint("j", "a", "b"), "ab"), tip="z")
+
+
+def test_no_moving_joint_and_wrong_root() -> None:
+    with pytest.raises(FormatError, match="no revolute, continuous or prismatic joint"):
+        import_urdf(urdf(joint("j", "a", "b", "fixed"), "ab"))
+    with pytest.raises(FormatError, match="expected <robot>"):
+        read_urdf("<sdf/>")
+
+
+def test_meshes_and_package_paths_are_never_opened(tmp_path: Path) -> None:
+    visual = (
+        '<visual><geometry><mesh filename="package://nowhere/meshes/x.stl"/></geometry></visual>'
+        f'<collision><geometry><mesh filename="{tmp_path}/missing.dae"/></geometry></collision>'
+    )
+    text = (
+        '<robot name="r"><link name="a">'
+        + visual
+        + '</link><link name="b"/>'
+        + joint("j", "a", "b")
+        + "</robot>"
+    )
+    path = tmp_path / "r.urdf"
+    path.write_text(text)
+    assert from_urdf(path).table.n == 1
+
+
+def test_xacro_files_say_how_to_expand_them(tmp_path: Path) -> None:
+    path = tmp_path / "arm.urdf.xacro"
+    path.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r"/>')
+    with pytest.raises(FormatError, match="xacro robot.urdf.xacro > robot.urdf"):
+        read_urdf(path)
+
+
+def test_coincident_revolute_axes_are_refused_with_the_file() -> None:
+    text = urdf(joint("j1", "a", "b") + joint("j2", "b", "c", body='<origin xyz="0 1 0"/>'))
+    same = urdf(joint("j1", "a", "b") + joint("j2", "b", "c"))
+    with pytest.raises(GeometryError, match="row 2: the axes of joints j1 and j2 coincide"):
+        import_urdf(same)
+    assert import_urdf(text).table.n == 2
+
+
+def _long_chain(n: int, closing: str = "") -> str:
+    links = "".join(f'<link name="l{i}"/>' for i in range(n))
+    joints = "".join(joint(f"j{i}", f"l{i}", f"l{i + 1}", "fixed") for i in range(n - 1))
+    return f'<robot name="r">{links}{joints}{closing}</robot>'
+
+
+def test_too_many_links_are_refused_before_the_joints_are_read() -> None:
+    with pytest.raises(FormatError, match="field <link>: the robot has 2500 links: at most 2000"):
+        read_urdf(_long_chain(2500))
+
+
+def test_long_chains_and_far_cycles_are_found_in_one_pass() -> None:
+    with pytest.raises(FormatError, match="has 1999 joints: at most 100"):
+        import_urdf(_long_chain(2000))
+    cycle = joint("jc", "l1999", "l0", "fixed")
+    with pytest.raises(FormatError, match="<joint name='j.*'>: the links form a cycle"):
+        read_urdf(_long_chain(2000, cycle))
