@@ -258,7 +258,7 @@ class Robot:
         euler: str | None = None,
         values: Mapping[object, object] | None = None,
     ) -> object:
-        """The Jacobian (see :mod:`.jacobian`): symbolic without ``q``, else numeric.
+        """The Jacobian (:mod:`dhsym.kinematics.jacobian`): symbolic without ``q``, else numeric.
 
         ``robot.jacobian()`` is the exact 6×n geometric Jacobian (``frame="tool"`` for the
         end-effector frame); ``robot.jacobian(q)`` evaluates it, ``(n,)`` → ``(6, n)`` and
@@ -284,7 +284,7 @@ class Robot:
         return self._extra_cache[key](q)  # type: ignore[operator]
 
     def inverse(self) -> object:
-        """The closed-form inverse kinematics derived step by step (:mod:`.inverse`), cached."""
+        """The inverse kinematics derived step by step (:mod:`dhsym.kinematics.inverse`), cached."""
         from .inverse import inverse
 
         if "inverse" not in self._extra_cache:
@@ -292,7 +292,7 @@ class Robot:
         return self._extra_cache["inverse"]
 
     def ik(self, T: object, **kw: object) -> object:
-        """Every closed-form solution of a pose or a batch of poses (see :mod:`.inverse`).
+        """Every closed-form solution of a pose or of a batch (:mod:`dhsym.kinematics.inverse`).
 
         One pose ``(4, 4)`` gives an ``IKSolution`` (``.q`` is ``(k, n)``, with branch
         names); a batch ``(N, 4, 4)`` gives an ``IKBatch`` (padded ``(N, K, n)`` with a
