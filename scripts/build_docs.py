@@ -105,7 +105,6 @@ def build(outdir: Path, *, quiet: bool = True) -> SiteReport:
         shutil.copytree(ROOT / "docs", src, ignore=shutil.ignore_patterns("_build", "__pycache__"))
         os.environ["DHSYM_DOCS_ROOT"] = str(ROOT)
         args = ["-b", "html", "-W", "--keep-going", "-w", str(warnfile), "-j", "1"]
-        args += ["-D", f"nb_output_folder={Path(tmp) / 'jupyter_execute'}"]
         args += ["-d", str(Path(tmp) / "doctrees"), str(src), str(outdir)]
         status = build_main([*args, "-q"] if quiet else args)
         warnings = (

@@ -56,7 +56,9 @@ class Robot:
     """Kinematics of one DH table: link matrices, ``^iT_j``, the arm matrix, ``fk``.
 
     Frames are numbered 0 … n (DH frames); ``-1`` is the world frame before the
-    base transform and ``n + 1`` the tool frame after the tool transform.
+    base transform and ``n + 1`` the tool frame after the tool transform. The arm
+    matrix is the product of the link matrices, :math:`{}^0T_n = {}^0T_1 {}^1T_2 ... {}^{n-1}T_n`,
+    and :math:`{}^jT_i = ({}^iT_j)^{-1}` is taken as the exact rigid inverse.
     ``compact`` (C12 or cos/sin) and ``style`` (``C1``, ``c1`` or ``c_theta``, see
     :class:`~dhsym.notation.printers.TrigStyle`) set how its matrices print.
     """
