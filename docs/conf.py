@@ -62,6 +62,9 @@ mathjax2_config = {
     "tex2jax": {
         "inlineMath": [["\\(", "\\)"]],
         "displayMath": [["\\[", "\\]"]],
+        # MyST marks the page tex2jax_ignore and its maths with the class "math"
+        "processClass": "tex2jax_process|mathjax_process|math|output_area",
+        "ignoreClass": "tex2jax_ignore|mathjax_ignore|document",
         "processRefs": False,
         "processEnvironments": False,
     },

@@ -78,10 +78,11 @@ def _exported(module: object) -> list[str]:
     return list(names)
 
 
-def _home(modules: list[str]) -> dict[int, str]:
-    """Where each public object is documented: its defining module when that is public,
-    else the first public (non-package) module that exports it."""
-    homes: dict[int, str] = {}
+def _home(modules: list[str]) -> dict[int, tuple[str, object]]:
+    """Where each public class and function is documented (by ``id``: the module and the
+    object): its defining module when that is public, else the first public (non-package)
+    module that exports it."""
+    homes: dict[int, tuple[str, object]] = {}
     loaded = {m: importlib.import_module(m) for m in modules}
     packages = {m for m, mod in loaded.items() if hasattr(mod, "__path__")}
     for m, mod in loaded.items():
@@ -91,11 +92,11 @@ def _home(modules: list[str]) -> dict[int, str]:
                 continue
             origin = getattr(obj, "__module__", "") or ""
             if origin in loaded and origin not in packages and _public(origin):
-                homes.setdefault(id(obj), origin)
+                homes.setdefault(id(obj), (origin, obj))
             elif m not in packages:
-                homes.setdefault(id(obj), m)
+                homes.setdefault(id(obj), (m, obj))
             elif origin in loaded:
-                homes.setdefault(id(obj), origin)
+                homes.setdefault(id(obj), (origin, obj))
     return homes
 
 
@@ -139,7 +140,7 @@ def write_api_pages(target: Path) -> list[str]:
             continue
         home = homes.get(id(obj))
         if home:
-            lines.append(f"   {home}.{name}")
+            lines.append(f"   {home[0]}.{name}")
     lines += ["```", "", "## The rooms", "", "```{toctree}", ":maxdepth: 1", ""]
     lines += [m for m in rooms]
     lines += ["```", ""]
@@ -149,7 +150,9 @@ def write_api_pages(target: Path) -> list[str]:
     return modules
 
 
-def _module_page(target: Path, name: str, modules: list[str], homes: dict[int, str]) -> None:
+def _module_page(
+    target: Path, name: str, modules: list[str], homes: dict[int, tuple[str, object]]
+) -> None:
     mod = importlib.import_module(name)
     children = [c for c in modules if c.rsplit(".", 1)[0] == name]
     lines = [f"# `{name}`", "", "```{eval-rst}", f".. automodule:: {name}", "   :no-members:"]
@@ -160,16 +163,22 @@ def _module_page(target: Path, name: str, modules: list[str], homes: dict[int, s
         if obj is None or inspect.ismodule(obj):
             continue
         if inspect.isclass(obj) or inspect.isfunction(obj):
-            if homes.get(id(obj)) != name:
+            if homes.get(id(obj), ("",))[0] != name:
                 continue
         elif hasattr(mod, "__path__"):
             continue
         members.append((n, obj))
+    listed = {id(obj) for _, obj in members}
+    for home, obj in homes.values():  # defined here, exported only by a room's package
+        n = getattr(obj, "__name__", "")
+        if home == name and id(obj) not in listed and getattr(mod, n, None) is obj:
+            members.append((n, obj))
+            listed.add(id(obj))
     if hasattr(mod, "__path__"):
         exported = [
-            f"{homes[id(o)]}.{n}"
+            f"{homes[id(o)][0]}.{n}"
             for n, o in ((n, getattr(mod, n, None)) for n in _exported(mod))
-            if id(o) in homes and homes[id(o)] != name
+            if id(o) in homes and homes[id(o)][0] != name
         ]
         if exported:
             lines += ["Names this room exports:", "", "```{eval-rst}", ".. autosummary::", ""]
