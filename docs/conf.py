@@ -35,6 +35,7 @@ dhsym_repo_root = str(ROOT)
 exclude_patterns = ["_build", "_ext", "**.ipynb_checkpoints", "README.md"]
 source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb", ".rst": "restructuredtext"}
 root_doc = "index"
+smartquotes = False  # "--format" and "..." in help texts and code-like prose stay as typed
 
 # MyST: $…$ and $$…$$ maths, ::: fences, anchors for ## headings (links like page.md#anchor).
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "deflist", "attrs_inline"]

@@ -360,22 +360,27 @@ class MistakeCatalogue(Directive):
             if inspect.isclass(cls) and getattr(cls, "kind", ""):
                 kinds.append(cls)
         kinds.sort(key=lambda c: c.kind)
-        rst = [".. list-table::", "   :header-rows: 1", "   :widths: 18 22 20 40", ""]
-        rst += ["   * - kind", "     - title", "     - checked in", "     - what the student did"]
+        rows = []
         for cls in kinds:
             where = ", ".join(used.get(cls.__name__, [])) or "matrix entries"
             doc = " ".join((inspect.getdoc(cls) or "").split("\n\n")[0].split())
             title = getattr(cls, "title", "") or getattr(cls(), "title", "")
-            rst += [
-                f"   * - ``{cls.kind}``",
-                f"     - {title}",
-                f"     - {where}",
-                f"     - {doc} (:class:`~{cls.__module__}.{cls.__name__}`)"
-                if _public(cls.__module__)
-                else f"     - {doc} (:class:`~dhsym.checking.mistakes.{cls.__name__}`)",
-            ]
+            home = cls.__module__ if _public(cls.__module__) else "dhsym.checking.mistakes"
+            rows.append((cls.kind, title, where, doc, f"{home}.{cls.__name__}"))
+        if type(self.state).__module__.startswith("myst_parser"):
+            text = ["| kind | title | checked in | what the student did |", "|---|---|---|---|"]
+            for kind, title, where, doc, target in rows:
+                cells = (f"`{kind}`", title, where, f"{doc} ({{py:class}}`~{target}`)")
+                text.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
+        else:
+            text = [".. list-table::", "   :header-rows: 1", ""]
+            text += ["   * - kind", "     - title", "     - checked in"]
+            text += ["     - what the student did"]
+            for kind, title, where, doc, target in rows:
+                text += [f"   * - ``{kind}``", f"     - {title}", f"     - {where}"]
+                text += [f"     - {doc} (:class:`~{target}`)"]
         container = nodes.container()
-        nested_parse_with_titles(self.state, StringList(rst, source="dhsym-mistakes"), container)
+        nested_parse_with_titles(self.state, StringList(text, source="dhsym-mistakes"), container)
         return container.children
 
 

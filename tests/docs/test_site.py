@@ -148,6 +148,8 @@ def test_every_mistake_kind_is_in_the_catalogue(site):
         if inspect.isclass(cls) and getattr(cls, "kind", "")
     }
     assert len(kinds) >= 15
+    assert len(re.findall(r"<tr", page)) == len(kinds) + 1  # the header, one row a kind
+    assert ":class:" not in page and "{py:class}" not in page  # the links were resolved
     for kind in kinds:
         assert f'<code class="docutils literal notranslate"><span class="pre">{kind}' in page
 
