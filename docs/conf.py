@@ -90,3 +90,17 @@ html_theme_options = {
 html_context = {"default_mode": "light"}
 copybutton_prompt_text = r">>> |\.\.\. |\$ "
 copybutton_prompt_is_regexp = True
+
+# "Edit this page" links, when the site is built for a published repository:
+# DHSYM_DOCS_GITHUB=owner/repo[@branch] make docs
+_github = os.environ.get("DHSYM_DOCS_GITHUB", "")
+if _github:
+    _repo, _, _branch = _github.partition("@")
+    _user, _, _name = _repo.partition("/")
+    html_context.update(
+        github_user=_user, github_repo=_name, github_version=_branch or "main", doc_path="docs"
+    )
+    html_theme_options["use_edit_page_button"] = True
+    html_theme_options["icon_links"] = [
+        {"name": "GitHub", "url": f"https://github.com/{_repo}", "icon": "fa-brands fa-github"}
+    ]
