@@ -2,6 +2,7 @@
 #   make demo   set up .venv, derive the PUMA 560 and write its derivation to build/
 #   make test   set up .venv and run the whole test suite
 #   make notebooks [NB=notebooks/03_puma560.py]   rebuild notebooks from their .py sources
+#   make docs   build the documentation site into build/docs (warnings are errors)
 # and, once set up:
 #   make lab    JupyterLab on the course notebooks, from .venv
 #   make shell  a shell with .venv activated (dhsym, jupyter, python on the PATH)
@@ -10,7 +11,7 @@ VENV   ?= .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-stamp
 
-.PHONY: demo test lint bench notebooks setup clean lab shell
+.PHONY: demo test lint bench notebooks docs setup clean lab shell
 
 setup: $(STAMP)
 
@@ -18,7 +19,7 @@ $(STAMP): pyproject.toml scripts/system-deps.sh
 	PYTHON="$(PYTHON)" bash scripts/system-deps.sh
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test,notebooks,dask,widgets,graders]'
+	$(PY) -m pip install --quiet -e '.[test,notebooks,dask,widgets,graders,docs]'
 	$(PY) -m ipykernel install --sys-prefix --name python3 >/dev/null
 	touch $(STAMP)
 
@@ -37,6 +38,9 @@ lint: $(STAMP)
 
 notebooks: $(STAMP)
 	$(VENV)/bin/dhsym notebooks build $(NB)
+
+docs: $(STAMP)
+	$(PY) scripts/build_docs.py build/docs
 
 bench: $(STAMP)
 	$(PY) benchmarks/bench_core.py

@@ -1,6 +1,6 @@
 """Words for students: nothing a student or teacher reads calls a lecture "seed 00x".
 
-The lectures are cited by title and author (README "The lectures"). This test makes every
+The lectures are cited by title and author (docs/explanations/lectures.md). This test makes every
 artefact dhsym produces — handouts, derivations in every format, frame-assignment steps,
 feedback pages and the class summary, the command line's output, help and errors — and
 reads the notebooks and the sources (docstrings, templates, examples, README) from disk.

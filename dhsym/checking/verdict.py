@@ -139,7 +139,7 @@ class CheckResult:
         return tuple(d.kind for d in self.diagnoses)
 
     def to_json(self) -> dict[str, object]:
-        """The documented JSON object of ``dhsym check --json`` (see the README)."""
+        """The documented JSON object of ``dhsym check --json`` (docs/reference/json.md)."""
         return {
             "schema": JSON_SCHEMA_VERSION,
             "key": self.key,

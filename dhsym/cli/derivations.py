@@ -2,7 +2,7 @@
 
 Each object has ``schema``, ``dhsym`` (version), ``robot``, ``convention``, ``what`` and
 ``variables``; every formula comes three ways: ``compact`` (C/S notation), ``full``
-(cos/sin, ``atan2``, ``sqrt``: readable back by the parser) and ``latex``. The README
+(cos/sin, ``atan2``, ``sqrt``: readable back by the parser) and ``latex``. docs/reference/json.md
 documents the fields.
 
 Examples

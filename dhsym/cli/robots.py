@@ -78,7 +78,7 @@ JSON_SCHEMA_VERSION = 1
 
 
 def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, object]:
-    """The derivation as a JSON-ready dict (schema documented in the README).
+    """The derivation as a JSON-ready dict (schema in docs/reference/json.md).
 
     >>> from dhsym import load
     >>> d = derive_json(load("planar2r"))

@@ -56,7 +56,9 @@ class Robot:
     """Kinematics of one DH table: link matrices, ``^iT_j``, the arm matrix, ``fk``.
 
     Frames are numbered 0 … n (DH frames); ``-1`` is the world frame before the
-    base transform and ``n + 1`` the tool frame after the tool transform.
+    base transform and ``n + 1`` the tool frame after the tool transform. The arm
+    matrix is the product of the link matrices, :math:`{}^0T_n = {}^0T_1 {}^1T_2 ... {}^{n-1}T_n`,
+    and :math:`{}^jT_i = ({}^iT_j)^{-1}` is taken as the exact rigid inverse.
     ``compact`` (C12 or cos/sin) and ``style`` (``C1``, ``c1`` or ``c_theta``, see
     :class:`~dhsym.notation.printers.TrigStyle`) set how its matrices print.
     """
@@ -258,7 +260,7 @@ class Robot:
         euler: str | None = None,
         values: Mapping[Any, object] | None = None,
     ) -> object:
-        """The Jacobian (see :mod:`.jacobian`): symbolic without ``q``, else numeric.
+        """The Jacobian (:mod:`dhsym.kinematics.jacobian`): symbolic without ``q``, else numeric.
 
         ``robot.jacobian()`` is the exact 6×n geometric Jacobian (``frame="tool"`` for the
         end-effector frame); ``robot.jacobian(q)`` evaluates it, ``(n,)`` → ``(6, n)`` and
@@ -284,7 +286,7 @@ class Robot:
         return self._extra_cache[key](q)  # type: ignore[operator]
 
     def inverse(self) -> object:
-        """The closed-form inverse kinematics derived step by step (:mod:`.inverse`), cached."""
+        """The inverse kinematics derived step by step (:mod:`dhsym.kinematics.inverse`), cached."""
         from .inverse import inverse
 
         if "inverse" not in self._extra_cache:
@@ -292,7 +294,7 @@ class Robot:
         return self._extra_cache["inverse"]
 
     def ik(self, T: object, **kw: object) -> object:
-        """Every closed-form solution of a pose or a batch of poses (see :mod:`.inverse`).
+        """Every closed-form solution of a pose or of a batch (:mod:`dhsym.kinematics.inverse`).
 
         One pose ``(4, 4)`` gives an ``IKSolution`` (``.q`` is ``(k, n)``, with branch
         names); a batch ``(N, 4, 4)`` gives an ``IKBatch`` (padded ``(N, K, n)`` with a

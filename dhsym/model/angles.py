@@ -106,7 +106,7 @@ def _decimals(r: sp.Rational) -> int | None:
 
 
 def snap_angle(value: sp.Expr, rule: AngleSnap = AngleSnap()) -> tuple[sp.Expr, float] | None:
-    """The multiple of π/12 that the decimal ``value`` stands for, and |difference|; or None.
+    """The multiple of π/12 that the decimal ``value`` stands for, and ``|difference|``; or None.
 
     Only finite decimals that are not integers are candidates (``1/3``, ``2``,
     ``pi/7`` and symbols are left alone).
