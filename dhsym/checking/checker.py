@@ -81,6 +81,11 @@ class Key:
         ``rounding``: anything :meth:`Rounding.parse` reads (``"digits=4"``, ``"abs=1e-3"``,
         ``{"rel": 0.001}``, ``"off"``); None is the default (3 significant digits).
         """
+        if not isinstance(ref, (str, Path, DHTable)):
+            raise DHError(
+                "the key is a built-in robot's name, a table file or a DHTable, "
+                f"got {type(ref).__name__}"
+            )
         table = ref if isinstance(ref, DHTable) else load_table(ref)
         q = question if isinstance(question, Question) else Question.parse(question, table.n)
         name = table.name or (Path(ref).stem if not isinstance(ref, DHTable) else "")

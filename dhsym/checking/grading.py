@@ -61,7 +61,7 @@ from ._report import (
     write_gradebook,
     write_summary,
 )
-from ._runner import JobFailure, Progress, run_dask, run_pool, run_serial
+from ._runner import JobFailure, Progress, dask_address, run_dask, run_pool, run_serial
 from ._submissions import Submission, read_submissions
 from .checker import Key, check_answer
 from .feedback import QuestionFeedback, render_feedback
@@ -438,6 +438,8 @@ def grade(
     lim = limits or AnswerLimits(seconds=seconds)
     if not isinstance(workers, int) or not 0 <= workers <= 1024:
         raise DHError(f"--workers: expected a number of processes from 0 to 1024, got {workers}")
+    if dask is not None:
+        dask = dask_address(dask)
     root = Path(out_dir).resolve()
     warnings: list[str] = []
     subs = read_submissions(submissions, a, lim, exclude=(root,), warnings=warnings)
