@@ -292,7 +292,9 @@ _RUN_AUTOGRADER = """#!/usr/bin/env bash
 set -uo pipefail
 ROOT="${DHSYM_AUTOGRADER_ROOT:-/autograder}"
 PYTHON="${DHSYM_AUTOGRADER_PYTHON:-$ROOT/dhsym-venv/bin/python}"
-exec "$PYTHON" -m dhsym autograder --run
+# sys.path without the current folder (as python -P): a submission's sympy.py never shadows
+exec "$PYTHON" -c 'import sys; sys.path[:] = [p for p in sys.path if p]; import runpy
+runpy.run_module("dhsym", run_name="__main__", alter_sys=True)' autograder --run
 """
 
 
@@ -389,15 +391,24 @@ def read_submission(
     if len(entries) == 1 and entries[0].is_dir():
         root = entries[0]  # a zip of one folder
     sub = _from_folder(root, qids, limits)
-    if not sub.answers and not sub.problems:
-        files = sorted(
-            p
-            for p in root.iterdir()
-            if p.suffix.lower() in (".yaml", ".yml", ".json") and not p.is_symlink()
+    files = sorted(
+        p
+        for p in root.iterdir()
+        if p.suffix.lower() in (".yaml", ".yml", ".json")
+        and not p.is_symlink()
+        and not any(p.name == q or p.name.startswith(q + ".") for q in qids)
+    )
+    flags = list(sub.flags)  # several files for one question: which one was graded
+    graded = "the question files"
+    if not sub.answers and not sub.problems and files:
+        sub, graded = _from_file(files[0], qids), files[0].name
+        files = files[1:]
+    if files:  # never ignored without a word
+        flags.append(
+            f"not graded: {', '.join(p.name for p in files)} ({graded} graded instead: "
+            "one form of answers per submission)"
         )
-        if files:
-            sub = _from_file(files[0], qids)
-    return Submission(student, name or student, sub.answers, sub.problems)
+    return Submission(student, name or student, sub.answers, sub.problems, flags=tuple(flags))
 
 
 def results_json(
@@ -407,8 +418,10 @@ def results_json(
     visibility: str = "visible",
     show_key: bool = False,
     seconds: float = 0.0,
+    flags: tuple[str, ...] = (),
 ) -> dict:
-    """The ``results.json`` object for one graded submission (the specification's format).
+    """The ``results.json`` object for one graded submission (the specification's format);
+    ``flags`` (answer files that were not graded) are notes of its ``output``.
 
     >>> a = Assignment("HW", ())
     >>> results_json(a, ())["score"], results_json(a, ())["tests"]
@@ -429,6 +442,7 @@ def results_json(
             }
         )
     score = float(sum(qf.score for qf in feedback))
+    notes = "".join(f"\nNote: {flag}" for flag in flags)
     verdicts = {qf.id: qf.result.verdict.value if qf.result else "missing" for qf in feedback}
     right = sum(v == "correct" for v in verdicts.values())
     return {
@@ -436,6 +450,7 @@ def results_json(
         "output": (
             f"{assignment.title}: {score:g} / {assignment.max_score:g} points; "
             f"{right} of {len(feedback)} questions right. Each question below says why."
+            f"{notes}"
         ),
         "visibility": visibility,
         "stdout_visibility": "hidden",
@@ -467,6 +482,7 @@ def run_autograder(paths: AutograderPaths | None = None) -> dict:
             visibility=str(config.get("visibility", "visible")),
             show_key=bool(config.get("show_key", False)),
             seconds=time.perf_counter() - t0,
+            flags=sub.flags,
         )
     except Exception as err:
         failed = {

@@ -326,6 +326,8 @@ class GradeReport:
     summary: Path
     records: tuple[GradeRecord, ...] = field(default=(), repr=False)
     warnings: tuple[str, ...] = ()
+    #: entries of the submissions folder that are not submissions: (entry, reason)
+    refused: tuple[tuple[str, str], ...] = ()
 
 
 def _failed_record(sub: Submission, assignment: Assignment, failure: JobFailure) -> GradeRecord:
@@ -367,14 +369,29 @@ _FINAL = ("correct", "incorrect", "unreadable", "missing")
 
 
 def _final(record: GradeRecord, a: Assignment) -> bool:
-    """True for a graded record (fingerprinted) with a final verdict for each question of ``a``."""
-    ids = {q.id for q in a.questions}
+    """True for a graded record (fingerprinted) with a final verdict for each question of ``a``,
+    each score within ``[0, points]`` of its question, and the total their sum."""
+    points = {q.id: q.points for q in a.questions}
     return (
         record.status == "graded"
         and bool(record.fingerprint)
-        and set(record.scores) == ids
-        and set(record.verdicts) == ids
+        and set(record.scores) == set(points)
+        and set(record.verdicts) == set(points)
         and all(v in _FINAL for v in record.verdicts.values())
+        and all(0 <= record.scores[q] <= p for q, p in points.items())
+        and math.isclose(record.score, sum(record.scores.values()), rel_tol=1e-9, abs_tol=1e-9)
+        and math.isclose(record.max_score, a.max_score, rel_tol=1e-9)
+    )
+
+
+def _same_submission(record: GradeRecord, sub: Submission) -> bool:
+    """The cached record is this submission's: uid, student, name, source and flags agree."""
+    return (record.uid, record.student, record.name, record.source, tuple(record.flags)) == (
+        sub.uid,
+        sub.student,
+        sub.name,
+        sub.source,
+        tuple(sub.flags),
     )
 
 
@@ -408,7 +425,7 @@ def _load_cache(
     if data.get("assignment") != run_fp:
         return {}  # another assignment, key, limit or dhsym version: everything is regraded
     cached = {k: _cached_record(r, a) for k, r in data["records"].items()}
-    records = {k: r for k, r in cached.items() if r is not None}
+    records = {k: r for k, r in cached.items() if r is not None and r.uid == k}
     bad = len(cached) - len(records)
     if bad:
         warnings.append(f"ignoring {bad} malformed record(s) of the grading cache {path.name}")
@@ -442,7 +459,10 @@ def grade(
         dask = dask_address(dask)
     root = Path(out_dir).resolve()
     warnings: list[str] = []
-    subs = read_submissions(submissions, a, lim, exclude=(root,), warnings=warnings)
+    refused: list[tuple[str, str]] = []
+    subs = read_submissions(
+        submissions, a, lim, exclude=(root,), warnings=warnings, refused=refused
+    )
     root.mkdir(parents=True, exist_ok=True)
     (root / "feedback").mkdir(exist_ok=True)
     deadline = lim.seconds * max(1, len(a.questions)) + _SLACK_SECONDS
@@ -461,7 +481,10 @@ def grade(
             records[s.uid] = _failed_record(s, a, JobFailure("error", s.error))
             failed += 1
         elif (
-            old and old.fingerprint == s.fingerprint(a, run_fp) and all(p.is_file() for p in names)
+            old
+            and _same_submission(old, s)
+            and old.fingerprint == s.fingerprint(a, run_fp)
+            and all(p.is_file() for p in names)
         ):
             records[s.uid] = old
         else:
@@ -503,7 +526,7 @@ def grade(
         save()
     ordered = [records[s.uid] for s in subs if s.uid in records]
     gradebook = write_gradebook(root, a, ordered, files)
-    summary = write_summary(root, a, ordered, files)
+    summary = write_summary(root, a, ordered, files, refused=refused)
     scores = [r.score for r in ordered]
     return GradeReport(
         root,
@@ -516,6 +539,7 @@ def grade(
         summary,
         tuple(ordered),
         tuple(warnings),
+        tuple(refused),
     )
 
 
