@@ -222,3 +222,135 @@ def test_roster_columns_that_never_reach_the_lms_are_not_refused(tmp_path):
     assert [e.submission for e in roster.entries] == ["-alice", "=bob"]
     with pytest.raises(DHError, match="formula"):
         Roster.from_text("submission,canvas_id\nalice,=17\n")
+
+
+# --- 17: the autograder -------------------------------------------------------------------
+
+
+def test_autograder_names_every_answer_file_it_does_not_grade(tmp_path):
+    from dhsym.checking.autograder import read_submission, results_json
+    from dhsym.checking.grading import Assignment, check_submission
+
+    hw = tmp_path / "hw.yaml"
+    hw.write_text(
+        "title: HW\nkey: planar2r\nquestions:\n  - {id: q1, ask: px, points: 1}\n"
+        "  - {id: q2, ask: py, points: 1}\n"
+    )
+    sub = tmp_path / "sub"
+    sub.mkdir()
+    (sub / "q2.md").write_text("a1*S1 + a2*S12")
+    (sub / "q2.txt").write_text("0")
+    (sub / "answers.json").write_text('{"answers": {"q1": "0"}}')
+    a = Assignment.load(hw)
+    s = read_submission(sub, a, dhsym.checking.AnswerLimits())
+    data = results_json(a, check_submission(a, s, dhsym.checking.AnswerLimits()), flags=s.flags)
+    assert "not graded: q2.txt" in data["output"]
+    assert "not graded: answers.json" in data["output"]
+
+
+def test_autograder_python_never_imports_from_the_current_folder(tmp_path):
+    import json
+    import os
+    import subprocess
+    import sys
+
+    from dhsym.checking.autograder import _RUN_AUTOGRADER, CONFIG_NAME
+
+    source = tmp_path / "source"
+    source.mkdir()
+    (source / "hw.yaml").write_text(
+        "title: HW\nkey: planar2r\nquestions:\n  - {id: q1, ask: px, points: 1}\n"
+    )
+    (source / CONFIG_NAME).write_text(json.dumps({"assignment": "hw.yaml"}))
+    (source / "run_autograder").write_text(_RUN_AUTOGRADER)
+    sub = tmp_path / "submission"
+    sub.mkdir()
+    (sub / "q1.txt").write_text(PX)
+    canary = tmp_path / "shadowed"
+    (sub / "sympy.py").write_text(f"open({str(canary)!r}, 'w').close()\nraise SystemExit(3)\n")
+    results = tmp_path / "results"
+    results.mkdir()
+    env = {
+        **os.environ,
+        "DHSYM_AUTOGRADER_SOURCE": str(source),
+        "DHSYM_AUTOGRADER_SUBMISSION": str(sub),
+        "DHSYM_AUTOGRADER_RESULTS": str(results),
+        "DHSYM_AUTOGRADER_METADATA": str(results / "none.json"),
+        "DHSYM_AUTOGRADER_PYTHON": sys.executable,
+    }
+    proc = subprocess.run(
+        ["bash", str(source / "run_autograder")],
+        env=env,
+        cwd=sub,  # the student's folder as the current folder
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert not canary.exists()
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads((results / "results.json").read_text())["score"] == 1
+
+
+# --- 18: YAML 1.2, duplicate keys, key tables validated, nothing of a foreign file echoed ------
+
+ROW1 = "  - {type: R, theta: theta1, d: 0, a: a1, alpha: 0}\n"
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("alpha: 1:30", {"alpha": "1:30"}),  # YAML 1.1: 90
+        ("a: yes", {"a": "yes"}),
+        ("a: 012", {"a": 12}),
+        ("a: 0o12", {"a": 10}),
+        ("a: 2024-01-01", {"a": "2024-01-01"}),
+        ("a: [1, 2.5, .inf, true, null]", {"a": [1, 2.5, float("inf"), True, None]}),
+    ],
+)
+def test_yaml_is_read_with_yaml_12_semantics(text, expected):
+    from dhsym.model.yamlsafe import load_yaml
+
+    assert load_yaml(text) == expected
+
+
+@pytest.mark.parametrize(
+    "text", ["a: 1\na: 2\n", "joints:\n  - {type: R, theta: q1, d: 0, a: 1, alpha: 0, a: 3}\n"]
+)
+def test_a_key_given_twice_is_refused(text):
+    from dhsym.model.yamlsafe import YAMLInputError, load_yaml
+
+    with pytest.raises(YAMLInputError, match="given twice"):
+        load_yaml(text)
+
+
+def test_sexagesimal_and_duplicates_in_answers_are_never_read_silently():
+    table = "joints:\n" + ROW1 + "  - {type: R, theta: theta2, d: 0, a: a2, alpha: 1:30}\n"
+    assert verdict("planar2r", "table", table) == "unreadable"
+    twice = "joints:\n" + ROW1 + "  - {type: R, theta: theta2, d: 0, a: a2, alpha: 0, a: 0}\n"
+    assert verdict("planar2r", "table", twice) == "unreadable"
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        (ROW1 + "  - {type: F, theta: 0, d: 0, a: a2, alpha: 0, q: theta2}\n", "remove q"),
+        (ROW1 + "  - {type: F, theta: theta1, d: 0, a: a2, alpha: 0}\n", "fixed row"),
+        ("  - {type: R, theta: theta1, d: 0, a: a1, alpha: 0, limits: [a, b]}\n", "two numbers"),
+        (ROW1 + "tool: [{Tz: theta1}]\n", "constant transform"),
+        (ROW1 + "base: [{Rz: theta1}]\n", "constant transform"),
+    ],
+)
+def test_key_table_fields_are_validated(text, fragment, tmp_path):
+    path = tmp_path / "key.yaml"
+    path.write_text(text if text.startswith(("joints", "tool")) else "joints:\n" + text)
+    with pytest.raises(DHError, match=fragment):
+        Key.load(path, "T0_1")
+
+
+def test_a_file_that_is_not_a_table_is_never_echoed(tmp_path):
+    path = tmp_path / "secrets.yaml"
+    path.write_text("root_password: hunter2\nzz_api_token: s3cr3t\n")
+    with pytest.raises(DHError) as err:
+        Key.load(path, "T0_1")
+    assert "not a DH table" in str(err.value)
+    assert not any(w in str(err.value) for w in ("root_password", "hunter2", "zz_api", "s3cr3t"))
