@@ -47,7 +47,7 @@ from .mistakes import (
 from .names import NameContext
 from .questions import Question
 from .rounding import DEFAULT_ROUNDING, Rounding, rounding_accepts
-from .tables import compare_tables
+from .tables import compare_tables, symbolic_values
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
 __all__ = ["Key", "PreparedKey", "check_answer", "prepare", "table_cells"]
@@ -473,9 +473,10 @@ def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> 
     key = pk.key
     table = key.table
     ans = read_table(answer, pk.names, table.convention, limits)
-    values_ = table.value_map
+    values_ = table.value_map  # for the diagnosis; the verdict is symbolic first
     extra = {"expected_table": table_cells(table), "answer_table": table_cells(ans)}
-    match = compare_tables(table, ans, tool_free=key.tool_free, values=values_)
+    judged = symbolic_values(table, ans)
+    match = compare_tables(table, ans, tool_free=key.tool_free, values=judged)
     if match.same_robot and ans.convention is table.convention:
         if match.same_table:
             return CheckResult(

@@ -354,3 +354,44 @@ def test_a_file_that_is_not_a_table_is_never_echoed(tmp_path):
         Key.load(path, "T0_1")
     assert "not a DH table" in str(err.value)
     assert not any(w in str(err.value) for w in ("root_password", "hunter2", "zz_api", "s3cr3t"))
+
+
+# --- 2, 3: tables compared symbolically, joint variables by position ----------------------
+
+PUMA_ROWS = [
+    "{type: R, theta: theta1, d: 0, a: 0, alpha: pi/2}",
+    "{type: R, theta: theta2, d: 0, a: a2, alpha: 0}",
+    "{type: R, theta: theta3, d: d3, a: a3, alpha: -pi/2}",
+    "{type: R, theta: theta4, d: d4, a: 0, alpha: pi/2}",
+    "{type: R, theta: theta5, d: 0, a: 0, alpha: -pi/2}",
+    "{type: R, theta: theta6, d: 0, a: 0, alpha: 0}",
+]
+
+
+def _yaml_table(rows: list[str]) -> str:
+    return "joints:\n" + "".join(f"  - {r}\n" for r in rows)
+
+
+def test_symbols_with_equal_values_are_not_interchangeable():
+    assert verdict("puma560", "table", _yaml_table(PUMA_ROWS)) == "correct"
+    swapped = list(PUMA_ROWS)
+    swapped[1] = swapped[1].replace("a: a2", "a: d4")
+    swapped[3] = swapped[3].replace("d: d4", "d: a2")  # a2 = d4 = 0.4318 in the key
+    assert verdict("puma560", "table", _yaml_table(swapped)) == "incorrect"
+
+
+def test_joint_variables_are_matched_by_position():
+    relabelled = _yaml_table(
+        [
+            "{type: R, theta: theta2, d: 0, a: a1, alpha: 0}",
+            "{type: R, theta: theta1, d: 0, a: a2, alpha: 0}",
+        ]
+    )
+    assert verdict("planar2r", "table", relabelled) == "incorrect"
+    q_names = _yaml_table(
+        [
+            "{type: R, theta: q1, d: 0, a: a1, alpha: 0}",
+            "{type: R, theta: q2, d: 0, a: a2, alpha: 0}",
+        ]
+    )
+    assert verdict("planar2r", "table", q_names) == "correct"
