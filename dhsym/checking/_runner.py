@@ -11,7 +11,8 @@ failed twice.  So a job costs only its own result, never another job's:
   the worker thread (any ``--nthreads`` is safe: a hung job blocks nothing but its
   own child process, which is killed on time);
 - :func:`run_serial` runs in this process (no isolation: only the per-answer
-  ``SIGALRM`` limit of the main thread applies).
+  deadline of :func:`dhsym.checking._limits.time_limit` applies, checked between the
+  checker's steps).
 
 All yield ``(index, outcome)`` as jobs finish, where the outcome is the job's
 return value or a :class:`JobFailure` (``timeout`` or ``error``).

@@ -36,7 +36,7 @@ from dhsym.model.parsing import parse_expression
 from dhsym.model.table import Convention, DHTable
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
-from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
+from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer, check_time
 from ._table_text import grid_table, yaml_table
 from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
 from .names import NameContext
@@ -244,6 +244,7 @@ def parse_cell(
     cell: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS, where: str = ""
 ) -> sp.Expr:
     """One cell (plain math or LaTeX) as an expression, names resolved by ``ctx``."""
+    check_time()  # the answer's deadline (see _limits.time_limit)
     return _parse(cell, ctx, limits, where or "the answer")
 
 

@@ -378,6 +378,12 @@ def _student(metadata: Path) -> tuple[str, str]:
     return "submission", ""
 
 
+_NO_RERUN = (
+    "The autograder does not run again by itself: resubmit (a busy grader may be faster "
+    "next time) or ask the course staff to check this answer."
+)
+
+
 def read_submission(
     folder: str | Path, assignment: Assignment, limits: AnswerLimits, metadata: Path | None = None
 ) -> Submission:
@@ -475,7 +481,8 @@ def run_autograder(paths: AutograderPaths | None = None) -> dict:
         assignment = Assignment.load(p.source / str(config["assignment"]))
         limits = AnswerLimits(seconds=assignment.seconds)
         sub = read_submission(p.submission, assignment, limits, p.metadata)
-        feedback = check_submission(assignment, sub, limits)
+        # the keys were prepared by Assignment.load, before the first question's clock
+        feedback = check_submission(assignment, sub, limits, on_timeout=_NO_RERUN)
         data = results_json(
             assignment,
             feedback,

@@ -63,7 +63,7 @@ from ._report import (
 )
 from ._runner import JobFailure, Progress, dask_address, run_dask, run_pool, run_serial
 from ._submissions import Submission, read_submissions
-from .checker import Key, check_answer
+from .checker import Key, check_answer, prepare
 from .feedback import QuestionFeedback, render_feedback
 from .records import GradeRecord
 from .verdict import CheckResult, Verdict
@@ -201,34 +201,38 @@ def _points(value: object, path: Path, row: int) -> float:
     return number
 
 
-def _timed_out(q: AssignmentQuestion, seconds: float) -> CheckResult:
-    text = (
-        f"Checking took longer than the time limit of {seconds:g} s. The answer is checked "
-        "again on the next run; nothing is kept for now."
-    )
+#: what a timed-out answer is told in a class run (the autograder says its own)
+RERUN = "The answer is checked again on the next run; nothing is kept for now."
+
+
+def _timed_out(q: AssignmentQuestion, seconds: float, then: str) -> CheckResult:
+    text = f"Checking took longer than the time limit of {seconds:g} s. {then}"
     return CheckResult(q.ask, Verdict.UNREADABLE, text, reason="timeout", key=q.key.name)
 
 
 def check_submission(
-    assignment: Assignment, sub: Submission, limits: AnswerLimits
+    assignment: Assignment, sub: Submission, limits: AnswerLimits, *, on_timeout: str = RERUN
 ) -> tuple[QuestionFeedback, ...]:
     """Check every question of one submission: its result (``None`` if missing) and score.
 
     An answer scores the question's points when it is correct and 0 otherwise; an
     answer that could not be read from its file is ``unreadable``. Each answer runs
     under the time limit ``limits.seconds``; one that runs out gets an unreadable
-    result whose ``reason`` is ``timeout`` (see :func:`grade_submission`).
+    result whose ``reason`` is ``timeout`` (see :func:`grade_submission`), told
+    ``on_timeout``.  Each key is prepared before its answer's clock starts (its solvers
+    and variants are built once per worker, never on a student's time).
     """
     answers, problems = dict(sub.answers), dict(sub.problems)
     inner = replace(limits, seconds=0)  # the limit is the one below: a timeout stays one
     out = []
     for q in assignment.questions:
         if q.id in answers:
+            prepare(q.key)  # memoised: the first answer of a worker pays it, off the clock
             try:
                 with time_limit(limits.seconds, AnswerTimeout):
                     result = check_answer(q.key, answers[q.id], limits=inner)
             except AnswerTimeout:
-                result = _timed_out(q, limits.seconds)
+                result = _timed_out(q, limits.seconds, on_timeout)
         elif q.id in problems:
             result = CheckResult(
                 q.ask,

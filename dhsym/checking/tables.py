@@ -47,6 +47,7 @@ import sympy as sp
 from dhsym.kinematics.numeric import elementary_stack, numeric_rigid_inverse
 from dhsym.model.table import Convention, DHRow, DHTable, JointType
 
+from ._limits import check_time
 from ._numeric import EvaluationError, evaluate, frames
 from .tolerances import TOLERANCES
 
@@ -417,6 +418,7 @@ def compare_tables(
     tol = TOLERANCES.frame_rtol * scale
     best, found = -1, []
     for B in _candidates(Fk, Fa0, kc, ac, jk, ja):
+        check_time()  # the answer's deadline (see _limits.time_limit)
         got, signs, dirs, E = _verify(B, kc, ac, jk, ja, Fk, env_a, size, tol)
         best = max(best, got)
         if E is None:

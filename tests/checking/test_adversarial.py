@@ -395,3 +395,111 @@ def test_joint_variables_are_matched_by_position():
         ]
     )
     assert verdict("planar2r", "table", q_names) == "correct"
+
+
+# --- 1, 4: tolerances from the numbers that stand for the value ----------------------------
+
+IK_T2 = (
+    "c2 = (px^2 + py^2 - a1^2 - a2^2)/(2*a1*a2)\n"
+    "theta2 = atan2(-sqrt(1 - c2^2), c2)\n"
+    "theta1 = atan2(py, px) - atan2(a2*S2, a1 + a2*C2)"
+)
+
+
+@pytest.mark.parametrize("padding", ["", " + 0*100.0", " + 0*100.000", " + 0.0*12.345"])
+def test_an_unrelated_decimal_never_widens_the_ik_tolerance(padding):
+    assert verdict("planar2r", "ik", IK_T2) == "correct"
+    assert verdict("planar2r", "ik", IK_T2 + " + 0.09" + padding) == "incorrect"
+
+
+def test_an_ik_value_is_as_precise_as_it_is_written():
+    assert verdict("planar2r", "ik@0.3,0.9", "0.300, 0.900") == "correct"
+    assert verdict("planar2r", "ik@0.3,0.9", "0.38, 0.9") == "incorrect"
+    assert verdict("planar2r", "ik@0.3,0.9", "380.0e-3, 0.9") == "incorrect"
+    assert verdict("planar2r", "ik@0.3,0.9", "300.0e-3, 0.9") == "correct"
+
+
+@pytest.mark.parametrize(
+    "answer", ["a1 C1 + a2 C12 + 100.1 - 100.0", "a1 C1 + a2 C12 + 100.1 C1 - 100.0 C1"]
+)
+def test_cancelling_decimals_buy_no_rounding_slack(answer):
+    assert verdict("planar2r", "T0_2[0,3]", answer) == "incorrect"
+    matrix = f"[[C12, -S12, 0, {answer}], [S12, C12, 0, a1 S1 + a2 S12], [0,0,1,0], [0,0,0,1]]"
+    assert verdict("planar2r", "T0_2", matrix) == "incorrect"
+
+
+def test_rounded_decimals_that_stand_for_values_are_still_accepted():
+    assert verdict("planar2r", "T0_2[0,0]", "cos(theta1 + theta2 + 6.2832)") == "correct"
+    assert verdict("planar2r", "T0_2[0,3]", "a1 C1 + a2 C12 + 0.1 - 0.1") == "correct"
+
+
+# --- 7, 8: cancellation in doubles, preparation off the clock, bounded proofs ---------------
+
+
+def test_cancellation_in_doubles_does_not_decide():
+    right = "(C1^2 + S1^2 - 1)*10^13 + C12"
+    assert verdict("planar2r", "T0_2[0,0]", right) == "correct"
+    assert verdict("planar2r", "T0_2[0,0]", right + " + 0.001") == "incorrect"
+    assert verdict("planar2r", "T0_2[0,0]", "(C1^2 + S1^2 - 1)*10^13 + C12 + 10^-6") == "incorrect"
+
+
+@pytest.mark.slow
+def test_the_first_ik_check_of_a_process_is_not_charged_for_the_solver():
+    import subprocess
+    import sys
+
+    code = (
+        "import dhsym\n"
+        "from dhsym.checking import Key, check_answer, AnswerLimits\n"
+        "q = [0.3, -0.5, 0.4, 0.2, 0.7, -1.1]\n"
+        "key = Key.load('puma560', 'ik@' + ','.join(map(str, q)))\n"
+        "r = check_answer(key, ', '.join(map(str, q)), limits=AnswerLimits(seconds=1))\n"
+        "print(r.verdict.value)\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
+    )
+    assert out.stdout.split() == ["correct"]
+
+
+def test_a_proof_after_agreement_is_bounded_by_size_and_time():
+    from dhsym.checking._limits import AnswerLimits, time_limit
+    from dhsym.checking.equivalence import prove_entry
+
+    t1, t2 = sp.symbols("theta1 theta2", real=True)
+    key = sp.cos(t1 + t2) ** 6
+    answer = (sp.cos(t1) * sp.cos(t2) - sp.sin(t1) * sp.sin(t2)) ** 6
+    assert prove_entry(answer, key) is True
+    assert prove_entry(answer, key, AnswerLimits(proof_terms=5), agreed=True) is None
+    with time_limit(0.5):  # less time left than a proof needs: the numbers decide
+        assert prove_entry(answer, key, AnswerLimits(proof_seconds=1.0)) is None
+
+
+def test_no_signal_timer_in_the_library():
+    import re
+
+    root = Path(dhsym.__file__).parent
+    found = [
+        f"{p.relative_to(root)}:{n}"
+        for p in root.rglob("*.py")
+        for n, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
+        if re.search(r"signal\.(alarm|setitimer|SIGALRM)|ITIMER_", line)
+    ]
+    assert found == []
+
+
+def test_a_time_limit_leaves_the_host_process_alone():
+    import signal
+
+    from dhsym.checking._limits import CheckTimeout, check_time, time_limit
+
+    before = signal.getsignal(signal.SIGALRM), signal.getitimer(signal.ITIMER_REAL)
+    with time_limit(0.01):
+        assert signal.getsignal(signal.SIGALRM) == before[0]
+        assert signal.getitimer(signal.ITIMER_REAL) == before[1]
+        import time
+
+        time.sleep(0.02)
+        with pytest.raises(CheckTimeout):
+            check_time()
+    check_time()  # no deadline outside the block
