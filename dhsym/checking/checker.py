@@ -438,6 +438,21 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
                 tuple(flipped[0]),
                 key=key.name,
             )
+    if wrong and q.kind == "jacobian" and q.entry is None and ans.rows == 6:
+        cols = ans.cols  # [ω; v]: the same Jacobian with the angular rows first
+        swapped = sp.ImmutableMatrix.vstack(ans[3:, :], ans[:3, :])
+        order = [*range(3 * cols, 6 * cols), *range(3 * cols)]
+        other = _compare(pk, swapped, [cells[k] for k in order], limits)
+        if not other[1]:
+            return CheckResult(
+                q.spec,
+                Verdict.CORRECT,
+                "The Jacobian is right, in the row order [ω; v] (angular velocity first); "
+                "the key writes [v; ω]. Both are used: say which one you write.",
+                tuple(other[0]),
+                alternative="rows [ω; v]",
+                key=key.name,
+            )
     if not wrong and not shape_lead:
         what = "The entry is right" if total == 1 else f"All {total} entries are right"
         rounded = [e for e in entries if e.proof == "rounding"]

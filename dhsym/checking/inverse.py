@@ -303,6 +303,23 @@ def _values(
     return np.array(rows), np.array(tols), meta
 
 
+def _circular(ans: IKAnswer, given: set[sp.Symbol]) -> list[str]:
+    """The joint values of the answer that no order of its statements computes from the
+    ``given`` symbols (pose, lengths, signs): ``theta1 = theta1`` and its longer circles."""
+    out: list[str] = []
+    for sol in ans.solutions:
+        known = set(given)
+        pending = [*ans.helpers, *sol.values()]
+        while True:
+            ready = [st for st in pending if st.expr.free_symbols <= known]
+            if not ready:
+                break
+            known |= {st.target for st in ready}
+            pending = [st for st in pending if st not in ready]
+        out += [str(st.target) for st in sol.values() if st.target not in known]
+    return sorted(set(out))
+
+
 def branch_signs_n(count: int) -> np.ndarray:
     """Every choice of ``count`` signs, ``+1`` first (as :func:`branch_signs`)."""
     import itertools
@@ -456,6 +473,15 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
         kind = "unknown_symbol" if unknown else "missing_joint"
         d = Diagnosis(kind, "unknown symbols" if unknown else "joint missing", " ".join(parts))
         return CheckResult(q.spec, Verdict.INCORRECT, " ".join(parts), diagnoses=(d,), key=key.name)
+    circular = _circular(ans, set(pk.symbols) | set(ans.signs))
+    if circular:
+        text = (
+            f"{', '.join(circular)} cannot be computed from the pose: each is defined through "
+            "itself or through a value that needs it (a joint value must come from p, n, s, "
+            "a and the lengths)."
+        )
+        d = Diagnosis("circular", "defined through itself", text)
+        return CheckResult(q.spec, Verdict.INCORRECT, text, diagnoses=(d,), key=key.name)
     position = not ik.decoupling.wrist
     sample = _sample(pk, ans, fresh=True)
     result = _judge(pk, ans, ik, sample, position)

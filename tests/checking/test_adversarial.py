@@ -14,6 +14,7 @@ import sympy as sp
 
 import dhsym
 from dhsym.checking import Key, check_answer
+from dhsym.checking.answers import answer_text
 from dhsym.errors import DHError
 
 HOMEWORK = Path(__file__).resolve().parents[2] / "examples" / "homework"
@@ -503,3 +504,114 @@ def test_a_time_limit_leaves_the_host_process_alone():
         with pytest.raises(CheckTimeout):
             check_time()
     check_time()  # no deadline outside the block
+
+
+# --- 6: the Jacobian's row order, and diagnoses only when the mistake reproduces the answer --
+
+
+def _text(matrix: sp.Matrix) -> str:
+    return answer_text(matrix.tolist())
+
+
+@pytest.mark.parametrize("robot", ["planar2r", "scara"])
+def test_a_jacobian_in_omega_v_order_is_right_and_named(robot):
+    from dhsym.checking.checker import prepare
+
+    key = Key.load(robot, "J")
+    J = prepare(key).expected
+    result = check_answer(key, _text(sp.Matrix.vstack(J[3:, :], J[:3, :])))
+    assert result.verdict.value == "correct"
+    assert "[ω; v]" in result.message and not result.diagnoses
+    assert check_answer(key, _text(J)).verdict.value == "correct"
+
+
+@pytest.mark.parametrize("question", ["px", "T0_2[0,3]"])
+def test_a_constant_answer_is_no_transposed_matrix(question):
+    result = check_answer(Key.load("planar2r", question), "0")
+    assert result.verdict.value == "incorrect"
+    assert "transposed" not in result.kinds
+
+
+def test_a_circular_ik_answer_is_named_not_misdiagnosed():
+    answer = IK_T2.replace("theta1 = atan2(py, px) - atan2(a2*S2, a1 + a2*C2)", "theta1 = theta1")
+    result = check_answer(Key.load("planar2r", "ik"), answer)
+    assert result.verdict.value == "incorrect"
+    assert result.kinds == ("circular",)
+
+
+# --- the property: a random edit that changes the value is never graded right ---------------
+
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_QUESTIONS = [
+    ("planar2r", "T0_2"),
+    ("scara", "T0_4"),
+    ("puma560", "T0_3"),
+    ("stanford", "T0_3"),
+    ("planar2r", "J"),
+]
+
+
+def _nodes(expr: sp.Expr, kind: type) -> list[sp.Expr]:
+    return sorted(expr.atoms(kind), key=sp.default_sort_key)
+
+
+@st.composite
+def _edits(draw: st.DrawFn) -> tuple[Key, tuple[int, int], sp.Expr, sp.Expr]:
+    from dhsym.checking.checker import prepare
+
+    robot, question = draw(st.sampled_from(_QUESTIONS))
+    key = Key.load(robot, question)
+    expected = prepare(key).expected
+    i = draw(st.integers(0, expected.rows - 1))
+    j = draw(st.integers(0, expected.cols - 1))
+    entry = expected[i, j]
+    how = draw(st.sampled_from(["add", "scale", "swap_function", "rename", "tiny"]))
+    symbols = sorted(prepare(key).symbols & set(expected.free_symbols), key=sp.default_sort_key)
+    if how == "add":
+        edited = entry + draw(st.sampled_from([sp.Rational(1, 3), -2, sp.Rational(1, 1000)]))
+    elif how == "scale":
+        edited = entry * draw(st.sampled_from([-1, 2, sp.Rational(1001, 1000)]))
+    elif how == "tiny":
+        edited = entry + sp.Rational(1, 10**7) * draw(st.sampled_from(symbols or [1]))
+    elif how == "swap_function":
+        funcs = _nodes(entry, sp.cos) + _nodes(entry, sp.sin)
+        f = draw(st.sampled_from(funcs)) if funcs else None
+        other = sp.sin if isinstance(f, sp.cos) else sp.cos
+        edited = entry.xreplace({f: other(*f.args)}) if f is not None else entry + 1
+    else:
+        if len(symbols) >= 2:
+            a, b = draw(st.permutations(symbols))[:2]
+            edited = entry.xreplace({a: b})
+        else:
+            edited = entry - 1
+    return key, (i, j), entry, edited
+
+
+def _differs(a: sp.Expr, b: sp.Expr) -> bool:
+    """True when ``a - b`` is not zero at some of a few random points (30 digits)."""
+    import random
+
+    rng = random.Random(7)
+    syms = sorted((a - b).free_symbols, key=sp.default_sort_key)
+    for _ in range(4):
+        subs = {s: sp.Float(rng.uniform(0.3, 1.4), 30) for s in syms}
+        if abs(complex((a - b).evalf(30, subs=subs))) > 1e-20:
+            return True
+    return False
+
+
+@pytest.mark.slow
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(_edits())
+def test_a_random_edit_that_changes_the_value_is_never_graded_right(case):
+    key, (i, j), entry, edited = case
+    if not _differs(entry, edited):
+        return  # the edit kept the value (cos of a zero angle, a symbol renamed to itself)
+    from dhsym.checking.checker import prepare
+
+    matrix = sp.Matrix(prepare(key).expected)
+    matrix[i, j] = edited
+    result = check_answer(key, answer_text(matrix.tolist()))
+    assert result.verdict.value != "correct", (key.name, key.question.spec, (i, j), edited)
