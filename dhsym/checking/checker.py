@@ -223,6 +223,10 @@ def check_answer(
     and is raised too, never disguised as an unreadable answer.
     The whole check runs under ``limits.seconds`` (where a time limit is possible).
     """
+    if not isinstance(key, Key):
+        raise DHError(
+            f"check_answer: expected a Key (Key.load(robot, question)), got {type(key).__name__}"
+        )
     pk = prepare(key)  # a fault of the key raises here: it is never the answer's
     try:
         with time_limit(limits.seconds):

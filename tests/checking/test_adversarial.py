@@ -94,6 +94,8 @@ def test_check_reads_a_sympy_matrix_and_a_list_of_statements():
 def test_a_key_of_the_wrong_type_is_refused_clearly():
     with pytest.raises(DHError, match="got int"):
         dhsym.check("C1", key=5, question="px")
+    with pytest.raises(DHError, match="expected a Key"):
+        check_answer("planar2r", "C1")
 
 
 # --- 9-14: grades never lost or corrupted in a class run -------------------------------------
