@@ -162,9 +162,11 @@ class Sandbox:
     def _start(self) -> None:
         self.close()
         # the child runs this file as a script: only the standard library until the preload
+        # ... and without the current folder on sys.path (as python -P): a file there never
+        # shadows a module
         start = (
-            "import runpy, sys; sys.argv[:] = sys.argv[1:]; "
-            "runpy.run_path(sys.argv[0], run_name='__main__')"
+            "import sys; sys.path[:] = [p for p in sys.path if p]; import runpy; "
+            "sys.argv[:] = sys.argv[1:]; runpy.run_path(sys.argv[0], run_name='__main__')"
         )
         self.proc = subprocess.Popen(
             [sys.executable, "-c", start, os.path.abspath(__file__), *self.preload],

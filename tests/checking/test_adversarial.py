@@ -617,3 +617,14 @@ def test_a_random_edit_that_changes_the_value_is_never_graded_right(case):
     matrix[i, j] = edited
     result = check_answer(key, answer_text(matrix.tolist()))
     assert result.verdict.value != "correct", (key.name, key.question.spec, (i, j), edited)
+
+
+def test_the_sandbox_child_never_imports_from_the_current_folder(tmp_path, monkeypatch):
+    from dhsym.checking._runner import Sandbox
+
+    canary = tmp_path / "shadowed"
+    (tmp_path / "json.py").write_text(f"open({str(canary)!r}, 'w').close()\n")
+    monkeypatch.chdir(tmp_path)
+    with Sandbox(preload=("json",)) as box:
+        assert box.call(abs, -3, deadline=60) == 3
+    assert not canary.exists()
