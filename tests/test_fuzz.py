@@ -23,7 +23,6 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from dhsym.checking import Assignment, Key, check_answer, read_submissions
-from dhsym.checking._limits import time_limit
 from dhsym.cli.main import main
 from dhsym.errors import DHError
 from dhsym.model.tablefile import read_table
@@ -37,6 +36,24 @@ PER_INPUT_SECONDS = 60.0  # a hang, not a slow input, fails
 
 class Hang(BaseException):
     """An input ran past its time limit."""
+
+
+@contextlib.contextmanager
+def time_limit(seconds: float, error: type[BaseException]):
+    """The harness's watchdog: a real timer of this test process (the library has none:
+    its deadlines are checked between steps), so that a hang fails instead of hanging."""
+    import signal
+
+    def expire(signum: int, frame: object) -> None:
+        raise error(f"no answer within {seconds:g} s")
+
+    previous = signal.signal(signal.SIGALRM, expire)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
 
 
 # --- hostile building blocks --------------------------------------------------------------
@@ -77,6 +94,22 @@ WORDS = [
     "__import__('os')",
     "sqrt(-1),0",
     "0" + ",0" * 59,
+    # issue 25: the hostile grading campaign
+    "garbage://x",
+    "tcp://[::1",
+    "Atan2(p_y, p_x)",
+    "arctan2(1, 0)",
+    "cos^-1(0.5)",
+    "\\cos^{-1}(x)",
+    "tan^-1 x",
+    "1:30",
+    "theta1 = theta1",
+    "0.09 + 0*100.0",
+    "380.0e-3, 0.9",
+    "a1 C1 + a2 C12 + 100.1 - 100.0",
+    "(C1^2 + S1^2 - 1)*10^13 + C12",
+    "jos\u00e9",
+    "jose\u0301",
 ]
 OPTIONS = [
     "--format",
@@ -116,6 +149,18 @@ def _bomb(levels: int, width: int) -> str:
 
 
 contents = st.one_of(
+    st.sampled_from(  # issue 25: YAML 1.1 numbers, keys given twice, fields that must not be
+        [
+            "joints:\n  - {type: R, theta: q1, d: 0, a: 1, alpha: 1:30}\n",
+            "joints:\n  - {type: R, theta: q1, d: 0, a: 1, alpha: 0, a: 2}\n",
+            "joints:\n  - {type: F, theta: 0, d: 0, a: 1, alpha: 0, q: q1}\n",
+            "joints:\n  - {type: R, theta: q1, d: 0, a: 1, alpha: 0, limits: [a, b]}\n",
+            "joints:\n  - {type: R, theta: q1, d: 0, a: 1, alpha: 0}\ntool: [{Tz: q1}]\n",
+            "root_password: hunter2\napi_token: s3cr3t\n",
+            "\ufeffstudent;q1\r\nalice;C1\r\n",
+            "key: puma560\nkey: planar2r\nquestions: []\n",
+        ]
+    ),
     st.binary(max_size=3000),
     st.text(alphabet="[]{}&*:,-| ab1θ\n\t#!'\"?\\$^_=", max_size=400),
     st.builds(lambda n: "joints: " + "[" * n + "]" * n, st.integers(1, 6000)),
@@ -239,7 +284,11 @@ GRAMMAR = {  # command: (positional strategies, {option: value strategy or None 
             st.sampled_from([str(HW / "assignment.yaml"), "gen.yaml", "bomb.yaml"]),
             st.sampled_from(["class", "gen.yaml", str(HW / "class.csv"), "nothing"]),
         ],
-        {"--timeout": number, "--quiet": None},
+        {
+            "--timeout": number,
+            "--quiet": None,
+            "--dask": st.sampled_from(["garbage://x", "", "tcp://[::1", "x://"]),
+        },
     ),
     "convert": (
         [robot],

@@ -80,6 +80,18 @@ PIECES = [
     "\x00",
     "√",
     "½",
+    # issue 25: the spellings of textbooks and numpy, and the campaign's hostile pieces
+    "Atan2",
+    "arctan2",
+    "acos",
+    "arccos",
+    "^-1",
+    r"\cos^{-1}",
+    r"\operatorname{Atan2}",
+    "0*100.0",
+    "100.1 - 100.0",
+    "10^13",
+    ":30",
 ]
 TEXT = st.one_of(
     st.text(max_size=60),

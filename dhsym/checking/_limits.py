@@ -3,8 +3,9 @@
 Everything a student typed is bounded three ways: its size (bytes, cells),
 the whitelist parser's :class:`~dhsym.model.parsing.ParseLimits`, and the symbolic
 work done on it — an *estimate* of the expansion size refuses hopeless
-expressions before sympy starts, and :func:`time_limit` stops what slips
-through (``SIGALRM``; in a non-main thread only the estimate applies).  Grading
+expressions before sympy starts, and :func:`time_limit` sets a deadline that travels
+with the call (a context variable, checked between the checker's steps by
+:func:`check_time`; no signal or timer of the host process is touched).  Grading
 adds process isolation on top (:mod:`dhsym.checking._runner`): a process that
 overruns its deadline is killed, whatever it was doing.
 
@@ -30,11 +31,10 @@ dhsym.errors.DHError: --timeout: expected a time limit in seconds above 0 and at
 from __future__ import annotations
 
 import math
-import signal
-import threading
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 
 import sympy as sp
@@ -50,7 +50,9 @@ __all__ = [
     "MAX_SECONDS",
     "UnreadableAnswer",
     "check_seconds",
+    "check_time",
     "expansion_terms",
+    "time_left",
     "time_limit",
 ]
 
@@ -110,10 +112,14 @@ class AnswerLimits:
         Limits of the whitelist parser, per cell.
     max_terms
         Largest estimated number of terms an exact proof may expand to.
+    proof_terms
+        Largest estimated number of terms of a proof that only confirms numbers that
+        already agree (a larger entry is decided by its 64 points).
     seconds
         Time limit of one check (symbolic work included).
     proof_seconds
-        Time limit of the exact proof of one entry.
+        Time an exact proof needs at least: with less left before the deadline, the
+        proof is skipped and the numbers decide.
     """
 
     max_bytes: int = 100_000
@@ -123,11 +129,12 @@ class AnswerLimits:
         default_factory=lambda: ParseLimits(max_length=20_000, max_depth=40, max_symbols=60)
     )
     max_terms: int = 20_000
+    proof_terms: int = 200
     seconds: float = 5.0
     proof_seconds: float = 1.0
 
     def __post_init__(self) -> None:
-        for name in ("max_bytes", "max_rows", "max_columns", "max_terms"):
+        for name in ("max_bytes", "max_rows", "max_columns", "max_terms", "proof_terms"):
             value = getattr(self, name)
             if not isinstance(value, int) or isinstance(value, bool) or value < 1:
                 raise DHError(f"AnswerLimits.{name}: expected a positive integer, got {value!r}")
@@ -139,46 +146,66 @@ class AnswerLimits:
 DEFAULT_ANSWER_LIMITS = AnswerLimits()
 
 
+@dataclass(frozen=True)
+class _Deadline:
+    """When the innermost running limit ends, what it raises, and its length."""
+
+    end: float
+    error: Callable[[str], BaseException]
+    seconds: float
+
+
+#: The deadline of the running check, per thread and task (a context variable: it travels
+#: with the call, like :func:`decimal.localcontext`; no signal, no timer, nothing global).
+_DEADLINE: ContextVar[_Deadline | None] = ContextVar("dhsym_deadline", default=None)
+
+
 @contextmanager
 def time_limit(
     seconds: float | None, error: Callable[[str], BaseException] = CheckTimeout
 ) -> Iterator[None]:
-    """Raise ``error`` (:class:`CheckTimeout`) in the block after ``seconds`` (main thread, POSIX).
+    """A deadline ``seconds`` from now for the block: :func:`check_time` raises ``error``
+    (:class:`CheckTimeout`) once it has passed.
 
-    Elsewhere (a worker thread, Windows) the block runs unlimited: callers keep
-    their work bounded with :func:`expansion_terms` there.  Limits nest: an
-    outer limit gets back what is left of it (it fires at once if the inner block
-    outlived it).
+    The deadline travels with the call (a context variable: each thread and task has its
+    own), so nothing of the host process is touched: no signal handler, no timer.  The
+    checker calls :func:`check_time` between its steps (entries, sample points, mistakes,
+    proofs), and bounds each step by size (:func:`expansion_terms`, the parser's limits),
+    so an answer is answered or refused within its limit; a grading run also kills a
+    sandbox child that outlives its deadline.  Limits nest: the earliest deadline rules.
 
     >>> with time_limit(1.0):
+    ...     check_time()
     ...     sum(range(10))
     45
     """
-    usable = (
-        seconds is not None
-        and seconds > 0
-        and hasattr(signal, "setitimer")
-        and threading.current_thread() is threading.main_thread()
-    )
-    if not usable:
+    if seconds is None or seconds <= 0:
         yield
         return
-
-    def expire(signum: int, frame: object) -> None:
-        raise error(f"checking took longer than the time limit of {seconds:g} s")
-
-    previous = signal.signal(signal.SIGALRM, expire)
-    old_delay, _ = signal.getitimer(signal.ITIMER_REAL)
-    start = time.monotonic()
-    signal.setitimer(signal.ITIMER_REAL, float(seconds))
+    outer = _DEADLINE.get()
+    mine = _Deadline(time.monotonic() + float(seconds), error, float(seconds))
+    token = _DEADLINE.set(mine if outer is None or mine.end < outer.end else outer)
     try:
         yield
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
-        if old_delay:  # an outer limit was running: give it what is left of it
-            left = old_delay - (time.monotonic() - start)
-            signal.setitimer(signal.ITIMER_REAL, max(left, 1e-4))
+        _DEADLINE.reset(token)
+
+
+def time_left() -> float:
+    """Seconds until the running deadline (``inf`` without one).
+
+    >>> time_left()
+    inf
+    """
+    limit = _DEADLINE.get()
+    return math.inf if limit is None else limit.end - time.monotonic()
+
+
+def check_time() -> None:
+    """Raise the running limit's error if its deadline has passed (see :func:`time_limit`)."""
+    limit = _DEADLINE.get()
+    if limit is not None and time.monotonic() > limit.end:
+        raise limit.error(f"checking took longer than the time limit of {limit.seconds:g} s")
 
 
 def expansion_terms(expr: sp.Basic, cap: int = 10**9) -> int:

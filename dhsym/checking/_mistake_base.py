@@ -146,6 +146,10 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
                 for p in case.wrong
                 if close(vals[:, p[0], p[1]], case.answer_values[:, p[0], p[1]])
             ]
+            if len(hits) == 1 and not _reproduces(
+                *(v[:, hits[0][0], hits[0][1]] for v in (vals, case.key_values))
+            ):
+                continue  # one constant for a varying entry: a coincidence, not this mistake
             whole = len(hits) == len(case.wrong) and close(vals, case.answer_values)
             if hits and (partial or whole):
                 entries = tuple(case.label(p) for p in hits)
@@ -158,6 +162,14 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
             if same_cells(chain, case.answer, case.values):
                 return Diagnosis(self.kind, self.title, detail, rows=rows)
         return None
+
+
+def _reproduces(variant: np.ndarray, key: np.ndarray) -> bool:
+    """A variant explains a single entry only when it is more than a constant standing in
+    for a varying key entry (``0`` for ``p_x`` is no transposed matrix: any constant is
+    that); a pattern over several entries (a zero column) is explained by its mistake."""
+    constant = bool(np.ptp(variant) <= 1e-12 * (1 + np.abs(variant).max()))
+    return not constant or bool(np.ptp(key) <= 1e-12 * (1 + np.abs(key).max()))
 
 
 def cell_text(name: str, value: sp.Expr, table: DHTable) -> str:

@@ -234,9 +234,17 @@ def question_picture(
     return out
 
 
-def write_summary(root: Path, a: Assignment, records: Sequence[GradeRecord], files: dict) -> Path:
+def write_summary(
+    root: Path,
+    a: Assignment,
+    records: Sequence[GradeRecord],
+    files: dict,
+    *,
+    refused: Sequence[tuple[str, str]] = (),
+) -> Path:
     """``summary.html`` and its chart ``summary.png``: scores, verdicts, mistake kinds, and
-    per question its difficulty and most common wrong entries (what to re-teach)."""
+    per question its difficulty and most common wrong entries (what to re-teach); the
+    entries of the submissions folder that were not graded, each with its reason."""
     kinds: Counter = Counter(k for r in records for k in r.kinds)
     chart = _chart(root, a, records, kinds)
     per_q = question_picture(a, records, files)
@@ -270,6 +278,7 @@ def write_summary(root: Path, a: Assignment, records: Sequence[GradeRecord], fil
             ),
             "kinds": kinds.most_common(),
             "rows": rows,
+            "refused": [{"entry": e, "reason": r} for e, r in refused],
         }
     )
     path = inside(root, "summary.html")

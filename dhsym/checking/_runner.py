@@ -11,7 +11,8 @@ failed twice.  So a job costs only its own result, never another job's:
   the worker thread (any ``--nthreads`` is safe: a hung job blocks nothing but its
   own child process, which is killed on time);
 - :func:`run_serial` runs in this process (no isolation: only the per-answer
-  ``SIGALRM`` limit of the main thread applies).
+  deadline of :func:`dhsym.checking._limits.time_limit` applies, checked between the
+  checker's steps).
 
 All yield ``(index, outcome)`` as jobs finish, where the outcome is the job's
 return value or a :class:`JobFailure` (``timeout`` or ``error``).
@@ -42,6 +43,7 @@ __all__ = [
     "JobFailure",
     "Progress",
     "Sandbox",
+    "dask_address",
     "run_dask",
     "run_in_sandbox",
     "run_pool",
@@ -160,9 +162,11 @@ class Sandbox:
     def _start(self) -> None:
         self.close()
         # the child runs this file as a script: only the standard library until the preload
+        # ... and without the current folder on sys.path (as python -P): a file there never
+        # shadows a module
         start = (
-            "import runpy, sys; sys.argv[:] = sys.argv[1:]; "
-            "runpy.run_path(sys.argv[0], run_name='__main__')"
+            "import sys; sys.path[:] = [p for p in sys.path if p]; import runpy; "
+            "sys.argv[:] = sys.argv[1:]; runpy.run_path(sys.argv[0], run_name='__main__')"
         )
         self.proc = subprocess.Popen(
             [sys.executable, "-c", start, os.path.abspath(__file__), *self.preload],
@@ -307,6 +311,49 @@ def run_pool(
             box.close()
 
 
+def dask_address(address: object) -> object:
+    """``address`` checked as a Dask scheduler address (or a ``Client``, kept as is).
+
+    A malformed address is a :class:`~dhsym.errors.DHError` naming ``--dask``, before
+    any submission is read.
+
+    >>> dask_address("tcp://127.0.0.1:8786")
+    'tcp://127.0.0.1:8786'
+    >>> dask_address("garbage://x")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: --dask: 'garbage://x' is not a Dask scheduler address (unknown ...
+    """
+    from dhsym.errors import DHError  # here: the sandbox's child runs this file without dhsym
+
+    try:
+        from dask.distributed import Client
+    except ImportError:
+        raise DHError("--dask needs dask.distributed (pip install 'dhsym[dask]')") from None
+    if isinstance(address, Client):
+        return address
+    if not isinstance(address, str) or not address.strip():
+        raise DHError(
+            f"--dask: expected a scheduler address such as tcp://host:8786, got {address!r}"
+        )
+    from distributed.comm import parse_address
+    from distributed.comm.addressing import parse_host_port
+    from distributed.comm.registry import get_backend
+
+    try:
+        scheme, location = parse_address(address)
+        get_backend(scheme)
+        if scheme in ("tcp", "tls", "ws", "wss"):
+            parse_host_port(location)
+    except (ValueError, TypeError) as err:
+        reason = str(err).split(" (known", 1)[0]
+        raise DHError(
+            f"--dask: {address!r} is not a Dask scheduler address ({reason}); "
+            "expected e.g. tcp://host:8786"
+        ) from None
+    return address
+
+
 def run_dask(
     fn: Callable,
     jobs: Sequence,
@@ -323,7 +370,13 @@ def run_dask(
     """
     from dask.distributed import Client
 
-    client = address if isinstance(address, Client) else Client(address)
+    from dhsym.errors import DHError
+
+    address = dask_address(address)
+    try:
+        client = address if isinstance(address, Client) else Client(address, timeout=30)
+    except (OSError, TimeoutError, ValueError) as err:
+        raise DHError(f"--dask: cannot reach the scheduler at {address!r}: {err}") from None
     own = client is not address
     backstop = 2 * (deadline + _STARTUP_SECONDS) + 30.0
     try:

@@ -13,11 +13,14 @@ others are read on. The rules a teaching assistant relies on:
   others are named in the feedback and the gradebook's ``flags``.
 - **Duplicate ids.** Two submissions with the same student id (a folder
   ``alice/`` and a file ``alice.yaml``, two CSV rows, or ids that differ only in
-  case or in characters a file name cannot hold) are never merged: both are
-  graded, each under its own feedback file, and both are flagged ``duplicate id``.
-- **Names.** A folder or file name that is not UTF-8 becomes an id with
-  ``\\xNN`` escapes; the report folder itself (``-o`` inside the submissions) and
-  hidden entries are skipped.
+  case, in Unicode normal form or in characters a file name cannot hold:
+  :func:`identity`) are never merged: both are graded, each under its own feedback
+  file, and both are flagged ``duplicate id``; an LMS import refuses them.
+- **Names.** Ids are in Unicode's NFC form; a folder or file name that is not UTF-8
+  becomes an id with ``\\xNN`` escapes.
+- **No silent drops.** Every entry of the folder is a submission or a refusal with
+  its reason (hidden entries, symbolic links, other files, report folders), listed
+  in the summary page and on standard error.
 
 The public names are re-exported by :mod:`dhsym.checking.grading`.
 
@@ -35,6 +38,7 @@ import csv
 import hashlib
 import io
 import os
+import unicodedata
 from collections import defaultdict
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, replace
@@ -50,7 +54,7 @@ from ._report import CACHE_NAME, name_base
 if TYPE_CHECKING:
     from .grading import Assignment
 
-__all__ = ["Submission", "read_submissions", "student_id"]
+__all__ = ["Submission", "identity", "read_submissions", "student_id"]
 
 _MAX_SUBMISSION_FILE = 2_000_000
 _MAX_CSV = 500_000_000
@@ -95,9 +99,19 @@ class Submission:
 
 
 def student_id(name: str) -> str:
-    """A printable id for a file or folder name: bytes that are not UTF-8 become ``\\xNN``."""
-    text = os.fsencode(name).decode("utf-8", "backslashreplace")
+    """A printable id for a file or folder name: bytes that are not UTF-8 become ``\\xNN``;
+    the text is in Unicode's NFC form (``josé`` typed on a Mac and on Windows is one id)."""
+    text = unicodedata.normalize("NFC", os.fsencode(name).decode("utf-8", "backslashreplace"))
     return "".join(ch if ch.isprintable() else f"\\x{ord(ch):02x}" for ch in text)
+
+
+def identity(student: str) -> str:
+    """What two ids must share to be one student: NFC, case-folded, as a file name.
+
+    >>> identity("José") == identity("jose\u0301") == identity("JOSÉ")
+    True
+    """
+    return name_base(unicodedata.normalize("NFC", student)).casefold()
 
 
 def _read_answer(path: Path, limit: int) -> bytes:
@@ -164,20 +178,32 @@ def _from_file(path: Path, qids: list[str]) -> Submission:
 
 def _from_csv(path: Path, qids: list[str]) -> Iterator[Submission]:
     try:
-        text = read_limited(path, _MAX_CSV, what="the CSV file").decode("utf-8", "replace")
+        data = read_limited(path, _MAX_CSV, what="the CSV file")
+        text = data.decode("utf-8-sig")  # what Excel writes: UTF-8 with a byte-order mark
+    except UnicodeDecodeError as err:
+        raise DHError(
+            f"the CSV file is not UTF-8 text (byte {err.start}); save it as 'CSV UTF-8'",
+            file=str(path),
+        ) from None
     except FileRefused as err:
         raise DHError(err.message, file=str(path)) from None
     old = csv.field_size_limit()
     csv.field_size_limit(_MAX_CSV)
     try:
-        reader = csv.DictReader(io.StringIO(text, newline=""))
+        first = text.split("\n", 1)[0]
+        delimiter = ";" if first.count(";") > first.count(",") else ","  # Excel in many locales
+        reader = csv.DictReader(io.StringIO(text, newline=""), delimiter=delimiter)
         fields = reader.fieldnames or []
         idcol = next((f for f in fields if f.strip().lower() in ("student", "id")), None)
         if idcol is None:
-            raise DHError("the CSV needs a 'student' column", file=str(path))
+            shown = ", ".join(repr(f.strip()) for f in fields[:12]) or "none"
+            raise DHError(
+                f"the CSV needs a 'student' column (the student id); its columns are: {shown}",
+                file=str(path),
+            )
         namecol = next((f for f in fields if f.strip().lower() == "name"), None)
         for k, row in enumerate(reader, 2):
-            student = (row.get(idcol) or "").strip() or f"row{k}"
+            student = unicodedata.normalize("NFC", (row.get(idcol) or "").strip()) or f"row{k}"
             answers = tuple((q, row[q]) for q in qids if isinstance(row.get(q), str) and row[q])
             name = (row.get(namecol) or "").strip() if namecol else ""
             yield Submission(student, name or student, answers, (), f"row {k}")
@@ -200,7 +226,7 @@ def _flag_duplicates(subs: list[Submission]) -> list[Submission]:
     """Give every submission of a shared id (up to case and file-name characters) a flag."""
     groups: dict[str, list[int]] = defaultdict(list)
     for k, s in enumerate(subs):
-        groups[name_base(s.student).lower()].append(k)
+        groups[identity(s.student)].append(k)
     out = list(subs)
     for members in groups.values():
         if len(members) < 2:
@@ -223,36 +249,65 @@ def read_submissions(
     *,
     exclude: tuple[Path, ...] = (),
     warnings: list[str] | None = None,
+    refused: list[tuple[str, str]] | None = None,
 ) -> list[Submission]:
     """All submissions of a folder or CSV file, sorted by student id (then source).
 
-    Entries in ``exclude`` (the report folder) and folders holding a grading cache
-    are skipped, with a note in ``warnings``.
+    Every entry of a folder becomes a submission or a refusal ``(entry, reason)`` in
+    ``refused`` (also a line of ``warnings``): hidden entries, symbolic links, files
+    that are not submissions, the report folder (``exclude``) and earlier report
+    folders (a grading cache, ``gradebook.csv`` and ``feedback/``).  Nothing is
+    dropped silently.
     """
     src = Path(source)
     qids = [q.id for q in assignment.questions]
     notes = warnings if warnings is not None else []
+    refusals = refused if refused is not None else []
     skip = {p.resolve() for p in exclude}
     if src.is_file():
         subs = list(_from_csv(src, qids))
     elif src.is_dir():
+        if src.resolve() in skip:
+            raise DHError(
+                f"the report folder is the submissions folder {src}: its feedback/ would be "
+                "read as a student on the next run; write the report elsewhere (-o report)"
+            )
         subs = []
         for entry in sorted(os.scandir(src), key=lambda e: e.name):
             path = Path(entry.path)
             student, shown = student_id(Path(entry.name).stem), student_id(entry.name)
-            if entry.name.startswith(".") or entry.is_symlink():
-                continue
-            if entry.is_dir(follow_symlinks=False):
-                if path.resolve() in skip or (path / CACHE_NAME).exists():
-                    notes.append(f"skipped {shown}/: it is a grading report folder")
-                    continue
+            reason = _refusal(entry, path, skip)
+            if reason:
+                shown += "/" if entry.is_dir(follow_symlinks=False) else ""
+                refusals.append((shown, reason))
+                notes.append(f"not graded: {shown}: {reason}")
+            elif entry.is_dir(follow_symlinks=False):
                 subs.append(
                     _guarded(
                         lambda p=path: _from_folder(p, qids, limits), student_id(entry.name), shown
                     )
                 )
-            elif path.suffix.lower() in (".yaml", ".yml", ".json"):
+            else:
                 subs.append(_guarded(lambda p=path: _from_file(p, qids), student, shown))
     else:
         raise DHError(f"no submissions folder or CSV file at {src}")
     return sorted(_flag_duplicates(subs), key=lambda s: (s.student, s.source))
+
+
+def _refusal(entry: os.DirEntry, path: Path, reports: set[Path]) -> str:
+    """Why a folder entry is not a submission, or ``""`` when it is one."""
+    if entry.is_symlink():
+        return "a symbolic link (never followed: make it a real folder or file)"
+    if entry.name.startswith("."):
+        return "a hidden entry"
+    if entry.is_dir(follow_symlinks=False):
+        if path.resolve() in reports:
+            return "the report folder of this run"
+        if all((path / n).exists() for n in (CACHE_NAME, "gradebook.csv", "feedback")):
+            return "a grading report folder (grading cache, gradebook.csv and feedback/)"
+        return ""
+    if not entry.is_file(follow_symlinks=False):
+        return "not a regular file or folder"
+    if path.suffix.lower() not in (".yaml", ".yml", ".json"):
+        return "not a submission (expected a student folder or a .yaml/.yml/.json file)"
+    return ""

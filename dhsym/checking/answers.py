@@ -36,7 +36,7 @@ from dhsym.model.parsing import parse_expression
 from dhsym.model.table import Convention, DHTable
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
-from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
+from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer, check_time
 from ._table_text import grid_table, yaml_table
 from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
 from .names import NameContext
@@ -44,6 +44,7 @@ from .rounding import Literal
 
 __all__ = [
     "NameContext",
+    "answer_text",
     "cell_literals",
     "expression_cell",
     "matrix_cells",
@@ -73,6 +74,55 @@ _MATRIX_WRAPPER = re.compile(r"^\s*(?:sp\.|sympy\.)?(?:Immutable)?Matrix\s*\((.*
 _YAML_TABLE = re.compile(r"^[ \t]*joints[ \t]*:", re.MULTILINE)  # [ \t]: one line, linear
 
 
+def answer_text(value: object) -> str | bytes:
+    r"""An answer given as a Python value, as the text it stands for.
+
+    Text and bytes are kept; a number or a sympy expression is printed by sympy's
+    printer (and read back by the whitelist parser, never evaluated); a sympy matrix,
+    a numpy array or a list of rows is written ``[[…], […]]``; a list of texts is one
+    statement per line.  Anything else is :class:`UnreadableAnswer`.
+
+    >>> import sympy as sp
+    >>> answer_text(5), answer_text(sp.cos(sp.Symbol("theta1")) / 2)
+    ('5', 'cos(theta1)/2')
+    >>> answer_text([[1, 0], [0, sp.Symbol("c")]]), answer_text(["theta1 = 0", "theta2 = 1"])
+    ('[[1, 0], [0, c]]', 'theta1 = 0\ntheta2 = 1')
+    >>> answer_text({1: 2})  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dhsym.checking._limits.UnreadableAnswer: expected the answer as text (a string), ... got dict
+    """
+    if isinstance(value, (str, bytes)):
+        return value
+    shape = getattr(value, "shape", None)
+    if isinstance(value, sp.MatrixBase) or (isinstance(shape, tuple) and len(shape) in (1, 2)):
+        value = value.tolist()  # type: ignore[attr-defined]  # a sympy matrix or numpy array
+    if isinstance(value, (list, tuple)) and value:
+        if all(isinstance(v, str) for v in value):
+            return "\n".join(value)  # type: ignore[arg-type]  # checked on the line above
+        if all(isinstance(v, (list, tuple)) for v in value):
+            return (
+                "["
+                + ", ".join("[" + ", ".join(_number_text(c) for c in row) + "]" for row in value)
+                + "]"
+            )
+        return ", ".join(_number_text(v) for v in value)
+    return _number_text(value)
+
+
+def _number_text(value: object) -> str:
+    if isinstance(value, bool) or not isinstance(value, (int, float, complex, sp.Basic)):
+        if type(value).__module__ == "numpy" and hasattr(value, "item"):
+            return _number_text(value.item())  # type: ignore[attr-defined]  # a numpy scalar
+        raise UnreadableAnswer(
+            "expected the answer as text (a string), a number, a sympy expression or a "
+            f"matrix, got {type(value).__name__}"
+        )
+    if isinstance(value, float):
+        return repr(float(value))  # also numpy's float64, a float
+    return sp.sstr(value)
+
+
 def read_text(data: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
     """Check size and encoding of an answer and return it as text.
 
@@ -81,6 +131,7 @@ def read_text(data: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -
     ...
     dhsym.checking._limits.UnreadableAnswer: the answer is not text (binary data)
     """
+    data = answer_text(data)
     size = len(data) if isinstance(data, bytes) else len(data.encode("utf-8", "replace"))
     if size > limits.max_bytes:
         raise UnreadableAnswer(f"the answer is {size} bytes; at most {limits.max_bytes} are read")
@@ -193,6 +244,7 @@ def parse_cell(
     cell: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS, where: str = ""
 ) -> sp.Expr:
     """One cell (plain math or LaTeX) as an expression, names resolved by ``ctx``."""
+    check_time()  # the answer's deadline (see _limits.time_limit)
     return _parse(cell, ctx, limits, where or "the answer")
 
 

@@ -292,7 +292,9 @@ _RUN_AUTOGRADER = """#!/usr/bin/env bash
 set -uo pipefail
 ROOT="${DHSYM_AUTOGRADER_ROOT:-/autograder}"
 PYTHON="${DHSYM_AUTOGRADER_PYTHON:-$ROOT/dhsym-venv/bin/python}"
-exec "$PYTHON" -m dhsym autograder --run
+# sys.path without the current folder (as python -P): a submission's sympy.py never shadows
+exec "$PYTHON" -c 'import sys; sys.path[:] = [p for p in sys.path if p]; import runpy
+runpy.run_module("dhsym", run_name="__main__", alter_sys=True)' autograder --run
 """
 
 
@@ -376,6 +378,12 @@ def _student(metadata: Path) -> tuple[str, str]:
     return "submission", ""
 
 
+_NO_RERUN = (
+    "The autograder does not run again by itself: resubmit (a busy grader may be faster "
+    "next time) or ask the course staff to check this answer."
+)
+
+
 def read_submission(
     folder: str | Path, assignment: Assignment, limits: AnswerLimits, metadata: Path | None = None
 ) -> Submission:
@@ -389,15 +397,24 @@ def read_submission(
     if len(entries) == 1 and entries[0].is_dir():
         root = entries[0]  # a zip of one folder
     sub = _from_folder(root, qids, limits)
-    if not sub.answers and not sub.problems:
-        files = sorted(
-            p
-            for p in root.iterdir()
-            if p.suffix.lower() in (".yaml", ".yml", ".json") and not p.is_symlink()
+    files = sorted(
+        p
+        for p in root.iterdir()
+        if p.suffix.lower() in (".yaml", ".yml", ".json")
+        and not p.is_symlink()
+        and not any(p.name == q or p.name.startswith(q + ".") for q in qids)
+    )
+    flags = list(sub.flags)  # several files for one question: which one was graded
+    graded = "the question files"
+    if not sub.answers and not sub.problems and files:
+        sub, graded = _from_file(files[0], qids), files[0].name
+        files = files[1:]
+    if files:  # never ignored without a word
+        flags.append(
+            f"not graded: {', '.join(p.name for p in files)} ({graded} graded instead: "
+            "one form of answers per submission)"
         )
-        if files:
-            sub = _from_file(files[0], qids)
-    return Submission(student, name or student, sub.answers, sub.problems)
+    return Submission(student, name or student, sub.answers, sub.problems, flags=tuple(flags))
 
 
 def results_json(
@@ -407,8 +424,10 @@ def results_json(
     visibility: str = "visible",
     show_key: bool = False,
     seconds: float = 0.0,
+    flags: tuple[str, ...] = (),
 ) -> dict:
-    """The ``results.json`` object for one graded submission (the specification's format).
+    """The ``results.json`` object for one graded submission (the specification's format);
+    ``flags`` (answer files that were not graded) are notes of its ``output``.
 
     >>> a = Assignment("HW", ())
     >>> results_json(a, ())["score"], results_json(a, ())["tests"]
@@ -429,6 +448,7 @@ def results_json(
             }
         )
     score = float(sum(qf.score for qf in feedback))
+    notes = "".join(f"\nNote: {flag}" for flag in flags)
     verdicts = {qf.id: qf.result.verdict.value if qf.result else "missing" for qf in feedback}
     right = sum(v == "correct" for v in verdicts.values())
     return {
@@ -436,6 +456,7 @@ def results_json(
         "output": (
             f"{assignment.title}: {score:g} / {assignment.max_score:g} points; "
             f"{right} of {len(feedback)} questions right. Each question below says why."
+            f"{notes}"
         ),
         "visibility": visibility,
         "stdout_visibility": "hidden",
@@ -460,13 +481,15 @@ def run_autograder(paths: AutograderPaths | None = None) -> dict:
         assignment = Assignment.load(p.source / str(config["assignment"]))
         limits = AnswerLimits(seconds=assignment.seconds)
         sub = read_submission(p.submission, assignment, limits, p.metadata)
-        feedback = check_submission(assignment, sub, limits)
+        # the keys were prepared by Assignment.load, before the first question's clock
+        feedback = check_submission(assignment, sub, limits, on_timeout=_NO_RERUN)
         data = results_json(
             assignment,
             feedback,
             visibility=str(config.get("visibility", "visible")),
             show_key=bool(config.get("show_key", False)),
             seconds=time.perf_counter() - t0,
+            flags=sub.flags,
         )
     except Exception as err:
         failed = {

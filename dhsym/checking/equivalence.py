@@ -3,8 +3,11 @@
 :class:`Sample` holds random values for a set of symbols; :func:`values` evaluates
 an expression or matrix at all of them at once (:mod:`dhsym.kinematics.numeric`).
 Entries that agree numerically are confirmed with
-:func:`dhsym.kinematics.simplification.prove_equal` under a time limit, after
-:func:`~dhsym.checking._limits.expansion_terms` has shown the proof is affordable;
+:func:`dhsym.kinematics.simplification.prove_equal` when
+:func:`~dhsym.checking._limits.expansion_terms` shows the proof is small and the
+answer's deadline leaves time for it; entries whose doubles disagree by no more than
+the rounding error of the sums they cancel (:func:`cancellation`) are decided by
+60-digit numbers or the proof, never by the doubles;
 :func:`prove_entry` first rewrites the angles so that half angles (``θ/2``) and whole
 angles share one variable, so ``1 - 2 sin²(θ/2)`` is proven equal to ``cos θ``.
 
@@ -52,9 +55,8 @@ from dhsym.kinematics.simplification import prove_equal
 from ._limits import (
     DEFAULT_ANSWER_LIMITS,
     AnswerLimits,
-    CheckTimeout,
     expansion_terms,
-    time_limit,
+    time_left,
 )
 from ._numeric import EvaluationError, evaluate
 from .tolerances import TOLERANCES
@@ -64,6 +66,7 @@ __all__ = [
     "POINTS",
     "Sample",
     "agree_precisely",
+    "cancellation",
     "close",
     "prove_entry",
     "values",
@@ -191,12 +194,17 @@ def _whole_angles(answer: sp.Expr, key: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
 
 
 def prove_entry(
-    answer: sp.Expr, key: sp.Expr, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+    answer: sp.Expr,
+    key: sp.Expr,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    *,
+    agreed: bool = False,
 ) -> bool | None:
     """Exact check ``answer == key``: True, False, or None when it cannot be decided.
 
-    None means the proof was skipped (too large, not a trigonometric polynomial)
-    or ran out of time; the numeric comparison then stands alone.  False is exact for
+    None means the proof was skipped (too large, not a trigonometric polynomial, larger
+    than ``limits.proof_terms`` when the numbers already ``agreed``, or less time left
+    than ``limits.proof_seconds``); the numeric comparison then stands alone.  False is exact for
     polynomials in sines and cosines of whole multiples of the variables; other constants
     inside the functions may make it a false False, which :func:`agree_precisely` catches.
     """
@@ -206,13 +214,56 @@ def prove_entry(
     if not (_polynomial_trig(answer) and _polynomial_trig(key)):
         return None
     answer, key = _whole_angles(answer, key)
-    if expansion_terms(answer - key) > limits.max_terms:
+    terms = expansion_terms(answer - key)
+    if terms > limits.max_terms:
         return None
+    if agreed and terms > limits.proof_terms:
+        return None  # the numbers agree: a large proof would only confirm them
+    if time_left() < limits.proof_seconds:
+        return None  # no time for a proof: the numbers stand (the deadline is kept)
     try:
-        with time_limit(limits.proof_seconds):
-            return bool(prove_equal(sp.Matrix([answer]), sp.Matrix([key])))
-    except (CheckTimeout, RecursionError, MemoryError):
+        return bool(prove_equal(sp.Matrix([answer]), sp.Matrix([key])))
+    except (RecursionError, MemoryError):
         return None
+
+
+def _magnitude(expr: sp.Expr, sample: Sample) -> np.ndarray:
+    """The size of the numbers a double-precision evaluation of ``expr`` adds up: every sum
+    taken as the sum of its terms' sizes (its rounding error is about ``eps`` times it)."""
+    if expr.is_Add:
+        return sum((_magnitude(a, sample) for a in expr.args), np.zeros(sample.size))
+    if expr.is_Mul:
+        out = np.ones(sample.size)
+        for a in expr.args:
+            out = out * _magnitude(a, sample)
+        return out
+    if expr.is_Pow and expr.exp.is_Integer and expr.exp > 0:
+        return _magnitude(expr.base, sample) ** int(expr.exp)
+    return np.abs(np.broadcast_to(values(expr, sample), (sample.size,)))
+
+
+def cancellation(answer: sp.Expr, sample: Sample, difference: np.ndarray) -> bool:
+    """True when ``difference`` (answer minus key at the sample) may be rounding error:
+    below ``2**-40`` times the size of the numbers the answer's sums cancel.
+
+    Such an entry is decided by a higher precision or an exact proof, never by the
+    doubles: ``(C1² + S1² − 1)·10¹³ + C12`` is ``C12``.
+
+    >>> x = sp.Symbol("x", real=True)
+    >>> s = Sample.random([x])
+    >>> a = (sp.cos(x) ** 2 + sp.sin(x) ** 2 - 1) * 10**13 + sp.cos(x)
+    >>> cancellation(a, s, values(a, s) - values(sp.cos(x), s))
+    True
+    >>> cancellation(sp.cos(x) + 1e-3, s, np.full(s.size, 1e-3))
+    False
+    """
+    try:
+        with np.errstate(all="ignore"):
+            size = _magnitude(answer, sample)
+    except (EvaluationError, TypeError, ValueError, OverflowError):
+        return False
+    with np.errstate(all="ignore"):
+        return bool(np.all(np.abs(difference) <= 2.0**-40 * (1 + size)))
 
 
 def agree_precisely(

@@ -10,7 +10,9 @@ case and ``_``/space do not matter): ``submission`` (required), ``name``,
 ``canvas_id`` (or ``ID``), ``sis_user_id``, ``sis_login_id``, ``section``, ``email``,
 ``username``, ``idnumber``.  A graded submission missing from the roster is an
 error naming it (its grade would be lost); a roster student without a submission is
-left out of the import (the LMS keeps what it has) and listed in a note.
+left out of the import (the LMS keeps what it has) and listed in a note.  Two graded
+submissions of one student (ids equal up to Unicode NFC form and case) refuse the
+import, listing them: an LMS file never has two rows for one student.
 
 **Canvas** (the Gradebook's *Import* of a CSV; guide "How do I import grades in the
 Gradebook?", https://community.canvaslms.com/t5/Instructor-Guide/How-do-I-import-grades-in-the-Gradebook/ta-p/807,
@@ -32,8 +34,9 @@ columns that every row has are written: ``ID number``, ``Email address``,
 **Generic**: ``student, name, email, lms_id, <question ids…>, total, max, status``.
 
 Every cell that a spreadsheet would run as a formula is neutralised (names, section,
-title: :func:`~dhsym.checking._report.csv_cell`); an *identifier* that starts like a
-formula is refused instead (changing it would make the LMS miss the student).
+title: :func:`~dhsym.checking._report.csv_cell`); an LMS *identifier* that starts like a
+formula is refused instead (changing it would make the LMS miss the student).  The
+``submission`` column is only matched, never written, so it may start with anything.
 
 Examples
 --------
@@ -50,6 +53,7 @@ from __future__ import annotations
 
 import csv
 import io
+import unicodedata
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -98,6 +102,8 @@ _ALIASES = {
 }
 _IDENTIFIERS = ("submission", "canvas_id", "sis_user_id", "sis_login_id", "email", "username")
 _IDENTIFIERS += ("idnumber",)
+#: the identifiers written as they are into an LMS file (``submission`` never is)
+_WRITTEN = frozenset(_IDENTIFIERS) - {"submission"}
 _MAX_ROSTER = 50_000_000
 
 
@@ -162,7 +168,7 @@ class Roster:
                 raise DHError("empty submission name", file=file, row=row_no, field="submission")
             for key in _IDENTIFIERS:
                 v = values.get(key, "")
-                if v and csv_cell(v) != v:
+                if v and key in _WRITTEN and csv_cell(v) != v:
                     raise DHError(
                         f"a value starting with {v[0]!r} would run as a spreadsheet formula; "
                         "an LMS id cannot be changed to neutralise it",
@@ -185,8 +191,8 @@ class Roster:
     def match(self, students: Iterable[str]) -> tuple[list[RosterEntry], list[RosterEntry]]:
         """The roster entry of each graded student (in order), and the entries with no
         submission.  A graded student missing from the roster is an error."""
-        by_sub = {e.submission: e for e in self.entries}
-        students = list(students)
+        by_sub = {unicodedata.normalize("NFC", e.submission): e for e in self.entries}
+        students = [unicodedata.normalize("NFC", s) for s in students]
         missing = [s for s in students if s not in by_sub]
         if missing:
             shown = ", ".join(repr(s) for s in missing[:10])
@@ -198,8 +204,29 @@ class Roster:
             )
         graded = set(students)
         return [by_sub[s] for s in students], [
-            e for e in self.entries if e.submission not in graded
+            e for e in self.entries if unicodedata.normalize("NFC", e.submission) not in graded
         ]
+
+
+def _refuse_duplicates(records: Sequence[GradeRecord]) -> None:
+    """Refuse an import with two submissions for one student (the LMS would keep whichever
+    row came last): the message lists them, with their scores, to be resolved first."""
+    from ._submissions import identity
+
+    groups: dict[str, list[GradeRecord]] = {}
+    for r in records:
+        groups.setdefault(identity(r.student), []).append(r)
+    shared = [g for g in groups.values() if len(g) > 1]
+    if shared:
+        shown = "; ".join(
+            ", ".join(f"{r.student!r} from {r.source} ({r.score:g} points)" for r in g)
+            for g in shared[:10]
+        )
+        raise DHError(
+            f"{len(shared)} student id(s) have more than one submission: {shown}. An LMS keeps "
+            "one row per student: remove or rename the extra submissions (ids are compared "
+            "in Unicode NFC form, ignoring case) and grade again; no import file was written"
+        )
 
 
 def _roster_for(records: Sequence[GradeRecord], roster: Roster | None) -> Roster:
@@ -296,6 +323,7 @@ def write_lms_gradebook(
     r = _roster_for(records, roster)
     if kind != "generic" and roster is None:
         raise DHError(f"the {kind} import needs a roster (LMS ids per student)")
+    _refuse_duplicates(records)
     entries, absent = r.match(x.student for x in records)
     title = column or assignment.title
     if kind == "canvas":

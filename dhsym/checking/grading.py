@@ -61,9 +61,9 @@ from ._report import (
     write_gradebook,
     write_summary,
 )
-from ._runner import JobFailure, Progress, run_dask, run_pool, run_serial
+from ._runner import JobFailure, Progress, dask_address, run_dask, run_pool, run_serial
 from ._submissions import Submission, read_submissions
-from .checker import Key, check_answer
+from .checker import Key, check_answer, prepare
 from .feedback import QuestionFeedback, render_feedback
 from .records import GradeRecord
 from .verdict import CheckResult, Verdict
@@ -201,34 +201,38 @@ def _points(value: object, path: Path, row: int) -> float:
     return number
 
 
-def _timed_out(q: AssignmentQuestion, seconds: float) -> CheckResult:
-    text = (
-        f"Checking took longer than the time limit of {seconds:g} s. The answer is checked "
-        "again on the next run; nothing is kept for now."
-    )
+#: what a timed-out answer is told in a class run (the autograder says its own)
+RERUN = "The answer is checked again on the next run; nothing is kept for now."
+
+
+def _timed_out(q: AssignmentQuestion, seconds: float, then: str) -> CheckResult:
+    text = f"Checking took longer than the time limit of {seconds:g} s. {then}"
     return CheckResult(q.ask, Verdict.UNREADABLE, text, reason="timeout", key=q.key.name)
 
 
 def check_submission(
-    assignment: Assignment, sub: Submission, limits: AnswerLimits
+    assignment: Assignment, sub: Submission, limits: AnswerLimits, *, on_timeout: str = RERUN
 ) -> tuple[QuestionFeedback, ...]:
     """Check every question of one submission: its result (``None`` if missing) and score.
 
     An answer scores the question's points when it is correct and 0 otherwise; an
     answer that could not be read from its file is ``unreadable``. Each answer runs
     under the time limit ``limits.seconds``; one that runs out gets an unreadable
-    result whose ``reason`` is ``timeout`` (see :func:`grade_submission`).
+    result whose ``reason`` is ``timeout`` (see :func:`grade_submission`), told
+    ``on_timeout``.  Each key is prepared before its answer's clock starts (its solvers
+    and variants are built once per worker, never on a student's time).
     """
     answers, problems = dict(sub.answers), dict(sub.problems)
     inner = replace(limits, seconds=0)  # the limit is the one below: a timeout stays one
     out = []
     for q in assignment.questions:
         if q.id in answers:
+            prepare(q.key)  # memoised: the first answer of a worker pays it, off the clock
             try:
                 with time_limit(limits.seconds, AnswerTimeout):
                     result = check_answer(q.key, answers[q.id], limits=inner)
             except AnswerTimeout:
-                result = _timed_out(q, limits.seconds)
+                result = _timed_out(q, limits.seconds, on_timeout)
         elif q.id in problems:
             result = CheckResult(
                 q.ask,
@@ -326,6 +330,8 @@ class GradeReport:
     summary: Path
     records: tuple[GradeRecord, ...] = field(default=(), repr=False)
     warnings: tuple[str, ...] = ()
+    #: entries of the submissions folder that are not submissions: (entry, reason)
+    refused: tuple[tuple[str, str], ...] = ()
 
 
 def _failed_record(sub: Submission, assignment: Assignment, failure: JobFailure) -> GradeRecord:
@@ -367,14 +373,29 @@ _FINAL = ("correct", "incorrect", "unreadable", "missing")
 
 
 def _final(record: GradeRecord, a: Assignment) -> bool:
-    """True for a graded record (fingerprinted) with a final verdict for each question of ``a``."""
-    ids = {q.id for q in a.questions}
+    """True for a graded record (fingerprinted) with a final verdict for each question of ``a``,
+    each score within ``[0, points]`` of its question, and the total their sum."""
+    points = {q.id: q.points for q in a.questions}
     return (
         record.status == "graded"
         and bool(record.fingerprint)
-        and set(record.scores) == ids
-        and set(record.verdicts) == ids
+        and set(record.scores) == set(points)
+        and set(record.verdicts) == set(points)
         and all(v in _FINAL for v in record.verdicts.values())
+        and all(0 <= record.scores[q] <= p for q, p in points.items())
+        and math.isclose(record.score, sum(record.scores.values()), rel_tol=1e-9, abs_tol=1e-9)
+        and math.isclose(record.max_score, a.max_score, rel_tol=1e-9)
+    )
+
+
+def _same_submission(record: GradeRecord, sub: Submission) -> bool:
+    """The cached record is this submission's: uid, student, name, source and flags agree."""
+    return (record.uid, record.student, record.name, record.source, tuple(record.flags)) == (
+        sub.uid,
+        sub.student,
+        sub.name,
+        sub.source,
+        tuple(sub.flags),
     )
 
 
@@ -408,7 +429,7 @@ def _load_cache(
     if data.get("assignment") != run_fp:
         return {}  # another assignment, key, limit or dhsym version: everything is regraded
     cached = {k: _cached_record(r, a) for k, r in data["records"].items()}
-    records = {k: r for k, r in cached.items() if r is not None}
+    records = {k: r for k, r in cached.items() if r is not None and r.uid == k}
     bad = len(cached) - len(records)
     if bad:
         warnings.append(f"ignoring {bad} malformed record(s) of the grading cache {path.name}")
@@ -438,9 +459,14 @@ def grade(
     lim = limits or AnswerLimits(seconds=seconds)
     if not isinstance(workers, int) or not 0 <= workers <= 1024:
         raise DHError(f"--workers: expected a number of processes from 0 to 1024, got {workers}")
+    if dask is not None:
+        dask = dask_address(dask)
     root = Path(out_dir).resolve()
     warnings: list[str] = []
-    subs = read_submissions(submissions, a, lim, exclude=(root,), warnings=warnings)
+    refused: list[tuple[str, str]] = []
+    subs = read_submissions(
+        submissions, a, lim, exclude=(root,), warnings=warnings, refused=refused
+    )
     root.mkdir(parents=True, exist_ok=True)
     (root / "feedback").mkdir(exist_ok=True)
     deadline = lim.seconds * max(1, len(a.questions)) + _SLACK_SECONDS
@@ -459,7 +485,10 @@ def grade(
             records[s.uid] = _failed_record(s, a, JobFailure("error", s.error))
             failed += 1
         elif (
-            old and old.fingerprint == s.fingerprint(a, run_fp) and all(p.is_file() for p in names)
+            old
+            and _same_submission(old, s)
+            and old.fingerprint == s.fingerprint(a, run_fp)
+            and all(p.is_file() for p in names)
         ):
             records[s.uid] = old
         else:
@@ -501,7 +530,7 @@ def grade(
         save()
     ordered = [records[s.uid] for s in subs if s.uid in records]
     gradebook = write_gradebook(root, a, ordered, files)
-    summary = write_summary(root, a, ordered, files)
+    summary = write_summary(root, a, ordered, files, refused=refused)
     scores = [r.score for r in ordered]
     return GradeReport(
         root,
@@ -514,6 +543,7 @@ def grade(
         summary,
         tuple(ordered),
         tuple(warnings),
+        tuple(refused),
     )
 
 

@@ -59,11 +59,12 @@ from ._ik_values import (
     pose_sample,
     same_joints,
 )
-from ._limits import AnswerLimits, UnreadableAnswer
+from ._limits import AnswerLimits, UnreadableAnswer, check_time
 from ._numeric import EvaluationError, evaluate, frames
-from .answers import _split_top, parse_cell, read_text
+from .answers import _split_top, cell_literals, parse_cell, read_text
 from .latex_input import flatten_subscripts, is_latex, latex_to_text
 from .mistakes import IK_MISTAKES
+from .rounding import value_tolerance
 from .tolerances import TOLERANCES
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
@@ -77,9 +78,6 @@ _SIGN_NAME = "pmsign"
 _PLUS_MINUS = re.compile(r"\\pm(?![A-Za-z])|±|\+/-")
 _MINUS_PLUS = re.compile(r"\\mp(?![A-Za-z])|∓|-/\+")
 _WRAPPERS = re.compile(r"\\(?:begin|end)\{[A-Za-z*]+\}|\\\[|\\\]|\$|&")
-# a numeral starts only where no digit, name character or point precedes it, so each run of
-# digits is tried once (linear on any text)
-_NUMERAL = re.compile(r"(?<![A-Za-z_0-9.])([0-9]*)\.([0-9]+)|(?<![A-Za-z_.0-9])([0-9]+)(?![.0-9])")
 _IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
 
@@ -128,7 +126,15 @@ def prepare_ik(pk: PreparedKey) -> PreparedKey:
             raise DHError(
                 f"question {q.spec!r} needs numbers for {', '.join(missing)} (table values)"
             )
-        pk.cache["ik pose"] = pose_sample(robot, q=np.array([q.pose]), values=table.value_map)
+        pose = pose_sample(robot, q=np.array([q.pose]), values=table.value_map)
+        pk.cache["ik pose"] = pose
+        # the numeric solver and the key's branches at the pose are built here, once per
+        # worker, outside every student's time limit (the first build takes seconds)
+        at_pose = key_values(ik, pose.env, pose.size)
+        pk.cache["ik pose names"] = tuple(_numeric_names(robot, ik, pose, at_pose))
+    else:  # the key's branches compiled once, before the first answer's clock starts
+        sample = pose_sample(robot, values=table.value_map or None)
+        key_values(ik, sample.env, sample.size)
     pk.symbols = frozenset(set(table.constants) | set(pose_symbols()[:3, :]))
     return pk
 
@@ -174,16 +180,12 @@ def _signed(rhs: str, latex: bool, signs: list[sp.Symbol]) -> str:
     return _MINUS_PLUS.sub(lambda m: sub(m, "-"), rhs)
 
 
-def _tolerance(rhs: str) -> float:
-    """How far a number written in ``rhs`` may be from the exact value: ``10^-d`` for d
-    decimals (with at least 3 significant digits), in degrees when a degree sign is there."""
-    tol = ATOL
-    for m in _NUMERAL.finditer(rhs):
-        if m[2] is None:
-            continue
-        digits = (m[1] + m[2]).lstrip("0")
-        if len(digits) >= 3:
-            tol = max(tol, 10.0 ** -len(m[2]))
+def _tolerance(rhs: str, template: sp.Expr, literals: tuple) -> float:
+    """How far a value written with decimals may be from the exact one: one unit in the
+    last digit of the decimals that stand for the value (with at least 3 significant
+    digits; :func:`~dhsym.checking.rounding.value_tolerance`: never a constant that a zero
+    factor removes or another cancels), in degrees when a degree sign is there."""
+    tol = max(ATOL, value_tolerance(template, literals))
     if re.search(r"°|\\circ|\\degree", rhs):
         tol = max(tol * np.pi / 180, ATOL)
     return tol
@@ -223,14 +225,16 @@ def read_ik_answer(answer: str | bytes, pk: PreparedKey, limits: AnswerLimits) -
     solutions: list[dict[int, _Statement]] = []
     helpers: list[_Statement] = []
 
-    def parse(rhs: str, where: str) -> tuple[sp.Expr, str]:
+    def parse(rhs: str, where: str) -> tuple[sp.Expr, str, float]:
         signed = _signed(rhs, is_latex(rhs), signs)
         ctx = pk.names.extended([*extra, *((s.name, s) for s in signs)])
-        return parse_cell(signed, ctx, limits, where), rhs.strip()
+        expr = parse_cell(signed, ctx, limits, where)
+        template, literals = cell_literals(signed, ctx, limits)
+        return expr, rhs.strip(), _tolerance(rhs, template, literals)
 
     for k, target, rhs, joint in assignments:
-        expr, shown = parse(rhs, f"statement {k + 1}")
-        st = _Statement(target, expr, shown, joint, _tolerance(rhs))
+        expr, shown, tol = parse(rhs, f"statement {k + 1}")
+        st = _Statement(target, expr, shown, joint, tol)
         if joint is None:
             helpers.append(st)
         else:
@@ -246,8 +250,8 @@ def read_ik_answer(answer: str | bytes, pk: PreparedKey, limits: AnswerLimits) -
             )
         sol = {}
         for j, c in enumerate(cells):
-            expr, shown = parse(c, f"statement {k + 1}, value {j + 1}")
-            sol[j] = _Statement(variables[j], expr, shown, j, _tolerance(c))
+            expr, shown, tol = parse(c, f"statement {k + 1}, value {j + 1}")
+            sol[j] = _Statement(variables[j], expr, shown, j, tol)
         solutions.append(sol)
     if not solutions:
         raise UnreadableAnswer("the answer gives no joint value (write e.g. theta1 = …)")
@@ -297,6 +301,23 @@ def _values(
             tols.append(tol)
             meta.append((s_index, combo))
     return np.array(rows), np.array(tols), meta
+
+
+def _circular(ans: IKAnswer, given: set[sp.Symbol]) -> list[str]:
+    """The joint values of the answer that no order of its statements computes from the
+    ``given`` symbols (pose, lengths, signs): ``theta1 = theta1`` and its longer circles."""
+    out: list[str] = []
+    for sol in ans.solutions:
+        known = set(given)
+        pending = [*ans.helpers, *sol.values()]
+        while True:
+            ready = [st for st in pending if st.expr.free_symbols <= known]
+            if not ready:
+                break
+            known |= {st.target for st in ready}
+            pending = [st for st in pending if st not in ready]
+        out += [str(st.target) for st in sol.values() if st.target not in known]
+    return sorted(set(out))
 
 
 def branch_signs_n(count: int) -> np.ndarray:
@@ -452,6 +473,15 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
         kind = "unknown_symbol" if unknown else "missing_joint"
         d = Diagnosis(kind, "unknown symbols" if unknown else "joint missing", " ".join(parts))
         return CheckResult(q.spec, Verdict.INCORRECT, " ".join(parts), diagnoses=(d,), key=key.name)
+    circular = _circular(ans, set(pk.symbols) | set(ans.signs))
+    if circular:
+        text = (
+            f"{', '.join(circular)} cannot be computed from the pose: each is defined through "
+            "itself or through a value that needs it (a joint value must come from p, n, s, "
+            "a and the lengths)."
+        )
+        d = Diagnosis("circular", "defined through itself", text)
+        return CheckResult(q.spec, Verdict.INCORRECT, text, diagnoses=(d,), key=key.name)
     position = not ik.decoupling.wrist
     sample = _sample(pk, ans, fresh=True)
     result = _judge(pk, ans, ik, sample, position)
@@ -464,7 +494,7 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
     wrong = m.wrong
     valid_k = [k for k in range(len(key_d)) if not np.isnan(key_d[k]).any()]
     names = (
-        tuple(_numeric_names(robot, ik, dsample, key_d))
+        pk.cache["ik pose names"]
         if q.pose is not None
         else tuple(_branch_name(ik, k, nota) for k in range(len(key_d)))
     )
@@ -481,7 +511,7 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
         nota,
         pk.cache,
     )
-    found = [(m.kind, m.explain_ik(case)) for m in IK_MISTAKES]
+    found = [(m.kind, (check_time(), m.explain_ik(case))[1]) for m in IK_MISTAKES]
     diagnoses = tuple(d for kind, d in found if d is not None and kind != "lost_branch")
     if wrong and not diagnoses:
         diagnoses = (
@@ -606,7 +636,7 @@ def _correct(
     q, nota = pk.key.question, pk.robot.notation
     ks = sorted({k for k in matched.values() if k is not None})
     if q.pose is not None:
-        names = _numeric_names(pk.robot, ik, sample, key_values(ik, sample.env, sample.size))
+        names = list(pk.cache["ik pose names"])  # type: ignore[arg-type]  # set by prepare_ik
     else:
         names = [_branch_name(ik, k, nota) for k in range(2 ** len(ik.branches))]  # type: ignore[attr-defined]
     if q.every:

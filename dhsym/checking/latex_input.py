@@ -46,6 +46,7 @@ _FUNCTIONS = frozenset({"sin", "cos", "tan"})
 #: inverse functions, as LaTeX and \operatorname spell them, and what the parser reads
 _INVERSE = {"arctan": "atan", "arcsin": "asin", "arccos": "acos"}
 _OPERATORS = {"atan2": "atan2", "atan": "atan", "asin": "asin", "acos": "acos"} | _INVERSE
+_OPERATORS |= {"Atan2": "atan2", "arctan2": "atan2"}  # Craig's and numpy's spellings
 _SIGNS = {"pm": "±", "mp": "∓"}  # ± of an inverse-kinematics answer (both branches)
 _FRACTIONS = frozenset({"frac", "dfrac", "tfrac", "cfrac"})
 _TIMES = frozenset({"cdot", "times", "ast"})
@@ -331,11 +332,13 @@ class _Translator:
         if self.peek()[1] == "^":
             self.take()
             power = self.argument()
+            if re.fullmatch(r"\s*-\s*1\s*", power) and name in _FUNCTIONS:  # \cos^{-1}: arccos
+                return self.function(_INVERSE["arc" + name])
             if re.fullmatch(r"\s*-.*", power):
                 raise self.error(
                     f"\\{name}^{{{power}}}",
-                    f"expected a positive power (an inverse function is not read: write "
-                    f"1/\\{name}(x) or \\{name}(x)^{{-1}})",
+                    f"expected a positive power, or ^{{-1}} for the inverse function (write "
+                    f"1/\\{name}(x) for the reciprocal)",
                 )
         while self.peek()[0] == "cmd" and self.peek()[1][1:] in _SIZES:  # \bigl(
             self.take()

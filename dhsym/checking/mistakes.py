@@ -42,6 +42,7 @@ from ._jacobian_mistakes import (
     PrismaticColumn,
     ToolFrame,
 )
+from ._limits import check_time
 from ._mistake_base import MatrixCase, Mistake, TableCase
 from ._row_mistakes import DegreesAsRadians, IndexShift, OffsetMissing, SingleWrongRow
 from .tables import Chain, compare_tables
@@ -213,11 +214,13 @@ def diagnose_matrix(
     ``J``: :data:`JACOBIAN_MISTAKES`; ``det J``: :data:`DET_MISTAKES`).
     """
     for m in mistakes:
+        check_time()  # the answer's deadline (see _limits.time_limit)
         d = m.explain_matrix(case)
         if d is not None:
             return (d,)
     found, left = [], list(case.wrong)
     for m in (*ENTRY_MISTAKES, *mistakes):
+        check_time()
         if not left:
             break
         sub = replace(case, wrong=tuple(left))
@@ -246,6 +249,7 @@ def diagnose_matrix(
 def diagnose_table(case: TableCase) -> tuple[Diagnosis, ...]:
     """Explain a wrong table with the first table mistake that reproduces it."""
     for m in TABLE_MISTAKES:
+        check_time()
         d = m.explain_table(case)
         if d is not None:
             return (d,)

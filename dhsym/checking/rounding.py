@@ -14,6 +14,10 @@ A student who writes ``0.7071`` for :math:`\sqrt2/2` or ``cos(θ1 + 1.5708)`` fo
 ``off``
     Decimals must be exact.
 
+Only the numbers that stand for the answer's value count (:func:`standing`): a decimal
+removed by a zero factor (``0*100.0``) or cancelled by another (``100.1 - 100.0``, which
+stands for ``0.1``, one significant digit) gives no rounding room.
+
 The test (:func:`rounding_accepts`) works on the answer as written: each decimal literal
 is a placeholder (:func:`dhsym.model.parsing.parse_expression` with ``literal=``), and at every
 sample point the difference from the key must be what moving each decimal within its
@@ -32,6 +36,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -44,7 +49,15 @@ from dhsym.errors import DHError
 from ._numeric import EvaluationError, evaluate
 from .tolerances import TOLERANCES
 
-__all__ = ["DEFAULT_ROUNDING", "Literal", "Rounding", "decimal_places", "rounding_accepts"]
+__all__ = [
+    "DEFAULT_ROUNDING",
+    "Literal",
+    "Rounding",
+    "decimal_places",
+    "rounding_accepts",
+    "standing",
+    "value_tolerance",
+]
 
 _MODES = ("digits", "abs", "rel", "off")
 # Matched on the stripped text; no two neighbouring parts can take the same characters.
@@ -157,6 +170,87 @@ _OFF = frozenset({"off", "exact", "none", "false", "no"})
 DEFAULT_ROUNDING = Rounding()
 
 
+def _literal_text(value: sp.Rational, unit: float) -> str:
+    """A decimal text of ``|value|`` written to ``unit`` (``decimal_places`` reads it back)."""
+    places = round(-math.log10(unit))
+    if places >= 0:
+        return f"{float(abs(value)):.{places}f}"
+    return f"{round(float(abs(value)) / unit)}e{-places}"  # an integer count of units
+
+
+def standing(
+    template: sp.Expr, literals: tuple[Literal, ...]
+) -> tuple[sp.Expr, tuple[Literal, ...]]:
+    """The answer with only the literals that stand for its value (the tolerance policy).
+
+    A literal whose value is zero is an exact zero, and a literal that a zero factor
+    removes (``0*100.0``) is gone; constants of one sum that cancel (``100.1 - 100.0``,
+    ``100.1 x - 100.0 x``) become one literal, their sum, written to the coarsest of their
+    units (here ``0.1``: one significant digit).  Tolerances then come from what is left.
+
+    >>> a, b, c = (Literal(sp.Dummy(n), t, sp.Rational(t)) for n, t in
+    ...            (("a", "100.1"), ("b", "100.0"), ("c", "0.7071")))
+    >>> x = sp.Symbol("x")
+    >>> t, lits = standing(x + a.symbol - b.symbol + 0 * c.symbol, (a, b, c))
+    >>> [(lit.text, lit.digits) for lit in lits]
+    [('0.1', 1)]
+    """
+    zeros = {lit.symbol: sp.S.Zero for lit in literals if lit.value == 0}
+    template = template.xreplace(zeros) if zeros else template
+    by_symbol = {lit.symbol: lit for lit in literals if lit.symbol not in zeros}
+    merged: list[Literal] = []
+
+    def merge(terms: tuple[sp.Expr, ...]) -> list[sp.Expr]:
+        groups: dict[sp.Expr, list[tuple[sp.Expr, sp.Rational, Literal]]] = {}
+        for term in terms:
+            rest, lit = term.as_independent(*by_symbol, as_Add=False)
+            coeff, factor = rest.as_coeff_Mul()
+            if lit in by_symbol and by_symbol[lit].unit > 0:
+                groups.setdefault(factor, []).append((term, coeff, by_symbol[lit]))
+        out = list(terms)
+        for factor, members in groups.items():
+            signs = {sp.sign(c * m.value) for _, c, m in members}
+            if len(members) < 2 or not {1, -1} <= signs:
+                continue  # only constants that cancel are merged
+            total = sum((c * m.value for _, c, m in members), sp.S.Zero)
+            unit = max(float(abs(c)) * m.unit for _, c, m in members)
+            for term, _, _ in members:
+                out.remove(term)
+            if total != 0:
+                lit = Literal(sp.Dummy(f"m{len(merged)}", real=True), "", abs(total))
+                lit = Literal(lit.symbol, _literal_text(lit.value, unit), lit.value)
+                merged.append(lit)
+                out.append(sp.sign(total) * factor * lit.symbol)
+        return out
+
+    def rebuild(e: sp.Expr) -> sp.Expr:
+        if e.is_Atom:
+            return e
+        args = tuple(rebuild(a) for a in e.args)
+        if e.is_Add:
+            return sp.Add(*merge(args))
+        return e.func(*args) if args != e.args else e
+
+    template = rebuild(template)
+    present = template.free_symbols
+    kept = tuple(lit for lit in (*by_symbol.values(), *merged) if lit.symbol in present)
+    return template, kept
+
+
+def value_tolerance(template: sp.Expr, literals: tuple[Literal, ...], digits: int = 3) -> float:
+    """One unit in the last digit of the finest decimal that stands for the value (with at
+    least ``digits`` significant digits), or 0: how far an inverse-kinematics value written
+    with decimals may be from the exact one.
+
+    >>> lit = Literal(sp.Dummy("n"), "380.0e-3", sp.Rational(38, 100))
+    >>> value_tolerance(lit.symbol, (lit,))
+    0.0001
+    """
+    _, kept = standing(template, literals)
+    units = [lit.unit for lit in kept if lit.unit > 0 and lit.digits >= digits]
+    return max(units, default=0.0)
+
+
 def _at(template: sp.Expr, env: Mapping, size: int, subs: Mapping[sp.Symbol, float]) -> np.ndarray:
     values = {**env, **{s: np.asarray(float(v)) for s, v in subs.items()}}
     try:
@@ -202,6 +296,7 @@ def rounding_accepts(
     ``template`` is the answer with its literals as placeholders, ``env`` the sample
     (symbol → values at ``size`` points) and ``key`` the key's values there.
     """
+    template, literals = standing(template, literals)
     decimals = [lit for lit in literals if decimal_places(lit.text)[1] > 0]
     if rounding.mode == "off" or not decimals:
         return None

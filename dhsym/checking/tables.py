@@ -7,6 +7,12 @@ variable changes sign), x0 chosen differently or frame 0 moved along z0 (a
 constant base transform about/along z0), another common normal between parallel
 axes (d values shift), and another tool frame when the question allows it.
 
+Symbols stand for themselves: an answer that writes symbols is judged with one random
+value per symbol name (:func:`symbolic_values`), so ``d4`` is never ``a2`` because a key
+gives both the same number, and joint variables are matched by position (θ2 in row 1
+is never θ1).  The key's numbers judge only an answer written in numbers, and serve
+the diagnosis.
+
 The check is numeric (:mod:`dhsym.kinematics.numeric`, the core's link words):
 frame 0 of the answer is matched to the key's from the joint axes at the zero
 configuration, then joint by joint at random configurations the axes are
@@ -41,10 +47,11 @@ import sympy as sp
 from dhsym.kinematics.numeric import elementary_stack, numeric_rigid_inverse
 from dhsym.model.table import Convention, DHRow, DHTable, JointType
 
+from ._limits import check_time
 from ._numeric import EvaluationError, evaluate, frames
 from .tolerances import TOLERANCES
 
-__all__ = ["Chain", "TableMatch", "compare_tables", "same_cells"]
+__all__ = ["Chain", "TableMatch", "compare_tables", "same_cells", "symbolic_values"]
 
 _CONFIGS = 6
 
@@ -294,6 +301,30 @@ def _describe(B, E, signs, dirs, joints, Fk0, Fa0, key: Chain, tol) -> tuple[lis
     return out, on_axis
 
 
+def _swapped_variable(jk: list, ja: list) -> tuple[int, str] | None:
+    """The first joint whose variable is another joint's variable of the key (joint
+    variables are matched by position: θ2 in row 1 is never the key's θ1)."""
+    names = [j[2] for j in jk]
+    for k, (a, b) in enumerate(zip(jk, ja), 1):
+        if b[2] != a[2] and b[2] in names:
+            other = names.index(b[2]) + 1
+            return k, f"joint {k} moves with {b[2]}, the variable of joint {other}"
+    return None
+
+
+def symbolic_values(key: DHTable, answer: DHTable | Chain) -> Mapping[sp.Symbol, sp.Expr]:
+    """The numbers a table answer is judged with: none when the answer writes symbols
+    (each symbol then stands for itself, with a random value per name, so ``d4`` is never
+    ``a2`` because the key gives both 0.4318), the key's values for an all-number answer.
+
+    >>> from dhsym import load_table
+    >>> key = load_table("puma560")
+    >>> symbolic_values(key, key)
+    {}
+    """
+    return {} if _constants(Chain.of(answer)) else key.value_map
+
+
 def same_cells(
     key: DHTable | Chain,
     answer: DHTable | Chain,
@@ -306,9 +337,12 @@ def same_cells(
         return False
     env = {s: np.array([v]) for s, v in _constant_env(k, a, dict(values or {}), seed).items()}
     rng = np.random.default_rng(seed)
+    key_variables = {r.variable for r in k.rows if r.variable is not None}
     for rk, ra in zip(k.rows, a.rows):
         if rk.joint is not ra.joint:
             return False
+        if ra.variable != rk.variable and ra.variable in key_variables:
+            return False  # variables are matched by position, never relabelled
         q = np.array([rng.uniform(*TOLERANCES.symbol_range)])
         env_k = {**env, rk.variable: q} if rk.variable is not None else env
         env_a = {**env, ra.variable: q} if ra.variable is not None else env
@@ -353,6 +387,9 @@ def compare_tables(
             return TableMatch(
                 False, diverges_at=k, reason=f"joint {k} is {kinds[tk]}, not {kinds[ta]}"
             )
+    swapped = _swapped_variable(jk, ja)
+    if swapped:
+        return TableMatch(False, diverges_at=swapped[0], reason=swapped[1])
     if same_cells(kc, ac, values):
         return TableMatch(True, same_table=True)
     consts = _constant_env(kc, ac, dict(values), seed)
@@ -381,6 +418,7 @@ def compare_tables(
     tol = TOLERANCES.frame_rtol * scale
     best, found = -1, []
     for B in _candidates(Fk, Fa0, kc, ac, jk, ja):
+        check_time()  # the answer's deadline (see _limits.time_limit)
         got, signs, dirs, E = _verify(B, kc, ac, jk, ja, Fk, env_a, size, tol)
         best = max(best, got)
         if E is None:

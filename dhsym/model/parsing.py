@@ -2,8 +2,9 @@
 
 The only way text enters the engine (DH tables, homework answers).  A hand-written
 tokenizer and a depth-checked recursive-descent parser build sympy ``Add``, ``Mul``,
-``Pow``, ``Rational``, real ``Symbol``, ``pi`` and ``sin cos tan sqrt atan2`` (and the
-inverse functions ``atan asin acos``, also spelt ``arctan arcsin arccos``) only::
+``Pow``, ``Rational``, real ``Symbol``, ``pi`` and ``sin cos tan sqrt atan2`` (also spelt
+``Atan2``, as Craig, and ``arctan2``, as numpy; and the inverse functions ``atan asin acos``,
+also spelt ``arctan arcsin arccos`` and, in textbook mode, ``tan^-1 sin^-1 cos^-1``) only::
 
     expr   := term (('+' | '-') term)*
     term   := factor (('*' | '/') factor | factor)*      # juxtaposition multiplies
@@ -61,7 +62,11 @@ _FUNCTIONS: MappingProxyType[str, tuple[Callable[..., sympy.Expr], int]] = Mappi
     # inverse functions: answers to inverse-kinematics questions (atan where atan2 belongs)
     | {"atan": (sympy.atan, 1), "asin": (sympy.asin, 1), "acos": (sympy.acos, 1)}
     | {"arctan": (sympy.atan, 1), "arcsin": (sympy.asin, 1), "arccos": (sympy.acos, 1)}
+    # atan2 as Craig (Atan2) and numpy (arctan2) spell it
+    | {"Atan2": (sympy.atan2, 2), "arctan2": (sympy.atan2, 2)}
 )
+#: ``cos^-1 x`` in textbook mode is the inverse function, as textbooks write it
+_INVERSE_OF = MappingProxyType({"sin": "asin", "cos": "acos", "tan": "atan"})
 _NON_FINITE_NAMES = frozenset({"nan", "inf", "infinity", "oo", "zoo"})
 _BUILTINS = "eval exec compile open input globals locals vars getattr setattr delattr breakpoint"
 _RESERVED = frozenset([*keyword.kwlist, *_BUILTINS.split()]) - {"lambda"}  # λ is 'lambda'
@@ -396,7 +401,7 @@ class _Parser:
         name, call = tok.text, self.is_op("(")
         if name in _FUNCTIONS and call:
             return self.call(tok)
-        if name in _FUNCTIONS and self.textbook and name != "atan2":
+        if name in _FUNCTIONS and self.textbook and _FUNCTIONS[name][1] == 1:
             return self.textbook_call(tok)
         if name in _FUNCTIONS:
             raise self.unexpected(self.tokens[self.i], f"expected '(' after function {name!r}")
@@ -420,13 +425,15 @@ class _Parser:
         if self.is_op("^"):
             self.enter(hat := self.take())
             power = self.exponent()
-            if not (power.is_Integer and power > 0):
+            if power == -1 and tok.text in _INVERSE_OF:  # cos^-1(x): arccos, as textbooks
+                tok, power = _Token(tok.kind, _INVERSE_OF[tok.text], tok.pos), None
+            elif not (power.is_Integer and power > 0):
                 found = f"{tok.text}^{power}" if power.is_number else f"{tok.text}^…"
                 raise self.error(
                     found,
                     hat.pos,
-                    f"expected a positive whole power ({tok.text}^-1 is not read"
-                    f" as an inverse function: write 1/{tok.text}(x) or {tok.text}(x)^-1)",
+                    f"expected a positive whole power, or ^-1 for the inverse function"
+                    f" (the reciprocal is written 1/{tok.text}(x) or {tok.text}(x)^-1)",
                 )
             self.depth -= 1
         if self.is_op("("):

@@ -132,6 +132,10 @@ def _from_data(data: object, file: str | None) -> DHTable:
     if not isinstance(data, Mapping):
         raise TableError("expected a mapping with a 'joints' list at the top level")
     top = {_canon(k): v for k, v in data.items()}
+    if "joints" not in top:  # not a table: its content is never echoed (it may be any file)
+        raise TableError(
+            "missing 'joints': the list of rows (this is not a DH table file)", field="joints"
+        )
     unknown = sorted(set(top) - set(_TOP_KEYS))
     if unknown:
         raise TableError(
@@ -156,6 +160,9 @@ def _from_data(data: object, file: str | None) -> DHTable:
         if expr.free_symbols:
             raise TableError(f"value of {k} must be a number, got {v!r}", field=f"values.{k}")
         checked[str(k)] = expr
+    base = _elementaries(top.get("base"), "base", unit)
+    tool = _elementaries(top.get("tool"), "tool", unit)
+    _check_variables(rows, base, tool)
     return DHTable.from_rows(
         rows,
         convention=convention,
@@ -164,10 +171,37 @@ def _from_data(data: object, file: str | None) -> DHTable:
         name=str(top.get("name") or ""),
         source=str(top.get("source") or ""),
         notes=str(top.get("notes") or ""),
-        base=_elementaries(top.get("base"), "base", unit),
-        tool=_elementaries(top.get("tool"), "tool", unit),
+        base=base,
+        tool=tool,
         snap_angles=AngleSnap.parse(top.get("snap_angles", True)),
     )
+
+
+def _check_variables(
+    rows: list[DHRow], base: tuple[Elementary, ...], tool: tuple[Elementary, ...]
+) -> None:
+    """Joint variables move only their own joint: a fixed row (type F) and the constant
+    ``base``/``tool`` transforms contain none of them."""
+    variables = {r.variable for r in rows if r.variable is not None}
+    for i, r in enumerate(rows, start=1):
+        if r.variable is None:
+            used = set().union(*(v.free_symbols for v in (r.theta, r.d, r.a, r.alpha)))
+            if used & variables:
+                name = sorted(str(v) for v in used & variables)[0]
+                raise TableError(
+                    f"a fixed row (type F) has no joint variable, but uses {name}, the "
+                    "variable of another joint",
+                    row=i,
+                )
+    for where, steps in (("base", base), ("tool", tool)):
+        for k, step in enumerate(steps, start=1):
+            used = step.value.free_symbols & variables
+            if used:
+                raise TableError(
+                    f"step {k} uses the joint variable {sorted(map(str, used))[0]}: "
+                    f"'{where}' is a constant transform",
+                    field=where,
+                )
 
 
 def _row(entry: object, i: int) -> DHRow:
@@ -195,6 +229,8 @@ def _build_row(row: dict, params: dict, kw: dict, i: int) -> DHRow:
 
     joint = row["type"]
     if "q" in row:
+        if str(joint).strip().upper().startswith("F"):
+            raise TableError("a fixed row (type F) has no joint variable: remove q", field="q")
         if not isinstance(row["q"], str):
             raise TableError("q must name the joint variable, e.g. q: d3", row=i, field="q")
         kw["variable"] = symbol(row["q"].strip())
@@ -206,6 +242,12 @@ def _build_row(row: dict, params: dict, kw: dict, i: int) -> DHRow:
         if not (isinstance(lim, list) and len(lim) == 2):
             raise TableError("limits must be a list [low, high]", row=i, field="limits")
         lo, hi = (as_expr(v, field="limits", row=i) for v in lim)
+        if lo.free_symbols or hi.free_symbols or not (lo.is_real and hi.is_real):
+            raise TableError(
+                "limits must be two numbers [low, high] (in the table's angle unit for θ)",
+                row=i,
+                field="limits",
+            )
         if (lo - hi).is_positive:
             raise TableError(f"limits [{lo}, {hi}]: low is above high", row=i, field="limits")
         kw["limits"] = (lo, hi)

@@ -15,8 +15,10 @@ through :func:`read_limited`:
   400-byte "billion laughs" file is refused before anything is constructed or
   turned into text; an alias inside its own anchor (a list that contains
   itself) is refused too. Only then is it loaded with ``yaml.SafeLoader`` (no tags,
-  no objects), with integers longer than :attr:`YAMLLimits.max_digits` digits
-  refused (Python refuses to convert them to text beyond 4300 digits anyway).
+  no objects) under YAML 1.2's core schema (``1:30`` and ``yes`` are text, not 90 and
+  True), with a key given twice in one mapping refused and integers longer than
+  :attr:`YAMLLimits.max_digits` digits refused (Python refuses to convert them to
+  text beyond 4300 digits anyway).
 
 Errors are :class:`YAMLInputError` (a :class:`~dhsym.errors.DHError`) naming the
 file and the line.
@@ -48,6 +50,7 @@ from __future__ import annotations
 
 import errno
 import os
+import re
 import stat
 from dataclasses import dataclass
 from pathlib import Path
@@ -100,21 +103,63 @@ DEFAULT_YAML_LIMITS = YAMLLimits()
 
 
 class _Loader(yaml.SafeLoader):
-    """``SafeLoader`` whose integers have a bounded number of digits."""
+    """``SafeLoader`` with YAML 1.2's core schema, integers of a bounded number of digits,
+    and mappings whose keys appear once.
+
+    YAML 1.2 reads ``1:30`` as text (YAML 1.1: the sexagesimal 90), ``yes``/``no``/``on``/
+    ``off`` as text (only ``true``/``false`` are booleans), ``012`` as twelve (octal is
+    ``0o12``) and dates as text.
+    """
 
     max_digits = DEFAULT_YAML_LIMITS.max_digits
+    yaml_implicit_resolvers: dict = {}  # filled below with the core schema of YAML 1.2
 
     def construct_yaml_int(self, node: yaml.ScalarNode) -> int:
-        digits = sum(ch.isdigit() or ch in "abcdefABCDEF" for ch in str(node.value))
+        text = str(node.value)
+        digits = sum(ch.isdigit() or ch in "abcdefABCDEF" for ch in text)
         if digits > self.max_digits:
             raise YAMLInputError(
                 f"line {node.start_mark.line + 1}: a number with {digits} digits: "
                 f"at most {self.max_digits} are read"
             )
-        return super().construct_yaml_int(node)
+        if text.startswith(("0o", "0x")):  # the only octal and hexadecimal forms of YAML 1.2
+            return int(text[2:], 8 if text[1] == "o" else 16)
+        return int(text, 10)
+
+    def construct_mapping(self, node: yaml.Node, deep: bool = False) -> dict:
+        if isinstance(node, yaml.MappingNode):
+            seen: dict[object, int] = {}
+            for key_node, _ in node.value:
+                if key_node.tag == "tag:yaml.org,2002:merge" or not isinstance(
+                    key_node, yaml.ScalarNode
+                ):
+                    continue
+                key = self.construct_object(key_node)
+                line = key_node.start_mark.line + 1
+                if key in seen:
+                    raise YAMLInputError(
+                        f"line {line}: a key given twice in one mapping (first on line "
+                        f"{seen[key]}); each field is written once"
+                    )
+                seen[key] = line
+        return super().construct_mapping(node, deep=deep)
 
 
 _Loader.add_constructor("tag:yaml.org,2002:int", _Loader.construct_yaml_int)
+_Loader.add_constructor("tag:yaml.org,2002:map", _Loader.construct_yaml_map)
+for _tag, _pattern, _first in (
+    ("bool", r"^(?:true|True|TRUE|false|False|FALSE)$", "tTfF"),
+    ("int", r"^(?:[-+]?[0-9]+|0o[0-7]+|0x[0-9a-fA-F]+)$", "-+0123456789"),
+    (
+        "float",
+        r"^(?:[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?"
+        r"|[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN))$",
+        "-+.0123456789",
+    ),
+    ("null", r"^(?:~|null|Null|NULL|)$", ["~", "n", "N", ""]),
+    ("merge", r"^(?:<<)$", "<"),
+):
+    _Loader.add_implicit_resolver(f"tag:yaml.org,2002:{_tag}", re.compile(_pattern), list(_first))
 
 
 def _line(event: yaml.Event) -> str:

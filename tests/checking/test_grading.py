@@ -336,7 +336,8 @@ def test_the_report_folder_inside_the_submissions_is_no_student(tmp_path):
     grade(HW / "assignment.yaml", subs, out, workers=0, progress=False)
     report = grade(HW / "assignment.yaml", subs, out, workers=0, progress=False)
     assert set(_totals(out)) == set(EXPECTED) and report.skipped == 10
-    assert report.warnings == ("skipped feedback-report/: it is a grading report folder",)
+    assert report.warnings == ("not graded: feedback-report/: the report folder of this run",)
+    assert report.refused == (("feedback-report/", "the report folder of this run"),)
 
 
 def test_several_answer_files_for_one_question_follow_the_documented_rule(tmp_path):

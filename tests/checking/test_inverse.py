@@ -199,14 +199,9 @@ def test_feedback_renders_an_ik_result():
     assert "The other 1 entries are right." in page
 
 
-def test_the_decimal_scan_of_an_ik_answer_is_linear_on_long_digit_runs():
-    from dhsym.checking._limits import time_limit
-    from dhsym.checking.inverse import _NUMERAL
-
-    class TooSlow(Exception):
-        pass
-
-    for text in ("x" + "1" * 200_000, "1" * 200_000 + ".", "a" + "1" * 200_000 + ".5"):
-        with time_limit(5.0, TooSlow):  # quadratic: minutes; linear: milliseconds
-            found = [m.group(0) for m in _NUMERAL.finditer(text)]
-        assert found in ([], [".5"], ["1" * 200_000 + ".5"])
+def test_long_digit_runs_in_an_ik_answer_are_refused_by_the_parser():
+    """The tolerance comes from the parser's literals (no text scan of its own): a long
+    run of digits is refused there, in linear time."""
+    key = Key.load("planar2r", "ik")
+    for text in ("x" + "1" * 20_000, "1" * 20_000 + ".", "a" + "1" * 20_000 + ".5"):
+        assert check_answer(key, f"theta1 = {text}\ntheta2 = 0").verdict.value == "unreadable"

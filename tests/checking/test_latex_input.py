@@ -117,8 +117,11 @@ def test_craig_c_theta_and_powers_of_functions():
     assert latex_to_text(r"c\theta_1 s\alpha_{i-1}") == "c_theta_1 s_alpha_im1"
     assert latex_to_text(r"\cos(\theta_1)^2") == "cos(theta_1)^(2)"
     assert latex_to_text(r"\cos^2\frac{\theta}{2}") == "cos(((theta)/(2)))^(2)"
+    assert latex_to_text(r"\sin^{-1}\theta") == "asin(theta)"  # the inverse function
+    assert latex_to_text(r"\cos^{-1}(x)") == "acos(x)"
+    assert latex_to_text(r"\operatorname{Atan2}(y, x)").startswith("atan2(")
     with pytest.raises(ParseError, match="inverse function"):
-        latex_to_text(r"\sin^{-1}\theta")
+        latex_to_text(r"\sin^{-2}\theta")
 
 
 def test_matrix_rows_with_spacing_and_left_right_brackets():

@@ -28,7 +28,7 @@ GRADED = GradeRecord(
     fingerprint="0123abcd",
     pages={"md": "# Feedback\n", "html": "<p>Feedback</p>"},
 )
-ASSIGNMENT = NS(questions=[NS(id="q1"), NS(id="q2")])
+ASSIGNMENT = NS(questions=[NS(id="q1", points=4.0), NS(id="q2", points=2.0)], max_score=6.0)
 
 
 def test_to_dict_is_the_cache_shape_and_from_dict_reads_it_back():
@@ -111,6 +111,12 @@ def test_only_a_final_record_of_these_questions_is_taken_from_the_cache():
         {"verdicts": {"q1": "correct", "q2": "timeout"}},
         {"scores": {"q1": 4.0}},
         {"fingerprint": ""},
+        # issue 25: scores outside [0, points], a total that is not their sum, another maximum
+        {"scores": {"q1": 999.0, "q2": 0.0}, "score": 999.0},
+        {"scores": {"q1": 1e308, "q2": 0.0}, "score": 1e308},
+        {"scores": {"q1": -1.0, "q2": 0.0}, "score": -1.0},
+        {"score": 10.0},
+        {"max": 10.0},
     ):
         assert _cached_record({**GRADED.to_dict(), **change}, ASSIGNMENT) is None
     partial = GRADED.to_dict()
