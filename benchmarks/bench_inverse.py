@@ -1,7 +1,7 @@
 """Inverse kinematics benchmark: the compiled closed form against a numeric solver.
 
 Both run in this process on the same machine, one after the other. The reference is
-dhsym's own Levenberg–Marquardt solver (:func:`dhsym.kinematics.inverse.numeric_ik`) on
+dhsym's own Levenberg–Marquardt solver (:func:`dhsym.ik.levenberg_marquardt.numeric_ik`) on
 the compiled ``fk`` and Jacobian, started from random configurations. It finds one
 solution per run (or none), so it is measured twice:
 
@@ -39,7 +39,7 @@ from collections.abc import Callable
 import numpy as np
 
 import dhsym
-from dhsym.kinematics.inverse import inverse, numeric_ik
+from dhsym.ik import inverse, numeric_ik
 
 
 def best(fn: Callable[[], object], repeat: int) -> float:

@@ -22,6 +22,7 @@ ORDER = [
     "model",
     "notation",
     "kinematics",
+    "ik",
     "geometry",
     "plot",
     "explain",
@@ -32,12 +33,15 @@ ORDER = [
 ]
 RANK = {room: k for k, room in enumerate(ORDER)}
 RANK["plot"] = RANK["geometry"]  # siblings
+RANK["ik"] = RANK["geometry"]
 #: Upward edges with a documented reason: display hooks that reach the printer at call
 #: time (as sympy's own Basic._repr_latex_ does), and Robot.plot, a notebook convenience.
 #: Imports under ``if TYPE_CHECKING:`` are annotations only and are not counted.
 ALLOWED = {
     ("model.table", "notation.tables"),
     ("kinematics.robot", "plot.figures"),
+    ("kinematics.robot", "ik.families"),  # Robot.inverse, a convenience
+    ("kinematics.robot", "ik.choices"),  # Robot.ik, a convenience
 }
 
 
