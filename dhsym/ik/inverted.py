@@ -49,13 +49,16 @@ Matrix = sp.ImmutableMatrix
 
 def reversed_table(table: DHTable) -> DHTable:
     """The DH table of the chain read from the tool to the base (other convention),
-    with joint variables ``phi_k = −θ_{n+1−k}`` (base and tool left out)."""
+    with joint variables ``phi_k = −θ_{n+1−k}`` (``psi_k`` when the table's own are
+    ``phi``; base and tool left out)."""
     rows = []
+    taken = {v.name for v in table.variables}
+    letter = "phi" if not any(name.startswith("phi") for name in taken) else "psi"
     for k, row in enumerate(reversed(table.rows), start=1):
         if row.variable is None:
             rows.append(DHRow(JointType.FIXED, -row.theta, -row.d, -row.a, -row.alpha))
             continue
-        phi = symbol(f"phi{k}")
+        phi = symbol(f"{letter}{k}")
         back = {row.variable: -phi}
         limits = None if row.limits is None else (-row.limits[1], -row.limits[0])
         rows.append(
