@@ -27,6 +27,7 @@ Usage::
 
     python benchmarks/bench_inverse.py           # PUMA 560 (both), Stanford, Example 4, 2R, SCARA
     python benchmarks/bench_inverse.py --quick   # PUMA 560 only, fewer poses
+    python benchmarks/bench_inverse.py --ur      # UR5 beside the PUMA 560, in one run
 """
 
 from __future__ import annotations
@@ -174,12 +175,25 @@ def bench(
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="PUMA 560 only, fewer poses")
+    parser.add_argument("--ur", action="store_true", help="UR5 and PUMA 560 only (same run)")
     args = parser.parse_args()
     print(load())
+    if args.ur:  # three parallel axes against the spherical wrist, in one run
+        for name in ("puma560", "ur5"):
+            bench(name, lm_poses=20, lm_all_poses=3, budget=100, single=300, batch=100_000)
+        return
     if args.quick:
         bench("puma560", lm_poses=50, lm_all_poses=5, budget=100, single=300, batch=100_000)
         return
-    for name in ("puma560", "puma560_modified", "stanford", "example4_6dof", "planar2r", "scara"):
+    for name in (
+        "puma560",
+        "puma560_modified",
+        "ur5",
+        "stanford",
+        "example4_6dof",
+        "planar2r",
+        "scara",
+    ):
         bench(name, lm_poses=100, lm_all_poses=10, budget=200, single=500, batch=200_000)
 
 

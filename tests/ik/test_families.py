@@ -158,7 +158,8 @@ def test_a_general_6r_is_refused_in_one_clear_sentence() -> None:
 
 
 def test_qlim_is_read_as_limits() -> None:
-    text = "convention: standard\njoints:\n  - {type: R, theta: q1, d: 0, a: 1, alpha: 0, qlim: [-1, 2]}\n"
+    row = "{type: R, theta: q1, d: 0, a: 1, alpha: 0, qlim: [-1, 2]}"
+    text = f"convention: standard\njoints:\n  - {row}\n"
     t = dhsym.read_table_text(text)
     assert tuple(float(v) for v in t.rows[0].limits) == (-1.0, 2.0)
     with pytest.raises(dhsym.TableError, match="not both"):
