@@ -20,6 +20,7 @@ __getattr__, __dir__ = lazy_exports(
         "cli": "cli",
         "explain": "explain",
         "geometry": "geometry",
+        "ik": "ik",
         "kinematics": "kinematics",
         "model": "model",
         "notation": "notation",

@@ -34,6 +34,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -383,6 +384,51 @@ def _lift_residuals(
     return lines, [lift(o) for o in outputs]
 
 
+@dataclass(frozen=True)
+class Layout:
+    """Where each output of a compiled program sits, by name.
+
+    A numpy program (``"raw"``, ``"checked"``) returns one array per output: the joint
+    values, the wrist sines, the residual over the whole pose and over its position, the
+    singular factors. The program for floats returns one float per branch and output,
+    grouped: the residuals of every branch (whole pose, then position), the wrist sines,
+    then the joint values and the factors branch by branch.
+
+    >>> Layout.numpy(n=6, w=1, factors=2).whole, Layout.scalar(n=6, w=1, factors=2, K=8).joints
+    (slice(7, 8, None), slice(24, 72, None))
+    """
+
+    joints: slice
+    wrist: slice
+    whole: slice
+    position: slice
+    factors: slice
+
+    @classmethod
+    def numpy(cls, n: int, w: int, factors: int) -> Layout:
+        """The layout of a numpy program (one array per output)."""
+        return cls(
+            slice(0, n),
+            slice(n, n + w),
+            slice(n + w, n + w + 1),
+            slice(n + w + 1, n + w + 2),
+            slice(n + w + 2, n + w + 2 + factors),
+        )
+
+    @classmethod
+    def scalar(cls, n: int, w: int, factors: int, K: int) -> Layout:
+        """The layout of the program for floats (``K`` branches written out)."""
+        wrist = slice(2 * K, 2 * K + K * w)
+        joints = slice(wrist.stop, wrist.stop + K * n)
+        return cls(
+            joints,
+            wrist,
+            slice(0, K),
+            slice(K, 2 * K),
+            slice(joints.stop, joints.stop + K * factors),
+        )
+
+
 class Solver:
     """The steps of an :class:`InverseKinematics`, compiled for numbers.
 
@@ -561,6 +607,7 @@ class Solver:
             closeness = np.empty((F, K, N))
             cv = closeness.reshape(F, *full)
         w = len(self._wrist_s)
+        at = Layout.numpy(n, w, len(self._factor_exprs) if checked else 0)
         rows, wrists = [], []
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             for start in range(0, N, _CHUNK):
@@ -570,19 +617,20 @@ class Solver:
                 if checked:
                     args += args[:12] if target is inner else _entries(target[sl])  # type: ignore[index]
                 res = fn(*args)
+                joints, sines = res[at.joints], res[at.wrist]
                 for k in range(n):
-                    qv[k, ..., sl] = res[k]
+                    qv[k, ..., sl] = joints[k]
                 if w:  # |sin θ5| near 0: θ4 and θ6 from the whole rotation, below
-                    small = np.asarray(res[n] < _WRIST_NEAR)
+                    small = np.asarray(sines[0] < _WRIST_NEAR)
                     hit = np.nonzero(small.reshape(-1, small.shape[-1]).any(axis=0))[0]
                     if hit.size:
-                        s = np.broadcast_to(res[n], (*self.shape, sl.stop - start))
+                        s = np.broadcast_to(sines[0], (*self.shape, sl.stop - start))
                         rows.append(hit + start)
                         wrists.append(s.reshape(K, -1)[:, hit])
                 if checked:
-                    rv[..., sl] = res[n + w + (tuple(cells) == _POSITION)]  # see _outputs
-                    for f in range(F):
-                        cv[f, ..., sl] = res[len(res) - F + f]
+                    (rv[..., sl],) = res[at.position if tuple(cells) == _POSITION else at.whole]
+                    for f, value in enumerate(res[at.factors]):
+                        cv[f, ..., sl] = value
         if rows:
             at = np.concatenate(rows)
             self._singular_wrist(inner[at], q, at, np.concatenate(wrists, axis=1))
@@ -744,19 +792,16 @@ class Solver:
         n, w, K = self.n, len(self._wrist_s), self.K
         factors = self._singular_factors()
         F = len(factors)
-        # the layout of _program("scalar"): residuals (all 12 entries, then the position),
-        # wrist sines, joint values, factors
-        at = K if check == "position" else 0
-        residual = out[at : at + K]
-        start = len(out) - K * (n + F)
-        if w and _smallest(out[start - K : start]) < _WRIST_NEAR:
+        at = Layout.scalar(n, w, F, K)
+        residual = out[at.position if check == "position" else at.whole]
+        if w and _smallest(out[at.wrist]) < _WRIST_NEAR:
             return None  # a singular wrist: θ4 and θ6 from the whole rotation (numpy)
         if check is None:
             kept = [k for k, r in enumerate(residual) if r - r == 0]
         else:
             kept = [k for k, r in enumerate(residual) if r <= tol]
-        values = out[start : start + K * n]
-        close = out[start + K * n :]
+        values = out[at.joints]
+        close = out[at.factors]
         low = _smallest(close)
         if len(kept) > 1 and low < _SUSPECT:  # two branches coincide only at a singularity
             kept = self._distinct(kept, values)

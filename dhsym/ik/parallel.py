@@ -43,7 +43,7 @@ import sympy as sp
 from dhsym.kinematics.decoupling import Decoupling, StructureError, decouple
 from dhsym.kinematics.jacobian import axis_frame
 from dhsym.kinematics.simplification import compose, normalize_word
-from dhsym.kinematics.transforms import chain_word, rigid_inverse
+from dhsym.kinematics.transforms import chain_word
 from dhsym.model.table import Elementary
 from dhsym.notation.layout import sentence
 
@@ -146,6 +146,7 @@ def derive_parallel(robot: Robot) -> InverseKinematics:
         hs,
         h,
     )
+    b.part = "shoulder"
     solve_equations(
         b,
         [
@@ -175,6 +176,7 @@ def derive_parallel(robot: Robot) -> InverseKinematics:
         sp.expand((row * z6)[0]),
     )
     to_f6 = chain_word(table, 0, f6)
+    b.part = "wrist"
     model5 = _constant((u.T * compose(to_f6[k1 + 1 :])[:3, 2])[0], {v_: 0 for v_ in q[1:4]})
     solve_equations(
         b,
@@ -211,7 +213,10 @@ def derive_parallel(robot: Robot) -> InverseKinematics:
     )
 
     # 4. the planar arm: the frame before joint 4 is known
-    Q = rigid_inverse(prefix * compose([first])) * pose * rigid_inverse(compose(word[k4 + 1 :]))
+    # the inverses as words of inverse elementaries, composed in compact form
+    before = [e.inverse() for e in reversed(word[: k1 + 1])]
+    after = [e.inverse() for e in reversed(word[k4 + 1 :])]
+    Q = compose(before) * pose * compose(after)
     L = compose(word[k1 + 1 : k4])
     e1 = Matrix([1, 0, 0])
     e2 = Matrix(u.cross(e1)).applyfunc(sp.nsimplify)
@@ -226,6 +231,7 @@ def derive_parallel(robot: Robot) -> InverseKinematics:
             sym,
             (axis.T * Q[:3, 3])[0],
         )
+    b.part = "planar arm"
     mx, my = sp.expand((e1.T * L[:3, 3])[0]), sp.expand((e2.T * L[:3, 3])[0])
     arm = set(q[1:3])
     kx = sp.Add(*[t for t in sp.Add.make_args(mx) if not t.free_symbols & arm])

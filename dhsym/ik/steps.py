@@ -187,6 +187,8 @@ class Builder:
         self.number = {v: i for i, v in enumerate(self.variables, start=1)}
         self.revolute = [r.variable for r in rows if r.joint is JointType.REVOLUTE]
         self.kind = {r.variable: r.joint for r in rows if r.variable is not None}
+        #: the part of the derivation that :func:`solve_equations` writes its steps in
+        self.part = "position"
 
     def add(
         self, part: str, text: Sentence | str, lhs: sp.Symbol, rhs: sp.Expr, **kw: object
@@ -278,7 +280,7 @@ def _try_pair(
             else:
                 delta = sp.Symbol(f"Delta_{b.number[var]}", **_REAL)
                 b.add(
-                    "position",
+                    b.part,
                     sentence(
                         "The determinant of the two linear equations in {c} and {s}:",
                         c=sp.cos(var),
@@ -296,7 +298,7 @@ def _try_pair(
                 c=sp.cos(var),
                 s=sp.sin(var),
             )
-            b.add("position", text, var, value, equation=sp.Eq(_show(A1, B1, var), b.tidy(R1)))
+            b.add(b.part, text, var, value, equation=sp.Eq(_show(A1, B1, var), b.tidy(R1)))
             return var, (i, j)
     return None
 
@@ -330,7 +332,7 @@ def _solve_single(b: Builder, eq: Equation, e: sp.Expr, var: sp.Symbol, two: boo
         if len(coeffs) == 2 and not two:
             A, C = coeffs
             b.add(
-                "position",
+                b.part,
                 sentence("{eq} is linear in {v}:", eq=capital(eq.name), v=var),
                 var,
                 b.tidy(-C / A),
@@ -345,7 +347,7 @@ def _solve_single(b: Builder, eq: Equation, e: sp.Expr, var: sp.Symbol, two: boo
             else:
                 value = (-B + br.symbol * sp.sqrt(b.tidy(B**2 - 4 * A * C))) / (2 * A)
             b.add(
-                "position",
+                b.part,
                 sentence("{eq} is quadratic in {v}:", eq=capital(eq.name), v=var),
                 var,
                 value,
@@ -375,7 +377,7 @@ def _solve_single(b: Builder, eq: Equation, e: sp.Expr, var: sp.Symbol, two: boo
         D = sp.Symbol(f"D_{j}", **_REAL)
         trig = sp.cos(var) if B == 0 else sp.sin(var)
         b.add(
-            "position",
+            b.part,
             sentence(text, eq=capital(eq.name), v=var, name=sp.Eq(trig, D)),
             D,
             b.tidy(K / (A if B == 0 else B)),
@@ -383,18 +385,18 @@ def _solve_single(b: Builder, eq: Equation, e: sp.Expr, var: sp.Symbol, two: boo
         )
         root = s * sp.sqrt(1 - D**2)
         value = sp.atan2(root, D) if B == 0 else sp.atan2(D, root)
-        b.add("position", "Two solutions, one for each sign of the root:", var, value, branch=br)
+        b.add(b.part, "Two solutions, one for each sign of the root:", var, value, branch=br)
         return True
     Ks = sp.Symbol(f"K_{j}", **_REAL)
     b.add(
-        "position",
+        b.part,
         sentence(text, eq=capital(eq.name), v=var, name=sp.Eq(_show(A, B, var), Ks)),
         Ks,
         b.tidy(K),
         equation=sp.Eq(_show(A, B, var), b.tidy(K)),
     )
     value = sp.atan2(B, A) + sp.atan2(s * sp.sqrt(A**2 + B**2 - Ks**2), Ks)
-    b.add("position", "Two solutions, one for each sign of the root:", var, value, branch=br)
+    b.add(b.part, "Two solutions, one for each sign of the root:", var, value, branch=br)
     return True
 
 
