@@ -67,8 +67,9 @@ def within_limits(robot: Robot, sol: IKSolution) -> IKSolution:
     >>> import dhsym
     >>> r = dhsym.load("puma560")
     >>> sol = r.ik(r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1]))
-    >>> len(sol), len(within_limits(r, sol))
-    (8, 4)
+    >>> kept = within_limits(r, sol)
+    >>> len(sol), len(kept), kept.branches[0]
+    (8, 2, 'right arm, elbow down, wrist not flipped')
     """
     lo, hi = _limits(robot)
     rev = _revolute(robot)
@@ -86,8 +87,8 @@ def nearest_first(robot: Robot, sol: IKSolution, q0: object) -> IKSolution:
     >>> import dhsym
     >>> r = dhsym.load("planar2r")
     >>> sol = r.ik(r.fk([0.4, 0.9]), check="position")
-    >>> nearest_first(r, sol, [1.3, -0.9]).branches[0]
-    'elbow down'
+    >>> nearest_first(r, sol, [0.5, 0.8]).q[0].round(9).tolist()
+    [0.4, 0.9]
     """
     start = np.asarray(q0, dtype=float).reshape(-1)
     if start.shape != (sol.q.shape[1],):
