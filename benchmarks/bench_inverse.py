@@ -163,6 +163,7 @@ def bench(
         f"configurations/s (IK unchecked = {t_b_raw / t_fk:.1f} fk, "
         f"checked = {t_b_chk / t_fk:.1f} fk)"
     )
+    eaik_peer(robot, T1, TB[: min(batch, 20_000)], t_one, t_b_chk)
     print(
         f"ratios: LM per converged solution / closed form per pose (all branches): "
         f"{t_lm / t_one:8.0f}x one pose per call, {t_lm / t_b_chk:8.0f}x batched checked; "
@@ -170,6 +171,43 @@ def bench(
         f"{t_lm_all / t_b_chk:8.0f}x batched checked"
     )
     print(load())
+
+
+def eaik_peer(
+    robot: dhsym.Robot, T1: list[np.ndarray], TB: np.ndarray, t_one: float, t_batch: float
+) -> None:
+    """EAIK (C++ subproblem decomposition, ``pip install eaik``), when installed: an
+    optional peer on the same poses, standard DH tables without base or tool only."""
+    try:
+        from eaik.IK_DH import DhRobot
+    except ImportError:
+        print("EAIK: not installed (pip install eaik), no comparison")
+        return
+    table = robot.table
+    if robot.convention.value != "standard" or table.base or table.tool:
+        print("EAIK: takes standard DH tables without base or tool; not this one")
+        return
+    if any(r.offset != 0 for r in table.rows):
+        print("EAIK: takes no joint offsets; not this one")
+        return
+    vals = table.value_map
+    col = {
+        k: np.array([float(getattr(r, k).xreplace(vals)) for r in table.rows])
+        for k in "a d alpha".split()
+    }
+    bot = DhRobot(col["alpha"], col["a"], col["d"])
+    if not bot.hasKnownDecomposition():
+        print("EAIK: no known decomposition for this arm")
+        return
+    t_e1 = best(lambda: [bot.IK(T) for T in T1], 5) / len(T1)
+    t_check = best(lambda: [robot.fk_function()(np.asarray(bot.IK(T).Q)) for T in T1], 3) / len(T1)
+    t_eb = best(lambda: bot.IK_batched(list(TB)), 3) / len(TB)
+    print(
+        f"EAIK {bot.getKinematicFamily()}: one pose {t_e1 * 1e6:8.1f} µs (all solutions, "
+        f"unchecked; {t_check * 1e6:.1f} µs with dhsym's fk check of each), batched "
+        f"{1 / t_eb:12,.0f} poses/s; dhsym / EAIK: {t_one / t_e1:.1f}x one pose, "
+        f"{t_batch / t_eb:.1f}x batched (dhsym checked)"
+    )
 
 
 def main() -> None:

@@ -115,9 +115,11 @@ def derive_inverted(robot: Robot) -> InverseKinematics:
     steps: list[Step] = []
     words = sentence(
         "Read backwards, from the tool to the base, the chain is a table of the other "
-        "convention with joint variables {phi}; its pose is {inv} (entries marked b):",
-        phi=sp.Eq(sp.Symbol("phi_k"), -sp.Symbol(f"theta_{n + 1}-k")),
-        inv=sp.Eq(sp.Symbol("T'"), sp.Symbol("T") ** -1),
+        "convention whose joint k is joint {n1} − k of the table, negated; its pose is the "
+        "inverse of the pose, with rotation {Rt} and position {pt} (entries marked b):",
+        n1=n + 1,
+        Rt=sp.Symbol("R^T"),
+        pt=-sp.Symbol("R^T") * sp.Symbol("p"),
     )
     for j in range(4):
         for i in range(3):
