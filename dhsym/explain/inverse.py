@@ -213,9 +213,12 @@ def derive_inverse(
         "orientation": [number[r] for r in ik.decoupling.wrist],
     }
     parts = []
+    variables = {v: k for k, v in enumerate(robot.variables, start=1)}
     for part in dict.fromkeys(s.part for s in ik.steps):  # the parts in order of appearance
         steps = [s for s in ik.steps if s.part == part]
         title = _TITLES.get(part, part.capitalize())
+        if part not in joints and part != "joint values":  # the joints this part solves
+            joints[part] = sorted(variables[s.lhs] for s in steps if s.lhs in variables)
         if part in joints and joints[part]:
             word = "joint" if len(joints[part]) == 1 else "joints"
             title += f": {word} {_joints(joints[part])}"
