@@ -47,3 +47,13 @@ def test_roboticstoolbox_six_joint_models_are_solved(name: str) -> None:
     r = dhsym.load(DATA / f"{name}.yaml")
     q = _random_q(r, 200, seed=3)
     assert _recovered(r, q).mean() > 0.99
+
+
+@pytest.mark.slow
+def test_axes_3_4_5_parallel_are_solved_backwards_as_a_ur() -> None:
+    back = dhsym.Robot(reversed_table(dhsym.load("ur5").table))
+    assert str(classify(back)) == "axes 3, 4, 5 parallel"
+    ik = back.inverse()
+    assert ik.family == "inverted chain" and "three parallel axes" in ik.structure
+    q = _random_q(back, 1000, seed=6)
+    assert _recovered(back, q).all()
