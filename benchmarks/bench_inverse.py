@@ -1,7 +1,7 @@
 """Inverse kinematics benchmark: the compiled closed form against a numeric solver.
 
 Both run in this process on the same machine, one after the other. The reference is
-dhsym's own Levenberg–Marquardt solver (:func:`dhsym.kinematics.inverse.numeric_ik`) on
+dhsym's own Levenberg–Marquardt solver (:func:`dhsym.ik.levenberg_marquardt.numeric_ik`) on
 the compiled ``fk`` and Jacobian, started from random configurations. It finds one
 solution per run (or none), so it is measured twice:
 
@@ -27,6 +27,7 @@ Usage::
 
     python benchmarks/bench_inverse.py           # PUMA 560 (both), Stanford, Example 4, 2R, SCARA
     python benchmarks/bench_inverse.py --quick   # PUMA 560 only, fewer poses
+    python benchmarks/bench_inverse.py --ur      # UR5 beside the PUMA 560, in one run
 """
 
 from __future__ import annotations
@@ -39,7 +40,7 @@ from collections.abc import Callable
 import numpy as np
 
 import dhsym
-from dhsym.kinematics.inverse import inverse, numeric_ik
+from dhsym.ik import inverse, numeric_ik
 
 
 def best(fn: Callable[[], object], repeat: int) -> float:
@@ -162,6 +163,7 @@ def bench(
         f"configurations/s (IK unchecked = {t_b_raw / t_fk:.1f} fk, "
         f"checked = {t_b_chk / t_fk:.1f} fk)"
     )
+    eaik_peer(robot, T1, TB[: min(batch, 20_000)], t_one, t_b_chk)
     print(
         f"ratios: LM per converged solution / closed form per pose (all branches): "
         f"{t_lm / t_one:8.0f}x one pose per call, {t_lm / t_b_chk:8.0f}x batched checked; "
@@ -171,15 +173,65 @@ def bench(
     print(load())
 
 
+def eaik_peer(
+    robot: dhsym.Robot, T1: list[np.ndarray], TB: np.ndarray, t_one: float, t_batch: float
+) -> None:
+    """EAIK (C++ subproblem decomposition, ``pip install eaik``), when installed: an
+    optional peer on the same poses, standard DH tables without base or tool only."""
+    try:
+        from eaik.IK_DH import DhRobot
+    except ImportError:
+        print("EAIK: not installed (pip install eaik), no comparison")
+        return
+    table = robot.table
+    if robot.convention.value != "standard" or table.base or table.tool:
+        print("EAIK: takes standard DH tables without base or tool; not this one")
+        return
+    if any(r.offset != 0 for r in table.rows):
+        print("EAIK: takes no joint offsets; not this one")
+        return
+    vals = table.value_map
+    col = {
+        k: np.array([float(getattr(r, k).xreplace(vals)) for r in table.rows])
+        for k in "a d alpha".split()
+    }
+    bot = DhRobot(col["alpha"], col["a"], col["d"])
+    if not bot.hasKnownDecomposition():
+        print("EAIK: no known decomposition for this arm")
+        return
+    t_e1 = best(lambda: [bot.IK(T) for T in T1], 5) / len(T1)
+    t_check = best(lambda: [robot.fk_function()(np.asarray(bot.IK(T).Q)) for T in T1], 3) / len(T1)
+    t_eb = best(lambda: bot.IK_batched(list(TB)), 3) / len(TB)
+    print(
+        f"EAIK {bot.getKinematicFamily()}: one pose {t_e1 * 1e6:8.1f} µs (all solutions, "
+        f"unchecked; {t_check * 1e6:.1f} µs with dhsym's fk check of each), batched "
+        f"{1 / t_eb:12,.0f} poses/s; dhsym / EAIK: {t_one / t_e1:.1f}x one pose, "
+        f"{t_batch / t_eb:.1f}x batched (dhsym checked)"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="PUMA 560 only, fewer poses")
+    parser.add_argument("--ur", action="store_true", help="UR5 and PUMA 560 only (same run)")
     args = parser.parse_args()
     print(load())
+    if args.ur:  # three parallel axes against the spherical wrist, in one run
+        for name in ("puma560", "ur5"):
+            bench(name, lm_poses=20, lm_all_poses=3, budget=100, single=300, batch=100_000)
+        return
     if args.quick:
         bench("puma560", lm_poses=50, lm_all_poses=5, budget=100, single=300, batch=100_000)
         return
-    for name in ("puma560", "puma560_modified", "stanford", "example4_6dof", "planar2r", "scara"):
+    for name in (
+        "puma560",
+        "puma560_modified",
+        "ur5",
+        "stanford",
+        "example4_6dof",
+        "planar2r",
+        "scara",
+    ):
         bench(name, lm_poses=100, lm_all_poses=10, budget=200, single=500, batch=200_000)
 
 

@@ -21,6 +21,7 @@ __getattr__, __dir__ = lazy_exports(
         "explain": "explain",
         "formats": "formats",
         "geometry": "geometry",
+        "ik": "ik",
         "kinematics": "kinematics",
         "model": "model",
         "notation": "notation",

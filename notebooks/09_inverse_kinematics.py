@@ -145,6 +145,27 @@ print(f"{len(Q)} random poses: {int(batch.count.sum())} solutions, "
       f"the configuration that made the pose found every time: {all(found)}")
 
 # %% [markdown]
+# ## 3b. The UR5: three parallel axes instead of a wrist
+#
+# The UR5's last three axes do not meet, but its axes 2, 3 and 4 are parallel. dhsym reads
+# that from the table and solves it the way Hawkins's note on the UR arms does: $\theta_1$
+# from the height of the wrist point along the parallel axes (two shoulders), $\theta_5$
+# from the axis of joint 6 (two wrists), $\theta_6$ by one `atan2`, then a planar 3R.
+
+# %%
+from dhsym.ik import classify
+
+ur5 = dhsym.load("ur5")
+print(classify(ur5))
+q_ur = np.array([0.3, -1.1, 1.4, -0.6, 1.2, 0.4])
+sol = ur5.ik(ur5.fk(q_ur))
+for name, qs in zip(sol.branches, sol.q):
+    print(f"{name:42s}", np.round(qs, 3))
+
+# %%
+dhsym.plot_solutions(ur5, sol)
+
+# %% [markdown]
 # ## 4. At a wrist singularity
 #
 # With $\theta_5 = 0$ axes 4 and 6 line up: only $\theta_4 + \theta_6$ is determined. The
@@ -184,6 +205,8 @@ print(check_answer(key, bad).message)
 #   gives $\theta_1$.
 # - An arm with a spherical wrist: the wrist centre decouples position from orientation; the
 #   PUMA 560 has up to $2 \times 2 \times 2 = 8$ solutions, named by their branches.
+# - An arm with three parallel axes (the UR5): the wrist point's height gives $\theta_1$,
+#   the tool's rotation $\theta_5$ and $\theta_6$, a planar 3R the rest: again 8 solutions.
 # - `atan2(y, x)`, never `atan(y/x)`; every $\pm\sqrt{\;}$ is a branch.
 #
 # From the command line: `dhsym derive puma560 --what ik` (also `--format latex|markdown|json`)

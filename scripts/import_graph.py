@@ -22,6 +22,7 @@ ORDER = [
     "model",
     "notation",
     "kinematics",
+    "ik",
     "geometry",
     "plot",
     "formats",
@@ -33,6 +34,7 @@ ORDER = [
 ]
 RANK = {room: k for k, room in enumerate(ORDER)}
 RANK["plot"] = RANK["geometry"]  # siblings
+RANK["ik"] = RANK["geometry"]
 #: Upward edges with a documented reason: display hooks that reach the printer at call
 #: time (as sympy's own Basic._repr_latex_ does), Robot.plot, a notebook convenience, and
 #: load('x.urdf') / Robot.to_urdf / Robot.to_rtb, which reach the formats room.
@@ -42,6 +44,8 @@ ALLOWED = {
     ("kinematics.robot", "plot.figures"),
     ("kinematics.robot", "formats.urdf"),  # load("x.urdf") and Robot.to_urdf, at call time
     ("kinematics.robot", "formats.rtb"),  # Robot.to_rtb, at call time
+    ("kinematics.robot", "ik.families"),  # Robot.inverse, a convenience
+    ("kinematics.robot", "ik.choices"),  # Robot.ik, a convenience
 }
 
 

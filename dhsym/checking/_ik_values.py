@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from dhsym.kinematics.inverse import pose_symbols
+from dhsym.ik.steps import pose_symbols
 from dhsym.model.table import JointType
 
 from ._numeric import EvaluationError, evaluate, frames

@@ -16,7 +16,7 @@ An answer is a list of statements, one per line (or separated by ``;``):
 
 The answer is evaluated at 64 fresh random poses (each from a random configuration and,
 when the answer keeps the lengths as symbols, random lengths) and compared, angles modulo
-2π, with every branch of the key (:func:`dhsym.kinematics.inverse.inverse`, each choice
+2π, with every branch of the key (:func:`dhsym.ik.families.inverse`, each choice
 of its signs σ); any branch is right, and the feedback names it. A wrong answer is
 explained by recomputing the key under each classic mistake
 (:data:`~dhsym.checking.mistakes.IK_MISTAKES`).
@@ -46,7 +46,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError, ParseError
-from dhsym.kinematics.inverse import pose_symbols
+from dhsym.ik.steps import pose_symbols
 from dhsym.model.parsing import normalize_name
 
 from ._ik_mistakes import IKCase

@@ -1,7 +1,7 @@
 r"""Closed-form inverse kinematics as plain data, step by step, as the lectures derive it.
 
 :func:`derive_inverse` arranges the steps of
-:func:`dhsym.kinematics.inverse.inverse` for the templates: the pose
+:func:`dhsym.ik.families.inverse` for the templates: the pose
 ``[n s a p; 0 0 0 1]``, then the wrist centre, the position sub-problem
 (``θ1 = atan2(p_y, p_x)`` and its second branch, the law of cosines for the elbow) and
 the orientation sub-problem (the two wrist solutions), each step a sentence with its
@@ -30,7 +30,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.kinematics.inverse import Branch, Step
+from dhsym.ik.steps import Branch, Step
 from dhsym.kinematics.robot import Robot
 from dhsym.model.table import DHTable, JointType
 from dhsym.notation.escape import TeX
@@ -52,7 +52,16 @@ from .jacobian import _key, styled
 
 __all__ = ["default_configuration", "derive_inverse"]
 
-_TITLES = {"wrist centre": "The wrist centre", "position": "Position", "orientation": "Orientation"}
+_TITLES = {
+    "wrist centre": "The wrist centre",
+    "position": "Position",
+    "orientation": "Orientation",
+    "inverted chain": "The chain read backwards",
+    "shoulder": "The shoulder",
+    "wrist": "The wrist",
+    "planar arm": "The planar arm",
+    "joint values": "Back to the joints of the table",
+}
 
 
 def default_configuration(robot: Robot) -> list[float]:
@@ -204,11 +213,12 @@ def derive_inverse(
         "orientation": [number[r] for r in ik.decoupling.wrist],
     }
     parts = []
-    for part in ("wrist centre", "position", "orientation"):
+    variables = {v: k for k, v in enumerate(robot.variables, start=1)}
+    for part in dict.fromkeys(s.part for s in ik.steps):  # the parts in order of appearance
         steps = [s for s in ik.steps if s.part == part]
-        if not steps:
-            continue
-        title = _TITLES[part]
+        title = _TITLES.get(part, part.capitalize())
+        if part not in joints and part != "joint values":  # the joints this part solves
+            joints[part] = sorted(variables[s.lhs] for s in steps if s.lhs in variables)
         if part in joints and joints[part]:
             word = "joint" if len(joints[part]) == 1 else "joints"
             title += f": {word} {_joints(joints[part])}"

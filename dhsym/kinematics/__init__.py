@@ -1,8 +1,10 @@
 """The kinematics room: the one transform kernel (elementary matrices, words, ^iT_j, rigid
-inverse), the compact closed form and its proof, compiled numbers, ``Pose`` and ``Robot``.
+inverse), the compact closed form and its proof, compiled numbers, ``Pose`` and ``Robot``,
+and kinematic decoupling (:mod:`.decoupling`), on which the Jacobian's factors and the
+inverse kinematics (:mod:`dhsym.ik`) both rest.
 
 May import :mod:`dhsym.model` and :mod:`dhsym.notation` (``Robot.plot`` reaches the plot
-room at call time: a convenience for notebooks).
+room and ``Robot.inverse``/``Robot.ik`` the :mod:`dhsym.ik` room at call time: conveniences).
 """
 
 from dhsym._lazy import lazy_exports
@@ -20,11 +22,11 @@ __getattr__, __dir__ = lazy_exports(
         "numeric_equal": "simplification",
         "plain_product": "transforms",
         "Pose": "pose",
-        "InverseKinematics": "inverse",
+        "InverseKinematics": "dhsym.ik.derivation",
         "Jacobian": "jacobian",
         "analytic_jacobian": "jacobian",
         "geometric_jacobian": "jacobian",
-        "numeric_ik": "inverse",
+        "numeric_ik": "dhsym.ik.levenberg_marquardt",
         "prove_equal": "simplification",
         "rigid_inverse": "transforms",
         "Robot": "robot",

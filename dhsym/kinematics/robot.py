@@ -39,6 +39,9 @@ from .transforms import chain_word, link_word, plain_product
 if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `import sympy`
     import numpy as np
 
+    from dhsym.ik.derivation import InverseKinematics
+    from dhsym.ik.results import IKBatch, IKSolution
+
     from .numeric import PoseFunction
 
 __all__ = ["MAX_CLOSED_FORM", "Robot"]
@@ -285,22 +288,48 @@ class Robot:
                 self._extra_cache[key] = jac.jacobian_function(self, frame, values=values)
         return self._extra_cache[key](q)  # type: ignore[operator]
 
-    def inverse(self) -> object:
-        """The inverse kinematics derived step by step (:mod:`dhsym.kinematics.inverse`), cached."""
-        from .inverse import inverse
+    def inverse(self) -> InverseKinematics:
+        """The closed-form inverse kinematics derived step by step (:mod:`dhsym.ik`), cached."""
+        from dhsym.ik.families import inverse
 
         if "inverse" not in self._extra_cache:
             self._extra_cache["inverse"] = inverse(self)
-        return self._extra_cache["inverse"]
+        return self._extra_cache["inverse"]  # type: ignore[return-value]  # set just above
 
-    def ik(self, T: object, **kw: object) -> object:
-        """Every closed-form solution of a pose or of a batch (:mod:`dhsym.kinematics.inverse`).
+    def ik(
+        self,
+        T: object,
+        *,
+        check: str | None = "pose",
+        tol: float = 1e-9,
+        singular_tol: float = 1e-6,
+        values: Mapping[object, object] | None = None,
+        free: Mapping[int, float] | None = None,
+        limits: bool = False,
+        near: object = None,
+    ) -> IKSolution | IKBatch:
+        """Every closed-form solution of a pose or a batch of poses (see :mod:`dhsym.ik`).
 
         One pose ``(4, 4)`` gives an ``IKSolution`` (``.q`` is ``(k, n)``, with branch
         names); a batch ``(N, 4, 4)`` gives an ``IKBatch`` (padded ``(N, K, n)`` with a
-        validity mask).
+        validity mask). ``free={7: 0.3}`` gives joint 7 (1-based) and solves the others;
+        ``limits=True`` keeps the solutions within the joint limits (angles shifted by
+        2π into range); ``near=q0`` orders them by distance to ``q0``
+        (:func:`dhsym.ik.choices.solve`).
         """
-        return self.inverse().solve(T, **kw)  # type: ignore[attr-defined]
+        from dhsym.ik.choices import solve
+
+        return solve(
+            self,
+            T,
+            check=check,
+            tol=tol,
+            singular_tol=singular_tol,
+            values=values,
+            free=free,
+            limits=limits,
+            near=near,
+        )
 
     def to_urdf(self, *, name: str | None = None) -> str:
         """A URDF of this robot, one link per DH frame (see :func:`dhsym.formats.urdf.write_urdf`).
@@ -357,7 +386,7 @@ def load(name_or_path: str | Path, **kw: object) -> Robot:
     return Robot(load_table(name_or_path), **kw)
 
 
-def inverse(robot: Robot | str | Path) -> object:
+def inverse(robot: Robot | str | Path) -> InverseKinematics:
     """The closed-form inverse kinematics of a robot or built-in name, derived step by step.
 
     >>> ik = inverse("planar2r")

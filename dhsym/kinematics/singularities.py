@@ -49,7 +49,7 @@ import sympy as sp
 
 from dhsym.model.table import JointType
 
-from ._structure import ArmGeometry, Decoupling, StructureError, arm_geometry, decouple
+from .decoupling import ArmGeometry, Decoupling, StructureError, arm_geometry, decouple
 from .jacobian import _values, axis_frame, geometric_jacobian
 from .simplification import fold_sum_angles, prove_equal, trig_coefficients
 

@@ -67,7 +67,7 @@ from .yamlsafe import FileRefused, YAMLInputError, YAMLLimits, load_yaml, read_l
 __all__ = ["MAX_FILE_BYTES", "dump_table", "read_table", "read_table_text", "table_from_data"]
 
 MAX_FILE_BYTES = 1_000_000
-_ROW_KEYS = ("type", "theta", "d", "a", "alpha", "q", "limits", "offset", "name")
+_ROW_KEYS = ("type", "theta", "d", "a", "alpha", "q", "limits", "qlim", "offset", "name")
 _TOP_KEYS = (
     "name",
     "source",
@@ -237,19 +237,23 @@ def _build_row(row: dict, params: dict, kw: dict, i: int) -> DHRow:
     if "offset" in row:
         own = "d" if str(joint).strip().upper().startswith("P") else "theta"
         params[own] = params[own] + as_expr(row["offset"], field="offset", row=i)
-    if "limits" in row:
-        lim = row["limits"]
+    if "limits" in row and "qlim" in row:
+        raise TableError("give limits or qlim (its roboticstoolbox name), not both", row=i)
+    for key in ("limits", "qlim"):  # qlim: roboticstoolbox's name for the same limits
+        if key not in row:
+            continue
+        lim = row[key]
         if not (isinstance(lim, list) and len(lim) == 2):
-            raise TableError("limits must be a list [low, high]", row=i, field="limits")
-        lo, hi = (as_expr(v, field="limits", row=i) for v in lim)
+            raise TableError(f"{key} must be a list [low, high]", row=i, field=key)
+        lo, hi = (as_expr(v, field=key, row=i) for v in lim)
         if lo.free_symbols or hi.free_symbols or not (lo.is_real and hi.is_real):
             raise TableError(
-                "limits must be two numbers [low, high] (in the table's angle unit for θ)",
+                f"{key} must be two numbers [low, high] (in the table's angle unit for θ)",
                 row=i,
-                field="limits",
+                field=key,
             )
         if (lo - hi).is_positive:
-            raise TableError(f"limits [{lo}, {hi}]: low is above high", row=i, field="limits")
+            raise TableError(f"{key} [{lo}, {hi}]: low is above high", row=i, field=key)
         kw["limits"] = (lo, hi)
     if "name" in row:
         kw["label"] = str(row["name"])

@@ -130,7 +130,7 @@ def test_factored_det_expands_along_the_sparsest_line() -> None:
 
 
 def test_many_redundant_joints_are_refused_quickly() -> None:
-    from dhsym.kinematics._structure import StructureError
+    from dhsym.kinematics.decoupling import StructureError
 
     with pytest.raises(StructureError, match="10 squared minors"):
         singularities(dhsym.load("planar5r"))

@@ -236,3 +236,12 @@ def test_special_files_are_refused_without_reading(tmp_path):
     os.mkfifo(fifo)
     with pytest.raises(TableError, match="pipe.yaml: table file is not a regular file"):
         read_table(fifo)
+
+
+def test_qlim_is_read_as_limits() -> None:
+    row = "{type: R, theta: q1, d: 0, a: 1, alpha: 0, qlim: [-1, 2]}"
+    text = f"convention: standard\njoints:\n  - {row}\n"
+    t = dhsym.read_table_text(text)
+    assert tuple(float(v) for v in t.rows[0].limits) == (-1.0, 2.0)
+    with pytest.raises(dhsym.TableError, match="not both"):
+        dhsym.read_table_text(text.replace("qlim", "limits: [0, 1], qlim"))

@@ -1,5 +1,5 @@
-"""The closed form in numbers: the compiled solver over all branches, its results, and a
-numeric Levenberg–Marquardt reference (see :mod:`dhsym.kinematics.inverse` for the derivation).
+"""The closed form in numbers: the steps of a derivation compiled into one solver over all
+branches (the derivations are in the family modules of :mod:`dhsym.ik`).
 
 The steps of a derivation, the ``fk`` of their solutions and the singular factors of
 :mod:`dhsym.kinematics.singularities` are compiled once into one straight-line program
@@ -31,28 +31,27 @@ Examples
 
 from __future__ import annotations
 
-import functools
 import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.kinematics.decoupling import StructureError
 from dhsym.model.table import JointType
 
-from ._structure import StructureError
-from .jacobian import axis_frame
+from .results import IKBatch, IKSolution
 
 if TYPE_CHECKING:
-    from .inverse import Branch, InverseKinematics
-    from .robot import Robot
-    from .singularities import Singularities
+    from dhsym.kinematics.singularities import Singularities
 
-__all__ = ["IKBatch", "IKSolution", "NumericSolution", "Solver", "numeric_ik"]
+    from .derivation import InverseKinematics
+
+__all__ = ["Solver"]
 
 _REAL = {"real": True}
 
@@ -385,6 +384,51 @@ def _lift_residuals(
     return lines, [lift(o) for o in outputs]
 
 
+@dataclass(frozen=True)
+class Layout:
+    """Where each output of a compiled program sits, by name.
+
+    A numpy program (``"raw"``, ``"checked"``) returns one array per output: the joint
+    values, the wrist sines, the residual over the whole pose and over its position, the
+    singular factors. The program for floats returns one float per branch and output,
+    grouped: the residuals of every branch (whole pose, then position), the wrist sines,
+    then the joint values and the factors branch by branch.
+
+    >>> Layout.numpy(n=6, w=1, factors=2).whole, Layout.scalar(n=6, w=1, factors=2, K=8).joints
+    (slice(7, 8, None), slice(24, 72, None))
+    """
+
+    joints: slice
+    wrist: slice
+    whole: slice
+    position: slice
+    factors: slice
+
+    @classmethod
+    def numpy(cls, n: int, w: int, factors: int) -> Layout:
+        """The layout of a numpy program (one array per output)."""
+        return cls(
+            slice(0, n),
+            slice(n, n + w),
+            slice(n + w, n + w + 1),
+            slice(n + w + 1, n + w + 2),
+            slice(n + w + 2, n + w + 2 + factors),
+        )
+
+    @classmethod
+    def scalar(cls, n: int, w: int, factors: int, K: int) -> Layout:
+        """The layout of the program for floats (``K`` branches written out)."""
+        wrist = slice(2 * K, 2 * K + K * w)
+        joints = slice(wrist.stop, wrist.stop + K * n)
+        return cls(
+            joints,
+            wrist,
+            slice(0, K),
+            slice(K, 2 * K),
+            slice(joints.stop, joints.stop + K * factors),
+        )
+
+
 class Solver:
     """The steps of an :class:`InverseKinematics`, compiled for numbers.
 
@@ -412,11 +456,15 @@ class Solver:
         self.pose_args = [ik.pose[i, j] for j in range(4) for i in range(3)]
         self.targets = [sp.Dummy(f"T{i + 1}{j + 1}", **_REAL) for j in range(4) for i in range(3)]
         self.signs = [b.symbol for b in ik.branches]
-        self._wrist_s = [
-            s.lhs for s in ik.steps if s.branch is not None and s.branch.role == "wrist"
-        ]
         self._steps = [(st.lhs, _with_safe_sqrt(st.rhs.xreplace(self.values))) for st in ik.steps]
         self._singular = {st.lhs: st.singular for st in ik.steps if st.singular is not None}
+        # the wrist sines watched for sin θ5 = 0: only a derivation that says what to do
+        # there (the singular values of θ4 and θ6) has them
+        self._wrist_s = [
+            s.lhs
+            for s in ik.steps
+            if self._singular and s.branch is not None and s.branch.role == "wrist"
+        ]
         self.singular_vars = [robot.variables.index(v) for v in self._singular]
         free = set().union(*(e.free_symbols for _, e in self._steps)) if self._steps else set()
         defined = {lhs for lhs, _ in self._steps}
@@ -559,6 +607,7 @@ class Solver:
             closeness = np.empty((F, K, N))
             cv = closeness.reshape(F, *full)
         w = len(self._wrist_s)
+        at = Layout.numpy(n, w, len(self._factor_exprs) if checked else 0)
         rows, wrists = [], []
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             for start in range(0, N, _CHUNK):
@@ -568,19 +617,20 @@ class Solver:
                 if checked:
                     args += args[:12] if target is inner else _entries(target[sl])  # type: ignore[index]
                 res = fn(*args)
+                joints, sines = res[at.joints], res[at.wrist]
                 for k in range(n):
-                    qv[k, ..., sl] = res[k]
+                    qv[k, ..., sl] = joints[k]
                 if w:  # |sin θ5| near 0: θ4 and θ6 from the whole rotation, below
-                    small = np.asarray(res[n] < _WRIST_NEAR)
+                    small = np.asarray(sines[0] < _WRIST_NEAR)
                     hit = np.nonzero(small.reshape(-1, small.shape[-1]).any(axis=0))[0]
                     if hit.size:
-                        s = np.broadcast_to(res[n], (*self.shape, sl.stop - start))
+                        s = np.broadcast_to(sines[0], (*self.shape, sl.stop - start))
                         rows.append(hit + start)
                         wrists.append(s.reshape(K, -1)[:, hit])
                 if checked:
-                    rv[..., sl] = res[n + w + (tuple(cells) == _POSITION)]  # see _outputs
-                    for f in range(F):
-                        cv[f, ..., sl] = res[len(res) - F + f]
+                    (rv[..., sl],) = res[at.position if tuple(cells) == _POSITION else at.whole]
+                    for f, value in enumerate(res[at.factors]):
+                        cv[f, ..., sl] = value
         if rows:
             at = np.concatenate(rows)
             self._singular_wrist(inner[at], q, at, np.concatenate(wrists, axis=1))
@@ -742,19 +792,16 @@ class Solver:
         n, w, K = self.n, len(self._wrist_s), self.K
         factors = self._singular_factors()
         F = len(factors)
-        # the layout of _program("scalar"): residuals (all 12 entries, then the position),
-        # wrist sines, joint values, factors
-        at = K if check == "position" else 0
-        residual = out[at : at + K]
-        start = len(out) - K * (n + F)
-        if w and _smallest(out[start - K : start]) < _WRIST_NEAR:
+        at = Layout.scalar(n, w, F, K)
+        residual = out[at.position if check == "position" else at.whole]
+        if w and _smallest(out[at.wrist]) < _WRIST_NEAR:
             return None  # a singular wrist: θ4 and θ6 from the whole rotation (numpy)
         if check is None:
             kept = [k for k, r in enumerate(residual) if r - r == 0]
         else:
             kept = [k for k, r in enumerate(residual) if r <= tol]
-        values = out[start : start + K * n]
-        close = out[start + K * n :]
+        values = out[at.joints]
+        close = out[at.factors]
         low = _smallest(close)
         if len(kept) > 1 and low < _SUSPECT:  # two branches coincide only at a singularity
             kept = self._distinct(kept, values)
@@ -796,7 +843,7 @@ class Solver:
         """The non-constant factors of the Jacobian determinant: kind, compiled function and
         largest value over a sample (the scale of closeness); their exprs for the programs."""
         if self._factors is None:
-            from .singularities import singularities
+            from dhsym.kinematics.singularities import singularities
 
             try:
                 sing: Singularities = singularities(self.robot)
@@ -834,213 +881,3 @@ def _smallest(values: Sequence[float]) -> float:
 _CELLS = [(i, j) for j in range(4) for i in range(3)]
 _ALL = tuple(range(12))
 _POSITION = (9, 10, 11)
-
-
-# --- results --------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class IKSolution:
-    """All solutions of one pose: ``q`` is ``(k, n)``, one row per solution (k ≤ 8).
-
-    ``branches`` names each solution (``"right arm, elbow up, wrist not flipped"``);
-    ``residual`` is the largest entry error of its ``fk``; ``singular`` names the
-    singularities it is near (empty when none). ``np.asarray(solution)`` is ``q``.
-    """
-
-    q: np.ndarray
-    residual: np.ndarray
-    singular: tuple[tuple[str, ...], ...]
-    signs: np.ndarray = field(repr=False)
-    solver: Solver = field(repr=False)
-
-    @functools.cached_property
-    def branches(self) -> tuple[str, ...]:
-        """The name of each solution's branch (computed on first use)."""
-        return _branch_names(self.solver, self.q, self.signs)
-
-    @property
-    def near_singular(self) -> np.ndarray:
-        """``(k,)`` True where a solution is near a singular configuration."""
-        return np.array([bool(s) for s in self.singular], dtype=bool)
-
-    def __len__(self) -> int:
-        return int(self.q.shape[0])
-
-    def __iter__(self):  # type: ignore[no-untyped-def]
-        return iter(self.q)
-
-    def __getitem__(self, k: int) -> np.ndarray:
-        return self.q[k]  # type: ignore[no-any-return]
-
-    def __array__(self, dtype: object = None, copy: object = None) -> np.ndarray:
-        return self.q if dtype is None else self.q.astype(dtype)  # type: ignore[arg-type]
-
-
-@dataclass(frozen=True, eq=False)
-class IKBatch:
-    """Solutions of N poses as padded arrays: ``q`` is ``(N, K, n)`` with NaN where invalid.
-
-    ``valid`` ``(N, K)`` marks real, checked, distinct solutions; ``residual`` ``(N, K)``
-    the entry error of each branch's ``fk``; ``singular`` ``(N, K, F)`` the
-    singularities (``factor_kinds``) each solution is near; ``branch_signs`` ``(K, B)``
-    the signs of the branches, in the order of the derivation's ``branches``.
-    """
-
-    q: np.ndarray
-    valid: np.ndarray
-    residual: np.ndarray
-    singular: np.ndarray
-    factor_kinds: tuple[str, ...]
-    branch_signs: np.ndarray
-    solver: Solver = field(repr=False)
-
-    @property
-    def count(self) -> np.ndarray:
-        """``(N,)`` number of solutions of each pose."""
-        return self.valid.sum(axis=1)  # type: ignore[no-any-return]
-
-    @property
-    def near_singular(self) -> np.ndarray:
-        """``(N, K)`` True where a solution is near a singular configuration."""
-        return self.singular.any(axis=-1)  # type: ignore[no-any-return]
-
-    def __len__(self) -> int:
-        return int(self.q.shape[0])
-
-    def solution(self, i: int) -> IKSolution:
-        """The solutions of pose ``i`` (only the valid ones, with their branch names)."""
-        keep = self.valid[i]
-        sing = tuple(
-            tuple(k for k, hit in zip(self.factor_kinds, row) if hit)
-            for row in self.singular[i][keep]
-        )
-        return IKSolution(
-            self.q[i][keep], self.residual[i][keep], sing, self.branch_signs[keep], self.solver
-        )
-
-
-def _branch_names(solver: Solver, q: np.ndarray, signs: np.ndarray) -> tuple[str, ...]:
-    ik = solver.ik
-    parts: list[list[str]] = [[] for _ in range(len(q))]
-    for b, col in zip(ik.branches, signs.T):
-        if b.role == "elbow":
-            up = _elbow_up(solver, q, b) if len(q) else np.zeros(0, dtype=bool)
-            words = ["elbow up" if u else "elbow down" for u in up]
-        elif b.role == "arm":
-            words = ["right arm" if sgn > 0 else "left arm" for sgn in col]
-        elif b.role == "wrist":
-            words = ["wrist not flipped" if sgn > 0 else "wrist flipped" for sgn in col]
-        else:
-            var = solver.robot.variables[b.joint - 1]
-            words = [f"{var} {'+' if sgn > 0 else '−'}√" for sgn in col]
-        for k, w in enumerate(words):
-            parts[k].append(w)
-    return tuple(", ".join(p) for p in parts)
-
-
-def _elbow_up(solver: Solver, q: np.ndarray, branch: Branch) -> np.ndarray:
-    """True where the elbow lies above the line from the shoulder to the wrist centre.
-
-    "Above" is the side of +z0 for an arm that moves in a vertical plane, and the left of
-    the shoulder-to-wrist line seen from above (+z0) for a planar arm. ``q`` is ``(k, n)``.
-    """
-    robot = solver.robot
-    rows = robot.table.joint_rows
-    elbow_row = rows[branch.joint - 1]
-    shoulder_row = rows[branch.joint - 2]
-    s = solver.frame(axis_frame(robot, shoulder_row))(q)[:, :3, 3]
-    E = solver.frame(axis_frame(robot, elbow_row))(q)
-    e, h = E[:, :3, 3] - s, E[:, :3, 2]
-    w = solver.frame(solver.ik.decoupling.centre)(q)[:, :3, 3] - s
-    up = h[:, 2]
-    planar = np.abs(up) > 0.5
-    h_up = h * np.where(up < 0, -1.0, 1.0)[:, None]
-    left = np.einsum("ij,ij->i", e, np.cross(h_up, w)) > 0
-    w_perp = w - np.einsum("ij,ij->i", w, h)[:, None] * h
-    e_perp = e - np.einsum("ij,ij->i", e, h)[:, None] * h
-    n = np.cross(h, w_perp)
-    n = n * np.where(n[:, 2] < 0, -1.0, 1.0)[:, None]
-    above = np.einsum("ij,ij->i", e_perp, n) > 0
-    return np.where(planar, left, above)
-
-
-# --- the numeric solver ---------------------------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class NumericSolution:
-    """One local solution from :func:`numeric_ik` — numeric, not closed form, no branches."""
-
-    q: np.ndarray
-    converged: bool
-    iterations: int
-    error: float
-    method: str = "numeric: Levenberg–Marquardt on the compiled fk (one local solution)"
-
-
-def _rotation_error(R: np.ndarray, goal: np.ndarray) -> np.ndarray:
-    """The rotation vector (axis times angle) that turns ``R`` into ``goal``, base frame."""
-    E = goal @ R.T
-    v = 0.5 * np.array([E[2, 1] - E[1, 2], E[0, 2] - E[2, 0], E[1, 0] - E[0, 1]])
-    s, c = float(np.linalg.norm(v)), (float(np.trace(E)) - 1.0) / 2.0
-    if s > 1e-9:
-        return np.arctan2(s, c) / s * v  # type: ignore[no-any-return]
-    if c > 0:
-        return v
-    k = int(np.argmax(np.linalg.norm(E + np.eye(3), axis=0)))  # a half turn: axis from E + I
-    axis = (E + np.eye(3))[:, k]
-    return np.pi * axis / np.linalg.norm(axis)  # type: ignore[no-any-return]
-
-
-def numeric_ik(
-    robot: Robot,
-    T: object,
-    q0: object = None,
-    *,
-    tol: float = 1e-12,
-    max_iter: int = 100,
-    values: Mapping[object, object] | None = None,
-) -> NumericSolution:
-    """Levenberg–Marquardt on the compiled ``fk`` and Jacobian, from ``q0`` (default zeros).
-
-    A numeric solver, clearly not the closed form: it finds one solution near its
-    start, or none. The error is the position error and the rotation vector from the
-    current orientation to the goal, both in the base frame; the step solves
-    ``(JᵀJ + λ diag(JᵀJ)) Δq = Jᵀe`` with λ divided by 10 after a successful step and
-    multiplied by 10 after a failed one.
-
-    >>> import dhsym
-    >>> r = dhsym.load("planar2r")
-    >>> sol = numeric_ik(r, r.fk([0.4, 0.9]), [0.3, 0.8])
-    >>> sol.converged, np.round(sol.q, 9).tolist()
-    (True, [0.4, 0.9])
-    """
-    fk = robot.fk_function(values=values)
-    target = np.asarray(T, dtype=float)
-    n = len(robot.variables)
-    q = np.zeros(n) if q0 is None else np.asarray(q0, dtype=float).copy()
-
-    def error(q: np.ndarray) -> np.ndarray:
-        M = fk(q)
-        return np.concatenate(
-            [target[:3, 3] - M[:3, 3], _rotation_error(M[:3, :3], target[:3, :3])]
-        )
-
-    e = error(q)
-    lam = 1e-2
-    it = 0
-    for it in range(1, max_iter + 1):
-        if e @ e < tol**2:
-            return NumericSolution(q, True, it - 1, float(np.sqrt(e @ e)))
-        J = np.asarray(robot.jacobian(q, values=values))
-        H = J.T @ J
-        step = np.linalg.solve(H + lam * np.diag(np.diag(H) + 1e-12), J.T @ e)
-        trial = q + step
-        e_trial = error(trial)
-        if e_trial @ e_trial < e @ e:
-            q, e, lam = trial, e_trial, max(lam / 10, 1e-12)
-        else:
-            lam = min(lam * 10, 1e12)
-    err = float(np.sqrt(e @ e))
-    return NumericSolution(q, err < tol, it, err)

@@ -71,7 +71,10 @@ def _independent(expr: Matrix, variables: set[sp.Symbol]) -> bool:
 
 
 def decouple(robot: Robot, size: int) -> Decoupling:
-    """Split ``robot`` into an arm and a wrist of ``size`` revolute joints (0, 1 or 3).
+    """Split ``robot`` into an arm and a wrist of ``size`` revolute joints (0, 1, 2 or 3).
+
+    A wrist of 2 is a pair of last axes that meet (the point where they meet is fixed in
+    the link before them and in the last link).
 
     The wrist centre is the first frame origin, from the first wrist axis on, that
     stays fixed both in the link before the wrist and in the last link: then it lies on
@@ -90,7 +93,7 @@ def decouple(robot: Robot, size: int) -> Decoupling:
     >>> decouple(dhsym.load("planar4r"), 3)
     Traceback (most recent call last):
     ...
-    dhsym.kinematics._structure.StructureError: no spherical wrist: the axes of joints 2, 3, 4 ...
+    dhsym.kinematics.decoupling.StructureError: no spherical wrist: the axes of joints 2, 3, 4 ...
     """
     rows = _joint_rows(robot)
     n = robot.n
@@ -102,7 +105,7 @@ def decouple(robot: Robot, size: int) -> Decoupling:
     arm = tuple(rows[:-size])
     table = robot.table
     names = ", ".join(str(rows.index(r) + 1) for r in wrist)
-    kind = "spherical wrist" if size == 3 else "revolute last joint"
+    kind = {3: "spherical wrist", 2: "meeting last two axes"}.get(size, "revolute last joint")
     for r in wrist:
         if table.rows[r - 1].joint is not JointType.REVOLUTE:
             raise StructureError(
@@ -120,7 +123,7 @@ def decouple(robot: Robot, size: int) -> Decoupling:
     before = arm[-1] if arm else 0
     what = (
         f"the axes of joints {names} do not meet in one point"
-        if size == 3
+        if size in (2, 3)
         else (f"joint {names} has no axis point")
     )
     raise StructureError(

@@ -1,0 +1,47 @@
+"""The inverse kinematics room: closed forms derived family by family, their compiler, and
+a numeric solver apart.
+
+:mod:`.structure` classifies an arm by its joint axes; one module per family derives its
+closed form as lecture steps (:mod:`.decoupled`: spherical wrist and planar arms;
+:mod:`.parallel`: three parallel axes; :mod:`.inverted`: the chain read backwards);
+:mod:`.families` chooses; :mod:`.compiler` turns the steps into numbers and
+:mod:`.results` holds what it returns; :mod:`.choices` applies joint limits, a given
+joint and the nearest solution; :mod:`.levenberg_marquardt` is the numeric solver.
+
+May import :mod:`dhsym.model`, :mod:`dhsym.notation` and :mod:`dhsym.kinematics`.
+"""
+
+from dhsym._lazy import lazy_exports
+
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "IKBatch": "results",
+        "IKSolution": "results",
+        "InverseKinematics": "derivation",
+        "NumericSolution": "levenberg_marquardt",
+        "Structure": "structure",
+        "StructureError": "dhsym.kinematics.decoupling",
+        "classify": "structure",
+        "inverse": "families",
+        "numeric_ik": "levenberg_marquardt",
+        "pose_symbols": "steps",
+        "solve": "choices",
+        "sweep_free_joint": "choices",
+    },
+)
+
+__all__ = [
+    "IKBatch",
+    "IKSolution",
+    "InverseKinematics",
+    "NumericSolution",
+    "Structure",
+    "StructureError",
+    "classify",
+    "inverse",
+    "numeric_ik",
+    "pose_symbols",
+    "solve",
+    "sweep_free_joint",
+]

@@ -1,0 +1,267 @@
+"""Choosing among the solutions: a joint given (seven-joint arms), joint limits, the nearest.
+
+:func:`solve` is what ``Robot.ik`` runs: the closed form of the arm, or, with ``free``,
+the closed form of the other joints with one joint's value given (the Panda and the
+KUKA LWR have seven joints: one given, the six left form a family of
+:mod:`dhsym.ik.families`). Then ``limits=True`` shifts each angle by multiples of 2π into
+its joint's range and drops the solutions that do not fit, and ``near=q0`` orders them
+by distance from ``q0`` (angles compared modulo 2π).
+
+Examples
+--------
+>>> import dhsym
+>>> r = dhsym.load("panda")
+>>> q = [0.3, -0.5, 0.4, -2.0, 0.2, 1.6, 0.7]
+>>> sol = r.ik(r.fk(q), free={7: 0.7})
+>>> bool(np.abs(sol.q - q).max(axis=1).min() < 1e-9)
+True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dhsym.errors import DHError
+from dhsym.model.table import DHRow, JointType
+
+from .results import IKBatch, IKSolution
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.robot import Robot
+
+__all__ = ["solve", "sweep_free_joint", "within_limits", "nearest_first"]
+
+_TWO_PI = 2 * np.pi
+
+
+def _limits(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
+    """Lower and upper joint limits ``(n,)`` (±inf where the table gives none)."""
+    values = robot.table.value_map
+    lo, hi = [], []
+    for row in robot.table.rows:
+        if row.variable is None:
+            continue
+        if row.limits is None:
+            lo.append(-np.inf)
+            hi.append(np.inf)
+        else:
+            lo.append(float(row.limits[0].xreplace(values)))
+            hi.append(float(row.limits[1].xreplace(values)))
+    return np.array(lo), np.array(hi)
+
+
+def _revolute(robot: Robot) -> np.ndarray:
+    return np.array(
+        [r.joint is JointType.REVOLUTE for r in robot.table.rows if r.variable is not None]
+    )
+
+
+def within_limits(robot: Robot, sol: IKSolution) -> IKSolution:
+    """The solutions inside the joint limits, each angle shifted by 2πk into its range
+    (the shift nearest to the middle of the range when several fit).
+
+    >>> import dhsym
+    >>> r = dhsym.load("puma560")
+    >>> sol = r.ik(r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1]))
+    >>> kept = within_limits(r, sol)
+    >>> len(sol), len(kept), kept.branches[0]
+    (8, 2, 'right arm, elbow down, wrist not flipped')
+    """
+    lo, hi = _limits(robot)
+    rev = _revolute(robot)
+    q = sol.q.copy()
+    mid = np.where(np.isfinite(lo + hi), (lo + hi) / 2, 0.0)
+    shifted = q - _TWO_PI * np.round((q - mid) / _TWO_PI)
+    q = np.where(rev, shifted, q)
+    inside = ((q >= lo - 1e-12) & (q <= hi + 1e-12)).all(axis=1)
+    return sol.take(np.nonzero(inside)[0], q)
+
+
+def nearest_first(robot: Robot, sol: IKSolution, q0: object) -> IKSolution:
+    """The solutions ordered by distance from ``q0`` (angle differences wrapped to [−π, π]).
+
+    >>> import dhsym
+    >>> r = dhsym.load("planar2r")
+    >>> sol = r.ik(r.fk([0.4, 0.9]), check="position")
+    >>> nearest_first(r, sol, [0.5, 0.8]).q[0].round(9).tolist()
+    [0.4, 0.9]
+    """
+    start = np.asarray(q0, dtype=float).reshape(-1)
+    if start.shape != (sol.q.shape[1],):
+        raise DHError(f"near: expected {sol.q.shape[1]} joint values, got {start.size}")
+    d = sol.q - start
+    rev = _revolute(robot)
+    d = np.where(rev, d - _TWO_PI * np.round(d / _TWO_PI), d)
+    return sol.take(np.argsort(np.linalg.norm(d, axis=1), kind="stable"))
+
+
+def _sub_robot(robot: Robot, joint: int) -> tuple[Robot, int]:
+    """The arm without joint ``joint`` (1-based): the chain after it (first joint), before it
+    (last joint), or with its row made constant (its variable becomes a symbol to give)."""
+    from dhsym.kinematics.robot import Robot
+
+    table = robot.table
+    rows = table.joint_rows
+    if not 1 <= joint <= len(rows):
+        raise DHError(
+            f"free: joint {joint} is not a joint of {robot.name or 'this arm'} (1 … {len(rows)})"
+        )
+    row = rows[joint - 1]
+    if row == 1:
+        kept = table.rows[1:]
+    elif row == table.n:
+        kept = table.rows[:-1]
+    else:
+        r = table.rows[row - 1]
+        fixed = DHRow(JointType.FIXED, r.theta, r.d, r.a, r.alpha)
+        kept = table.rows[: row - 1] + (fixed,) + table.rows[row:]
+    used = set().union(*(e.free_symbols for r in kept for e in r.params().values()))
+    sub = replace(
+        table,
+        rows=kept,
+        name=f"{table.name} (joint {joint} given)",
+        base=(),
+        tool=(),
+        values=tuple((s, v) for s, v in table.values if s in used),
+    )
+    return Robot(sub), row
+
+
+def _free_ik(robot: Robot, joint: int) -> tuple[Robot, int]:
+    key = ("ik with a joint given", joint)
+    if key not in robot._extra_cache:
+        robot._extra_cache[key] = _sub_robot(robot, joint)
+    return robot._extra_cache[key]  # type: ignore[return-value]  # set just above
+
+
+def _solve_free(
+    robot: Robot,
+    T: np.ndarray,
+    joint: int,
+    value: float,
+    *,
+    tol: float,
+    singular_tol: float,
+    values: Mapping[object, object] | None,
+) -> IKSolution:
+    """Every solution of the pose ``T`` with joint ``joint`` at ``value``."""
+    sub, row = _free_ik(robot, joint)
+    n = len(robot.variables)
+    var = robot.variables[joint - 1]
+    q = np.zeros(n)
+    q[joint - 1] = value
+    inner = T
+    if robot.table.base:
+        inner = np.linalg.inv(robot.fk_function(-1, 0, values)(q)) @ inner
+    if robot.table.tool:
+        inner = inner @ np.linalg.inv(robot.fk_function(robot.n, robot.n + 1, values)(q))
+    extra = dict(values or {})
+    if row == 1:
+        inner = np.linalg.inv(robot.fk_function(0, 1, values)(q)) @ inner
+    elif row == robot.n:
+        inner = inner @ np.linalg.inv(robot.fk_function(robot.n - 1, robot.n, values)(q))
+    else:
+        extra[var] = value
+    part = sub.inverse().solve(
+        inner, check="pose", tol=tol, singular_tol=singular_tol, values=extra or None
+    )
+    assert isinstance(part, IKSolution)
+    full = np.insert(part.q, joint - 1, value, axis=1)
+    names = part.branches
+    got = robot.fk_function(values=values)(full) if len(full) else np.zeros((0, 4, 4))
+    residual = np.abs(got - T).reshape(len(full), -1).max(axis=1) if len(full) else np.zeros(0)
+    ok = residual <= tol
+    return IKSolution(
+        full[ok],
+        residual[ok],
+        tuple(s for s, k in zip(part.singular, ok) if k),
+        part.signs[ok],
+        part.solver,
+        tuple(s for s, k in zip(names, ok) if k),
+    )
+
+
+def solve(
+    robot: Robot,
+    T: object,
+    *,
+    check: str | None = "pose",
+    tol: float = 1e-9,
+    singular_tol: float = 1e-6,
+    values: Mapping[object, object] | None = None,
+    free: Mapping[int, float] | None = None,
+    limits: bool = False,
+    near: object = None,
+) -> IKSolution | IKBatch:
+    """Every closed-form solution of ``T``, with a joint given, within limits, nearest first.
+
+    Parameters
+    ----------
+    T
+        One pose ``(4, 4)`` or a batch ``(N, 4, 4)`` (positions for arms without a wrist).
+    check, tol, singular_tol, values
+        As :meth:`dhsym.ik.derivation.InverseKinematics.solve`.
+    free
+        ``{joint: value}``: one joint (1-based) given; the others solved in closed form.
+        One pose only.
+    limits
+        Keep only solutions within the joint limits of the table (one pose).
+    near
+        Order the solutions by distance from these joint values (one pose).
+    """
+    arr = np.asarray(T, dtype=float)
+    single = arr.ndim in (1, 2) and not (arr.ndim == 2 and arr.shape[-1] == 3)
+    if (free or limits or near is not None) and not single:
+        raise DHError("free, limits and near apply to one pose: solve the poses one by one")
+    if free:
+        if len(free) != 1:
+            raise DHError(f"free: give exactly one joint, got {len(free)}")
+        ((joint, value),) = free.items()
+        sol: IKSolution | IKBatch = _solve_free(
+            robot, arr, int(joint), float(value), tol=tol, singular_tol=singular_tol, values=values
+        )
+    else:
+        sol = robot.inverse().solve(
+            arr, check=check, tol=tol, singular_tol=singular_tol, values=values
+        )
+    if isinstance(sol, IKSolution):
+        if limits:
+            sol = within_limits(robot, sol)
+        if near is not None:
+            sol = nearest_first(robot, sol, near)
+    return sol
+
+
+def sweep_free_joint(
+    robot: Robot,
+    T: object,
+    joint: int,
+    *,
+    num: int = 36,
+    values: Mapping[object, object] | None = None,
+) -> list[tuple[float, IKSolution]]:
+    """The given joint swept over its range (``num`` values): the solutions within the
+    joint limits at each value, as ``(value, solutions)`` for the values that have some.
+
+    >>> import dhsym
+    >>> r = dhsym.load("panda")
+    >>> T = r.fk([0.3, -0.5, 0.4, -2.0, 0.2, 1.6, 0.7])
+    >>> found = sweep_free_joint(r, T, 7, num=12)
+    >>> len(found) > 0 and all(len(s) for _, s in found)
+    True
+    """
+    lo, hi = _limits(robot)
+    a, b = lo[joint - 1], hi[joint - 1]
+    if not np.isfinite(a + b):
+        a, b = -np.pi, np.pi
+    out = []
+    for v in np.linspace(a, b, num):
+        sol = solve(robot, T, values=values, free={joint: float(v)}, limits=True)
+        assert isinstance(sol, IKSolution)
+        if len(sol):
+            out.append((float(v), sol))
+    return out
