@@ -52,8 +52,8 @@ Examples
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, replace
 from functools import reduce
 
 import numpy as np
@@ -61,8 +61,8 @@ import sympy as sp
 from sympy.polys.rings import PolyElement, ring
 
 from dhsym.errors import DHError
-from dhsym.kinematics.numeric import PoseFunction, numeric_rigid_inverse, to_float, word_product
-from dhsym.kinematics.transforms import cos_sin
+from dhsym.kinematics.numeric import compile_word, numeric_rigid_inverse, to_float, word_product
+from dhsym.kinematics.transforms import chain_word, cos_sin
 from dhsym.model.table import Convention, DHTable, Elementary, JointType
 
 __all__ = [
@@ -415,6 +415,9 @@ def _half_angle_basis() -> np.ndarray:
     return H
 
 
+_HALF = _half_angle_basis()
+
+
 @dataclass(frozen=True, eq=False)
 class _Arrangement:
     """The numbers of one arrangement (the chain as given, or reversed) of one arm."""
@@ -429,10 +432,13 @@ class _Arrangement:
     sign: np.ndarray
     offset: np.ndarray
     joint: np.ndarray  # which q drives each link
-    PH: np.ndarray  # (3, 14, 9): (P0, Pc, Ps) @ H
-    h1: np.ndarray  # (9,): row "1" of H (where the right sides' constants go)
+    P: np.ndarray  # (3, 14, 9): P0, Pc, Ps (the right sides' constants not included)
+    G: np.ndarray  # (3, 14, 9): (P0 − Pc, 2 Ps, P0 + Pc) @ H: the x3², x3, 1 coefficients
+    p6: np.ndarray  # (3,): the point (−a6, −d6 sα6, −d6 cα6) of T A6⁻¹'s fourth column
+    l6: np.ndarray  # (3,): the direction (0, sα6, cα6) of its third column
     K: np.ndarray  # (14 * 9, n_pose): Q (first 8 columns) and the constants, per pose monomial
     pose_exp: np.ndarray  # (n_pose, 6): exponents of px, py, pz, lx, ly, lz
+    project: np.ndarray | None = None  # (16, 24) for dependent equations (see _embed)
 
     def target(self, T: np.ndarray) -> np.ndarray:
         """``base⁻¹ · T · tool⁻¹`` of this arrangement (T inverted first when reversed)."""
@@ -441,14 +447,11 @@ class _Arrangement:
 
     def links(self, theta: np.ndarray) -> np.ndarray:
         """The link matrices ``(k, 6, 4, 4)`` at chain angles ``theta (k, 6)``."""
-        k = theta.shape[0]
         c, s = np.cos(theta), np.sin(theta)
-        A = np.zeros((k, 6, 4, 4))
-        A[..., 0, 0], A[..., 0, 1], A[..., 0, 2], A[..., 0, 3] = c, -s * self.ca, s * self.sa, self.a * c
-        A[..., 1, 0], A[..., 1, 1], A[..., 1, 2], A[..., 1, 3] = s, c * self.ca, -c * self.sa, self.a * s
-        A[..., 2, 1], A[..., 2, 2], A[..., 2, 3] = self.sa, self.ca, self.d
-        A[..., 3, 3] = 1.0
-        return A
+        z, one = np.zeros_like(c), np.ones_like(c)
+        rows = [c, -s * self.ca, s * self.sa, self.a * c, s, c * self.ca, -c * self.sa,
+                self.a * s, z, self.sa + z, self.ca + z, self.d + z, z, z, z, one]
+        return np.stack(rows, axis=-1).reshape(*theta.shape, 4, 4)
 
 
 def _arrangement(chain: _Chain, reverse: bool, d: _Derivation, H: np.ndarray) -> _Arrangement:
@@ -482,8 +485,10 @@ def _arrangement(chain: _Chain, reverse: bool, d: _Derivation, H: np.ndarray) ->
         f([float(x.sign) for x in L]),
         f([to_float(x.offset) for x in L]),
         f([x.joint for x in L], dtype=int),
-        P @ H,
-        H[8].copy(),
+        P,
+        np.stack([P[0] - P[1], 2.0 * P[2], P[0] + P[1]]) @ H,
+        np.array([-L[5].a, -L[5].d * math.sin(alpha[5]), -L[5].d * math.cos(alpha[5])], dtype=float),
+        np.array([0.0, math.sin(alpha[5]), math.cos(alpha[5])]),
         K,
         f(exps, dtype=float),
     )
@@ -492,43 +497,65 @@ def _arrangement(chain: _Chain, reverse: bool, d: _Derivation, H: np.ndarray) ->
 def _pencil(arr: _Arrangement, Tp: np.ndarray, delta: float):
     """Σ(x) = A x² + B x + C (12×12 each) at the target ``Tp``, with θ3 = φ + δ, x = tan(φ/2).
 
-    Also returns what back-substitution needs: the QR factors of ``Q`` and the constants.
+    Also returns what back-substitution needs: the QR factors of ``Q``, the constants ``r``
+    of the right sides and the (rotated) ``P0, Pc, Ps``.
     """
-    l = Tp[:3, :3] @ np.array([0.0, arr.sa[5], arr.ca[5]])
-    p = Tp[:3, :3] @ np.array([-arr.a[5], -arr.d[5] * arr.sa[5], -arr.d[5] * arr.ca[5]]) + Tp[:3, 3]
-    u = np.prod(np.concatenate([p, l]) ** arr.pose_exp, axis=1)
+    R, t = Tp[:3, :3], Tp[:3, 3]
+    pl = np.concatenate([R @ arr.p6 + t, R @ arr.l6])
+    u = np.prod(pl**arr.pose_exp, axis=1)
     QR = (arr.K @ u).reshape(14, 9)
     Q, r = QR[:, :8], QR[:, 8]
     Qf, Rf = np.linalg.qr(Q, mode="complete")
-    N = Qf[:, 8:]
-    P0, Pc, Ps = arr.PH
+    P = arr.P
     if delta:
         cd, sd = math.cos(delta), math.sin(delta)
-        Pc, Ps = Pc * cd + Ps * sd, Ps * cd - Pc * sd
-    rh = np.outer(r, arr.h1)
-    G = np.stack([P0 - Pc - rh, 2.0 * Ps, P0 + Pc - rh])  # x², x, 1 (times 1 + x²)
-    S = N.T @ G  # (3, 6, 9)
-    big = np.zeros((3, 12, 12))
-    cols = np.arange(9)
-    big[:, :6, (cols // 3) * 3 + cols % 3] = S
-    big[:, 6:, (cols // 3 + 1) * 3 + cols % 3] = S
-    return big, Qf[:, :8], Rf[:8], r, (P0, Pc, Ps, rh)
+        P = np.stack([P[0], P[1] * cd + P[2] * sd, P[2] * cd - P[1] * sd])
+        G = np.stack([P[0] - P[1], 2.0 * P[2], P[0] + P[1]]) @ _HALF
+    else:
+        G = arr.G.copy()
+    rh = np.outer(r, _HALF[8])  # the constants times (1 + x4²)(1 + x5²)
+    G[0] -= rh
+    G[2] -= rh
+    S = Qf[:, 8:].T @ G  # (3, 6, 9): θ1, θ2 eliminated
+    return _embed(S, arr.project), Qf[:, :8], Rf[:8], r, P
+
+
+def _embed(S: np.ndarray, project: np.ndarray | None) -> np.ndarray:
+    """The square matrix polynomial ``(3, n, n)`` from the six equations ``S (3, 6, 9)``.
+
+    Generic arms: the six and the six times x4, on ``x4^i x5^j`` (``i ≤ 3, j ≤ 2``): 12×12.
+    When the six equations are dependent (an arm with zero lengths and right or straight
+    twists, the Jaco), the six times ``1, x4, x5, x4 x5`` on ``x4^i x5^j`` (``i, j ≤ 3``),
+    24×16, reduced to 16×16 by a fixed random combination of rows ``project``: every true
+    root stays a root; the extra ones are dropped by the pose check.
+    """
+    if project is None:
+        big = np.zeros((3, 12, 12))
+        big[:, :6, :9] = S  # x4^i x5^j, i <= 2
+        big[:, 6:, 3:] = S  # the same times x4
+        return big
+    tall = np.zeros((3, 24, 16))
+    cols = np.array([4 * (c // 3) + c % 3 for c in range(9)])
+    for m, shift in enumerate((0, 4, 1, 5)):  # times 1, x4, x5, x4 x5
+        tall[:, 6 * m : 6 * m + 6, cols + shift] = S
+    return project @ tall
 
 
 def _eigen(big: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-    """Eigenvalues x and vectors v (12, k) of ``(A x² + B x + C) v = 0``; cond(A)."""
+    """Eigenvalues x, vectors (24, k) of the companion of ``(A x² + B x + C) v = 0``, and the
+    size of ``A⁻¹ [C B]`` (large when A is nearly singular: a root near x = ∞)."""
     A, B, C = big
+    n = len(A)
     try:
-        Ainv = np.linalg.inv(A)
+        X = np.linalg.solve(A, np.concatenate([C, B], axis=1))
     except np.linalg.LinAlgError:
-        return np.empty(0), np.empty((12, 0)), math.inf
-    cond = float(np.abs(A).sum(axis=0).max() * np.abs(Ainv).sum(axis=0).max())
-    M = np.zeros((24, 24))
-    M[:12, 12:] = np.eye(12)
-    M[12:, :12] = -Ainv @ C
-    M[12:, 12:] = -Ainv @ B
+        return np.empty(0), np.empty((2 * n, 0)), math.inf
+    size = float(np.abs(X).max())
+    M = np.zeros((2 * n, 2 * n))
+    M[:n, n:] = np.eye(n)
+    M[n:] = -X
     x, W = np.linalg.eig(M)
-    return x, W, cond
+    return x, W, size
 
 
 def _eigen_qz(big: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -536,13 +563,13 @@ def _eigen_qz(big: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     from scipy.linalg import eig
 
     A, B, C = big
-    L = np.zeros((24, 24))
-    M = np.zeros((24, 24))
-    L[:12, 12:] = M[:12, :12] = np.eye(12)
-    L[12:, :12], L[12:, 12:] = -C, -B
-    M[12:, 12:] = A
-    ab, W = eig(L, M, homogeneous_eigvals=True)
-    alpha, beta = ab
+    n = len(A)
+    L = np.zeros((2 * n, 2 * n))
+    M = np.zeros((2 * n, 2 * n))
+    L[:n, n:] = M[:n, :n] = np.eye(n)
+    L[n:, :n], L[n:, n:] = -C, -B
+    M[n:, n:] = A
+    (alpha, beta), W = eig(L, M, homogeneous_eigvals=True)
     with np.errstate(all="ignore"):
         x = np.where(np.abs(beta) > 1e-14 * np.abs(alpha), alpha / beta, 1e16)
     return x, W
@@ -550,15 +577,14 @@ def _eigen_qz(big: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def _candidates(arr: _Arrangement, Tp: np.ndarray) -> np.ndarray:
     """Chain angles ``(k, 6)`` of every real eigenvalue, before polishing."""
-    out = []
-    for delta in (0.0, 0.9, 2.3):
-        big, Q1, R8, r, (P0, Pc, Ps, rh) = _pencil(arr, Tp, delta)
-        x, W, cond = _eigen(big)
-        if cond < 1e9:
+    for delta in _SHIFTS:
+        big, Q1, R8, r, P = _pencil(arr, Tp, delta)
+        x, W, size = _eigen(big)
+        if size < 1e8:
             break
-    else:
+    else:  # every shift leaves A nearly singular: QZ on the unshifted pencil
         delta = 0.0
-        big, Q1, R8, r, (P0, Pc, Ps, rh) = _pencil(arr, Tp, delta)
+        big, Q1, R8, r, P = _pencil(arr, Tp, delta)
         x, W = _eigen_qz(big)
     with np.errstate(all="ignore"):
         phi = 2.0 * np.arctan(x.astype(complex))
@@ -567,79 +593,71 @@ def _candidates(arr: _Arrangement, Tp: np.ndarray) -> np.ndarray:
         return np.empty((0, 6))
     phi = phi.real[real]
     W = W[:, real]
-    big_x = np.abs(x[real]) > 1.0
-    V = np.where(big_x, W[12:], W[:12])  # w = [v; x v]: the better-scaled half
-    top = np.argmax(np.abs(V), axis=0)
-    V = V * (np.conj(V[top, np.arange(V.shape[1])]) / np.abs(V[top, np.arange(V.shape[1])]))
-    V = V.real.reshape(4, 3, -1)  # [i, j]: x4^i x5^j
-    # x5 = v[i, j+1] / v[i, j]; x4 = v[i+1, j] / v[i, j]: the pair of largest norm
-    n5 = V[:, :2] ** 2 + V[:, 1:] ** 2  # (4, 2, k)
-    i5, j5 = np.unravel_index(np.argmax(n5.reshape(8, -1), axis=0), (4, 2))
-    k = np.arange(V.shape[2])
+    n = len(W) // 2
+    V = np.where(np.abs(x[real]) > 1.0, W[n:], W[:n])  # w = [v; x v]: the better half
+    k = np.arange(V.shape[1])
+    top = V[np.argmax(np.abs(V), axis=0), k]
+    J = n // 4
+    V = (V * (np.conj(top) / np.abs(top))).real.reshape(4, J, -1)  # [i, j]: x4^i x5^j
+    # x5 = v[i, j+1] / v[i, j] and x4 = v[i+1, j] / v[i, j], from the pair of largest norm
+    n5 = (V[:, :-1] ** 2 + V[:, 1:] ** 2).reshape(4 * (J - 1), -1)
+    i5, j5 = np.divmod(np.argmax(n5, axis=0), J - 1)
     th5 = 2.0 * np.arctan2(V[i5, j5 + 1, k], V[i5, j5, k])
-    n4 = V[:3] ** 2 + V[1:] ** 2  # (3, 3, k)
-    i4, j4 = np.unravel_index(np.argmax(n4.reshape(9, -1), axis=0), (3, 3))
+    i4, j4 = np.divmod(np.argmax((V[:3] ** 2 + V[1:] ** 2).reshape(3 * J, -1), axis=0), J)
     th4 = 2.0 * np.arctan2(V[i4 + 1, j4, k], V[i4, j4, k])
-    th3 = phi + delta
-    # back-substitution: Q m12 = P(θ3) m45 − r (P without the half-angle factor)
+    # back-substitution: Q m12 = P(θ3) m45 − r, least squares through Q's QR factors
     c4, s4, c5, s5 = np.cos(th4), np.sin(th4), np.cos(th5), np.sin(th5)
     m45 = np.stack([s4 * s5, s4 * c5, c4 * s5, c4 * c5, s4, c4, s5, c5, np.ones_like(s4)])
-    Hinv_m = _from_half(arr, m45)
-    c3, s3 = np.cos(phi), np.sin(phi)
-    rhs = (P0 @ Hinv_m) + (Pc @ Hinv_m) * c3 + (Ps @ Hinv_m) * s3 - r[:, None]
+    rhs = P[0] @ m45 + (P[1] @ m45) * np.cos(phi) + (P[2] @ m45) * np.sin(phi) - r[:, None]
     m12 = np.linalg.solve(R8, Q1.T @ rhs)
-    th1 = np.arctan2(m12[4], m12[5])
-    th2 = np.arctan2(m12[6], m12[7])
-    theta = np.stack([th1, th2, th3, th4, th5, np.zeros_like(th5)], axis=1)
+    theta = np.stack(
+        [np.arctan2(m12[4], m12[5]), np.arctan2(m12[6], m12[7]), phi + delta, th4, th5,
+         np.zeros_like(th5)], axis=1)
     A = arr.links(theta)
-    M = reduce(np.matmul, [A[:, i] for i in range(5)])
-    M6 = numeric_rigid_inverse(M) @ Tp
+    M = A[:, 0] @ A[:, 1] @ A[:, 2] @ A[:, 3] @ A[:, 4]
+    M6 = numeric_rigid_inverse(M) @ Tp  # = A6 = Rz(θ6) …: its first column is (c6, s6, 0)
     theta[:, 5] = np.arctan2(M6[:, 1, 0], M6[:, 0, 0])
     return theta
 
 
-def _from_half(arr: _Arrangement, m45: np.ndarray) -> np.ndarray:
-    """The product vector m45 mapped so that ``(P @ H) @ result == P @ m45`` (``H⁻¹ m45``)."""
-    return np.linalg.solve(_HALF, m45)
+_SHIFTS = (0.0, 0.9, 2.3)  # θ3 = φ + δ: a Möbius map of x3 when A is nearly singular
 
 
-_HALF = _half_angle_basis()
-
-
-def _fk_chain(arr: _Arrangement, theta: np.ndarray, Tp: np.ndarray, jacobian: bool):
-    """Pose error ``(k, 6)`` of chain angles ``theta`` against ``Tp`` and, optionally, the
-    geometric Jacobian ``(k, 6, 6)`` (the joint axes are the z axes of frames 0–5)."""
-    A = arr.links(theta)
-    k = theta.shape[0]
-    frames = [np.broadcast_to(np.eye(4), (k, 4, 4))]
-    for i in range(6):
-        frames.append(frames[-1] @ A[:, i])
-    T = frames[-1]
-    e = np.empty((k, 6))
-    e[:, :3] = Tp[:3, 3] - T[:, :3, 3]
-    e[:, 3:] = 0.5 * np.cross(T[:, :3, :3], Tp[None, :3, :3], axis=1).sum(axis=2)
-    if not jacobian:
-        return e, None
-    F = np.stack(frames[:6], axis=1)  # (k, 6, 4, 4)
-    z = F[..., :3, 2]
-    J = np.empty((k, 6, 6))
-    J[:, :3] = np.cross(z, T[:, None, :3, 3] - F[..., :3, 3]).transpose(0, 2, 1)
-    J[:, 3:] = z.transpose(0, 2, 1)
-    return e, J
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    i, j = [1, 2, 0], [2, 0, 1]
+    return a[..., i] * b[..., j] - a[..., j] * b[..., i]
 
 
 def _polish(arr: _Arrangement, theta: np.ndarray, Tp: np.ndarray, steps: int = 6) -> np.ndarray:
-    """Newton steps on the full pose (6×6 Jacobian) until the error is at round-off."""
+    """Newton steps on the full pose until the error is at round-off.
+
+    The error is ``(Δp, ½ Σ r_i × r_i*)`` (position, then the small rotation taking the
+    columns ``r_i`` of R to those of the target); the Jacobian is the geometric one (joint
+    axis z_{i−1} through origin o_{i−1}: ``(z × (p − o), z)``).
+    """
+    theta = theta.copy()
     for _ in range(steps):
-        e, J = _fk_chain(arr, theta, Tp, jacobian=True)
+        A = arr.links(theta)
+        F = [A[:, 0]]
+        for i in range(1, 6):
+            F.append(F[-1] @ A[:, i])
+        T = F[-1]
+        e = np.empty((theta.shape[0], 6))
+        e[:, :3] = Tp[:3, 3] - T[:, :3, 3]
+        e[:, 3:] = 0.5 * _cross(T[:, :3, :3].transpose(0, 2, 1), Tp[:3, :3].T).sum(axis=1)
         todo = np.abs(e).max(axis=1) > 1e-14
         if not todo.any():
             break
+        Fs = np.stack(F[:5], axis=1)[todo]  # frames 1 … 5 (frame 0 is the identity)
+        z = np.concatenate([np.broadcast_to([[[0.0, 0.0, 1.0]]], (len(Fs), 1, 3)),
+                            Fs[..., :3, 2]], axis=1)
+        o = np.concatenate([np.zeros((len(Fs), 1, 3)), Fs[..., :3, 3]], axis=1)
+        J = np.concatenate([_cross(z, T[todo][:, None, :3, 3] - o), z], axis=2)  # (k, 6 joints, 6)
+        J = J.transpose(0, 2, 1)
         try:
-            step = np.linalg.solve(J[todo], e[todo][..., None])[..., 0]
+            step = np.linalg.solve(J, e[todo][..., None])[..., 0]
         except np.linalg.LinAlgError:  # a singular configuration: least squares, one by one
-            step = np.array([np.linalg.lstsq(j, r, rcond=None)[0] for j, r in zip(J[todo], e[todo])])
-        theta = theta.copy()
+            step = np.array([np.linalg.lstsq(j, r, rcond=None)[0] for j, r in zip(J, e[todo])])
         theta[todo] += np.clip(step, -0.5, 0.5)
     return theta
 
@@ -655,7 +673,7 @@ class General6R:
 
     table: DHTable
     arrangement: _Arrangement = field(repr=False)
-    fk: PoseFunction = field(repr=False)
+    fk: Callable[[np.ndarray], np.ndarray] = field(repr=False)
     tol: float = 1e-9
 
     @property
@@ -689,25 +707,29 @@ class General6R:
 
 
 def _distinct(q: np.ndarray, tol: float = 1e-6) -> np.ndarray:
-    """Rows of ``q`` distinct modulo 2π, sorted."""
-    keep: list[np.ndarray] = []
-    for row in q:
-        if all(np.abs(np.angle(np.exp(1j * (row - k)))).max() > tol for k in keep):
-            keep.append(row)
-    if not keep:
-        return np.empty((0, 6))
-    out = np.array(keep)
+    """Rows of ``q`` distinct modulo 2π (the first of each cluster), sorted."""
+    diff = q[:, None, :] - q[None, :, :]
+    near = (np.abs(np.remainder(diff + math.pi, 2 * math.pi) - math.pi) < tol).all(axis=2)
+    keep = ~np.tril(near, -1).any(axis=1)
+    out = q[keep]
     return out[np.lexsort(out.T[::-1])]
 
 
-def general_6r(table: DHTable, *, tol: float = 1e-9) -> General6R:
+def general_6r(
+    table: DHTable, *, fk: Callable[[np.ndarray], np.ndarray] | None = None, tol: float = 1e-9
+) -> General6R:
     """Compile the general-6R solver of a six-joint revolute table with numeric constants.
 
-    The chain as given (θ3 eliminated) is tried first, then reversed (θ4 eliminated); an
-    arrangement is used when ``Q`` has full rank, ``Σ(x)`` is regular and it solves a few
-    random poses of the arm. Raises :class:`~dhsym.errors.DHError` for a table that is not
+    The chain as given (θ3 eliminated) is tried first, then reversed (θ4 eliminated), each
+    with the 12×12 pencil and then with the 16×16 one (:func:`_embed`); an arrangement is
+    used when ``Q`` has full rank, ``Σ(x)`` is regular and it solves a few random poses of
+    the arm. Raises :class:`~dhsym.errors.DHError` for a table that is not
     six revolute joints with numbers, or an arm on which the elimination degenerates
     (parallel or intersecting axes: use the closed-form families, ``robot.ik``).
+
+    ``fk`` checks every solution: ``Q (k, 6) -> (k, 4, 4)``, world to tool; by default
+    the table's elementary word compiled by :func:`~dhsym.kinematics.numeric.compile_word`
+    (a robot's ``Robot.fk_function()`` may be passed instead).
 
     >>> from dhsym.model.library import builtin_table
     >>> general_6r(builtin_table("puma560"))
@@ -715,20 +737,23 @@ def general_6r(table: DHTable, *, tol: float = 1e-9) -> General6R:
     ...
     dhsym.errors.DHError: PUMA 560: the general 6R elimination degenerates on this arm ...
     """
-    from dhsym.kinematics.robot import Robot
-
     chain = _standard(table)
-    fk = Robot(table).fk_function()
+    if fk is None:  # the kernel's numeric word: built in milliseconds, whatever the twists
+        ends = (-1 if table.base else 0, table.n + 1 if table.tool else table.n)
+        fk = compile_word(chain_word(table, *ends), table.variables, table.value_map)
     d = _derive()
-    H = _HALF
+    # a fixed combination of rows (deterministic): 24 dependent equations -> 16
+    project = np.random.default_rng(16).standard_normal((16, 24)) / math.sqrt(24.0)
     reasons = []
-    for reverse in (False, True):
-        arr = _arrangement(chain, reverse, d, H)
-        solver = General6R(table, arr, fk, tol)
-        why = _self_test(solver)
-        if why is None:
-            return solver
-        reasons.append(f"eliminating θ{int(arr.joint[2]) + 1}: {why}")
+    for rows in (None, project):
+        for reverse in (False, True):
+            arr = replace(_arrangement(chain, reverse, d, _HALF), project=rows)
+            solver = General6R(table, arr, fk, tol)
+            why = _self_test(solver)
+            if why is None:
+                return solver
+            size = "12×12" if rows is None else "16×16"
+            reasons.append(f"eliminating θ{int(arr.joint[2]) + 1} ({size}): {why}")
     raise DHError(
         f"{table.name or 'this arm'}: the general 6R elimination degenerates on this arm "
         f"({'; '.join(reasons)}). Arms with intersecting or parallel axes (spherical "
@@ -746,7 +771,7 @@ def _self_test(solver: General6R) -> str | None:
         big, Q1, R8, r, _ = _pencil(arr, arr.target(T), 0.0)
         sv = np.abs(np.diag(R8))
         if sv.min() < 1e-9 * sv.max():
-            return "Q loses rank (the joints 1, 2 products are not independent)"
+            return "Q loses rank (the products of the right side's joints are dependent)"
         x = rng.normal(size=2)
         S = [big[0] * t * t + big[1] * t + big[2] for t in x]
         if max(np.linalg.cond(s) for s in S) > 1e11:
