@@ -22,6 +22,7 @@ ORDER = [
     "model",
     "notation",
     "kinematics",
+    "ik",
     "geometry",
     "plot",
     "explain",

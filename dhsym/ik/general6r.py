@@ -54,7 +54,6 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
-from functools import reduce
 
 import numpy as np
 import sympy as sp
@@ -167,8 +166,10 @@ def standard_chain(table: DHTable) -> tuple[tuple[StandardLink, ...], tuple, tup
 
     >>> from dhsym.model.library import builtin_table
     >>> links, base, tool = standard_chain(builtin_table("puma560_modified").substituted())
-    >>> links[2], base
-    (StandardLink(joint=2, sign=1, offset=0, d=3001/20000, a=203/10000, alpha=-pi/2), (Rx(0), Tx(0)))
+    >>> links[2]
+    StandardLink(joint=2, sign=1, offset=0, d=3001/20000, a=203/10000, alpha=-pi/2)
+    >>> base
+    (Rx(0), Tx(0))
     """
     chain = _standard(table)
     return chain.links, chain.base, chain.tool
@@ -177,8 +178,10 @@ def standard_chain(table: DHTable) -> tuple[tuple[StandardLink, ...], tuple, tup
 def _standard(table: DHTable) -> _Chain:
     rows = table.rows
     if len(rows) != 6 or table.n != 6:
-        raise DHError(f"the general 6R solver needs six joints; {table.name or 'this table'} "
-                      f"has {table.n} rows")
+        raise DHError(
+            f"the general 6R solver needs six joints; {table.name or 'this table'} "
+            f"has {table.n} rows"
+        )
     for i, r in enumerate(rows, start=1):
         if r.joint is not JointType.REVOLUTE:
             raise DHError(
@@ -194,24 +197,32 @@ def _standard(table: DHTable) -> _Chain:
         sign = sp.diff(r.theta, r.variable)
         offset = sp.expand(r.theta - sign * r.variable)
         if sign not in (1, -1) or offset.free_symbols:
-            raise DHError(f"theta = {r.theta} is not ±{r.variable} + a constant", row=i,
-                          field="theta")
+            raise DHError(
+                f"theta = {r.theta} is not ±{r.variable} + a constant", row=i, field="theta"
+            )
         for name, e in r.params().items():
             if name != "theta" and e.free_symbols:
-                raise DHError(f"{name} = {e} has no numeric value: give values for "
-                              f"{', '.join(sorted(map(str, e.free_symbols)))}", row=i, field=name)
+                raise DHError(
+                    f"{name} = {e} has no numeric value: give values for "
+                    f"{', '.join(sorted(map(str, e.free_symbols)))}",
+                    row=i,
+                    field=name,
+                )
         pieces.append((int(sign), offset, r.d, r.a, r.alpha))
     zero = sp.Integer(0)
     if table.convention is Convention.STANDARD:
         links = tuple(StandardLink(i, s, o, d, a, al) for i, (s, o, d, a, al) in enumerate(pieces))
         return _Chain(links, tuple(table.base), tuple(table.tool))
     links = tuple(
-        StandardLink(i, s, o, d, pieces[i + 1][3] if i < 5 else zero,
-                     pieces[i + 1][4] if i < 5 else zero)
+        StandardLink(
+            i, s, o, d, pieces[i + 1][3] if i < 5 else zero, pieces[i + 1][4] if i < 5 else zero
+        )
         for i, (s, o, d, _, _) in enumerate(pieces)
     )
-    base = tuple(table.base) + (Elementary("R", "x", pieces[0][4]),
-                                Elementary("T", "x", pieces[0][3]))
+    base = tuple(table.base) + (
+        Elementary("R", "x", pieces[0][4]),
+        Elementary("T", "x", pieces[0][3]),
+    )
     return _Chain(links, base, tuple(table.tool))
 
 
@@ -264,15 +275,14 @@ def _derive() -> _Derivation:
         RT = [[Rm[j][i] for j in range(3)] for i in range(3)]
         return RT, [-sum(RT[i][k] * t[k] for k in range(3)) for i in range(3)]
 
-    def fourteen(p: list, l: list) -> tuple[PolyElement, ...]:
-        def dot(u: list, v: list) -> PolyElement:
-            return red(sum(x * y for x, y in zip(u, v, strict=True)))
+    def fourteen(p: list, u: list) -> tuple[PolyElement, ...]:
+        def dot(v: list, w: list) -> PolyElement:
+            return red(sum(x * y for x, y in zip(v, w, strict=True)))
 
-        cross = [u for u in (p[1] * l[2] - p[2] * l[1], p[2] * l[0] - p[0] * l[2],
-                             p[0] * l[1] - p[1] * l[0])]
-        pp, pl = dot(p, p), dot(p, l)
-        tail = [red(pp * l[i] - 2 * pl * p[i]) for i in range(3)]
-        return tuple([*p, *l, pp, pl, *(red(u) for u in cross), *tail])
+        cross = (p[1] * u[2] - p[2] * u[1], p[2] * u[0] - p[0] * u[2], p[0] * u[1] - p[1] * u[0])
+        pp, pu = dot(p, p), dot(p, u)
+        tail = [red(pp * u[i] - 2 * pu * p[i]) for i in range(3)]
+        return tuple([*p, *u, pp, pu, *(red(c) for c in cross), *tail])
 
     Rl, tl = mul(mul(link(3), link(4)), link(5))
     left = fourteen([red(tl[i]) for i in range(3)], [red(Rl[i][2]) for i in range(3)])
@@ -325,8 +335,9 @@ class EliminationMatrices:
 
     ``P`` (14×9) holds ``cos θ3, sin θ3`` linearly and the right sides' constant terms
     (with a minus sign, in its last column); ``Q`` (14×8) the coefficients of
-    :data:`M12`. The target enters through ``l`` and ``p``: the third and fourth columns of
-    ``base⁻¹ · T · tool⁻¹ · A6⁻¹`` (with θ6 = 0: they do not depend on it). θ_i is the full
+    :data:`M12`. The target enters through ``direction`` (l) and ``point`` (p): the third
+    and fourth columns of ``base⁻¹ · T · tool⁻¹ · A6⁻¹`` (with θ6 = 0: they do not depend on
+    it). θ_i is the full
     angle of link i of the standard form (:func:`standard_chain`), offset included.
     """
 
@@ -334,8 +345,8 @@ class EliminationMatrices:
     Q: sp.ImmutableMatrix
     m45: sp.ImmutableMatrix
     m12: sp.ImmutableMatrix
-    l: sp.ImmutableMatrix
-    p: sp.ImmutableMatrix
+    direction: sp.ImmutableMatrix
+    point: sp.ImmutableMatrix
     equations: tuple[str, ...] = EQUATIONS
 
     def residual(self) -> sp.ImmutableMatrix:
@@ -356,8 +367,8 @@ def elimination_matrices(table: DHTable) -> EliminationMatrices:
     >>> m = elimination_matrices(DHTable.from_rows(rows))
     >>> m.P.shape, m.Q.shape, m.m45[0], m.m12[-1]
     ((14, 9), (14, 8), sin(theta4)*sin(theta5), cos(theta2))
-    >>> m.P[0, :]
-    Matrix([[0, 0, 0, 0, 4*sin(theta3), 4*cos(theta3), 5*cos(theta3), -5*sin(theta3), ...]])
+    >>> m.P[0, 8]
+    4*sin(theta3) + cos(theta3) + 1
     """
     chain = _standard(table)
     d = _derive()
@@ -406,8 +417,9 @@ def _half_angle_basis() -> np.ndarray:
     coefficients of ``x4^i x5^j`` (column ``3i + j``), with ``c = 1 − x²``, ``s = 2x``."""
     one, c, s = (1.0, 0.0, 1.0), (1.0, 0.0, -1.0), (0.0, 2.0, 0.0)
     factors = {"1": (one, one), "s4": (s, one), "c4": (c, one), "s5": (one, s), "c5": (one, c)}
-    factors |= {f"{a}*{b}": (factors[a][0], factors[b][1]) for a in ("s4", "c4")
-                for b in ("s5", "c5")}
+    factors |= {
+        f"{a}*{b}": (factors[a][0], factors[b][1]) for a in ("s4", "c4") for b in ("s5", "c5")
+    }
     H = np.zeros((9, 9))
     for k, word in enumerate(M45):
         u, v = factors[word]
@@ -449,8 +461,24 @@ class _Arrangement:
         """The link matrices ``(k, 6, 4, 4)`` at chain angles ``theta (k, 6)``."""
         c, s = np.cos(theta), np.sin(theta)
         z, one = np.zeros_like(c), np.ones_like(c)
-        rows = [c, -s * self.ca, s * self.sa, self.a * c, s, c * self.ca, -c * self.sa,
-                self.a * s, z, self.sa + z, self.ca + z, self.d + z, z, z, z, one]
+        rows = [
+            c,
+            -s * self.ca,
+            s * self.sa,
+            self.a * c,
+            s,
+            c * self.ca,
+            -c * self.sa,
+            self.a * s,
+            z,
+            self.sa + z,
+            self.ca + z,
+            self.d + z,
+            z,
+            z,
+            z,
+            one,
+        ]
         return np.stack(rows, axis=-1).reshape(*theta.shape, 4, 4)
 
 
@@ -487,7 +515,9 @@ def _arrangement(chain: _Chain, reverse: bool, d: _Derivation, H: np.ndarray) ->
         f([x.joint for x in L], dtype=int),
         P,
         np.stack([P[0] - P[1], 2.0 * P[2], P[0] + P[1]]) @ H,
-        np.array([-L[5].a, -L[5].d * math.sin(alpha[5]), -L[5].d * math.cos(alpha[5])], dtype=float),
+        np.array(
+            [-L[5].a, -L[5].d * math.sin(alpha[5]), -L[5].d * math.cos(alpha[5])], dtype=float
+        ),
         np.array([0.0, math.sin(alpha[5]), math.cos(alpha[5])]),
         K,
         f(exps, dtype=float),
@@ -611,8 +641,16 @@ def _candidates(arr: _Arrangement, Tp: np.ndarray) -> np.ndarray:
     rhs = P[0] @ m45 + (P[1] @ m45) * np.cos(phi) + (P[2] @ m45) * np.sin(phi) - r[:, None]
     m12 = np.linalg.solve(R8, Q1.T @ rhs)
     theta = np.stack(
-        [np.arctan2(m12[4], m12[5]), np.arctan2(m12[6], m12[7]), phi + delta, th4, th5,
-         np.zeros_like(th5)], axis=1)
+        [
+            np.arctan2(m12[4], m12[5]),
+            np.arctan2(m12[6], m12[7]),
+            phi + delta,
+            th4,
+            th5,
+            np.zeros_like(th5),
+        ],
+        axis=1,
+    )
     A = arr.links(theta)
     M = A[:, 0] @ A[:, 1] @ A[:, 2] @ A[:, 3] @ A[:, 4]
     M6 = numeric_rigid_inverse(M) @ Tp  # = A6 = Rz(θ6) …: its first column is (c6, s6, 0)
@@ -649,8 +687,9 @@ def _polish(arr: _Arrangement, theta: np.ndarray, Tp: np.ndarray, steps: int = 6
         if not todo.any():
             break
         Fs = np.stack(F[:5], axis=1)[todo]  # frames 1 … 5 (frame 0 is the identity)
-        z = np.concatenate([np.broadcast_to([[[0.0, 0.0, 1.0]]], (len(Fs), 1, 3)),
-                            Fs[..., :3, 2]], axis=1)
+        z = np.concatenate(
+            [np.broadcast_to([[[0.0, 0.0, 1.0]]], (len(Fs), 1, 3)), Fs[..., :3, 2]], axis=1
+        )
         o = np.concatenate([np.zeros((len(Fs), 1, 3)), Fs[..., :3, 3]], axis=1)
         J = np.concatenate([_cross(z, T[todo][:, None, :3, 3] - o), z], axis=2)  # (k, 6 joints, 6)
         J = J.transpose(0, 2, 1)
@@ -675,6 +714,10 @@ class General6R:
     arrangement: _Arrangement = field(repr=False)
     fk: Callable[[np.ndarray], np.ndarray] = field(repr=False)
     tol: float = 1e-9
+
+    def __repr__(self) -> str:
+        size = "12×12" if self.arrangement.project is None else "16×16"
+        return f"General6R({self.table.name!r}, eliminated joint {self.eliminated}, {size} pencil)"
 
     @property
     def eliminated(self) -> int:
@@ -732,10 +775,15 @@ def general_6r(
     (a robot's ``Robot.fk_function()`` may be passed instead).
 
     >>> from dhsym.model.library import builtin_table
-    >>> general_6r(builtin_table("puma560"))
+    >>> puma = general_6r(builtin_table("puma560"))
+    >>> puma
+    General6R('PUMA 560', eliminated joint 4, 16×16 pencil)
+    >>> len(puma.solve(puma.fk(np.array([0.1, -0.5, 0.3, 1.0, 0.7, -0.2]))))
+    8
+    >>> general_6r(builtin_table("stanford"))
     Traceback (most recent call last):
     ...
-    dhsym.errors.DHError: PUMA 560: the general 6R elimination degenerates on this arm ...
+    dhsym.errors.DHError: row 3, field type: joint 3 is prismatic: the general 6R solver ...
     """
     chain = _standard(table)
     if fk is None:  # the kernel's numeric word: built in milliseconds, whatever the twists
