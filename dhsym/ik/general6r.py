@@ -460,26 +460,20 @@ class _Arrangement:
     def links(self, theta: np.ndarray) -> np.ndarray:
         """The link matrices ``(k, 6, 4, 4)`` at chain angles ``theta (k, 6)``."""
         c, s = np.cos(theta), np.sin(theta)
-        z, one = np.zeros_like(c), np.ones_like(c)
-        rows = [
-            c,
-            -s * self.ca,
-            s * self.sa,
-            self.a * c,
-            s,
-            c * self.ca,
-            -c * self.sa,
-            self.a * s,
-            z,
-            self.sa + z,
-            self.ca + z,
-            self.d + z,
-            z,
-            z,
-            z,
-            one,
-        ]
-        return np.stack(rows, axis=-1).reshape(*theta.shape, 4, 4)
+        A = np.empty((*theta.shape, 4, 4))
+        A[..., 2:, :] = self.fixed_rows  # (0, sα, cα, d), (0, 0, 0, 1)
+        A[..., 0, 0], A[..., 1, 0] = c, s
+        A[..., 0, 1], A[..., 1, 1] = -s * self.ca, c * self.ca
+        A[..., 0, 2], A[..., 1, 2] = s * self.sa, -c * self.sa
+        A[..., 0, 3], A[..., 1, 3] = self.a * c, self.a * s
+        return A
+
+    @property
+    def fixed_rows(self) -> np.ndarray:
+        """The last two rows of every link matrix ``(6, 2, 4)``: they do not depend on θ."""
+        out = np.zeros((6, 2, 4))
+        out[:, 0, 1], out[:, 0, 2], out[:, 0, 3], out[:, 1, 3] = self.sa, self.ca, self.d, 1.0
+        return out
 
 
 def _arrangement(chain: _Chain, reverse: bool, d: _Derivation, H: np.ndarray) -> _Arrangement:
@@ -662,19 +656,22 @@ _SHIFTS = (0.0, 0.9, 2.3)  # θ3 = φ + δ: a Möbius map of x3 when A is nearly
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    i, j = [1, 2, 0], [2, 0, 1]
-    return a[..., i] * b[..., j] - a[..., j] * b[..., i]
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
 
 
 def _polish(arr: _Arrangement, theta: np.ndarray, Tp: np.ndarray, steps: int = 6) -> np.ndarray:
     """Newton steps on the full pose until the error is at round-off.
 
-    The error is ``(Δp, ½ Σ r_i × r_i*)`` (position, then the small rotation taking the
-    columns ``r_i`` of R to those of the target); the Jacobian is the geometric one (joint
-    axis z_{i−1} through origin o_{i−1}: ``(z × (p − o), z)``).
+    The error is ``(Δp, ω)``: the position error and the small rotation ω with
+    ``[ω]× ≈ ½ (R* Rᵀ − R R*ᵀ)`` taking R to the target R*; the Jacobian is the geometric
+    one (joint axis z_{i−1} through origin o_{i−1}: ``(z × (p − o), z)``). Candidates whose
+    first error exceeds ``_FAR`` (times the arm's reach) are extra roots of the projected
+    pencil, not near any solution, and are dropped before the first step.
     """
-    theta = theta.copy()
-    for _ in range(steps):
+    reach = 1.0 + float(np.abs(arr.a).sum() + np.abs(arr.d).sum())
+    for it in range(steps):
         A = arr.links(theta)
         F = [A[:, 0]]
         for i in range(1, 6):
@@ -682,23 +679,36 @@ def _polish(arr: _Arrangement, theta: np.ndarray, Tp: np.ndarray, steps: int = 6
         T = F[-1]
         e = np.empty((theta.shape[0], 6))
         e[:, :3] = Tp[:3, 3] - T[:, :3, 3]
-        e[:, 3:] = 0.5 * _cross(T[:, :3, :3].transpose(0, 2, 1), Tp[:3, :3].T).sum(axis=1)
-        todo = np.abs(e).max(axis=1) > 1e-14
+        W = Tp[:3, :3] @ T[:, :3, :3].transpose(0, 2, 1)
+        e[:, 3] = 0.5 * (W[:, 2, 1] - W[:, 1, 2])
+        e[:, 4] = 0.5 * (W[:, 0, 2] - W[:, 2, 0])
+        e[:, 5] = 0.5 * (W[:, 1, 0] - W[:, 0, 1])
+        size = np.abs(e).max(axis=1)
+        if it == 0:
+            near = size < _FAR * reach
+            theta, e, size, T, F = theta[near], e[near], size[near], T[near], [f[near] for f in F]
+        todo = size > 1e-14
         if not todo.any():
             break
         Fs = np.stack(F[:5], axis=1)[todo]  # frames 1 … 5 (frame 0 is the identity)
-        z = np.concatenate(
-            [np.broadcast_to([[[0.0, 0.0, 1.0]]], (len(Fs), 1, 3)), Fs[..., :3, 2]], axis=1
-        )
-        o = np.concatenate([np.zeros((len(Fs), 1, 3)), Fs[..., :3, 3]], axis=1)
-        J = np.concatenate([_cross(z, T[todo][:, None, :3, 3] - o), z], axis=2)  # (k, 6 joints, 6)
-        J = J.transpose(0, 2, 1)
+        k = len(Fs)
+        z = np.empty((k, 6, 3))
+        o = np.zeros((k, 6, 3))
+        z[:, 0] = (0.0, 0.0, 1.0)
+        z[:, 1:] = Fs[..., :3, 2]
+        o[:, 1:] = Fs[..., :3, 3]
+        J = np.concatenate([_cross(z, T[todo][:, None, :3, 3] - o), z], axis=2)
+        J = J.transpose(0, 2, 1)  # (k, 6 error components, 6 joints)
         try:
             step = np.linalg.solve(J, e[todo][..., None])[..., 0]
         except np.linalg.LinAlgError:  # a singular configuration: least squares, one by one
             step = np.array([np.linalg.lstsq(j, r, rcond=None)[0] for j, r in zip(J, e[todo])])
+        theta = theta.copy()
         theta[todo] += np.clip(step, -0.5, 0.5)
     return theta
+
+
+_FAR = 0.05  # first pose error (times the reach) beyond which a candidate is no solution
 
 
 @dataclass(frozen=True, eq=False)
