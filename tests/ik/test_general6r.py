@@ -320,3 +320,33 @@ def test_exact_matrices_print_through_sympy():
     text = sp.latex(m.P[0, :])
     assert r"\cos{\left(\theta_{3} \right)}" in text
     assert "sqrt" not in str(m.Q) or m.Q.has(sp.sqrt(3))
+
+
+_TWISTS = [sp.Integer(0), sp.pi / 2, -sp.pi / 2, sp.pi, sp.pi / 3]
+_LENGTHS = [sp.Integer(0), sp.Rational(3, 10), sp.Rational(-1, 5), sp.Rational(1, 2)]
+
+
+@pytest.mark.slow
+@settings(max_examples=15, deadline=None)
+@given(
+    rows=st.lists(
+        st.tuples(st.sampled_from(_LENGTHS), st.sampled_from(_LENGTHS), st.sampled_from(_TWISTS)),
+        min_size=6,
+        max_size=6,
+    ),
+    convention=st.sampled_from(["standard", "modified"]),
+    seed=st.integers(0, 1000),
+)
+def test_lab_like_arms_are_solved_or_refused_never_silently_wrong(rows, convention, seed):
+    """Arms with exact right twists and zero lengths: a DHError, or q recovered every time."""
+    table = DHTable.from_rows(
+        [DHRow.revolute(f"q{i}", d=d, a=a, alpha=al) for i, (d, a, al) in enumerate(rows, 1)],
+        convention=convention,
+    )
+    try:
+        solver = general_6r(table)
+    except DHError as err:
+        assert "degenerates on this arm" in str(err)
+        return
+    for q in np.random.default_rng(seed).uniform(-np.pi, np.pi, (10, 6)):
+        _check_all(solver, q)
