@@ -583,7 +583,8 @@ def _eigen(big: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
 
 
 def _eigen_qz(big: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The same pencil by the QZ algorithm (scipy), infinite eigenvalues included."""
+    """The same pencil by the QZ algorithm, infinite eigenvalues included (needs scipy,
+    else ImportError: the caller then keeps the companion matrix)."""
     from scipy.linalg import eig
 
     A, B, C = big
@@ -601,15 +602,20 @@ def _eigen_qz(big: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def _candidates(arr: _Arrangement, Tp: np.ndarray) -> np.ndarray:
     """Chain angles ``(k, 6)`` of every real eigenvalue, before polishing."""
+    best = None
     for delta in _SHIFTS:
-        big, Q1, R8, r, P = _pencil(arr, Tp, delta)
-        x, W, size = _eigen(big)
+        found = _pencil(arr, Tp, delta), delta
+        x, W, size = _eigen(found[0][0])
         if size < 1e8:
             break
-    else:  # every shift leaves A nearly singular: QZ on the unshifted pencil
-        delta = 0.0
-        big, Q1, R8, r, P = _pencil(arr, Tp, delta)
-        x, W = _eigen_qz(big)
+        best = best if best is not None and best[0] <= size else (size, found, x, W)
+    else:  # every shift leaves A nearly singular: QZ (scipy) on the unshifted pencil
+        try:
+            found = _pencil(arr, Tp, 0.0), 0.0
+            x, W = _eigen_qz(found[0][0])
+        except ImportError:  # no scipy: the companion matrix of the best-conditioned shift
+            _, found, x, W = best  # type: ignore[misc]
+    (big, Q1, R8, r, P), delta = found
     with np.errstate(all="ignore"):
         phi = 2.0 * np.arctan(x.astype(complex))
     real = np.isfinite(phi) & (np.abs(phi.imag) < _ANGLE_TOL)

@@ -350,3 +350,22 @@ def test_lab_like_arms_are_solved_or_refused_never_silently_wrong(rows, conventi
         return
     for q in np.random.default_rng(seed).uniform(-np.pi, np.pi, (10, 6)):
         _check_all(solver, q)
+
+
+@pytest.mark.parametrize("scipy_missing", [False, True])
+def test_ill_conditioned_leading_matrix_goes_to_qz_or_the_best_shift(monkeypatch, scipy_missing):
+    """When every shift leaves A nearly singular: QZ, or without scipy the best companion."""
+    from dhsym.ik import general6r as g
+
+    solver = _random_solver(1, "standard")
+    eigen = g._eigen
+    monkeypatch.setattr(g, "_eigen", lambda big: (*eigen(big)[:2], 1e12))
+    if scipy_missing:
+
+        def no_scipy(big):
+            raise ImportError("scipy")
+
+        monkeypatch.setattr(g, "_eigen_qz", no_scipy)
+    rng = np.random.default_rng(12)
+    for q in rng.uniform(-np.pi, np.pi, (10, 6)):
+        _check_all(solver, q)
