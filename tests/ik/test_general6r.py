@@ -369,3 +369,40 @@ def test_ill_conditioned_leading_matrix_goes_to_qz_or_the_best_shift(monkeypatch
     rng = np.random.default_rng(12)
     for q in rng.uniform(-np.pi, np.pi, (10, 6)):
         _check_all(solver, q)
+
+
+#: A random arm (d, a, α per row, standard DH) and a configuration whose pose has 16 real
+#: solutions, the most a 6R can have: found by a seeded search (numpy default_rng(282) arm,
+#: random perturbations of q keeping the count), not a published example.
+SIXTEEN_ARM = [
+    (0.24905811658648624, -0.6481798773203156, 1.3378870324620493),
+    (0.4198882791648999, -0.7649114851991277, 1.5334757916983177),
+    (-0.745854916017751, 0.004571845524325324, 1.7484583298120153),
+    (-0.7403610230678768, 0.6322588568529004, 1.6429507728344088),
+    (-0.6441019919639881, 0.06291112033039337, -1.3361058577150604),
+    (-0.21279832198445248, -0.9649733094150885, -1.6263504538706948),
+]
+SIXTEEN_Q = [1.2246131030053473, 4.897295722694401, 3.3592513985522623, 1.2892191310844185,
+             3.53638232076342, -2.3611108383310166]  # fmt: skip
+
+
+def _sixteen() -> General6R:
+    rows = [
+        DHRow.revolute(f"q{i}", d=d, a=a, alpha=al) for i, (d, a, al) in enumerate(SIXTEEN_ARM, 1)
+    ]
+    return general_6r(DHTable.from_rows(rows, snap_angles=False, name="sixteen"))
+
+
+def test_a_pose_with_sixteen_real_solutions_gives_all_sixteen():
+    Q = _check_all(_sixteen(), np.array(SIXTEEN_Q))
+    assert len(Q) == 16
+
+
+@pytest.mark.slow
+def test_the_multistart_search_finds_nothing_beyond_the_sixteen():
+    solver = _sixteen()
+    T = solver.fk(np.array(SIXTEEN_Q))
+    Q = solver.solve(T)
+    found = multistart_lm(solver.fk, T, 300, seed=1)
+    assert len(found) >= 8
+    assert all(contains(Q, f, 1e-5) for f in found)
