@@ -60,7 +60,13 @@ import sympy as sp
 from sympy.polys.rings import PolyElement, ring
 
 from dhsym.errors import DHError
-from dhsym.kinematics.numeric import compile_word, numeric_rigid_inverse, to_float, word_product
+from dhsym.kinematics.numeric import (
+    as_basic,
+    compile_word,
+    numeric_rigid_inverse,
+    to_float,
+    word_product,
+)
 from dhsym.kinematics.transforms import chain_word, cos_sin
 from dhsym.model.table import Convention, DHTable, Elementary, JointType
 
@@ -201,10 +207,11 @@ def _standard(table: DHTable) -> _Chain:
                 f"theta = {r.theta} is not ±{r.variable} + a constant", row=i, field="theta"
             )
         for name, e in r.params().items():
-            if name != "theta" and e.free_symbols:
+            free = as_basic(e).free_symbols
+            if name != "theta" and free:
                 raise DHError(
                     f"{name} = {e} has no numeric value: give values for "
-                    f"{', '.join(sorted(map(str, e.free_symbols)))}",
+                    f"{', '.join(sorted(map(str, free)))}",
                     row=i,
                     field=name,
                 )
