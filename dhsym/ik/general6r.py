@@ -718,6 +718,8 @@ def _polish(arr: _Arrangement, theta: np.ndarray, Tp: np.ndarray, steps: int = 6
             step = np.array([np.linalg.lstsq(j, r, rcond=None)[0] for j, r in zip(J, e[todo])])
         theta = theta.copy()
         theta[todo] += np.clip(step, -0.5, 0.5)
+        if np.abs(step).max() < 1e-9:  # Newton from this close lands at round-off: the fk
+            break  # check of solve() confirms it without another evaluation here
     return theta
 
 
