@@ -3,7 +3,8 @@ a numeric solver apart.
 
 :mod:`.structure` classifies an arm by its joint axes; one module per family derives its
 closed form as lecture steps (:mod:`.decoupled`: spherical wrist and planar arms;
-:mod:`.parallel`: three parallel axes; :mod:`.inverted`: the chain read backwards);
+:mod:`.parallel`: three parallel axes; :mod:`.inverted`: the chain read backwards;
+:mod:`.general6r`: the general 6R by Raghavan–Roth elimination);
 :mod:`.families` chooses; :mod:`.compiler` turns the steps into numbers and
 :mod:`.results` holds what it returns; :mod:`.choices` applies joint limits, a given
 joint and the nearest solution; :mod:`.levenberg_marquardt` is the numeric solver.
@@ -23,6 +24,7 @@ __getattr__, __dir__ = lazy_exports(
         "Structure": "structure",
         "StructureError": "dhsym.kinematics.decoupling",
         "classify": "structure",
+        "general_6r": "general6r",
         "inverse": "families",
         "numeric_ik": "levenberg_marquardt",
         "pose_symbols": "steps",
@@ -39,6 +41,7 @@ __all__ = [
     "Structure",
     "StructureError",
     "classify",
+    "general_6r",
     "inverse",
     "numeric_ik",
     "pose_symbols",

@@ -448,7 +448,7 @@ def _multiply(word: Sequence[object], values: Sequence[object], size: int, prefi
     """
     out = [np.broadcast_to(np.eye(4), (size, 4, 4))]
     for e, v in zip(word, values, strict=True):
-        if e.value == 0:  # type: ignore[attr-defined]
+        if e.value.is_zero:  # type: ignore[attr-defined]  (an exact zero; no sympify per call)
             out.append(out[-1])
             continue
         factor = elementary_stack(e.kind, e.axis, np.broadcast_to(v, (size,)))  # type: ignore[attr-defined]
