@@ -24,6 +24,7 @@ ORDER = [
     "kinematics",
     "geometry",
     "plot",
+    "export",
     "explain",
     "checking",
     "__init__",
@@ -32,6 +33,7 @@ ORDER = [
 ]
 RANK = {room: k for k, room in enumerate(ORDER)}
 RANK["plot"] = RANK["geometry"]  # siblings
+RANK["export"] = RANK["geometry"]  # a sibling too: it reads model, notation, kinematics
 #: Upward edges with a documented reason: display hooks that reach the printer at call
 #: time (as sympy's own Basic._repr_latex_ does), and Robot.plot, a notebook convenience.
 #: Imports under ``if TYPE_CHECKING:`` are annotations only and are not counted.

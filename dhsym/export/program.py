@@ -237,7 +237,7 @@ def _prepared(
     qs = _joint_symbols(robot)
     taken = {s.name for s in qs.values()}
     consts, params = _constants(robot, symbolic_lengths, taken)
-    exprs = [sp.sympify(e).xreplace({**qs, **consts}) for e in matrix]
+    exprs = [sp.Integer(e) if isinstance(e, int) else e.xreplace({**qs, **consts}) for e in matrix]
     index = {s: k for k, s in enumerate(qs.values(), start=1)}
     return exprs, params, index, taken
 

@@ -15,6 +15,7 @@ Examples
 from __future__ import annotations
 
 import sympy as sp
+from sympy.printing.codeprinter import CodePrinter
 from sympy.printing.rust import RustCodePrinter
 
 from .render import Language
@@ -33,6 +34,12 @@ class RustPrinter(RustCodePrinter):  # type: ignore[misc]
     def _print_Integer(self, expr: sp.Integer, _type: bool = False) -> str:
         ret = f"{int(expr)}.0" + ("_f64" if _type else "")
         return f"({ret})" if _type and expr < 0 else ret
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        # sympy's Rust _print_Mul re-multiplies float-cast factors and can lose the
+        # brackets of a sum (0.1*c5*(c2*w13 - w12) -> 0.1*c5*-w12 + c2*w13); every number
+        # here is already a float, so the generic printer is right
+        return CodePrinter._print_Mul(self, expr)  # type: ignore[no-any-return]
 
     def _print_Pow(self, expr: sp.Pow) -> str:
         base, exp = expr.args

@@ -1,3 +1,4 @@
+# ruff: noqa: E501
 """Drive exported code in each language: build it, feed it configurations and poses, read
 back fk, Jacobians and IK solutions (all numbers printed with 17 digits)."""
 
