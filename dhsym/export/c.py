@@ -12,8 +12,8 @@ Examples
 --------
 >>> import sympy as sp
 >>> x = sp.Symbol("x", real=True)
->>> CPrinter().doprint(sp.atan2(x, 2.0) + x**2)
-'pow(x, 2) + atan2(x, 2.0)'
+>>> CPrinter().doprint(sp.atan2(x, sp.Symbol("y")) + x**2)
+'pow(x, 2) + atan2(x, y)'
 """
 
 from __future__ import annotations

@@ -14,7 +14,7 @@ Examples
 >>> import dhsym
 >>> src = ik_source(dhsym.load("puma560"))
 >>> [s.name for s in src.signs], len(src.steps), src.branch_names[0]
-(['sigma_1', 'sigma_3', 'sigma_5'], 22, 'right arm, elbow up, wrist not flipped')
+(['sigma_1', 'sigma_3', 'sigma_5'], 22, 'right arm, elbow down, wrist not flipped')
 >>> src.steps[3].comment[0]
 'Step 4 (position): Joint 1 turns the arm about z_0; ...'
 """

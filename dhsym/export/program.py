@@ -262,7 +262,7 @@ def jacobian_program(robot: Robot, *, symbolic_lengths: bool = False) -> Program
     >>> import dhsym
     >>> prog = jacobian_program(dhsym.load("planar2r"))
     >>> (prog.rows, prog.cols), str(prog.outputs[0].expr)
-    ((6, 2), '-s1 - 0.8*s12')
+    ((6, 2), '-s1 - w0')
     """
     J = robot.jacobian()
     return _program(robot, J.matrix, symbolic_lengths)  # type: ignore[attr-defined]
@@ -281,9 +281,9 @@ def ik_program(robot: Robot, *, symbolic_lengths: bool = False) -> IKProgram:
     >>> import dhsym
     >>> prog = ik_program(dhsym.load("planar2r"))
     >>> prog.signs, prog.branch_names
-    (('sigma_2',), ('elbow up', 'elbow down'))
+    (('sigma_2',), ('elbow sigma_2 = +1', 'elbow sigma_2 = -1'))
     >>> [a.name for a in prog.body]
-    ['D_2', 'q2', 'c2', 's2', 'q1']
+    ['d_2', 'q2', 'c2', 's2', 'q1']
     """
     src = ik_source(robot)
     qs = _joint_symbols(robot)

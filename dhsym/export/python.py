@@ -8,8 +8,8 @@ Examples
 --------
 >>> import sympy as sp
 >>> x = sp.Symbol("x", real=True)
->>> PythonPrinter().doprint(sp.atan2(x, 1.0) + x**2)
-'x**2 + numpy.arctan2(x, 1.0)'
+>>> PythonPrinter().doprint(sp.atan2(x, sp.Symbol("y")) + x**2)
+'x**2 + numpy.arctan2(x, y)'
 """
 
 from __future__ import annotations
