@@ -35,11 +35,13 @@ RANK = {room: k for k, room in enumerate(ORDER)}
 RANK["plot"] = RANK["geometry"]  # siblings
 RANK["export"] = RANK["geometry"]  # a sibling too: it reads model, notation, kinematics
 #: Upward edges with a documented reason: display hooks that reach the printer at call
-#: time (as sympy's own Basic._repr_latex_ does), and Robot.plot, a notebook convenience.
+#: time (as sympy's own Basic._repr_latex_ does), and Robot.plot, a notebook convenience
+#: (and Robot.compiled, the exported C loaded back: the same kind of convenience).
 #: Imports under ``if TYPE_CHECKING:`` are annotations only and are not counted.
 ALLOWED = {
     ("model.table", "notation.tables"),
     ("kinematics.robot", "plot.figures"),
+    ("kinematics.robot", "export.compiled"),
 }
 
 

@@ -108,7 +108,9 @@ class IKProgram:
     ``pose`` assigns the pose symbols (``n_x`` … ``p_z``) from the input with base and
     tool undone; ``signs`` names the branch signs in loop order; ``branch_names`` gives
     the name of each of the ``2 ** len(signs)`` branches (as ``robot.ik`` names them);
-    ``joints`` are the joint values with ``revolute`` telling which to wrap to [−π, π].
+    ``joints`` are the joint values with ``revolute`` telling which to wrap to [−π, π];
+    ``check`` the top three rows of the branch's world-to-tool fk (row by row), on the
+    values of ``body``, to compare with the pose within ``tolerance``.
     """
 
     source: IKSource
@@ -121,6 +123,7 @@ class IKProgram:
     branch_names: tuple[str, ...]
     sqrt_rounding: float
     tolerance: float
+    check: tuple[sp.Expr, ...] = ()
 
     @property
     def safe_sqrt(self) -> bool:
@@ -339,18 +342,32 @@ def ik_program(robot: Robot, *, symbolic_lengths: bool = False) -> IKProgram:
         body.append(Assign(lhs.name, _numbers(rhs), lv, step.comment, alt))
         # a joint value's sine and cosine may be needed again after a singular fix:
         # they are defined after it (with_trig runs on later steps only)
+    # the check: the fk (world to tool) of the branch's joint values, its top three rows,
+    # on the sines and cosines the steps computed; its common parts at their levels
+    tool = robot.tool_pose().matrix
+    named = [with_trig(convert(tool[i, j])) for i in range(3) for j in range(4)]
+    names = (f"f{k}" for k in range(10**6))
+    fresh = (sp.Symbol(n, **_REAL) for n in names if n not in taken)
+    common, check = sp.cse([_numbers(e) for e in named], symbols=fresh, order="canonical")
+    for sym, e in common:
+        level[sym] = level_of(e)
+        body.append(Assign(sym.name, _numbers(e), level[sym]))
+    check = [_numbers(e) for e in check]
+    keep = [s.name for s in qs.values()]
+    keep += [s.name for e in check for s in e.free_symbols]  # type: ignore[attr-defined]
     pose = tuple(Assign(pose_names[s].name, _numbers(convert(e))) for s, e in src.pose_inputs)
     return IKProgram(
         src,
         params,
         pose,
         tuple(signs),
-        _ordered(body, [s.name for s in qs.values()]),
+        _ordered(body, keep),
         tuple(s.name for s in qs.values()),
         tuple(r.joint is JointType.REVOLUTE for r in robot.table.rows if r.variable is not None),
         src.branch_names,
         src.sqrt_rounding,
         src.tolerance,
+        tuple(check),
     )
 
 

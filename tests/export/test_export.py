@@ -108,7 +108,7 @@ def test_compiled_matches_robot(tmp_path, monkeypatch):
     assert np.abs(fast.fk(q) - r.fk(q)).max() <= 1e-12
     assert np.abs(fast.jacobian(q) - r.jacobian(q)).max() <= 1e-12
     assert np.abs(fast.ik(r.fk(q)) - r.ik(r.fk(q)).q).max() <= 1e-9
-    again = compiled(dhsym.load("puma560"))  # the cache: the same library, not rebuilt
+    again = dhsym.load("puma560").compiled("c")  # the cache: the same library, not rebuilt
     assert again.library == fast.library
 
 
