@@ -101,6 +101,17 @@ def _build(source: dict[str, str], cc: str) -> Path:
     return lib
 
 
+def _vector(q: object, n: int) -> np.ndarray:
+    qa = np.ascontiguousarray(q, dtype=float)
+    if qa.shape != (n,):
+        raise DHError(f"expected {n} joint values, got an array of shape {qa.shape}")
+    return qa
+
+
+def _address(a: np.ndarray) -> int:
+    return a.__array_interface__["data"][0]  # type: ignore[no-any-return]
+
+
 def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
     """The robot's fk, Jacobian and IK as exported C loaded with ctypes (built once, cached).
 
@@ -131,33 +142,35 @@ def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
         )
     lib_path = _build(export(robot, "c", what=what, prefix=_PREFIX), cc)
     lib = ctypes.CDLL(str(lib_path))
-    dbl = ctypes.POINTER(ctypes.c_double)
+    ptr = ctypes.c_void_p
     for name in ("fk", "jacobian") + (("ik",) if "ik" in what else ()):
         fn = getattr(lib, f"{_PREFIX}_{name}")
-        fn.argtypes = [dbl, dbl]
+        fn.argtypes = [ptr, ptr]
         fn.restype = ctypes.c_int if name == "ik" else None
     fk_c, jac_c = lib.dhsym_arm_fk, lib.dhsym_arm_jacobian
     ik_c = lib.dhsym_arm_ik if "ik" in what else None
     K = 2 ** len(robot.inverse().branches) if ik_c is not None else 0  # type: ignore[attr-defined]
 
     def fk(q: object) -> np.ndarray:
-        qa = np.ascontiguousarray(q, dtype=float)
+        qa = _vector(q, n)
         out = np.empty((4, 4))
-        fk_c(qa.ctypes.data_as(dbl), out.ctypes.data_as(dbl))
+        fk_c(_address(qa), _address(out))
         return out
 
     def jacobian(q: object) -> np.ndarray:
-        qa = np.ascontiguousarray(q, dtype=float)
+        qa = _vector(q, n)
         out = np.empty((6, n))
-        jac_c(qa.ctypes.data_as(dbl), out.ctypes.data_as(dbl))
+        jac_c(_address(qa), _address(out))
         return out
 
     def ik(T: object) -> np.ndarray:
         if ik_c is None:
             raise DHError(f"{robot.name or 'this robot'} has no closed-form IK to compile")
         Ta = np.ascontiguousarray(T, dtype=float)
+        if Ta.shape != (4, 4):
+            raise DHError(f"ik expects one pose of shape (4, 4), got {Ta.shape}")
         out = np.empty((K, n))
-        count = ik_c(Ta.ctypes.data_as(dbl), out.ctypes.data_as(dbl))
+        count = ik_c(_address(Ta), _address(out))
         return out[:count]
 
     return CompiledRobot(fk, jacobian, ik, "c", lib_path, n)
