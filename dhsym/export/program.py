@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import sympy as sp
 
@@ -36,7 +37,7 @@ from dhsym.model.table import JointType
 from .ik_source import IKSource, ik_source
 from .names import identifier
 
-if False:  # pragma: no cover  (annotations only; kinematics is imported by the caller)
+if TYPE_CHECKING:
     from dhsym.kinematics.robot import Robot
 
 __all__ = [
