@@ -129,3 +129,15 @@ def test_gcc_is_warning_free_for_puma(tmp_path):
     flags = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-c", "puma.c"]
     done = subprocess.run(["gcc", *flags], cwd=tmp_path, capture_output=True, text=True)
     assert done.returncode == 0 and done.stderr == ""
+
+
+def test_compiled_ik_at_a_singular_wrist(tmp_path, monkeypatch):
+    _need("a C compiler", shutil.which("cc") or shutil.which("gcc"), "apt-get install gcc")
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path))
+    r = dhsym.load("puma560")
+    fast = r.compiled("c")
+    for q5 in (0.0, 1e-7):  # sin θ5 = 0 (θ4 = 0 and θ6 from the whole rotation) and near it
+        T = r.fk([0.3, -0.5, 0.4, 0.2, q5, -1.1])
+        got, want = fast.ik(T), r.ik(T)
+        assert got.shape == want.q.shape
+        assert np.abs(np.angle(np.exp(1j * (got - want.q)))).max() <= 1e-9
