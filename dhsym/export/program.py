@@ -287,7 +287,7 @@ def ik_program(robot: Robot, *, symbolic_lengths: bool = False) -> IKProgram:
     >>> prog.signs, prog.branch_names
     (('sigma_2',), ('elbow sigma_2 = +1', 'elbow sigma_2 = -1'))
     >>> [a.name for a in prog.body]
-    ['d_2', 'q2', 'c2', 's2', 'q1']
+    ['d_2', 'q2', 'c2', 's2', 'q1', 'c12', 's12', 'c1', 's1']
     """
     src = ik_source(robot)
     qs = _joint_symbols(robot)
