@@ -234,6 +234,81 @@ else:
     print("no GIF writer here; the frames are PNG files in", out)
 
 # %% [markdown]
+# ## 9. Take the closed form away: MATLAB and C
+#
+# The arm matrix above is worth most where it runs. `dhsym.export` writes it as source code
+# with no dependency on dhsym: a MATLAB/Octave function file and a C99 file here (C++, Rust
+# and NumPy work the same way). Each file starts with the DH table it came from.
+
+# %%
+import shutil
+import subprocess
+
+folder = Path(tempfile.mkdtemp())
+for lang in ("matlab", "c"):
+    for name, text in dhsym.export(robot, lang, what="fk", prefix="arm").items():
+        (folder / name).write_text(text)
+print(sorted(p.name for p in folder.iterdir()))
+print((folder / "arm_fk.m").read_text().split("\n  q1")[0][-300:])
+
+# %% [markdown]
+# Compile the C with `gcc` and run it along the path of section 8; run the MATLAB function in
+# GNU Octave. Both print the tip position $(x, y)$ at each step; the plot shows the two tracks
+# (they coincide) next to dhsym's own `fk`.
+
+# %%
+path_rad = np.radians(joint_path([0, 0], [90, -60], 40))
+lines = "\n".join(f"{a:.17g} {b:.17g}" for a, b in path_rad)
+tracks = {"dhsym fk": robot.fk(path_rad)[:, :2, 3]}
+main_c = r"""
+#include <stdio.h>
+#include "arm.h"
+int main(void)
+{
+    double q[ARM_NJOINTS], T[16];
+    while (scanf("%lf %lf", &q[0], &q[1]) == 2) {
+        arm_fk(q, T);
+        printf("%.17g %.17g\n", T[3], T[7]);
+    }
+    return 0;
+}
+"""
+if shutil.which("gcc"):
+    (folder / "main.c").write_text(main_c)
+    subprocess.run(["gcc", "-std=c99", "-O2", "main.c", "arm.c", "-o", "arm", "-lm"],
+                   cwd=folder, check=True)
+    out = subprocess.run([str(folder / "arm")], input=lines, capture_output=True, text=True,
+                         check=True).stdout
+    tracks["C (gcc)"] = np.array([[float(v) for v in row.split()] for row in out.splitlines()])
+else:
+    print("gcc is not installed: no C track")
+if shutil.which("octave"):
+    np.savetxt(folder / "path.txt", path_rad, fmt="%.17g")
+    script = "Q = dlmread('path.txt'); for i = 1:rows(Q); T = arm_fk(Q(i, :)); " \
+             "printf('%.17g %.17g\\n', T(1, 4), T(2, 4)); end"
+    out = subprocess.run(["octave", "--no-gui", "--quiet", "--no-window-system", "--eval", script],
+                         cwd=folder, capture_output=True, text=True, check=True).stdout
+    tracks["MATLAB (Octave)"] = np.array([[float(v) for v in row.split()]
+                                          for row in out.splitlines()])
+else:
+    print("GNU Octave is not installed: no MATLAB track")
+
+import matplotlib.pyplot as plt
+
+fig, ax = plt.subplots(figsize=(4, 4))
+styles = {"dhsym fk": "-", "C (gcc)": "o", "MATLAB (Octave)": "x"}
+for label, xy in tracks.items():
+    ax.plot(xy[:, 0], xy[:, 1], styles[label], label=label, markersize=4)
+ax.set_aspect("equal")
+ax.set_xlabel("x")
+ax.set_ylabel("y")
+ax.legend()
+plt.close(fig)
+display(fig)
+for label, xy in tracks.items():
+    print(f"{label:16s} largest difference from dhsym: {np.abs(xy - tracks['dhsym fk']).max():.1e}")
+
+# %% [markdown]
 # ## What to remember
 #
 # - One row of the DH table gives one link matrix

@@ -26,6 +26,7 @@ ORDER = [
     "geometry",
     "plot",
     "formats",
+    "export",
     "explain",
     "checking",
     "__init__",
@@ -35,9 +36,11 @@ ORDER = [
 RANK = {room: k for k, room in enumerate(ORDER)}
 RANK["plot"] = RANK["geometry"]  # siblings
 RANK["ik"] = RANK["geometry"]
+RANK["export"] = RANK["geometry"]  # a sibling too: it reads model, notation, kinematics, ik
 #: Upward edges with a documented reason: display hooks that reach the printer at call
-#: time (as sympy's own Basic._repr_latex_ does), Robot.plot, a notebook convenience, and
-#: load('x.urdf') / Robot.to_urdf / Robot.to_rtb, which reach the formats room.
+#: time (as sympy's own Basic._repr_latex_ does), Robot.plot, a notebook convenience,
+#: load('x.urdf') / Robot.to_urdf / Robot.to_rtb, which reach the formats room, and
+#: Robot.compiled, the exported C loaded back (the same kind of convenience).
 #: Imports under ``if TYPE_CHECKING:`` are annotations only and are not counted.
 ALLOWED = {
     ("model.table", "notation.tables"),
@@ -46,6 +49,7 @@ ALLOWED = {
     ("kinematics.robot", "formats.rtb"),  # Robot.to_rtb, at call time
     ("kinematics.robot", "ik.families"),  # Robot.inverse, a convenience
     ("kinematics.robot", "ik.choices"),  # Robot.ik, a convenience
+    ("kinematics.robot", "export.compiled"),  # Robot.compiled, at call time
 }
 
 

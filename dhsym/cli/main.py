@@ -9,8 +9,8 @@ starts without sympy. Bad input exits with status 2 and one line
 Examples
 --------
 >>> sorted(build_parser()._subparsers._group_actions[0].choices)  # doctest: +NORMALIZE_WHITESPACE
-['autograder', 'check', 'convert', 'derive', 'fk', 'grade', 'handout', 'list', 'notebooks',
- 'plot', 'show']
+['autograder', 'check', 'convert', 'derive', 'export', 'fk', 'grade', 'handout', 'list',
+ 'notebooks', 'plot', 'show']
 """
 
 from __future__ import annotations
@@ -19,13 +19,13 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from . import checking, documents, geometry, plots, robots
+from . import checking, documents, export, geometry, plots, robots
 from .common import HelpFormatter, run_quietly
 
 __all__ = ["COMMAND_GROUPS", "build_parser", "main"]
 
 #: The command groups, in the order ``dhsym --help`` lists them.
-COMMAND_GROUPS = (robots, documents, plots, geometry, checking)
+COMMAND_GROUPS = (robots, documents, plots, geometry, checking, export)
 
 _DESCRIPTION = """\
 Denavit-Hartenberg tables to closed-form kinematics in lecture notation

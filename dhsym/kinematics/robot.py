@@ -349,6 +349,13 @@ class Robot:
 
         return to_rtb(self)
 
+    def compiled(self, lang: str = "c") -> object:
+        """fk, Jacobian and IK as exported C built once (a file cache) and called by ctypes;
+        dhsym's NumPy path without a compiler (see :mod:`dhsym.export.compiled`)."""
+        from dhsym.export.compiled import compiled
+
+        return compiled(self, lang)
+
     def plot(self, q: object = None, **kw: object) -> object:
         """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plot.figures`)."""
         from dhsym.plot.figures import plot_robot

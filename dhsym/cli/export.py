@@ -1,0 +1,88 @@
+"""``dhsym export``: self-contained source code (C, C++, MATLAB/Octave, Rust, NumPy)."""
+
+from __future__ import annotations
+
+import argparse
+import shlex
+import sys
+from pathlib import Path
+
+from .common import add_command, load_robot, note_warnings, wrote
+
+__all__ = ["register"]
+
+#: --lang choices: the export room's languages, and urdf (written by `dhsym convert`)
+_LANGS = ("c", "cpp", "matlab", "rust", "python", "urdf")
+
+
+def _cmd_export(args: argparse.Namespace) -> int:
+    from dhsym.errors import DHError
+    from dhsym.export import export
+
+    if args.lang == "urdf":
+        raise DHError(f"--lang urdf: use `dhsym convert {args.robot} --to urdf` for a URDF file")
+    robot = load_robot(args.robot, args.values)
+    note_warnings(robot.table)  # type: ignore[attr-defined]
+    command = " ".join(
+        shlex.quote(a)
+        for a in ["dhsym", "export", args.robot, "--lang", args.lang, "--what", args.what]
+        + (["--prefix", args.prefix] if args.prefix else [])
+        + (["--symbolic-lengths"] if args.symbolic_lengths else [])
+        + (["--values", args.values] if args.values else [])
+    )
+    files = export(
+        robot,  # type: ignore[arg-type]
+        args.lang,
+        what=args.what,
+        prefix=args.prefix,
+        symbolic_lengths=args.symbolic_lengths,
+        command=command,
+    )
+    folder = Path(args.output)
+    folder.mkdir(parents=True, exist_ok=True)
+    for name, text in files.items():
+        path = folder / name
+        path.write_text(text, encoding="utf-8")
+        wrote(path)
+    if not files:
+        print("nothing written", file=sys.stderr)
+    return 0
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add ``dhsym export NAME --lang LANG [--what fk,jacobian,ik] [--prefix P] -o DIR``.
+
+    >>> sub = argparse.ArgumentParser().add_subparsers()
+    >>> register(sub)
+    >>> sorted(sub.choices)
+    ['export']
+    """
+    c = add_command(
+        subparsers,
+        "export",
+        "source code of the fk, Jacobian and closed-form IK: C, C++, MATLAB/Octave, Rust, NumPy",
+        epilog="Example: dhsym export puma560 --lang c --prefix puma -o gen/ "
+        "(writes gen/puma.h and gen/puma.c; compile with gcc -std=c99 ... -lm)",
+    )
+    c.add_argument("robot", help="built-in robot name (dhsym list) or table file")
+    c.add_argument(
+        "--lang",
+        required=True,
+        choices=_LANGS,
+        help="c (C99, math.h), cpp (C++17 header), matlab (Octave too), rust (no crates), "
+        "python (NumPy); urdf: use `dhsym convert NAME --to urdf`",
+    )
+    c.add_argument(
+        "--what",
+        default="fk,jacobian,ik",
+        help="comma-separated parts: fk, jacobian, ik (dynamics: not available yet)",
+    )
+    c.add_argument("--prefix", help="name in front of every function (default: the robot's name)")
+    c.add_argument(
+        "--symbolic-lengths",
+        action="store_true",
+        help="lengths and offsets as a run-time parameter array p instead of numbers",
+    )
+    c.add_argument("--values", help="numbers for symbolic lengths, e.g. a1=1,a2=0.8")
+    c.add_argument("-o", "--output", required=True, metavar="DIR", help="folder for the files")
+    c.set_defaults(func=_cmd_export)

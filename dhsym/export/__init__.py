@@ -1,0 +1,161 @@
+"""Source code to take away: fk, Jacobian and closed-form IK in C, C++, MATLAB, Rust, NumPy.
+
+The room turns a robot's exact closed forms (:mod:`dhsym.kinematics`) into
+self-contained source files with no dependency on dhsym: :mod:`.program` is the
+front end (named straight-line programs), :mod:`.ik_source` the one adapter to the IK
+derivation, :mod:`.render` and the templates in ``templates/export`` the back end, one
+module per language (:mod:`.c`, :mod:`.cpp`, :mod:`.matlab`, :mod:`.rust`,
+:mod:`.python`), and :mod:`.compiled` builds the C once and loads it with ``ctypes``.
+May import model, notation and kinematics.
+
+``dhsym.export(robot, lang, ...)`` is :func:`export` (the module is callable).
+
+Examples
+--------
+>>> import dhsym
+>>> files = dhsym.export(dhsym.load("planar2r"), "c", what=("fk",), prefix="arm")
+>>> sorted(files)
+['arm.c', 'arm.h']
+>>> print(files["arm.c"].split("void arm_fk")[1].split("}")[0])  # doctest: +ELLIPSIS
+(const double q[ARM_NJOINTS], double T[16])
+{
+    const double q1 = q[0];
+    const double q2 = q[1];
+    const double c1 = cos(q1);
+    const double c12 = cos(q1 + q2);
+    const double s1 = sin(q1);
+    const double s12 = sin(q1 + q2);
+    T[0] = c12;
+    T[1] = -s12;
+    T[2] = 0.0;
+    T[3] = c1 + 0.8*c12;
+...
+<BLANKLINE>
+"""
+
+from __future__ import annotations
+
+import sys
+import types
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
+
+from dhsym.errors import DHError
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.robot import Robot
+
+__all__ = ["LANGUAGES", "PARTS", "export"]
+
+#: The languages and the modules that print them.
+LANGUAGES = ("c", "cpp", "matlab", "rust", "python")
+#: What can be exported (``dynamics`` comes with the dynamics room).
+PARTS = ("fk", "jacobian", "ik")
+
+
+def _language(lang: str) -> object:
+    from importlib import import_module
+
+    if lang not in LANGUAGES:
+        raise DHError(f"unknown language {lang!r}: choose one of {', '.join(LANGUAGES)}")
+    return import_module(f"{__name__}.{lang}").LANGUAGE
+
+
+def _parts(what: str | Iterable[str]) -> tuple[str, ...]:
+    items = what.split(",") if isinstance(what, str) else list(what)
+    parts = []
+    for w in (x.strip() for x in items):
+        if w == "dynamics":
+            raise DHError(
+                "--what dynamics is not available yet: the dynamics export comes when the "
+                "dynamics (rne) work has landed; export fk, jacobian and ik for now"
+            )
+        if w not in PARTS:
+            raise DHError(f"unknown part {w!r} in what: choose from {', '.join(PARTS)}")
+        if w not in parts:
+            parts.append(w)
+    if not parts:
+        raise DHError("nothing to export: give what=fk,jacobian,ik (or a part of it)")
+    return tuple(p for p in PARTS if p in parts)
+
+
+def export(
+    robot: Robot,
+    lang: str,
+    what: str | Iterable[str] = PARTS,
+    prefix: str | None = None,
+    symbolic_lengths: bool = False,
+    *,
+    command: str | None = None,
+) -> dict[str, str]:
+    """Self-contained source files for ``robot`` in ``lang``: file name → text.
+
+    Parameters
+    ----------
+    robot
+        A :class:`~dhsym.kinematics.robot.Robot`.
+    lang
+        ``"c"``, ``"cpp"``, ``"matlab"``, ``"rust"`` or ``"python"`` (NumPy).
+    what
+        Parts: ``"fk"``, ``"jacobian"``, ``"ik"`` (a sequence or ``"fk,ik"``). The IK
+        checks its solutions with the fk, so ``ik`` brings ``fk`` along.
+    prefix
+        The name in front of every function (``<prefix>_fk``); by default the robot's
+        name. Either way it is made a safe identifier.
+    symbolic_lengths
+        Keep the table's lengths and offsets as run-time parameters ``p`` instead of
+        baking in its values.
+    command
+        The command line to name in the header (the CLI passes its own).
+
+    The same input gives the same bytes.
+
+    >>> import dhsym
+    >>> sorted(export(dhsym.load("puma560"), "matlab", prefix="puma"))  # doctest: +ELLIPSIS
+    ['puma_fk.m', 'puma_ik.m', 'puma_jacobian.m', 'puma_max_ik_solutions.m', 'puma_njoints.m']
+    >>> export(dhsym.load("planar2r"), "c", what="dynamics")
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: --what dynamics is not available yet: ...
+    """
+    from .names import comment_lines, identifier
+    from .program import fk_program, ik_program, jacobian_program
+    from .render import Context, header_lines, render
+
+    parts = _parts(what)
+    language = _language(lang)
+    name = identifier(prefix if prefix is not None else (robot.name or "robot"))
+    if command is None:
+        command = f"dhsym.export(robot, {lang!r}, what={','.join(parts)!r}, prefix={name!r}" + (
+            ", symbolic_lengths=True)" if symbolic_lengths else ")"
+        )
+    ik = ik_program(robot, symbolic_lengths=symbolic_lengths) if "ik" in parts else None
+    fk = fk_program(robot, symbolic_lengths=symbolic_lengths)
+    jac = (
+        jacobian_program(robot, symbolic_lengths=symbolic_lengths) if "jacobian" in parts else None
+    )
+    header = header_lines(robot, command)
+    if ik is not None:
+        header += comment_lines(f"Inverse kinematics: {ik.source.structure}")
+    ctx = Context(
+        prefix=name,
+        header=tuple(header),
+        njoints=len(robot.variables),
+        fk=fk,
+        jacobian=jac,
+        ik=ik,
+        parameters=fk.parameters,
+        revolute=tuple(r.joint.value == "R" for r in robot.table.rows if r.variable is not None),
+    )
+    effective = tuple(sorted(set(parts) | {"fk"}))
+    return render(language, ctx, effective)  # type: ignore[arg-type]
+
+
+class _CallableModule(types.ModuleType):
+    """``dhsym.export(robot, "c")`` calls :func:`export` (the room is also a module)."""
+
+    def __call__(self, *args: object, **kw: object) -> dict[str, str]:
+        return export(*args, **kw)  # type: ignore[arg-type]
+
+
+sys.modules[__name__].__class__ = _CallableModule

@@ -1,0 +1,41 @@
+"""C99 (``math.h`` only): ``<prefix>.h`` and ``<prefix>.c``, row-major arrays.
+
+::
+
+    void <prefix>_fk(const double q[N], double T[16]);
+    void <prefix>_jacobian(const double q[N], double J[6*N]);
+    int  <prefix>_ik(const double T[16], double q[][N]);   /* count; every branch */
+
+With symbolic lengths each function takes ``const double p[<PREFIX>_NPARAMS]`` last.
+
+Examples
+--------
+>>> import sympy as sp
+>>> x = sp.Symbol("x", real=True)
+>>> CPrinter().doprint(sp.atan2(x, sp.Symbol("y")) + x**2)
+'pow(x, 2) + atan2(x, y)'
+"""
+
+from __future__ import annotations
+
+from sympy.printing.c import C99CodePrinter
+
+from .render import Language
+
+__all__ = ["LANGUAGE", "CPrinter"]
+
+
+class CPrinter(C99CodePrinter):  # type: ignore[misc]
+    """sympy's C99 printer, with the solver's ``SafeSqrt`` as a helper of the file."""
+
+    def _print_SafeSqrt(self, expr: object) -> str:
+        return f"safe_sqrt({self._print(expr.args[0])})"  # type: ignore[attr-defined]
+
+
+LANGUAGE = Language(
+    name="c",
+    printer=CPrinter,
+    files=(("c_header.h.j2", "{prefix}.h", None), ("c_source.c.j2", "{prefix}.c", None)),
+    comment=" *",
+    note="gcc -std=c99 -O2 -c {prefix}.c (link with -lm)",
+)

@@ -1,0 +1,176 @@
+"""The fast path back into Python: the exported C, built once into a cache, called by ctypes.
+
+:func:`compiled` writes the C of :func:`dhsym.export.export` into the user's cache folder
+under a name made of the SHA-256 of the source (and the compiler flags), builds a shared
+library there with ``cc`` once, and loads it with :mod:`ctypes`. Nothing is kept in the
+process beyond the file cache: each call loads the library again (cheap: the OS shares
+it). Without a C compiler it returns the same interface on dhsym's NumPy path
+(``robot.fk``, ``robot.jacobian``, ``robot.ik``), with ``backend == "numpy"``.
+
+Examples
+--------
+>>> import dhsym, numpy as np
+>>> r = dhsym.load("planar2r")
+>>> fast = compiled(r)
+>>> fast.backend in ("c", "numpy")
+True
+>>> q = np.array([0.3, 0.5])
+>>> bool(np.abs(fast.fk(q) - r.fk(q)).max() < 1e-12), len(fast.ik(r.fk(q)))
+(True, 1)
+"""
+
+from __future__ import annotations
+
+import ctypes
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dhsym.errors import DHError
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.robot import Robot
+
+__all__ = ["CompiledRobot", "cache_dir", "compiled"]
+
+_FLAGS = ("-O2", "-shared", "-fPIC", "-std=c99")
+_PREFIX = "dhsym_arm"
+
+
+def cache_dir() -> Path:
+    """``$DHSYM_CACHE``, else ``$XDG_CACHE_HOME/dhsym``, else ``~/.cache/dhsym`` (``compiled/``)."""
+    root = os.environ.get("DHSYM_CACHE")
+    if root:
+        return Path(root) / "compiled"
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "dhsym" / "compiled"
+
+
+@dataclass(frozen=True, eq=False)
+class CompiledRobot:
+    """``fk(q)`` → (4, 4), ``jacobian(q)`` → (6, n), ``ik(T)`` → (k, n) for one point each.
+
+    ``backend`` is ``"c"`` (the exported C through ctypes) or ``"numpy"`` (no compiler:
+    dhsym's own compiled NumPy functions); ``library`` the shared library's path.
+    """
+
+    fk: Callable[[object], np.ndarray]
+    jacobian: Callable[[object], np.ndarray]
+    ik: Callable[[object], np.ndarray]
+    backend: str
+    library: Path | None
+    njoints: int
+
+
+def _compiler() -> str | None:
+    return os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc")
+
+
+def _build(source: dict[str, str], cc: str) -> Path:
+    text = "\n".join(f"{k}\n{source[k]}" for k in sorted(source))
+    digest = hashlib.sha256((text + " ".join(_FLAGS) + cc).encode()).hexdigest()[:24]
+    folder = cache_dir()
+    suffix = ".dylib" if sys.platform == "darwin" else ".so"
+    lib = folder / f"{digest}{suffix}"
+    if lib.is_file():
+        return lib
+    folder.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(dir=folder) as tmp:
+        for name, body in source.items():
+            (Path(tmp) / name).write_text(body)
+        out = Path(tmp) / f"lib{suffix}"
+        done = subprocess.run(
+            [cc, *_FLAGS, f"{_PREFIX}.c", "-o", str(out), "-lm"],
+            cwd=tmp,
+            capture_output=True,
+            text=True,
+            check=False,
+        )
+        if done.returncode != 0:
+            raise DHError(f"building the exported C failed: {done.stderr.strip()[:2000]}")
+        os.replace(out, lib)  # atomic: a concurrent build of the same source is harmless
+    return lib
+
+
+def _vector(q: object, n: int) -> np.ndarray:
+    qa = np.ascontiguousarray(q, dtype=float)
+    if qa.shape != (n,):
+        raise DHError(f"expected {n} joint values, got an array of shape {qa.shape}")
+    return qa
+
+
+def _address(a: np.ndarray) -> int:
+    return a.__array_interface__["data"][0]  # type: ignore[no-any-return]
+
+
+def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
+    """The robot's fk, Jacobian and IK as exported C loaded with ctypes (built once, cached).
+
+    Falls back to dhsym's NumPy path when no C compiler is found. The IK is included
+    when the robot has a closed form.
+    """
+    if lang != "c":
+        raise DHError(f"compiled(): only 'c' is built and loaded; got {lang!r}")
+    from dhsym.kinematics._structure import StructureError
+
+    from . import export
+
+    n = len(robot.variables)
+    try:
+        robot.inverse()
+        what: tuple[str, ...] = ("fk", "jacobian", "ik")
+    except StructureError:
+        what = ("fk", "jacobian")
+    cc = _compiler()
+    if cc is None:
+        return CompiledRobot(
+            lambda q: robot.fk(q),
+            lambda q: robot.jacobian(q),  # type: ignore[arg-type,return-value]
+            lambda T: np.asarray(robot.ik(T)),
+            "numpy",
+            None,
+            n,
+        )
+    lib_path = _build(export(robot, "c", what=what, prefix=_PREFIX), cc)
+    lib = ctypes.CDLL(str(lib_path))
+    ptr = ctypes.c_void_p
+    for name in ("fk", "jacobian") + (("ik",) if "ik" in what else ()):
+        fn = getattr(lib, f"{_PREFIX}_{name}")
+        fn.argtypes = [ptr, ptr]
+        fn.restype = ctypes.c_int if name == "ik" else None
+    fk_c, jac_c = lib.dhsym_arm_fk, lib.dhsym_arm_jacobian
+    ik_c = lib.dhsym_arm_ik if "ik" in what else None
+    K = 2 ** len(robot.inverse().branches) if ik_c is not None else 0  # type: ignore[attr-defined]
+
+    def fk(q: object) -> np.ndarray:
+        qa = _vector(q, n)
+        out = np.empty((4, 4))
+        fk_c(_address(qa), _address(out))
+        return out
+
+    def jacobian(q: object) -> np.ndarray:
+        qa = _vector(q, n)
+        out = np.empty((6, n))
+        jac_c(_address(qa), _address(out))
+        return out
+
+    def ik(T: object) -> np.ndarray:
+        if ik_c is None:
+            raise DHError(f"{robot.name or 'this robot'} has no closed-form IK to compile")
+        Ta = np.ascontiguousarray(T, dtype=float)
+        if Ta.shape != (4, 4):
+            raise DHError(f"ik expects one pose of shape (4, 4), got {Ta.shape}")
+        out = np.empty((K, n))
+        count = ik_c(_address(Ta), _address(out))
+        return out[:count]
+
+    return CompiledRobot(fk, jacobian, ik, "c", lib_path, n)

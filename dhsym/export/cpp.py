@@ -1,0 +1,36 @@
+"""C++17, header-only, std only: ``<prefix>.hpp`` with namespace ``<prefix>``.
+
+``<prefix>::fk(q, T)``, ``<prefix>::jacobian(q, J)``, ``<prefix>::ik(T, q)`` on
+row-major arrays (as in C), and ``<prefix>::NJOINTS``, ``<prefix>::MAX_IK_SOLUTIONS``.
+
+Examples
+--------
+>>> import sympy as sp
+>>> x = sp.Symbol("x", real=True)
+>>> CppPrinter().doprint(sp.cos(x) + 2.0 * x)
+'2.0*x + std::cos(x)'
+"""
+
+from __future__ import annotations
+
+from sympy.printing.cxx import CXX17CodePrinter
+
+from .render import Language
+
+__all__ = ["LANGUAGE", "CppPrinter"]
+
+
+class CppPrinter(CXX17CodePrinter):  # type: ignore[misc]
+    """sympy's C++17 printer, with the solver's ``SafeSqrt`` as a helper of the header."""
+
+    def _print_SafeSqrt(self, expr: object) -> str:
+        return f"detail::safe_sqrt({self._print(expr.args[0])})"  # type: ignore[attr-defined]
+
+
+LANGUAGE = Language(
+    name="cpp",
+    printer=CppPrinter,
+    files=(("cpp_header.hpp.j2", "{prefix}.hpp", None),),
+    comment="//",
+    note='#include "{prefix}.hpp" (C++17, header-only)',
+)

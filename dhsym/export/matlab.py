@@ -1,0 +1,49 @@
+"""MATLAB/Octave function files: ``<prefix>_fk.m``, ``<prefix>_jacobian.m``, ``<prefix>_ik.m``.
+
+``T = <prefix>_fk(q)`` (4×4), ``J = <prefix>_jacobian(q)`` (6×n),
+``[Q, count] = <prefix>_ik(T)`` (``count``×n, one solution per row), and
+``<prefix>_njoints()``, ``<prefix>_max_ik_solutions()`` for the constants.
+
+Examples
+--------
+>>> import sympy as sp
+>>> from dhsym.export.ik_source import pose_input
+>>> x = sp.Symbol("x", real=True)
+>>> MatlabPrinter().doprint(sp.atan2(pose_input()[0, 3], x) + x**2)
+'x.^2 + atan2(T(1, 4), x)'
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+from sympy.printing.octave import OctaveCodePrinter
+
+from .render import Language
+
+__all__ = ["LANGUAGE", "MatlabPrinter"]
+
+
+class MatlabPrinter(OctaveCodePrinter):  # type: ignore[misc]
+    """sympy's Octave printer; ``T[i, j]`` is ``T(i+1, j+1)``, ``SafeSqrt`` a subfunction."""
+
+    def _print_Indexed(self, expr: sp.Indexed) -> str:
+        i, j = (int(k) for k in expr.indices)
+        return f"{expr.base.label}({i + 1}, {j + 1})"
+
+    def _print_SafeSqrt(self, expr: sp.Expr) -> str:
+        return f"safe_sqrt({self._print(expr.args[0])})"
+
+
+LANGUAGE = Language(
+    name="matlab",
+    printer=MatlabPrinter,
+    files=(
+        ("matlab_fk.m.j2", "{prefix}_fk.m", None),
+        ("matlab_jacobian.m.j2", "{prefix}_jacobian.m", "jacobian"),
+        ("matlab_ik.m.j2", "{prefix}_ik.m", "ik"),
+        ("matlab_njoints.m.j2", "{prefix}_njoints.m", None),
+        ("matlab_max_ik.m.j2", "{prefix}_max_ik_solutions.m", "ik"),
+    ),
+    comment="%",
+    note="addpath the folder; T = {prefix}_fk(q)",
+)

@@ -1,0 +1,385 @@
+"""The front end of the exporters: a robot's closed forms as named, straight-line programs.
+
+Every language printer reads the same :class:`Program`: named assignments of exact
+expressions (then numbers to 17 digits), each at the *level* of the branch signs it
+depends on, and the entries of the result. Joint values are ``q1 … qn``; the sine
+and cosine of each joint angle and each sum of joint angles that occurs is computed
+once (``s1``, ``c1``, ``s23``, ``c23``) before anything else, and the remaining common
+subexpressions are shared through :func:`sympy.cse` (``w0``, ``w1`` …).
+
+* :func:`fk_program`: world to tool, ``base · ^0T_n · tool`` (the pose of ``robot.fk``);
+* :func:`jacobian_program`: the geometric Jacobian in that base frame, of the tool point
+  (``robot.jacobian(q)``);
+* :func:`ik_program`: the closed-form IK steps as the derivation gives them
+  (:mod:`dhsym.export.ik_source`), one assignment per step with its sentence.
+
+Examples
+--------
+>>> import dhsym
+>>> prog = fk_program(dhsym.load("planar2r"))
+>>> [(a.name, str(a.expr)) for a in prog.body]
+[('c1', 'cos(q1)'), ('c12', 'cos(q1 + q2)'), ('s1', 'sin(q1)'), ('s12', 'sin(q1 + q2)')]
+>>> [(o.row, o.col, str(o.expr)) for o in prog.outputs][3]
+(0, 3, 'c1 + 0.8*c12')
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import sympy as sp
+
+from dhsym.errors import DHError
+from dhsym.model.table import JointType
+
+from .ik_source import IKSource, ik_source
+from .names import identifier
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.robot import Robot
+
+__all__ = [
+    "Assign",
+    "IKProgram",
+    "Output",
+    "Parameter",
+    "Program",
+    "fk_program",
+    "ik_program",
+    "jacobian_program",
+]
+
+_REAL = {"real": True}
+
+
+@dataclass(frozen=True)
+class Assign:
+    """``name = expr`` in a generated function.
+
+    ``level`` is the number of branch signs the value depends on (0: before any branch
+    loop); ``comment`` the lines said before it (a step's sentence); with ``alt``, a
+    triple ``(guard, threshold, expr)``, the value is ``expr`` of ``alt`` when
+    ``|guard| < threshold`` (a singular wrist).
+    """
+
+    name: str
+    expr: sp.Expr
+    level: int = 0
+    comment: tuple[str, ...] = ()
+    alt: tuple[str, float, sp.Expr] | None = None
+
+
+@dataclass(frozen=True)
+class Output:
+    """Entry ``(row, col)`` of the result."""
+
+    row: int
+    col: int
+    expr: sp.Expr
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A length or offset passed in at run time (``--symbolic-lengths``): its name in the
+    table, its identifier in the code and the table's value (``None``: none given)."""
+
+    table_name: str
+    name: str
+    value: float | None
+
+
+@dataclass(frozen=True)
+class Program:
+    """A straight-line function of ``q`` (and parameters): assignments, then outputs."""
+
+    joints: tuple[str, ...]
+    parameters: tuple[Parameter, ...]
+    body: tuple[Assign, ...]
+    outputs: tuple[Output, ...]
+    rows: int
+    cols: int
+
+
+@dataclass(frozen=True)
+class IKProgram:
+    """The IK steps as assignments (``body``, levels by branch sign) for a pose ``T``.
+
+    ``pose`` assigns the pose symbols (``n_x`` … ``p_z``) from the input with base and
+    tool undone; ``signs`` names the branch signs in loop order; ``branch_names`` gives
+    the name of each of the ``2 ** len(signs)`` branches (as ``robot.ik`` names them);
+    ``joints`` are the joint values with ``revolute`` telling which to wrap to [−π, π];
+    ``check`` the top three rows of the branch's world-to-tool fk (row by row), on the
+    values of ``body``, to compare with the pose within ``tolerance``.
+    """
+
+    source: IKSource
+    parameters: tuple[Parameter, ...]
+    pose: tuple[Assign, ...]
+    signs: tuple[str, ...]
+    body: tuple[Assign, ...]
+    joints: tuple[str, ...]
+    revolute: tuple[bool, ...]
+    branch_names: tuple[str, ...]
+    sqrt_rounding: float
+    tolerance: float
+    check: tuple[sp.Expr, ...] = ()
+
+    @property
+    def safe_sqrt(self) -> bool:
+        """Whether a step takes a square root (the helper is written only then)."""
+        exprs = [a.expr for a in self.body] + [a.alt[2] for a in self.body if a.alt]
+        return any(self.source.has_sqrt(e) for e in exprs)
+
+
+# --- shared pieces ------------------------------------------------------------------------
+
+
+def _joint_symbols(robot: Robot) -> dict[sp.Symbol, sp.Symbol]:
+    return {v: sp.Symbol(f"q{k}", **_REAL) for k, v in enumerate(robot.variables, start=1)}
+
+
+def _constants(
+    robot: Robot, symbolic_lengths: bool, taken: set[str]
+) -> tuple[dict[sp.Symbol, sp.Expr], tuple[Parameter, ...]]:
+    """What the table's constant symbols become: numbers, or parameters ``p_<name>``."""
+    values = robot.table.value_map
+    consts = robot.table.constants
+    if not symbolic_lengths:
+        missing = [c.name for c in consts if c not in values]
+        if missing:
+            raise DHError(
+                f"{robot.name or 'this table'} has no value for {', '.join(missing)}: give "
+                "values in the table file, or export with --symbolic-lengths"
+            )
+        return {c: values[c] for c in consts}, ()
+    mapping: dict[sp.Symbol, sp.Expr] = {}
+    params = []
+    for c in consts:
+        name = identifier(f"p_{c.name}", taken=taken)
+        taken.add(name)
+        mapping[c] = sp.Symbol(name, **_REAL)
+        v = values.get(c)
+        params.append(Parameter(c.name, name, None if v is None else float(sp.N(v, 17))))
+    return mapping, tuple(params)
+
+
+def _is_joint_sum(arg: sp.Expr, index: Mapping[sp.Symbol, int]) -> list[int] | None:
+    terms = sp.Add.make_args(arg)
+    if all(t in index for t in terms):
+        return sorted(index[t] for t in terms)
+    return None
+
+
+def _trig_name(fn: str, arg: sp.Expr, index: Mapping[sp.Symbol, int]) -> str | None:
+    joints = _is_joint_sum(arg, index)
+    if joints is None:
+        return None
+    if all(k < 10 for k in joints):
+        return fn + "".join(str(k) for k in joints)
+    return fn + "_" + "_".join(str(k) for k in joints)
+
+
+def _name_trig(
+    exprs: Sequence[sp.Expr], index: Mapping[sp.Symbol, int], taken: set[str]
+) -> tuple[list[sp.Expr], list[tuple[sp.Symbol, sp.Expr]]]:
+    """Replace ``sin``/``cos`` of joint angles and their sums by named symbols.
+
+    Returns the expressions and the definitions (sorted by name, deterministic).
+    """
+    atoms: set[sp.Expr] = set()
+    for e in exprs:
+        atoms |= {t for t in sp.preorder_traversal(e) if isinstance(t, (sp.sin, sp.cos))}
+    defs: list[tuple[sp.Symbol, sp.Expr]] = []
+    mapping: dict[sp.Expr, sp.Symbol] = {}
+    for t in sorted(atoms, key=sp.default_sort_key):
+        name = _trig_name("s" if isinstance(t, sp.sin) else "c", t.args[0], index)
+        if name is None or name in taken:
+            continue
+        taken.add(name)
+        sym = sp.Symbol(name, **_REAL)
+        mapping[t] = sym
+        defs.append((sym, t))
+    defs.sort(key=lambda d: d[0].name)
+    return [e.xreplace(mapping) for e in exprs], defs
+
+
+def _numbers(e: sp.Expr, exponent: bool = False) -> sp.Expr:
+    """Exact constants as 17-digit floats; integer exponents and ``±1`` stay integers.
+
+    >>> x = sp.Symbol("x", real=True)
+    >>> _numbers(sp.atan2(sp.Rational(1, 4), x) + 2 * x**2 - sp.sqrt(2) * sp.pi)
+    2.0*x**2 + atan2(0.25, x) - 4.4428829381583662
+    """
+    if e.is_Integer:
+        return e if exponent or abs(e) == 1 else sp.Float(e, 17)
+    if e.is_number and not e.has(sp.I):
+        return sp.Float(sp.N(e, 17), 17)
+    if not e.args or isinstance(e, sp.Symbol | sp.Indexed):
+        return e
+    if e.is_Pow:
+        return sp.Pow(_numbers(e.base), _numbers(e.exp, exponent=True))
+    return e.func(*(_numbers(a) for a in e.args))
+
+
+def _straight_line(
+    exprs: Sequence[sp.Expr], joints: Mapping[sp.Symbol, int], taken: set[str]
+) -> tuple[list[Assign], list[sp.Expr]]:
+    named, trig = _name_trig(exprs, joints, taken)
+    names = (f"w{k}" for k in range(10**6))
+    fresh = (sp.Symbol(n, **_REAL) for n in names if n not in taken)
+    common, reduced = sp.cse([_numbers(e) for e in named], symbols=fresh, order="canonical")
+    body = [Assign(s.name, t) for s, t in trig]
+    body += [Assign(s.name, _numbers(e)) for s, e in common]
+    return body, [_numbers(e) for e in reduced]
+
+
+def _prepared(
+    robot: Robot, matrix: sp.Matrix, symbolic_lengths: bool
+) -> tuple[list[sp.Expr], tuple[Parameter, ...], dict[sp.Symbol, int], set[str]]:
+    qs = _joint_symbols(robot)
+    taken = {s.name for s in qs.values()}
+    consts, params = _constants(robot, symbolic_lengths, taken)
+    exprs = [sp.Integer(e) if isinstance(e, int) else e.xreplace({**qs, **consts}) for e in matrix]
+    index = {s: k for k, s in enumerate(qs.values(), start=1)}
+    return exprs, params, index, taken
+
+
+def _program(robot: Robot, matrix: sp.Matrix, symbolic_lengths: bool) -> Program:
+    exprs, params, index, taken = _prepared(robot, matrix, symbolic_lengths)
+    body, reduced = _straight_line(exprs, index, taken)
+    rows, cols = matrix.shape
+    outputs = tuple(Output(k // cols, k % cols, e) for k, e in enumerate(reduced))
+    return Program(tuple(s.name for s in index), params, tuple(body), outputs, rows, cols)
+
+
+def fk_program(robot: Robot, *, symbolic_lengths: bool = False) -> Program:
+    """World to tool (``robot.fk``) as a :class:`Program` with a 4×4 result."""
+    return _program(robot, robot.tool_pose().matrix, symbolic_lengths)
+
+
+def jacobian_program(robot: Robot, *, symbolic_lengths: bool = False) -> Program:
+    """The geometric Jacobian of ``robot.jacobian(q)`` (base frame of ``fk``, tool point),
+    6 × n.
+
+    >>> import dhsym
+    >>> prog = jacobian_program(dhsym.load("planar2r"))
+    >>> (prog.rows, prog.cols), str(prog.outputs[0].expr)
+    ((6, 2), '-s1 - w0')
+    """
+    J = robot.jacobian()
+    return _program(robot, J.matrix, symbolic_lengths)  # type: ignore[attr-defined]
+
+
+# --- inverse kinematics ---------------------------------------------------------------------
+
+
+def _dependencies(e: sp.Expr) -> set[sp.Symbol]:
+    return e.free_symbols  # type: ignore[return-value]
+
+
+def ik_program(robot: Robot, *, symbolic_lengths: bool = False) -> IKProgram:
+    """The closed-form IK of ``robot`` as assignments, each step with its sentence.
+
+    >>> import dhsym
+    >>> prog = ik_program(dhsym.load("planar2r"))
+    >>> prog.signs, prog.branch_names
+    (('sigma_2',), ('elbow sigma_2 = +1', 'elbow sigma_2 = -1'))
+    >>> [a.name for a in prog.body]
+    ['d_2', 'q2', 'c2', 's2', 'q1', 'c12', 's12', 'c1', 's1']
+    """
+    src = ik_source(robot)
+    qs = _joint_symbols(robot)
+    taken = {s.name for s in qs.values()} | {f"i{k}" for k in range(1, len(src.signs) + 1)}
+    pose_names = {s: sp.Symbol(identifier(s.name), **_REAL) for s in src.pose_symbols}
+    taken |= {s.name for s in pose_names.values()}
+    consts, params = _constants(robot, symbolic_lengths, taken)
+    rename: dict[sp.Symbol, sp.Symbol] = {**qs, **pose_names}
+    level: dict[sp.Symbol, int] = {s: 0 for s in pose_names.values()}
+    signs = []
+    for k, sym in enumerate(src.signs, start=1):
+        new = sp.Symbol(identifier(sym.name, taken=taken), **_REAL)
+        taken.add(new.name)
+        rename[sym] = new
+        level[new] = k
+        signs.append(new.name)
+    for step in src.steps:
+        if step.lhs not in rename:
+            new = sp.Symbol(identifier(step.lhs.name, taken=taken), **_REAL)
+            taken.add(new.name)
+            rename[step.lhs] = new
+    index = {s: k for k, s in enumerate(qs.values(), start=1)}
+
+    def convert(e: sp.Expr) -> sp.Expr:
+        return src.prepare(e.xreplace(consts)).xreplace(rename)
+
+    body: list[Assign] = []
+    defined_trig: set[sp.Symbol] = set()
+
+    def level_of(e: sp.Expr) -> int:
+        return max((level.get(s, 0) for s in _dependencies(e)), default=0)
+
+    def with_trig(e: sp.Expr) -> sp.Expr:
+        (named,), defs = _name_trig([e], index, set(taken))
+        for sym, t in defs:
+            if sym not in defined_trig:
+                defined_trig.add(sym)
+                level[sym] = level_of(t)
+                body.append(Assign(sym.name, _numbers(t), level[sym]))
+        return named
+
+    for step in src.steps:
+        lhs = rename[step.lhs]
+        rhs = with_trig(convert(step.rhs))
+        alt = None
+        lv = level_of(rhs)
+        if step.singular is not None:
+            guard, threshold = src.singular_guard(step)
+            alt_expr = with_trig(convert(step.singular))
+            alt = (rename[guard].name, threshold, _numbers(alt_expr))
+            lv = max(lv, level_of(alt_expr), level[rename[guard]])
+        level[lhs] = lv
+        body.append(Assign(lhs.name, _numbers(rhs), lv, step.comment, alt))
+        # a joint value's sine and cosine may be needed again after a singular fix:
+        # they are defined after it (with_trig runs on later steps only)
+    # the check: the fk (world to tool) of the branch's joint values, its top three rows,
+    # on the sines and cosines the steps computed; its common parts at their levels
+    tool = robot.tool_pose().matrix
+    named = [with_trig(convert(tool[i, j])) for i in range(3) for j in range(4)]
+    names = (f"f{k}" for k in range(10**6))
+    fresh = (sp.Symbol(n, **_REAL) for n in names if n not in taken)
+    common, check = sp.cse([_numbers(e) for e in named], symbols=fresh, order="canonical")
+    for sym, e in common:
+        level[sym] = level_of(e)
+        body.append(Assign(sym.name, _numbers(e), level[sym]))
+    check = [_numbers(e) for e in check]
+    keep = [s.name for s in qs.values()]
+    keep += [s.name for e in check for s in e.free_symbols]  # type: ignore[attr-defined]
+    pose = tuple(Assign(pose_names[s].name, _numbers(convert(e))) for s, e in src.pose_inputs)
+    return IKProgram(
+        src,
+        params,
+        pose,
+        tuple(signs),
+        _ordered(body, keep),
+        tuple(s.name for s in qs.values()),
+        tuple(r.joint is JointType.REVOLUTE for r in robot.table.rows if r.variable is not None),
+        src.branch_names,
+        src.sqrt_rounding,
+        src.tolerance,
+        tuple(check),
+    )
+
+
+def _ordered(body: Sequence[Assign], keep: Iterable[str]) -> tuple[Assign, ...]:
+    """The assignments that ``keep`` needs, grouped by level (stable): each lower level's
+    values come first (a value never depends on a higher level's)."""
+    live = set(keep)
+    needed = []
+    for a in reversed(body):
+        if a.name in live:
+            needed.append(a)
+            exprs = [a.expr] + ([a.alt[2], sp.Symbol(a.alt[0])] if a.alt else [])
+            live |= {s.name for e in exprs for s in e.free_symbols}  # type: ignore[attr-defined]
+    return tuple(sorted(reversed(needed), key=lambda a: a.level))

@@ -1,0 +1,37 @@
+"""A NumPy module ``<prefix>.py``: ``fk(q)``, ``jacobian(q)``, ``ik(T)``.
+
+``fk`` and ``jacobian`` take one configuration ``(n,)`` or a batch ``(..., n)``;
+``ik`` one pose ``(4, 4)`` and returns ``(k, n)``. ``NJOINTS`` and
+``MAX_IK_SOLUTIONS`` as in C.
+
+Examples
+--------
+>>> import sympy as sp
+>>> x = sp.Symbol("x", real=True)
+>>> PythonPrinter().doprint(sp.atan2(x, sp.Symbol("y")) + x**2)
+'x**2 + numpy.arctan2(x, y)'
+"""
+
+from __future__ import annotations
+
+from sympy.printing.numpy import NumPyPrinter
+
+from .render import Language
+
+__all__ = ["LANGUAGE", "PythonPrinter"]
+
+
+class PythonPrinter(NumPyPrinter):  # type: ignore[misc]
+    """sympy's NumPy printer; ``SafeSqrt`` is a helper of the module, ``T[i, j]`` indexes."""
+
+    def _print_SafeSqrt(self, expr: object) -> str:
+        return f"_safe_sqrt({self._print(expr.args[0])})"  # type: ignore[attr-defined]
+
+
+LANGUAGE = Language(
+    name="python",
+    printer=PythonPrinter,
+    files=(("python_module.py.j2", "{prefix}.py", None),),
+    comment="#",
+    note="import {prefix} (needs numpy)",
+)

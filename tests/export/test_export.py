@@ -1,0 +1,143 @@
+"""The API and CLI of the export room: names, determinism, hostile input, errors."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+import dhsym
+from dhsym.errors import DHError
+from dhsym.export.compiled import compiled
+from dhsym.model.table import DHRow, DHTable
+
+from ..conftest import _need
+from . import _harness as h
+
+HOSTILE = '*/ #include <stdlib.h>\n%{ system("rm -rf /") %} ??/ \\'
+
+
+def _hostile_robot() -> dhsym.Robot:
+    rows = [DHRow.revolute("theta1", a="a1"), DHRow.revolute("theta2", a="a2")]
+    table = DHTable.from_rows(rows, name=HOSTILE, values={"a1": 1, "a2": 0.5})
+    return dhsym.Robot(table)
+
+
+def test_same_bytes_twice():
+    r = dhsym.load("puma560")
+    for lang in dhsym.export.LANGUAGES:
+        assert dhsym.export(r, lang) == dhsym.export(dhsym.load("puma560"), lang)
+
+
+@pytest.mark.parametrize("lang", ["c", "cpp", "matlab", "rust", "python"])
+def test_hostile_names_stay_in_comments(lang):
+    files = dhsym.export(_hostile_robot(), lang, prefix="int main(){ */")
+    for name, text in files.items():
+        assert name.startswith("int_main")
+        assert "??/" not in text and "*/ #" not in text and "%{" not in text
+        for line in text.splitlines():
+            if "rm -rf" in line or "stdlib" in line:  # the name stays inside one comment line
+                assert line.lstrip().startswith(("* ", "// ", "% ", "# ", "/* "))
+                assert "*/" not in line or line.rstrip().endswith("*/")
+
+
+def test_hostile_c_compiles_and_runs(tmp_path):
+    _need("gcc", shutil.which("gcc") is not None, "apt-get install gcc")
+    robot = _hostile_robot()
+    files = dhsym.export(robot, "c", prefix="*/ x")
+    q = np.array([[0.3, 0.4]])
+    fks, jacs, iks = h.run_c(files, "x", q, robot.fk(q), 2, True, True, tmp_path)
+    assert np.abs(fks[0] - robot.fk(q[0])).max() <= 1e-12 and len(iks[0]) == 1
+
+
+def test_python_module_runs_for_hostile_names(tmp_path):
+    robot = _hostile_robot()
+    mod = h.load_python(dhsym.export(robot, "python", prefix="class"), "class_", tmp_path)
+    assert np.abs(mod.fk([0.1, 0.2]) - robot.fk([0.1, 0.2])).max() <= 1e-12
+
+
+def test_dynamics_is_not_available_yet():
+    with pytest.raises(DHError, match="not available yet"):
+        dhsym.export(dhsym.load("planar2r"), "c", what="fk,dynamics")
+
+
+def test_unknown_language_and_missing_values():
+    with pytest.raises(DHError, match="unknown language"):
+        dhsym.export(dhsym.load("planar2r"), "fortran")
+    table = DHTable.from_rows([DHRow.revolute("theta1", a="a1")], name="no values")
+    with pytest.raises(DHError, match="symbolic-lengths"):
+        dhsym.export(dhsym.Robot(table), "c", what="fk")
+    files = dhsym.export(dhsym.Robot(table), "c", what="fk", symbolic_lengths=True)
+    assert "NPARAMS 1" in files["no_values.h"]
+
+
+def test_ik_comments_name_steps_and_branches():
+    files = dhsym.export(dhsym.load("puma560"), "c", prefix="puma")
+    text = files["puma.c"]
+    r = dhsym.load("puma560")
+    q = [0.3, -0.5, 0.4, 0.2, 0.7, -1.1]
+    names = r.ik(r.fk(q)).branches
+    for k, name in enumerate(names):
+        assert f" *   {k}: {name}" in text
+    assert "/* Step 4 (position):" in text and "PUMA_MAX_IK_SOLUTIONS 8" in files["puma.h"]
+
+
+def test_cli_writes_the_files(tmp_path):
+    from dhsym.cli.main import main
+
+    assert main(["export", "planar2r", "--lang", "c", "--prefix", "arm", "-o", str(tmp_path)]) == 0
+    text = (tmp_path / "arm.c").read_text()
+    assert "made by: dhsym export planar2r --lang c --what fk,jacobian,ik --prefix arm" in text
+    assert main(["export", "planar2r", "--lang", "urdf", "-o", str(tmp_path)]) == 2
+    assert (
+        main(["export", "planar2r", "--lang", "c", "--what", "dynamics", "-o", str(tmp_path)]) == 2
+    )
+
+
+def test_compiled_matches_robot(tmp_path, monkeypatch):
+    _need("a C compiler", shutil.which("cc") or shutil.which("gcc"), "apt-get install gcc")
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path))
+    r = dhsym.load("puma560")
+    fast = compiled(r)
+    assert (
+        fast.backend == "c" and fast.library is not None and fast.library.parent.parent == tmp_path
+    )
+    q = np.array([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
+    assert np.abs(fast.fk(q) - r.fk(q)).max() <= 1e-12
+    assert np.abs(fast.jacobian(q) - r.jacobian(q)).max() <= 1e-12
+    assert np.abs(fast.ik(r.fk(q)) - r.ik(r.fk(q)).q).max() <= 1e-9
+    again = dhsym.load("puma560").compiled("c")  # the cache: the same library, not rebuilt
+    assert again.library == fast.library
+
+
+def test_compiled_without_a_compiler(monkeypatch, tmp_path):
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path))
+    monkeypatch.setenv("CC", "")
+    monkeypatch.setattr(shutil, "which", lambda name: None)
+    r = dhsym.load("planar2r")
+    slow = compiled(r)
+    assert slow.backend == "numpy"
+    assert np.abs(slow.fk([0.1, 0.2]) - r.fk([0.1, 0.2])).max() == 0
+
+
+def test_gcc_is_warning_free_for_puma(tmp_path):
+    _need("gcc", shutil.which("gcc") is not None, "apt-get install gcc")
+    for name, text in dhsym.export(dhsym.load("puma560"), "c", prefix="puma").items():
+        (tmp_path / name).write_text(text)
+    flags = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-c", "puma.c"]
+    done = subprocess.run(["gcc", *flags], cwd=tmp_path, capture_output=True, text=True)
+    assert done.returncode == 0 and done.stderr == ""
+
+
+def test_compiled_ik_at_a_singular_wrist(tmp_path, monkeypatch):
+    _need("a C compiler", shutil.which("cc") or shutil.which("gcc"), "apt-get install gcc")
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path))
+    r = dhsym.load("puma560")
+    fast = r.compiled("c")
+    for q5 in (0.0, 1e-7):  # sin θ5 = 0 (θ4 = 0 and θ6 from the whole rotation) and near it
+        T = r.fk([0.3, -0.5, 0.4, 0.2, q5, -1.1])
+        got, want = fast.ik(T), r.ik(T)
+        assert got.shape == want.q.shape
+        assert np.abs(np.angle(np.exp(1j * (got - want.q)))).max() <= 1e-9
