@@ -80,6 +80,15 @@ def _points(x: float) -> str:
     return f"{x:g}"
 
 
+def _mathml(tex: object) -> object:
+    """Printer LaTeX as MathML, marked safe for the autoescaping HTML environment."""
+    from markupsafe import Markup
+
+    from dhsym.notation.mathml import latex_mathml
+
+    return Markup(latex_mathml(str(tex)))  # noqa: S704 - MathML built from an element tree
+
+
 @lru_cache(maxsize=3)
 def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
     """Jinja2 environment for ``html`` (autoescaped), ``md`` or ``txt`` (plain text)."""
@@ -96,6 +105,7 @@ def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
     env.filters["code"] = md_code
     env.filters["mdmath"] = md_math
     env.filters["points"] = _points
+    env.filters["mathml"] = _mathml
     return env
 
 
@@ -107,7 +117,6 @@ def render_feedback(
     fmt: str = "md",
     status: str = "graded",
     flags: Sequence[str] = (),
-    mathjax_url: str | None = None,
 ) -> str:
     """One student's feedback page (``fmt`` is ``md`` or ``html``); ``flags`` are notes."""
     if fmt not in ("md", "html"):
@@ -121,7 +130,6 @@ def render_feedback(
         max_score=sum(q.points for q in questions),
         status=status,
         flags=[str(f) for f in flags],
-        mathjax_url=mathjax_url,
     )
 
 
