@@ -470,18 +470,28 @@ def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> 
     ans = read_table(answer, pk.names, table.convention, limits)
     values_ = table.value_map
     extra = {"expected_table": table_cells(table), "answer_table": table_cells(ans)}
+    note = (
+        " (Your angles were read as degrees, from a value above 2π, a ° or deg mark"
+        " or the file's angles: deg.)"
+        if ans.angles is AngleUnit.DEG and table.angles is not AngleUnit.DEG
+        else ""
+    )
     match = compare_tables(table, ans, tool_free=key.tool_free, values=values_)
     if match.same_robot and ans.convention is table.convention:
         if match.same_table:
             return CheckResult(
-                "table", Verdict.CORRECT, "Your table is the key's table.", key=key.name, **extra
+                "table",
+                Verdict.CORRECT,
+                "Your table is the key's table." + note,
+                key=key.name,
+                **extra,
             )
         how = "; ".join(match.differences) or "other but equivalent entries"
         return CheckResult(
             "table",
             Verdict.CORRECT,
             f"Your table is a valid alternative: it describes the same robot "
-            f"with other frame choices ({how}).",
+            f"with other frame choices ({how}).{note}",
             alternative=how,
             key=key.name,
             **extra,
@@ -502,7 +512,9 @@ def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> 
         if match.diverges_at and not match.same_robot
         else ""
     )
-    message = f"The table is wrong. Most likely: {diagnoses[0].title}. {diagnoses[0].detail}{where}"
+    message = (
+        f"The table is wrong. Most likely: {diagnoses[0].title}. {diagnoses[0].detail}{where}{note}"
+    )
     return CheckResult(
         "table", Verdict.INCORRECT, message, diagnoses=diagnoses, key=key.name, **extra
     )
