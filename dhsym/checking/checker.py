@@ -39,6 +39,7 @@ from .mistakes import (
     DET_MISTAKES,
     JACOBIAN_MISTAKES,
     MATRIX_MISTAKES,
+    BlockTransposed,
     MatrixCase,
     TableCase,
     diagnose_matrix,
@@ -441,7 +442,7 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
         pk.cache,
         pk.robot,
     )
-    kinds = {"jacobian": JACOBIAN_MISTAKES, "det": DET_MISTAKES}
+    kinds = {"jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()), "det": DET_MISTAKES}
     diagnoses = shape_lead + lead + diagnose_matrix(case, kinds.get(q.kind, MATRIX_MISTAKES))
     if unknown:
         names = ", ".join(str(s) for s in unknown)
