@@ -15,7 +15,15 @@ import json
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from .common import add_command, add_notation_options, emit, load_robot, note_warnings
+from .common import (
+    add_angle_options,
+    add_command,
+    add_notation_options,
+    emit,
+    load_robot,
+    note_warnings,
+    q_in_degrees,
+)
 
 if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
     from dhsym.kinematics.robot import Robot
@@ -175,7 +183,8 @@ def _cmd_fk(args: argparse.Namespace) -> int:
 
     robot = load_robot(args.robot, args.values, need_numbers=True)
     q = _parse_q(args.q, len(robot.variables))
-    T = robot.fk(q, deg=args.deg)
+    deg = q_in_degrees(args, robot.table)
+    T = robot.fk(q, deg=deg)
     if args.json:
         print(
             json.dumps(
@@ -183,7 +192,7 @@ def _cmd_fk(args: argparse.Namespace) -> int:
                     "robot": robot.name,
                     "variables": [str(v) for v in robot.variables],
                     "q": q,
-                    "deg": bool(args.deg),
+                    "deg": deg,
                     "matrix": T.round(12).tolist(),
                 }
             )
@@ -240,8 +249,10 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     f = add_command(sub, "fk", "numeric forward kinematics: the tool pose at joint values")
     f.add_argument("robot", help=ROBOT_HELP)
-    f.add_argument("--q", required=True, help="joint values, comma separated (radians, lengths)")
-    f.add_argument("--deg", action="store_true", help="revolute values in degrees")
+    f.add_argument(
+        "--q", required=True, help="joint values, comma separated (angles in the table's unit)"
+    )
+    add_angle_options(f)
     f.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
     f.add_argument("--json", action="store_true", help="JSON output")
     f.set_defaults(func=_cmd_fk)
