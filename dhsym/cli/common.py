@@ -237,14 +237,13 @@ def add_angle_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def q_in_degrees(args: argparse.Namespace, table: object) -> bool:
-    """True when ``--q`` is in degrees: ``--deg``, ``--rad``, else the table's ``angles``;
-    the unit used is said on standard error.
+def q_in_degrees(args: argparse.Namespace, table: object) -> tuple[bool, str]:
+    """Whether ``--q`` is in degrees (``--deg``, ``--rad``, else the table's ``angles``),
+    and the sentence that says so.
 
     >>> from types import SimpleNamespace as NS
     >>> q_in_degrees(NS(deg=False, rad=False), NS(angles=NS(value="deg")))
-    dhsym: note: --q read in degrees (the table's angles: deg; --rad to override)
-    True
+    (True, "--q read in degrees (the table's angles: deg; --rad to override)")
     """
     if args.deg or args.rad:
         deg = bool(args.deg)
@@ -253,5 +252,4 @@ def q_in_degrees(args: argparse.Namespace, table: object) -> bool:
         deg = getattr(getattr(table, "angles", None), "value", "rad") == "deg"
         unit, other = ("deg", "--rad") if deg else ("rad", "--deg")
         why = f"the table's angles: {unit}; {other} to override"
-    print(f"dhsym: note: --q read in {'degrees' if deg else 'radians'} ({why})", file=sys.stderr)
-    return deg
+    return deg, f"--q read in {'degrees' if deg else 'radians'} ({why})"

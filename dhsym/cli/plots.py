@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -42,7 +43,9 @@ def _cmd_plot(args: argparse.Namespace) -> int:
         fig = plot_workspace(robot, args.samples, view=args.view)
     else:
         q = None if args.q is None else parse_number_list(args.q, "--q")
-        deg = q_in_degrees(args, robot.table) if q is not None else False
+        deg, unit = q_in_degrees(args, robot.table) if q is not None else (False, "")
+        if unit:
+            print(f"dhsym: note: {unit}", file=sys.stderr)
         fig = plot_robot(robot, q, deg=deg, view=args.view or "3d")
     buffer = io.BytesIO()
     fig.savefig(buffer, format=fmt, dpi=args.dpi)

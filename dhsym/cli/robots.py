@@ -183,7 +183,7 @@ def _cmd_fk(args: argparse.Namespace) -> int:
 
     robot = load_robot(args.robot, args.values, need_numbers=True)
     q = _parse_q(args.q, len(robot.variables))
-    deg = q_in_degrees(args, robot.table)
+    deg, unit = q_in_degrees(args, robot.table)
     T = robot.fk(q, deg=deg)
     if args.json:
         print(
@@ -199,7 +199,7 @@ def _cmd_fk(args: argparse.Namespace) -> int:
         )
     else:
         with np.printoptions(precision=6, suppress=True):
-            print(T)
+            print(f"{unit}:\n{T}")
     return 0
 
 
