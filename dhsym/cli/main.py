@@ -10,7 +10,7 @@ Examples
 --------
 >>> sorted(build_parser()._subparsers._group_actions[0].choices)  # doctest: +NORMALIZE_WHITESPACE
 ['autograder', 'check', 'convert', 'derive', 'fk', 'grade', 'handout', 'ik', 'list',
- 'notebooks', 'plot', 'show']
+ 'new-assignment', 'notebooks', 'plot', 'show']
 """
 
 from __future__ import annotations
