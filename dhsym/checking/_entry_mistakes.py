@@ -151,7 +151,8 @@ class EntryMistake(Mistake):
             for cand, part in self.candidates(e, case):
                 if close(values(cand, case.sample), case.answer_values[:, p[0], p[1]]):
                     hits.append(case.label(p))
-                    details.append(self.message(case, case.where(p), e, part))
+                    where = case.where(p) if len(case.expected) > 1 else "your answer"
+                    details.append(_one_cell(self.message(case, where, e, part), where))
                     break
         if not hits:
             return None
@@ -159,6 +160,16 @@ class EntryMistake(Mistake):
 
     def explain_table(self, case):
         return None
+
+
+def _one_cell(text: str, where: str) -> str:
+    """The wording of a one-cell answer (an entry question, det J): "your answer", not
+    "entry (1,1)"."""
+    if where != "your answer":
+        return text
+    return text.replace("In entry your answer", "In your answer").replace(
+        "Entry your answer has", "Your answer has"
+    )
 
 
 class WrongSign(EntryMistake):

@@ -418,7 +418,7 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
                 key=key.name,
             )
     if not wrong and not shape_lead:
-        what = "The entry is right" if total == 1 else f"All {total} entries are right"
+        what = f"{_one(q)} is right" if total == 1 else f"All {total} entries are right"
         rounded = [e for e in entries if e.proof == "rounding"]
         if rounded:
             how = "; ".join(sorted({e.rounding for e in rounded}))
@@ -457,12 +457,17 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
                 ),
             ),
         ) + diagnoses
-    what = "The entry is wrong" if total == 1 else f"{len(wrong)} of {total} entries are wrong"
+    what = f"{_one(q)} is wrong" if total == 1 else f"{len(wrong)} of {total} entries are wrong"
     first = next(
         (d for d in diagnoses if d.kind not in ("unexplained", "unknown_symbol")), diagnoses[0]
     )
     message = f"{what}. Most likely: {first.title}. {first.detail}"
     return CheckResult(q.spec, Verdict.INCORRECT, message, tuple(entries), diagnoses, key=key.name)
+
+
+def _one(q: Question) -> str:
+    """How a one-cell answer is called: the determinant is an answer, not an entry."""
+    return "Your determinant" if q.kind == "det" else "The entry"
 
 
 def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
