@@ -122,7 +122,7 @@ def normalize_unicode(text: str) -> str:
 def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
     """Read an answer file: a regular file only, at most ``limits.max_bytes`` of it."""
     try:
-        data = read_limited(path, limits.max_bytes, what="the answer file")
+        data = read_limited(path, limits.max_bytes, what=f"the answer file {path}")
     except FileRefused as err:
         raise UnreadableAnswer(err.message) from None
     return read_text(data, limits)

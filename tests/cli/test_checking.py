@@ -171,3 +171,10 @@ def test_the_example_homework_is_package_data():
         '"dhsym.examples" = ["*.yaml", "*.csv", "submissions/*/*.md", "submissions/*/*.txt"]'
         in text
     )
+
+
+def test_a_missing_answer_file_is_named(tmp_path, capsys):
+    missing = tmp_path / "q1.txt"
+    argv = ["check", "--key", "planar2r", "--question", "T0_2", "--answer", str(missing)]
+    assert main(argv) == 2
+    assert str(missing) in capsys.readouterr().out
