@@ -79,6 +79,8 @@ def test_a_table_file_may_leave_out_the_joint_type():
     from dhsym.model.tablefile import read_table_text
 
     t = read_table_text(
-        "joints:\n  - {theta: theta1, d: 0, a: a1, alpha: 0}\n  - {theta: 0, d: d2, a: 0, alpha: 0}\n"
+        "joints:\n"
+        "  - {theta: theta1, d: 0, a: a1, alpha: 0}\n"
+        "  - {theta: 0, d: d2, a: 0, alpha: 0}\n"
     )
     assert [r.joint.value for r in t.rows] == ["R", "P"]
