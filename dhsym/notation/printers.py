@@ -550,7 +550,7 @@ def decimal_lengths(values: Iterable[sp.Expr]) -> bool:
     return any(
         not r.is_Integer and exact_decimal(r) is not None
         for v in values
-        for r in sp.sympify(v).atoms(sp.Rational)
+        for r in (v.atoms(sp.Rational) if isinstance(v, sp.Basic) else ())
     )
 
 
