@@ -112,15 +112,13 @@ class AtanForAtan2(IKMistake):
 
     def ik_variants(self, case: IKCase) -> Iterator[tuple[np.ndarray, str]]:
         nota = case.notation
+        plain = {b.symbol: 1 for b in case.ik.branches}  # no branch sign (sigma_1) in feedback
         for swap in atan_swaps(case.ik.steps):
             vals = key_values(
                 case.ik, case.sample.env, case.sample.size, lambda e, s=swap: e.xreplace(s)
             )
-            shown = ", ".join(
-                f"atan({nota.text(n.args[0])}/{nota.text(n.args[1])}) for "
-                f"atan2({nota.text(n.args[0])}, {nota.text(n.args[1])})"
-                for n in swap
-            )
+            args = [[nota.text(a.xreplace(plain)) for a in n.args] for n in swap]
+            shown = ", ".join(f"atan({y}/{x}) for atan2({y}, {x})" for y, x in args)
             yield vals, self._detail(shown)
 
     @staticmethod
@@ -215,15 +213,12 @@ class LostBranch(IKMistake):
         from ._ik_values import branch_signs
 
         signs = branch_signs(case.ik)
-        nota = case.notation
         parts = []
         for j, b in enumerate(case.ik.branches):
             given = {int(signs[k, j]) for k in case.matched}
             if len(given) == 1 and {int(signs[k, j]) for k in valid} == {1, -1}:
-                sign = "+1" if given == {1} else "-1"
-                parts.append(
-                    f"{nota.text(b.symbol)} = {sign} only ({b.role}): {b.sentence.text(nota)}"
-                )
+                sign = "+" if given == {1} else "-"  # words, not the internal sigma_k
+                parts.append(f"only the {sign} root for θ{b.joint} ({b.role})")
         lost = "; ".join(parts) if parts else ", ".join(case.names[k] for k in missing)
         detail = (
             f"The answer gives {len(case.matched)} of the {len(valid)} solutions; missing: "

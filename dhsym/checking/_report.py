@@ -148,6 +148,7 @@ def write_gradebook(root: Path, a: Assignment, records: Sequence[GradeRecord], f
 def _chart(root: Path, a: Assignment, records: Sequence[GradeRecord], kinds: Counter) -> Path:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
+    from matplotlib.ticker import MaxNLocator
 
     fig = Figure(figsize=(10, 4))
     FigureCanvasAgg(fig)
@@ -164,6 +165,8 @@ def _chart(root: Path, a: Assignment, records: Sequence[GradeRecord], kinds: Cou
     ax2.barh(labels[::-1], counts[::-1], color="#b7574a")
     ax2.set_title("Mistake kinds")
     ax2.set_xlabel("answers")
+    for axis in (ax1.yaxis, ax2.xaxis):  # counts of students and answers: whole numbers
+        axis.set_major_locator(MaxNLocator(integer=True))
     fig.tight_layout()
     path = inside(root, "summary.png")
     fig.savefig(path, dpi=100)

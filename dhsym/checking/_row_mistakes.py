@@ -115,29 +115,39 @@ class DegreesAsRadians(Mistake):
     kind, title = "degrees_as_radians", "degrees read as radians"
 
     def _variants(self, rows):
+        """All rows' angles, then one row's (the degrees in one row of a table)."""
         if not any(_angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0 for r in rows):
             return
-        for factor, detail in (
+        both = (
             (180 / sp.pi, "An angle in degrees was used as radians (cos 90 is not cos 90°)."),
             (sp.pi / 180, "An angle in radians was read as degrees (1.57° is not 90°)."),
-        ):
+        )
+        for factor, detail in both:
+            yield tuple(_scaled(r, factor) for r in rows), detail, ()
+        for k, row in enumerate(rows):
+            if _angle_terms(row.alpha, 0) == 0 and _angle_terms(row.theta, 0) == 0:
+                continue
+            factor, detail = both[0]
             yield (
-                tuple(
-                    replace(
-                        r, theta=_angle_terms(r.theta, factor), alpha=_angle_terms(r.alpha, factor)
-                    )
-                    for r in rows
-                ),
-                detail,
+                tuple(_scaled(r, factor) if j == k else r for j, r in enumerate(rows)),
+                f"Row {k + 1}: {detail}",
+                (k + 1,),
             )
 
     def matrix_variants(self, case):
-        for rows, detail in self._variants(case.rows):
+        for rows, detail, _ in self._variants(case.rows):
             yield case.chain_values(rows, case.convention), detail
 
     def table_variants(self, case):
-        for rows, detail in self._variants(case.key.rows):
-            yield Chain(rows, case.key.convention), detail, ()
+        for rows, detail, where in self._variants(case.key.rows):
+            yield Chain(rows, case.key.convention), detail, where
+
+
+def _scaled(row: DHRow, factor: sp.Expr) -> DHRow:
+    """``row`` with the constant parts of θ and α multiplied by ``factor``."""
+    return replace(
+        row, theta=_angle_terms(row.theta, factor), alpha=_angle_terms(row.alpha, factor)
+    )
 
 
 class SingleWrongRow(Mistake):

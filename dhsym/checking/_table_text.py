@@ -18,7 +18,7 @@ import sympy as sp
 
 from dhsym.errors import DHError, ParseError, TableError
 from dhsym.model.parsing import normalize_name, parse_expression
-from dhsym.model.table import Convention, DHRow, DHTable, JointType, to_radians
+from dhsym.model.table import AngleUnit, Convention, DHRow, DHTable, JointType, to_radians
 from dhsym.model.tablefile import table_from_data
 from dhsym.model.yamlsafe import YAMLInputError, YAMLLimits, load_yaml
 
@@ -26,7 +26,7 @@ from ._limits import AnswerLimits, UnreadableAnswer
 from .latex_input import flatten_subscripts, is_latex, latex_to_text
 from .names import NameContext
 
-__all__ = ["grid_table", "yaml_table"]
+__all__ = ["TABLE_FORM", "grid_table", "yaml_table"]
 
 _COLUMNS = {
     "theta": {"theta", "th", "jointangle", "angle", "θ"},
@@ -200,6 +200,28 @@ def grid_table(
         if len(cells) != len(headers):
             raise TableError(f"{len(cells)} cells, but the header has {len(headers)}", row=r)
         raw_rows.append(dict(zip(names, cells)))
+    return _assemble(raw_rows, units, convention, ctx, limits)
+
+
+def _assemble(
+    raw_rows: list[dict[str, str]],
+    units: Mapping[str, str | None],
+    convention: Convention,
+    ctx: NameContext,
+    limits: AnswerLimits,
+) -> DHTable:
+    """The table from its cells as text, one mapping per row (column name to cell).
+
+    Angles are degrees when a column's unit says so, when a cell is marked (``°``,
+    ``deg``) or when a constant angle is above 2π; ``type`` is inferred from which
+    of θ and d holds the variable when no cell gives it.
+    """
+    for r, raw in enumerate(raw_rows, start=1):
+        for need in ("theta", "d", "a", "alpha"):
+            if need not in raw:
+                raise TableError(
+                    f"missing column {need!r}: a DH table has θ, d, a and α", row=r, field=need
+                )
     parsed = []
     for r, raw in enumerate(raw_rows, start=1):
         parsed.append(
@@ -262,21 +284,77 @@ def _renamed(table: DHTable, ctx: NameContext) -> DHTable:
     return replace(table, rows=tuple(rows), values=values)
 
 
+_ROWS_KEYS = frozenset({"joints", "convention", "angles", "name", "notes", "source"})
+TABLE_FORM = (
+    "write one row per joint with the columns θ, d, a and α, for example the YAML line "
+    "'- {theta: theta1, d: d1, a: 0, alpha: 90}' or the Markdown table "
+    "'| θ | d | a | α |' with a row '| θ1 | d1 | 0 | 90° |'"
+)
+
+
+def _yaml_cell(value: object, row: int, field: str) -> str:
+    """A YAML scalar as the text of a cell (``90`` and ``"90°"`` alike); lists are refused."""
+    if value is None:
+        return ""
+    if isinstance(value, bool) or not isinstance(value, (str, int, float)):
+        raise TableError(f"expected a number or an expression, got {value!r}", row=row, field=field)
+    return str(value)
+
+
 def yaml_table(
     text: str, ctx: NameContext, convention: Convention, limits: AnswerLimits
 ) -> DHTable:
-    """Read the YAML table format (:mod:`dhsym.model.tablefile`); no convention means the key's."""
+    """Read a YAML table: a list of rows, or a mapping with a ``joints`` list.
+
+    Rows are read like the rows of a pasted table (:func:`grid_table`): ``type`` may be
+    left out (inferred from which of θ and d holds the variable), angles are degrees
+    when a value says so (``90``, ``90°``, ``90 deg``) or the file says ``angles: deg``.
+    A file with instructors' keys (``values``, ``base``, ``tool``) is read as a table
+    file (:mod:`dhsym.model.tablefile`). No convention means the key's.
+    """
     try:
         data = load_yaml(text, limits=_YAML)
     except YAMLInputError as err:
         if "too large" in err.message or "nested" in err.message:
             raise UnreadableAnswer(f"the YAML answer: {err.message}") from None
         raise TableError(err.message) from None
-    if not isinstance(data, Mapping):
-        raise TableError("expected a mapping with a 'joints' list at the top level")
-    if isinstance(data.get("joints"), list) and len(data["joints"]) > limits.max_rows:
+    if isinstance(data, list):
+        top: Mapping = {"joints": data}
+    elif isinstance(data, Mapping) and isinstance(data.get("joints"), list):
+        top = data
+    else:
+        raise TableError("expected a list of rows, or a mapping with a 'joints' list")
+    rows = top["joints"]
+    if len(rows) > limits.max_rows:
         raise UnreadableAnswer(f"the table has more than {limits.max_rows} rows")
-    data = dict(data)
-    data.setdefault("convention", convention.value)
-    data.pop("name", None), data.pop("notes", None), data.pop("source", None)
-    return _renamed(table_from_data(data), ctx)
+    if not rows:
+        raise TableError("the table has no rows")
+    if not {str(k) for k in top} <= _ROWS_KEYS:
+        full = dict(top)
+        full.setdefault("convention", convention.value)
+        full.pop("name", None), full.pop("notes", None), full.pop("source", None)
+        return _renamed(table_from_data(full), ctx)
+    if "convention" in top:
+        convention = Convention.parse(str(top["convention"]))
+    unit = AngleUnit.parse(str(top["angles"])).value if "angles" in top else None
+    units: dict[str, str | None] = {"theta": unit, "alpha": unit}
+    raw_rows = []
+    hints = set()
+    for r, entry in enumerate(rows, start=1):
+        if not isinstance(entry, Mapping):
+            raise TableError("each row must be a mapping like {theta: theta1, d: d1}", row=r)
+        raw = {}
+        for key, value in entry.items():
+            name, col_unit, modified = _column(str(key))
+            if col_unit is not None and unit is None:
+                units[name] = col_unit
+            if name in ("a", "alpha") and modified is not None:
+                hints.add(modified)
+            if name != "label":
+                raw[name] = _yaml_cell(value, r, name)
+        raw_rows.append(raw)
+    if hints == {True}:
+        convention = Convention.MODIFIED
+    elif hints == {False}:
+        convention = Convention.STANDARD
+    return _renamed(_assemble(raw_rows, units, convention, ctx, limits), ctx)

@@ -37,7 +37,7 @@ from dhsym.model.table import Convention, DHTable
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer, check_time
-from ._table_text import grid_table, yaml_table
+from ._table_text import TABLE_FORM, grid_table, yaml_table
 from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
 from .names import NameContext
 from .rounding import Literal
@@ -71,7 +71,9 @@ _DEGREE_O = re.compile(  # 90^o, 90^{o}: degrees where the base is a number
     r"(?![A-Za-z0-9_])"
 )
 _MATRIX_WRAPPER = re.compile(r"^\s*(?:sp\.|sympy\.)?(?:Immutable)?Matrix\s*\((.*)\)\s*$", re.DOTALL)
-_YAML_TABLE = re.compile(r"^[ \t]*joints[ \t]*:", re.MULTILINE)  # [ \t]: one line, linear
+# A YAML table: a ``joints:`` key, or a list of rows (``- {theta: …}`` / ``- theta: …``).
+# [ \t] and \w stay on one line and no two parts overlap: linear on any text.
+_YAML_TABLE = re.compile(r"^[ \t]*(?:joints[ \t]*:|-[ \t]+(?:\{|\w+[ \t]*:))", re.MULTILINE)
 
 
 def answer_text(value: object) -> str | bytes:
@@ -171,7 +173,7 @@ def normalize_unicode(text: str) -> str:
 def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
     """Read an answer file: a regular file only, at most ``limits.max_bytes`` of it."""
     try:
-        data = read_limited(path, limits.max_bytes, what="the answer file")
+        data = read_limited(path, limits.max_bytes, what=f"the answer file {path}")
     except FileRefused as err:
         raise UnreadableAnswer(err.message) from None
     return read_text(data, limits)
@@ -382,7 +384,15 @@ def read_table(
         if _YAML_TABLE.search(text):
             return yaml_table(text, ctx, Convention.parse(convention), limits)
         return grid_table(text, ctx, Convention.parse(convention), limits)
-    except (TableError, ParseError, UnreadableAnswer):
+    except TableError as err:
+        if err.row is None:  # the form itself was not recognised: say what is expected
+            raise TableError(f"{err.message}; {TABLE_FORM}", field=err.field) from None
+        raise
+    except UnreadableAnswer as err:
+        if err.message.startswith("expected a table"):
+            raise UnreadableAnswer(f"{err.message}; {TABLE_FORM}") from None
+        raise
+    except ParseError:
         raise
     except DHError as err:
         raise TableError(str(err)) from None

@@ -245,6 +245,8 @@ def build_wheel(out_dir: str | Path) -> Path:
                 shutil.copy2(root / name, tree / name)
         shutil.copytree(root / "dhsym", tree / "dhsym", ignore=skip)
         shutil.copytree(root / "templates", tree / "templates", ignore=skip)
+        # the example homework, package data dhsym.examples (dhsym new-assignment)
+        shutil.copytree(root / "examples" / "homework", tree / "examples" / "homework", ignore=skip)
         proc = subprocess.run(
             [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", tmp, str(tree)],
             capture_output=True,

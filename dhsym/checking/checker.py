@@ -47,6 +47,7 @@ from .mistakes import (
     DET_MISTAKES,
     JACOBIAN_MISTAKES,
     MATRIX_MISTAKES,
+    BlockTransposed,
     MatrixCase,
     TableCase,
     diagnose_matrix,
@@ -458,7 +459,7 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
                 key=key.name,
             )
     if not wrong and not shape_lead:
-        what = "The entry is right" if total == 1 else f"All {total} entries are right"
+        what = f"{_one(q)} is right" if total == 1 else f"All {total} entries are right"
         rounded = [e for e in entries if e.proof == "rounding"]
         if rounded:
             how = "; ".join(sorted({e.rounding for e in rounded}))
@@ -482,7 +483,7 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
         pk.cache,
         pk.robot,
     )
-    kinds = {"jacobian": JACOBIAN_MISTAKES, "det": DET_MISTAKES}
+    kinds = {"jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()), "det": DET_MISTAKES}
     diagnoses = shape_lead + lead + diagnose_matrix(case, kinds.get(q.kind, MATRIX_MISTAKES))
     if unknown:
         names = ", ".join(str(s) for s in unknown)
@@ -497,12 +498,17 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
                 ),
             ),
         ) + diagnoses
-    what = "The entry is wrong" if total == 1 else f"{len(wrong)} of {total} entries are wrong"
+    what = f"{_one(q)} is wrong" if total == 1 else f"{len(wrong)} of {total} entries are wrong"
     first = next(
         (d for d in diagnoses if d.kind not in ("unexplained", "unknown_symbol")), diagnoses[0]
     )
     message = f"{what}. Most likely: {first.title}. {first.detail}"
     return CheckResult(q.spec, Verdict.INCORRECT, message, tuple(entries), diagnoses, key=key.name)
+
+
+def _one(q: Question) -> str:
+    """How a one-cell answer is called: the determinant is an answer, not an entry."""
+    return "Your determinant" if q.kind == "det" else "The entry"
 
 
 def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
@@ -511,19 +517,29 @@ def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> 
     ans = read_table(answer, pk.names, table.convention, limits)
     values_ = table.value_map  # for the diagnosis; the verdict is symbolic first
     extra = {"expected_table": table_cells(table), "answer_table": table_cells(ans)}
+    note = (
+        " (Your angles were read as degrees, from a value above 2π, a ° or deg mark"
+        " or the file's angles: deg.)"
+        if ans.angles is AngleUnit.DEG and table.angles is not AngleUnit.DEG
+        else ""
+    )
     judged = symbolic_values(table, ans)
     match = compare_tables(table, ans, tool_free=key.tool_free, values=judged)
     if match.same_robot and ans.convention is table.convention:
         if match.same_table:
             return CheckResult(
-                "table", Verdict.CORRECT, "Your table is the key's table.", key=key.name, **extra
+                "table",
+                Verdict.CORRECT,
+                "Your table is the key's table." + note,
+                key=key.name,
+                **extra,
             )
         how = "; ".join(match.differences) or "other but equivalent entries"
         return CheckResult(
             "table",
             Verdict.CORRECT,
             f"Your table is a valid alternative: it describes the same robot "
-            f"with other frame choices ({how}).",
+            f"with other frame choices ({how}).{note}",
             alternative=how,
             key=key.name,
             **extra,
@@ -544,7 +560,9 @@ def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> 
         if match.diverges_at and not match.same_robot
         else ""
     )
-    message = f"The table is wrong. Most likely: {diagnoses[0].title}. {diagnoses[0].detail}{where}"
+    message = (
+        f"The table is wrong. Most likely: {diagnoses[0].title}. {diagnoses[0].detail}{where}{note}"
+    )
     return CheckResult(
         "table", Verdict.INCORRECT, message, diagnoses=diagnoses, key=key.name, **extra
     )

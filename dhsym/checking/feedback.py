@@ -80,6 +80,15 @@ def _points(x: float) -> str:
     return f"{x:g}"
 
 
+def _mathml(tex: object) -> object:
+    """Printer LaTeX as MathML, marked safe for the autoescaping HTML environment."""
+    from markupsafe import Markup
+
+    from dhsym.notation.mathml import latex_mathml
+
+    return Markup(latex_mathml(str(tex)))  # noqa: S704 - MathML built from an element tree
+
+
 @lru_cache(maxsize=3)
 def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
     """Jinja2 environment for ``html`` (autoescaped), ``md`` or ``txt`` (plain text)."""
@@ -96,6 +105,7 @@ def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
     env.filters["code"] = md_code
     env.filters["mdmath"] = md_math
     env.filters["points"] = _points
+    env.filters["mathml"] = _mathml
     return env
 
 
@@ -107,7 +117,6 @@ def render_feedback(
     fmt: str = "md",
     status: str = "graded",
     flags: Sequence[str] = (),
-    mathjax_url: str | None = None,
 ) -> str:
     """One student's feedback page (``fmt`` is ``md`` or ``html``); ``flags`` are notes."""
     if fmt not in ("md", "html"):
@@ -121,7 +130,6 @@ def render_feedback(
         max_score=sum(q.points for q in questions),
         status=status,
         flags=[str(f) for f in flags],
-        mathjax_url=mathjax_url,
     )
 
 
@@ -142,15 +150,17 @@ def check_text(result: CheckResult) -> str:
 
     >>> from dhsym.checking.verdict import CheckResult, Diagnosis, EntryResult, Verdict
     >>> e = EntryResult(2, 4, False, "a1*S1 - a2*S12", "a1*S1 + a2*S12")
+    >>> ok = EntryResult(1, 4, True, "a1*C1 + a2*C12", "a1*C1 + a2*C12")
     >>> d = Diagnosis("wrong_sign", "wrong sign", "a2*S12 has the wrong sign.", ((2, 4),))
-    >>> print(check_text(CheckResult("T0_2", Verdict.INCORRECT, "1 of 16 entries is wrong.",
-    ...                              diagnoses=(d,), entries=(e,), key="Planar 2R")))
-    INCORRECT: T0_2 (Planar 2R). 1 of 16 entries is wrong.
+    >>> print(check_text(CheckResult("T0_2[:,3]", Verdict.INCORRECT, "1 of 2 entries is wrong.",
+    ...                              diagnoses=(d,), entries=(ok, e), key="Planar 2R")))
+    INCORRECT: T0_2[:,3] (Planar 2R). 1 of 2 entries is wrong.
       - wrong sign (entries (2,4)): a2*S12 has the wrong sign.
     <BLANKLINE>
       entry | your entry     | correct entry
       ------+----------------+---------------
       (2,4) | a1*S1 - a2*S12 | a1*S1 + a2*S12
+    The other entry is right.
     <BLANKLINE>
     """
     from dhsym.notation.escape import _clean_text
@@ -160,7 +170,7 @@ def check_text(result: CheckResult) -> str:
     lines = [f"{result.verdict.value.upper()}: {result.question}{where}. {result.message}"]
     for d in result.diagnoses:
         at = ""
-        if d.entries:
+        if d.entries and len(result.entries) > 1:  # a one-cell answer has no entries to name
             at += " (entries " + ", ".join(f"({r},{c})" for r, c in d.entries) + ")"
         if d.rows:
             at += " (rows " + ", ".join(map(str, d.rows)) + ")"
@@ -172,8 +182,11 @@ def check_text(result: CheckResult) -> str:
             "",
             *("  " + t for t in text_table(["entry", "your entry", "correct entry"], rows)),
         ]
-        if len(result.entries) > len(wrong):
-            lines.append(f"The other {len(result.entries) - len(wrong)} entries are right.")
+        rest = len(result.entries) - len(wrong)
+        if rest:
+            lines.append(
+                "The other entry is right." if rest == 1 else f"The other {rest} entries are right."
+            )
     tables = [("Your table:", result.answer_table)]
     if not result.correct:
         tables.append(("The key's table:", result.expected_table))

@@ -29,7 +29,7 @@ Examples
 ...                       "theta2 = atan2(-sqrt(1 - c2^2), c2)\n"
 ...                       "theta1 = atan2(py, px) - atan2(a2*S2, a1 + a2*C2)")
 >>> r.verdict.value, r.message
-('correct', 'Right: the branch sigma_2 = -1 (elbow, - root).')
+('correct', 'Right: the branch elbow, - root (θ2).')
 >>> r = check_answer(key, "theta2 = acos((px^2 + py^2 - a1^2 - a2^2)/(2*a1*a2))\n"
 ...                       "theta1 = atan(py/px) - atan2(a2*S2, a1 + a2*C2)")
 >>> r.verdict.value, r.kinds
@@ -355,7 +355,8 @@ def _branch_name(ik: object, k: int, nota: object) -> str:
     for j, b in enumerate(ik.branches):  # type: ignore[attr-defined]
         s = int(signs[k, j])
         what = words[b.role][0 if s > 0 else 1]
-        parts.append(f"{nota.text(b.symbol)} = {s:+d} ({what})")  # type: ignore[attr-defined]
+        joint = f"θ{b.joint}" if getattr(b, "joint", None) else ""
+        parts.append(f"{what} ({joint})" if joint else what)  # no internal sigma_k: words
     return ", ".join(parts) if parts else "the only solution"
 
 

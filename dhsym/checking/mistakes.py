@@ -8,7 +8,9 @@ mistake is the diagnosis.  Matrix variants are numbers at the sample points
 variants are tables compared cell by cell or as robots
 (:func:`dhsym.checking.tables.compare_tables`).
 
-Kinds: ``wrong_sign``, ``sin_cos_swapped``, ``transposed``, ``other_convention``,
+Kinds: ``wrong_sign`` (at any depth), ``sin_cos_swapped``, ``dropped_term``,
+``wrong_joint_index``, ``missing_length``, ``transposed`` (also one 3×3 block),
+``other_convention``,
 ``degrees_as_radians``, ``index_shift``, ``offset_missing``, ``reverse_order``,
 ``single_wrong_row``; for the Jacobian ``tool_frame``, ``next_axis``,
 ``prismatic_as_revolute`` (and ``missing_column``, from the shape of the answer); for
@@ -31,7 +33,13 @@ import numpy as np
 
 from dhsym.model.table import Convention
 
-from ._entry_mistakes import SinCosSwapped, WrongSign
+from ._entry_mistakes import (
+    DroppedTerm,
+    MissingLength,
+    SinCosSwapped,
+    WrongJointIndex,
+    WrongSign,
+)
 from ._ik_mistakes import IK_MISTAKES, AtanForAtan2, IKCase, IKMistake, LostBranch, WrongRootSign
 from ._jacobian_mistakes import (
     DET_MISTAKES,
@@ -54,6 +62,8 @@ __all__ = [
     "JACOBIAN_MISTAKES",
     "AtanForAtan2",
     "BlockDeterminant",
+    "BlockTransposed",
+    "DroppedTerm",
     "DegreesAsRadians",
     "IKCase",
     "IKMistake",
@@ -66,6 +76,7 @@ __all__ = [
     "IndexShift",
     "MATRIX_MISTAKES",
     "MatrixCase",
+    "MissingLength",
     "Mistake",
     "OffsetMissing",
     "OtherConvention",
@@ -75,6 +86,7 @@ __all__ = [
     "TABLE_MISTAKES",
     "TableCase",
     "Transposed",
+    "WrongJointIndex",
     "WrongSign",
     "diagnose_matrix",
     "diagnose_table",
@@ -109,6 +121,30 @@ class Transposed(Mistake):
                 "the columns of R are the axes of the new frame in the old one."
             ),
         )
+
+
+class BlockTransposed(Mistake):
+    """One 3×3 block of a 6×n Jacobian written transposed (the rotation block of ^iT_j
+    is :class:`Transposed`)."""
+
+    kind, title = "transposed", "one 3×3 block transposed"
+
+    def matrix_variants(self, case):
+        vals = np.asarray(case.key_values)
+        if vals.ndim != 3 or vals.shape[1] != 6:
+            return
+        for r in (0, 3):
+            for c in range(0, vals.shape[2] - 2, 3):
+                out = vals.copy()
+                out[:, r : r + 3, c : c + 3] = np.swapaxes(vals[:, r : r + 3, c : c + 3], 1, 2)
+                rows = "linear" if r == 0 else "angular"
+                yield (
+                    out,
+                    (
+                        f"The {rows} block of columns {c + 1} to {c + 3} is transposed: column "
+                        "i of J holds the contribution of joint i."
+                    ),
+                )
 
 
 def _full(case: MatrixCase) -> np.ndarray:
@@ -194,7 +230,13 @@ MATRIX_MISTAKES: tuple[Mistake, ...] = (
     OffsetMissing(),
     DegreesAsRadians(),
 )
-ENTRY_MISTAKES: tuple[Mistake, ...] = (WrongSign(), SinCosSwapped())
+ENTRY_MISTAKES: tuple[Mistake, ...] = (
+    WrongSign(),
+    SinCosSwapped(),
+    WrongJointIndex(),
+    MissingLength(),
+    DroppedTerm(),
+)
 TABLE_MISTAKES: tuple[Mistake, ...] = (
     OtherConvention(),
     IndexShift(),

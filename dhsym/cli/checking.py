@@ -129,6 +129,40 @@ def _cmd_grade(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_new_assignment(args: argparse.Namespace) -> int:
+    """Copy the packaged example homework (``dhsym.examples``) into a new folder."""
+    from importlib.resources import files
+
+    import dhsym
+    from dhsym.errors import DHError
+
+    out = Path(args.folder)
+    if out.exists() and (not out.is_dir() or any(out.iterdir())):
+        raise DHError(f"{args.folder}: exists and is not an empty folder")
+    packaged = Path(str(files(dhsym))) / "examples"  # the wheel's package data
+    source = Path(dhsym.__file__).resolve().parents[1] / "examples" / "homework"  # a checkout
+    root = next((f for f in (packaged, source) if (f / "assignment.yaml").is_file()), None)
+    if root is None:
+        raise DHError(f"the example homework is missing (looked in {packaged} and {source})")
+
+    def copy(src: Path, dst: Path) -> None:
+        for item in sorted(src.iterdir()):
+            if item.name.startswith(("_", ".")) or item.name.endswith((".py", ".pyc")):
+                continue
+            if item.is_dir():
+                (dst / item.name).mkdir()
+                copy(item, dst / item.name)
+            else:
+                (dst / item.name).write_bytes(item.read_bytes())
+
+    out.mkdir(parents=True, exist_ok=True)
+    copy(root, out)
+    a = os.path.join(args.folder, "assignment.yaml")
+    print(f"wrote {a} (commented), its table file and a class in {args.folder}/submissions")
+    print(f"grade it: dhsym grade {a} {os.path.join(args.folder, 'submissions')} -o REPORT")
+    return 0
+
+
 def _cmd_autograder(args: argparse.Namespace) -> int:
     from dhsym.checking.autograder import build_autograder, run_autograder
     from dhsym.errors import DHError
@@ -150,7 +184,7 @@ def _cmd_autograder(args: argparse.Namespace) -> int:
     return 0
 
 
-CHECK_EPILOG = """\
+CHECK_EPILOG_TAIL = """\
 Exit status:
   0  the answer is correct (or a valid alternative)
   1  the answer is incorrect
@@ -160,7 +194,27 @@ Answers may be plain math (c1*c2 - s1*s2, C12, a1 C1 + a2 C_{12}), LaTeX
 (\\begin{bmatrix} ... \\end{bmatrix}) or, for tables, YAML, CSV or a pasted table.
 Nothing a student typed is executed."""
 
-GRADE_EPILOG = """\
+QUESTION_KINDS = """\
+Question kinds (ask: in the assignment, --question for check):
+  table                the DH table
+  T<i>_<j>, A<k>, arm  a matrix: ^iT_j, link matrix k, ^0T_n
+  px, py, pz           one entry of the position
+  T<i>_<j>[row,col]    one entry, 0-based (e.g. T0_6[0,3])
+  J, J[row,col]        the geometric Jacobian [v; w], or one entry
+  det J                its determinant
+  ik, ik all           inverse kinematics in the pose n s a p: one branch, or every branch
+  ik@q1,...,qn         the joint values of the pose at q"""
+
+CHECK_EPILOG = QUESTION_KINDS + "\n\n" + CHECK_EPILOG_TAIL
+
+GRADE_EPILOG = (
+    QUESTION_KINDS
+    + """
+
+The assignment file: title, key (robot or table file), time_limit, rounding,
+questions: [{id, ask, points, key, rounding, tool}]; every key is described in
+docs/guide/assignments.md, and dhsym new-assignment DIR writes a commented example.
+
 Exit status:
   0  the class was graded (each student's score is in the gradebook, even when
      single submissions failed or timed out)
@@ -168,6 +222,7 @@ Exit status:
 
 Writes REPORT/gradebook.csv, REPORT/feedback/<student>.md|.html and
 REPORT/summary.html; a rerun skips what is already graded."""
+)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -183,7 +238,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     c.add_argument(
         "--question",
         required=True,
-        help="table, T<i>_<j>, A<k>, arm, px, py, pz, or T<i>_<j>[row,col] (0-based)",
+        help="the question kind: table, T<i>_<j>, A<k>, arm, px, py, pz, T<i>_<j>[row,col] "
+        "(0-based), J, J[row,col], det J, ik, ik all, ik@q1,...,qn (see below)",
     )
     c.add_argument("--answer", required=True, help="answer file, or - for standard input")
     c.add_argument(
@@ -258,6 +314,17 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="the LMS assignment column (Canvas: 'Name (id)'); default the assignment title",
     )
     g.set_defaults(func=_cmd_grade)
+
+    n = add_command(
+        subparsers,
+        "new-assignment",
+        "write a commented example assignment and a small class to grade",
+        description="Write the example homework (a commented assignment.yaml, a table file\n"
+        "it uses, and ten students' submissions) into a new folder, to edit and grade.",
+        epilog=QUESTION_KINDS,
+    )
+    n.add_argument("folder", help="the folder to create (must not exist, or be empty)")
+    n.set_defaults(func=_cmd_new_assignment)
 
     ag = add_command(
         subparsers,

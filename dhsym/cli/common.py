@@ -39,8 +39,10 @@ __all__ = [
     "EXIT_BROKEN_PIPE",
     "STDOUT",
     "HelpFormatter",
+    "add_angle_options",
     "add_command",
     "add_notation_options",
+    "q_in_degrees",
     "emit",
     "emit_bytes",
     "URDF_SUFFIXES",
@@ -265,3 +267,32 @@ def note_warnings(table: object) -> None:
     """Print what the reader did to the input (``table.warnings``) on standard error, once."""
     for text in getattr(table, "warnings", ()):
         print(f"dhsym: note: {text}", file=sys.stderr)
+
+
+def add_angle_options(parser: argparse.ArgumentParser) -> None:
+    """``--deg`` / ``--rad``: the unit of ``--q``'s revolute values (default: the table's)."""
+    unit = parser.add_mutually_exclusive_group()
+    unit.add_argument(
+        "--deg", action="store_true", help="revolute values in degrees (default: the table's unit)"
+    )
+    unit.add_argument(
+        "--rad", action="store_true", help="revolute values in radians (default: the table's unit)"
+    )
+
+
+def q_in_degrees(args: argparse.Namespace, table: object) -> tuple[bool, str]:
+    """Whether ``--q`` is in degrees (``--deg``, ``--rad``, else the table's ``angles``),
+    and the sentence that says so.
+
+    >>> from types import SimpleNamespace as NS
+    >>> q_in_degrees(NS(deg=False, rad=False), NS(angles=NS(value="deg")))
+    (True, "--q read in degrees (the table's angles: deg; --rad to override)")
+    """
+    if args.deg or args.rad:
+        deg = bool(args.deg)
+        why = "--deg" if deg else "--rad"
+    else:
+        deg = getattr(getattr(table, "angles", None), "value", "rad") == "deg"
+        unit, other = ("deg", "--rad") if deg else ("rad", "--deg")
+        why = f"the table's angles: {unit}; {other} to override"
+    return deg, f"--q read in {'degrees' if deg else 'radians'} ({why})"

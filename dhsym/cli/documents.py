@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 from pathlib import Path
 from typing import Any
@@ -50,6 +51,11 @@ def _cmd_handout(args: argparse.Namespace) -> int:
         return 0
     tex = write_handout(robots, args.output, figure=args.figure, **options)
     wrote(args.output)
+    if args.figure:  # the pictures the handout includes, written beside it
+        out = Path(args.output)
+        stem = re.sub(r"[^A-Za-z0-9-]+", "-", out.stem).strip("-") or "handout"
+        for picture in sorted(out.parent.glob(f"{stem}-*-home.pdf")):
+            wrote(out.parent / picture.name if str(out.parent) != "." else picture.name)
     if args.pdf:
         run = run_latex(tex, keep_aux=args.keep_aux)
         wrote(Path(args.output).with_suffix(".pdf"))

@@ -3,12 +3,21 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 from typing import Any
 
 from dhsym.errors import DHError
 
-from .common import STDOUT, add_command, add_urdf_options, emit_bytes, load_robot
+from .common import (
+    STDOUT,
+    add_angle_options,
+    add_command,
+    add_urdf_options,
+    emit_bytes,
+    load_robot,
+    q_in_degrees,
+)
 
 __all__ = ["register"]
 
@@ -42,7 +51,10 @@ def _cmd_plot(args: argparse.Namespace) -> int:
         fig = plot_workspace(robot, args.samples, view=args.view)
     else:
         q = None if args.q is None else parse_number_list(args.q, "--q")
-        fig = plot_robot(robot, q, deg=args.deg, view=args.view or "3d")
+        deg, unit = q_in_degrees(args, robot.table) if q is not None else (False, "")
+        if unit:
+            print(f"dhsym: note: {unit}", file=sys.stderr)
+        fig = plot_robot(robot, q, deg=deg, view=args.view or "3d")
     buffer = io.BytesIO()
     fig.savefig(buffer, format=fmt, dpi=args.dpi)
     emit_bytes(buffer.getvalue(), args.output, f"a {fmt.upper()} picture")
@@ -57,7 +69,7 @@ def register(subparsers: Any) -> None:
     )
     add_urdf_options(p)
     p.add_argument("--q", help="joint values, comma separated (default: all zero)")
-    p.add_argument("--deg", action="store_true", help="revolute values in degrees")
+    add_angle_options(p)
     p.add_argument(
         "--values",
         metavar="NAME=NUMBER,...",

@@ -16,6 +16,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from .common import (
+    add_angle_options,
     add_command,
     add_notation_options,
     add_urdf_options,
@@ -23,6 +24,7 @@ from .common import (
     load_robot,
     load_table_arg,
     note_warnings,
+    q_in_degrees,
 )
 
 if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
@@ -160,9 +162,27 @@ def _derive_more(robot: Robot, what: str, args: argparse.Namespace) -> int:
     else:
         from dhsym.explain.documents import render_derivation
 
-        out = render_derivation(robot, fmt=args.format, what=what)
+        try:
+            out = render_derivation(robot, fmt=args.format, what=what)
+        except DHError as err:
+            nxt = _next_step(what, args.robot)
+            if nxt is None:
+                raise
+            raise type(err)(f"{err.message}. {nxt}") from None
     emit(out, args.output)
     return 0
+
+
+def _next_step(what: str, name: str) -> str | None:
+    """The command that goes on where ``derive --what`` finds no closed form."""
+    if what == "ik":
+        return f"A numeric solution: {_numeric_command(name)}"
+    if what == "singularities":
+        return (
+            "The measure to use: the manipulability w = sqrt(det(J Jᵀ)) (Yoshikawa), zero "
+            f"exactly at a singular configuration: dhsym fk {name} --q Q --manipulability"
+        )
+    return None
 
 
 def _parse_q(text: str, n: int) -> list[float]:
@@ -184,7 +204,15 @@ def _cmd_fk(args: argparse.Namespace) -> int:
 
     robot = load_robot(args.robot, args.values, need_numbers=True, tip=args.tip, base=args.base)
     q = _parse_q(args.q, len(robot.variables))
-    T = robot.fk(q, deg=args.deg)
+    deg, unit = q_in_degrees(args, robot.table)
+    T = robot.fk(q, deg=deg)
+    extra: dict[str, object] = {}
+    if args.manipulability:
+        rows = [r for r in robot.table.rows if r.variable is not None]
+        turns = [deg and r.variable_field == "theta" for r in rows]  # only angles convert
+        J = np.asarray(robot.jacobian(np.where(turns, np.radians(q), q)), dtype=float)
+        wide = J if J.shape[0] <= J.shape[1] else J.T  # det(J Jᵀ), or det(Jᵀ J) for a tall J
+        extra["manipulability"] = float(np.sqrt(max(np.linalg.det(wide @ wide.T), 0.0)))
     if args.json:
         print(
             json.dumps(
@@ -192,14 +220,87 @@ def _cmd_fk(args: argparse.Namespace) -> int:
                     "robot": robot.name,
                     "variables": [str(v) for v in robot.variables],
                     "q": q,
-                    "deg": bool(args.deg),
+                    "deg": deg,
                     "matrix": T.round(12).tolist(),
+                    **extra,
                 }
             )
         )
     else:
         with np.printoptions(precision=6, suppress=True):
-            print(T)
+            print(f"{unit}:\n{T}")
+        if extra:
+            print(f"manipulability w = sqrt(det(J Jᵀ)) = {extra['manipulability']:.6g}")
+    return 0
+
+
+def _pose(args: argparse.Namespace, robot: Robot) -> object:
+    """The goal pose: ``--pose`` (12 or 16 numbers, the rows of T) or ``--pose-of Q``."""
+    import numpy as np
+
+    from dhsym.errors import DHError
+    from dhsym.model.parsing import parse_number_list
+
+    if (args.pose is None) == (args.pose_of is None):
+        raise DHError("give the goal as --pose (12 or 16 numbers, T row by row) or --pose-of Q")
+    if args.pose_of is not None:
+        deg, unit = q_in_degrees(args, robot.table)
+        print(f"pose of --pose-of: {unit}")
+        return robot.fk(_parse_q(args.pose_of, len(robot.variables)), deg=deg)
+    values = parse_number_list(args.pose, "--pose")
+    if len(values) not in (12, 16):
+        raise DHError(f"--pose needs 12 or 16 numbers (T row by row), got {len(values)}")
+    T = np.eye(4)
+    T[:3, :] = np.reshape(values[:12], (3, 4))
+    return T
+
+
+def _numeric_command(name: str) -> str:
+    return f"dhsym ik {name} --pose T11,...,T34 --numeric (or --pose-of Q)"
+
+
+def _cmd_ik(args: argparse.Namespace) -> int:
+    """``dhsym ik NAME --pose … [--numeric]``: closed-form solutions, or one numeric one."""
+    import numpy as np
+
+    from dhsym.errors import DHError
+    from dhsym.kinematics import numeric_ik
+
+    robot = load_robot(args.robot, args.values, need_numbers=True)
+    T = _pose(args, robot)
+    names = [str(v) for v in robot.variables]
+    if args.numeric:
+        q0 = None if args.q0 is None else _parse_q(args.q0, len(names))
+        sol = numeric_ik(robot, T, q0)
+        result = {
+            "method": sol.method,
+            "converged": bool(sol.converged),
+            "iterations": sol.iterations,
+            "error": sol.error,
+            "q": dict(zip(names, np.round(sol.q, 12).tolist())),
+        }
+        if args.json:
+            print(json.dumps(result))
+        else:
+            state = "converged" if sol.converged else "did NOT converge"
+            print(f"{sol.method}: {state} in {sol.iterations} steps, error {sol.error:.3g}")
+            print("joint values (radians for revolute joints):")
+            for n, v in result["q"].items():
+                print(f"  {n} = {v:.9g}")
+        return 0 if sol.converged else 1
+    try:
+        sols = robot.ik(T)
+    except DHError as err:
+        raise type(err)(
+            f"{err.message}. A numeric solution: {_numeric_command(args.robot)}"
+        ) from None
+    rows = np.asarray(sols.q).tolist()
+    if args.json:
+        print(json.dumps({"variables": names, "q": rows}))
+    else:
+        print(f"{len(rows)} closed-form solution(s), one per line (radians): {', '.join(names)}")
+        for row in rows:
+            print("  " + ", ".join(f"{v:.9g}" for v in row))
     return 0
 
 
@@ -208,7 +309,7 @@ VALUES_HELP = "numbers for the table's symbolic lengths, e.g. a2=0.43,d3=0.15"
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    """Add ``list``, ``show``, ``derive`` and ``fk``."""
+    """Add ``list``, ``show``, ``derive``, ``fk`` and ``ik``."""
     add_command(sub, "list", "list the built-in robots").set_defaults(func=_cmd_list)
 
     s = add_command(sub, "show", "print a DH table")
@@ -251,9 +352,35 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     f = add_command(sub, "fk", "numeric forward kinematics: the tool pose at joint values")
     f.add_argument("robot", help=ROBOT_HELP)
-    f.add_argument("--q", required=True, help="joint values, comma separated (radians, lengths)")
-    f.add_argument("--deg", action="store_true", help="revolute values in degrees")
+    f.add_argument(
+        "--q", required=True, help="joint values, comma separated (angles in the table's unit)"
+    )
+    add_angle_options(f)
+    f.add_argument(
+        "--manipulability",
+        action="store_true",
+        help="also the manipulability sqrt(det(J Jᵀ)) (Yoshikawa): 0 at a singularity",
+    )
     f.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
     f.add_argument("--json", action="store_true", help="JSON output")
     add_urdf_options(f)
     f.set_defaults(func=_cmd_fk)
+
+    k = add_command(
+        sub,
+        "ik",
+        "inverse kinematics at a pose: every closed-form solution, or --numeric",
+        description="Solve the inverse kinematics at a goal pose. Without --numeric: every\n"
+        "closed-form solution (dhsym derive NAME --what ik shows the steps). With --numeric:\n"
+        "one local solution by Levenberg-Marquardt from --q0 (default all zero), for arms\n"
+        "without a closed form.",
+    )
+    k.add_argument("robot", help=ROBOT_HELP)
+    k.add_argument("--pose", help="the goal T, 12 or 16 numbers row by row")
+    k.add_argument("--pose-of", metavar="Q", help="the goal: the pose at these joint values")
+    k.add_argument("--numeric", action="store_true", help="one numeric solution")
+    k.add_argument("--q0", help="start of the numeric solver (default: all zero)")
+    add_angle_options(k)
+    k.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
+    k.add_argument("--json", action="store_true", help="JSON output")
+    k.set_defaults(func=_cmd_ik)

@@ -151,6 +151,28 @@ def inverse_math(pose: Pose) -> Math:
     return Math(TeX(rf"\left({pose.label_latex}\right)^{{-1}}"), f"({pose.label_text})^-1")
 
 
+def _frame_notes(table: DHTable, frm: int, to: int, n: int, nota: Notation) -> tuple[str, ...]:
+    """Say where the table's base and tool transforms are (``convert`` moves lengths there):
+    ^0T_n below stops at the last DH frame."""
+
+    def word(steps: tuple) -> str:
+        return "·".join(f"{e.kind}{e.axis}({nota.text(e.value)})" for e in steps)
+
+    out = []
+    if table.tool and n in (frm, to):
+        out.append(
+            f"The table has a tool transform {word(table.tool)} after frame {n}: the matrices "
+            f"below stop at frame {n}; the tool pose is T0_{n}·{word(table.tool)} "
+            f"(derive --to {n + 1})."
+        )
+    if table.base and 0 in (frm, to):
+        out.append(
+            f"The table has a base transform {word(table.base)} before frame 0: the world "
+            "pose of frame 0 is that transform (derive --from -1)."
+        )
+    return tuple(out)
+
+
 def general_link(convention: Convention | str, nota: Notation | None = None) -> GeneralLink:
     """The general link matrix of a convention, from its four elementary factors.
 
@@ -330,7 +352,7 @@ def derive(
         key=re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-") or "robot",
         source=table.source,
         notes=table.notes,
-        warnings=table.warnings,
+        warnings=(*table.warnings, *_frame_notes(table, frm, to, n, nota)),
         convention=robot.convention.value,
         n=n,
         compact=compact,

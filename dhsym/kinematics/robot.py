@@ -30,7 +30,7 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.model.library import load_table
 from dhsym.model.table import Convention, DHTable, Elementary, JointType
-from dhsym.notation.printers import Notation, TrigStyle
+from dhsym.notation.printers import Notation, TrigStyle, decimal_lengths
 
 from .pose import Pose
 from .simplification import closed_form_size, compose, numeric_equal, prove_equal
@@ -75,6 +75,7 @@ class Robot:
             [str(i) for i, r in enumerate(table.rows, 1) if r.joint is JointType.REVOLUTE],
             compact=compact,
             style=style,
+            decimals=decimal_lengths([v for r in table.rows for v in (r.d, r.a)]),
         )
         self._transform = cache(self._compute_transform)
         self._fk_cache: dict[tuple[object, object, object], PoseFunction] = {}

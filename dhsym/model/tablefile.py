@@ -213,11 +213,15 @@ def _row(entry: object, i: int) -> DHRow:
             raise TableError(
                 f"unknown column {key!r}: expected {', '.join(_ROW_KEYS)}", row=i, field=key
             )
-    for key in ("type", "theta", "d", "a", "alpha"):
+    for key in ("theta", "d", "a", "alpha"):
         if key not in row:
             raise TableError(f"missing column {key!r}", row=i, field=key)
     kw: dict[str, object] = {}
     params = {k: as_expr(row[k], field=k, row=i) for k in ("theta", "d", "a", "alpha")}
+    if "type" not in row:  # inferred from which of theta and d holds the variable
+        row["type"] = (
+            "R" if params["theta"].free_symbols else "P" if params["d"].free_symbols else "F"
+        )
     try:
         return _build_row(row, params, kw, i)
     except DHError as err:

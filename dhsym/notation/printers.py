@@ -79,7 +79,9 @@ __all__ = [
     "Token",
     "TrigStyle",
     "angle_label",
+    "decimal_lengths",
     "format_angle",
+    "uses_decimals",
 ]
 
 
@@ -281,11 +283,16 @@ class Notation:
         False prints the full ``cos``/``sin`` form.
     style
         :class:`TrigStyle` (or its name): ``C1`` (default), ``c1`` or ``c_theta``.
+    decimals
+        True for a table whose lengths are decimals: every finite decimal prints as
+        one (``0.25*C12``, ``(p_x**2 + p_y**2 - 0.185)/0.175``), never as a fraction.
+        A formula that holds a decimal (``0.35``) prints so anyway.
     """
 
     labels: tuple[tuple[sp.Symbol, str], ...] = ()
     compact: bool = True
     style: TrigStyle = TrigStyle.UPPER
+    decimals: bool = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "style", TrigStyle.parse(self.style))
@@ -334,6 +341,7 @@ class Notation:
         """
         printer = _DHLatexPrinter(self) if latex else _DHStrPrinter(self)
         expr = expr if isinstance(expr, sp.Basic) else as_expr(expr)  # text: whitelist parser
+        printer._decimals = self.decimals or uses_decimals(expr)
         return printer.tokens(self.arrange(expr))
 
     def legend(self, exprs: Iterable[object]) -> list[LegendEntry]:
@@ -504,12 +512,75 @@ def _orient(negative: bool, brackets: list[Sum]) -> tuple[bool, list[Sum]]:
     return choice
 
 
-def _coefficient(c: sp.Expr) -> str | None:
-    """A coefficient as printed before its factors: ``2``, ``0.15005``; None for 1/3."""
+def _coefficient(c: sp.Expr, decimals: bool = False) -> str | None:
+    """A coefficient as printed before its factors: ``2``, ``0.15005``; None for 1/3.
+
+    With ``decimals`` (a formula whose lengths are decimals) every finite decimal prints
+    as one (``0.25``, not ``1/4``), so that fractions and decimals never mix.
+    """
     if c.is_Integer:
         return str(c)
     if c.is_Rational:
-        return exact_decimal(c) if c.q % 10 == 0 else None
+        return exact_decimal(c) if decimals or c.q % 10 == 0 else None
+    return None
+
+
+def uses_decimals(expr: object) -> bool:
+    """True when ``expr`` (an expression or matrix) holds a number written as a decimal
+    (a denominator divisible by 10: ``0.35`` is 7/20): then the whole formula prints its
+    finite decimals as decimals.
+
+    >>> uses_decimals(sp.Rational(7, 20) * sp.Symbol("x") + sp.Rational(1, 4))
+    True
+    >>> uses_decimals(sp.Symbol("x") / 4)
+    False
+    """
+    atoms = expr.atoms(sp.Rational) if isinstance(expr, sp.Basic) else set()
+    if isinstance(expr, sp.MatrixBase):
+        atoms = set().union(*(e.atoms(sp.Rational) for e in expr))
+    return any(r.q % 10 == 0 for r in atoms)
+
+
+def decimal_lengths(values: Iterable[sp.Expr]) -> bool:
+    """True when a length is a number that is not whole but a finite decimal (``0.25``):
+    the table's lengths were written as decimals, so its formulas print decimals.
+
+    >>> decimal_lengths([sp.Rational(7, 20), sp.Symbol("d3")]), decimal_lengths([sp.Integer(1)])
+    (True, False)
+    """
+    return any(
+        not r.is_Integer and exact_decimal(r) is not None
+        for v in values
+        for r in (v.atoms(sp.Rational) if isinstance(v, sp.Basic) else ())
+    )
+
+
+def _number(t: Product) -> sp.Expr:
+    """The number of a term: its coefficient, or the term itself when it is a number."""
+    return t.whole if t.whole is not None and not t.factors else t.coeff
+
+
+def _scaled(t: Product, k: sp.Rational) -> Product:
+    if t.whole is not None and not t.factors:
+        return replace(t, whole=t.whole * k)
+    return replace(t, coeff=t.coeff * k)
+
+
+def _decimal_terms(p: Product) -> tuple[Sum, sp.Rational] | None:
+    """A number times a bracket, written with decimals: the bracket with the number
+    multiplied in (``0.05*(5*C2 + 7)`` is ``0.25*C2 + 0.35``), divisor 1; or the bracket led
+    by 1 and a decimal divisor (``(200x + 200y - 37)/35`` is ``(x + y - 0.185)/0.175``)."""
+    c = p.coeff
+    if not (c.is_Rational and len(p.factors) == 1 and isinstance(p.factors[0], Sum)):
+        return None
+    terms = p.factors[0].terms
+    if any(not _number(t).is_Rational for t in terms):
+        return None
+    for m, divisor in [(1 / c, sp.Integer(1))] + [(_number(t), None) for t in terms]:
+        inner = [_scaled(t, 1 / m) for t in terms]
+        outer = divisor if divisor is not None else 1 / (c * m)
+        if all(exact_decimal(_number(t)) is not None for t in inner) and exact_decimal(outer):
+            return Sum(tuple(inner)), outer
     return None
 
 
@@ -525,6 +596,12 @@ class _LayoutMixin:
     _nota: Notation
     _latex: bool
     _print: Callable[..., str]  # sympy's Printer._print
+    _decimals: bool = False
+
+    def doprint(self, expr: object) -> str:
+        """Print ``expr``; a formula with decimal lengths prints every finite decimal as one."""
+        self._decimals = self._nota.decimals or uses_decimals(expr)
+        return super().doprint(expr)  # type: ignore[misc]
 
     def _print_Rational(self, expr: sp.Rational) -> str:
         dec = exact_decimal(expr) if expr.q > 1 else None
@@ -556,7 +633,19 @@ class _LayoutMixin:
         if p.whole is not None:
             return [Token("atom", self._print_whole(p.whole), depth)]
         c = p.coeff
-        if c.is_Rational and not c.is_Integer and _coefficient(c) is None:  # a2*C2/3
+        if self._decimals and (dec := _decimal_terms(p)) is not None:
+            inner, divisor = dec
+            if divisor == 1:
+                return self.tokens(inner, depth)
+            out = [Token("open", "(", depth, inner.level, False)]
+            out += self.tokens(inner, depth + 1)
+            out.append(Token("close", ")", depth, inner.level, False))
+            below = exact_decimal(divisor)
+            if self._latex:
+                top = render(self.tokens(inner, depth), True)
+                return [Token("atom", rf"\frac{{{top}}}{{{below}}}", depth)]
+            return [*out, Token("atom", f"/{below}", depth)]
+        if c.is_Rational and not c.is_Integer and _coefficient(c, self._decimals) is None:
             top = render(
                 self._product_tokens(replace(p, coeff=sp.Integer(c.p)), depth), self._latex
             )
@@ -566,7 +655,7 @@ class _LayoutMixin:
             ]
         out: list[Token] = []
         sep = " " if self._latex else "*"
-        lead = _coefficient(c) if c.is_Rational else None
+        lead = _coefficient(c, self._decimals) if c.is_Rational else None
         if c != 1:
             out.append(Token("atom", lead if lead is not None else self._print(c), depth))
         for f in p.factors:

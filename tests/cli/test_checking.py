@@ -7,6 +7,8 @@ import json
 import sys
 from pathlib import Path
 
+import pytest
+
 from dhsym.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -133,3 +135,46 @@ def test_an_answer_that_is_a_fifo_is_unreadable_at_once(tmp_path):
         timeout=120,
     )
     assert out.returncode == 2 and "not a regular file" in out.stderr
+
+
+def test_help_lists_every_question_kind(capsys):
+    from dhsym.cli.main import build_parser
+
+    for cmd in ("check", "grade"):
+        with pytest.raises(SystemExit):
+            build_parser().parse_args([cmd, "--help"])
+        text = capsys.readouterr().out
+        for kind in ("table", "T<i>_<j>", "A<k>", "arm", "px", "J[row,col]", "det J", "ik all"):
+            assert kind in text, (cmd, kind)
+        assert "ik@q1,...,qn" in text
+
+
+def test_new_assignment_writes_an_example_that_grades(tmp_path, capsys):
+    from dhsym.checking import Assignment
+    from dhsym.cli.main import main
+
+    out = tmp_path / "hw"
+    assert main(["new-assignment", str(out)]) == 0
+    text = (out / "assignment.yaml").read_text(encoding="utf-8")
+    assert "# rounding:" in text and "ask: det J" in text
+    a = Assignment.load(out / "assignment.yaml")
+    assert [q.id for q in a.questions] == ["q1", "q2", "q3", "q4", "q5"]
+    assert (out / "submissions" / "alice" / "q1.md").is_file()
+    assert main(["new-assignment", str(out)]) == 2  # not an empty folder
+
+
+def test_the_example_homework_is_package_data():
+    text = (Path(__file__).parents[2] / "pyproject.toml").read_text(encoding="utf-8")
+    assert '    "dhsym.examples",\n' in text  # a package of the wheel
+    assert '"dhsym.examples" = "examples/homework"' in text
+    assert (
+        '"dhsym.examples" = ["*.yaml", "*.csv", "submissions/*/*.md", "submissions/*/*.txt"]'
+        in text
+    )
+
+
+def test_a_missing_answer_file_is_named(tmp_path, capsys):
+    missing = tmp_path / "q1.txt"
+    argv = ["check", "--key", "planar2r", "--question", "T0_2", "--answer", str(missing)]
+    assert main(argv) == 2
+    assert str(missing) in capsys.readouterr().out

@@ -233,3 +233,38 @@ def test_handout_pdf_keeps_auxiliary_files_only_when_asked(tmp_path, monkeypatch
     assert capsys.readouterr().err == "wrote build/x.tex\nwrote build/x.pdf\n"
     assert main(["handout", "planar2r", "-o", "build/y.tex", "--pdf", "--keep-aux"]) == 0
     assert (tmp_path / "build" / "y.log").is_file() and (tmp_path / "build" / "y.aux").is_file()
+
+
+_DEG_TABLE = """angles: deg
+joints:
+  - {type: R, theta: theta1, d: 0, a: 1, alpha: 0}
+  - {type: R, theta: theta2, d: 0, a: 1, alpha: 0}
+"""
+
+
+@pytest.mark.parametrize(
+    ("flags", "x", "unit"),
+    [
+        ([], 1.0, "degrees (the table's angles: deg; --rad to override)"),  # 90°, -90°
+        (["--deg"], 1.0, "degrees (--deg)"),
+        (["--rad"], None, "radians (--rad)"),
+    ],
+)
+def test_fk_takes_the_tables_angle_unit_and_says_it(tmp_path, capsys, flags, x, unit):
+    import json
+    import math
+
+    path = tmp_path / "rr.yaml"
+    path.write_text(_DEG_TABLE, encoding="utf-8")
+    assert main(["fk", str(path), "--q=90,-90", "--json", *flags]) == 0
+    p = json.loads(capsys.readouterr().out)["matrix"]
+    expected = 1.0 if x else math.cos(90) + math.cos(0)
+    assert p[0][3] == pytest.approx(expected, abs=1e-9)
+    assert main(["fk", str(path), "--q=90,-90", *flags]) == 0
+    assert capsys.readouterr().out.startswith(f"--q read in {unit}:\n[[")
+
+
+def test_fk_of_a_radian_table_stays_in_radians(capsys):
+    assert main(["fk", "puma560", "--q", "0,0,0,0,0,0"]) == 0
+    out = capsys.readouterr().out
+    assert "--q read in radians (the table's angles: rad; --deg to override)" in out

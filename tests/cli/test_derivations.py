@@ -102,3 +102,28 @@ def test_handout_unknown_section_exits_2(tmp_path, capsys):
     argv = ["handout", "planar2r", "-o", str(tmp_path / "x.tex"), "--sections", "fk,velocity"]
     assert main(argv) == 2
     assert "unknown derivation 'velocity'" in capsys.readouterr().err
+
+
+def test_derive_names_the_tool_transform_convert_moved(tmp_path, capsys):
+    table = tmp_path / "rrr.yaml"
+    table.write_text(
+        "joints:\n"
+        "  - {theta: theta1, d: 0, a: a1, alpha: 0}\n"
+        "  - {theta: theta2, d: 0, a: a2, alpha: 0}\n"
+        "  - {theta: theta3, d: 0, a: a3, alpha: 0}\n",
+        encoding="utf-8",
+    )
+    modified = tmp_path / "rrr_modified.yaml"
+    assert main(["convert", str(table), "--to", "modified", "-o", str(modified)]) == 0
+    capsys.readouterr()
+    assert main(["derive", str(modified)]) == 0
+    out = capsys.readouterr().out
+    assert "tool transform Tx(a3) after frame 3" in " ".join(out.split())
+    assert "derive --to 4" in out
+
+
+def test_handout_figure_says_which_pictures_it_wrote(tmp_path, capsys):
+    out = tmp_path / "h.tex"
+    assert main(["handout", "planar2r", "-o", str(out), "--figure"]) == 0
+    said = capsys.readouterr().err  # "wrote …" lines go to standard error
+    assert "h-planar-2r-home.pdf" in said and (tmp_path / "h-planar-2r-home.pdf").is_file()

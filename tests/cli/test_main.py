@@ -182,3 +182,55 @@ def test_every_command_answers_on_a_sixty_row_twisted_table(tmp_path):
         if out.returncode == 2:
             assert out.stderr.startswith("dhsym: error: ") and out.stderr.count("\n") == 1, argv
     assert _dhsym("fk", table, "--q", q).returncode == 0
+
+
+_FIVE = """name: five joints
+joints:
+  - {theta: theta1, d: 0.3, a: 0, alpha: pi/2}
+  - {theta: theta2, d: 0, a: 0.4, alpha: 0}
+  - {theta: theta3, d: 0, a: 0.3, alpha: pi/2}
+  - {theta: theta4, d: 0.2, a: 0.1, alpha: pi/2}
+  - {theta: theta5, d: 0.1, a: 0, alpha: 0}
+"""
+
+
+def test_no_closed_form_names_the_numeric_command_and_it_works(tmp_path, capsys):
+    import json
+
+    path = tmp_path / "five.yaml"
+    path.write_text(_FIVE, encoding="utf-8")
+    assert main(["derive", str(path), "--what", "ik"]) == 2
+    err = capsys.readouterr().err
+    assert f"dhsym ik {path} --pose" in err and "--numeric" in err
+    q = [0.3, 0.5, -0.4, 0.2, 0.1]
+    argv = ["ik", str(path), "--pose-of", ",".join(map(str, q)), "--numeric", "--json"]
+    assert main([*argv, "--q0", "0.2,0.4,-0.3,0.1,0"]) == 0
+    sol = json.loads(capsys.readouterr().out.splitlines()[-1])
+    assert sol["converged"] and list(sol["q"].values()) == pytest.approx(q, abs=1e-8)
+
+
+def test_singularities_without_a_factored_measure_name_the_manipulability(tmp_path, capsys):
+    import numpy as np
+
+    path = tmp_path / "five.yaml"
+    path.write_text(_FIVE, encoding="utf-8")
+    assert main(["derive", str(path), "--what", "singularities"]) == 2
+    assert "--manipulability" in capsys.readouterr().err
+    assert main(["fk", str(path), "--q", "0.3,0.5,-0.4,0.2,0.1", "--manipulability"]) == 0
+    w = float(capsys.readouterr().out.rsplit("=", 1)[1])
+    from dhsym.kinematics.robot import Robot
+    from dhsym.model.tablefile import read_table
+
+    J = np.asarray(Robot(read_table(path)).jacobian([0.3, 0.5, -0.4, 0.2, 0.1]), dtype=float)
+    assert w == pytest.approx(np.prod(np.linalg.svd(J)[1]), rel=1e-5)  # printed to 6 digits
+
+
+def test_ik_closed_form_at_a_pose(capsys):
+    assert main(["ik", "planar2r", "--pose-of", "30,45", "--values", "a1=1,a2=1", "--json"]) == 0
+    import json
+    import math
+
+    out = json.loads(capsys.readouterr().out.splitlines()[-1])
+    assert [math.radians(30), math.radians(45)] in [
+        pytest.approx(row, abs=1e-9) for row in out["q"]
+    ]

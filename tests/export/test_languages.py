@@ -8,9 +8,9 @@ import shutil
 
 import numpy as np
 import pytest
+from dhsym.kinematics.inverse import StructureError
 
 import dhsym
-from dhsym.kinematics.inverse import StructureError
 
 from ..conftest import _need
 from . import _harness as h

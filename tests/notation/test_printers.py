@@ -374,3 +374,63 @@ def test_random_tables_print_by_the_rules_and_read_back(table):
 def render_tokens(ps):
     """The pieces joined back: (LaTeX, text)."""
     return "".join(p.latex for p in ps).strip(), "".join(p.text for p in ps).strip()
+
+
+# --- decimal lengths print as the decimals written (issue 24, item 4) ----------------------
+
+_SCARA = """name: SCARA decimal
+angles: deg
+joints:
+  - {type: R, theta: theta1, d: 0, a: 0.35, alpha: 0}
+  - {type: R, theta: theta2, d: 0, a: 0.25, alpha: 180}
+  - {type: P, theta: 0, d: d3, a: 0, alpha: 0}
+  - {type: R, theta: theta4, d: 0, a: 0, alpha: 0}
+"""
+_RRR = """name: RRR decimal
+joints:
+  - {type: R, theta: theta1, d: 0, a: 0.5, alpha: 0}
+  - {type: R, theta: theta2, d: 0, a: 0.35, alpha: 0}
+  - {type: R, theta: theta3, d: 0, a: 0.1, alpha: 0}
+"""
+
+
+def _robot(text: str):
+    from dhsym.kinematics.robot import Robot
+    from dhsym.model.tablefile import read_table_text
+
+    return Robot(read_table_text(text))
+
+
+def _ik_lines(robot) -> dict[str, str]:
+    nota = robot.notation
+    return {nota.text(st.lhs): nota.text(st.rhs) for st in robot.inverse().steps}
+
+
+def test_scara_with_decimal_lengths_prints_decimals_everywhere():
+    r = _robot(_SCARA)
+    nota = r.notation
+    assert nota.text(r.transform(0, 4).matrix[0, 3]) == "0.35*C1 + 0.25*C12"
+    assert nota.text(r.transform(1, 2).matrix[0, 3]) == "0.25*C2"  # a lone 1/4 too
+    assert nota.latex(r.transform(0, 4).matrix[1, 3]) == "0.35 S_{1} + 0.25 S_{12}"
+    ik = _ik_lines(r)
+    assert ik["D_2"] == "(c_x**2 + c_y**2 - 0.185)/0.175"  # (p² - 0.35² - 0.25²)/(2·0.35·0.25)
+    assert ik["theta1"] == "atan2(c_y, c_x) - atan2(0.25*S2, 0.25*C2 + 0.35)"
+    assert all("/4" not in v and "/20" not in v for v in ik.values())
+
+
+def test_rrr_with_decimal_lengths_jacobian_singularities_and_ik():
+    r = _robot(_RRR)
+    nota = r.notation
+    J = r.jacobian()
+    assert nota.text(J[0, 0]) == "-0.5*S1 - 0.35*S12 - 0.1*S123"
+    assert nota.text(J[1, 1]) == "0.35*C12 + 0.1*C123"
+    ik = _ik_lines(r)
+    assert ik["D_2"] == "(c_x**2 + c_y**2 - 0.3725)/0.35"  # 0.5² + 0.35², 2·0.5·0.35
+    assert ik["theta1"] == "atan2(c_y, c_x) - atan2(0.35*S2, 0.35*C2 + 0.5)"
+
+
+def test_fractions_stay_fractions_without_decimals():
+    t1 = sp.Symbol("theta1", real=True)
+    nota = Notation.from_variables([t1])
+    assert nota.text(sp.cos(t1) / 4) == "C1/4"
+    assert Notation.from_variables([t1], decimals=True).text(sp.cos(t1) / 4) == "0.25*C1"

@@ -1,0 +1,349 @@
+"""Mistakes students make, mined by mutation: is each single-edit slip named with its kind?
+
+Run ``python benchmarks/bench_mutations.py`` (``--limit N`` for a seeded sample of N
+mutants, ``--misses`` to list the mutants not diagnosed with their kind).
+
+Every entry of ``^0T_n`` and of the Jacobian ``J`` of every built-in robot is mutated
+by one edit, written out in the lecture notation and graded through
+:func:`dhsym.checking.check_answer`, exactly as a student's answer:
+
+- ``wrong_sign``: one term of a sum (at any depth: inside a bracket or a product) negated;
+- ``dropped_term``: one term of a sum (at any depth) left out;
+- ``sin_cos_swapped``: one sine or cosine factor swapped for the other;
+- ``wrong_joint_index``: a sum angle moved by one joint (``C12`` for ``C23``);
+- ``missing_length``: one length symbol left out of one product;
+- ``transposed``: one 3×3 block transposed (the rotation of ``^0T_n``, the blocks of J);
+- ``degrees_as_radians``: ``^0T_n`` with one row's constant angle in degrees taken as
+  radians (``cos(90)``): the degrees of one row of the table.
+
+The mutations are generated here, independently of the detectors in
+``dhsym/checking/_entry_mistakes.py``. A mutant whose value equals the key's (the edit
+of a zero term, a sign of a term that cancels) must be graded CORRECT; so must the key
+itself and its expanded and re-simplified forms. A mutant counts as *diagnosed with the
+right kind* when the first diagnosis names its generating kind, or another kind whose
+single edit gives the very same entry (``-S1`` dropped from ``C1 - S1`` is also ``C1``
+... the kinds are then ambiguous, and both count); the strict figure is printed too.
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import sys
+import time
+from collections import Counter, defaultdict
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from dhsym.checking import Key, check_answer  # noqa: E402
+from dhsym.checking.checker import prepare  # noqa: E402
+from dhsym.checking.verdict import Verdict  # noqa: E402
+from dhsym.kinematics.transforms import link_matrix  # noqa: E402
+from dhsym.model.library import builtin_names  # noqa: E402
+from dhsym.notation.printers import Notation  # noqa: E402
+
+
+@dataclass(frozen=True)
+class Mutant:
+    """One answer to grade: the robot, the question, the text, its kind (None: correct)."""
+
+    robot: str
+    question: str
+    text: str
+    kind: str | None
+    accepted: frozenset[str] = field(default_factory=frozenset)
+    where: str = ""
+
+
+def _edits(e: sp.Basic, edit: Callable, angles: bool = True) -> Iterator[sp.Basic]:
+    """``e`` with one node rewritten by ``edit``, at any depth (inside the angle of a sine
+    or cosine only with ``angles``: a term of a sum angle is a joint index, not a term)."""
+    yield from edit(e)
+    if not angles and isinstance(e, (sp.sin, sp.cos)):
+        return
+    for i, arg in enumerate(e.args):
+        for new in _edits(arg, edit, angles):
+            args = list(e.args)
+            args[i] = new
+            yield e.func(*args)
+
+
+def _joints(table: object) -> tuple[list[sp.Symbol], Notation]:
+    """The revolute joints' angles, and the lecture notation labelling them by row."""
+    rows = [(i, r) for i, r in enumerate(table.rows, 1) if r.variable_field == "theta"]
+    rows = [(i, r) for i, r in rows if r.variable is not None]
+    joints = [r.variable for _, r in rows]
+    return joints, Notation.from_variables(joints, [str(i) for i, _ in rows])
+
+
+def entry_mutations(
+    e: sp.Expr, joints: list[sp.Symbol], variables: list[sp.Symbol]
+) -> Iterator[tuple[str, sp.Expr]]:
+    """(kind, mutant) for one entry; ``joints`` the revolute angles, ``variables`` all."""
+    index = {v: k for k, v in enumerate(joints)}
+
+    def sign(n: sp.Basic) -> Iterator[sp.Basic]:
+        if isinstance(n, sp.Add):
+            for t in n.args:
+                yield n - 2 * t
+
+    def drop(n: sp.Basic) -> Iterator[sp.Basic]:
+        if isinstance(n, sp.Add):
+            for t in n.args:
+                yield n - t
+
+    def swap(n: sp.Basic) -> Iterator[sp.Basic]:
+        if isinstance(n, sp.sin):
+            yield sp.cos(n.args[0])
+        elif isinstance(n, sp.cos):
+            yield sp.sin(n.args[0])
+
+    def shift(n: sp.Basic) -> Iterator[sp.Basic]:
+        if isinstance(n, (sp.sin, sp.cos)):
+            terms = sp.Add.make_args(n.args[0])
+            used = sorted(index[t] for t in terms if t in index)
+            rest = sp.Add(*[t for t in terms if t not in index])
+            if len(used) >= 2 and not rest.free_symbols:  # a sum angle
+                for step in (-1, 1):
+                    moved = [k + step for k in used]
+                    if 0 <= moved[0] and moved[-1] < len(joints):
+                        yield n.func(sp.Add(*[joints[k] for k in moved]) + rest)
+
+    def length(n: sp.Basic) -> Iterator[sp.Basic]:
+        if isinstance(n, sp.Mul):
+            for f in n.args:
+                if f.is_Symbol and f not in variables:
+                    yield n / f
+
+    for kind, edit, angles in (
+        ("wrong_sign", sign, False),
+        ("dropped_term", drop, False),
+        ("sin_cos_swapped", swap, True),
+        ("wrong_joint_index", shift, True),
+        ("missing_length", length, False),
+    ):
+        for m in _edits(e, edit, angles):
+            yield kind, m
+
+
+def _matrix_text(m: sp.Matrix, nota: Notation) -> str:
+    """The matrix as a student types it (C12 notation; cos/sin in full for an angle the
+    short notation writes as ``C[12-4]``, which the answer parser does not read)."""
+    full = Notation(nota.labels, compact=False)
+
+    def cell(x: sp.Expr) -> str:
+        text = nota.text(x)
+        return full.text(x) if "[" in text else text
+
+    return "[" + ", ".join("[" + ", ".join(cell(x) for x in row) + "]" for row in m.tolist()) + "]"
+
+
+def _fingerprint(e: sp.Expr, symbols: list[sp.Symbol], points: np.ndarray) -> tuple:
+    f = sp.lambdify(symbols, e, "numpy")
+    with np.errstate(all="ignore"):
+        v = np.broadcast_to(np.asarray(f(*points.T), dtype=float), (len(points),))
+    return tuple(np.round(v, 9))
+
+
+def matrix_mutants(robot: str, question: str) -> list[Mutant]:
+    """Single-edit mutants (and correct rewritings) of every entry of one matrix question."""
+    pk = prepare(Key.load(robot, question))
+    expected = sp.Matrix(pk.expected)
+    joints, nota = _joints(pk.key.table)
+    variables = [r.variable for r in pk.key.table.rows if r.variable is not None]
+    symbols = sorted(expected.free_symbols | set(variables), key=sp.default_sort_key)
+    rng = np.random.default_rng(7)
+    points = rng.uniform(0.2, 1.3, size=(5, len(symbols)))
+    out = [Mutant(robot, question, _matrix_text(expected, nota), None, where="key")]
+    for how, rewrite in (("expanded", sp.expand), ("re-simplified", sp.trigsimp)):
+        out.append(
+            Mutant(
+                robot, question, _matrix_text(expected.applyfunc(rewrite), nota), None, where=how
+            )
+        )
+    rows = 3 if expected.shape == (4, 4) else expected.shape[0]
+    for i in range(rows):
+        for j in range(expected.shape[1]):
+            e = expected[i, j]
+            if not e.free_symbols:
+                continue
+            right = _fingerprint(e, symbols, points)
+            found = list(dict.fromkeys(entry_mutations(e, joints, variables)))
+            kinds_of: dict[tuple, set[str]] = defaultdict(set)
+            prints = []
+            for kind, m in found:
+                fp = _fingerprint(m, symbols, points)
+                kinds_of[fp].add(kind)
+                prints.append(fp)
+            for (kind, m), fp in zip(found, prints):
+                wrong = expected.copy()
+                wrong[i, j] = m
+                same = fp == right
+                out.append(
+                    Mutant(
+                        robot,
+                        question,
+                        _matrix_text(wrong, nota),
+                        None if same else kind,
+                        frozenset(kinds_of[fp]),
+                        f"({i + 1},{j + 1}) {nota.text(m)}",
+                    )
+                )
+    blocks = (
+        [(0, 0)]
+        if expected.shape == (4, 4)
+        else [(r, c) for r in (0, 3) for c in range(0, expected.shape[1] - 2, 3)]
+    )
+    for r, c in blocks:
+        wrong = expected.copy()
+        wrong[r : r + 3, c : c + 3] = expected[r : r + 3, c : c + 3].T
+        if wrong != expected:
+            out.append(
+                Mutant(
+                    robot,
+                    question,
+                    _matrix_text(wrong, nota),
+                    "transposed",
+                    frozenset({"transposed"}),
+                    f"block ({r + 1},{c + 1})",
+                )
+            )
+    return out
+
+
+def degree_mutants(robot: str) -> list[Mutant]:
+    """``^0T_n`` computed with one row's constant angle in degrees used as radians
+    (``cos(90)`` for cos 90°): the degrees of one row of the table."""
+    table = Key.load(robot, "table").table
+    n = len(table.rows)
+    joints, nota = _joints(table)
+    out = []
+    for k, row in enumerate(table.rows):
+        for name in ("alpha", "theta"):
+            value = getattr(row, name)
+            const = sp.Add(*[t for t in sp.Add.make_args(value) if not t.free_symbols])
+            if const == 0:
+                continue
+            rows = list(table.rows)
+            rows[k] = replace(row, **{name: value - const + const * 180 / sp.pi})
+            m = sp.eye(4)
+            for r in rows:
+                m = m * link_matrix(r, table.convention)
+            text = _matrix_text(m, nota)
+            out.append(
+                Mutant(
+                    robot,
+                    f"T0_{n}",
+                    text,
+                    "degrees_as_radians",
+                    frozenset({"degrees_as_radians"}),
+                    f"row {k + 1} {name}",
+                )
+            )
+    return out
+
+
+def all_mutants() -> list[Mutant]:
+    """Every mutant of every built-in robot (deterministic order)."""
+    out: list[Mutant] = []
+    for robot in builtin_names():
+        n = len(Key.load(robot, "table").table.rows)
+        out += matrix_mutants(robot, f"T0_{n}")
+        out += matrix_mutants(robot, "J")
+        out += degree_mutants(robot)
+    return out
+
+
+@dataclass(frozen=True)
+class Outcome:
+    mutant: Mutant
+    verdict: Verdict
+    kind: str | None
+
+    @property
+    def false_wrong(self) -> bool:
+        """A correct answer (no mutation, or one that cancels) not graded CORRECT."""
+        return self.mutant.kind is None and self.verdict is not Verdict.CORRECT
+
+    @property
+    def strict(self) -> bool:
+        return self.kind == self.mutant.kind
+
+    @property
+    def right(self) -> bool:
+        return self.kind in self.mutant.accepted or self.strict
+
+
+def grade(m: Mutant, keys: dict) -> Outcome:
+    key = keys.setdefault((m.robot, m.question), Key.load(m.robot, m.question))
+    r = check_answer(key, m.text)
+    kinds = [k for k in r.kinds if k not in ("unexplained", "unknown_symbol")]
+    return Outcome(m, r.verdict, kinds[0] if kinds else None)
+
+
+def run(mutants: list[Mutant]) -> list[Outcome]:
+    keys: dict = {}
+    return [grade(m, keys) for m in mutants]
+
+
+def sample(mutants: list[Mutant], limit: int | None, seed: int = 24) -> list[Mutant]:
+    """All mutants, or a seeded sample of ``limit`` that keeps every correct rewriting."""
+    if limit is None or limit >= len(mutants):
+        return mutants
+    keep = [m for m in mutants if m.kind is None and m.where != ""]
+    rest = [m for m in mutants if m not in keep]
+    return keep + random.Random(seed).sample(rest, max(0, limit - len(keep)))
+
+
+def main() -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--limit", type=int, help="grade a seeded sample of this many mutants")
+    p.add_argument("--misses", action="store_true", help="list the mutants not diagnosed")
+    args = p.parse_args()
+    t0 = time.perf_counter()
+    mutants = sample(all_mutants(), args.limit)
+    t1 = time.perf_counter()
+    outcomes = run(mutants)
+    t2 = time.perf_counter()
+    wrong = [o for o in outcomes if o.mutant.kind is not None]
+    correct = [o for o in outcomes if o.mutant.kind is None]
+    by_kind: dict[str, Counter] = defaultdict(Counter)
+    for o in wrong:
+        by_kind[o.mutant.kind]["n"] += 1
+        by_kind[o.mutant.kind]["right"] += o.right
+        by_kind[o.mutant.kind]["strict"] += o.strict
+        by_kind[o.mutant.kind]["graded_correct"] += o.verdict is Verdict.CORRECT
+    print(f"mutants: {len(wrong)} wrong, {len(correct)} correct (rewritings or cancelling edits)")
+    print(f"{'kind':<22}{'n':>6}{'right kind':>12}{'strict':>9}")
+    for kind, c in sorted(by_kind.items()):
+        print(f"{kind:<22}{c['n']:>6}{c['right'] / c['n']:>12.1%}{c['strict'] / c['n']:>9.1%}")
+    right = sum(o.right for o in wrong) / max(len(wrong), 1)
+    strict = sum(o.strict for o in wrong) / max(len(wrong), 1)
+    false_wrong = sum(o.false_wrong for o in correct)
+    passed = sum(o.verdict is Verdict.CORRECT for o in wrong)
+    print(f"diagnosed with the right kind: {right:.1%} (strict: {strict:.1%}); goal >= 95 %")
+    print(f"correct answers graded wrong: {false_wrong} of {len(correct)}; goal 0")
+    print(f"wrong answers graded CORRECT: {passed}")
+    print(
+        f"time: generating {t1 - t0:.1f} s, grading {t2 - t1:.1f} s "
+        f"({(t2 - t1) / max(len(outcomes), 1) * 1000:.0f} ms per answer)"
+    )
+    if args.misses:
+        for o in outcomes:
+            if (o.mutant.kind is not None and not o.right) or o.false_wrong:
+                print(
+                    f"MISS {o.mutant.robot} {o.mutant.question} {o.mutant.where}: "
+                    f"{o.mutant.kind} -> {o.kind} ({o.verdict.value})"
+                )
+    return 0 if right >= 0.95 and false_wrong == 0 else 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
