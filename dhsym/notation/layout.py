@@ -210,6 +210,9 @@ def pieces(expr: sp.Expr, nota: Notation) -> list[Piece]:
 
 #: What stands before the first line of an entry after the alignment point: ``&= …``.
 _ANCHOR = "{}={}"
+#: The indent of a continuation under the sum (text, LaTeX), also the fallback when a
+#: continuation under its bracket would not fit.
+_SHALLOW = {False: "  ", True: r"\quad "}
 
 
 def fill(items: Sequence[Piece], width: float, latex: bool) -> list[str]:
@@ -257,6 +260,10 @@ def fill(items: Sequence[Piece], width: float, latex: bool) -> list[str]:
         else:
             breaks = [j for j in range(start + 1, n) if items[j].brk]
             fits = [j for j in breaks if measure(indent + content(start, j)) <= budget]
+            if not fits and lines and indent != _SHALLOW[latex]:
+                # deep under a bracket, nothing fits: continue under the sum instead
+                indent = _SHALLOW[latex]
+                fits = [j for j in breaks if measure(indent + content(start, j)) <= budget]
             if fits:
                 shallow = min(items[j].depth for j in fits)
                 end = max(j for j in fits if items[j].depth == shallow)
@@ -286,7 +293,7 @@ def _indent(
         (o for o, c in partner.items() if o < at < c and items[o].kind == "open"), default=None
     )
     if opener is None:
-        return r"\quad " if latex else "  "
+        return _SHALLOW[latex]
     lo, _, ind = next(line for line in lines if line[0] <= opener < line[1])
     before = ind + content(lo, opener + 1)
     return rf"\phantom{{{before}}}" if latex else " " * len(before)
