@@ -1,9 +1,13 @@
-"""Speed of the exported C for the PUMA 560: fk and IK (all branches) per call.
+"""Speed of the exported C for the PUMA 560 (spherical wrist) and the UR5 (three parallel
+axes): fk and IK (all branches) per call.
 
 Measured three ways in one run: in C (a loop of 1,000,000 fk and 200,000 ik calls over
 varying inputs, timed with clock_gettime inside the program, gcc -O2), through ctypes
 (dhsym.export.compiled, timeit), and dhsym's own NumPy/float path (robot.fk, robot.ik)
-as the reference; EAIK and roboticstoolbox only when already installed.
+as the reference; EAIK's ``IK`` (Python call into its C++, all solutions, unchecked)
+when installed and the table suits it; roboticstoolbox is not compared. The ratio
+column is dhsym's own time over this row's (fk to robot.fk, IK to robot.ik), per robot,
+in the same run; the load average is printed first.
 
     PYTHONPATH=. python benchmarks/bench_export.py
 """
@@ -11,6 +15,7 @@ as the reference; EAIK and roboticstoolbox only when already installed.
 from __future__ import annotations
 
 import importlib.util
+import os
 import subprocess
 import tempfile
 import timeit
@@ -24,7 +29,7 @@ from dhsym.export.compiled import compiled
 _MAIN = r"""
 #include <stdio.h>
 #include <time.h>
-#include "puma.h"
+#include "arm.h"
 static double now(void)
 {
     struct timespec t;
@@ -33,21 +38,22 @@ static double now(void)
 }
 int main(void)
 {
-    double q[6] = {0.3, -0.5, 0.4, 0.2, 0.7, -1.1}, T[16], S[8][6], sink = 0.0, t0;
+    double q[6] = {0.3, -0.5, 0.4, 0.2, 0.7, -1.1}, T[16], sink = 0.0, t0;
+    double S[ARM_MAX_IK_SOLUTIONS][6];
     long i, n = 1000000, m = 200000;
     int c = 0;
     t0 = now();
     for (i = 0; i < n; ++i) {
         q[0] = 1e-7 * (double)i;
-        puma_fk(q, T);
+        arm_fk(q, T);
         sink += T[3];
     }
     printf("fk_ns %.2f\n", (now() - t0) / n * 1e9);
-    puma_fk(q, T);
+    arm_fk(q, T);
     t0 = now();
     for (i = 0; i < m; ++i) {
         T[3] += 1e-12;
-        c += puma_ik(T, S);
+        c += arm_ik(T, S);
         sink += S[0][0];
     }
     printf("ik_ns %.2f\nsolutions %.2f\nsink %g\n", (now() - t0) / m * 1e9, (double)c / m, sink);
@@ -58,11 +64,11 @@ int main(void)
 
 def in_c(robot: dhsym.Robot) -> dict[str, float]:
     with tempfile.TemporaryDirectory() as tmp:
-        for name, text in dhsym.export(robot, "c", prefix="puma").items():
+        for name, text in dhsym.export(robot, "c", prefix="arm").items():
             (Path(tmp) / name).write_text(text)
         (Path(tmp) / "main.c").write_text(_MAIN)
         subprocess.run(
-            ["gcc", "-std=gnu99", "-O2", "main.c", "puma.c", "-o", "bench", "-lm"],
+            ["gcc", "-std=gnu99", "-O2", "main.c", "arm.c", "-o", "bench", "-lm"],
             cwd=tmp,
             check=True,
         )
@@ -75,12 +81,13 @@ def per_call(fn, arg, number: int) -> float:
     return best / number * 1e9
 
 
-def main() -> None:
-    robot = dhsym.load("puma560")
+def bench(name: str) -> None:
+    robot = dhsym.load(name)
     q = np.array([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
     T = robot.fk(q)
     c = in_c(robot)
     fast = compiled(robot)
+    assert len(fast.ik(T)) == len(robot.ik(T))
     rows = [
         ("fk, C loop", c["fk_ns"]),
         ("fk, ctypes (compiled)", per_call(fast.fk, q, 20000)),
@@ -89,15 +96,56 @@ def main() -> None:
         ("ik, ctypes (compiled)", per_call(fast.ik, T, 20000)),
         ("ik, dhsym robot.ik", per_call(robot.ik, T, 2000)),
     ]
-    if importlib.util.find_spec("eaik") is not None:
-        print("EAIK is installed but not wired into this benchmark")
+    eaik = eaik_call(robot)
+    if eaik is not None:
+        rows.append(("ik, EAIK bot.IK (C++)", per_call(eaik, T, 20000)))
+    family = robot.inverse().family
+    print(
+        f"{robot.name} ({family}), {c['solutions']:.0f} IK solutions per pose "
+        f"(backend {fast.backend})"
+    )
+    ref = {"fk": rows[2][1], "ik": rows[5][1]}
+    for label, ns in rows:
+        kind = label.split(",")[0].split()[0]
+        print(f"  {label:28s} {ns:12.1f} ns   dhsym/this = {ref[kind] / ns:8.1f}x")
+    if eaik is not None:
+        ratio = rows[4][1] / rows[6][1]
+        print(f"  ik time, ctypes (compiled) / EAIK: {ratio:.2f} (above 1: EAIK is faster)")
+
+
+def eaik_call(robot: dhsym.Robot):
+    """EAIK's ``IK`` for this arm (``pip install eaik``), or ``None`` (not installed, or a
+    table it does not take: standard DH without base, tool or joint offsets only)."""
+    if importlib.util.find_spec("eaik") is None:
+        return None
+    from eaik.IK_DH import DhRobot
+
+    table = robot.table
+    if robot.convention.value != "standard" or table.base or table.tool:
+        print(f"EAIK: takes standard DH tables without base or tool; not {robot.name}")
+        return None
+    if any(r.offset != 0 for r in table.rows):
+        print(f"EAIK: takes no joint offsets; not {robot.name}")
+        return None
+    vals = table.value_map
+    col = {
+        k: np.array([float(getattr(r, k).xreplace(vals)) for r in table.rows])
+        for k in ("a", "d", "alpha")
+    }
+    bot = DhRobot(col["alpha"], col["a"], col["d"])
+    if not bot.hasKnownDecomposition():
+        print(f"EAIK: no known decomposition for {robot.name}")
+        return None
+    return bot.IK
+
+
+def main() -> None:
+    print("load average (1, 5, 15 min): {:.2f} {:.2f} {:.2f}".format(*os.getloadavg()))
     if importlib.util.find_spec("roboticstoolbox") is not None:
         print("roboticstoolbox is installed but not wired into this benchmark")
-    print(f"PUMA 560, {c['solutions']:.0f} IK solutions per pose (backend {fast.backend})")
-    ref = {"fk": rows[2][1], "ik": rows[5][1]}
-    for name, ns in rows:
-        kind = name.split(",")[0].split()[0]
-        print(f"{name:28s} {ns:12.1f} ns   dhsym/this = {ref[kind] / ns:8.1f}x")
+    for name in ("puma560", "ur5"):
+        bench(name)
+    print("load average (1, 5, 15 min): {:.2f} {:.2f} {:.2f}".format(*os.getloadavg()))
 
 
 if __name__ == "__main__":

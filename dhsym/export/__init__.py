@@ -6,7 +6,7 @@ front end (named straight-line programs), :mod:`.ik_source` the one adapter to t
 derivation, :mod:`.render` and the templates in ``templates/export`` the back end, one
 module per language (:mod:`.c`, :mod:`.cpp`, :mod:`.matlab`, :mod:`.rust`,
 :mod:`.python`), and :mod:`.compiled` builds the C once and loads it with ``ctypes``.
-May import model, notation and kinematics.
+May import model, notation, kinematics and ik (the derivation, read by :mod:`.ik_source`).
 
 ``dhsym.export(robot, lang, ...)`` is :func:`export` (the module is callable).
 

@@ -120,15 +120,14 @@ def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
     """
     if lang != "c":
         raise DHError(f"compiled(): only 'c' is built and loaded; got {lang!r}")
-    from dhsym.kinematics._structure import StructureError
-
     from . import export
+    from .ik_source import derivation
 
     n = len(robot.variables)
     try:
-        robot.inverse()
+        derivation(robot)  # no closed form, or the general 6R: not exported
         what: tuple[str, ...] = ("fk", "jacobian", "ik")
-    except StructureError:
+    except DHError:
         what = ("fk", "jacobian")
     cc = _compiler()
     if cc is None:

@@ -6,8 +6,14 @@ follow from a world-to-tool pose (base and tool undone), the steps in order (eac
 signs in the order ``robot.ik`` enumerates them, each branch's name, and the
 numbers the solver uses (the ``fk`` tolerance, the rounding of a radicand, the
 wrist thresholds). :class:`IKSource` is that interface; :func:`ik_source` fills it
-from :mod:`dhsym.kinematics.inverse` today. When the derivation moves, only this
-module changes.
+from the ik room: the derivation (:mod:`dhsym.ik.families`, one module per family:
+spherical wrist and planar arms, three parallel axes, the chain read backwards), the
+numbers of its compiler (:mod:`dhsym.ik.compiler`) and the branch names of
+:mod:`dhsym.ik.results`. When the derivation moves, only this module changes.
+
+Every family whose steps are closed forms is exported; the general 6R, solved by an
+eigenvalue problem per pose (:mod:`dhsym.ik.general6r`), is not: :func:`ik_source`
+refuses it with a :class:`~dhsym.errors.DHError` that says so.
 
 Examples
 --------
@@ -17,6 +23,13 @@ Examples
 (['sigma_1', 'sigma_3', 'sigma_5'], 22, 'right arm, elbow down, wrist not flipped')
 >>> src.steps[3].comment[0]
 'Step 4 (position): Joint 1 turns the arm about z_0; ...'
+>>> ur5 = ik_source(dhsym.load("ur5"))
+>>> [s.name for s in ur5.signs], ur5.count, ur5.branch_names[0]
+(['sigma_1', 'sigma_5', 'sigma_3'], 8, 'right arm, wrist not flipped, elbow sigma_3 = +1')
+>>> ik_source(dhsym.load("jaco"))  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+dhsym.errors.DHError: Kinova Jaco: general 6R: the eigenvalue solver is not exported ...
 """
 
 from __future__ import annotations
@@ -28,8 +41,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 import sympy as sp
 
-from dhsym.kinematics import _ik_numbers as numbers
-from dhsym.kinematics.inverse import InverseKinematics
+from dhsym.errors import DHError
+from dhsym.ik import compiler as numbers
+from dhsym.ik.derivation import InverseKinematics
+from dhsym.ik.results import _branch_names as solver_branch_names
+from dhsym.ik.structure import GENERAL_6R, classify
+from dhsym.kinematics.decoupling import StructureError
 from dhsym.model.table import JointType
 
 if TYPE_CHECKING:
@@ -90,10 +107,66 @@ class IKSource:
         return numbers._with_safe_sqrt(e)
 
 
+def derivation(robot: Robot) -> InverseKinematics:
+    """``robot.inverse()``, or one :class:`~dhsym.errors.DHError` saying why it cannot be
+    exported (the general 6R: its eigenvalue solver is not exported; no closed form).
+
+    >>> import dhsym
+    >>> derivation(dhsym.load("ur3")).family
+    'three parallel axes'
+    >>> derivation(dhsym.load("planar4r"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: Planar 4R (redundant): no closed-form IK to export: ...
+    """
+    name = robot.name or "this robot"
+    try:
+        return robot.inverse()
+    except StructureError as err:
+        if classify(robot).family == GENERAL_6R:
+            raise DHError(
+                f"{name}: general 6R: the eigenvalue solver is not exported (its IK is a "
+                "generalised eigenproblem per pose, dhsym.ik.general6r, not straight-line "
+                "code); export fk and jacobian only"
+            ) from None
+        raise DHError(f"{name}: no closed-form IK to export: {err.message}") from None
+
+
+def _straight_line_steps(robot: Robot, ik: InverseKinematics) -> None:
+    """Refuse a derivation whose steps are not straight-line code (naming why): every
+    step must be an expression of the pose, earlier steps and the branch signs."""
+    known = set(ik.pose.free_symbols) | {b.symbol for b in ik.branches}
+    for k, s in enumerate(ik.steps, start=1):
+        for e in (s.rhs, s.singular):
+            if e is None:
+                continue
+            unknown = e.free_symbols - known - set(robot.table.constants)
+            bad = [f for f in e.atoms(sp.Function) if not _printable(f)]
+            if unknown or bad:
+                what = ", ".join(sorted(map(str, unknown | set(bad))))
+                raise DHError(
+                    f"{robot.name or 'this robot'}: the {ik.family} IK is not exported: step "
+                    f"{k} ({s.part}) uses {what}, which is not straight-line code"
+                )
+        known.add(s.lhs)
+
+
+def _printable(f: sp.Expr) -> bool:
+    """Functions every exporter prints (the rest would be a solver, not a formula)."""
+    return isinstance(f, (sp.sin, sp.cos, sp.tan, sp.atan2, sp.atan, sp.asin, sp.acos, sp.Abs))
+
+
 def ik_source(robot: Robot, ik: InverseKinematics | None = None) -> IKSource:
-    """Read the derivation of ``robot.inverse()`` into an :class:`IKSource`."""
-    ik = ik if ik is not None else robot.inverse()  # type: ignore[assignment]
-    assert ik is not None
+    """Read the derivation of ``robot.inverse()`` into an :class:`IKSource`.
+
+    Raises
+    ------
+    DHError
+        For an arm without a closed form, and for the general 6R (its eigenvalue solver
+        is not exported).
+    """
+    ik = ik if ik is not None else derivation(robot)
+    _straight_line_steps(robot, ik)
     pose = ik.pose
     T = pose_input()
     Tin = sp.Matrix(4, 4, lambda i, j: T[i, j])
@@ -107,6 +180,7 @@ def ik_source(robot: Robot, ik: InverseKinematics | None = None) -> IKSource:
     cells = [(i, j) for j in range(4) for i in range(3)]
     pose_symbols = tuple(pose[i, j] for i, j in cells)
     inputs = tuple((pose[i, j], sp.expand(inner[i, j])) for i, j in cells)
+    # as the compiler: only a derivation that says what to do at a singular wrist watches it
     wrist = [s.lhs for s in ik.steps if s.branch is not None and s.branch.role == "wrist"]
     singular_steps = [s for s in ik.steps if s.singular is not None]
     # the solver's rule: the first singular step (θ4) takes its singular value at
@@ -140,8 +214,9 @@ def ik_source(robot: Robot, ik: InverseKinematics | None = None) -> IKSource:
 
 def _branch_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
     """The name ``robot.ik`` gives each branch, in its order (signs ``+`` first, the first
-    sign slowest). Elbow names depend on the geometry, so they are read off the solver at
-    sample poses; a branch whose name changes between samples is named by its signs."""
+    sign slowest), one part per branch sign. Elbow names depend on the geometry, so they
+    are read off the solver at sample poses; a part that changes between samples (the
+    elbow of a UR, up or down depending on the other signs) is named by its sign."""
     B = len(ik.branches)
     combos = list(itertools.product([1, -1], repeat=B))
     rng = np.random.default_rng(0)
@@ -150,26 +225,27 @@ def _branch_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
     for k, r in enumerate(rows):
         if r.joint is not JointType.REVOLUTE:
             q[:, k] = rng.uniform(0.2, 0.8, 32)
-    seen: list[set[str]] = [set() for _ in combos]
+    seen: list[list[set[str]]] = [[set() for _ in range(B)] for _ in combos]
     try:
         batch = robot.ik(robot.fk(q))
         solver = batch.solver  # type: ignore[attr-defined]
         for i in range(len(q)):
             if batch.valid[i].all():  # type: ignore[attr-defined]
-                names = numbers._branch_names(solver, batch.q[i], batch.branch_signs)  # type: ignore[attr-defined]
+                names = solver_branch_names(solver, batch.q[i], batch.branch_signs)  # type: ignore[attr-defined]
                 for k, name in enumerate(names):
-                    seen[k].add(name)
+                    parts = name.split(", ")
+                    if len(parts) == B:
+                        for j, part in enumerate(parts):
+                            seen[k][j].add(part)
     except Exception:  # noqa: BLE001  (names are comments; the signs always name a branch)
-        seen = [set() for _ in combos]
+        seen = [[set() for _ in range(B)] for _ in combos]
     out = []
     for k, signs in enumerate(combos):
-        if len(seen[k]) == 1:
-            out.append(next(iter(seen[k])))
-        else:
-            out.append(
-                ", ".join(
-                    f"{b.role} {b.symbol.name} = {'+1' if s > 0 else '-1'}"
-                    for b, s in zip(ik.branches, signs)
-                )
-            )
+        parts = []
+        for j, (b, s) in enumerate(zip(ik.branches, signs)):
+            if len(seen[k][j]) == 1:
+                parts.append(next(iter(seen[k][j])))
+            else:
+                parts.append(f"{b.role} {b.symbol.name} = {'+1' if s > 0 else '-1'}")
+        out.append(", ".join(parts))
     return tuple(out)

@@ -8,9 +8,10 @@ import shutil
 
 import numpy as np
 import pytest
-from dhsym.kinematics.inverse import StructureError
 
 import dhsym
+from dhsym.errors import DHError
+from dhsym.export.ik_source import derivation
 
 from ..conftest import _need
 from . import _harness as h
@@ -30,9 +31,20 @@ ROBOTS = [
     "cartesian",
 ]
 CONVERTED = ["planar2r", "scara", "stanford"]
+#: the built-ins of the ik room: three parallel axes (UR), redundant arms (fk and Jacobian
+#: only), the general 6R (its IK is not exported: fk and Jacobian only)
+NEW = ["ur3", "ur5", "ur10", "panda", "kuka_lwr4", "jaco"]
+#: chains read backwards (the inverted-chain family): the reversed PUMA and UR5
+REVERSED = ["puma560@reversed", "ur5@reversed"]
+#: the UR family and one inverted chain in every language
+EVERY_LANGUAGE = ["ur5", "ur10", "ur5@reversed"]
 
 
 def _robot(name: str) -> dhsym.Robot:
+    if name.endswith("@reversed"):
+        from dhsym.ik.inverted import reversed_table
+
+        return dhsym.Robot(reversed_table(dhsym.load_table(name.split("@")[0])))
     if name.endswith("@modified"):
         table = dhsym.to_modified(dhsym.load_table(name.split("@")[0]))
         return dhsym.Robot(table)
@@ -40,12 +52,14 @@ def _robot(name: str) -> dhsym.Robot:
 
 
 ALL = ROBOTS + [f"{n}@modified" for n in CONVERTED]
+C_AND_PYTHON = ALL + NEW + REVERSED
+OTHERS = ALL + EVERY_LANGUAGE
 
 
 def _has_ik(robot: dhsym.Robot) -> bool:
     try:
-        robot.inverse()
-    except StructureError:
+        derivation(robot)
+    except DHError:
         return False
     return True
 
@@ -98,34 +112,34 @@ def _run(lang: str, name: str, tmp_path) -> None:
     _compare(robot, q, poses, result, ik)
 
 
-@pytest.mark.parametrize("name", ALL)
+@pytest.mark.parametrize("name", C_AND_PYTHON)
 def test_python(name, tmp_path):
     _run("python", name, tmp_path)
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ALL)
+@pytest.mark.parametrize("name", C_AND_PYTHON)
 def test_c(name, tmp_path):
     _need("gcc", shutil.which("gcc") is not None, "apt-get install gcc")
     _run("c", name, tmp_path)
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ALL)
+@pytest.mark.parametrize("name", OTHERS)
 def test_cpp(name, tmp_path):
     _need("g++", shutil.which("g++") is not None, "apt-get install g++")
     _run("cpp", name, tmp_path)
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ALL)
+@pytest.mark.parametrize("name", OTHERS)
 def test_rust(name, tmp_path):
     _need("rustc", h.rustc() is not None, "apt-get install rustc (or rustup)")
     _run("rust", name, tmp_path)
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ALL)
+@pytest.mark.parametrize("name", OTHERS)
 def test_octave(name, tmp_path):
     _need("octave", shutil.which("octave") is not None, "apt-get install octave")
     _run("matlab", name, tmp_path)
@@ -145,3 +159,43 @@ def test_symbolic_lengths_c_and_python(tmp_path):
     (tmp_path / "py").mkdir()
     result = h.run_python(py, "arm", q, poses, 6, True, True, tmp_path / "py", params=params)
     _compare(robot, q, poses, result, True)
+
+
+@pytest.mark.parametrize("name", ["ur5", "ur3", "ur5@reversed"])
+def test_ik_of_the_new_families_has_every_branch(name):
+    """The UR and the inverted chain export their eight branches, in robot.ik's order."""
+    robot = _robot(name)
+    files = dhsym.export(robot, "c", what="ik", prefix="arm")
+    assert "#define ARM_MAX_IK_SOLUTIONS 8" in files["arm.h"]
+    family = robot.inverse().family
+    assert family in ("three parallel axes", "inverted chain")
+    assert files["arm.c"].count("for (i") == 3
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["ur5", "ur3"])
+def test_ur_ik_from_c_and_python_at_many_poses(name, tmp_path):
+    """More random poses than :func:`_run`: the same branches, same order, ≤ 1e-9."""
+    _need("gcc", shutil.which("gcc") is not None, "apt-get install gcc")
+    robot = _robot(name)
+    rng = np.random.default_rng(11)
+    q = rng.uniform(-np.pi, np.pi, (40, 6))
+    poses = robot.fk(q)
+    for lang, runner in (("c", h.run_c), ("python", h.run_python)):
+        files = dhsym.export(robot, lang, prefix="arm")
+        (tmp_path / lang).mkdir()
+        result = runner(files, "arm", q[:0], poses, 6, True, True, tmp_path / lang)
+        counts = [len(Q) for Q in result[2]]
+        assert counts == [len(robot.ik(T)) for T in poses] and max(counts) == 8
+        _compare(robot, q[:0], poses, result, True)
+
+
+@pytest.mark.parametrize("name", ["jaco", "planar4r", "panda"])
+def test_ik_refused_clearly(name):
+    robot = _robot(name)
+    with pytest.raises(DHError) as err:
+        dhsym.export(robot, "c", what="ik")
+    if name == "jaco":
+        assert "general 6R: the eigenvalue solver is not exported" in str(err.value)
+    else:
+        assert "no closed-form IK to export" in str(err.value)
