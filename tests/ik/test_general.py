@@ -47,6 +47,17 @@ def test_every_six_joint_model_of_roboticstoolbox_is_solved(name: str) -> None:
     assert (batch.residual[batch.valid] <= 1e-9).all()
     family = robot.inverse().family
     assert (family == "general 6R") == (name in GENERAL)
+    if name in GENERAL:  # the real roots of a real polynomial of degree 16: an even number
+        assert (batch.count % 2 == 0).all()
+
+
+@pytest.mark.slow
+def test_a_jaco_solution_that_needs_more_than_six_newton_steps_is_kept() -> None:
+    robot = dhsym.Robot(read_table(DATA / "jaco.yaml"))
+    q = np.random.default_rng(1).uniform(-np.pi, np.pi, (100, 6))[97]
+    sol = robot.ik(robot.fk(q))
+    assert len(sol) == 8  # a multi-start search finds 8; one needs more than six Newton steps
+    assert sol.residual.max() < 1e-12
 
 
 @pytest.mark.slow
