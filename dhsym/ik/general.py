@@ -27,7 +27,8 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -56,30 +57,39 @@ _SINGULAR = "singular Jacobian"
 _REAL = {"real": True}
 
 
+@dataclass(frozen=True, eq=False)
 class EliminationSolver:
     """The general-6R solver of one robot and one set of values, with the interface of
     :class:`~dhsym.ik.compiler.Solver`: :meth:`solve` returns an :class:`IKSolution`
     for one pose and an :class:`IKBatch` for ``(N, 4, 4)`` (a loop over the poses, each
     solved by the eigenproblem of :class:`~dhsym.ik.general6r.General6R`).
 
-    A solution is flagged near a singularity (``"singular Jacobian"``) when the smallest
-    singular value of its geometric Jacobian, by central differences of ``fk``, is below
-    ``singular_tol`` times the largest.
+    ``core`` is the compiled elimination, ``fk`` the robot's compiled forward kinematics
+    (world to tool) with the same values. A solution is flagged near a singularity
+    (``"singular Jacobian"``) when the smallest singular value of its geometric Jacobian,
+    by central differences of ``fk``, is below ``singular_tol`` times the largest.
     """
 
-    def __init__(self, ik: InverseKinematics, core: General6R, fk: object) -> None:
-        self.ik = ik
-        self.robot = ik.robot
-        self.core = core
-        self.fk = fk
-        self.n = 6
+    ik: InverseKinematics = field(repr=False)
+    core: General6R
+    fk: Callable[[np.ndarray], np.ndarray] = field(repr=False)
+
+    @property
+    def robot(self) -> Robot:
+        """The robot solved."""
+        return self.ik.robot
+
+    @property
+    def n(self) -> int:
+        """Number of joints (6)."""
+        return 6
 
     @classmethod
     def build(
         cls, ik: InverseKinematics, values: Mapping[object, object] | None
     ) -> EliminationSolver:
         """Compile the elimination for the robot of ``ik`` with ``values`` (a
-        :class:`~dhsym.errors.DHError` naming row and field when a length has no number).
+        :class:`~dhsym.errors.DHError` naming the lengths that have no number).
 
         >>> import dhsym
         >>> r = dhsym.load("jaco")
@@ -97,10 +107,6 @@ class EliminationSolver:
         fk = robot.fk_function(values=values)
         core = general_6r(table, fk=fk, tol=1e-6)
         return cls(ik, core, fk)
-
-    def frame(self, k: int | None = None) -> object:
-        """The compiled ``fk`` (world to tool); only the whole chain is needed here."""
-        return self.fk
 
     def solve(
         self,
@@ -158,7 +164,7 @@ class EliminationSolver:
         q = self.core.solve(T)
         if not len(q):
             return q, np.empty(0), np.empty(0, dtype=bool)
-        got = self.fk(q)  # type: ignore[operator]
+        got = self.fk(q)
         residual = np.abs(got[:, cells[0], cells[1]] - T[cells]).max(axis=(1, 2))
         if check is not None:
             keep = residual <= tol
@@ -166,7 +172,9 @@ class EliminationSolver:
         return q, residual, _near_singular(self.fk, q, singular_tol)
 
 
-def _near_singular(fk: object, q: np.ndarray, singular_tol: float) -> np.ndarray:
+def _near_singular(
+    fk: Callable[[np.ndarray], np.ndarray], q: np.ndarray, singular_tol: float
+) -> np.ndarray:
     """``(k,)`` True where the geometric Jacobian at ``q`` (central differences of ``fk``,
     world frame, tool point) has ``σ_min < singular_tol · σ_max``."""
     if not len(q):
@@ -174,10 +182,10 @@ def _near_singular(fk: object, q: np.ndarray, singular_tol: float) -> np.ndarray
     h = 1e-6
     k = len(q)
     steps = np.concatenate([q[:, None, :] + h * np.eye(6), q[:, None, :] - h * np.eye(6)], axis=1)
-    M = fk(steps.reshape(-1, 6)).reshape(k, 12, 4, 4)  # type: ignore[operator]
+    M = fk(steps.reshape(-1, 6)).reshape(k, 12, 4, 4)
     plus, minus = M[:, :6], M[:, 6:]
     dT = (plus - minus) / (2 * h)  # (k, 6 joints, 4, 4)
-    R = fk(q)[:, None, :3, :3]  # type: ignore[operator]
+    R = fk(q)[:, None, :3, :3]
     W = dT[..., :3, :3] @ np.swapaxes(R, -1, -2)  # [ω]× for each joint
     omega = np.stack([W[..., 2, 1], W[..., 0, 2], W[..., 1, 0]], axis=-1)
     J = np.concatenate([dT[..., :3, 3], omega], axis=-1).transpose(0, 2, 1)  # (k, 6, 6)
