@@ -113,6 +113,11 @@ def prepare_ik(pk: PreparedKey) -> PreparedKey:
     """Derive the key's inverse kinematics once (and the pose of a numeric question)."""
     robot, q = pk.robot, pk.key.question
     ik = robot.inverse()
+    if ik.most is not None:
+        raise DHError(
+            f"{robot.name or 'this arm'} is a general 6R: its inverse kinematics is an "
+            "eigenproblem, not closed-form steps to grade"
+        )
     pk.cache["ik"] = ik
     table = pk.key.table
     if q.pose is not None:

@@ -61,6 +61,8 @@ _TITLES = {
     "wrist": "The wrist",
     "planar arm": "The planar arm",
     "joint values": "Back to the joints of the table",
+    "elimination": "The Raghavan–Roth elimination",
+    "eigenproblem": "The eigenproblem",
 }
 
 
@@ -144,6 +146,8 @@ def _check(robot: Robot, q: Sequence[float], nota: Notation) -> IKCheck:
         return Math(TeX(s), s)
 
     def name(words: str, signs: Sequence[int]) -> tuple[Run, ...]:
+        if not ik.branches:  # no signs (the general 6R): "solution k"
+            return (Run(words),)
         runs: list[Run] = []
         for k, (part, b, sign) in enumerate(zip(words.split(", "), ik.branches, signs)):
             runs += [Run(", ")] if k else []

@@ -4,7 +4,8 @@ a numeric solver apart.
 :mod:`.structure` classifies an arm by its joint axes; one module per family derives its
 closed form as lecture steps (:mod:`.decoupled`: spherical wrist and planar arms;
 :mod:`.parallel`: three parallel axes; :mod:`.inverted`: the chain read backwards;
-:mod:`.general6r`: the general 6R by Raghavan–Roth elimination);
+:mod:`.general6r`: the general 6R by Raghavan–Roth elimination, :mod:`.general` its
+derivation and solver behind ``Robot.ik``);
 :mod:`.families` chooses; :mod:`.compiler` turns the steps into numbers and
 :mod:`.results` holds what it returns; :mod:`.choices` applies joint limits, a given
 joint and the nearest solution; :mod:`.levenberg_marquardt` is the numeric solver.

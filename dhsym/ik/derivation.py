@@ -32,6 +32,7 @@ if TYPE_CHECKING:
     from dhsym.kinematics.robot import Robot
 
     from .compiler import Solver
+    from .general import EliminationSolver
     from .results import IKBatch, IKSolution
 
 __all__ = ["InverseKinematics"]
@@ -59,15 +60,20 @@ class InverseKinematics:
     steps: tuple[Step, ...]
     branches: tuple[Branch, ...]
     family: str = "spherical wrist"
-    #: compiled solvers by the values they were built with (filled on first use)
-    solvers: dict[object, Solver] = field(
+    #: compiled solvers by the values they were built with (filled on first use): the
+    #: steps compiled (:class:`~dhsym.ik.compiler.Solver`), or the general 6R's
+    #: elimination (:class:`~dhsym.ik.general.EliminationSolver`)
+    solvers: dict[object, Solver | EliminationSolver] = field(
         default_factory=dict, compare=False, repr=False, hash=False
     )
+    #: the most solutions when they are not branch combinations (16 for the general 6R)
+    most: int | None = None
 
     @property
     def count(self) -> int:
-        """Number of branch combinations (solutions of a generic pose)."""
-        return 2 ** len(self.branches)
+        """Number of branch combinations (solutions of a generic pose), or the most
+        solutions a pose can have (the general 6R: 16)."""
+        return self.most if self.most is not None else 2 ** len(self.branches)
 
     def text(self, step: Step) -> str:
         """``lhs = rhs`` in plain text, compact notation."""
@@ -79,14 +85,21 @@ class InverseKinematics:
         nota = self.robot.notation
         return f"{nota.latex(step.lhs)} = {nota.latex(step.rhs)}"
 
-    def solver(self, values: Mapping[object, object] | None = None) -> Solver:
-        """The compiled solver (built once per set of values, then kept in ``solvers``)."""
+    def solver(self, values: Mapping[object, object] | None = None) -> Solver | EliminationSolver:
+        """The compiled solver (built once per set of values, then kept in ``solvers``):
+        the steps compiled, or for the general 6R (no steps to compile: they describe the
+        method) its elimination with these values."""
         from .compiler import Solver
+        from .general import EliminationSolver
+        from .structure import GENERAL_6R
 
         key = values_key(values)  # the values as given: converted only once
         if key not in self.solvers:
-            numbers = self.robot.table.with_values(values or {}).value_map
-            self.solvers[key] = Solver(self, numbers)
+            if self.family == GENERAL_6R:
+                self.solvers[key] = EliminationSolver.build(self, values)
+            else:
+                numbers = self.robot.table.with_values(values or {}).value_map
+                self.solvers[key] = Solver(self, numbers)
         return self.solvers[key]
 
     def solve(

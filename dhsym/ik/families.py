@@ -8,7 +8,8 @@ and derives the closed form with the family that fits:
 * :data:`~dhsym.ik.structure.PARALLEL` (axes 2, 3, 4 parallel): :mod:`dhsym.ik.parallel`;
 * :data:`~dhsym.ik.structure.INVERTED` (the first three axes meet, or axes 3, 4, 5 are
   parallel): the chain read backwards, :mod:`dhsym.ik.inverted`;
-* :data:`~dhsym.ik.structure.GENERAL_6R`: :func:`general_6r` (not yet in closed form).
+* :data:`~dhsym.ik.structure.GENERAL_6R`: :func:`general_6r`, the Raghavan–Roth
+  elimination (:mod:`dhsym.ik.general`).
 
 Examples
 --------
@@ -38,21 +39,16 @@ __all__ = ["derivations", "general_6r", "inverse"]
 
 def general_6r(robot: Robot) -> InverseKinematics:
     """The general 6R (no three consecutive axes parallel or meeting): every solution by the
-    Raghavan–Roth elimination, to come in :mod:`dhsym.ik.general6r`.
-
-    The one place to wire it: this function, and :func:`derivations`.
+    Raghavan–Roth elimination (:func:`dhsym.ik.general.derive_general`).
 
     >>> import dhsym
-    >>> general_6r(dhsym.load("puma560"))
-    Traceback (most recent call last):
-    ...
-    dhsym.kinematics.decoupling.StructureError: general 6R: not yet solvable in closed form ...
+    >>> ik = general_6r(dhsym.load("jaco"))
+    >>> ik.family, ik.count
+    ('general 6R', 16)
     """
-    raise StructureError(
-        "general 6R: not yet solvable in closed form (no three consecutive axes are parallel "
-        "or meet in a point; the Raghavan–Roth elimination is not wired yet). Use "
-        "dhsym.ik.numeric_ik for one local solution"
-    )
+    from .general import derive_general
+
+    return derive_general(robot)
 
 
 def derivations(family: str) -> tuple[Callable[[Robot], InverseKinematics], ...]:

@@ -674,7 +674,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
 
 
-def _polish(arr: _Arrangement, theta: np.ndarray, Tp: np.ndarray, steps: int = 6) -> np.ndarray:
+def _polish(arr: _Arrangement, theta: np.ndarray, Tp: np.ndarray, steps: int = 10) -> np.ndarray:
     """Newton steps on the full pose until the error is at round-off.
 
     The error is ``(Δp, ω)``: the position error and the small rotation ω with

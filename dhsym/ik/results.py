@@ -26,6 +26,7 @@ from dhsym.kinematics.jacobian import axis_frame
 
 if TYPE_CHECKING:
     from .compiler import Solver
+    from .general import EliminationSolver
     from .steps import Branch
 
 __all__ = ["IKBatch", "IKSolution"]
@@ -44,7 +45,7 @@ class IKSolution:
     residual: np.ndarray
     singular: tuple[tuple[str, ...], ...]
     signs: np.ndarray = field(repr=False)
-    solver: Solver = field(repr=False)
+    solver: Solver | EliminationSolver = field(repr=False)
     #: the branch names when known already (a solution with a joint given, reordered)
     names: tuple[str, ...] | None = field(default=None, repr=False)
 
@@ -109,7 +110,7 @@ class IKBatch:
     singular: np.ndarray
     factor_kinds: tuple[str, ...]
     branch_signs: np.ndarray
-    solver: Solver = field(repr=False)
+    solver: Solver | EliminationSolver = field(repr=False)
 
     @property
     def count(self) -> np.ndarray:
@@ -136,8 +137,12 @@ class IKBatch:
         )
 
 
-def _branch_names(solver: Solver, q: np.ndarray, signs: np.ndarray) -> tuple[str, ...]:
+def _branch_names(
+    solver: Solver | EliminationSolver, q: np.ndarray, signs: np.ndarray
+) -> tuple[str, ...]:
     ik = solver.ik
+    if not ik.branches:  # no signs (the general 6R): numbered in the order of their values
+        return tuple(f"solution {k}" for k in range(1, len(q) + 1))
     parts: list[list[str]] = [[] for _ in range(len(q))]
     for b, col in zip(ik.branches, signs.T):
         if b.role == "elbow":

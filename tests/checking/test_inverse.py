@@ -207,3 +207,9 @@ def test_long_digit_runs_in_an_ik_answer_are_refused_by_the_parser():
     key = Key.load("planar2r", "ik")
     for text in ("x" + "1" * 20_000, "1" * 20_000 + ".", "a" + "1" * 20_000 + ".5"):
         assert check_answer(key, f"theta1 = {text}\ntheta2 = 0").verdict.value == "unreadable"
+
+
+@pytest.mark.slow
+def test_an_ik_question_on_a_general_6r_is_refused_by_the_key():
+    with pytest.raises(dhsym.DHError, match="general 6R: its inverse kinematics is an"):
+        Key.load("jaco", "ik")
