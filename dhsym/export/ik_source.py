@@ -120,16 +120,20 @@ def derivation(robot: Robot) -> InverseKinematics:
     dhsym.errors.DHError: Planar 4R (redundant): no closed-form IK to export: ...
     """
     name = robot.name or "this robot"
+    general = DHError(
+        f"{name}: general 6R: the eigenvalue solver is not exported (its IK is a "
+        "generalised eigenproblem per pose, dhsym.ik.general6r, not straight-line "
+        "code); export fk and jacobian only"
+    )
     try:
-        return robot.inverse()
+        ik = robot.inverse()
     except StructureError as err:
         if classify(robot).family == GENERAL_6R:
-            raise DHError(
-                f"{name}: general 6R: the eigenvalue solver is not exported (its IK is a "
-                "generalised eigenproblem per pose, dhsym.ik.general6r, not straight-line "
-                "code); export fk and jacobian only"
-            ) from None
+            raise general from None
         raise DHError(f"{name}: no closed-form IK to export: {err.message}") from None
+    if ik.family == GENERAL_6R:
+        raise general
+    return ik
 
 
 def _straight_line_steps(robot: Robot, ik: InverseKinematics) -> None:
