@@ -32,12 +32,17 @@ ORDER = [
 ]
 RANK = {room: k for k, room in enumerate(ORDER)}
 RANK["plot"] = RANK["geometry"]  # siblings
+RANK["dynamics"] = RANK["geometry"]  # a sibling: model, notation, kinematics below it
 #: Upward edges with a documented reason: display hooks that reach the printer at call
 #: time (as sympy's own Basic._repr_latex_ does), and Robot.plot, a notebook convenience.
 #: Imports under ``if TYPE_CHECKING:`` are annotations only and are not counted.
 ALLOWED = {
     ("model.table", "notation.tables"),
     ("kinematics.robot", "plot.figures"),
+    # Robot.dynamics / rne / inertia / statics: notebook conveniences like Robot.plot
+    ("kinematics.robot", "dynamics"),
+    ("kinematics.robot", "dynamics.compiled"),
+    ("kinematics.robot", "dynamics.statics"),
 }
 
 
