@@ -163,7 +163,7 @@ def lagrange(robot: Robot, model: DynamicModel | None = None) -> EquationsOfMoti
     """The equations of motion by Lagrange–Euler (see the module docstring)."""
     dm = model or dynamic_model(robot)
     n = dm.n
-    params = dm.parameters
+    params = dm.masses
     qd = Matrix(dm.rates)
     energies = potential_energies(dm)
     M = sp.zeros(n, n)

@@ -86,6 +86,12 @@ class DynamicModel:
         return tuple(sorted(syms, key=lambda s: s.name))
 
     @property
+    def masses(self) -> tuple[sp.Symbol, ...]:
+        """The symbols of the link masses (what printed results are collected by)."""
+        syms = set().union(*(L.m.free_symbols for L in self.links))
+        return tuple(sorted(syms, key=lambda s: s.name))
+
+    @property
     def has_drive(self) -> bool:
         """Whether any joint has motor inertia or friction."""
         return any(self.links[r - 1].has_drive for r in self.joints)

@@ -179,7 +179,7 @@ def newton_euler(robot: Robot, model: DynamicModel | None = None) -> EquationsOf
     and ``C`` from the Christoffel symbols of that ``M``.
     """
     dm = model or dynamic_model(robot)
-    params = dm.parameters
+    params = dm.masses
     steps: list[NEStep] = []
     tau = rne_expressions(dm, clean=lambda e: tidy(e, params), record=steps)
     zero = {s: 0 for s in (*dm.rates, *dm.accelerations)}
