@@ -11,9 +11,17 @@ from .equations import EquationsOfMotion, NEStep
 from .lagrange import lagrange
 from .model import DynamicModel, dynamic_model, rate_symbols
 from .newton_euler import newton_euler
+from .regressor import BaseParameters, Regressor, base_parameters, regressor
+from .statics import Statics, statics
 
 __all__ = [
+    "BaseParameters",
     "DynamicModel",
+    "Regressor",
+    "Statics",
+    "base_parameters",
+    "regressor",
+    "statics",
     "EquationsOfMotion",
     "NEStep",
     "dynamic_model",

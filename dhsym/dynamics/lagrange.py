@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING
 import sympy as sp
 
 from dhsym.kinematics.jacobian import axis_frame, compact
+from dhsym.kinematics.simplification import fold_sum_angles, tidy_signs
 from dhsym.model.table import JointType
 
 from .equations import EquationsOfMotion
@@ -54,19 +55,23 @@ __all__ = [
 
 Matrix = sp.ImmutableMatrix
 _EZ = Matrix([0, 0, 1])
+#: Sums with more terms than this are left expanded by :func:`tidy` (a six-joint arm's
+#: entries: folding them costs minutes and shortens them little).
+_FOLD_TERMS = 60
 
 
 def tidy(expr: sp.Expr, parameters: tuple[sp.Symbol, ...] = ()) -> sp.Expr:
-    """Expand, fold sum angles, and collect by the inertial parameters (``m2*(…)``).
+    """Expand, fold sum angles (no ``simplify``), and collect by ``parameters`` (``m2*(…)``).
 
     >>> t1, t2, m, l = sp.symbols("theta1 theta2 m l", real=True)
     >>> tidy(m * l * sp.cos(t1) * sp.cos(t2) - m * l * sp.sin(t1) * sp.sin(t2), (m,))
     l*m*cos(theta1 + theta2)
     """
-    e = compact(sp.expand(expr))
+    e = sp.expand(expr)
+    if len(sp.Add.make_args(e)) <= _FOLD_TERMS:  # the pair search is quadratic in the terms
+        e = tidy_signs(fold_sum_angles(e))
     if parameters and e.is_Add:
-        collected = sp.collect(sp.expand(e), parameters)
-        e = min((e, collected), key=sp.count_ops)
+        e = sp.collect(e, parameters)
     return e
 
 
@@ -175,7 +180,6 @@ def lagrange(robot: Robot, model: DynamicModel | None = None) -> EquationsOfMoti
             continue
         Jv, Jw = link_jacobians(dm, i)
         Mi = L.m * Jv.T * Jv + Jw.T * L.I * Jw
-        Mi = Mi.applyfunc(lambda e: tidy(e, params))
         M = M + Mi
         kinetic.append(tidy((qd.T * Mi * qd)[0, 0] / 2, params))
         potential.append(tidy(energies[i - 1], params))

@@ -93,12 +93,18 @@ def rne_expressions(
     gravity: Sequence[sp.Expr] | None = None,
     clean: Callable[[sp.Expr], sp.Expr] | None = None,
     record: list[NEStep] | None = None,
+    first_moments: Sequence[tuple[sp.Expr, Matrix, Matrix]] | None = None,
 ) -> Matrix:
     """τ of the Newton–Euler recursion, as an n×1 matrix (see the module docstring).
 
     ``qd``, ``qdd`` default to the model's rate and acceleration symbols, ``gravity`` to
     the model's; ``clean`` is applied to every entry of every step (``None``: the raw
     nested expression, what the compiler takes); ``record`` collects the steps.
+
+    ``first_moments`` gives each link as ``(m, h, L)``: mass, first moment ``h = m r`` and
+    inertia ``L`` about the link origin (Khalil's parameters, in which τ is linear). Then
+    ``F = m a + ω̇ × h + ω × (ω × h)`` and the moment about the origin is
+    ``N = L ω̇ + ω × L ω + h × a``.
     """
     robot = dm.robot
     table = robot.table
@@ -140,10 +146,16 @@ def rne_expressions(
         if row.joint is JointType.PRISMATIC and k is not None:
             acc = acc + 2 * _cross(w_i, u) * qd[k] + u * qdd[k]
         a_i = keep("outward", "a", i, acc)
-        rc = Matrix(L.r)
-        ac = keep("outward", "ac", i, a_i + _cross(wd_i, rc) + _cross(w_i, _cross(w_i, rc)))
-        F = keep("outward", "F", i, L.m * ac)
-        N = keep("outward", "N", i, L.I * wd_i + _cross(w_i, L.I * w_i))
+        if first_moments is not None:
+            m, h, Lo = first_moments[i - 1]
+            rc = _ZERO3  # moments are taken about the link origin
+            F = m * a_i + _cross(wd_i, h) + _cross(w_i, _cross(w_i, h))
+            N = Lo * wd_i + _cross(w_i, Lo * w_i) + _cross(h, a_i)
+        else:
+            rc = Matrix(L.r)
+            ac = keep("outward", "ac", i, a_i + _cross(wd_i, rc) + _cross(w_i, _cross(w_i, rc)))
+            F = keep("outward", "F", i, L.m * ac)
+            N = keep("outward", "N", i, L.I * wd_i + _cross(w_i, L.I * w_i))
         geometry.append((u, r2, rc, k, row.joint))
         forces.append((F, N))
         w, wd, a = w_i, wd_i, a_i

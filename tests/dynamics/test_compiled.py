@@ -2,6 +2,7 @@
 here from the textbook recursions (Luh–Walker–Paul for standard DH as in Spong §7.5 and
 Corke; Craig §6.5 for modified DH), and pinocchio's ``rnea``."""
 
+# ruff: noqa: E501  (table rows are one line each, as in a table file)
 from __future__ import annotations
 
 import numpy as np
@@ -30,7 +31,9 @@ def arm(convention: str, prismatic: bool = False) -> Robot:
         th3="0.4" if prismatic else "q3 + 0.2",
         d3="d3" if prismatic else "0.1",
     )
-    text = f"convention: {convention}\nsnap_angles: false\ngravity: [0.5, -1.0, -9.81]\njoints:{rows}"
+    text = (
+        f"convention: {convention}\nsnap_angles: false\ngravity: [0.5, -1.0, -9.81]\njoints:{rows}"
+    )
     return Robot(read_table_text(text))
 
 
@@ -53,7 +56,9 @@ def _rows(robot, q):
     for row in robot.table.rows:
         sub = {row.variable: q[k]} if row.variable is not None else {}
         k += row.variable is not None
-        theta, d, a, alpha = (float(getattr(row, f).subs(sub)) for f in ("theta", "d", "a", "alpha"))
+        theta, d, a, alpha = (
+            float(getattr(row, f).subs(sub)) for f in ("theta", "d", "a", "alpha")
+        )
         L = row.inertia
         out.append(
             (
@@ -78,7 +83,7 @@ def ne_standard(robot, q, qd, qdd, g):
     z = np.array([0.0, 0, 1])
     w, wd, vd = np.zeros(3), np.zeros(3), -np.asarray(g, float)
     store = []
-    for i, (kind, th, d, a, al, m, r, I, arm_) in enumerate(rows):
+    for i, (kind, th, d, a, al, m, r, J, arm_) in enumerate(rows):
         Rm = _rot_z(th) @ _rot_x(al)  # ^{i-1}R_i
         Rt = Rm.T
         pstar = np.array([a, d * np.sin(al), d * np.cos(al)])  # o_{i-1} -> o_i in frame i
@@ -98,7 +103,7 @@ def ne_standard(robot, q, qd, qdd, g):
         w, wd, vd = w_new, wd_new, vd_new
         vc = np.cross(wd, r) + np.cross(w, np.cross(w, r)) + vd
         F = m * vc
-        N = I @ wd + np.cross(w, I @ w)
+        N = J @ wd + np.cross(w, J @ w)
         store.append((Rm, pstar, r, F, N, kind, arm_))
     tau = np.zeros(n)
     f, nn = np.zeros(3), np.zeros(3)
@@ -119,7 +124,7 @@ def ne_modified(robot, q, qd, qdd, g):
     z = np.array([0.0, 0, 1])
     w, wd, vd = np.zeros(3), np.zeros(3), -np.asarray(g, float)
     Rs, ps, out = [], [], []
-    for i, (kind, th, d, a, al, m, r, I, arm_) in enumerate(rows):
+    for i, (kind, th, d, a, al, m, r, J, arm_) in enumerate(rows):
         Rm = _rot_x(al) @ _rot_z(th)  # ^{i-1}R_i
         p = _rot_x(al) @ np.array([a, 0, 0]) + Rm @ np.array([0, 0, d])  # ^{i-1}P_i
         Rt = Rm.T
@@ -137,7 +142,7 @@ def ne_modified(robot, q, qd, qdd, g):
             )
         w, wd, vd = w_new, wd_new, vd_new
         vc = np.cross(wd, r) + np.cross(w, np.cross(w, r)) + vd
-        out.append((m * vc, I @ wd + np.cross(w, I @ w), r, kind, arm_))
+        out.append((m * vc, J @ wd + np.cross(w, J @ w), r, kind, arm_))
         Rs.append(Rm)
         ps.append(p)
     tau = np.zeros(n)
@@ -199,9 +204,13 @@ def pin_model(robot):
         for e in robot.link_word(i):
             var = row.variable
             if var is not None and var in e.value.free_symbols:
-                pending = pending @ elementary_stack(e.kind, e.axis, [to_float(e.value.subs(var, 0))])[0]
+                pending = (
+                    pending @ elementary_stack(e.kind, e.axis, [to_float(e.value.subs(var, 0))])[0]
+                )
                 joint = pin.JointModelRZ() if e.kind == "R" else pin.JointModelPZ()
-                parent = model.addJoint(parent, joint, pin.SE3(pending[:3, :3], pending[:3, 3]), f"j{i}")
+                parent = model.addJoint(
+                    parent, joint, pin.SE3(pending[:3, :3], pending[:3, 3]), f"j{i}"
+                )
                 pending = np.eye(4)
             else:
                 pending = pending @ elementary_stack(e.kind, e.axis, [to_float(e.value)])[0]
@@ -312,7 +321,11 @@ def test_shapes_follow_fk():
     values |= {f"{k}{i}": 0.05 for i in (1, 2) for k in ("Ixx", "Iyy")}
     values |= {f"{k}{i}": 0.0 for i in (1, 2) for k in ("Ixy", "Iyz", "Ixz")}
     assert robot.rne([0, 0], [0, 0], [0, 0], values=values).shape == (2,)
-    assert robot.rne(np.zeros((3, 5, 2)), 0.0 * np.ones(2), np.ones(2), values=values).shape == (3, 5, 2)
+    assert robot.rne(np.zeros((3, 5, 2)), 0.0 * np.ones(2), np.ones(2), values=values).shape == (
+        3,
+        5,
+        2,
+    )
     assert robot.inertia(np.zeros((4, 2)), values=values).shape == (4, 2, 2)
     assert robot.coriolis(np.zeros((4, 2)), np.ones((4, 2)), values=values).shape == (4, 2, 2)
     with pytest.raises(dhsym.DHError, match="no numeric value"):

@@ -105,9 +105,9 @@ def test_link_jacobians_are_written_in_the_link_frame():
 
 
 def test_tidy_folds_and_collects():
-    t1, t2, m, l = sp.symbols("theta1 theta2 m l", real=True)
-    e = m * l * sp.cos(t1) * sp.cos(t2) - m * l * sp.sin(t1) * sp.sin(t2) + m
-    assert tidy(e, (m,)) in (m * (l * sp.cos(t1 + t2) + 1), l * m * sp.cos(t1 + t2) + m)
+    t1, t2, m, ln = sp.symbols("theta1 theta2 m l", real=True)
+    e = m * ln * sp.cos(t1) * sp.cos(t2) - m * ln * sp.sin(t1) * sp.sin(t2) + m
+    assert tidy(e, (m,)) in (m * (ln * sp.cos(t1 + t2) + 1), ln * m * sp.cos(t1 + t2) + m)
 
 
 # --- the laws of M and C ---------------------------------------------------------------------
