@@ -28,6 +28,7 @@ sys.path.insert(0, str(ROOT))
 import dhsym  # noqa: E402
 from dhsym.dynamics import lagrange, newton_euler  # noqa: E402
 from dhsym.kinematics.robot import Robot  # noqa: E402
+from dhsym.kinematics.simplification import prove_equal  # noqa: E402
 from dhsym.model.tablefile import read_table_text  # noqa: E402
 
 
@@ -110,10 +111,10 @@ def main() -> int:
         arm = planar(n)
         ours, t_ours = timed(lagrange, arm)
         theirs, t_them = timed(mechanics_planar, n)
-        q = me_q = [sp.Function(f"q{i}")(sp.Symbol("t")) for i in range(1, n + 1)]
-        subs = dict(zip(me_q, arm.variables))
-        same = sp.expand(sp.expand_trig(theirs.subs(subs) - ours.M)) == sp.zeros(n, n)
-        del q
+        from sympy.physics.mechanics import dynamicsymbols
+
+        subs = dict(zip(dynamicsymbols(f"q1:{n + 1}"), arm.variables))
+        same = prove_equal(theirs.subs(subs), ours.M)
         print(
             f"planar {n}R, symbolic: dhsym Lagrange {t_ours:.2f} s, sympy.physics.mechanics "
             f"LagrangesMethod {t_them:.2f} s (ratio {t_them / t_ours:.2f}; same M: {same})"

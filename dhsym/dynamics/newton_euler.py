@@ -184,15 +184,33 @@ def rne_expressions(
     return Matrix(tau)
 
 
-def newton_euler(robot: Robot, model: DynamicModel | None = None) -> EquationsOfMotion:
+def newton_euler(
+    robot: Robot, model: DynamicModel | None = None, *, tidy_steps: bool | None = None
+) -> EquationsOfMotion:
     """The equations of motion by recursive Newton–Euler, with the recursion as steps.
 
     τ comes from the recursion; ``M = ∂τ/∂q̈``, ``g = τ(q̇ = 0, q̈ = 0)`` are read off it,
-    and ``C`` from the Christoffel symbols of that ``M``.
+    and ``C`` from the Christoffel symbols of that ``M``. Each step is expanded and folded
+    (``tidy_steps``, by default for arms of up to four joints: beyond, the expanded steps
+    grow to pages and the recursion is kept nested, as it is compiled).
     """
     dm = model or dynamic_model(robot)
     params = dm.masses
     steps: list[NEStep] = []
+    if tidy_steps is None:
+        tidy_steps = dm.n <= 4
+    if not tidy_steps:  # nested throughout; c_ijk = ½ ∂²τ_k/∂q̇_i∂q̇_j (τ is quadratic in q̇)
+        tau = rne_expressions(dm, record=steps)
+        n, qd, qdd = dm.n, dm.rates, dm.accelerations
+        zero = {s: 0 for s in (*qd, *qdd)}
+        g = Matrix([t.xreplace(zero) for t in tau])
+        M = Matrix(n, n, lambda r, c: sp.diff(tau[r], qdd[c]))
+        chris = tuple(
+            tuple(tuple(sp.diff(tau[k], qd[i], qd[j]) / 2 for k in range(n)) for j in range(n))
+            for i in range(n)
+        )
+        C = Matrix(n, n, lambda k, j: sum(chris[i][j][k] * qd[i] for i in range(n)))
+        return EquationsOfMotion("newton-euler", dm, M, C, g, tau, chris, steps=tuple(steps))
     tau = rne_expressions(dm, clean=lambda e: tidy(e, params), record=steps)
     zero = {s: 0 for s in (*dm.rates, *dm.accelerations)}
     g = Matrix([tidy(t.xreplace(zero), params) for t in tau])
