@@ -69,8 +69,8 @@ def mechanics_planar(n: int) -> sp.Matrix:
         body = me.RigidBody(f"B{i}", C, F, m, (me.inertia(F, 0, inertia, inertia), C))
         body.potential_energy = m * g * C.pos_from(origin).dot(N.y)
         bodies.append(body)
-        joint = joint.locatenew(f"J{i}", ln * F.x)
-        joint.v2pt_theory(origin, N, F)
+        previous, joint = joint, joint.locatenew(f"J{i}", ln * F.x)
+        joint.v2pt_theory(previous, N, F)  # both ends of link i are fixed in F_i
     L = me.Lagrangian(N, *bodies)
     lm = me.LagrangesMethod(L, q)
     lm.form_lagranges_equations()

@@ -55,8 +55,8 @@ __all__ = [
 
 Matrix = sp.ImmutableMatrix
 _EZ = Matrix([0, 0, 1])
-#: Sums with more terms than this are left expanded by :func:`tidy` (a six-joint arm's
-#: entries: folding them costs minutes and shortens them little).
+#: Sums with more terms than this are left expanded by :func:`tidy`, neither folded nor
+#: collected (a six-joint arm's entries: folding them costs minutes, shortens them little).
 _FOLD_TERMS = 60
 
 
@@ -68,8 +68,9 @@ def tidy(expr: sp.Expr, parameters: tuple[sp.Symbol, ...] = ()) -> sp.Expr:
     l*m*cos(theta1 + theta2)
     """
     e = sp.expand(expr)
-    if len(sp.Add.make_args(e)) <= _FOLD_TERMS:  # the pair search is quadratic in the terms
-        e = tidy_signs(fold_sum_angles(e))
+    if len(sp.Add.make_args(e)) > _FOLD_TERMS:  # the pair search is quadratic in the terms
+        return e
+    e = tidy_signs(fold_sum_angles(e))
     if parameters and e.is_Add:
         e = sp.collect(e, parameters)
     return e
