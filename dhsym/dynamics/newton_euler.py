@@ -86,7 +86,6 @@ def _split(row_word: Sequence[Elementary], convention: Convention) -> tuple[Matr
 
 def rne_expressions(
     dm: DynamicModel,
-    q: Sequence[sp.Expr] | None = None,
     qd: Sequence[sp.Expr] | None = None,
     qdd: Sequence[sp.Expr] | None = None,
     *,
@@ -199,18 +198,29 @@ def newton_euler(
     steps: list[NEStep] = []
     if tidy_steps is None:
         tidy_steps = dm.n <= 4
-    if not tidy_steps:  # nested throughout; c_ijk = ½ ∂²τ_k/∂q̇_i∂q̇_j (τ is quadratic in q̇)
+    if not tidy_steps:  # nested throughout; M, g and c_ijk from runs at unit rates
         tau = rne_expressions(dm, record=steps)
-        n, qd, qdd = dm.n, dm.rates, dm.accelerations
-        zero = {s: 0 for s in (*qd, *qdd)}
-        g = Matrix([t.xreplace(zero) for t in tau])
-        M = Matrix(n, n, lambda r, c: sp.diff(tau[r], qdd[c]))
+        n, qd = dm.n, dm.rates
+        zeros, unit = [0] * n, sp.eye(n)
+        g = rne_expressions(dm, qd=zeros, qdd=zeros)
+        cols = [rne_expressions(dm, qd=zeros, qdd=unit[:, j], gravity=(0, 0, 0)) for j in range(n)]
+        M = Matrix.hstack(*cols)
+
+        def h(v: sp.MatrixBase) -> Matrix:  # the velocity term at rates v: Σ c_ijk v_i v_j
+            return rne_expressions(dm, qd=list(v), qdd=zeros, gravity=(0, 0, 0))
+
+        single = [h(unit[:, j]) for j in range(n)]
+        c = [[single[i] if i == j else None for j in range(n)] for i in range(n)]
+        for i in range(n):
+            for j in range(i + 1, n):
+                c[i][j] = c[j][i] = (h(unit[:, i] + unit[:, j]) - single[i] - single[j]) / 2
         chris = tuple(
-            tuple(tuple(sp.diff(tau[k], qd[i], qd[j]) / 2 for k in range(n)) for j in range(n))
-            for i in range(n)
+            tuple(tuple(c[i][j][k] for k in range(n)) for j in range(n)) for i in range(n)
         )
         C = Matrix(n, n, lambda k, j: sum(chris[i][j][k] * qd[i] for i in range(n)))
-        return EquationsOfMotion("newton-euler", dm, M, C, g, tau, chris, steps=tuple(steps))
+        return EquationsOfMotion(
+            "newton-euler", dm, M, C, Matrix(g), tau, chris, steps=tuple(steps)
+        )
     tau = rne_expressions(dm, clean=lambda e: tidy(e, params), record=steps)
     zero = {s: 0 for s in (*dm.rates, *dm.accelerations)}
     g = Matrix([tidy(t.xreplace(zero), params) for t in tau])

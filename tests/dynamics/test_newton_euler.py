@@ -73,9 +73,14 @@ def _numeric_inertias(robot: Robot) -> Robot:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ["stanford", "puma560_modified"])
+@pytest.mark.parametrize("name", ["stanford", "puma560_modified", "puma260", "example4_6dof"])
 def test_lagrange_equals_newton_euler_on_six_joint_robots(name):
     assert _proven_equal(_numeric_inertias(dhsym.load(name)))
+
+
+@pytest.mark.slow
+def test_lagrange_equals_newton_euler_on_the_puma560_with_its_published_parameters():
+    assert _proven_equal(Robot(dhsym.load("puma560").table.substituted()))
 
 
 def test_newton_euler_result_has_the_recursion_as_steps():
@@ -105,3 +110,11 @@ joints: [{type: R, theta: q1, d: 0, a: 1, alpha: 0, m: 2, r: [-0.5, 0, 0], I: [0
     eom = lagrange(robot)
     q1 = robot.variables[0]
     assert sp.expand(eom.g[0] - 2 * sp.Rational(981, 100) * sp.Rational(1, 2) * sp.cos(q1)) == 0
+
+
+def test_robot_dynamics_names_its_methods():
+    robot = dhsym.load("planar2r")
+    assert robot.dynamics("newton-euler").method == "newton-euler"
+    assert robot.dynamics() is robot.dynamics("lagrange")
+    with pytest.raises(dhsym.DHError, match="lagrange or newton-euler"):
+        robot.dynamics("hamilton")
