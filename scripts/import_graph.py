@@ -37,6 +37,7 @@ RANK = {room: k for k, room in enumerate(ORDER)}
 RANK["plot"] = RANK["geometry"]  # siblings
 RANK["ik"] = RANK["geometry"]
 RANK["export"] = RANK["geometry"]  # a sibling too: it reads model, notation, kinematics, ik
+RANK["dynamics"] = RANK["geometry"]  # a sibling: model, notation, kinematics below it
 #: Upward edges with a documented reason: display hooks that reach the printer at call
 #: time (as sympy's own Basic._repr_latex_ does), Robot.plot, a notebook convenience,
 #: load('x.urdf') / Robot.to_urdf / Robot.to_rtb, which reach the formats room, and
@@ -50,6 +51,10 @@ ALLOWED = {
     ("kinematics.robot", "ik.families"),  # Robot.inverse, a convenience
     ("kinematics.robot", "ik.choices"),  # Robot.ik, a convenience
     ("kinematics.robot", "export.compiled"),  # Robot.compiled, at call time
+    # Robot.dynamics / rne / inertia / statics: notebook conveniences like Robot.plot
+    ("kinematics.robot", "dynamics"),
+    ("kinematics.robot", "dynamics.compiled"),
+    ("kinematics.robot", "dynamics.statics"),
 }
 
 

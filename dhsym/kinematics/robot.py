@@ -357,6 +357,92 @@ class Robot:
 
         return compiled(self, lang)
 
+    # -- dynamics (dhsym.dynamics, loaded on first use) ----------------------------------
+    def dynamics(self, method: str = "lagrange") -> object:
+        """The equations of motion, exact (``"lagrange"`` or ``"newton-euler"``), cached.
+
+        Rows without inertial parameters get the textbook symbols (``m1``, ``rx1``, …).
+        See :mod:`dhsym.dynamics`.
+        """
+        from dhsym.dynamics import lagrange, newton_euler
+
+        methods = {"lagrange": lagrange, "newton-euler": newton_euler, "ne": newton_euler}
+        key = str(method).strip().lower().replace("_", "-")
+        if key not in methods:
+            raise DHError(f"unknown dynamics method {method!r}: expected lagrange or newton-euler")
+        cache_key = ("dynamics", methods[key].__name__)
+        if cache_key not in self._extra_cache:
+            self._extra_cache[cache_key] = methods[key](self)
+        return self._extra_cache[cache_key]
+
+    def dynamics_functions(self, values: Mapping[object, object] | None = None) -> object:
+        """The compiled dynamics (:class:`dhsym.dynamics.compiled.DynamicsFunctions`), cached."""
+        from dhsym.dynamics.compiled import dynamics_functions
+
+        from .numeric import values_key
+
+        key = ("dynamics-functions", values_key(values))
+        if key not in self._extra_cache:
+            self._extra_cache[key] = dynamics_functions(self, values)
+        return self._extra_cache[key]
+
+    def rne(
+        self, q: object, qd: object, qdd: object, *, values: Mapping[object, object] | None = None
+    ) -> np.ndarray:
+        """Joint torques τ(q, q̇, q̈), with motor inertia ``Jm G²`` and friction when given.
+
+        One state ``(n,)`` → ``(n,)``; a batch ``(..., n)`` → ``(..., n)``.
+        """
+        return self.dynamics_functions(values).rne(q, qd, qdd)  # type: ignore[attr-defined]
+
+    def inertia(self, q: object, *, values: Mapping[object, object] | None = None) -> np.ndarray:
+        """The inertia matrix M(q): ``(n,)`` → ``(n, n)``, ``(..., n)`` → ``(..., n, n)``."""
+        return self.dynamics_functions(values).inertia(q)  # type: ignore[attr-defined]
+
+    def coriolis(
+        self, q: object, qd: object, *, values: Mapping[object, object] | None = None
+    ) -> np.ndarray:
+        """C(q, q̇) from the Christoffel symbols; ``C @ qd`` is the velocity term."""
+        return self.dynamics_functions(values).coriolis(q, qd)  # type: ignore[attr-defined]
+
+    def gravload(self, q: object, *, values: Mapping[object, object] | None = None) -> np.ndarray:
+        """The gravity torques g(q)."""
+        return self.dynamics_functions(values).gravload(q)  # type: ignore[attr-defined]
+
+    def accel(
+        self, q: object, qd: object, tau: object, *, values: Mapping[object, object] | None = None
+    ) -> np.ndarray:
+        """Forward dynamics q̈ = M⁻¹(τ − C q̇ − g − friction)."""
+        return self.dynamics_functions(values).accel(q, qd, tau)  # type: ignore[attr-defined]
+
+    def simulate(
+        self,
+        q0: object,
+        qd0: object,
+        duration: float,
+        *,
+        dt: float = 1e-3,
+        tau: object = None,
+        values: Mapping[object, object] | None = None,
+    ) -> object:
+        """Fixed-step RK4 integration of the motion (a ``Trajectory``: ``t``, ``q``, ``qd``)."""
+        return self.dynamics_functions(values).simulate(q0, qd0, duration, dt=dt, tau=tau)  # type: ignore[attr-defined]
+
+    def statics(
+        self,
+        q: object = None,
+        wrench: object = None,
+        *,
+        values: Mapping[object, object] | None = None,
+    ) -> object:
+        """τ = Jᵀ F: exact (no ``q``), or the torques that balance a tip wrench ``[f; n]``
+        (base frame) at ``q``, batched like :meth:`jacobian`."""
+        from dhsym.dynamics.statics import statics, statics_numeric
+
+        if q is None:
+            return statics(self)
+        return statics_numeric(self, q, wrench, values=values)
+
     def plot(self, q: object = None, **kw: object) -> object:
         """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plot.figures`)."""
         from dhsym.plot.figures import plot_robot

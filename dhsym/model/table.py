@@ -33,6 +33,7 @@ from dhsym.errors import TableError
 
 from .angles import AngleSnap, Snapped, snap_entry, snap_note
 from .entries import as_expr, check_radians, to_radians
+from .inertia import LinkInertia
 from .kinds import AngleUnit, Convention, JointType
 from .parsing import symbol
 
@@ -106,6 +107,7 @@ class DHRow:
     variable: sp.Symbol | None = None
     limits: tuple[Expr, Expr] | None = None
     label: str | None = None
+    inertia: LinkInertia | None = None  # mass, centre of mass, inertia (dhsym.dynamics)
 
     @classmethod
     def revolute(
@@ -140,6 +142,8 @@ class DHRow:
         if self.limits is not None:
             lo, hi = (as_expr(v, field="limits") for v in self.limits)
             object.__setattr__(self, "limits", (lo, hi))
+        if isinstance(self.inertia, Mapping):
+            object.__setattr__(self, "inertia", LinkInertia.from_data(self.inertia))
 
     @property
     def variable_field(self) -> str | None:
@@ -228,6 +232,12 @@ class DHTable:
         The unit the table was *written* in (for display); entries are radians.
     notes
         Free text from the table file.
+    gravity
+        The gravitational acceleration in the base (world) frame, exact; default
+        ``(0, 0, -9.81)`` as in roboticstoolbox.
+    physical
+        False when the inertias were accepted without the triangle inequality
+        (published data that breaks it, :mod:`dhsym.model.inertia`).
     warnings
         What the reader did to the input that the user should know, one
         sentence each (decimal angles read as multiples of π/12).
@@ -242,6 +252,8 @@ class DHTable:
     tool: tuple[Elementary, ...] = ()
     angles: AngleUnit = AngleUnit.RAD
     notes: str = field(default="", compare=False)
+    gravity: tuple[Expr, Expr, Expr] = (sp.Integer(0), sp.Integer(0), sp.Rational(-981, 100))
+    physical: bool = True
     warnings: tuple[str, ...] = field(default=(), compare=False)
 
     @classmethod
@@ -351,7 +363,13 @@ class DHTable:
         object.__setattr__(self, "rows", tuple(fixed_rows))
         object.__setattr__(self, "base", tuple(self.base))
         object.__setattr__(self, "tool", tuple(self.tool))
+        gravity = tuple(as_expr(v, field="gravity") for v in self.gravity)
+        if len(gravity) != 3:
+            raise TableError("gravity must be 3 values [gx, gy, gz]", field="gravity")
+        object.__setattr__(self, "gravity", gravity)
         known = set().union(*(e.free_symbols for r in fixed_rows for e in r.params().values()))
+        known |= set().union(*(r.inertia.free_symbols for r in fixed_rows if r.inertia))
+        known |= set().union(*(e.free_symbols for e in gravity))
         known |= set().union(*(e.value.free_symbols for e in self.base + self.tool))
         for sym, value in self.values:
             if sym in seen:
@@ -405,9 +423,11 @@ class DHTable:
         rows = tuple(
             replace(r, **{k: v.subs(vm) for k, v in r.params().items()}) for r in self.rows
         )
+        rows = tuple(replace(r, inertia=r.inertia.subs(vm)) if r.inertia else r for r in rows)
         base = tuple(Elementary(e.kind, e.axis, e.value.subs(vm)) for e in self.base)
         tool = tuple(Elementary(e.kind, e.axis, e.value.subs(vm)) for e in self.tool)
-        return replace(self, rows=rows, base=base, tool=tool, values=())
+        gravity = tuple(v.subs(vm) for v in self.gravity)
+        return replace(self, rows=rows, base=base, tool=tool, values=(), gravity=gravity)  # type: ignore[arg-type]
 
     def _repr_latex_(self) -> str:
         return "$$" + self._latex(None) + "$$"

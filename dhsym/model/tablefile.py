@@ -14,6 +14,13 @@ The format (every key but ``joints`` optional)::
     snap_angles: true                    # 1.5708 -> pi/2 (false: keep; a number: tolerance)
     base: [{Tz: 0.5}]                    # constant transforms before joint 1 ...
     tool: [{Tz: t}]                      # ... and after the last frame
+    gravity: [0, 0, -9.81]               # in the base frame (default), e.g. [0, -g, 0]
+
+Rows may carry inertial parameters with roboticstoolbox's ``Link`` names
+(:mod:`dhsym.model.inertia`): ``m``, ``r`` (centre of mass in link frame i), ``I``
+(about the centre of mass: ``[Ixx, Iyy, Izz, Ixy, Iyz, Ixz]`` or 3×3), ``Jm``, ``G``,
+``B``, ``Tc`` (one value or ``[Tc+, Tc-]``), e.g.
+``{type: R, theta: q1, d: 0, a: l1, alpha: 0, m: m1, r: [lc1 - l1, 0, 0], I: [0, 0, I1]}``.
 
 Entries are numbers or expressions read by the whitelist parser
 (:mod:`dhsym.model.parsing`): never ``eval`` or ``sympify``. Every error names the
@@ -51,6 +58,7 @@ from dhsym.errors import DHError, TableError
 
 from .angles import AngleSnap, snap_entry
 from .entries import exact_decimal as _exact_decimal
+from .inertia import INERTIA_KEYS, LinkInertia
 from .parsing import DEFAULT_LIMITS
 from .table import (
     AngleUnit,
@@ -67,7 +75,19 @@ from .yamlsafe import FileRefused, YAMLInputError, YAMLLimits, load_yaml, read_l
 __all__ = ["MAX_FILE_BYTES", "dump_table", "read_table", "read_table_text", "table_from_data"]
 
 MAX_FILE_BYTES = 1_000_000
-_ROW_KEYS = ("type", "theta", "d", "a", "alpha", "q", "limits", "qlim", "offset", "name")
+_ROW_KEYS = (
+    "type",
+    "theta",
+    "d",
+    "a",
+    "alpha",
+    "q",
+    "limits",
+    "qlim",
+    "offset",
+    "name",
+    *INERTIA_KEYS,
+)
 _TOP_KEYS = (
     "name",
     "source",
@@ -79,8 +99,11 @@ _TOP_KEYS = (
     "tool",
     "notes",
     "snap_angles",
+    "gravity",
+    "physical",
 )
 _ALIASES = {"θ": "theta", "α": "alpha", "joint": "type", "variable": "q", "th": "theta"}
+_CASED = {k.lower(): k for k in INERTIA_KEYS if k != k.lower()}  # I, Jm, G, B, Tc keep case
 
 
 def read_table(path: str | Path) -> DHTable:
@@ -117,7 +140,7 @@ _LONG_NUMBER = "a number with thousands of digits: numbers have at most 40 digit
 
 def _canon(key: object) -> str:
     k = str(key).strip()
-    return _ALIASES.get(k, _ALIASES.get(k.lower(), k.lower()))
+    return _ALIASES.get(k, _ALIASES.get(k.lower(), _CASED.get(k.lower(), k.lower())))
 
 
 def table_from_data(data: object, *, file: str | None = None) -> DHTable:
@@ -150,7 +173,10 @@ def _from_data(data: object, file: str | None) -> DHTable:
         raise TableError("'joints' must be a list of rows", field="joints")
     if not joints:
         raise TableError("the table has no joints: give at least one row", field="joints")
-    rows = [_row(entry, i) for i, entry in enumerate(joints, start=1)]
+    physical = top.get("physical", True)
+    if not isinstance(physical, bool):
+        raise TableError("physical must be true or false", field="physical")
+    rows = [_row(entry, i, physical) for i, entry in enumerate(joints, start=1)]
     values = top.get("values") or {}
     if not isinstance(values, Mapping):
         raise TableError("'values' must map symbol names to numbers", field="values")
@@ -174,6 +200,8 @@ def _from_data(data: object, file: str | None) -> DHTable:
         base=base,
         tool=tool,
         snap_angles=AngleSnap.parse(top.get("snap_angles", True)),
+        **_gravity(top),
+        **({} if physical else {"physical": False}),
     )
 
 
@@ -204,7 +232,16 @@ def _check_variables(
                 )
 
 
-def _row(entry: object, i: int) -> DHRow:
+def _gravity(top: Mapping) -> dict[str, object]:
+    if "gravity" not in top:
+        return {}
+    g = top["gravity"]
+    if not (isinstance(g, list) and len(g) == 3):
+        raise TableError("gravity must be a list of 3 values [gx, gy, gz]", field="gravity")
+    return {"gravity": tuple(as_expr(v, field="gravity") for v in g)}
+
+
+def _row(entry: object, i: int, physical: bool = True) -> DHRow:
     if not isinstance(entry, Mapping):
         raise TableError("each row must be a mapping like {type: R, theta: ..., ...}", row=i)
     row = {_canon(k): v for k, v in entry.items()}
@@ -223,12 +260,12 @@ def _row(entry: object, i: int) -> DHRow:
             "R" if params["theta"].free_symbols else "P" if params["d"].free_symbols else "F"
         )
     try:
-        return _build_row(row, params, kw, i)
+        return _build_row(row, params, kw, i, physical)
     except DHError as err:
         raise err.located(row=i) from None
 
 
-def _build_row(row: dict, params: dict, kw: dict, i: int) -> DHRow:
+def _build_row(row: dict, params: dict, kw: dict, i: int, physical: bool = True) -> DHRow:
     from .parsing import symbol
 
     joint = row["type"]
@@ -261,6 +298,9 @@ def _build_row(row: dict, params: dict, kw: dict, i: int) -> DHRow:
         kw["limits"] = (lo, hi)
     if "name" in row:
         kw["label"] = str(row["name"])
+    given = {k: row[k] for k in INERTIA_KEYS if k in row}
+    if given:
+        kw["inertia"] = LinkInertia.from_data(given, row=i, physical=physical)
     return DHRow(joint, params["theta"], params["d"], params["a"], params["alpha"], **kw)
 
 
@@ -376,13 +416,28 @@ def dump_table(table: DHTable, *, angles: str | None = None) -> str:
             cells["limits"] = [conv(v) for v in row.limits]
         if row.label:
             cells["name"] = row.label
-        lines.append("- " + yaml.safe_dump(cells, default_flow_style=True, sort_keys=False).strip())
+        if row.inertia is not None:
+            for key, value in row.inertia.data().items():
+                cells[key] = (
+                    [_plain(v) for v in value] if isinstance(value, list) else _plain(value)
+                )  # type: ignore[arg-type]
+        lines.append(
+            "- "
+            + yaml.safe_dump(cells, default_flow_style=True, sort_keys=False, width=10**6).strip()
+        )
     if table.notes:
         lines.append(f"notes: {json.dumps(table.notes, ensure_ascii=False)}")
     if table.values:
         vals = {str(k): _plain(v) for k, v in table.values}
         lines.append(
             "values: " + yaml.safe_dump(vals, default_flow_style=True, sort_keys=False).strip()
+        )
+    if not table.physical:
+        lines.append("physical: false")
+    if table.gravity != DHTable.__dataclass_fields__["gravity"].default:
+        lines.append(
+            "gravity: "
+            + yaml.safe_dump([_plain(v) for v in table.gravity], default_flow_style=True).strip()
         )
     for where, seq in (("base", table.base), ("tool", table.tool)):
         if seq:

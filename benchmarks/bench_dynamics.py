@@ -1,0 +1,165 @@
+"""Dynamics benchmarks: symbolic equations of motion and compiled ``rne``, against references
+run in the same process.
+
+Run ``python benchmarks/bench_dynamics.py`` (``--symbolic`` also derives the PUMA 560 with
+fully symbolic inertial parameters, which takes minutes). Prints:
+
+1. the PUMA 560's symbolic M, C and g (Lagrange–Euler) with its published numeric inertial
+   parameters (goal: under 30 s), and the Newton–Euler τ;
+2. dhsym's Lagrange–Euler against ``sympy.physics.mechanics.LagrangesMethod`` on a planar
+   2R and 3R arm with symbolic masses, lengths and inertias (same arm, same results);
+3. the compiled ``rne`` of the PUMA 560 for a batch of 10⁵ states and for one state,
+   against pinocchio's ``rnea`` called from Python (when ``pin`` is installed).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+import dhsym  # noqa: E402
+from dhsym.dynamics import lagrange, newton_euler  # noqa: E402
+from dhsym.kinematics.robot import Robot  # noqa: E402
+from dhsym.kinematics.simplification import prove_equal  # noqa: E402
+from dhsym.model.tablefile import read_table_text  # noqa: E402
+
+
+def timed(f, *a, **k):
+    t0 = time.perf_counter()
+    out = f(*a, **k)
+    return out, time.perf_counter() - t0
+
+
+def planar(n: int) -> Robot:
+    rows = "\n".join(
+        f"  - {{type: R, theta: q{i}, d: 0, a: l{i}, alpha: 0, m: m{i}, "
+        f"r: [lc{i} - l{i}, 0, 0], I: [0, I{i}, I{i}]}}"
+        for i in range(1, n + 1)
+    )
+    return Robot(read_table_text(f"gravity: [0, -g, 0]\njoints:\n{rows}"))
+
+
+def mechanics_planar(n: int) -> sp.Matrix:
+    """The same planar arm with sympy.physics.mechanics: M from LagrangesMethod."""
+    from sympy.physics import mechanics as me
+
+    q = me.dynamicsymbols(f"q1:{n + 1}")
+    g = sp.Symbol("g", real=True)
+    N = me.ReferenceFrame("N")
+    origin = me.Point("O")
+    origin.set_vel(N, 0)
+    joint = origin
+    bodies, angle = [], 0
+    for i in range(1, n + 1):
+        m, ln, lc, inertia = (sp.Symbol(f"{s}{i}", real=True) for s in ("m", "l", "lc", "I"))
+        angle = angle + q[i - 1]
+        F = me.ReferenceFrame(f"F{i}")
+        F.orient_axis(N, N.z, angle)
+        F.set_ang_vel(N, sum(qq.diff() for qq in q[:i]) * N.z)
+        C = joint.locatenew(f"C{i}", lc * F.x)
+        C.v2pt_theory(joint, N, F)
+        body = me.RigidBody(f"B{i}", C, F, m, (me.inertia(F, 0, inertia, inertia), C))
+        body.potential_energy = m * g * C.pos_from(origin).dot(N.y)
+        bodies.append(body)
+        previous, joint = joint, joint.locatenew(f"J{i}", ln * F.x)
+        joint.v2pt_theory(previous, N, F)  # both ends of link i are fixed in F_i
+    L = me.Lagrangian(N, *bodies)
+    lm = me.LagrangesMethod(L, q)
+    lm.form_lagranges_equations()
+    return lm.mass_matrix
+
+
+def main() -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--symbolic", action="store_true", help="also the fully symbolic PUMA 560")
+    p.add_argument("--batch", type=int, default=100_000, help="states in the rne batch")
+    args = p.parse_args()
+
+    puma = dhsym.load("puma560")
+    numeric = Robot(puma.table.substituted())
+    eom, t = timed(lagrange, numeric)
+    ops = sum(sp.count_ops(e) for e in (*eom.M, *eom.C, *eom.g))
+    verdict = "ok" if t < 30 else "over"
+    print(f"PUMA 560, numeric inertias: Lagrange M, C, g in {t:.1f} s [{verdict}: goal < 30 s]")
+    print(f"  M, C, g: {ops} operations in all")
+    _, t = timed(newton_euler, numeric)
+    print(f"PUMA 560, numeric inertias: Newton-Euler tau with its steps in {t:.1f} s")
+    if args.symbolic:
+        symbolic = Robot(
+            read_table_text(
+                "joints:\n"
+                + "\n".join(
+                    f"  - {{type: R, theta: theta{i}, d: {d}, a: {a}, alpha: {al}}}"
+                    for i, (d, a, al) in enumerate(
+                        [(0, 0, "pi/2"), (0, "a2", 0), ("d3", "a3", "-pi/2"),
+                         ("d4", 0, "pi/2"), (0, 0, "-pi/2"), (0, 0, 0)], start=1)
+                )
+            )
+        )  # fmt: skip
+        _, t = timed(lagrange, symbolic)
+        print(f"PUMA 560, symbolic inertias and lengths: Lagrange M, C, g in {t:.1f} s")
+
+    for n in (2, 3):
+        arm = planar(n)
+        ours, t_ours = timed(lagrange, arm)
+        theirs, t_them = timed(mechanics_planar, n)
+        from sympy.physics.mechanics import dynamicsymbols
+
+        subs = dict(zip(dynamicsymbols(f"q1:{n + 1}"), arm.variables))
+        same = prove_equal(theirs.subs(subs), ours.M)
+        print(
+            f"planar {n}R, symbolic: dhsym Lagrange {t_ours:.2f} s, sympy.physics.mechanics "
+            f"LagrangesMethod {t_them:.2f} s (ratio {t_them / t_ours:.2f}; same M: {same})"
+        )
+
+    f = puma.dynamics_functions()
+    rng = np.random.default_rng(0)
+    Q, V, A = (rng.uniform(-1, 1, (args.batch, 6)) for _ in range(3))
+    f.rne(Q[:8], V[:8], A[:8])  # compile (numpy path)
+    f.rne(Q[0], V[0], A[0])  # compile (one-state path)
+    _, t_batch = timed(f.rne, Q, V, A)
+    reps = 2000
+    t0 = time.perf_counter()
+    for k in range(reps):
+        f.rne(Q[k], V[k], A[k])
+    t_one = (time.perf_counter() - t0) / reps
+    print(
+        f"PUMA 560 compiled rne: batch of {args.batch} in {t_batch * 1e3:.1f} ms "
+        f"({t_batch / args.batch * 1e6:.2f} us/state); one state {t_one * 1e6:.1f} us"
+    )
+    try:
+        import pinocchio as pin
+
+        from tests.dynamics.test_compiled import pin_model
+    except ImportError:
+        print("pinocchio: not installed (pip install pin)")
+        return 0
+    model = pin_model(puma)
+    data = model.createData()
+    fr = f.friction(V)
+    pin.rnea(model, data, Q[0], V[0], A[0])
+    t0 = time.perf_counter()
+    out = np.empty_like(Q)
+    for k in range(args.batch):
+        out[k] = pin.rnea(model, data, Q[k], V[k], A[k])
+    t_pin = time.perf_counter() - t0
+    agree = np.allclose(out, f.rne(Q, V, A) - fr, atol=1e-8)
+    print(
+        f"pinocchio rnea from Python: {args.batch} states in {t_pin * 1e3:.1f} ms "
+        f"({t_pin / args.batch * 1e6:.2f} us/state); batched dhsym is {t_pin / t_batch:.1f}x "
+        f"faster; one state: pinocchio {t_pin / args.batch * 1e6:.1f} us vs dhsym "
+        f"{t_one * 1e6:.1f} us (ratio {t_one / (t_pin / args.batch):.1f}); agree: {agree}"
+    )
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

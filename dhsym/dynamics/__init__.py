@@ -1,0 +1,31 @@
+"""Robot dynamics: the equations of motion of a DH chain, derived as the lecture does.
+
+Owns the inertial model of a chain, Lagrange–Euler and recursive Newton–Euler (both DH
+conventions), statics, the regressor and base parameters, and their compiled numbers.
+May import ``model``, ``notation`` and ``kinematics``.
+"""
+
+from __future__ import annotations
+
+from .equations import EquationsOfMotion, NEStep
+from .lagrange import lagrange
+from .model import DynamicModel, dynamic_model, rate_symbols
+from .newton_euler import newton_euler
+from .regressor import BaseParameters, Regressor, base_parameters, regressor
+from .statics import Statics, statics
+
+__all__ = [
+    "BaseParameters",
+    "DynamicModel",
+    "Regressor",
+    "Statics",
+    "base_parameters",
+    "regressor",
+    "statics",
+    "EquationsOfMotion",
+    "NEStep",
+    "dynamic_model",
+    "lagrange",
+    "newton_euler",
+    "rate_symbols",
+]

@@ -1,0 +1,261 @@
+"""Numbers of the equations of motion, compiled once and batched like ``fk``.
+
+The expressions are those of :mod:`.newton_euler`, raw (never expanded: the recursion's
+shared subexpressions are what :func:`~dhsym.kinematics.numeric.compile_exprs` finds
+with ``cse``); with roboticstoolbox's names:
+
+* ``rne(q, qd, qdd)``: joint torques, with ``Jm G²`` and friction ``B G² q̇ + |G| Tc``;
+* ``inertia(q)``: M(q) (with ``Jm G²``), ``M[:, j] = τ(q, 0, e_j)`` without gravity;
+* ``coriolis(q, qd)``: C(q, q̇) from the Christoffel symbols
+  ``c_jk = ½ ∂²τ(q, q̇, 0)/∂q̇_j∂q̇_k`` (so ``C @ qd`` is the velocity term);
+* ``gravload(q)``: g(q); ``accel(q, qd, tau)``: forward dynamics; ``simulate``: RK4.
+
+Every argument is one state ``(n,)`` or a batch ``(..., n)``.
+
+Examples
+--------
+>>> from dhsym.kinematics.robot import Robot
+>>> from dhsym.model.tablefile import read_table_text
+>>> pendulum = Robot(read_table_text('''
+... gravity: [0, -9.81, 0]
+... joints: [{type: R, theta: q1, d: 0, a: 1, alpha: 0, m: 2, r: [-0.5, 0, 0], I: [0, 0.1, 0.1]}]
+... '''))
+>>> f = dynamics_functions(pendulum)
+>>> f.gravload([0.0]), f.inertia([0.0]), f.rne([[0.0], [0.0]], [[0.0], [1.0]], [[1.0], [0.0]])
+(array([9.81]), array([[0.6]]), array([[10.41],
+       [ 9.81]]))
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+import sympy as sp
+
+from dhsym.errors import DHError
+from dhsym.kinematics.numeric import compile_exprs, to_float
+
+from .lagrange import potential_energies
+from .model import DynamicModel, dynamic_model
+from .newton_euler import rne_expressions
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.robot import Robot
+
+__all__ = ["DynamicsFunctions", "Trajectory", "dynamics_functions"]
+
+_CHUNK = 4096
+
+
+class _Compiled:
+    """``f(*arrays)`` of compiled expressions into an array ``(..., *shape)``; code is
+    generated on first use (numpy for batches, plain floats for one state)."""
+
+    def __init__(
+        self, exprs: Sequence[sp.Expr], args: Sequence[sp.Symbol], shape: tuple[int, ...]
+    ) -> None:
+        self.shape = shape
+        self.size = int(np.prod(shape)) if shape else 1
+        self._exprs = list(exprs)
+        self._args = list(args)
+        self._batch: object = None
+        self._single: object = None
+
+    def __call__(self, *parts: np.ndarray) -> np.ndarray:
+        lead = parts[0].shape[:-1]
+        if not lead:  # one state: plain Python floats
+            if self._single is None:
+                self._single = compile_exprs(self._exprs, self._args, floats=True)
+            values = self._single(*[x for p in parts for x in p.tolist()])  # type: ignore[operator]
+            return np.array(values, dtype=float).reshape(self.shape)
+        if self._batch is None:
+            self._batch = compile_exprs(self._exprs, self._args)
+        flat = [p.reshape(-1, p.shape[-1]) for p in parts]
+        N = flat[0].shape[0]
+        out = np.empty((N, self.size))
+        for start in range(0, N, _CHUNK):
+            cols = [c for p in flat for c in p[start : start + _CHUNK].T]
+            size = min(_CHUNK, N - start)
+            for k, v in enumerate(self._batch(*cols)):  # type: ignore[operator]
+                out[start : start + size, k] = v
+        return out.reshape(*lead, *self.shape)
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """A simulated motion: times ``t`` ``(T,)``, ``q`` and ``qd`` ``(T, ..., n)``."""
+
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+
+
+class DynamicsFunctions:
+    """The compiled dynamics of one robot with numeric parameters (see the module docstring).
+
+    One function is compiled, ``τ(q, q̇, q̈, g)`` of the Newton–Euler recursion (the
+    gravity vector an argument); M, C and g are read off it as roboticstoolbox does:
+    ``M[:, j] = τ(q, 0, e_j, 0)``, ``g = τ(q, 0, 0, g)``, and the Christoffel symbols
+    ``c_jj = τ(q, e_j, 0, 0)``, ``c_jk = (τ(q, e_j + e_k, 0, 0) − c_jj − c_kk) / 2``.
+    """
+
+    def __init__(self, dm: DynamicModel) -> None:
+        self.model = dm
+        n = self.n = dm.n
+        q, qd, qdd = dm.variables, dm.rates, dm.accelerations
+        gsym = sp.symbols("gx gy gz", real=True, cls=sp.Dummy)
+        tau = rne_expressions(dm, gravity=gsym)
+        self._rne = _Compiled(tau, (*q, *qd, *qdd, *gsym), (n,))
+        self._potential = _Compiled([sum(potential_energies(dm), sp.Integer(0))], q, (1,))
+        self.gravity = np.array([to_float(g) for g in dm.gravity])
+        links = [dm.links[r - 1] for r in dm.joints]
+        try:
+            self._viscous = np.array([to_float(L.B * L.G**2) for L in links])
+            self._coulomb = np.array(
+                [[to_float(abs(L.G) * L.Tc[0]), to_float(abs(L.G) * L.Tc[1])] for L in links]
+            )
+        except DHError as err:
+            raise DHError(f"friction: {err.message}") from None
+        self.has_friction = bool(np.any(self._viscous) or np.any(self._coulomb))
+
+    def _tau(self, Q: np.ndarray, V: np.ndarray, A: np.ndarray, g: np.ndarray) -> np.ndarray:
+        return self._rne(Q, V, A, np.broadcast_to(g, (*Q.shape[:-1], 3)))
+
+    # --- the calls ---------------------------------------------------------------------
+    def _states(self, *xs: object) -> list[np.ndarray]:
+        arrays = [np.asarray(x, dtype=float) for x in xs]
+        for a in arrays:
+            if a.ndim == 0 or a.shape[-1] != self.n:
+                raise DHError(f"expected {self.n} joint values per state, got shape {a.shape}")
+        shape = np.broadcast_shapes(*(a.shape for a in arrays))
+        return [np.broadcast_to(a, shape) for a in arrays]
+
+    def friction(self, qd: object) -> np.ndarray:
+        """The friction torque ``B G² q̇ + |G| Tc`` (``Tc+`` when ``q̇ > 0``, ``Tc−`` below)."""
+        (v,) = self._states(qd)
+        coulomb = np.where(v > 0, self._coulomb[:, 0], np.where(v < 0, self._coulomb[:, 1], 0.0))
+        return self._viscous * v + coulomb
+
+    def rne(self, q: object, qd: object, qdd: object, *, friction: bool = True) -> np.ndarray:
+        """Joint torques τ(q, q̇, q̈) (with gravity, motor inertia and friction)."""
+        Q, V, A = self._states(q, qd, qdd)
+        tau = self._tau(Q, V, A, self.gravity)
+        return tau + self.friction(V) if friction and self.has_friction else tau
+
+    def inertia(self, q: object) -> np.ndarray:
+        """M(q), ``(..., n, n)``."""
+        (Q,) = self._states(q)
+        zero, unit = np.zeros_like(Q), np.eye(self.n)
+        cols = [
+            self._tau(Q, zero, np.broadcast_to(unit[j], Q.shape), np.zeros(3))
+            for j in range(self.n)
+        ]
+        return np.stack(cols, axis=-1)
+
+    def christoffel(self, q: object) -> np.ndarray:
+        """The Christoffel symbols ``c[..., i, j, k]`` = Spong's ``c_ijk`` (0-based)."""
+        (Q,) = self._states(q)
+        zero, unit, g0 = np.zeros_like(Q), np.eye(self.n), np.zeros(3)
+
+        def h(v: np.ndarray) -> np.ndarray:
+            return self._tau(Q, np.broadcast_to(v, Q.shape), zero, g0)
+
+        c = np.empty((*Q.shape[:-1], self.n, self.n, self.n))
+        diag = [h(unit[j]) for j in range(self.n)]
+        for j in range(self.n):
+            c[..., j, j, :] = diag[j]
+            for k in range(j + 1, self.n):
+                c[..., j, k, :] = c[..., k, j, :] = (h(unit[j] + unit[k]) - diag[j] - diag[k]) / 2
+        return c
+
+    def coriolis(self, q: object, qd: object) -> np.ndarray:
+        """C(q, q̇) with ``C[k, j] = Σ_i c_ijk q̇_i``, ``(..., n, n)``."""
+        Q, V = self._states(q, qd)
+        c = self.christoffel(Q)
+        return np.einsum("...ijk,...i->...kj", c, V)
+
+    def gravload(self, q: object) -> np.ndarray:
+        """g(q), the torques that hold the arm still against gravity."""
+        (Q,) = self._states(q)
+        return self._tau(Q, np.zeros_like(Q), np.zeros_like(Q), self.gravity)
+
+    def accel(self, q: object, qd: object, tau: object) -> np.ndarray:
+        """Forward dynamics: q̈ = M(q)⁻¹ (τ − C q̇ − g − friction)."""
+        Q, V, T = self._states(q, qd, tau)
+        bias = self.rne(Q, V, np.zeros_like(Q))
+        return np.linalg.solve(self.inertia(Q), (T - bias)[..., None])[..., 0]
+
+    def energy(self, q: object, qd: object) -> np.ndarray:
+        """Total energy ``½ q̇ᵀ M q̇ + P(q)`` (motor inertia included)."""
+        Q, V = self._states(q, qd)
+        kinetic = 0.5 * np.einsum("...i,...ij,...j->...", V, self.inertia(Q), V)
+        return kinetic + self._potential(Q)[..., 0]
+
+    def simulate(
+        self,
+        q0: object,
+        qd0: object,
+        duration: float,
+        *,
+        dt: float = 1e-3,
+        tau: object = None,
+    ) -> Trajectory:
+        """Integrate the motion with fixed-step RK4 from ``(q0, qd0)`` for ``duration`` s.
+
+        ``tau`` is None (no drive: a free swing), a constant torque ``(n,)`` or a
+        function ``tau(t, q, qd)``. States may be batched: ``q0`` ``(..., n)``.
+        """
+        Q, V = (np.array(a, dtype=float) for a in self._states(q0, qd0))
+        steps = max(1, int(round(duration / dt)))
+        h = duration / steps
+
+        def drive(t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+            if tau is None:
+                return np.zeros_like(q)
+            if callable(tau):
+                return np.broadcast_to(np.asarray(tau(t, q, v), dtype=float), q.shape)
+            return np.broadcast_to(np.asarray(tau, dtype=float), q.shape)
+
+        def f(t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            return v, self.accel(q, v, drive(t, q, v))
+
+        ts = np.linspace(0.0, steps * h, steps + 1)
+        qs, vs = [Q], [V]
+        for k in range(steps):
+            t = ts[k]
+            k1q, k1v = f(t, Q, V)
+            k2q, k2v = f(t + h / 2, Q + h / 2 * k1q, V + h / 2 * k1v)
+            k3q, k3v = f(t + h / 2, Q + h / 2 * k2q, V + h / 2 * k2v)
+            k4q, k4v = f(t + h, Q + h * k3q, V + h * k3v)
+            Q = Q + h / 6 * (k1q + 2 * k2q + 2 * k3q + k4q)
+            V = V + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
+            qs.append(Q)
+            vs.append(V)
+        return Trajectory(ts, np.stack(qs), np.stack(vs))
+
+
+def dynamics_functions(
+    robot: Robot, values: Mapping[object, object] | None = None, *, textbook: bool = True
+) -> DynamicsFunctions:
+    """Compile the dynamics of ``robot`` with the table's values and ``values`` (numbers
+    for lengths and inertial symbols), substituted before the recursion is written out
+    (zero products vanish there), so the compiled code is as short as the numbers allow."""
+    from dhsym.kinematics.robot import Robot
+    from dhsym.model.table import symbol_values
+
+    table = robot.table
+    extra = symbol_values(values)
+    known = set(table.constants) | set().union(
+        *(r.inertia.free_symbols for r in table.rows if r.inertia),
+        *(g.free_symbols for g in table.gravity),
+    )
+    vals = {**table.value_map, **{k: v for k, v in extra.items() if k in known}}
+    numeric = Robot(replace(table, values=tuple(vals.items())).substituted())
+    dm = dynamic_model(numeric, textbook=textbook)
+    if extra:  # values for the textbook symbols of rows without parameters
+        gravity = tuple(g.xreplace(extra) for g in dm.gravity)
+        dm = replace(dm, links=tuple(L.subs(extra) for L in dm.links), gravity=gravity)
+    return DynamicsFunctions(dm)

@@ -1,0 +1,133 @@
+"""The inertial model of a chain: each link's parameters, the joint rates and gravity.
+
+A link *i* is the body that carries DH frame *i*; joint *j* moves the links ``i ≥ j``.
+Rows without inertial parameters get the textbook symbolic set
+(:meth:`~dhsym.model.inertia.LinkInertia.textbook`) when ``textbook=True``; fixed
+rows without parameters carry no mass.
+
+Examples
+--------
+>>> import dhsym
+>>> dm = dynamic_model(dhsym.load("planar2r"))
+>>> dm.rates, dm.accelerations
+((thetadot1, thetadot2), (thetaddot1, thetaddot2))
+>>> dm.links[0].m, dm.gravity
+(m1, (0, 0, -981/100))
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import sympy as sp
+
+from dhsym.errors import DHError
+from dhsym.model.inertia import LinkInertia
+from dhsym.model.table import JointType
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.robot import Robot
+
+__all__ = ["DynamicModel", "dynamic_model", "rate_symbols"]
+
+Matrix = sp.ImmutableMatrix
+_ZERO_LINK = LinkInertia(0, (0, 0, 0), sp.zeros(3, 3))
+_NAME = re.compile(r"^(.*?)_?(\d+)$")
+
+
+def rate_symbols(variables: Sequence[sp.Symbol], order: int = 1) -> tuple[sp.Symbol, ...]:
+    """The symbols of the joint rates (``order=1``) or accelerations (``order=2``).
+
+    ``theta1`` gives ``thetadot1`` and ``thetaddot1``, which sympy prints as
+    :math:`\\dot\\theta_1`, :math:`\\ddot\\theta_1`.
+
+    >>> rate_symbols(sp.symbols("theta1 d3")), rate_symbols(sp.symbols("q2,"), 2)
+    ((thetadot1, ddot3), (qddot2,))
+    """
+    suffix = {1: "dot", 2: "ddot"}[order]
+    out = []
+    for v in variables:
+        m = _NAME.match(v.name)
+        name = f"{m.group(1)}{suffix}{m.group(2)}" if m else f"{v.name}{suffix}"
+        out.append(sp.Symbol(name, real=True))
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class DynamicModel:
+    """A robot with the inertial parameters of every link (one per DH row).
+
+    ``joints[k]`` is the 1-based row of the k-th joint variable; ``gravity`` is the
+    gravitational acceleration written in DH frame 0.
+    """
+
+    robot: Robot = field(compare=False, repr=False)
+    links: tuple[LinkInertia, ...]
+    variables: tuple[sp.Symbol, ...]
+    rates: tuple[sp.Symbol, ...]
+    accelerations: tuple[sp.Symbol, ...]
+    joints: tuple[int, ...]
+    kinds: tuple[JointType, ...]
+    gravity: tuple[sp.Expr, sp.Expr, sp.Expr]
+
+    @property
+    def n(self) -> int:
+        """Number of joint variables."""
+        return len(self.variables)
+
+    @property
+    def parameters(self) -> tuple[sp.Symbol, ...]:
+        """The constant symbols of the inertial parameters and gravity, sorted by name."""
+        syms = set().union(*(L.free_symbols for L in self.links))
+        syms |= set().union(*(g.free_symbols for g in self.gravity))
+        return tuple(sorted(syms, key=lambda s: s.name))
+
+    @property
+    def masses(self) -> tuple[sp.Symbol, ...]:
+        """The symbols of the link masses (what printed results are collected by)."""
+        syms = set().union(*(L.m.free_symbols for L in self.links))
+        return tuple(sorted(syms, key=lambda s: s.name))
+
+    @property
+    def has_drive(self) -> bool:
+        """Whether any joint has motor inertia or friction."""
+        return any(self.links[r - 1].has_drive for r in self.joints)
+
+    def armature(self) -> tuple[sp.Expr, ...]:
+        """``Jm G²`` per joint (the motor inertia seen at the joint)."""
+        return tuple(self.links[r - 1].Jm * self.links[r - 1].G ** 2 for r in self.joints)
+
+
+def dynamic_model(robot: Robot, *, textbook: bool = True) -> DynamicModel:
+    """The inertial model of ``robot``; rows without parameters get the textbook set.
+
+    With ``textbook=False`` a joint row without parameters is an error.
+    """
+    table = robot.table
+    links = []
+    for i, row in enumerate(table.rows, start=1):
+        if row.inertia is not None:
+            links.append(row.inertia)
+        elif row.joint is JointType.FIXED:
+            links.append(_ZERO_LINK)
+        elif textbook:
+            links.append(LinkInertia.textbook(i))
+        else:
+            raise DHError(f"row {i} has no inertial parameters (m, r, I)")
+    gravity = Matrix(table.gravity)
+    if table.base:  # gravity is given in the world frame: write it in frame 0
+        gravity = Matrix(robot.transform(0, -1).matrix[:3, :3] * gravity)
+    variables = table.variables
+    return DynamicModel(
+        robot,
+        tuple(links),
+        variables,
+        rate_symbols(variables),
+        rate_symbols(variables, 2),
+        table.joint_rows,
+        tuple(table.rows[r - 1].joint for r in table.joint_rows),
+        tuple(sp.expand(g) for g in gravity),  # type: ignore[arg-type]
+    )

@@ -1,0 +1,332 @@
+"""Compiled numbers against independent references: a plain-numpy Newton–Euler written
+here from the textbook recursions (Luh–Walker–Paul for standard DH as in Spong §7.5 and
+Corke; Craig §6.5 for modified DH), and pinocchio's ``rnea``."""
+
+# ruff: noqa: E501  (table rows are one line each, as in a table file)
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import dhsym
+from dhsym.kinematics.robot import Robot
+from dhsym.model.tablefile import read_table_text
+from tests.conftest import _need
+
+PARAMS = """
+  - {{type: R, theta: q1, d: 0.3, a: 0.1, alpha: {al1}, m: 3.0, r: [-0.05, 0.02, 0.1], I: [0.04, 0.05, 0.03, 0.001, -0.002, 0.003], Jm: 0.0002, G: 50}}
+  - {{type: R, theta: q2, d: 0.05, a: 0.45, alpha: {al2}, m: 2.5, r: [-0.2, 0.01, 0.02], I: [0.01, 0.06, 0.06, 0.002, 0.001, -0.001]}}
+  - {{type: {t3}, theta: {th3}, d: {d3}, a: 0.02, alpha: {al3}, m: 1.2, r: [0.01, -0.03, 0.05], I: [0.02, 0.02, 0.01, 0, 0.001, 0]}}
+  - {{type: R, theta: q4, d: 0.4, a: 0, alpha: {al4}, m: 0.6, r: [0, 0.02, -0.01], I: [0.003, 0.002, 0.003, 0, 0, 0.0005]}}
+"""
+
+
+def arm(convention: str, prismatic: bool = False) -> Robot:
+    rows = PARAMS.format(
+        al1="pi/2",
+        al2="0.3" if convention == "standard" else "pi/2",
+        al3="-pi/2",
+        al4="pi/3",
+        t3="P" if prismatic else "R",
+        th3="0.4" if prismatic else "q3 + 0.2",
+        d3="d3" if prismatic else "0.1",
+    )
+    text = (
+        f"convention: {convention}\nsnap_angles: false\ngravity: [0.5, -1.0, -9.81]\njoints:{rows}"
+    )
+    return Robot(read_table_text(text))
+
+
+# --- the textbook recursions, plain numpy -------------------------------------------------------
+
+
+def _rot_x(a):
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
+
+
+def _rot_z(t):
+    c, s = np.cos(t), np.sin(t)
+    return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+
+
+def _rows(robot, q):
+    """Per row: kind, theta, d, a, alpha as floats; m, r, I, Jm*G^2."""
+    out, k = [], 0
+    for row in robot.table.rows:
+        sub = {row.variable: q[k]} if row.variable is not None else {}
+        k += row.variable is not None
+        theta, d, a, alpha = (
+            float(getattr(row, f).subs(sub)) for f in ("theta", "d", "a", "alpha")
+        )
+        L = row.inertia
+        out.append(
+            (
+                row.joint.value,
+                theta,
+                d,
+                a,
+                alpha,
+                float(L.m),
+                np.array([float(v) for v in L.r]),
+                np.array(L.I.tolist(), dtype=float),
+                float(L.Jm * L.G**2),
+            )
+        )
+    return out
+
+
+def ne_standard(robot, q, qd, qdd, g):
+    """Luh, Walker and Paul: z_{i-1} axes, p*_i = o_i - o_{i-1} in frame i."""
+    rows = _rows(robot, q)
+    n = len(rows)
+    z = np.array([0.0, 0, 1])
+    w, wd, vd = np.zeros(3), np.zeros(3), -np.asarray(g, float)
+    store = []
+    for i, (kind, th, d, a, al, m, r, J, arm_) in enumerate(rows):
+        Rm = _rot_z(th) @ _rot_x(al)  # ^{i-1}R_i
+        Rt = Rm.T
+        pstar = np.array([a, d * np.sin(al), d * np.cos(al)])  # o_{i-1} -> o_i in frame i
+        if kind == "R":
+            w_new = Rt @ (w + z * qd[i])
+            wd_new = Rt @ (wd + z * qdd[i] + np.cross(w, z * qd[i]))
+            vd_new = np.cross(wd_new, pstar) + np.cross(w_new, np.cross(w_new, pstar)) + Rt @ vd
+        else:
+            w_new = Rt @ w
+            wd_new = Rt @ wd
+            vd_new = (
+                Rt @ (z * qdd[i] + vd)
+                + np.cross(wd_new, pstar)
+                + 2 * np.cross(w_new, Rt @ z * qd[i])
+                + np.cross(w_new, np.cross(w_new, pstar))
+            )
+        w, wd, vd = w_new, wd_new, vd_new
+        vc = np.cross(wd, r) + np.cross(w, np.cross(w, r)) + vd
+        F = m * vc
+        N = J @ wd + np.cross(w, J @ w)
+        store.append((Rm, pstar, r, F, N, kind, arm_))
+    tau = np.zeros(n)
+    f, nn = np.zeros(3), np.zeros(3)
+    for i in range(n - 1, -1, -1):
+        Rm, pstar, r, F, N, kind, arm_ = store[i]
+        R_next = store[i + 1][0] if i + 1 < n else np.eye(3)
+        nn = R_next @ (nn + np.cross(R_next.T @ pstar, f)) + np.cross(pstar + r, F) + N
+        f = R_next @ f + F
+        axis = Rm.T @ z  # z_{i-1} in frame i
+        tau[i] = (nn @ axis if kind == "R" else f @ axis) + arm_ * qdd[i]
+    return tau
+
+
+def ne_modified(robot, q, qd, qdd, g):
+    """Craig, Introduction to Robotics, Eqs. 6.45-6.53 (outward) and 6.49-6.51 (inward)."""
+    rows = _rows(robot, q)
+    n = len(rows)
+    z = np.array([0.0, 0, 1])
+    w, wd, vd = np.zeros(3), np.zeros(3), -np.asarray(g, float)
+    Rs, ps, out = [], [], []
+    for i, (kind, th, d, a, al, m, r, J, arm_) in enumerate(rows):
+        Rm = _rot_x(al) @ _rot_z(th)  # ^{i-1}R_i
+        p = _rot_x(al) @ np.array([a, 0, 0]) + Rm @ np.array([0, 0, d])  # ^{i-1}P_i
+        Rt = Rm.T
+        if kind == "R":
+            w_new = Rt @ w + qd[i] * z
+            wd_new = Rt @ wd + np.cross(Rt @ w, qd[i] * z) + qdd[i] * z
+            vd_new = Rt @ (np.cross(wd, p) + np.cross(w, np.cross(w, p)) + vd)
+        else:
+            w_new = Rt @ w
+            wd_new = Rt @ wd
+            vd_new = (
+                Rt @ (np.cross(wd, p) + np.cross(w, np.cross(w, p)) + vd)
+                + 2 * np.cross(w_new, qd[i] * z)
+                + qdd[i] * z
+            )
+        w, wd, vd = w_new, wd_new, vd_new
+        vc = np.cross(wd, r) + np.cross(w, np.cross(w, r)) + vd
+        out.append((m * vc, J @ wd + np.cross(w, J @ w), r, kind, arm_))
+        Rs.append(Rm)
+        ps.append(p)
+    tau = np.zeros(n)
+    f, nn = np.zeros(3), np.zeros(3)
+    for i in range(n - 1, -1, -1):
+        F, N, r, kind, arm_ = out[i]
+        if i + 1 < n:
+            R_next, p_next = Rs[i + 1], ps[i + 1]
+        else:
+            R_next, p_next = np.eye(3), np.zeros(3)
+        f_new = R_next @ f + F
+        nn = N + R_next @ nn + np.cross(r, F) + np.cross(p_next, R_next @ f)
+        f = f_new
+        tau[i] = (nn @ z if kind == "R" else f @ z) + arm_ * qdd[i]
+    return tau
+
+
+REFERENCE = {"standard": ne_standard, "modified": ne_modified}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+@pytest.mark.parametrize("prismatic", [False, True])
+def test_rne_matches_the_textbook_recursion(convention, prismatic):
+    robot = arm(convention, prismatic)
+    g = np.array([0.5, -1.0, -9.81])
+    rng = np.random.default_rng(1)
+    Q, V, A = (rng.uniform(-2, 2, (6, 4)) for _ in range(3))
+    batch = robot.rne(Q, V, A)
+    for q, v, a, tau in zip(Q, V, A, batch):
+        expected = REFERENCE[convention](robot, q, v, a, g)
+        assert np.allclose(tau, expected, atol=1e-10)
+        assert np.allclose(robot.rne(q, v, a), expected, atol=1e-10)  # the one-state path
+
+
+# --- pinocchio --------------------------------------------------------------------------------
+
+
+def _pinocchio():
+    try:
+        import pinocchio
+    except ImportError:
+        pinocchio = None
+    _need("pinocchio", pinocchio is not None, "pip install pin")
+    return pinocchio
+
+
+def pin_model(robot):
+    """A pinocchio model built from the DH words: a joint at each elementary that holds a
+    joint variable, the constant elementaries before it as its placement."""
+    pin = _pinocchio()
+    from dhsym.kinematics.numeric import elementary_stack, to_float
+
+    robot = Robot(robot.table.substituted())
+    model = pin.Model()
+    parent, pending = 0, np.eye(4)
+    armature = []
+    for i, row in enumerate(robot.table.rows, start=1):
+        for e in robot.link_word(i):
+            var = row.variable
+            if var is not None and var in e.value.free_symbols:
+                pending = (
+                    pending @ elementary_stack(e.kind, e.axis, [to_float(e.value.subs(var, 0))])[0]
+                )
+                joint = pin.JointModelRZ() if e.kind == "R" else pin.JointModelPZ()
+                parent = model.addJoint(
+                    parent, joint, pin.SE3(pending[:3, :3], pending[:3, 3]), f"j{i}"
+                )
+                pending = np.eye(4)
+            else:
+                pending = pending @ elementary_stack(e.kind, e.axis, [to_float(e.value)])[0]
+        L = row.inertia
+        inertia = pin.Inertia(
+            float(L.m), np.array([float(v) for v in L.r]), np.array(L.I.tolist(), dtype=float)
+        )
+        model.appendBodyToJoint(parent, inertia, pin.SE3(pending[:3, :3], pending[:3, 3]))
+        armature.append(to_float(L.Jm * L.G**2))
+    model.armature = np.array(armature)
+    model.gravity.linear = np.array([float(v) for v in robot.table.gravity])
+    return model
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+@pytest.mark.parametrize("prismatic", [False, True])
+def test_rne_matches_pinocchio(convention, prismatic):
+    pin = _pinocchio()
+    robot = arm(convention, prismatic)
+    model = pin_model(robot)
+    data = model.createData()
+    rng = np.random.default_rng(2)
+    Q, V, A = (rng.uniform(-2, 2, (5, 4)) for _ in range(3))
+    ours = robot.rne(Q, V, A)
+    for q, v, a, tau in zip(Q, V, A, ours):
+        assert np.allclose(tau, pin.rnea(model, data, q, v, a), atol=1e-10)
+        M = pin.crba(model, data, q)
+        M = np.triu(M) + np.triu(M, 1).T
+        assert np.allclose(robot.inertia(q), M, atol=1e-10)
+        C = pin.computeCoriolisMatrix(model, data, q, v)
+        assert np.allclose(robot.coriolis(q, v) @ v, C @ v, atol=1e-10)
+
+
+@pytest.mark.slow
+def test_puma560_against_pinocchio_and_published_gravity_load():
+    pin = _pinocchio()
+    robot = dhsym.load("puma560")
+    qn = np.array([0, np.pi / 4, np.pi, 0, np.pi / 4, 0])
+    # roboticstoolbox's Puma560().gravload(qn), from its documentation
+    assert np.allclose(robot.gravload(qn), [0, 31.6399, 6.0351, 0, 0.0283, 0], atol=1e-4)
+    model = pin_model(robot)
+    data = model.createData()
+    rng = np.random.default_rng(3)
+    Q, V, A = (rng.uniform(-2, 2, (4, 6)) for _ in range(3))
+    ours = robot.rne(Q, V, A) - robot.dynamics_functions().friction(V)
+    for q, v, a, tau in zip(Q, V, A, ours):
+        assert np.allclose(tau, pin.rnea(model, data, q, v, a), atol=1e-9)
+
+
+# --- the laws ---------------------------------------------------------------------------------
+
+
+@pytest.mark.slow
+def test_forward_dynamics_inverts_rne_and_friction_is_motor_side():
+    robot = arm("modified")
+    f = robot.dynamics_functions()
+    rng = np.random.default_rng(4)
+    Q, V, A = (rng.uniform(-2, 2, (7, 4)) for _ in range(3))
+    tau = robot.rne(Q, V, A)
+    assert np.allclose(robot.accel(Q, V, tau), A, atol=1e-9)
+    M = robot.inertia(Q)
+    assert np.allclose(M, np.swapaxes(M, -1, -2))
+    assert np.all(np.linalg.eigvalsh(M) > 0)
+    h = robot.coriolis(Q, V) @ V[..., None]
+    assert np.allclose(M @ A[..., None] + h + robot.gravload(Q)[..., None], tau[..., None])
+    assert not f.has_friction
+    assert np.isclose(M[0, 0, 0] - arm("modified").inertia(Q[0])[0, 0], 0)
+
+
+def test_friction_and_motor_inertia_follow_roboticstoolbox():
+    text = """
+joints:
+  - {type: R, theta: q1, d: 0, a: 1, alpha: 0, m: 1, r: [-0.5, 0, 0], I: [0, 0.1, 0.1], Jm: 0.001, G: -10, B: 0.01, Tc: [0.2, -0.3]}
+"""
+    robot = Robot(read_table_text(text))
+    g = 9.81 * 0  # gravity along -z: the horizontal arm feels none
+    base = 1 * 0.25 + 0.1 + 0.001 * 100  # m lc^2 + Izz + Jm G^2
+    assert np.allclose(robot.inertia([0.0]), [[base]])
+    assert np.allclose(robot.rne([0.0], [2.0], [0.0]), [0.01 * 100 * 2 + 10 * 0.2 + g])
+    assert np.allclose(robot.rne([0.0], [-2.0], [0.0]), [-0.01 * 100 * 2 + 10 * -0.3])
+    assert np.allclose(robot.rne([0.0], [0.0], [1.0]), [base])
+
+
+def test_energy_is_conserved_in_a_free_swing():
+    text = """
+gravity: [0, -9.81, 0]
+joints:
+  - {type: R, theta: q1, d: 0, a: 1, alpha: 0, m: 1, r: [-0.5, 0, 0], I: [0.01, 0.1, 0.1]}
+  - {type: R, theta: q2, d: 0, a: 0.8, alpha: 0, m: 0.7, r: [-0.4, 0.02, 0], I: [0.01, 0.05, 0.05]}
+"""
+    robot = Robot(read_table_text(text))
+    f = robot.dynamics_functions()
+    traj = robot.simulate([0.3, -0.2], [0.0, 1.0], 2.0, dt=1e-3)
+    E = f.energy(traj.q, traj.qd)
+    assert traj.q.shape == (2001, 2)
+    assert np.ptp(E) < 1e-6 * max(1.0, abs(E[0]))
+    assert np.ptp(traj.q[:, 0]) > 0.1  # it did swing
+    batch = robot.simulate([[0.3, -0.2], [0.0, 0.0]], [[0.0, 1.0], [0.0, 0.0]], 0.1, dt=1e-2)
+    assert batch.q.shape == (11, 2, 2)
+    assert np.allclose(batch.q[-1, 0], traj.q[100], atol=1e-6)
+
+
+def test_shapes_follow_fk():
+    robot = dhsym.load("planar2r")
+    values = {f"{k}{i}": v for i in (1, 2) for k, v in (("m", 1.0), ("rx", -0.3), ("ry", 0.0))}
+    values |= {f"rz{i}": 0.0 for i in (1, 2)} | {f"Izz{i}": 0.1 for i in (1, 2)}
+    values |= {f"{k}{i}": 0.05 for i in (1, 2) for k in ("Ixx", "Iyy")}
+    values |= {f"{k}{i}": 0.0 for i in (1, 2) for k in ("Ixy", "Iyz", "Ixz")}
+    assert robot.rne([0, 0], [0, 0], [0, 0], values=values).shape == (2,)
+    assert robot.rne(np.zeros((3, 5, 2)), 0.0 * np.ones(2), np.ones(2), values=values).shape == (
+        3,
+        5,
+        2,
+    )
+    assert robot.inertia(np.zeros((4, 2)), values=values).shape == (4, 2, 2)
+    assert robot.coriolis(np.zeros((4, 2)), np.ones((4, 2)), values=values).shape == (4, 2, 2)
+    with pytest.raises(dhsym.DHError, match="no numeric value"):
+        robot.rne([0, 0], [0, 0], [0, 0])

@@ -1,0 +1,157 @@
+"""Lagrange–Euler: Spong's two-link planar elbow arm exactly, and the laws M and C obey."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy as sp
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import dhsym
+from dhsym.dynamics import lagrange
+from dhsym.dynamics.lagrange import christoffel_symbols, link_jacobians, tidy
+from dhsym.dynamics.model import dynamic_model
+from dhsym.kinematics.robot import Robot
+from dhsym.kinematics.simplification import prove_equal
+from dhsym.model.tablefile import read_table_text
+
+S = sp.Symbol
+
+
+def R(name: str) -> sp.Symbol:
+    return sp.Symbol(name, real=True)
+
+
+SPONG = """
+name: Two-link planar elbow arm (Spong)
+convention: {convention}
+gravity: [0, -g, 0]
+joints:
+{rows}
+"""
+STANDARD_ROWS = """\
+  - {type: R, theta: q1, d: 0, a: l1, alpha: 0, m: m1, r: [lc1 - l1, 0, 0], I: [Ix1, Iy1, I1]}
+  - {type: R, theta: q2, d: 0, a: l2, alpha: 0, m: m2, r: [lc2 - l2, 0, 0], I: [Ix2, Iy2, I2]}"""
+# Craig's frames: frame i sits at joint i, so the centre of mass is at lc_i along x_i
+MODIFIED_ROWS = """\
+  - {type: R, theta: q1, d: 0, a: 0, alpha: 0, m: m1, r: [lc1, 0, 0], I: [Ix1, Iy1, I1]}
+  - {type: R, theta: q2, d: 0, a: l1, alpha: 0, m: m2, r: [lc2, 0, 0], I: [Ix2, Iy2, I2]}"""
+
+
+def spong_arm(convention: str = "standard") -> Robot:
+    rows = STANDARD_ROWS if convention == "standard" else MODIFIED_ROWS
+    return Robot(read_table_text(SPONG.format(convention=convention, rows=rows)))
+
+
+def spong_D_and_g() -> tuple[sp.Matrix, sp.Matrix]:
+    """Spong, Hutchinson and Vidyasagar, Robot Modeling and Control, §7.3 (two-link
+    planar elbow manipulator), written out by hand."""
+    q1, q2, m1, m2, l1, lc1, lc2, I1, I2, g = (
+        R(n) for n in ("q1", "q2", "m1", "m2", "l1", "lc1", "lc2", "I1", "I2", "g")
+    )
+    d11 = m1 * lc1**2 + m2 * (l1**2 + lc2**2 + 2 * l1 * lc2 * sp.cos(q2)) + I1 + I2
+    d12 = m2 * (lc2**2 + l1 * lc2 * sp.cos(q2)) + I2
+    d22 = m2 * lc2**2 + I2
+    D = sp.Matrix([[d11, d12], [d12, d22]])
+    phi1 = (m1 * lc1 + m2 * l1) * g * sp.cos(q1) + m2 * lc2 * g * sp.cos(q1 + q2)
+    phi2 = m2 * lc2 * g * sp.cos(q1 + q2)
+    return D, sp.Matrix([phi1, phi2])
+
+
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+def test_spong_two_link_arm_exactly(convention):
+    eom = lagrange(spong_arm(convention))
+    D, phi = spong_D_and_g()
+    assert sp.expand(eom.M - D) == sp.zeros(2, 2)
+    assert sp.expand(eom.g - phi) == sp.zeros(2, 1)
+    # Spong's Christoffel symbols: c_121 = c_211 = c_221 = -h, c_112 = h, the rest 0
+    h = -R("m2") * R("l1") * R("lc2") * sp.sin(R("q2"))
+    expected = {(1, 2, 1): h, (2, 1, 1): h, (2, 2, 1): h, (1, 1, 2): -h}
+    for i in (1, 2):
+        for j in (1, 2):
+            for k in (1, 2):
+                assert sp.expand(eom.c(i, j, k) - expected.get((i, j, k), 0)) == 0, (i, j, k)
+
+
+def test_spong_arm_prints_in_lecture_form():
+    eom = lagrange(spong_arm())
+    text = eom.notation.text(eom.M[0, 1])
+    assert "C2" in text and "cos" not in text
+    assert text.startswith("I2 + m2*(") or text.startswith("m2*(")  # collected by the mass
+
+
+def test_energies_add_up_to_the_kinetic_energy_of_M():
+    eom = lagrange(spong_arm())
+    qd = sp.Matrix(eom.rates)
+    total = sp.expand((qd.T * eom.M * qd)[0, 0] / 2 - sum(eom.kinetic))
+    assert total == 0
+    assert len(eom.potential) == 2 and eom.potential[0].has(R("g"))
+
+
+def test_textbook_parameters_on_request():
+    eom = dhsym.load("planar2r").dynamics()
+    names = {s.name for s in eom.M.free_symbols}
+    assert {"m1", "m2", "Izz1", "Izz2", "rx2", "ry2", "a1", "a2"} <= names
+    assert "Ixx2" not in names  # a planar arm turns about z only
+
+
+def test_link_jacobians_are_written_in_the_link_frame():
+    dm = dynamic_model(spong_arm())
+    Jv, Jw = link_jacobians(dm, 1)
+    lc1 = R("lc1")
+    assert sp.expand(Jv - sp.Matrix([[0, 0], [lc1, 0], [0, 0]])) == sp.zeros(3, 2)
+    assert Jw == sp.Matrix([[0, 0], [0, 0], [1, 0]])
+
+
+def test_tidy_folds_and_collects():
+    t1, t2, m, ln = sp.symbols("theta1 theta2 m l", real=True)
+    e = m * ln * sp.cos(t1) * sp.cos(t2) - m * ln * sp.sin(t1) * sp.sin(t2) + m
+    assert tidy(e, (m,)) in (m * (ln * sp.cos(t1 + t2) + 1), ln * m * sp.cos(t1 + t2) + m)
+
+
+# --- the laws of M and C ---------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("name", ["planar2r", "example1_rrp"])
+def test_Mdot_minus_2C_is_skew_symmetric_exactly(name):
+    eom = dhsym.load(name).dynamics()
+    q, qd = eom.variables, eom.rates
+    Mdot = sum((eom.M.diff(x) * v for x, v in zip(q, qd)), sp.zeros(*eom.M.shape))
+    N = Mdot - 2 * eom.C
+    assert prove_equal(N + N.T, sp.zeros(*N.shape))
+    assert eom.M == eom.M.T
+
+
+def test_christoffel_symbols_are_symmetric_in_i_and_j():
+    eom = lagrange(spong_arm())
+    c = christoffel_symbols(eom.M, eom.variables)
+    n = len(eom.variables)
+    for i in range(n):
+        for j in range(n):
+            for k in range(n):
+                assert sp.expand(c[i][j][k] - c[j][i][k]) == 0
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    st.lists(st.floats(-3.1, 3.1), min_size=2, max_size=2),
+    st.floats(0.1, 5),
+    st.floats(0.1, 5),
+)
+def test_M_is_symmetric_positive_definite(q, m1, m2):
+    eom = _spong_eom()
+    values = {R("m1"): m1, R("m2"): m2, R("l1"): 1.0, R("lc1"): 0.5, R("lc2"): 0.4}
+    values |= {R("I1"): 0.1, R("I2"): 0.05, R("q1"): q[0], R("q2"): q[1]}
+    M = np.array(eom.M.subs(values).evalf(), dtype=float)
+    assert np.allclose(M, M.T)
+    assert np.all(np.linalg.eigvalsh(M) > 0)
+
+
+_CACHE: list = []
+
+
+def _spong_eom():
+    if not _CACHE:
+        _CACHE.append(lagrange(spong_arm()))
+    return _CACHE[0]
