@@ -17,7 +17,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -68,6 +68,12 @@ class InverseKinematics:
     )
     #: the most solutions when they are not branch combinations (16 for the general 6R)
     most: int | None = None
+    #: how a family without compiled steps builds its solver (the general 6R: its
+    #: elimination, :meth:`~dhsym.ik.general.EliminationSolver.build`); None: the steps
+    #: compiled by :class:`~dhsym.ik.compiler.Solver`
+    build_solver: (
+        Callable[[InverseKinematics, Mapping[object, object] | None], EliminationSolver] | None
+    ) = field(default=None, compare=False, repr=False)
 
     @property
     def count(self) -> int:
@@ -90,13 +96,11 @@ class InverseKinematics:
         the steps compiled, or for the general 6R (no steps to compile: they describe the
         method) its elimination with these values."""
         from .compiler import Solver
-        from .general import EliminationSolver
-        from .structure import GENERAL_6R
 
         key = values_key(values)  # the values as given: converted only once
         if key not in self.solvers:
-            if self.family == GENERAL_6R:
-                self.solvers[key] = EliminationSolver.build(self, values)
+            if self.build_solver is not None:
+                self.solvers[key] = self.build_solver(self, values)
             else:
                 numbers = self.robot.table.with_values(values or {}).value_map
                 self.solvers[key] = Solver(self, numbers)

@@ -310,6 +310,7 @@ def derive_general(robot: Robot) -> InverseKinematics:
         (),
         GENERAL_6R,
         most=MOST,
+        build_solver=EliminationSolver.build,
     )
     if core is not None:  # compiled already: kept for robot.ik without values
         ik.solvers[values_key(None)] = EliminationSolver(ik, core, core.fk)
