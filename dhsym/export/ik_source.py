@@ -28,8 +28,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 import sympy as sp
 
-from dhsym.kinematics import _ik_numbers as numbers
-from dhsym.kinematics.inverse import InverseKinematics
+from dhsym.ik import compiler as numbers
+from dhsym.ik.derivation import InverseKinematics
+from dhsym.ik.results import IKBatch
+from dhsym.ik.results import _branch_names as solver_branch_names
 from dhsym.model.table import JointType
 
 if TYPE_CHECKING:
@@ -92,7 +94,7 @@ class IKSource:
 
 def ik_source(robot: Robot, ik: InverseKinematics | None = None) -> IKSource:
     """Read the derivation of ``robot.inverse()`` into an :class:`IKSource`."""
-    ik = ik if ik is not None else robot.inverse()  # type: ignore[assignment]
+    ik = ik if ik is not None else robot.inverse()
     assert ik is not None
     pose = ik.pose
     T = pose_input()
@@ -153,10 +155,11 @@ def _branch_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
     seen: list[set[str]] = [set() for _ in combos]
     try:
         batch = robot.ik(robot.fk(q))
-        solver = batch.solver  # type: ignore[attr-defined]
+        assert isinstance(batch, IKBatch)  # N poses give a batch
+        solver = batch.solver
         for i in range(len(q)):
-            if batch.valid[i].all():  # type: ignore[attr-defined]
-                names = numbers._branch_names(solver, batch.q[i], batch.branch_signs)  # type: ignore[attr-defined]
+            if batch.valid[i].all():
+                names = solver_branch_names(solver, batch.q[i], batch.branch_signs)
                 for k, name in enumerate(names):
                     seen[k].add(name)
     except Exception:  # noqa: BLE001  (names are comments; the signs always name a branch)
