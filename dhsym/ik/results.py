@@ -25,6 +25,8 @@ import numpy as np
 from dhsym.kinematics.jacobian import axis_frame
 
 if TYPE_CHECKING:
+    from numpy.typing import DTypeLike
+
     from .compiler import Solver
     from .steps import Branch
 
@@ -87,10 +89,10 @@ class IKSolution:
         return iter(self.q)
 
     def __getitem__(self, k: int) -> np.ndarray:
-        return self.q[k]  # type: ignore[no-any-return]
+        return self.q[k]
 
-    def __array__(self, dtype: object = None, copy: object = None) -> np.ndarray:
-        return self.q if dtype is None else self.q.astype(dtype)  # type: ignore[arg-type]
+    def __array__(self, dtype: DTypeLike | None = None, copy: object = None) -> np.ndarray:
+        return self.q if dtype is None else self.q.astype(dtype)
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,12 +116,12 @@ class IKBatch:
     @property
     def count(self) -> np.ndarray:
         """``(N,)`` number of solutions of each pose."""
-        return self.valid.sum(axis=1)  # type: ignore[no-any-return]
+        return self.valid.sum(axis=1)
 
     @property
     def near_singular(self) -> np.ndarray:
         """``(N, K)`` True where a solution is near a singular configuration."""
-        return self.singular.any(axis=-1)  # type: ignore[no-any-return]
+        return np.asarray(self.singular.any(axis=-1))
 
     def __len__(self) -> int:
         return int(self.q.shape[0])
