@@ -26,6 +26,8 @@ from .common import (
 )
 
 if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
+    import sympy as sp
+
     from dhsym.kinematics.robot import Robot
 
 __all__ = ["JSON_SCHEMA_VERSION", "derive_json", "register"]
@@ -48,7 +50,7 @@ def _cmd_show(args: argparse.Namespace) -> int:
     from dhsym.model.tablefile import dump_table
     from dhsym.notation.tables import table_markdown
 
-    robot = Robot(load_table_arg(args.robot, args.tip, args.base))  # type: ignore[arg-type]
+    robot = Robot(load_table_arg(args.robot, args.tip, args.base))
     t = robot.table
     note_warnings(t)
     if args.format == "yaml":
@@ -91,8 +93,8 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
     pose = robot.transform(i, j)
     full = robot.notation.__class__(robot.notation.labels, compact=False)
 
-    def grid(fn: Callable[[object], str], M: object) -> list[list[str]]:
-        return [[fn(M[r, c]) for c in range(4)] for r in range(4)]  # type: ignore[index]
+    def grid(fn: Callable[[object], str], M: sp.MatrixBase) -> list[list[str]]:
+        return [[fn(M[r, c]) for c in range(4)] for r in range(4)]
 
     links = []
     if 0 <= i < j <= robot.n:
@@ -131,7 +133,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     from dhsym.kinematics.robot import Robot
 
     table = load_table_arg(args.robot, args.tip, args.base)
-    robot = Robot(table, compact=not args.full, style=args.notation)  # type: ignore[arg-type]
+    robot = Robot(table, compact=not args.full, style=args.notation)
     note_warnings(robot.table)
     what = getattr(args, "what", "fk")
     if what != "fk":

@@ -63,6 +63,7 @@ from dataclasses import dataclass, field, replace
 from enum import Enum
 from functools import cached_property
 from itertools import product as _combinations
+from typing import Any
 
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
@@ -295,13 +296,13 @@ class Notation:
         cls,
         variables: Sequence[sp.Symbol],
         labels: Sequence[str] | None = None,
-        **kw: object,
+        **kw: Any,  # the other fields: compact, style
     ) -> Notation:
         """Notation whose joint angles are ``variables``, labelled 1, 2, … by default."""
         labs = (
             list(labels) if labels is not None else [str(i) for i in range(1, len(variables) + 1)]
         )
-        return cls(tuple(zip(variables, labs)), **kw)  # type: ignore[arg-type]
+        return cls(tuple(zip(variables, labs)), **kw)
 
     @cached_property
     def label_map(self) -> dict[sp.Symbol, str]:
@@ -515,7 +516,7 @@ def _coefficient(c: sp.Expr) -> str | None:
 
 def _angle_head(arg: sp.Expr) -> str:
     r"""``\theta`` for angles θ1, θ2…, ``q`` for q1, q2… (the letter of the joint variables)."""
-    names = {re.match(r"[A-Za-z]*", s.name).group(0) for s in arg.free_symbols}  # type: ignore[union-attr]
+    names = {re.match(r"[A-Za-z]*", s.name).group(0) for s in arg.free_symbols}  # type: ignore[union-attr]  # `*`: always a match
     return sp.latex(sp.Symbol(names.pop())) if len(names) == 1 and "" not in names else r"\theta"
 
 
@@ -528,7 +529,7 @@ class _LayoutMixin:
 
     def _print_Rational(self, expr: sp.Rational) -> str:
         dec = exact_decimal(expr) if expr.q > 1 else None
-        return dec if dec is not None else super()._print_Rational(expr)  # type: ignore[misc]
+        return dec if dec is not None else super()._print_Rational(expr)  # type: ignore[misc]  # a mixin: sympy's printer is next in the MRO
 
     def _print_Add(self, expr: sp.Add, order: object = None) -> str:
         return self._layout(expr)
@@ -538,7 +539,7 @@ class _LayoutMixin:
 
     def _print_whole(self, expr: sp.Expr) -> str:
         """A term sympy prints itself (a fraction): sympy's own ``_print_Mul``."""
-        return super()._print_Mul(expr) if expr.is_Mul else self._print(expr)  # type: ignore[misc]
+        return super()._print_Mul(expr) if expr.is_Mul else self._print(expr)  # type: ignore[misc]  # a mixin: sympy's printer is next in the MRO
 
     def tokens(self, tree: Sum, depth: int = 0) -> list[Token]:
         """The tokens of ``tree`` (from :meth:`Notation.arrange`)."""
