@@ -69,8 +69,16 @@ class YAMLInputError(DHError):
 class FileRefused(DHError):
     """A file that is not read: ``kind`` is ``unreadable``, ``special``, ``link`` or ``large``."""
 
-    def __init__(self, message: str, *, kind: str = "unreadable", **where: object) -> None:
-        super().__init__(message, **where)  # type: ignore[arg-type]
+    def __init__(
+        self,
+        message: str,
+        *,
+        kind: str = "unreadable",
+        file: str | None = None,
+        row: int | None = None,
+        field: str | None = None,
+    ) -> None:
+        super().__init__(message, file=file, row=row, field=field)
         self.kind = kind
 
 
