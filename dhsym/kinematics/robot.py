@@ -82,9 +82,8 @@ class Robot:
         # compiled fk: a PoseFunction, or a compile_word product for a chain too long to
         # write out (both take one configuration or a batch)
         self._fk_cache: dict[tuple[object, object, object], Callable[[ArrayLike], np.ndarray]] = {}
-        self._fk_default: Callable[[ArrayLike], np.ndarray] | None = (
-            None  # world -> tool with the table's values
-        )
+        # world -> tool with the table's values
+        self._fk_default: Callable[[ArrayLike], np.ndarray] | None = None
         # typed caches: numeric Jacobians by (frame, euler, values), the derived inverse,
         # and the sub-robots of ``ik(free=...)`` by joint (see jacobian, inverse, ik)
         self._jacobian_functions: dict[
