@@ -6,7 +6,7 @@ follow from a world-to-tool pose (base and tool undone), the steps in order (eac
 signs in the order ``robot.ik`` enumerates them, each branch's name, and the
 numbers the solver uses (the ``fk`` tolerance, the rounding of a radicand, the
 wrist thresholds). :class:`IKSource` is that interface; :func:`ik_source` fills it
-from :mod:`dhsym.kinematics.inverse` today. When the derivation moves, only this
+from :mod:`dhsym.ik` (the derivation, its compiler and results). When they move, only this
 module changes.
 
 Examples

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import dhsym
-from dhsym.kinematics.inverse import StructureError
+from dhsym.kinematics.decoupling import StructureError
 
 from ..conftest import _need
 from . import _harness as h
