@@ -33,6 +33,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # the table loads when a command runs
+    from dhsym.kinematics.robot import Robot
     from dhsym.model.table import DHTable
 
 __all__ = [
@@ -230,7 +231,7 @@ def load_robot(
     need_numbers: bool = False,
     tip: str | None = None,
     base: str | None = None,
-) -> object:
+) -> Robot:
     """The robot ``name`` (built-in, table file or URDF file) with ``--values`` applied.
 
     With ``need_numbers`` every symbolic length must have a number, from the table's

@@ -21,6 +21,8 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import sympy as sp
 
 from dhsym import __version__
@@ -61,8 +63,8 @@ def _head(robot: Robot, what: str) -> dict[str, object]:
     }
 
 
-def _grid(fn: object, M: sp.MatrixBase) -> list[list[str]]:
-    return [[fn(M[r, c]) for c in range(M.cols)] for r in range(M.rows)]  # type: ignore[operator]
+def _grid(fn: Callable[[sp.Expr], str], M: sp.MatrixBase) -> list[list[str]]:
+    return [[fn(M[r, c]) for c in range(M.cols)] for r in range(M.rows)]
 
 
 def _legend(robot: Robot, exprs: list[sp.Expr]) -> list[dict[str, str]]:

@@ -22,7 +22,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
     if args.lang == "urdf":
         raise DHError(f"--lang urdf: use `dhsym convert {args.robot} --to urdf` for a URDF file")
     robot = load_robot(args.robot, args.values)
-    note_warnings(robot.table)  # type: ignore[attr-defined]
+    note_warnings(robot.table)
     command = " ".join(
         shlex.quote(a)
         for a in ["dhsym", "export", args.robot, "--lang", args.lang, "--what", args.what]
@@ -31,7 +31,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
         + (["--values", args.values] if args.values else [])
     )
     files = export(
-        robot,  # type: ignore[arg-type]
+        robot,
         args.lang,
         what=args.what,
         prefix=args.prefix,

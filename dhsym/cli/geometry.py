@@ -42,18 +42,18 @@ def _cmd_convert(args: argparse.Namespace) -> int:
     if args.to == "urdf":
         from dhsym.formats.urdf import write_urdf
 
-        emit(write_urdf(table), args.output)  # type: ignore[arg-type]
+        emit(write_urdf(table), args.output)
         return 0
     from dhsym.geometry.conversion import check_conversion, convert
     from dhsym.model.kinds import Convention
     from dhsym.model.tablefile import dump_table
 
     target = Convention.parse(args.to)
-    if table.convention is target:  # type: ignore[attr-defined]
-        name = table.name or args.robot  # type: ignore[attr-defined]
+    if table.convention is target:
+        name = table.name or args.robot
         print(f"{name} is already in the {target.value} convention", file=sys.stderr)
-    new = convert(table, target)  # type: ignore[arg-type]
-    err = check_conversion(table, new, samples=args.samples)  # type: ignore[arg-type]
+    new = convert(table, target)
+    err = check_conversion(table, new, samples=args.samples)
     emit(dump_table(new), args.output)
     print(
         f"tool pose agrees at {args.samples} random configurations (max difference {err:.2g})",

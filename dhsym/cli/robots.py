@@ -28,6 +28,8 @@ from .common import (
 )
 
 if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
+    import sympy as sp
+
     from dhsym.kinematics.robot import Robot
 
 __all__ = ["JSON_SCHEMA_VERSION", "derive_json", "register"]
@@ -50,7 +52,7 @@ def _cmd_show(args: argparse.Namespace) -> int:
     from dhsym.model.tablefile import dump_table
     from dhsym.notation.tables import table_markdown
 
-    robot = Robot(load_table_arg(args.robot, args.tip, args.base))  # type: ignore[arg-type]
+    robot = Robot(load_table_arg(args.robot, args.tip, args.base))
     t = robot.table
     note_warnings(t)
     if args.format == "yaml":
@@ -93,8 +95,8 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
     pose = robot.transform(i, j)
     full = robot.notation.__class__(robot.notation.labels, compact=False)
 
-    def grid(fn: Callable[[object], str], M: object) -> list[list[str]]:
-        return [[fn(M[r, c]) for c in range(4)] for r in range(4)]  # type: ignore[index]
+    def grid(fn: Callable[[object], str], M: sp.MatrixBase) -> list[list[str]]:
+        return [[fn(M[r, c]) for c in range(4)] for r in range(4)]
 
     links = []
     if 0 <= i < j <= robot.n:
@@ -133,7 +135,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
     from dhsym.kinematics.robot import Robot
 
     table = load_table_arg(args.robot, args.tip, args.base)
-    robot = Robot(table, compact=not args.full, style=args.notation)  # type: ignore[arg-type]
+    robot = Robot(table, compact=not args.full, style=args.notation)
     note_warnings(robot.table)
     what = getattr(args, "what", "fk")
     if what != "fk":
@@ -264,7 +266,7 @@ def _cmd_ik(args: argparse.Namespace) -> int:
     import numpy as np
 
     from dhsym.errors import DHError
-    from dhsym.kinematics import numeric_ik
+    from dhsym.ik.levenberg_marquardt import numeric_ik
 
     robot = load_robot(args.robot, args.values, need_numbers=True)
     T = _pose(args, robot)
@@ -277,15 +279,16 @@ def _cmd_ik(args: argparse.Namespace) -> int:
             "converged": bool(sol.converged),
             "iterations": sol.iterations,
             "error": sol.error,
-            "q": dict(zip(names, np.round(sol.q, 12).tolist())),
         }
+        solution = dict(zip(names, np.round(sol.q, 12).tolist()))
+        result["q"] = solution
         if args.json:
             print(json.dumps(result))
         else:
             state = "converged" if sol.converged else "did NOT converge"
             print(f"{sol.method}: {state} in {sol.iterations} steps, error {sol.error:.3g}")
             print("joint values (radians for revolute joints):")
-            for n, v in result["q"].items():
+            for n, v in solution.items():
                 print(f"  {n} = {v:.9g}")
         return 0 if sol.converged else 1
     try:

@@ -23,6 +23,7 @@ import re
 from collections.abc import Sequence
 from pathlib import Path
 from types import MappingProxyType
+from typing import Any
 
 import sympy as sp
 
@@ -79,7 +80,11 @@ def _what(what: str) -> str:
     return key
 
 
-def document(robot: Robot | str | Path | DHTable, what: str = "fk", **options: object) -> Document:
+def document(
+    robot: Robot | str | Path | DHTable,
+    what: str = "fk",
+    **options: Any,  # the derivation's keywords, checked by name below
+) -> Document:
     """One derivation of ``robot``: ``what`` is ``fk``, ``jacobian``, ``singularities`` or ``ik``.
 
     ``options`` are those of :func:`~dhsym.explain.derivation.derive` (``fk``),
@@ -93,7 +98,7 @@ def document(robot: Robot | str | Path | DHTable, what: str = "fk", **options: o
     """
     what = _what(what)
     if what == "fk":
-        return derive(robot, **options)  # type: ignore[arg-type]
+        return derive(robot, **options)
     unknown = set(options) - set(_OPTIONS[what])
     if unknown:
         raise DHError(f"option(s) {', '.join(sorted(unknown))} do not apply to --what {what}")
@@ -101,8 +106,11 @@ def document(robot: Robot | str | Path | DHTable, what: str = "fk", **options: o
     r = as_robot(robot)
     if opts.pop("numeric", False):
         r = Robot(r.table.substituted(), compact=r.notation.compact, style=r.notation.style)
-    build = {"jacobian": derive_jacobian, "singularities": derive_singularities}
-    return build.get(what, derive_inverse)(r, **opts)  # type: ignore[operator]
+    if what == "jacobian":
+        return derive_jacobian(r, **opts)
+    if what == "singularities":
+        return derive_singularities(r, **opts)
+    return derive_inverse(r, **opts)
 
 
 def render_derivation(
@@ -112,7 +120,7 @@ def render_derivation(
     to: int | None = None,
     *,
     what: str = "fk",
-    **options: object,
+    **options: Any,  # document's keywords and template_dir
 ) -> str:
     """A derivation of ``robot`` step by step, as text, Markdown or LaTeX.
 
@@ -123,7 +131,7 @@ def render_derivation(
     if _what(what) == "fk":
         options.update(frm=frm, to=to)
     d = document(robot, what, **options)
-    return render(d, fmt, template_dir=template_dir)  # type: ignore[arg-type]
+    return render(d, fmt, template_dir=template_dir)
 
 
 def _sections(sections: Sequence[str] | str) -> tuple[str, ...]:
@@ -135,7 +143,7 @@ def _sections(sections: Sequence[str] | str) -> tuple[str, ...]:
     return tuple(k for k in WHAT if k in keys)
 
 
-def _options_for(what: str, robot: Robot, options: dict[str, object]) -> dict[str, object]:
+def _options_for(what: str, robot: Robot, options: dict[str, Any]) -> dict[str, Any]:
     """The handout's options that ``what`` takes; ``check=True`` only with numbers for all
     lengths; the inverse kinematics is checked at a configuration away from singularities."""
     allowed = _DERIVE_OPTIONS if what == "fk" else _OPTIONS[what]
@@ -146,7 +154,7 @@ def _options_for(what: str, robot: Robot, options: dict[str, object]) -> dict[st
 
 
 def _item_documents(
-    r: Robot | str | Path | Derivation, sections: Sequence[str], options: dict[str, object]
+    r: Robot | str | Path | Derivation, sections: Sequence[str], options: dict[str, Any]
 ) -> tuple[Derivation, list[tuple[str, Document]]]:
     """The forward kinematics (always: it holds the table) and the asked sections."""
     if isinstance(r, Derivation):
@@ -154,7 +162,7 @@ def _item_documents(
             raise DHError("sections other than fk need robots, not derivations")
         return r, [("fk", r)]
     robot = as_robot(r)
-    fk = derive(robot, **_options_for("fk", robot, options))  # type: ignore[arg-type]
+    fk = derive(robot, **_options_for("fk", robot, options))
     docs: list[tuple[str, Document]] = []
     for what in sections:
         doc = fk if what == "fk" else document(robot, what, **_options_for(what, robot, options))
@@ -186,7 +194,7 @@ def render_handout(
     convention_note: bool = False,
     template_dir: str | Path | None = None,
     figures: dict[str, str] | None = None,
-    **options: object,
+    **options: Any,  # the derivations' keywords, checked by name below
 ) -> str:
     r"""A standalone LaTeX handout for one or more robots.
 
@@ -212,7 +220,7 @@ def render_handout(
     wanted = _sections(sections)
     built = [_item_documents(r, wanted, options) for r in robots]
     own = (r.notation.style for r in robots if isinstance(r, Robot))
-    nota = Notation(style=options.get("notation") or next(own, TrigStyle.UPPER))  # type: ignore[arg-type]
+    nota = Notation(style=options.get("notation") or next(own, TrigStyle.UPPER))
     keys = _unique_keys([fk.name for fk, _ in built])
     items = [
         {
@@ -284,7 +292,7 @@ def write_handout(
     pdf: bool = False,
     figure: bool = False,
     keep_aux: bool = False,
-    **options: object,
+    **options: Any,  # render_handout's keywords, passed on
 ) -> Path:
     """Write the handout's ``.tex`` (and figures); with ``pdf=True`` compile it.
 

@@ -30,6 +30,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.ik.results import IKSolution
 from dhsym.ik.steps import Branch, Step
 from dhsym.kinematics.robot import Robot
 from dhsym.model.table import DHTable, JointType
@@ -111,11 +112,12 @@ def _steps(steps: Sequence[Step], nota: Notation, width: float) -> tuple[IKStepD
                 prev.sentence, prev.equation, (*prev.results, result), None, prev.singular
             )
             continue
-        shown = st.equation is not None and st.equation.rhs != st.rhs  # else the result says it
+        # the equation is shown unless the result says it
+        shown = st.equation if st.equation is not None and st.equation.rhs != st.rhs else None
         out.append(
             IKStepData(
                 sentence_runs(st.sentence, nota),
-                _equation(st.equation.lhs, st.equation.rhs, nota, width) if shown else None,
+                _equation(shown.lhs, shown.rhs, nota, width) if shown is not None else None,
                 (result,),
                 _branch(st.branch, nota) if st.branch is not None else None,
                 singular,
@@ -138,6 +140,7 @@ def _check(robot: Robot, q: Sequence[float], nota: Notation) -> IKCheck:
     T = robot.fk([float(x) for x in q])
     position_only = not ik.decoupling.wrist  # a positioning arm reaches points, not poses
     sol = robot.ik(T[:3, 3] if position_only else T)
+    assert isinstance(sol, IKSolution)  # one pose gives one solution set
     revolute = [r.joint is JointType.REVOLUTE for r in robot.table.rows if r.variable is not None]
 
     def num(x: float, rev: bool) -> Math:
@@ -169,7 +172,7 @@ def _check(robot: Robot, q: Sequence[float], nota: Notation) -> IKCheck:
                 name(words, signs),
                 tuple(num(float(x), rev) for x, rev in zip(row, revolute, strict=True)),
             )
-            for words, signs, row in zip(sol.branches, sol.signs, sol.q, strict=True)  # type: ignore[attr-defined]
+            for words, signs, row in zip(sol.branches, sol.signs, sol.q, strict=True)
         ),
         any(revolute),
         position_only,

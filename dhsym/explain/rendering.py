@@ -40,6 +40,8 @@ from dhsym.notation.tables import text_table
 from .templates import loader
 
 if TYPE_CHECKING:  # a derivation renders itself through render(): no import at run time
+    import jinja2
+
     from .data import Document
 
 __all__ = [
@@ -72,7 +74,7 @@ def _text_columns(items: Sequence[str], width: int = 96) -> list[str]:
     return ["".join(i.ljust(colw) for i in row).rstrip() for row in rows]
 
 
-def environment(kind: str = "latex", template_dir: str | Path | None = None) -> object:
+def environment(kind: str = "latex", template_dir: str | Path | None = None) -> jinja2.Environment:
     """The Jinja2 environment for ``kind`` (``latex``, ``markdown`` or ``text``).
 
     Built once per kind and template folder (templates compile once; Jinja2 reloads a
@@ -84,7 +86,7 @@ def environment(kind: str = "latex", template_dir: str | Path | None = None) -> 
 
 
 @lru_cache(maxsize=8)
-def _environment(kind: str, template_dir: Path | None) -> object:
+def _environment(kind: str, template_dir: Path | None) -> jinja2.Environment:
     import jinja2
     from markupsafe import Markup
 
@@ -126,12 +128,12 @@ def _environment(kind: str, template_dir: Path | None) -> object:
     return env
 
 
-def render_template(env: object, name: str, **context: object) -> str:
+def render_template(env: jinja2.Environment, name: str, **context: object) -> str:
     """Render template ``name``; template mistakes (often in a user folder) become DHError."""
     import jinja2
 
     try:
-        return env.get_template(name).render(**context)  # type: ignore[attr-defined]
+        return env.get_template(name).render(**context)
     except jinja2.TemplateError as err:
         line, file = getattr(err, "lineno", None), getattr(err, "filename", None)
         where = f"{file}:{line}: " if line else ""

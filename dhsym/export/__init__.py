@@ -38,12 +38,14 @@ from __future__ import annotations
 import sys
 import types
 from collections.abc import Iterable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from dhsym.errors import DHError
 
 if TYPE_CHECKING:
     from dhsym.kinematics.robot import Robot
+
+    from .render import Language
 
 __all__ = ["LANGUAGES", "PARTS", "export"]
 
@@ -53,7 +55,7 @@ LANGUAGES = ("c", "cpp", "matlab", "rust", "python")
 PARTS = ("fk", "jacobian", "ik")
 
 
-def _language(lang: str) -> object:
+def _language(lang: str) -> Language:
     from importlib import import_module
 
     if lang not in LANGUAGES:
@@ -148,14 +150,14 @@ def export(
         revolute=tuple(r.joint.value == "R" for r in robot.table.rows if r.variable is not None),
     )
     effective = tuple(sorted(set(parts) | {"fk"}))
-    return render(language, ctx, effective)  # type: ignore[arg-type]
+    return render(language, ctx, effective)
 
 
 class _CallableModule(types.ModuleType):
     """``dhsym.export(robot, "c")`` calls :func:`export` (the room is also a module)."""
 
-    def __call__(self, *args: object, **kw: object) -> dict[str, str]:
-        return export(*args, **kw)  # type: ignore[arg-type]
+    def __call__(self, *args: Any, **kw: Any) -> dict[str, str]:  # export's, passed on
+        return export(*args, **kw)
 
 
 sys.modules[__name__].__class__ = _CallableModule

@@ -18,18 +18,23 @@ Examples
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from sympy.printing.c import C99CodePrinter
 
 from .render import Language
 
+if TYPE_CHECKING:
+    import sympy as sp
+
 __all__ = ["LANGUAGE", "CPrinter"]
 
 
-class CPrinter(C99CodePrinter):  # type: ignore[misc]
+class CPrinter(C99CodePrinter):
     """sympy's C99 printer, with the solver's ``SafeSqrt`` as a helper of the file."""
 
-    def _print_SafeSqrt(self, expr: object) -> str:
-        return f"safe_sqrt({self._print(expr.args[0])})"  # type: ignore[attr-defined]
+    def _print_SafeSqrt(self, expr: sp.Expr) -> str:
+        return f"safe_sqrt({self._print(expr.args[0])})"
 
 
 LANGUAGE = Language(

@@ -38,6 +38,8 @@ import numpy as np
 from dhsym.errors import DHError
 
 if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
     from dhsym.kinematics.robot import Robot
 
 __all__ = ["CompiledRobot", "cache_dir", "compiled"]
@@ -63,9 +65,9 @@ class CompiledRobot:
     dhsym's own compiled NumPy functions); ``library`` the shared library's path.
     """
 
-    fk: Callable[[object], np.ndarray]
-    jacobian: Callable[[object], np.ndarray]
-    ik: Callable[[object], np.ndarray]
+    fk: Callable[[ArrayLike], np.ndarray]
+    jacobian: Callable[[ArrayLike], np.ndarray]
+    ik: Callable[[ArrayLike], np.ndarray]
     backend: str
     library: Path | None
     njoints: int
@@ -109,7 +111,7 @@ def _vector(q: object, n: int) -> np.ndarray:
 
 
 def _address(a: np.ndarray) -> int:
-    return a.__array_interface__["data"][0]  # type: ignore[no-any-return]
+    return a.__array_interface__["data"][0]
 
 
 def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
@@ -133,7 +135,7 @@ def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
     if cc is None:
         return CompiledRobot(
             lambda q: robot.fk(q),
-            lambda q: robot.jacobian(q),  # type: ignore[arg-type,return-value]
+            lambda q: robot.jacobian(q),
             lambda T: np.asarray(robot.ik(T)),
             "numpy",
             None,
@@ -148,7 +150,7 @@ def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
         fn.restype = ctypes.c_int if name == "ik" else None
     fk_c, jac_c = lib.dhsym_arm_fk, lib.dhsym_arm_jacobian
     ik_c = lib.dhsym_arm_ik if "ik" in what else None
-    K = 2 ** len(robot.inverse().branches) if ik_c is not None else 0  # type: ignore[attr-defined]
+    K = 2 ** len(robot.inverse().branches) if ik_c is not None else 0
 
     def fk(q: object) -> np.ndarray:
         qa = _vector(q, n)

@@ -13,18 +13,23 @@ Examples
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from sympy.printing.cxx import CXX17CodePrinter
 
 from .render import Language
 
+if TYPE_CHECKING:
+    import sympy as sp
+
 __all__ = ["LANGUAGE", "CppPrinter"]
 
 
-class CppPrinter(CXX17CodePrinter):  # type: ignore[misc]
+class CppPrinter(CXX17CodePrinter):
     """sympy's C++17 printer, with the solver's ``SafeSqrt`` as a helper of the header."""
 
-    def _print_SafeSqrt(self, expr: object) -> str:
-        return f"detail::safe_sqrt({self._print(expr.args[0])})"  # type: ignore[attr-defined]
+    def _print_SafeSqrt(self, expr: sp.Expr) -> str:
+        return f"detail::safe_sqrt({self._print(expr.args[0])})"
 
 
 LANGUAGE = Language(

@@ -44,6 +44,7 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.ik import compiler as numbers
 from dhsym.ik.derivation import InverseKinematics
+from dhsym.ik.results import IKBatch
 from dhsym.ik.results import _branch_names as solver_branch_names
 from dhsym.ik.structure import GENERAL_6R, classify
 from dhsym.kinematics.decoupling import StructureError
@@ -232,10 +233,11 @@ def _branch_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
     seen: list[list[set[str]]] = [[set() for _ in range(B)] for _ in combos]
     try:
         batch = robot.ik(robot.fk(q))
-        solver = batch.solver  # type: ignore[attr-defined]
+        assert isinstance(batch, IKBatch)  # N poses give a batch
+        solver = batch.solver
         for i in range(len(q)):
-            if batch.valid[i].all():  # type: ignore[attr-defined]
-                names = solver_branch_names(solver, batch.q[i], batch.branch_signs)  # type: ignore[attr-defined]
+            if batch.valid[i].all():
+                names = solver_branch_names(solver, batch.q[i], batch.branch_signs)
                 for k, name in enumerate(names):
                     parts = name.split(", ")
                     if len(parts) == B:

@@ -23,7 +23,7 @@ from .render import Language
 __all__ = ["LANGUAGE", "MatlabPrinter"]
 
 
-class MatlabPrinter(OctaveCodePrinter):  # type: ignore[misc]
+class MatlabPrinter(OctaveCodePrinter):
     """sympy's Octave printer; ``T[i, j]`` is ``T(i+1, j+1)``, ``SafeSqrt`` a subfunction."""
 
     def _print_Indexed(self, expr: sp.Indexed) -> str:

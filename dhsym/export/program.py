@@ -269,14 +269,14 @@ def jacobian_program(robot: Robot, *, symbolic_lengths: bool = False) -> Program
     ((6, 2), '-s1 - w0')
     """
     J = robot.jacobian()
-    return _program(robot, J.matrix, symbolic_lengths)  # type: ignore[attr-defined]
+    return _program(robot, J.matrix, symbolic_lengths)
 
 
 # --- inverse kinematics ---------------------------------------------------------------------
 
 
 def _dependencies(e: sp.Expr) -> set[sp.Symbol]:
-    return e.free_symbols  # type: ignore[return-value]
+    return e.free_symbols
 
 
 def ik_program(robot: Robot, *, symbolic_lengths: bool = False) -> IKProgram:
@@ -355,7 +355,7 @@ def ik_program(robot: Robot, *, symbolic_lengths: bool = False) -> IKProgram:
         body.append(Assign(sym.name, _numbers(e), level[sym]))
     check = [_numbers(e) for e in check]
     keep = [s.name for s in qs.values()]
-    keep += [s.name for e in check for s in e.free_symbols]  # type: ignore[attr-defined]
+    keep += [s.name for e in check for s in e.free_symbols]
     pose = tuple(Assign(pose_names[s].name, _numbers(convert(e))) for s, e in src.pose_inputs)
     return IKProgram(
         src,
@@ -381,5 +381,5 @@ def _ordered(body: Sequence[Assign], keep: Iterable[str]) -> tuple[Assign, ...]:
         if a.name in live:
             needed.append(a)
             exprs = [a.expr] + ([a.alt[2], sp.Symbol(a.alt[0])] if a.alt else [])
-            live |= {s.name for e in exprs for s in e.free_symbols}  # type: ignore[attr-defined]
+            live |= {s.name for e in exprs for s in e.free_symbols}
     return tuple(sorted(reversed(needed), key=lambda a: a.level))

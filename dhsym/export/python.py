@@ -14,18 +14,23 @@ Examples
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from sympy.printing.numpy import NumPyPrinter
 
 from .render import Language
 
+if TYPE_CHECKING:
+    import sympy as sp
+
 __all__ = ["LANGUAGE", "PythonPrinter"]
 
 
-class PythonPrinter(NumPyPrinter):  # type: ignore[misc]
+class PythonPrinter(NumPyPrinter):
     """sympy's NumPy printer; ``SafeSqrt`` is a helper of the module, ``T[i, j]`` indexes."""
 
-    def _print_SafeSqrt(self, expr: object) -> str:
-        return f"_safe_sqrt({self._print(expr.args[0])})"  # type: ignore[attr-defined]
+    def _print_SafeSqrt(self, expr: sp.Expr) -> str:
+        return f"_safe_sqrt({self._print(expr.args[0])})"
 
 
 LANGUAGE = Language(

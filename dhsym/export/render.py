@@ -138,7 +138,7 @@ def render(lang: Language, ctx: Context, what: Sequence[str]) -> dict[str, str]:
     printer = lang.printer()
 
     def code(e: sp.Expr) -> str:
-        return printer.doprint(e)  # type: ignore[no-any-return]
+        return printer.doprint(e)
 
     def comment(text: str) -> list[str]:
         return comment_lines(text)

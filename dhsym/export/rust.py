@@ -23,7 +23,7 @@ from .render import Language
 __all__ = ["LANGUAGE", "RustPrinter"]
 
 
-class RustPrinter(RustCodePrinter):  # type: ignore[misc]
+class RustPrinter(RustCodePrinter):
     """sympy's Rust printer; every number is an ``f64`` (``2.0``), a negative receiver of
     a method is parenthesised, ``SafeSqrt`` is a helper of the module, the pose is ``t``."""
 
@@ -39,7 +39,7 @@ class RustPrinter(RustCodePrinter):  # type: ignore[misc]
         # sympy's Rust _print_Mul re-multiplies float-cast factors and can lose the
         # brackets of a sum (0.1*c5*(c2*w13 - w12) -> 0.1*c5*-w12 + c2*w13); every number
         # here is already a float, so the generic printer is right
-        return CodePrinter._print_Mul(self, expr)  # type: ignore[no-any-return]
+        return CodePrinter._print_Mul(self, expr)
 
     def _print_Pow(self, expr: sp.Pow) -> str:
         base, exp = expr.args
@@ -48,7 +48,7 @@ class RustPrinter(RustCodePrinter):  # type: ignore[misc]
             if not isinstance(base, sp.Symbol | sp.Indexed):
                 inner = f"({inner})"
             return f"{inner}.powi({int(exp)})"
-        return super()._print_Pow(expr)  # type: ignore[no-any-return]
+        return super()._print_Pow(expr)
 
     def _print_Indexed(self, expr: sp.Indexed) -> str:
         i, j = (int(k) for k in expr.indices)

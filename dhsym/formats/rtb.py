@@ -49,7 +49,7 @@ __all__ = ["from_rtb", "to_rtb"]
 
 def _number(value: object, where: str) -> sp.Expr:
     try:
-        number = float(value)  # type: ignore[arg-type]
+        number = float(value)  # type: ignore[arg-type]  # anything: float() refuses it below
     except (TypeError, ValueError):
         raise FormatError(f"expected a number, got {value!r}", field=where) from None
     try:
@@ -107,9 +107,9 @@ def from_rtb(robot: object, *, name: str | None = None) -> Robot:
             limits = _snapped_limits(limits) if not prismatic else limits
         kw = dict(a=p["a"], alpha=p["alpha"], variable=var, limits=limits)
         if prismatic:
-            rows.append(DHRow.prismatic(entry, theta=p["theta"], **kw))  # type: ignore[arg-type]
+            rows.append(DHRow.prismatic(entry, theta=p["theta"], **kw))
         else:
-            rows.append(DHRow.revolute(entry, d=p["d"], **kw))  # type: ignore[arg-type]
+            rows.append(DHRow.revolute(entry, d=p["d"], **kw))
     title = name or str(getattr(robot, "name", "") or "roboticstoolbox robot")
     table = DHTable.from_rows(
         rows,
@@ -157,7 +157,9 @@ def to_rtb(robot: Robot | DHTable) -> object:
         var = row.variable
         if var is None:
             raise FormatError("fixed rows have no roboticstoolbox link", field="joints")
-        entry = getattr(row, row.variable_field)  # type: ignore[arg-type]
+        field = row.variable_field
+        assert field is not None  # var is not None: a joint row
+        entry = getattr(row, field)
         slope = sp.expand(entry).coeff(var)
         if slope not in (1, -1):
             raise FormatError(f"{row.variable_field} = {entry}: the variable's factor must be ±1")

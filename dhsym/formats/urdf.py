@@ -57,7 +57,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from pathlib import Path
-from typing import TYPE_CHECKING, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias
 from xml.etree.ElementTree import Element
 from xml.sax.saxutils import quoteattr
 
@@ -321,11 +321,11 @@ class UrdfImport:
         """The frame-assignment sentences, one per choice."""
         return self.assignment.step_texts
 
-    def robot(self, **kw: object) -> Robot:
+    def robot(self, **kw: Any) -> Robot:  # Robot's keywords: compact, style
         """A :class:`~dhsym.kinematics.robot.Robot` of the table (``compact``, ``style``)."""
         from dhsym.kinematics.robot import Robot
 
-        return Robot(self.table, **kw)  # type: ignore[arg-type]
+        return Robot(self.table, **kw)
 
 
 # --- reading ---------------------------------------------------------------------------------
@@ -515,10 +515,10 @@ def _origin(parent: Element, file: str | None, rule: AngleSnap, snapped: list[Sn
     for value in _numbers(el.get("rpy"), 3, _where(parent, "origin", "rpy"), file, "0 0 0"):
         found = snap_angle(value, rule)
         if found is not None:
-            snapped.append(Snapped("origin rpy", None, value, found[0], found[1]))  # type: ignore[arg-type]
+            snapped.append(Snapped("origin rpy", None, value, found[0], found[1]))
             value = found[0]
         rpy.append(value)
-    return Origin(xyz, tuple(rpy))  # type: ignore[arg-type]
+    return Origin(xyz, tuple(rpy))
 
 
 def _inertial(
@@ -534,7 +534,7 @@ def _inertial(
     if inertia_el is None:
         raise FormatError("missing <inertia>", file=file, field=where)
     inertia = tuple(_numbers(inertia_el.get(k), 1, f"{where} <inertia> {k}", file)[0] for k in keys)
-    return Inertial(mass, _origin(el, file, rule, snapped), inertia)  # type: ignore[arg-type]
+    return Inertial(mass, _origin(el, file, rule, snapped), inertia)
 
 
 def _joint(el: Element, file: str | None, rule: AngleSnap, snapped: list[Snapped]) -> UrdfJoint:
@@ -559,7 +559,7 @@ def _joint(el: Element, file: str | None, rule: AngleSnap, snapped: list[Snapped
     axis: Triple = (sp.Integer(1), sp.Integer(0), sp.Integer(0))
     axis_el = el.find("axis")
     if kind in _MOVING and axis_el is not None:
-        axis = _numbers(axis_el.get("xyz"), 3, _where(el, "axis", "xyz"), file, "1 0 0")  # type: ignore[assignment]
+        axis = _numbers(axis_el.get("xyz"), 3, _where(el, "axis", "xyz"), file, "1 0 0")
         if all(v == 0 for v in axis):
             raise FormatError(
                 "the axis has zero length: a moving joint needs a direction",

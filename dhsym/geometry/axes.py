@@ -33,7 +33,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import Enum
 from fractions import Fraction
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -65,7 +65,7 @@ Values = Mapping[sp.Symbol, sp.Expr]
 _SURDS = (sp.Integer(1), sp.sqrt(2), sp.sqrt(3), sp.sqrt(6))
 
 
-def exact_matrix(matrix: object) -> sp.Matrix:
+def exact_matrix(matrix: Any) -> sp.Matrix:  # sympy, numpy or rows; TypeError else
     """A sympy matrix for ``matrix``: a sympy matrix as it is, else rows of values each read
     by :func:`exact_number` (text through the whitelist parser, never sympified).
 
@@ -76,7 +76,7 @@ def exact_matrix(matrix: object) -> sp.Matrix:
     """
     if isinstance(matrix, sp.MatrixBase):
         return sp.Matrix(matrix)
-    return sp.Matrix([[exact_number(v) for v in row] for row in matrix])  # type: ignore[attr-defined]
+    return sp.Matrix([[exact_number(v) for v in row] for row in matrix])
 
 
 def exact_number(value: object, *, field: str | None = None) -> sp.Expr:
@@ -121,7 +121,7 @@ def vector(values: object, *, field: str = "vector") -> Vector:
         items = list(values)
     else:
         try:
-            items = list(values)  # type: ignore[call-overload]
+            items = list(values)  # type: ignore[call-overload]  # anything: refused just below
         except TypeError:
             raise GeometryError(f"{field} must be three numbers, got {values!r}") from None
     if len(items) != 3:
@@ -411,7 +411,7 @@ class Frame:
         return sp.ImmutableMatrix(M)
 
     @classmethod
-    def from_matrix(cls, T: object, index: int | str = "") -> Frame:
+    def from_matrix(cls, T: Any, index: int | str = "") -> Frame:  # sympy, numpy or lists
         """Read a 4×4 pose (sympy, numpy or nested lists); checks that it is rigid.
 
         >>> Frame.from_matrix([[0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]).x.T

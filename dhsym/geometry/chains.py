@@ -369,8 +369,8 @@ class FrameChain:
             return None
         out = []
         node = to
-        while prev[node] is not None:
-            f, k, inv = prev[node]  # type: ignore[misc]
+        while (step := prev[node]) is not None:
+            f, k, inv = step
             out.append((node, k, inv))
             node = f
         return out[::-1]
@@ -413,11 +413,14 @@ class FrameChain:
 
     def __getitem__(self, key: tuple[object, object] | str) -> Pose:
         """``chain["world", "table"]`` (or ``chain["world←table"]``) is ``^{world}T_{table}``."""
+        frm: object
+        to: object
         if isinstance(key, str):
             if "←" not in key:
                 raise ChainError(f"write T[from←to], e.g. chain['world←table']; got {key!r}")
-            key = tuple(part.strip() for part in key.split("←", 1))  # type: ignore[assignment]
-        frm, to = key
+            frm, to = (part.strip() for part in key.split("←", 1))
+        else:
+            frm, to = key
         return self.derive(frm, to).pose
 
     def solve(self, frm: object, to: object) -> tuple[FrameChain, ChainDerivation]:

@@ -250,10 +250,11 @@ def _axes(axes: Sequence[JointAxis | Sequence[object]]) -> tuple[JointAxis, ...]
         if isinstance(ax, JointAxis):
             out.append(ax if ax.name else replace(ax, name=str(k)))
         else:
-            parts = list(ax)
+            parts: list[Any] = list(ax)  # as given: JointAxis converts and checks each
             if len(parts) < 2:
                 raise GeometryError(f"joint {k}: expected (point, direction, type)", row=k)
-            out.append(JointAxis(parts[0], parts[1], *(parts[2:3] or ["R"]), name=str(k)))
+            joint = parts[2] if len(parts) > 2 else "R"
+            out.append(JointAxis(parts[0], parts[1], joint, name=str(k)))
     if not out:
         raise GeometryError("no joint axes: give at least one")
     return tuple(out)

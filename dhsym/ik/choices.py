@@ -132,10 +132,10 @@ def _sub_robot(robot: Robot, joint: int) -> tuple[Robot, int]:
 
 
 def _free_ik(robot: Robot, joint: int) -> tuple[Robot, int]:
-    key = ("ik with a joint given", joint)
-    if key not in robot._extra_cache:
-        robot._extra_cache[key] = _sub_robot(robot, joint)
-    return robot._extra_cache[key]  # type: ignore[return-value]  # set just above
+    given = robot._given_joint.get(joint)
+    if given is None:
+        given = robot._given_joint[joint] = _sub_robot(robot, joint)
+    return given
 
 
 def _solve_free(

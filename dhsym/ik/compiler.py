@@ -35,7 +35,7 @@ import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import sympy as sp
@@ -47,6 +47,8 @@ from dhsym.model.table import JointType
 from .results import IKBatch, IKSolution
 
 if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
     from dhsym.kinematics.singularities import Singularities
 
     from .derivation import InverseKinematics
@@ -75,16 +77,16 @@ class Residual(sp.Function):
     first term, NaN or ±0, is kept by ``max`` when it is NaN (also for an infinity).
     """
 
-    def _numpycode(self, printer: object) -> str:
-        maximum = printer._module_format("numpy.maximum")  # type: ignore[attr-defined]
-        args = [f"abs({printer._print(a)})" for a in self.args]  # type: ignore[attr-defined]
+    def _numpycode(self, printer: Any) -> str:  # a sympy code printer (untyped)
+        maximum = printer._module_format("numpy.maximum")
+        args = [f"abs({printer._print(a)})" for a in self.args]
         out = args[0]
         for a in args[1:]:
             out = f"{maximum}({out}, {a})"
         return out
 
-    def _pythoncode(self, printer: object) -> str:
-        args = [printer._print(a) for a in self.args]  # type: ignore[attr-defined]
+    def _pythoncode(self, printer: Any) -> str:  # a sympy code printer (untyped)
+        args = [printer._print(a) for a in self.args]
         return f"max(0.0 * ({' + '.join(args)}), {', '.join(f'abs({a})' for a in args)})"
 
 
@@ -490,10 +492,11 @@ class Solver:
         self._tool_inv = None if self._tool is None else np.linalg.inv(self._tool)
         self._factors: tuple[tuple[str, Callable[[object], np.ndarray], float], ...] | None = None
         self._factor_exprs: tuple[sp.Expr, ...] = ()
-        self._frames: dict[int | None, Callable[[object], np.ndarray]] = {}
-        self._compiled: dict[str, Callable[..., list[object]]] = {}
+        self._frames: dict[int | None, Callable[[ArrayLike], np.ndarray]] = {}
+        # lambdified programs: lists of floats (scalar) or of arrays (numpy)
+        self._compiled: dict[str, Callable[..., list[Any]]] = {}
 
-    def frame(self, k: int | None = None) -> Callable[[object], np.ndarray]:
+    def frame(self, k: int | None = None) -> Callable[[ArrayLike], np.ndarray]:
         """The compiled ``^0T_k`` (``None``: the whole ``fk``, world to tool), cached."""
         if k not in self._frames:
             fk = self.robot.fk_function
@@ -527,7 +530,7 @@ class Solver:
         whole = Residual(*[diffs[c] for c in _ALL if c not in _POSITION], position)
         return joints + [whole, position] + closeness
 
-    def _program(self, kind: str) -> Callable[..., list[object]]:
+    def _program(self, kind: str) -> Callable[..., list[Any]]:
         """The compiled program of one ``kind``, built on first use.
 
         ``"raw"`` and ``"checked"`` (numpy, all branches by broadcasting), ``"scalar"``
@@ -573,7 +576,7 @@ class Solver:
             else:
                 program, reduced = _reuse_names(program, reduced)
                 args, modules = self.pose_args + self.signs, _NUMPY
-            self._compiled[kind] = sp.lambdify(  # type: ignore[assignment]
+            self._compiled[kind] = sp.lambdify(
                 args, reduced, modules=modules, cse=lambda exprs: (program, exprs)
             )
         return self._compiled[kind]
@@ -614,8 +617,8 @@ class Solver:
                 sl = slice(start, min(start + _CHUNK, N))
                 # the 12 entries column by column, each contiguous over the poses
                 args = [*_entries(inner[sl]), *self._sign_arrays]
-                if checked:
-                    args += args[:12] if target is inner else _entries(target[sl])  # type: ignore[index]
+                if target is not None:  # checked
+                    args += args[:12] if target is inner else _entries(target[sl])
                 res = fn(*args)
                 joints, sines = res[at.joints], res[at.wrist]
                 for k in range(n):
@@ -627,17 +630,17 @@ class Solver:
                         s = np.broadcast_to(sines[0], (*self.shape, sl.stop - start))
                         rows.append(hit + start)
                         wrists.append(s.reshape(K, -1)[:, hit])
-                if checked:
+                if target is not None and cells is not None:  # checked
                     (rv[..., sl],) = res[at.position if tuple(cells) == _POSITION else at.whole]
                     for f, value in enumerate(res[at.factors]):
                         cv[f, ..., sl] = value
         if rows:
-            at = np.concatenate(rows)
-            self._singular_wrist(inner[at], q, at, np.concatenate(wrists, axis=1))
+            hits = np.concatenate(rows)
+            self._singular_wrist(inner[hits], q, hits, np.concatenate(wrists, axis=1))
             if checked:
                 assert target is not None and cells is not None
-                qs = q[:, :, at].transpose(2, 1, 0)
-                residual[:, at], closeness[:, :, at] = self._check(qs, target[at], cells)
+                qs = q[:, :, hits].transpose(2, 1, 0)
+                residual[:, hits], closeness[:, :, hits] = self._check(qs, target[hits], cells)
         if not checked:
             return q, None, None
         return q, residual, closeness

@@ -65,7 +65,7 @@ theta1 = atan2(p_y, p_x) - atan2(a2*S2, a1 + a2*C2)
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -97,7 +97,7 @@ if TYPE_CHECKING:
 
 __all__ = ["derive_decoupled"]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 _REAL = {"real": True}
 
 
@@ -130,6 +130,7 @@ def _position(b: Builder, geo: ArmGeometry, target: Matrix) -> None:
     if geo.first.kind == "R":
         if geo.offset_axis is not None:
             e = geo.offset
+            assert e is not None  # arm_geometry sets the offset with its axis
             radial_axis = 1 - geo.offset_axis
             r = sp.Symbol("r", **_REAL)
             arm = b.branch(

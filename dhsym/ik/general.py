@@ -149,7 +149,7 @@ class EliminationSolver:
             k = len(q)
             Q[i, :k], valid[i, :k], res[i, :k], sing[i, :k, 0] = q, True, residual, near
         signs = np.zeros((MOST, 0), dtype=int)
-        return IKBatch(Q, valid, res, sing, (_SINGULAR,), signs, self)  # type: ignore[arg-type]
+        return IKBatch(Q, valid, res, sing, (_SINGULAR,), signs, self)
 
     def _one(
         self,
@@ -190,7 +190,7 @@ def _near_singular(
     omega = np.stack([W[..., 2, 1], W[..., 0, 2], W[..., 1, 0]], axis=-1)
     J = np.concatenate([dT[..., :3, 3], omega], axis=-1).transpose(0, 2, 1)  # (k, 6, 6)
     s = np.linalg.svd(J, compute_uv=False)
-    return s[:, -1] < singular_tol * s[:, 0]  # type: ignore[no-any-return]
+    return s[:, -1] < singular_tol * s[:, 0]
 
 
 def _all_numbers(robot: Robot) -> bool:

@@ -391,7 +391,7 @@ def elimination_matrices(table: DHTable) -> EliminationMatrices:
         for row, part, col, coeff, consts, pose in _terms(d, side):
             term = sp.Integer(coeff)
             for n, e in consts.items():
-                term *= values[n] ** e  # type: ignore[operator]
+                term *= values[n] ** e
             for n, e in zip(_POSE, pose, strict=True):
                 term *= pose_syms[n] ** e
             if side == "left":
@@ -496,7 +496,7 @@ def _arrangement(chain: _Chain, reverse: bool, d: _Derivation, H: np.ndarray) ->
     right: dict[tuple[int, ...], np.ndarray] = {}
     for side in ("left", "right"):
         for row, part, col, coeff, consts, pose in _terms(d, side):
-            v = float(coeff) * math.prod(vals[n] ** e for n, e in consts.items())  # type: ignore[operator]
+            v = float(coeff) * math.prod(vals[n] ** e for n, e in consts.items())
             if side == "left":
                 P[part, row, col] += v
             else:
@@ -621,7 +621,8 @@ def _candidates(arr: _Arrangement, Tp: np.ndarray) -> np.ndarray:
             found = _pencil(arr, Tp, 0.0), 0.0
             x, W = _eigen_qz(found[0][0])
         except ImportError:  # no scipy: the companion matrix of the best-conditioned shift
-            _, found, x, W = best  # type: ignore[misc]
+            assert best is not None  # set by every shift of the loop above
+            _, found, x, W = best
     (big, Q1, R8, r, P), delta = found
     with np.errstate(all="ignore"):
         phi = 2.0 * np.arctan(x.astype(complex))

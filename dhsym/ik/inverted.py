@@ -23,7 +23,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -44,7 +44,7 @@ if TYPE_CHECKING:
 
 __all__ = ["derive_inverted", "reversed_table"]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 
 
 def reversed_table(table: DHTable) -> DHTable:

@@ -36,7 +36,7 @@ axes 2, 3, 4 parallel; axes 5, 6 meet in the wrist point (origin of frame 5): jo
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -56,7 +56,7 @@ if TYPE_CHECKING:
 
 __all__ = ["derive_parallel"]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 _REAL = {"real": True}
 
 

@@ -18,13 +18,15 @@ from __future__ import annotations
 import functools
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
 from dhsym.kinematics.jacobian import axis_frame
 
 if TYPE_CHECKING:
+    from numpy.typing import DTypeLike
+
     from .compiler import Solver
     from .general import EliminationSolver
     from .steps import Branch
@@ -88,10 +90,10 @@ class IKSolution:
         return iter(self.q)
 
     def __getitem__(self, k: int) -> np.ndarray:
-        return self.q[k]  # type: ignore[no-any-return]
+        return self.q[k]
 
-    def __array__(self, dtype: object = None, copy: object = None) -> np.ndarray:
-        return self.q if dtype is None else self.q.astype(dtype)  # type: ignore[arg-type]
+    def __array__(self, dtype: DTypeLike | None = None, copy: object = None) -> np.ndarray:
+        return self.q if dtype is None else self.q.astype(dtype)
 
 
 @dataclass(frozen=True, eq=False)
@@ -115,12 +117,12 @@ class IKBatch:
     @property
     def count(self) -> np.ndarray:
         """``(N,)`` number of solutions of each pose."""
-        return self.valid.sum(axis=1)  # type: ignore[no-any-return]
+        return self.valid.sum(axis=1)
 
     @property
     def near_singular(self) -> np.ndarray:
         """``(N, K)`` True where a solution is near a singular configuration."""
-        return self.singular.any(axis=-1)  # type: ignore[no-any-return]
+        return np.asarray(self.singular.any(axis=-1))
 
     def __len__(self) -> int:
         return int(self.q.shape[0])
@@ -146,7 +148,8 @@ def _branch_names(
     parts: list[list[str]] = [[] for _ in range(len(q))]
     for b, col in zip(ik.branches, signs.T):
         if b.role == "elbow":
-            up = _elbow_up(solver, q, b) if len(q) else np.zeros(0, dtype=bool)
+            # branch signs come from compiled steps: the solver is a compiler.Solver
+            up = _elbow_up(cast("Solver", solver), q, b) if len(q) else np.zeros(0, dtype=bool)
             words = ["elbow up" if u else "elbow down" for u in up]
         elif b.role == "arm":
             words = ["right arm" if sgn > 0 else "left arm" for sgn in col]

@@ -26,7 +26,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import sympy as sp
 
@@ -52,7 +52,7 @@ __all__ = [
     "solve_joint_from_entry",
 ]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 _REAL = {"real": True}
 
 
@@ -191,10 +191,10 @@ class Builder:
         self.part = "position"
 
     def add(
-        self, part: str, text: Sentence | str, lhs: sp.Symbol, rhs: sp.Expr, **kw: object
-    ) -> sp.Symbol:
+        self, part: str, text: Sentence | str, lhs: sp.Symbol, rhs: sp.Expr, **kw: Any
+    ) -> sp.Symbol:  # kw: the optional fields of Step
         words = text if isinstance(text, Sentence) else Sentence(text)
-        self.steps.append(Step(part, words, lhs, rhs, **kw))  # type: ignore[arg-type]
+        self.steps.append(Step(part, words, lhs, rhs, **kw))
         return lhs
 
     def branch(self, role: str, var: sp.Symbol, template: str, **math: object) -> Branch:

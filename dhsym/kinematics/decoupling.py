@@ -21,7 +21,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -36,7 +36,7 @@ if TYPE_CHECKING:
 
 __all__ = ["ArmGeometry", "Decoupling", "StructureError", "arm_geometry", "decouple"]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 
 
 class StructureError(DHError):
@@ -117,7 +117,7 @@ def decouple(robot: Robot, size: int) -> Decoupling:
     for f in range(start, n + 1):
         in_base = robot.transform(0, f).position
         in_last = robot.transform(n, f).position
-        if _independent(in_base, variables) and _independent(in_last, variables):  # type: ignore[arg-type]
+        if _independent(in_base, variables) and _independent(in_last, variables):
             const = Matrix(in_last.subs({v: 0 for v in variables}))
             return Decoupling(arm, wrist, f, const)
     before = arm[-1] if arm else 0

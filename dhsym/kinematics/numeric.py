@@ -46,12 +46,17 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhsym.model.table import Elementary
 
 __all__ = [
     "EvaluationError",
@@ -80,8 +85,8 @@ _EXACT_INT = 2**53
 class _PlusZero(sp.Function):
     """``x + 0.0`` in the float code: ``-0.0`` becomes ``0.0``, so printed poses read cleanly."""
 
-    def _pythoncode(self, printer: object) -> str:
-        return f"({printer._print(self.args[0])} + 0.0)"  # type: ignore[attr-defined]
+    def _pythoncode(self, printer: Any) -> str:  # a sympy code printer (untyped)
+        return f"({printer._print(self.args[0])} + 0.0)"
 
 
 def to_float(expr: object) -> float:
@@ -234,14 +239,13 @@ class PoseFunction:
         self._batch = batch
         self.n = n
 
-    def __call__(self, q: object) -> np.ndarray:
-        kind = type(q)
-        if kind is list or kind is tuple:
-            if len(q) == self.n:  # type: ignore[arg-type]
-                return self.single(q)  # type: ignore[arg-type]
-        elif kind is np.ndarray and q.ndim == 1 and q.shape[0] == self.n:
+    def __call__(self, q: ArrayLike) -> np.ndarray:
+        if isinstance(q, (list, tuple)):
+            if len(q) == self.n:
+                return self.single(q)
+        elif isinstance(q, np.ndarray) and q.ndim == 1 and q.shape[0] == self.n:
             return self.single(q.tolist())
-        return self.batch(q)  # type: ignore[arg-type]
+        return self.batch(q)
 
     def single(self, q: Sequence[float]) -> np.ndarray:
         """One configuration (a sequence of n numbers) → ``(4, 4)``, in pure Python floats.
@@ -252,13 +256,13 @@ class PoseFunction:
         try:
             out = np.array(self._single(*q))
         except (TypeError, ValueError, OverflowError, ZeroDivisionError):
-            return self.batch(q)  # type: ignore[arg-type]
+            return self.batch(q)
         if out.dtype != _FLOAT or out.shape != (16,):  # e.g. a list was added to a list
-            return self.batch(q)  # type: ignore[arg-type]
+            return self.batch(q)
         out.shape = (4, 4)
         return out
 
-    def batch(self, q: np.ndarray) -> np.ndarray:
+    def batch(self, q: ArrayLike) -> np.ndarray:
         """A batch ``(N, n)`` → ``(N, 4, 4)`` (one configuration ``(n,)`` → ``(4, 4)``)."""
         Q, single = _configurations(q, self.n)
         N = Q.shape[0]
@@ -308,7 +312,7 @@ def compile_pose(
 
 
 def compile_word(
-    word: Sequence[object],
+    word: Sequence[Elementary],
     variables: Sequence[sp.Symbol],
     values: Mapping[sp.Symbol, sp.Expr] | None = None,
     *,
@@ -334,7 +338,7 @@ def compile_word(
     vals = dict(values or {})
     variables = tuple(variables)
     word = tuple(word)
-    exprs = [e.value.subs(vals) for e in word]  # type: ignore[attr-defined]
+    exprs = [e.value.subs(vals) for e in word]
     fn = compile_exprs(exprs, variables)
     n = len(variables)
 
@@ -440,7 +444,9 @@ def elementary_stack(kind: str, axis: str, value: object) -> np.ndarray:
     return out
 
 
-def _multiply(word: Sequence[object], values: Sequence[object], size: int, prefixes: bool):
+def _multiply(
+    word: Sequence[Elementary], values: Sequence[object], size: int, prefixes: bool
+) -> np.ndarray:
     """The product of ``word`` (``(size, 4, 4)``; with ``prefixes`` every partial product,
     ``(size, len(word) + 1, 4, 4)``, the identity first) given each factor's values.
 
@@ -448,16 +454,16 @@ def _multiply(word: Sequence[object], values: Sequence[object], size: int, prefi
     """
     out = [np.broadcast_to(np.eye(4), (size, 4, 4))]
     for e, v in zip(word, values, strict=True):
-        if e.value.is_zero:  # type: ignore[attr-defined]  (an exact zero; no sympify per call)
+        if e.value.is_zero:  # an exact zero; no sympify per call
             out.append(out[-1])
             continue
-        factor = elementary_stack(e.kind, e.axis, np.broadcast_to(v, (size,)))  # type: ignore[attr-defined]
+        factor = elementary_stack(e.kind, e.axis, np.broadcast_to(np.asarray(v), (size,)))
         out.append(out[-1] @ factor)
     return np.stack(out, axis=1) if prefixes else np.array(out[-1])
 
 
 def word_product(
-    word: Sequence[object],
+    word: Sequence[Elementary],
     env: Mapping[sp.Basic, np.ndarray],
     size: int,
     *,
@@ -479,7 +485,7 @@ def word_product(
            [0., 2.]])
     """
     memo = {} if memo is None else memo
-    values = [evaluate(e.value, env, size, memo) for e in word]  # type: ignore[attr-defined]
+    values = [evaluate(e.value, env, size, memo) for e in word]
     return _multiply(word, values, size, prefixes)
 
 
@@ -555,8 +561,11 @@ def _constant(e: sp.Basic, memo: dict) -> np.ndarray:
     return hit
 
 
-def _walk(e: sp.Basic, env: Mapping, memo: dict) -> object:
-    """Values of ``e`` at every point, or :data:`_CONSTANT` for a subtree without symbols."""
+def _walk(e: sp.Basic, env: Mapping, memo: dict) -> Any:
+    """Values of ``e`` at every point, or :data:`_CONSTANT` for a subtree without symbols.
+
+    (``Any``: an ``np.ndarray`` or the ``_CONSTANT`` mark, told apart by ``is``.)
+    """
     hit = memo.get(e)
     if hit is not None:
         return hit
@@ -582,7 +591,7 @@ def _walk(e: sp.Basic, env: Mapping, memo: dict) -> object:
     return val
 
 
-def _apply(e: sp.Basic, args: list) -> object:
+def _apply(e: sp.Basic, args: list) -> np.ndarray:
     if e.is_Add:
         val = args[0]
         for a in args[1:]:

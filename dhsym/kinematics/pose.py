@@ -57,8 +57,8 @@ Matrix([
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
-from typing import Any
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any, TypeAlias, TypeGuard
 
 import sympy as sp
 from sympy.core.basic import Basic
@@ -68,10 +68,10 @@ from dhsym.notation.printers import Notation
 
 __all__ = ["Pose"]
 
-_Matrix = sp.ImmutableDenseMatrix
+_Matrix: TypeAlias = sp.ImmutableDenseMatrix
 
 
-class Pose(_Matrix):  # type: ignore[misc]
+class Pose(_Matrix):
     """``^{frm}T_{to}``: pose of frame ``to`` in frame ``frm``, an exact 4×4 ``ImmutableMatrix``.
 
     Parameters
@@ -108,7 +108,7 @@ class Pose(_Matrix):  # type: ignore[misc]
 
     def __new__(
         cls,
-        matrix: object,
+        matrix: Iterable[Iterable[object]],
         frm: int | str = "",
         to: int | str = "",
         notation: Notation | None = None,
@@ -120,7 +120,7 @@ class Pose(_Matrix):  # type: ignore[misc]
         else:  # rows of numbers or sympy objects; text is refused, never sympified
             from .numeric import as_basic
 
-            plain = _Matrix([[as_basic(x) for x in row] for row in matrix])  # type: ignore[attr-defined]
+            plain = _Matrix([[as_basic(x) for x in row] for row in matrix])
         if plain.shape != (4, 4):
             raise ValueError(f"a pose is a 4×4 homogeneous transform, got shape {plain.shape}")
         obj = Basic.__new__(cls, *plain.args)
@@ -250,15 +250,16 @@ class Pose(_Matrix):  # type: ignore[misc]
 
         ``sympy.N(pose, 5)`` and ``pose.evalf(5, subs=…)`` work as for any matrix.
         """
-        if isinstance(kwargs.get("subs"), Mapping):
-            kwargs["subs"] = symbol_values(kwargs["subs"])  # type: ignore[arg-type]
+        subs = kwargs.get("subs")
+        if isinstance(subs, Mapping):
+            kwargs["subs"] = symbol_values(subs)
         if isinstance(values, Mapping) or values is None:
             kwargs.setdefault("subs", symbol_values(values))
             return _Matrix(self._plain.evalf(*args, **kwargs))
         return _Matrix(self._plain.evalf(values, *args, **kwargs))
 
     # -- composition -----------------------------------------------------------------------
-    def _chains_with(self, other: object) -> bool:
+    def _chains_with(self, other: object) -> TypeGuard[Pose]:
         return (
             isinstance(other, Pose)
             and other.symbol == self.symbol
@@ -268,7 +269,7 @@ class Pose(_Matrix):  # type: ignore[misc]
 
     def __mul__(self, other: object) -> object:
         if self._chains_with(other):
-            return self._compose(other)  # type: ignore[arg-type]
+            return self._compose(other)
         if isinstance(other, Pose):
             return self._plain * other._plain
         return _Matrix.__mul__(self, other)
@@ -329,17 +330,17 @@ class Pose(_Matrix):  # type: ignore[misc]
             return printer._print(self._plain)
         return self.text()
 
-    def _sympyrepr(self, printer: object) -> str:
-        return printer._print(self._plain)  # type: ignore[attr-defined]
+    def _sympyrepr(self, printer: Any) -> str:  # a sympy printer (untyped)
+        return printer._print(self._plain)
 
-    def _pretty(self, printer: object) -> object:
+    def _pretty(self, printer: Any) -> object:  # a sympy printer (untyped)
         """``sympy.pprint``: the matrix with the abbreviations as symbols (C₁₂, S₁)."""
         short = {}
         for f in self._plain.atoms(sp.cos, sp.sin):
             name = self.notation.text(f)
             if name != sp.sstr(f):
                 short[f] = sp.Symbol(name)
-        return printer._print(self._plain.xreplace(short))  # type: ignore[attr-defined]
+        return printer._print(self._plain.xreplace(short))
 
     def _repr_latex_(self) -> str:
         return f"$${self.label_latex} = {self.latex()}$$"
@@ -361,7 +362,7 @@ def _merge(a: Notation, b: Notation) -> Notation:
     labels = dict(a.labels)
     for sym, lab in b.labels:
         labels.setdefault(sym, lab)
-    return Notation(tuple(labels.items()), compact=a.compact, upper=a.upper)
+    return Notation(tuple(labels.items()), compact=a.compact, style=a.style)
 
 
 def _tidy(M: sp.MatrixBase) -> sp.ImmutableMatrix:

@@ -20,10 +20,10 @@ np.float64(1.5)
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from functools import cache
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, overload
 
 import sympy as sp
 
@@ -38,11 +38,16 @@ from .transforms import chain_word, link_word, plain_product
 
 if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `import sympy`
     import numpy as np
+    from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike
 
+    from dhsym.dynamics.compiled import DynamicsFunctions, Trajectory
+    from dhsym.dynamics.equations import EquationsOfMotion
+    from dhsym.dynamics.statics import Statics
     from dhsym.ik.derivation import InverseKinematics
     from dhsym.ik.results import IKBatch, IKSolution
 
-    from .numeric import PoseFunction
+    from .jacobian import AnalyticJacobian, Jacobian
 
 __all__ = ["MAX_CLOSED_FORM", "Robot"]
 
@@ -78,9 +83,21 @@ class Robot:
             decimals=decimal_lengths([v for r in table.rows for v in (r.d, r.a)]),
         )
         self._transform = cache(self._compute_transform)
-        self._fk_cache: dict[tuple[object, object, object], PoseFunction] = {}
-        self._fk_default: PoseFunction | None = None  # world -> tool with the table's values
-        self._extra_cache: dict[object, object] = {}  # Jacobians, IK solvers (see ik, jacobian)
+        # compiled fk: a PoseFunction, or a compile_word product for a chain too long to
+        # write out (both take one configuration or a batch)
+        self._fk_cache: dict[tuple[object, object, object], Callable[[ArrayLike], np.ndarray]] = {}
+        # world -> tool with the table's values
+        self._fk_default: Callable[[ArrayLike], np.ndarray] | None = None
+        # typed caches: numeric Jacobians by (frame, euler, values), the derived inverse,
+        # and the sub-robots of ``ik(free=...)`` by joint (see jacobian, inverse, ik)
+        self._jacobian_functions: dict[
+            tuple[int | str, str | None, object], Callable[[object], np.ndarray]
+        ] = {}
+        self._inverse: InverseKinematics | None = None
+        self._given_joint: dict[int, tuple[Robot, int]] = {}
+        # the equations of motion by method, and their compiled numbers by values
+        self._dynamics: dict[str, EquationsOfMotion] = {}
+        self._dynamics_functions: dict[object, DynamicsFunctions] = {}
 
     # -- description -----------------------------------------------------------------
     @property
@@ -205,7 +222,7 @@ class Robot:
         i: int | None = None,
         j: int | None = None,
         values: Mapping[Any, object] | None = None,
-    ) -> PoseFunction:
+    ) -> Callable[[ArrayLike], np.ndarray]:
         """A compiled numeric function ``q -> ^iT_j`` (defaults: world to tool), cached.
 
         The cache key is what changes between calls: the frames and the
@@ -228,12 +245,12 @@ class Robot:
             if self.transform_size(i, j) <= MAX_CLOSED_FORM:
                 f = compile_pose(self.transform(i, j).matrix, self.variables, vals)
             else:  # too long for a closed form: the elementary transforms, multiplied as numbers
-                f = compile_word(chain_word(self.table, i, j), self.variables, vals)  # type: ignore[assignment]
-            self._fk_cache[key] = f  # type: ignore[assignment]
-        return f  # type: ignore[return-value]
+                f = compile_word(chain_word(self.table, i, j), self.variables, vals)
+            self._fk_cache[key] = f
+        return f
 
     def fk(
-        self, q: object, *, deg: bool = False, values: Mapping[Any, object] | None = None
+        self, q: ArrayLike, *, deg: bool = False, values: Mapping[Any, object] | None = None
     ) -> np.ndarray:
         """Tool pose: one configuration ``(n,)`` → ``(4, 4)``; a batch ``(N, n)`` → ``(N, 4, 4)``.
 
@@ -256,14 +273,41 @@ class Robot:
             q = arr
         return f(q)
 
+    @overload
     def jacobian(
         self,
-        q: object = None,
+        q: None = None,
+        *,
+        frame: int | str = "base",
+        euler: None = None,
+        values: Mapping[Any, object] | None = None,
+    ) -> Jacobian: ...
+    @overload
+    def jacobian(
+        self,
+        q: None = None,
+        *,
+        frame: int | str = "base",
+        euler: str,
+        values: Mapping[Any, object] | None = None,
+    ) -> AnalyticJacobian: ...
+    @overload
+    def jacobian(
+        self,
+        q: ArrayLike,
         *,
         frame: int | str = "base",
         euler: str | None = None,
         values: Mapping[Any, object] | None = None,
-    ) -> object:
+    ) -> np.ndarray: ...
+    def jacobian(
+        self,
+        q: ArrayLike | None = None,
+        *,
+        frame: int | str = "base",
+        euler: str | None = None,
+        values: Mapping[Any, object] | None = None,
+    ) -> Jacobian | AnalyticJacobian | np.ndarray:
         """The Jacobian (:mod:`dhsym.kinematics.jacobian`): symbolic without ``q``, else numeric.
 
         ``robot.jacobian()`` is the exact 6×n geometric Jacobian (``frame="tool"`` for the
@@ -279,23 +323,25 @@ class Robot:
             return jac.geometric_jacobian(self, frame)
         from .numeric import values_key
 
-        key = ("jacobian", frame, euler, values_key(values))
-        if key not in self._extra_cache:
+        key = (frame, euler, values_key(values))
+        f = self._jacobian_functions.get(key)
+        if f is None:
             if euler is not None:
                 if frame != "base":
                     raise DHError("the numeric analytic Jacobian is in the base frame")
-                self._extra_cache[key] = jac.analytic_jacobian_function(self, euler, values)
+                f = jac.analytic_jacobian_function(self, euler, values)
             else:
-                self._extra_cache[key] = jac.jacobian_function(self, frame, values=values)
-        return self._extra_cache[key](q)  # type: ignore[operator]
+                f = jac.jacobian_function(self, frame, values=values)
+            self._jacobian_functions[key] = f
+        return f(q)
 
     def inverse(self) -> InverseKinematics:
         """The closed-form inverse kinematics derived step by step (:mod:`dhsym.ik`), cached."""
         from dhsym.ik.families import inverse
 
-        if "inverse" not in self._extra_cache:
-            self._extra_cache["inverse"] = inverse(self)
-        return self._extra_cache["inverse"]  # type: ignore[return-value]  # set just above
+        if self._inverse is None:
+            self._inverse = inverse(self)
+        return self._inverse
 
     def ik(
         self,
@@ -358,7 +404,7 @@ class Robot:
         return compiled(self, lang)
 
     # -- dynamics (dhsym.dynamics, loaded on first use) ----------------------------------
-    def dynamics(self, method: str = "lagrange") -> object:
+    def dynamics(self, method: str = "lagrange") -> EquationsOfMotion:
         """The equations of motion, exact (``"lagrange"`` or ``"newton-euler"``), cached.
 
         Rows without inertial parameters get the textbook symbols (``m1``, ``rx1``, …).
@@ -370,21 +416,21 @@ class Robot:
         key = str(method).strip().lower().replace("_", "-")
         if key not in methods:
             raise DHError(f"unknown dynamics method {method!r}: expected lagrange or newton-euler")
-        cache_key = ("dynamics", methods[key].__name__)
-        if cache_key not in self._extra_cache:
-            self._extra_cache[cache_key] = methods[key](self)
-        return self._extra_cache[cache_key]
+        name = methods[key].__name__
+        if name not in self._dynamics:
+            self._dynamics[name] = methods[key](self)
+        return self._dynamics[name]
 
-    def dynamics_functions(self, values: Mapping[object, object] | None = None) -> object:
+    def dynamics_functions(self, values: Mapping[Any, object] | None = None) -> DynamicsFunctions:
         """The compiled dynamics (:class:`dhsym.dynamics.compiled.DynamicsFunctions`), cached."""
         from dhsym.dynamics.compiled import dynamics_functions
 
         from .numeric import values_key
 
-        key = ("dynamics-functions", values_key(values))
-        if key not in self._extra_cache:
-            self._extra_cache[key] = dynamics_functions(self, values)
-        return self._extra_cache[key]
+        key = values_key(values)
+        if key not in self._dynamics_functions:
+            self._dynamics_functions[key] = dynamics_functions(self, values)
+        return self._dynamics_functions[key]
 
     def rne(
         self, q: object, qd: object, qdd: object, *, values: Mapping[object, object] | None = None
@@ -393,27 +439,27 @@ class Robot:
 
         One state ``(n,)`` → ``(n,)``; a batch ``(..., n)`` → ``(..., n)``.
         """
-        return self.dynamics_functions(values).rne(q, qd, qdd)  # type: ignore[attr-defined]
+        return self.dynamics_functions(values).rne(q, qd, qdd)
 
     def inertia(self, q: object, *, values: Mapping[object, object] | None = None) -> np.ndarray:
         """The inertia matrix M(q): ``(n,)`` → ``(n, n)``, ``(..., n)`` → ``(..., n, n)``."""
-        return self.dynamics_functions(values).inertia(q)  # type: ignore[attr-defined]
+        return self.dynamics_functions(values).inertia(q)
 
     def coriolis(
         self, q: object, qd: object, *, values: Mapping[object, object] | None = None
     ) -> np.ndarray:
         """C(q, q̇) from the Christoffel symbols; ``C @ qd`` is the velocity term."""
-        return self.dynamics_functions(values).coriolis(q, qd)  # type: ignore[attr-defined]
+        return self.dynamics_functions(values).coriolis(q, qd)
 
     def gravload(self, q: object, *, values: Mapping[object, object] | None = None) -> np.ndarray:
         """The gravity torques g(q)."""
-        return self.dynamics_functions(values).gravload(q)  # type: ignore[attr-defined]
+        return self.dynamics_functions(values).gravload(q)
 
     def accel(
         self, q: object, qd: object, tau: object, *, values: Mapping[object, object] | None = None
     ) -> np.ndarray:
         """Forward dynamics q̈ = M⁻¹(τ − C q̇ − g − friction)."""
-        return self.dynamics_functions(values).accel(q, qd, tau)  # type: ignore[attr-defined]
+        return self.dynamics_functions(values).accel(q, qd, tau)
 
     def simulate(
         self,
@@ -424,9 +470,9 @@ class Robot:
         dt: float = 1e-3,
         tau: object = None,
         values: Mapping[object, object] | None = None,
-    ) -> object:
+    ) -> Trajectory:
         """Fixed-step RK4 integration of the motion (a ``Trajectory``: ``t``, ``q``, ``qd``)."""
-        return self.dynamics_functions(values).simulate(q0, qd0, duration, dt=dt, tau=tau)  # type: ignore[attr-defined]
+        return self.dynamics_functions(values).simulate(q0, qd0, duration, dt=dt, tau=tau)
 
     def statics(
         self,
@@ -434,7 +480,7 @@ class Robot:
         wrench: object = None,
         *,
         values: Mapping[object, object] | None = None,
-    ) -> object:
+    ) -> Statics | np.ndarray:
         """τ = Jᵀ F: exact (no ``q``), or the torques that balance a tip wrench ``[f; n]``
         (base frame) at ``q``, batched like :meth:`jacobian`."""
         from dhsym.dynamics.statics import statics, statics_numeric
@@ -443,8 +489,12 @@ class Robot:
             return statics(self)
         return statics_numeric(self, q, wrench, values=values)
 
-    def plot(self, q: object = None, **kw: object) -> object:
-        """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plot.figures`)."""
+    def plot(self, q: object = None, **kw: Any) -> Figure:
+        """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plot.figures`).
+
+        ``kw`` are the options of :func:`dhsym.plot.figures.plot_robot` (``ax``, ``frames``,
+        ``labels``, ``deg``, ``view``, ``scale``, ``title``, ``limits``, ``alpha``).
+        """
         from dhsym.plot.figures import plot_robot
 
         return plot_robot(self, q, **kw)
@@ -463,7 +513,7 @@ def _frame_name(i: int, n: int) -> int | str:
     return i
 
 
-def load(name_or_path: str | Path, **kw: object) -> Robot:
+def load(name_or_path: str | Path, **kw: Any) -> Robot:
     """A :class:`Robot` from a built-in name or a table file (``compact``, ``style`` as Robot).
 
     A ``.urdf`` path (or URDF text) is read by :func:`dhsym.formats.urdf.from_urdf`, which
@@ -476,7 +526,7 @@ def load(name_or_path: str | Path, **kw: object) -> Robot:
     if text.lstrip().startswith("<") or Path(text).suffix.lower() in (".urdf", ".xacro"):
         from dhsym.formats.urdf import from_urdf  # the formats room, at call time
 
-        return from_urdf(name_or_path, **kw)  # type: ignore[arg-type]
+        return from_urdf(name_or_path, **kw)
     return Robot(load_table(name_or_path), **kw)
 
 

@@ -33,7 +33,7 @@ from __future__ import annotations
 import random
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
 import sympy as sp
 
@@ -388,7 +388,7 @@ def _fold_pair(terms: list[sp.Expr]) -> list[sp.Expr] | None:
     return None
 
 
-def _combine(kind: str, sig: tuple[object, ...], c1: sp.Expr, c2: sp.Expr) -> sp.Expr | None:
+def _combine(kind: str, sig: tuple[Any, ...], c1: sp.Expr, c2: sp.Expr) -> sp.Expr | None:
     if kind == "cc":
         A, B = (list(sig[1]) * 2)[:2] if sig[2] else sorted(sig[1], key=sp.default_sort_key)
         if c2 == -c1:

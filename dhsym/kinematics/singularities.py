@@ -56,6 +56,8 @@ from .simplification import fold_sum_angles, prove_equal, trig_coefficients
 if TYPE_CHECKING:
     import numpy as np
 
+    from dhsym.notation.printers import Notation
+
     from .robot import Robot
 
 __all__ = ["Block", "SingularFactor", "Singularities", "factored_det", "singularities"]
@@ -124,15 +126,15 @@ class SingularFactor:
     description: str
     variables: tuple[sp.Symbol, ...]
     solutions: tuple[tuple[sp.Symbol, sp.Expr], ...]
-    notation: object = field(compare=False, repr=False, default=None)
+    notation: Notation | None = field(compare=False, repr=False, default=None)
 
     def text(self) -> str:
         """The factor in plain text, compact notation."""
-        return self.notation.text(self.expr) if self.notation else sp.sstr(self.expr)  # type: ignore[attr-defined]
+        return self.notation.text(self.expr) if self.notation else sp.sstr(self.expr)
 
     def latex(self) -> str:
         """The factor in LaTeX, compact notation."""
-        return self.notation.latex(self.expr) if self.notation else sp.latex(self.expr)  # type: ignore[attr-defined]
+        return self.notation.latex(self.expr) if self.notation else sp.latex(self.expr)
 
 
 def _zeros(expr: sp.Expr, x: sp.Symbol, joint: JointType) -> tuple[sp.Expr, ...]:

@@ -59,7 +59,12 @@ def builtin_table(name: str) -> DHTable:
     key = name.strip().lower().replace("-", "").replace(" ", "")
     m = _PLANAR.match(key)
     if key in builtin_names():
-        text = resources.files("dhsym.model").joinpath("robots", f"{key}.yaml").read_text("utf-8")
+        text = (
+            resources.files("dhsym.model")
+            .joinpath("robots")
+            .joinpath(f"{key}.yaml")
+            .read_text("utf-8")
+        )
         return read_table_text(text, file=f"{key}.yaml")
     if m:
         return planar_chain(int(m.group(1)))

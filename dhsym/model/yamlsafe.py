@@ -69,8 +69,16 @@ class YAMLInputError(DHError):
 class FileRefused(DHError):
     """A file that is not read: ``kind`` is ``unreadable``, ``special``, ``link`` or ``large``."""
 
-    def __init__(self, message: str, *, kind: str = "unreadable", **where: object) -> None:
-        super().__init__(message, **where)  # type: ignore[arg-type]
+    def __init__(
+        self,
+        message: str,
+        *,
+        kind: str = "unreadable",
+        file: str | None = None,
+        row: int | None = None,
+        field: str | None = None,
+    ) -> None:
+        super().__init__(message, file=file, row=row, field=field)
         self.kind = kind
 
 
@@ -142,11 +150,11 @@ class _Loader(yaml.SafeLoader):
                         f"{seen[key]}); each field is written once"
                     )
                 seen[key] = line
-        return super().construct_mapping(node, deep=deep)
+        return super().construct_mapping(node, deep=deep)  # type: ignore[arg-type]  # any other node: yaml's own ConstructorError
 
 
 _Loader.add_constructor("tag:yaml.org,2002:int", _Loader.construct_yaml_int)
-_Loader.add_constructor("tag:yaml.org,2002:map", _Loader.construct_yaml_map)
+_Loader.add_constructor("tag:yaml.org,2002:map", _Loader.construct_yaml_map)  # type: ignore[type-var]  # types-PyYAML types it on SafeConstructor, a base of _Loader
 for _tag, _pattern, _first in (
     ("bool", r"^(?:true|True|TRUE|false|False|FALSE)$", "tTfF"),
     ("int", r"^(?:[-+]?[0-9]+|0o[0-7]+|0x[0-9a-fA-F]+)$", "-+0123456789"),
@@ -203,7 +211,8 @@ def _check_events(text: str, limits: YAMLLimits) -> None:
                     f"{_line(event)}the alias *{event.anchor} is inside its own anchor "
                     "(a structure that contains itself)"
                 )
-            nodes, chars = anchors.get(event.anchor, (1, 0))
+            known = anchors.get(event.anchor) if event.anchor is not None else None
+            nodes, chars = known or (1, 0)
             stack[-1][0] += nodes
             stack[-1][1] += chars
             total_nodes, total_chars = total_nodes + nodes, total_chars + chars

@@ -423,7 +423,7 @@ def indexed_names(
         i, j = r + start[0], c + start[1]
         return Math(TeX(f"{symbol}_{{{i}{j}}}"), f"{symbol}{i}{j}")
 
-    name.columns = columns  # type: ignore[attr-defined]
+    name.columns = columns  # type: ignore[attr-defined]  # a flag matrix_equations reads by getattr
     return name
 
 
@@ -483,9 +483,9 @@ def matrix_block(
         named = [[names(r, c) for c in range(nc)] for r in range(nr)]
     entries = (
         tuple(
-            equation(named[r][c], matrix[r, c], rows[r][c], nota, width)  # type: ignore[arg-type]
+            equation(entry, matrix[r, c], rows[r][c], nota, width)
             for r, c in order
-            if named[r][c] is not None
+            if (entry := named[r][c]) is not None
         )
         if wide or wide_text
         else ()

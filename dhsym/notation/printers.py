@@ -63,6 +63,7 @@ from dataclasses import dataclass, field, replace
 from enum import Enum
 from functools import cached_property
 from itertools import product as _combinations
+from typing import Any
 
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
@@ -302,13 +303,13 @@ class Notation:
         cls,
         variables: Sequence[sp.Symbol],
         labels: Sequence[str] | None = None,
-        **kw: object,
+        **kw: Any,  # the other fields: compact, style
     ) -> Notation:
         """Notation whose joint angles are ``variables``, labelled 1, 2, … by default."""
         labs = (
             list(labels) if labels is not None else [str(i) for i in range(1, len(variables) + 1)]
         )
-        return cls(tuple(zip(variables, labs)), **kw)  # type: ignore[arg-type]
+        return cls(tuple(zip(variables, labs)), **kw)
 
     @cached_property
     def label_map(self) -> dict[sp.Symbol, str]:
@@ -586,7 +587,7 @@ def _decimal_terms(p: Product) -> tuple[Sum, sp.Rational] | None:
 
 def _angle_head(arg: sp.Expr) -> str:
     r"""``\theta`` for angles θ1, θ2…, ``q`` for q1, q2… (the letter of the joint variables)."""
-    names = {re.match(r"[A-Za-z]*", s.name).group(0) for s in arg.free_symbols}  # type: ignore[union-attr]
+    names = {re.match(r"[A-Za-z]*", s.name).group(0) for s in arg.free_symbols}  # type: ignore[union-attr]  # `*`: always a match
     return sp.latex(sp.Symbol(names.pop())) if len(names) == 1 and "" not in names else r"\theta"
 
 
@@ -605,7 +606,7 @@ class _LayoutMixin:
 
     def _print_Rational(self, expr: sp.Rational) -> str:
         dec = exact_decimal(expr) if expr.q > 1 else None
-        return dec if dec is not None else super()._print_Rational(expr)  # type: ignore[misc]
+        return dec if dec is not None else super()._print_Rational(expr)  # type: ignore[misc]  # a mixin: sympy's printer is next in the MRO
 
     def _print_Add(self, expr: sp.Add, order: object = None) -> str:
         return self._layout(expr)
@@ -615,7 +616,7 @@ class _LayoutMixin:
 
     def _print_whole(self, expr: sp.Expr) -> str:
         """A term sympy prints itself (a fraction): sympy's own ``_print_Mul``."""
-        return super()._print_Mul(expr) if expr.is_Mul else self._print(expr)  # type: ignore[misc]
+        return super()._print_Mul(expr) if expr.is_Mul else self._print(expr)  # type: ignore[misc]  # a mixin: sympy's printer is next in the MRO
 
     def tokens(self, tree: Sum, depth: int = 0) -> list[Token]:
         """The tokens of ``tree`` (from :meth:`Notation.arrange`)."""
@@ -637,14 +638,14 @@ class _LayoutMixin:
             inner, divisor = dec
             if divisor == 1:
                 return self.tokens(inner, depth)
-            out = [Token("open", "(", depth, inner.level, False)]
-            out += self.tokens(inner, depth + 1)
-            out.append(Token("close", ")", depth, inner.level, False))
+            bracket = [Token("open", "(", depth, inner.level, False)]
+            bracket += self.tokens(inner, depth + 1)
+            bracket.append(Token("close", ")", depth, inner.level, False))
             below = exact_decimal(divisor)
             if self._latex:
                 top = render(self.tokens(inner, depth), True)
                 return [Token("atom", rf"\frac{{{top}}}{{{below}}}", depth)]
-            return [*out, Token("atom", f"/{below}", depth)]
+            return [*bracket, Token("atom", f"/{below}", depth)]
         if c.is_Rational and not c.is_Integer and _coefficient(c, self._decimals) is None:
             top = render(
                 self._product_tokens(replace(p, coeff=sp.Integer(c.p)), depth), self._latex
@@ -661,13 +662,13 @@ class _LayoutMixin:
         for f in p.factors:
             joint = sep if out else ""
             if isinstance(f, Sum):
-                inner = self.tokens(f, depth + 1)
-                tall = self._latex and any(r"\frac" in t.text or r"\sqrt" in t.text for t in inner)
+                pieces = self.tokens(f, depth + 1)
+                tall = self._latex and any(r"\frac" in t.text or r"\sqrt" in t.text for t in pieces)
                 if out:  # the same pieces in both formats; in LaTeX a space after a
                     gap = " " if out[-1].kind == "close" else ""  # bracket: no Markdown ](
                     out.append(Token("atom", gap if self._latex else "*", depth))
                 out.append(Token("open", "(", depth, f.level, tall))
-                out += inner
+                out += pieces
                 out.append(Token("close", ")", depth, f.level, tall))
             else:
                 out.append(Token("atom", joint + self._print(f), depth))

@@ -13,12 +13,16 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from dhsym.model.kinds import AngleUnit, Convention
 
 from .escape import TeX
 from .layout import Math
 from .printers import Notation, format_angle
+
+if TYPE_CHECKING:
+    from dhsym.model.table import DHTable
 
 __all__ = ["TableCell", "table_latex", "table_markdown", "table_view", "text_table"]
 
@@ -39,7 +43,7 @@ _HEADS = {
 }
 
 
-def table_view(table: object) -> tuple[tuple[Math, ...], tuple[tuple[TableCell, ...], ...]]:
+def table_view(table: DHTable) -> tuple[tuple[Math, ...], tuple[tuple[TableCell, ...], ...]]:
     """The one view of a DH table: the convention's headers and each row's cells.
 
     Columns ``i``, the four parameters in the convention's order, ``joint``; angles in
@@ -52,8 +56,8 @@ def table_view(table: object) -> tuple[tuple[Math, ...], tuple[tuple[TableCell, 
     (['i', 'theta_i', 'd_i', 'a_i', 'alpha_i', 'joint'], ['1', 'theta1', '0', 'a1', '0', 'R'], True)
     """
     t = table  # a DHTable
-    deg = t.angles is AngleUnit.DEG  # type: ignore[attr-defined]
-    columns = _HEADS[Convention(t.convention)]  # type: ignore[attr-defined]
+    deg = t.angles is AngleUnit.DEG
+    columns = _HEADS[Convention(t.convention)]
     heads = (
         Math(TeX("i"), "i"),
         *(Math(TeX(latex), text) for _, latex, text in columns),
@@ -61,7 +65,7 @@ def table_view(table: object) -> tuple[tuple[Math, ...], tuple[tuple[TableCell, 
     )
     plain = Notation()
     rows = []
-    for i, row in enumerate(t.rows, start=1):  # type: ignore[attr-defined]
+    for i, row in enumerate(t.rows, start=1):
         cells = [TableCell(Math(TeX(str(i)), str(i)))]
         for name, _, _ in columns:
             value = getattr(row, name)
@@ -75,7 +79,7 @@ def table_view(table: object) -> tuple[tuple[Math, ...], tuple[tuple[TableCell, 
     return heads, tuple(rows)
 
 
-def table_latex(table: object) -> str:
+def table_latex(table: DHTable) -> str:
     r"""The table as a LaTeX ``array``; the joint variable's cell is boxed.
 
     >>> from dhsym.model.table import DHTable, DHRow
@@ -98,7 +102,7 @@ def table_latex(table: object) -> str:
     )
 
 
-def table_markdown(table: object) -> str:
+def table_markdown(table: DHTable) -> str:
     """The table as a Markdown pipe table with ``$…$`` math cells.
 
     >>> from dhsym.model.table import DHTable, DHRow
@@ -117,7 +121,7 @@ def table_markdown(table: object) -> str:
     return "\n".join(lines)
 
 
-def _latex_cells(table: object, box: bool) -> tuple[list[str], list[list[str]]]:
+def _latex_cells(table: DHTable, box: bool) -> tuple[list[str], list[list[str]]]:
     """The view in LaTeX: header strings and cell strings (variables boxed if ``box``)."""
     heads, rows = table_view(table)
     return [str(h.latex) for h in heads], [

@@ -22,6 +22,8 @@ import numpy as np
 from dhsym.model.table import JointType
 
 if TYPE_CHECKING:
+    from matplotlib.artist import Artist
+
     from .figures import JointGlyph, Skeleton
 
 __all__ = ["AXIS_COLORS", "SEGMENT_COLORS", "TOL", "draw", "equal_axes", "plotted_frames"]
@@ -93,13 +95,13 @@ def draw(
     return np.vstack([p.reshape(-1, 3) for p in pts])
 
 
-def _legend(sk: Skeleton, dim: int) -> list[Any]:
+def _legend(sk: Skeleton, dim: int) -> list[Artist]:
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     kinds = {s.kind for s in sk.segments if np.linalg.norm((s.end - s.start)[:dim]) > TOL}
     joints = {g.joint for g in sk.joints}
-    handles = [
+    handles: list[Artist] = [
         Line2D([], [], color=c, lw=2, label=f"{n} axis")
         for c, n in zip(AXIS_COLORS, "xyz", strict=True)
     ]
@@ -157,7 +159,14 @@ def _joint_glyph(ax: Any, g: JointGlyph, L: float, dim: int, alpha: float) -> np
     if dim == 2:
         if g.joint is JointType.REVOLUTE:
             ax.add_patch(
-                Circle(g.point[:2], 0.16 * L, fc="lightsteelblue", ec="0.3", zorder=3, alpha=alpha)
+                Circle(
+                    (g.point[0], g.point[1]),
+                    0.16 * L,
+                    fc="lightsteelblue",
+                    ec="0.3",
+                    zorder=3,
+                    alpha=alpha,
+                )
             )
         else:
             c, a2 = g.point[:2], g.axis[:2]
@@ -185,13 +194,13 @@ def _joint_glyph(ax: Any, g: JointGlyph, L: float, dim: int, alpha: float) -> np
         from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
         w, lo, hi = 0.11 * L, -0.15 * L, 0.45 * L
-        c = [
+        box = [
             g.point + a * g.axis + w * (su * u + sv * v)
             for a in (lo, hi)
             for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1))
         ]
-        faces = [[c[0], c[1], c[2], c[3]], [c[4], c[5], c[6], c[7]]] + [
-            [c[j], c[(j + 1) % 4], c[4 + (j + 1) % 4], c[4 + j]] for j in range(4)
+        faces = [[box[0], box[1], box[2], box[3]], [box[4], box[5], box[6], box[7]]] + [
+            [box[j], box[(j + 1) % 4], box[4 + (j + 1) % 4], box[4 + j]] for j in range(4)
         ]
         ax.add_collection3d(
             Poly3DCollection(faces, fc="khaki", ec="0.3", alpha=0.8 * alpha, lw=0.5)

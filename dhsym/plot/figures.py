@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import sympy as sp
@@ -37,6 +37,9 @@ from dhsym.model.table import Convention, JointType
 
 from .draw import TOL as _TOL
 from .draw import draw, equal_axes, plotted_frames
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = [
     "JointGlyph",
@@ -214,7 +217,7 @@ def plot_robot(
     title: str | None = None,
     limits: tuple[np.ndarray, float] | None = None,
     alpha: float = 1.0,
-) -> Any:
+) -> Figure:
     """Draw ``robot`` at ``q`` with its DH frames; returns the matplotlib ``Figure``.
 
     Parameters
@@ -311,7 +314,7 @@ def plot_workspace(
     view: str | None = None,
     seed: int = 0,
     title: str | None = None,
-) -> Any:
+) -> Figure:
     """Scatter the reachable tool positions (see :func:`workspace_points`); returns the Figure.
 
     Robots whose reachable points all lie in one horizontal plane are drawn in

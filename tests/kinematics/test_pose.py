@@ -193,3 +193,15 @@ def test_latex_of_table_robot_and_derivation(planar):
     d = dhsym.derive("planar2r")
     assert sp.latex(d) == d.to_latex()
     assert r"\begin{array}" in sp.latex(planar.table)
+
+
+def test_merged_notation_keeps_both_labels_and_the_style():
+    from dhsym.kinematics.pose import _merge
+    from dhsym.notation.printers import TrigStyle
+
+    t1, t2 = sp.symbols("theta1 theta2", real=True)
+    a = Notation.from_variables([t1], ["1"], style=TrigStyle.LOWER)
+    b = Notation.from_variables([t2], ["2"])
+    merged = _merge(a, b)
+    assert dict(merged.labels) == {t1: "1", t2: "2"}
+    assert merged.style is TrigStyle.LOWER and merged.compact == a.compact
