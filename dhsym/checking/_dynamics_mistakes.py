@@ -33,7 +33,6 @@ import sympy as sp
 
 from dhsym.dynamics.equations import EquationsOfMotion
 from dhsym.dynamics.lagrange import coriolis_matrix, lagrange, potential_energies, tidy
-from dhsym.dynamics.model import dynamic_model
 from dhsym.kinematics.jacobian import axis_frame
 from dhsym.model.table import Convention
 
@@ -104,8 +103,12 @@ def _far_end(robot: Robot, i: int) -> Matrix | None:
     return Matrix(robot.transform(i, i + 1).matrix[:3, 3])
 
 
-def _with(eom: EquationsOfMotion, M: Matrix | None = None, g: Matrix | None = None,
-          christoffel: tuple | None = None) -> EquationsOfMotion:
+def _with(
+    eom: EquationsOfMotion,
+    M: Matrix | None = None,
+    g: Matrix | None = None,
+    christoffel: tuple | None = None,
+) -> EquationsOfMotion:
     """``eom`` with its M (and so its Christoffel symbols and C), or g, replaced; τ rebuilt."""
     dm = eom.model
     params = dm.masses
@@ -169,7 +172,9 @@ def _gravity_variants(eom: EquationsOfMotion) -> Iterator[tuple[EquationsOfMotio
                 vec = [sp.Integer(0)] * 3
                 vec[k] = -sign * size
                 if tuple(vec) != tuple(g0) and tuple(vec) != options[0][0]:
-                    options.append((tuple(vec), f"Gravity is taken along {'-+'[sign < 0]}{'xyz'[k]}: "))
+                    options.append(
+                        (tuple(vec), f"Gravity is taken along {'-+'[sign < 0]}{'xyz'[k]}: ")
+                    )
     for vec, head in options:
         P = sum(potential_energies(replace(dm, gravity=vec)), sp.Integer(0))
         g = Matrix([tidy(sp.diff(P, x), dm.masses) for x in dm.variables])
@@ -186,8 +191,9 @@ def variant_matrices(robot: Robot, eom: EquationsOfMotion, q: Question) -> tuple
 
     >>> import dhsym
     >>> robot = dhsym.load("planar2r")
-    >>> sorted({k for k, _, _ in variant_matrices(robot, robot.dynamics(), Question.parse("g", 2))})
-    ['christoffel_indices', 'gravity_direction', 'inertia_frame', 'l_for_lc', 'parallel_axis', 'rotational_energy']
+    >>> found = variant_matrices(robot, robot.dynamics(), Question.parse("g", 2))
+    >>> sorted({k for k, _, _ in found})[:3]
+    ['christoffel_indices', 'gravity_direction', 'inertia_frame']
     """
     out = []
     kinds = ["christoffel_indices"] + (list(_KINETIC) if eom.model.n <= KINETIC_JOINTS else [])
@@ -233,6 +239,5 @@ def dynamics_mistakes() -> tuple[Mistake, ...]:
     ['christoffel_indices', 'gravity_direction']
     """
     return tuple(
-        DynamicsMistake(k)
-        for k in ("christoffel_indices", "gravity_direction", *_KINETIC)
+        DynamicsMistake(k) for k in ("christoffel_indices", "gravity_direction", *_KINETIC)
     )

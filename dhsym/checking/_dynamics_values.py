@@ -44,8 +44,8 @@ def part_matrix(eom: EquationsOfMotion, q: Question) -> Matrix:
 
     >>> import dhsym
     >>> eom = dhsym.load("planar2r").dynamics()
-    >>> part_matrix(eom, Question.parse("M[0,1]", 2)).shape, part_matrix(eom, Question.parse("g", 2)).shape
-    ((1, 1), (2, 1))
+    >>> [part_matrix(eom, Question.parse(s, 2)).shape for s in ("M[0,1]", "g")]
+    [(1, 1), (2, 1)]
     """
     n = len(eom.variables)
     if q.part == "c":
@@ -58,7 +58,9 @@ def part_matrix(eom: EquationsOfMotion, q: Question) -> Matrix:
         return full
     r, c = q.entry
     if not (r < full.rows and c < full.cols):
-        raise DHError(f"question {q.spec!r}: rows are 0 … {full.rows - 1}, columns 0 … {full.cols - 1}")
+        raise DHError(
+            f"question {q.spec!r}: rows are 0 … {full.rows - 1}, columns 0 … {full.cols - 1}"
+        )
     return Matrix([[full[r, c]]])
 
 

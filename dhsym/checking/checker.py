@@ -32,6 +32,7 @@ from dhsym.model.library import load_table
 from dhsym.model.table import AngleUnit, Convention, DHTable, JointType
 from dhsym.notation.printers import format_angle
 
+from ._dynamics_mistakes import dynamics_mistakes
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, check_time, time_limit
 from .answers import cell_literals, expression_cell, matrix_cells, parse_cell, read_table
 from .equivalence import (
@@ -43,7 +44,6 @@ from .equivalence import (
     prove_entry,
     values,
 )
-from ._dynamics_mistakes import dynamics_mistakes
 from .mistakes import (
     DET_MISTAKES,
     JACOBIAN_MISTAKES,

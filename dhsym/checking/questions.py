@@ -98,7 +98,9 @@ class Question:
                 return cls(text, "dynamics", 0, n, part="c", index=index)
             part = "tau" if m["part"] == "τ" else m["part"]
             entry = (int(m["r"]), int(m["c"])) if m["r"] is not None else None
-            if entry is not None and not (entry[0] < n and entry[1] < (1 if part in ("g", "tau") else n)):
+            if entry is not None and not (
+                entry[0] < n and entry[1] < (1 if part in ("g", "tau") else n)
+            ):
                 raise DHError(f"question {text!r}: rows and columns of {part} are 0-based")
             return cls(text, "dynamics", 0, n, entry, part=part)
         if _DET.match(compact):
