@@ -32,7 +32,13 @@ import numpy as np
 import sympy as sp
 
 from dhsym.dynamics.equations import EquationsOfMotion
-from dhsym.dynamics.lagrange import coriolis_matrix, lagrange, potential_energies, tidy
+from dhsym.dynamics.lagrange import (
+    christoffel_symbols,
+    coriolis_matrix,
+    lagrange,
+    potential_energies,
+    tidy,
+)
 from dhsym.kinematics.jacobian import axis_frame
 from dhsym.model.table import Convention
 
@@ -105,25 +111,47 @@ def _far_end(robot: Robot, i: int) -> Matrix | None:
 
 def _with(
     eom: EquationsOfMotion,
+    part: str,
     M: Matrix | None = None,
     g: Matrix | None = None,
     christoffel: tuple | None = None,
 ) -> EquationsOfMotion:
-    """``eom`` with its M (and so its Christoffel symbols and C), or g, replaced; τ rebuilt."""
+    """``eom`` with its M (and so its Christoffel symbols and C), g or Christoffel symbols
+    replaced, and what ``part`` depends on rebuilt (the rest is the key's)."""
     dm = eom.model
     params = dm.masses
+    c = christoffel
+    if c is None and M is not None and part in ("c", "C", "tau"):
+        c = christoffel_symbols(M, dm.variables, params)
     M = eom.M if M is None else M
     g = eom.g if g is None else g
-    c = eom.christoffel if christoffel is None else christoffel
-    C = coriolis_matrix(c, dm.rates, params)
-    qd, qdd = Matrix(dm.rates), Matrix(dm.accelerations)
-    tau = Matrix((M * qdd + C * qd + g).applyfunc(lambda e: tidy(e, params)))
+    c = eom.christoffel if c is None else c
+    C, tau = eom.C, eom.tau
+    if part in ("C", "tau"):
+        C = coriolis_matrix(c, dm.rates, params)
+    if part == "tau":
+        qd, qdd = Matrix(dm.rates), Matrix(dm.accelerations)
+        tau = Matrix((M * qdd + C * qd + g).applyfunc(lambda e: tidy(e, params)))
     return EquationsOfMotion("lagrange", dm, M, C, g, tau, c)
 
 
-def variant_equations(robot: Robot, eom: EquationsOfMotion, kind: str) -> EquationsOfMotion | None:
-    """The equations of motion of ``robot`` under the mistake ``kind``, or None when the
-    mistake does not apply (from the key's Lagrange–Euler ``eom``)."""
+#: The parts of the equations of motion that each mistake changes.
+_CHANGES = {
+    "christoffel_indices": ("c", "C", "tau"),
+    "gravity_direction": ("g", "tau"),
+    "l_for_lc": ("M", "c", "C", "g", "tau"),
+    "parallel_axis": ("M", "c", "C", "tau"),
+    "rotational_energy": ("M", "c", "C", "tau"),
+    "inertia_frame": ("M", "c", "C", "tau"),
+}
+
+
+def variant_equations(
+    robot: Robot, eom: EquationsOfMotion, kind: str, part: str = "tau"
+) -> EquationsOfMotion | None:
+    """The equations of motion of ``robot`` under the mistake ``kind`` (from the key's
+    Lagrange–Euler ``eom``; exact in ``part`` and what it is built from), or None when
+    the mistake does not apply."""
     dm = eom.model
     links = list(dm.links)
     if kind == "christoffel_indices":
@@ -132,7 +160,7 @@ def variant_equations(robot: Robot, eom: EquationsOfMotion, kind: str) -> Equati
         swapped = tuple(
             tuple(tuple(c[k][j][i] for k in range(n)) for j in range(n)) for i in range(n)
         )
-        return _with(eom, christoffel=swapped)
+        return _with(eom, part, christoffel=swapped)
     if kind == "gravity_direction":
         return None  # several variants: see _gravity_variants
     if kind == "parallel_axis":
@@ -140,26 +168,26 @@ def variant_equations(robot: Robot, eom: EquationsOfMotion, kind: str) -> Equati
             a = axis_frame(robot, i + 1)
             joint = robot.transform(i + 1, a).matrix[:3, 3]
             links[i] = replace(L, r=tuple(joint))
-        return _with(eom, M=lagrange(robot, replace(dm, links=tuple(links))).M)
+        return _with(eom, part, M=lagrange(robot, replace(dm, links=tuple(links))).M)
     if kind == "rotational_energy":
         links = [replace(L, I=sp.zeros(3, 3)) for L in links]
-        return _with(eom, M=lagrange(robot, replace(dm, links=tuple(links))).M)
+        return _with(eom, part, M=lagrange(robot, replace(dm, links=tuple(links))).M)
     if kind == "inertia_frame":
         for i, L in enumerate(links):
             R = robot.transform(0, i + 1).matrix[:3, :3]
             links[i] = replace(L, I=(R.T * L.I * R).applyfunc(sp.expand))
-        return _with(eom, M=lagrange(robot, replace(dm, links=tuple(links))).M)
+        return _with(eom, part, M=lagrange(robot, replace(dm, links=tuple(links))).M)
     if kind == "l_for_lc":
         for i, L in enumerate(links):
             end = _far_end(robot, i + 1)
             if end is not None:
                 links[i] = replace(L, r=tuple(end))
         other = lagrange(robot, replace(dm, links=tuple(links)))
-        return _with(eom, M=other.M, g=other.g)
+        return _with(eom, part, M=other.M, g=other.g)
     raise ValueError(f"unknown dynamics mistake {kind!r}")
 
 
-def _gravity_variants(eom: EquationsOfMotion) -> Iterator[tuple[EquationsOfMotion, str]]:
+def _gravity_variants(eom: EquationsOfMotion, part: str) -> Iterator[tuple[EquationsOfMotion, str]]:
     """g reversed, and along each other base axis when gravity is along one axis."""
     dm = eom.model
     g0 = dm.gravity
@@ -180,7 +208,7 @@ def _gravity_variants(eom: EquationsOfMotion) -> Iterator[tuple[EquationsOfMotio
         g = Matrix([tidy(sp.diff(P, x), dm.masses) for x in dm.variables])
         shown = ", ".join(sp.sstr(x) for x in g0)
         yield (
-            _with(eom, g=g),
+            _with(eom, part, g=g),
             head + f"the table's gravity is [{shown}] in the base frame, and "
             "g(q) = dP/dq with P = -sum m_i g^T p_ci.",
         )
@@ -192,17 +220,20 @@ def variant_matrices(robot: Robot, eom: EquationsOfMotion, q: Question) -> tuple
     >>> import dhsym
     >>> robot = dhsym.load("planar2r")
     >>> found = variant_matrices(robot, robot.dynamics(), Question.parse("g", 2))
-    >>> sorted({k for k, _, _ in found})[:3]
-    ['christoffel_indices', 'gravity_direction', 'inertia_frame']
+    >>> sorted({k for k, _, _ in found})
+    ['gravity_direction', 'l_for_lc']
     """
     out = []
     kinds = ["christoffel_indices"] + (list(_KINETIC) if eom.model.n <= KINETIC_JOINTS else [])
     for kind in kinds:
-        v = variant_equations(robot, eom, kind)
+        if q.part not in _CHANGES[kind]:
+            continue
+        v = variant_equations(robot, eom, kind, q.part)
         if v is not None:
             out.append((kind, part_matrix(v, q), _DETAILS[kind]))
-    for v, detail in _gravity_variants(eom):
-        out.append(("gravity_direction", part_matrix(v, q), detail))
+    if q.part in _CHANGES["gravity_direction"]:
+        for v, detail in _gravity_variants(eom, q.part):
+            out.append(("gravity_direction", part_matrix(v, q), detail))
     return tuple(out)
 
 

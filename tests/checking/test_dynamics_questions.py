@@ -191,3 +191,22 @@ def test_builtin_robot_with_textbook_symbols():
         Key.load("planar2r", "M[1,1]"), "Izz2 + m2*(a2**2 + 2*a2*rx2 + rx2**2 + ry2**2)"
     )
     assert r.verdict.value == "correct", r.message
+
+
+def test_kinetic_mistakes_carry_into_c_and_tau():
+    # C, c_ijk and tau are derived again from the mistaken M (not the key's symbols)
+    assert_diagnosed(check("C", C_RIGHT.replace("lc2", "l2")), "l_for_lc")
+    assert_diagnosed(check("c_121", "-m2*l1*l2*S2"), "l_for_lc")
+    tau = (
+        f"[({D11})*qddot1 + ({D12})*qddot2 + {H}*qdot2**2 + 2*{H}*qdot1*qdot2 + {G1},"
+        f" ({D12})*qddot1 + ({D22})*qddot2 - {H}*qdot1**2 + {G2}]"
+    )
+    assert check("tau", tau).verdict.value == "correct"
+    assert_diagnosed(
+        check("tau", tau.replace(" + I1", "").replace(" + I2", "")), "rotational_energy"
+    )
+    flipped = (
+        f"[({D11})*qddot1 + ({D12})*qddot2 + {H}*qdot2**2 + 2*{H}*qdot1*qdot2 - ({G1}),"
+        f" ({D12})*qddot1 + ({D22})*qddot2 - {H}*qdot1**2 - ({G2})]"
+    )
+    assert_diagnosed(check("tau", flipped), "gravity_direction")
