@@ -164,14 +164,17 @@ def _prepare_dynamics(pk: PreparedKey) -> PreparedKey:
     """A dynamics key: its part of the equations of motion (or ``Jᵀ F``) and, for the
     diagnosis, the same part under each catalogued mistake, all derived here, once."""
     from ._dynamics_mistakes import variant_matrices
-    from ._dynamics_values import dynamics_key, question_symbols, rate_aliases
+    from ._dynamics_values import dynamics_key, part_matrix, question_symbols, rate_aliases
 
     q, robot, table = pk.key.question, pk.robot, pk.key.table
     extra = question_symbols(robot, q)
     pk.names = pk.names.extended([*((s.name, s) for s in extra), *rate_aliases(robot)])
-    pk.expected = dynamics_key(robot, q)
-    if q.part != "tau_static":
-        pk.cache["dynamics variants"] = variant_matrices(robot, robot.dynamics(), q)
+    if q.part == "tau_static":
+        pk.expected = dynamics_key(robot, q)
+    else:
+        eom = robot.dynamics()
+        pk.expected = part_matrix(eom, q)
+        pk.cache["dynamics variants"] = variant_matrices(robot, eom, q)
     nota = robot.notation
     pk.expected_text = tuple((nota.text(e), nota.latex(e)) for e in pk.expected)
     syms = set(table.variables) | set(table.constants) | set(extra)
