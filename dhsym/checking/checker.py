@@ -32,6 +32,7 @@ from dhsym.model.library import load_table
 from dhsym.model.table import AngleUnit, Convention, DHTable, JointType
 from dhsym.notation.printers import format_angle
 
+from ._dynamics_mistakes import dynamics_mistakes
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, check_time, time_limit
 from .answers import cell_literals, expression_cell, matrix_cells, parse_cell, read_table
 from .equivalence import (
@@ -144,11 +145,39 @@ def prepare(key: Key) -> PreparedKey:
         from .inverse import prepare_ik
 
         return prepare_ik(pk)
+    if q.kind == "dynamics":
+        return _prepare_dynamics(pk)
     full = _expected(pk)
     pk.expected = sp.ImmutableMatrix([[full[q.entry]]]) if q.entry else full
     nota = robot.notation
     pk.expected_text = tuple((nota.text(e), nota.latex(e)) for e in pk.expected)
     syms = set(table.variables) | set(table.constants)
+    pk.symbols = frozenset(syms)
+    pk.samples["symbolic"] = Sample.random(syms)
+    pk.samples["valued"] = Sample.random(syms, fixed=table.value_map)
+    for name, s in pk.samples.items():
+        pk.key_values[name] = values(pk.expected, s)
+    return pk
+
+
+def _prepare_dynamics(pk: PreparedKey) -> PreparedKey:
+    """A dynamics key: its part of the equations of motion (or ``Jᵀ F``) and, for the
+    diagnosis, the same part under each catalogued mistake, all derived here, once."""
+    from ._dynamics_mistakes import variant_matrices
+    from ._dynamics_values import dynamics_key, part_matrix, question_symbols, rate_aliases
+
+    q, robot, table = pk.key.question, pk.robot, pk.key.table
+    extra = question_symbols(robot, q)
+    pk.names = pk.names.extended([*((s.name, s) for s in extra), *rate_aliases(robot)])
+    if q.part == "tau_static":
+        pk.expected = dynamics_key(robot, q)
+    else:
+        eom = robot.dynamics()
+        pk.expected = part_matrix(eom, q)
+        pk.cache["dynamics variants"] = variant_matrices(robot, eom, q)
+    nota = robot.notation
+    pk.expected_text = tuple((nota.text(e), nota.latex(e)) for e in pk.expected)
+    syms = set(table.variables) | set(table.constants) | set(extra)
     pk.symbols = frozenset(syms)
     pk.samples["symbolic"] = Sample.random(syms)
     pk.samples["valued"] = Sample.random(syms, fixed=table.value_map)
@@ -337,7 +366,7 @@ def _diagnosis_values(pk: PreparedKey, ans: sp.ImmutableMatrix, unknown: list) -
 
 
 def _pos(k: int, q: Question, cols: int = 4) -> str:
-    if q.entry is not None or q.kind == "det":
+    if q.entry is not None or q.kind == "det" or q.index is not None:
         return "the answer"
     return f"entry ({k // cols + 1},{k % cols + 1})"
 
@@ -364,10 +393,20 @@ def _answer_matrix(
     belongs (its diagnosis names the missing column)."""
     key, q, expected = pk.key, pk.key.question, pk.expected
     assert expected is not None
-    if q.entry is not None or q.kind == "det":
+    if q.entry is not None or q.kind == "det" or expected.shape == (1, 1):
         cells = [expression_cell(answer, limits)]
         parsed = [parse_cell(cells[0], pk.names, limits, "the answer")]
         return sp.ImmutableMatrix(1, 1, parsed), cells, ()
+    if q.kind == "dynamics":
+        rows, cols = expected.shape
+        shapes = ((rows, cols), (cols, rows)) if cols == 1 else ((rows, cols),)
+        grid = matrix_cells(answer, limits, shapes)
+        cells = [c for row in grid for c in row]  # a row vector is read as the column
+        parsed = [
+            parse_cell(c, pk.names, limits, f"entry {k + 1}" if cols == 1 else _pos(k, q, cols))
+            for k, c in enumerate(cells)
+        ]
+        return sp.ImmutableMatrix(rows, cols, parsed), cells, ()
     if q.kind != "jacobian":
         grid = matrix_cells(answer, limits)
         cells = [c for row in grid for c in row] + ["0", "0", "0", "1"] * (len(grid) == 3)
@@ -483,7 +522,11 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
         pk.cache,
         pk.robot,
     )
-    kinds = {"jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()), "det": DET_MISTAKES}
+    kinds = {
+        "jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()),
+        "det": DET_MISTAKES,
+        "dynamics": dynamics_mistakes(),
+    }
     diagnoses = shape_lead + lead + diagnose_matrix(case, kinds.get(q.kind, MATRIX_MISTAKES))
     if unknown:
         names = ", ".join(str(s) for s in unknown)

@@ -9,7 +9,8 @@ then builds the sympy objects.  Supported: ``\cos\theta_1``, ``\cos(\theta_1 +
 degree signs (``90°``, ``90^\circ``, ``90^{\circ}``, ``90\degree``, ``90^o``: a ``°`` in the
 output, which the parser reads with ``textbook=True``), function arguments without brackets
 (``\sin\frac{\pi}{2}``, ``\cos\theta_{1}``, ``\sin 90^\circ``, ``\cos{\theta_1}``),
-Craig's ``c\theta_i``, Greek letters, font commands, the inverse functions (``\arctan``,
+Craig's ``c\theta_i``, Greek letters, the rates ``\dot q_1``, ``\ddot{\theta}_2`` (names
+``qdot_1``, ``thetaddot_2``), font commands, the inverse functions (``\arctan``,
 ``\operatorname{atan2}(y, x)``) and ``\pm``/``\mp`` (left as ``±``/``∓`` for the
 inverse-kinematics checker), and the matrix environments
 ``bmatrix pmatrix matrix Bmatrix vmatrix array``.  Any other command
@@ -25,6 +26,8 @@ Examples
 '- d_i sin(alpha_im1)'
 >>> latex_matrix_cells(r"\begin{bmatrix} C_1 & -S_1 \\ S_1 & C_1 \end{bmatrix}")
 [['C_1', '-S_1'], ['S_1', 'C_1']]
+>>> latex_to_text(r"\dot{q}_1 + \ddot\theta_2 \dot{\theta_1}")
+'qdot_1 + thetaddot_2 thetadot_1'
 >>> flatten_subscripts("c_{alpha_{i-1}} + C_{12}")
 'c_alpha_im1 + C_12'
 """
@@ -237,6 +240,13 @@ class _Translator:
             return self.postfix(self.subscripted_group(self.argument()))
         if name in _DEGREES:
             return "°"
+        if name in ("dot", "ddot"):  # \dot q_1, \ddot{\theta}_2: the names qdot_1, thetaddot_2
+            inner = re.sub(r"\s", "", self.argument())
+            if not _FLAT_NAME.fullmatch(inner):
+                raise self.error(f"unsupported \\{name}{{{inner}}}", "expected a joint variable")
+            head, _, sub = inner.partition("_")
+            word = head + name
+            return self.postfix(f"{word}_{sub}" if sub else self.subscripted(word))
         raise self.error(
             f"unsupported command \\{name}", "expected math (\\cos, \\frac, \\theta …)"
         )

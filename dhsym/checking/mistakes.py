@@ -15,7 +15,10 @@ Kinds: ``wrong_sign`` (at any depth), ``sin_cos_swapped``, ``dropped_term``,
 ``single_wrong_row``; for the Jacobian ``tool_frame``, ``next_axis``,
 ``prismatic_as_revolute`` (and ``missing_column``, from the shape of the answer); for
 ``det J`` ``missing_factor``, ``block_determinant``; for inverse kinematics
-``atan_for_atan2``, ``lost_branch``, ``wrong_root_sign``.
+``atan_for_atan2``, ``lost_branch``, ``wrong_root_sign``; for the dynamics questions
+(``M``, ``g``, ``C``, ``c_ijk``, ``tau``) ``parallel_axis``, ``rotational_energy``,
+``gravity_direction``, ``l_for_lc``, ``christoffel_indices``, ``inertia_frame``
+(:mod:`dhsym.checking._dynamics_mistakes`).
 
 Examples
 --------
@@ -33,6 +36,7 @@ import numpy as np
 
 from dhsym.model.table import Convention
 
+from ._dynamics_mistakes import DynamicsMistake, dynamics_mistakes
 from ._entry_mistakes import (
     DroppedTerm,
     MissingLength,
@@ -64,6 +68,8 @@ __all__ = [
     "BlockDeterminant",
     "BlockTransposed",
     "DroppedTerm",
+    "DynamicsMistake",
+    "dynamics_mistakes",
     "DegreesAsRadians",
     "IKCase",
     "IKMistake",

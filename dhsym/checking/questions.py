@@ -1,7 +1,9 @@
 """What is asked: a DH table, a transform ``^iT_j``, a link matrix ``A_k`` or one entry; the
 Jacobian ``J`` or one entry ``J[r,c]``, its determinant ``det J``, or the inverse kinematics
 ``ik`` (symbolic in the pose; ``ik all`` asks for every branch, ``ik@q1,…,qn`` for the numbers
-of the pose that these joint values reach).
+of the pose that these joint values reach); the dynamics ``M``, ``M[i,j]``, ``g``, ``C``, Spong's
+Christoffel symbol ``c_ijk`` (1-based, ``c_112``), ``tau`` (symbolic in q, q̇, q̈) and the
+statics ``tau_static`` (τ = Jᵀ F).
 
 Examples
 --------
@@ -13,12 +15,14 @@ Question(spec='T0_6[0,3]', kind='entry', frm=0, to=6, entry=(0, 3), pose=None, e
 '{}^{0}T_{2}'
 >>> [Question.parse(s, 2).label for s in ("J", "J[1,0]", "det(J)", "IK", "ik all", "ik@pi/2,0")]
 ['J', 'J[1,0]', 'det J', 'ik', 'ik all', 'ik@1.5707963267949,0']
+>>> [Question.parse(s, 2).label for s in ("M", "M[0,1]", "g", "C", "c_{112}", "τ", "tau_s")]
+['M', 'M[0,1]', 'g', 'C', 'c_112', 'tau', 'tau_static']
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from dhsym.errors import DHError
 from dhsym.model.parsing import parse_number_list
@@ -34,19 +38,26 @@ _TRANSFORM = re.compile(  # frame numbers have at most 4 digits (no 5000-digit i
 _JACOBIAN = re.compile(r"^(?:J|J0|J_0|jacobian)(?:\[(?P<r>\d+),(?P<c>\d+)\])?$", re.IGNORECASE)
 _DET = re.compile(r"^det(?:J|\(J\)|_J|\{J\})$", re.IGNORECASE)
 _IK = re.compile(r"^(?:ik|inverse)(?P<all>:?all|\*)?(?:@(?P<q>.+))?$", re.IGNORECASE)
+_DYNAMICS = re.compile(
+    r"^(?P<part>M|C|g|tau|τ)(?:\[(?P<r>\d{1,2}),(?P<c>\d{1,2})\])?$"
+    r"|^c_?\{?(?P<i>\d),?(?P<j>\d),?(?P<k>\d)\}?$"
+    r"|^(?P<static>(?:tau|τ)_?(?:static|statics|s|\{s\})|statics)$"
+)
 _KINDS = (
     "table, T<i>_<j>, A<k>, arm, px/py/pz, optionally with [row,col] (0-based), e.g. T0_6[0,3]; "
-    "J, J[row,col], det J, ik, ik all, ik@q1,...,qn"
+    "J, J[row,col], det J, ik, ik all, ik@q1,...,qn; M, M[row,col], g, C, c_ijk, tau, tau_static"
 )
 
 
 @dataclass(frozen=True)
 class Question:
     """One question: ``kind`` is ``table``, ``matrix`` (``^frm T_to``), ``entry`` (0-based),
-    ``jacobian`` (``J``, or its ``entry``), ``det`` (``det J``) or ``ik``.
+    ``jacobian`` (``J``, or its ``entry``), ``det`` (``det J``), ``ik`` or ``dynamics``.
 
     For ``ik``, ``pose`` holds the joint values whose pose is to be solved (None: a
     symbolic answer in the pose ``n s a p``) and ``every`` asks for every branch.
+    For ``dynamics``, ``part`` is ``M``, ``g``, ``C``, ``tau``, ``tau_static`` or ``c`` (the
+    Christoffel symbol ``c_ijk``, its 1-based ``index``); ``entry`` is 0-based.
     """
 
     spec: str
@@ -56,11 +67,14 @@ class Question:
     entry: tuple[int, int] | None = None
     pose: tuple[float, ...] | None = None
     every: bool = False
+    part: str = field(default="", repr=False)
+    index: tuple[int, int, int] | None = field(default=None, repr=False)
 
     @classmethod
     def parse(cls, spec: str, n: int) -> Question:
         """Read ``table``, ``T0_2``, ``T02``, ``^0T_2``, ``A3``, ``arm``, ``px``, ``…[r,c]``,
-        ``J``, ``J[r,c]``, ``det J``, ``ik``, ``ik all`` and ``ik@q1,…,qn``."""
+        ``J``, ``J[r,c]``, ``det J``, ``ik``, ``ik all``, ``ik@q1,…,qn``, ``M``, ``M[r,c]``,
+        ``g``, ``C``, ``c_ijk``, ``tau`` and ``tau_static``."""
         text = str(spec).strip()
         if len(text) > 200:
             raise DHError(f"unknown question {text[:40]!r}…: a question is at most 200 characters")
@@ -73,6 +87,22 @@ class Question:
             if entry is not None and not 0 <= entry[0] < 6:
                 raise DHError(f"question {text!r}: the rows of J are 0 … 5")
             return cls(text, "jacobian", 0, n, entry)
+        m = _DYNAMICS.match(compact)
+        if m is not None:
+            if m["static"] is not None:
+                return cls(text, "dynamics", 0, n, part="tau_static")
+            if m["i"] is not None:
+                index = (int(m["i"]), int(m["j"]), int(m["k"]))
+                if not all(1 <= k <= n for k in index):
+                    raise DHError(f"question {text!r}: the indices of c_ijk are 1 … {n}")
+                return cls(text, "dynamics", 0, n, part="c", index=index)
+            part = "tau" if m["part"] == "τ" else m["part"]
+            entry = (int(m["r"]), int(m["c"])) if m["r"] is not None else None
+            if entry is not None and not (
+                entry[0] < n and entry[1] < (1 if part in ("g", "tau") else n)
+            ):
+                raise DHError(f"question {text!r}: rows and columns of {part} are 0-based")
+            return cls(text, "dynamics", 0, n, entry, part=part)
         if _DET.match(compact):
             return cls(text, "det", 0, n)
         m = _IK.match(compact)
@@ -113,6 +143,10 @@ class Question:
         if self.kind == "ik":
             head = "ik all" if self.every else "ik"
             return head + ("@" + ",".join(f"{x:.15g}" for x in self.pose) if self.pose else "")
+        if self.kind == "dynamics":
+            if self.index is not None:
+                return "c_" + "".join(map(str, self.index))
+            return self.part + (f"[{self.entry[0]},{self.entry[1]}]" if self.entry else "")
         base = "J" if self.kind == "jacobian" else f"T{self.frm}_{self.to}"
         return f"{base}[{self.entry[0]},{self.entry[1]}]" if self.entry else base
 
@@ -125,7 +159,25 @@ class Question:
             return r"\det J"
         if self.kind == "ik":
             return r"\text{inverse kinematics}"
+        if self.kind == "dynamics":
+            return _dynamics_latex(self)
         base = "J" if self.kind == "jacobian" else f"{{}}^{{{self.frm}}}T_{{{self.to}}}"
         if self.entry:
             return f"{base}[{self.entry[0] + 1},{self.entry[1] + 1}]"
         return base
+
+
+def _dynamics_latex(q: Question) -> str:
+    """``M(q)``, ``M[1,2]`` (1-based, as a heading), ``c_{112}``, ``\\tau = J^T F``."""
+    if q.index is not None:
+        return "c_{" + "".join(map(str, q.index)) + "}"
+    head = {
+        "M": "M(q)",
+        "g": "g(q)",
+        "C": r"C(q, \dot q)",
+        "tau": r"\tau",
+        "tau_static": r"\tau = J^T F",
+    }[q.part]
+    if q.entry is not None:
+        return f"{q.part}[{q.entry[0] + 1},{q.entry[1] + 1}]"
+    return head

@@ -203,7 +203,12 @@ Question kinds (ask: in the assignment, --question for check):
   J, J[row,col]        the geometric Jacobian [v; w], or one entry
   det J                its determinant
   ik, ik all           inverse kinematics in the pose n s a p: one branch, or every branch
-  ik@q1,...,qn         the joint values of the pose at q"""
+  ik@q1,...,qn         the joint values of the pose at q
+  M, M[row,col]        the inertia matrix M(q) (Spong's D(q)), or one entry, 0-based
+  g, C                 the gravity vector g(q); the Coriolis matrix C(q, qdot)
+  c_ijk                Spong's Christoffel symbol, 1-based (e.g. c_112)
+  tau                  the joint torques M qddot + C qdot + g (rates qdot1, accelerations qddot1)
+  tau_static           the torques J^T F balancing a tip wrench fx fy fz nx ny nz (base frame)"""
 
 CHECK_EPILOG = QUESTION_KINDS + "\n\n" + CHECK_EPILOG_TAIL
 
@@ -239,7 +244,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--question",
         required=True,
         help="the question kind: table, T<i>_<j>, A<k>, arm, px, py, pz, T<i>_<j>[row,col] "
-        "(0-based), J, J[row,col], det J, ik, ik all, ik@q1,...,qn (see below)",
+        "(0-based), J, J[row,col], det J, ik, ik all, ik@q1,...,qn, M, M[row,col], g, C, "
+        "c_ijk, tau, tau_static (see below)",
     )
     c.add_argument("--answer", required=True, help="answer file, or - for standard input")
     c.add_argument(

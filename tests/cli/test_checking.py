@@ -147,6 +147,8 @@ def test_help_lists_every_question_kind(capsys):
         for kind in ("table", "T<i>_<j>", "A<k>", "arm", "px", "J[row,col]", "det J", "ik all"):
             assert kind in text, (cmd, kind)
         assert "ik@q1,...,qn" in text
+        for kind in ("M[row,col]", "c_ijk", "tau_static"):
+            assert kind in text, (cmd, kind)
 
 
 def test_new_assignment_writes_an_example_that_grades(tmp_path, capsys):
