@@ -1,7 +1,8 @@
 r"""Documents of robots: a derivation as text/Markdown/LaTeX, and handouts (LaTeX and PDF).
 
-:func:`document` derives one of the four derivations of a robot (:data:`WHAT`: forward
-kinematics, the Jacobian, its singularities, the inverse kinematics);
+:func:`document` derives one of the derivations of a robot (:data:`WHAT`: forward
+kinematics, the Jacobian, its singularities, the inverse kinematics, the equations of
+motion);
 :func:`render_derivation` renders it (``dhsym derive --what``); :func:`render_handout`
 puts the asked sections of one or more robots into a standalone LaTeX document (answers
 or problems mode, optional figures of the arm), and :func:`write_handout` writes it and
@@ -34,6 +35,7 @@ from dhsym.notation.printers import Notation, TrigStyle
 
 from .data import Document
 from .derivation import Derivation, as_robot, derive, general_link
+from .dynamics import derive_dynamics
 from .inverse import derive_inverse
 from .jacobian import derive_jacobian, derive_singularities
 from .latex import compile_pdf
@@ -48,8 +50,9 @@ __all__ = [
     "write_handout",
 ]
 
-#: What can be derived: forward kinematics, the Jacobian, its singularities, the inverse.
-WHAT = ("fk", "jacobian", "singularities", "ik")
+#: What can be derived: forward kinematics, the Jacobian, its singularities, the inverse,
+#: the equations of motion.
+WHAT = ("fk", "jacobian", "singularities", "ik", "dynamics")
 
 #: Headings of the handout sections.
 SECTION_TITLES = MappingProxyType(
@@ -58,6 +61,7 @@ SECTION_TITLES = MappingProxyType(
         "jacobian": "The Jacobian",
         "singularities": "Singular configurations",
         "ik": "Inverse kinematics",
+        "dynamics": "Equations of motion",
     }
 )
 
@@ -68,6 +72,7 @@ _OPTIONS = MappingProxyType(
         "jacobian": ("frame", "point", "compact", "notation", "width", "numeric"),
         "singularities": ("compact", "notation", "width", "numeric"),
         "ik": ("compact", "notation", "width", "check", "numeric"),
+        "dynamics": ("compact", "notation", "width", "numeric"),
     }
 )
 
@@ -80,7 +85,8 @@ def _what(what: str) -> str:
 
 
 def document(robot: Robot | str | Path | DHTable, what: str = "fk", **options: object) -> Document:
-    """One derivation of ``robot``: ``what`` is ``fk``, ``jacobian``, ``singularities`` or ``ik``.
+    """One derivation of ``robot``: ``what`` is ``fk``, ``jacobian``, ``singularities``, ``ik``
+    or ``dynamics``.
 
     ``options`` are those of :func:`~dhsym.explain.derivation.derive` (``fk``),
     :func:`~dhsym.explain.jacobian.derive_jacobian` (``frame``, ``point``),
@@ -101,7 +107,11 @@ def document(robot: Robot | str | Path | DHTable, what: str = "fk", **options: o
     r = as_robot(robot)
     if opts.pop("numeric", False):
         r = Robot(r.table.substituted(), compact=r.notation.compact, style=r.notation.style)
-    build = {"jacobian": derive_jacobian, "singularities": derive_singularities}
+    build = {
+        "jacobian": derive_jacobian,
+        "singularities": derive_singularities,
+        "dynamics": derive_dynamics,
+    }
     return build.get(what, derive_inverse)(r, **opts)  # type: ignore[operator]
 
 
