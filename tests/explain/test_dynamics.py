@@ -172,3 +172,37 @@ def test_cli_derive_dynamics_json(capsys):
     assert float(back.subs({s: values[s.name] for s in back.free_symbols})) == pytest.approx(
         float(m11.subs(num))
     )
+
+
+@pytest.mark.tex
+@pytest.mark.slow
+@pytest.mark.parametrize("mode", ["answers", "problems"])
+def test_handout_dynamics_section_compiles_without_overfull_boxes(tmp_path, need_tex, mode):
+    import subprocess
+
+    from dhsym.explain.documents import write_handout
+    from dhsym.explain.latex import run_latex
+
+    robots = ["planar2r", Robot(read_table_text(SPONG))]
+    tex = write_handout(robots, tmp_path / "dyn.tex", sections="fk,dynamics", mode=mode)
+    source = tex.read_text()
+    assert r"\subsection{Equations of motion}" in source
+    run = run_latex(tex)
+    assert run.pdf.exists()
+    assert list(run.issues) == [], [str(i) for i in run.issues]
+    text = subprocess.run(
+        ["pdftotext", str(run.pdf), "-"], capture_output=True, text=True, check=True
+    ).stdout
+    if mode == "answers":
+        assert "The Christoffel symbols" in text and "Inward pass" in text
+        assert r"g_{2} &= g lc_{2} m_{2} C_{12}" in source
+    else:
+        assert "Christoffel symbols" in text and "Newton" in text
+
+
+def test_cli_handout_accepts_the_dynamics_section(tmp_path, capsys):
+    out = tmp_path / "h.tex"
+    assert main(["handout", "planar2r", "--sections", "fk,dynamics", "-o", str(out)]) == 0
+    source = out.read_text()
+    assert r"\subsection{Equations of motion}" in source
+    assert "Robot Modeling and" in source and "Newton--Euler" in source
