@@ -1,4 +1,4 @@
-"""``dhsym derive --what jacobian|singularities|ik --format json``: the derivations as JSON.
+"""``dhsym derive --what jacobian|singularities|ik|dynamics --format json``: as JSON.
 
 Each object has ``schema``, ``dhsym`` (version), ``robot``, ``convention``, ``what`` and
 ``variables``; every formula comes three ways: ``compact`` (C/S notation), ``full``
@@ -34,6 +34,7 @@ from dhsym.notation.printers import Notation
 __all__ = [
     "JSON_SCHEMA_VERSION",
     "derivation_json",
+    "dynamics_json",
     "ik_json",
     "jacobian_json",
     "singularities_json",
@@ -180,7 +181,60 @@ def ik_json(robot: Robot) -> dict[str, object]:
     }
 
 
+def dynamics_json(robot: Robot) -> dict[str, object]:
+    """The equations of motion: ``rates``, ``accelerations``, ``gravity``, ``energies``
+    (``link``, ``kinetic``, ``potential``), ``M`` (n×n formulas), ``christoffel`` (the
+    nonzero ``c_ijk``, ``i ≤ j``: ``i``, ``j``, ``k`` (1-based), ``value``), ``g``, ``tau``
+    and ``newton_euler`` (``sweep``, ``name``, ``link``, ``rule``, ``value``: formulas).
+
+    >>> from dhsym import load
+    >>> d = dynamics_json(load("planar2r"))
+    >>> d["M"][1][1]["compact"], [c["i"] * 100 + c["j"] * 10 + c["k"] for c in d["christoffel"]]
+    ('Izz2 + m2*(a2**2 + rx2**2 + ry2**2 + 2*a2*rx2)', [112, 121, 221])
+    """
+    lag = robot.dynamics()
+    ne = robot.dynamics(method="newton-euler")
+    n = lag.M.rows
+    f = lambda e: _formula(robot, e)  # noqa: E731
+    return {
+        **_head(robot, "dynamics"),
+        "rates": [str(v) for v in lag.rates],
+        "accelerations": [str(v) for v in lag.accelerations],
+        "gravity": [f(x) for x in lag.model.gravity],
+        "energies": [
+            {"link": i, "kinetic": f(k), "potential": f(p)}
+            for i, (k, p) in enumerate(zip(lag.kinetic, lag.potential, strict=True), start=1)
+        ],
+        "M": [[f(lag.M[i, j]) for j in range(n)] for i in range(n)],
+        "christoffel": [
+            {"i": i + 1, "j": j + 1, "k": k + 1, "value": f(lag.christoffel[i][j][k])}
+            for i in range(n)
+            for j in range(i, n)
+            for k in range(n)
+            if lag.christoffel[i][j][k] != 0
+        ],
+        "g": [f(x) for x in lag.g],
+        "tau": [f(x) for x in lag.tau],
+        "newton_euler": [
+            {
+                "sweep": s.sweep,
+                "name": s.name,
+                "link": s.link,
+                "rule": s.equation,
+                "value": [f(x) for x in s.value],
+            }
+            for s in ne.steps
+        ],
+        "legend": _legend(robot, [*lag.M, *lag.g]),
+    }
+
+
 def derivation_json(robot: Robot, what: str) -> dict[str, object]:
-    """The JSON of ``what`` (``jacobian``, ``singularities`` or ``ik``)."""
-    build = {"jacobian": jacobian_json, "singularities": singularities_json, "ik": ik_json}
+    """The JSON of ``what`` (``jacobian``, ``singularities``, ``ik`` or ``dynamics``)."""
+    build = {
+        "jacobian": jacobian_json,
+        "singularities": singularities_json,
+        "ik": ik_json,
+        "dynamics": dynamics_json,
+    }
     return build[what](robot)

@@ -110,7 +110,7 @@ def _register_handout(subparsers: argparse._SubParsersAction) -> None:
         "--sections",
         default="fk",
         metavar="LIST",
-        help="comma separated, any of fk, jacobian, singularities, ik (default fk)",
+        help="comma separated, any of fk, jacobian, singularities, ik, dynamics (default fk)",
     )
     h.add_argument(
         "--figure",

@@ -152,7 +152,7 @@ def _cmd_derive(args: argparse.Namespace) -> int:
 
 
 def _derive_more(robot: Robot, what: str, args: argparse.Namespace) -> int:
-    """``derive --what jacobian|singularities|ik`` (``--from``/``--to`` belong to fk)."""
+    """``derive --what jacobian|singularities|ik|dynamics`` (``--from``/``--to`` belong to fk)."""
     from dhsym.errors import DHError
 
     if args.frm is not None or args.to is not None:
@@ -345,10 +345,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     d.add_argument(
         "--what",
-        choices=["fk", "jacobian", "singularities", "ik"],
+        choices=["fk", "jacobian", "singularities", "ik", "dynamics"],
         default="fk",
         help="fk: forward kinematics (default); jacobian: column by column; singularities: "
-        "det J factored and named; ik: closed-form inverse kinematics, every branch",
+        "det J factored and named; ik: closed-form inverse kinematics, every branch; "
+        "dynamics: energies, M, Christoffel symbols, g, tau and the Newton-Euler passes",
     )
     add_urdf_options(d)
     d.set_defaults(func=_cmd_derive)

@@ -35,6 +35,8 @@ __all__ = [
     "BranchData",
     "Derivation",
     "Document",
+    "DynamicsDerivation",
+    "EnergyData",
     "Factor",
     "FactorData",
     "GeneralLink",
@@ -45,6 +47,7 @@ __all__ = [
     "Identity",
     "JacobianColumnData",
     "JacobianDerivation",
+    "NEStepData",
     "NumericCheck",
     "SingularityDerivation",
     "Step",
@@ -383,4 +386,58 @@ class IKDerivation(Document):
     singular_when: Math | None
     legend: tuple[LegendLine, ...]
     check: IKCheck | None = None
+    width: float = LATEX_WIDTH
+
+
+# --- dynamics ----------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class EnergyData:
+    """Link ``index``'s kinetic energy ``K_i`` and potential energy ``P_i``."""
+
+    index: int
+    kinetic: Equation
+    potential: Equation
+
+
+@dataclass(frozen=True)
+class NEStepData:
+    """One line of the Newton–Euler table: vector ``name`` of link ``link`` in its frame.
+
+    ``sweep`` is ``outward`` (velocities, accelerations, ``F``, ``N``) or ``inward``
+    (``f``, ``n``, ``τ``); ``rule`` is the recursion it applies, in plain text.
+    """
+
+    sweep: str
+    name: str
+    link: int
+    rule: str
+    value: MatrixBlock
+
+
+@dataclass(frozen=True)
+class DynamicsDerivation(Document):
+    """The equations of motion of a robot as the lecture derives them.
+
+    The energies of each link, the entries ``M_ij`` (``i ≤ j``; M is symmetric), the
+    nonzero Christoffel symbols ``c_ijk`` (``i ≤ j``; ``c_jik = c_ijk``), ``g_k`` and
+    ``τ_k``; then the Newton–Euler table, outward then inward.
+    """
+
+    kind = "dynamics"
+
+    name: str
+    key: str
+    convention: str
+    n: int
+    gravity: tuple[Math, ...]
+    energies: tuple[EnergyData, ...]
+    inertia: tuple[Equation, ...]
+    christoffel: tuple[Equation, ...]
+    gravity_vector: tuple[Equation, ...]
+    tau: tuple[Equation, ...]
+    outward: tuple[NEStepData, ...]
+    inward: tuple[NEStepData, ...]
+    legend: tuple[LegendLine, ...]
     width: float = LATEX_WIDTH

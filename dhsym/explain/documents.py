@@ -1,7 +1,8 @@
 r"""Documents of robots: a derivation as text/Markdown/LaTeX, and handouts (LaTeX and PDF).
 
-:func:`document` derives one of the four derivations of a robot (:data:`WHAT`: forward
-kinematics, the Jacobian, its singularities, the inverse kinematics);
+:func:`document` derives one of the derivations of a robot (:data:`WHAT`: forward
+kinematics, the Jacobian, its singularities, the inverse kinematics, the equations of
+motion);
 :func:`render_derivation` renders it (``dhsym derive --what``); :func:`render_handout`
 puts the asked sections of one or more robots into a standalone LaTeX document (answers
 or problems mode, optional figures of the arm), and :func:`write_handout` writes it and
@@ -35,6 +36,7 @@ from dhsym.notation.printers import Notation, TrigStyle
 
 from .data import Document
 from .derivation import Derivation, as_robot, derive, general_link
+from .dynamics import derive_dynamics
 from .inverse import derive_inverse
 from .jacobian import derive_jacobian, derive_singularities
 from .latex import compile_pdf
@@ -49,8 +51,9 @@ __all__ = [
     "write_handout",
 ]
 
-#: What can be derived: forward kinematics, the Jacobian, its singularities, the inverse.
-WHAT = ("fk", "jacobian", "singularities", "ik")
+#: What can be derived: forward kinematics, the Jacobian, its singularities, the inverse,
+#: the equations of motion.
+WHAT = ("fk", "jacobian", "singularities", "ik", "dynamics")
 
 #: Headings of the handout sections.
 SECTION_TITLES = MappingProxyType(
@@ -59,6 +62,7 @@ SECTION_TITLES = MappingProxyType(
         "jacobian": "The Jacobian",
         "singularities": "Singular configurations",
         "ik": "Inverse kinematics",
+        "dynamics": "Equations of motion",
     }
 )
 
@@ -69,6 +73,7 @@ _OPTIONS = MappingProxyType(
         "jacobian": ("frame", "point", "compact", "notation", "width", "numeric"),
         "singularities": ("compact", "notation", "width", "numeric"),
         "ik": ("compact", "notation", "width", "check", "numeric"),
+        "dynamics": ("compact", "notation", "width", "numeric"),
     }
 )
 
@@ -85,7 +90,8 @@ def document(
     what: str = "fk",
     **options: Any,  # the derivation's keywords, checked by name below
 ) -> Document:
-    """One derivation of ``robot``: ``what`` is ``fk``, ``jacobian``, ``singularities`` or ``ik``.
+    """One derivation of ``robot``: ``what`` is ``fk``, ``jacobian``, ``singularities``, ``ik``
+    or ``dynamics``.
 
     ``options`` are those of :func:`~dhsym.explain.derivation.derive` (``fk``),
     :func:`~dhsym.explain.jacobian.derive_jacobian` (``frame``, ``point``),
@@ -110,6 +116,8 @@ def document(
         return derive_jacobian(r, **opts)
     if what == "singularities":
         return derive_singularities(r, **opts)
+    if what == "dynamics":
+        return derive_dynamics(r, **opts)
     return derive_inverse(r, **opts)
 
 
