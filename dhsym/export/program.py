@@ -418,13 +418,42 @@ class RNEProgram:
 
 
 _PASSES = (
-    "Recursive Newton-Euler (Luh, Walker and Paul; Craig, Introduction to Robotics, 6.5):",
-    "outward pass, link 1 to n: angular velocity and acceleration, linear acceleration of "
-    "each frame and centre of mass (gravity enters as an acceleration of the base), then "
-    "F_i = m_i a_ci and N_i = I_i wdot_i + w_i x I_i w_i;",
-    "inward pass, link n to 1: force f_i and moment n_i, and the joint torque as their "
-    "component about the joint axis;",
+    "Recursive Newton-Euler (Luh, Walker and Paul; Craig, Introduction to Robotics, 6.5).",
+    "Outward pass, link 1 to n: angular velocity and acceleration, linear acceleration",
+    "of each frame and centre of mass (gravity enters as an acceleration of the base),",
+    "then F_i = m_i a_ci and N_i = I_i wdot_i + w_i x I_i w_i.",
+    "Inward pass, link n to 1: force f_i and moment n_i, and the joint torque as their",
+    "component about the joint axis.",
 )
+
+
+def _pythagoras(e: sp.Expr) -> sp.Expr:
+    """``k sin²x + k cos²x`` → ``k`` in every sum (the recursion's ``Rᵀ R`` products leave
+    them; exact, so the torques are the same expressions, shorter).
+
+    >>> x, k = sp.symbols("x k", real=True)
+    >>> _pythagoras(k * sp.sin(x) ** 2 + k * sp.cos(x) ** 2 + x)
+    k + x
+    """
+
+    def fold(add: sp.Expr) -> sp.Expr:
+        found: dict[tuple[type, sp.Expr, sp.Expr], sp.Expr] = {}
+        for t in add.args:
+            for f in sp.Mul.make_args(t):
+                if f.is_Pow and f.exp == 2 and isinstance(f.base, (sp.sin, sp.cos)):
+                    rest = sp.Mul(*[g for g in sp.Mul.make_args(t) if g is not f])
+                    found.setdefault((type(f.base), f.base.args[0], rest), t)
+                    break
+        terms = list(add.args)
+        for (fn, x, rest), t in found.items():
+            other = found.get((sp.cos, x, rest)) if fn is sp.sin else None
+            if other is not None and t in terms and other in terms:
+                terms.remove(t)
+                terms.remove(other)
+                terms.append(rest)
+        return sp.Add(*terms) if len(terms) != len(add.args) else add
+
+    return e.replace(lambda a: a.is_Add, fold)
 
 
 def rne_program(
@@ -447,9 +476,9 @@ def rne_program(
     ... '''))
     >>> prog = rne_program(arm)
     >>> [(a.name, str(a.expr)) for a in prog.body]
-    [('c1', 'cos(q1)'), ('s1', 'sin(q1)'), ('w0', 'c1**2 + s1**2'), ('w1', 'qdd1*w0')]
-    >>> [str(o.expr) for o in prog.outputs]
-    ['-9.81*c1 + 0.6*qdd1 + w0*(19.62*c1 - qdd1 + 2.0*w1) - w1']
+    [('c1', 'cos(q1)')]
+    >>> [str(o.expr) for o in prog.outputs]  # m g lc cos q1 + (Izz + m lc²) q̈1
+    ['9.81*c1 + 0.6*qdd1']
     >>> rne_program(dhsym.load("planar2r"))
     Traceback (most recent call last):
     ...
@@ -471,7 +500,7 @@ def rne_program(
     vs = [sp.Symbol(f"qd{k}", **_REAL) for k in range(1, n + 1)]
     accs = [sp.Symbol(f"qdd{k}", **_REAL) for k in range(1, n + 1)]
     rename = dict(zip((*dm.variables, *dm.rates, *dm.accelerations), (*qs, *vs, *accs)))
-    exprs = [t.xreplace(rename) for t in tau]
+    exprs = [_pythagoras(t.xreplace(rename)) for t in tau]
     links = [dm.links[r - 1] for r in dm.joints]
     friction = False
     try:
@@ -501,9 +530,9 @@ def rne_program(
         for arr, syms in (("q", qs), ("qd", vs), ("qdd", accs))
         for k, s in enumerate(syms)
     )
-    extra = ["then the motor inertia Jm G^2 qdd"]
+    extra = ["Then the motor inertia Jm G^2 qdd" + ("" if friction else ".")]
     if friction:
-        extra.append("and the friction B G^2 qd + |G| Tc (Tc+ when qd > 0, Tc- when qd < 0)")
-    passes = (*_PASSES, " ".join(extra) + ".")
+        extra.append("and the friction B G^2 qd + |G| Tc (Tc+ when qd > 0, Tc- when qd < 0).")
+    passes = (*_PASSES, *extra)
     outputs = tuple(Output(k, 0, e) for k, e in enumerate(reduced))
     return RNEProgram(tuple(s.name for s in qs), inputs, tuple(body), outputs, passes, friction, n)

@@ -212,7 +212,7 @@ def test_rne_is_another_name_and_files_are_deterministic():
     b = dhsym.export(robot, "c", what=["rne", "fk"], prefix="arm", command="x")
     assert a == b
     assert "void arm_rne(const double q[ARM_NJOINTS], const double qd[ARM_NJOINTS]" in a["arm.h"]
-    assert "outward pass" in a["arm.c"] and "inward pass" in a["arm.c"]
+    assert "Outward pass" in a["arm.c"] and "Inward pass" in a["arm.c"]
     assert sorted(dhsym.export(robot, "matlab", what="rne", prefix="arm")) == [
         "arm_fk.m",
         "arm_njoints.m",
