@@ -1,4 +1,5 @@
-"""Source code to take away: fk, Jacobian and closed-form IK in C, C++, MATLAB, Rust, NumPy.
+"""Source code to take away: fk, Jacobian, closed-form IK and inverse dynamics (rne) in C,
+C++, MATLAB, Rust, NumPy.
 
 The room turns a robot's exact closed forms (:mod:`dhsym.kinematics`) into
 self-contained source files with no dependency on dhsym: :mod:`.program` is the
@@ -6,7 +7,8 @@ front end (named straight-line programs), :mod:`.ik_source` the one adapter to t
 derivation, :mod:`.render` and the templates in ``templates/export`` the back end, one
 module per language (:mod:`.c`, :mod:`.cpp`, :mod:`.matlab`, :mod:`.rust`,
 :mod:`.python`), and :mod:`.compiled` builds the C once and loads it with ``ctypes``.
-May import model, notation, kinematics and ik (the derivation, read by :mod:`.ik_source`).
+May import model, notation, kinematics, ik (the derivation, read by :mod:`.ik_source`) and
+dynamics (the Newton–Euler recursion, read by :func:`.program.rne_program`).
 
 ``dhsym.export(robot, lang, ...)`` is :func:`export` (the module is callable).
 
