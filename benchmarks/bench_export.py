@@ -5,7 +5,9 @@ Measured three ways in one run: in C (a loop of 1,000,000 fk and 200,000 ik call
 varying inputs, timed with clock_gettime inside the program, gcc -O2), through ctypes
 (dhsym.export.compiled, timeit), and dhsym's own NumPy/float path (robot.fk, robot.ik)
 as the reference; EAIK's ``IK`` (Python call into its C++, all solutions, unchecked)
-when installed and the table suits it; roboticstoolbox is not compared. The ratio
+when installed and the table suits it; roboticstoolbox is not compared. Then the PUMA
+560's inverse dynamics: the exported ``rne`` in a C loop (200,000 calls), through ctypes
+(``compiled(robot).rne``) and ``robot.rne`` on one state (the reference). The ratio
 column is dhsym's own time over this row's (fk to robot.fk, IK to robot.ik), per robot,
 in the same run; the load average is printed first.
 
@@ -139,12 +141,69 @@ def eaik_call(robot: dhsym.Robot):
     return bot.IK
 
 
+_RNE_MAIN = r"""
+#include <stdio.h>
+#include <time.h>
+#include "arm.h"
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+int main(void)
+{
+    double q[6] = {0.3, -0.5, 0.4, 0.2, 0.7, -1.1}, qd[6] = {0.5, -0.2, 0.1, 0.9, -0.4, 0.3};
+    double qdd[6] = {1.0, 0.5, -0.7, 0.2, 0.3, -0.1}, tau[6], sink = 0.0, t0;
+    long i, m = 200000;
+    t0 = now();
+    for (i = 0; i < m; ++i) {
+        q[0] = 1e-7 * (double)i;
+        arm_rne(q, qd, qdd, tau);
+        sink += tau[0];
+    }
+    printf("rne_ns %.2f\nsink %g\n", (now() - t0) / m * 1e9, sink);
+    return 0;
+}
+"""
+
+
+def bench_rne(name: str) -> None:
+    """The exported inverse dynamics against ``robot.rne`` (one state per call)."""
+    robot = dhsym.load(name)
+    q = np.array([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
+    qd = np.array([0.5, -0.2, 0.1, 0.9, -0.4, 0.3])
+    qdd = np.array([1.0, 0.5, -0.7, 0.2, 0.3, -0.1])
+    with tempfile.TemporaryDirectory() as tmp:
+        for fname, text in dhsym.export(robot, "c", what="rne", prefix="arm").items():
+            (Path(tmp) / fname).write_text(text)
+        (Path(tmp) / "main.c").write_text(_RNE_MAIN)
+        subprocess.run(
+            ["gcc", "-std=gnu99", "-O2", "main.c", "arm.c", "-o", "bench", "-lm"],
+            cwd=tmp,
+            check=True,
+        )
+        out = subprocess.run([str(Path(tmp) / "bench")], capture_output=True, text=True, check=True)
+    c = {k: float(v) for k, v in (line.split() for line in out.stdout.splitlines())}
+    fast = compiled(robot)
+    assert np.allclose(fast.rne(q, qd, qdd), robot.rne(q, qd, qdd), rtol=1e-9, atol=1e-9)
+    rows = [
+        ("rne, C loop", c["rne_ns"]),
+        ("rne, ctypes (compiled)", per_call(lambda x: fast.rne(*x), (q, qd, qdd), 20000)),
+        ("rne, dhsym robot.rne", per_call(lambda x: robot.rne(*x), (q, qd, qdd), 5000)),
+    ]
+    print(f"{robot.name} inverse dynamics (recursive Newton-Euler, friction, motor inertia)")
+    for label, ns in rows:
+        print(f"  {label:28s} {ns:12.1f} ns   dhsym/this = {rows[2][1] / ns:8.1f}x")
+
+
 def main() -> None:
     print("load average (1, 5, 15 min): {:.2f} {:.2f} {:.2f}".format(*os.getloadavg()))
     if importlib.util.find_spec("roboticstoolbox") is not None:
         print("roboticstoolbox is installed but not wired into this benchmark")
     for name in ("puma560", "ur5"):
         bench(name)
+    bench_rne("puma560")
     print("load average (1, 5, 15 min): {:.2f} {:.2f} {:.2f}".format(*os.getloadavg()))
 
 

@@ -75,7 +75,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     c.add_argument(
         "--what",
         default="fk,jacobian,ik",
-        help="comma-separated parts: fk, jacobian, ik (dynamics: not available yet)",
+        help="comma-separated parts: fk, jacobian, ik, dynamics (or rne: numeric inertial "
+        "parameters only)",
     )
     c.add_argument("--prefix", help="name in front of every function (default: the robot's name)")
     c.add_argument(

@@ -1,4 +1,5 @@
-"""Source code to take away: fk, Jacobian and closed-form IK in C, C++, MATLAB, Rust, NumPy.
+"""Source code to take away: fk, Jacobian, closed-form IK and inverse dynamics (rne) in C,
+C++, MATLAB, Rust, NumPy.
 
 The room turns a robot's exact closed forms (:mod:`dhsym.kinematics`) into
 self-contained source files with no dependency on dhsym: :mod:`.program` is the
@@ -6,7 +7,8 @@ front end (named straight-line programs), :mod:`.ik_source` the one adapter to t
 derivation, :mod:`.render` and the templates in ``templates/export`` the back end, one
 module per language (:mod:`.c`, :mod:`.cpp`, :mod:`.matlab`, :mod:`.rust`,
 :mod:`.python`), and :mod:`.compiled` builds the C once and loads it with ``ctypes``.
-May import model, notation, kinematics and ik (the derivation, read by :mod:`.ik_source`).
+May import model, notation, kinematics, ik (the derivation, read by :mod:`.ik_source`) and
+dynamics (the Newton–Euler recursion, read by :func:`.program.rne_program`).
 
 ``dhsym.export(robot, lang, ...)`` is :func:`export` (the module is callable).
 
@@ -47,12 +49,14 @@ if TYPE_CHECKING:
 
     from .render import Language
 
-__all__ = ["LANGUAGES", "PARTS", "export"]
+__all__ = ["DEFAULT_PARTS", "LANGUAGES", "PARTS", "export"]
 
 #: The languages and the modules that print them.
 LANGUAGES = ("c", "cpp", "matlab", "rust", "python")
-#: What can be exported (``dynamics`` comes with the dynamics room).
-PARTS = ("fk", "jacobian", "ik")
+#: What can be exported (``rne`` is another name for ``dynamics``).
+PARTS = ("fk", "jacobian", "ik", "dynamics")
+#: What is exported unless asked otherwise (the dynamics needs numeric inertial parameters).
+DEFAULT_PARTS = ("fk", "jacobian", "ik")
 
 
 def _language(lang: str) -> Language:
@@ -67,24 +71,20 @@ def _parts(what: str | Iterable[str]) -> tuple[str, ...]:
     items = what.split(",") if isinstance(what, str) else list(what)
     parts = []
     for w in (x.strip() for x in items):
-        if w == "dynamics":
-            raise DHError(
-                "--what dynamics is not available yet: the dynamics export comes when the "
-                "dynamics (rne) work has landed; export fk, jacobian and ik for now"
-            )
+        w = "dynamics" if w == "rne" else w
         if w not in PARTS:
             raise DHError(f"unknown part {w!r} in what: choose from {', '.join(PARTS)}")
         if w not in parts:
             parts.append(w)
     if not parts:
-        raise DHError("nothing to export: give what=fk,jacobian,ik (or a part of it)")
+        raise DHError("nothing to export: give what=fk,jacobian,ik,dynamics (or a part of it)")
     return tuple(p for p in PARTS if p in parts)
 
 
 def export(
     robot: Robot,
     lang: str,
-    what: str | Iterable[str] = PARTS,
+    what: str | Iterable[str] = DEFAULT_PARTS,
     prefix: str | None = None,
     symbolic_lengths: bool = False,
     *,
@@ -99,8 +99,10 @@ def export(
     lang
         ``"c"``, ``"cpp"``, ``"matlab"``, ``"rust"`` or ``"python"`` (NumPy).
     what
-        Parts: ``"fk"``, ``"jacobian"``, ``"ik"`` (a sequence or ``"fk,ik"``). The IK
-        checks its solutions with the fk, so ``ik`` brings ``fk`` along.
+        Parts: ``"fk"``, ``"jacobian"``, ``"ik"``, ``"dynamics"`` (or ``"rne"``: the
+        inverse dynamics ``rne(q, qd, qdd)`` of ``robot.rne``, for numeric inertial
+        parameters only) as a sequence or ``"fk,ik"``. The IK checks its solutions with
+        the fk, so ``ik`` brings ``fk`` along.
     prefix
         The name in front of every function (``<prefix>_fk``); by default the robot's
         name. Either way it is made a safe identifier.
@@ -118,10 +120,10 @@ def export(
     >>> export(dhsym.load("planar2r"), "c", what="dynamics")
     Traceback (most recent call last):
     ...
-    dhsym.errors.DHError: --what dynamics is not available yet: ...
+    dhsym.errors.DHError: Planar 2R: the dynamics export needs numeric inertial parameters; ...
     """
     from .names import comment_lines, identifier
-    from .program import fk_program, ik_program, jacobian_program
+    from .program import fk_program, ik_program, jacobian_program, rne_program
     from .render import Context, header_lines, render
 
     parts = _parts(what)
@@ -131,6 +133,7 @@ def export(
         command = f"dhsym.export(robot, {lang!r}, what={','.join(parts)!r}, prefix={name!r}" + (
             ", symbolic_lengths=True)" if symbolic_lengths else ")"
         )
+    rne = rne_program(robot, symbolic_lengths=symbolic_lengths) if "dynamics" in parts else None
     ik = ik_program(robot, symbolic_lengths=symbolic_lengths) if "ik" in parts else None
     fk = fk_program(robot, symbolic_lengths=symbolic_lengths)
     jac = (
@@ -146,6 +149,7 @@ def export(
         fk=fk,
         jacobian=jac,
         ik=ik,
+        rne=rne,
         parameters=fk.parameters,
         revolute=tuple(r.joint.value == "R" for r in robot.table.rows if r.variable is not None),
     )

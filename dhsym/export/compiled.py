@@ -17,6 +17,19 @@ True
 >>> q = np.array([0.3, 0.5])
 >>> bool(np.abs(fast.fk(q) - r.fk(q)).max() < 1e-12), len(fast.ik(r.fk(q)))
 (True, 1)
+
+``rne(q, qd, qdd)`` (robots with numeric inertial parameters) builds its own library on
+its first call:
+
+>>> from dhsym.model.tablefile import read_table_text
+>>> arm = dhsym.Robot(read_table_text('''
+... joints:
+...   - {type: R, theta: q1, d: 0, a: 1, alpha: pi/2, m: 2, r: [-0.5, 0, 0], I: [0, 0.1, 0.1]}
+...   - {type: R, theta: q2, d: 0, a: 1, alpha: 0, m: 1, r: [-0.5, 0, 0], I: [0, 0.1, 0.1]}
+... '''))
+>>> x = np.array([0.3, -0.7])
+>>> bool(np.allclose(compiled(arm).rne(x, x, x), arm.rne(x, x, x), rtol=1e-9, atol=1e-9))
+True
 """
 
 from __future__ import annotations
@@ -59,7 +72,9 @@ def cache_dir() -> Path:
 
 @dataclass(frozen=True, eq=False)
 class CompiledRobot:
-    """``fk(q)`` → (4, 4), ``jacobian(q)`` → (6, n), ``ik(T)`` → (k, n) for one point each.
+    """``fk(q)`` → (4, 4), ``jacobian(q)`` → (6, n), ``ik(T)`` → (k, n) for one point each;
+    ``rne(q, qd, qdd)`` → (n,) (built on its first call; a robot without numeric inertial
+    parameters raises then).
 
     ``backend`` is ``"c"`` (the exported C through ctypes) or ``"numpy"`` (no compiler:
     dhsym's own compiled NumPy functions); ``library`` the shared library's path.
@@ -71,6 +86,7 @@ class CompiledRobot:
     backend: str
     library: Path | None
     njoints: int
+    rne: Callable[[object, object, object], np.ndarray] | None = None
 
 
 def _compiler() -> str | None:
@@ -140,6 +156,7 @@ def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
             "numpy",
             None,
             n,
+            lambda q, qd, qdd: np.asarray(robot.rne(q, qd, qdd)),
         )
     lib_path = _build(export(robot, "c", what=what, prefix=_PREFIX), cc)
     lib = ctypes.CDLL(str(lib_path))
@@ -174,4 +191,26 @@ def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
         count = ik_c(_address(Ta), _address(out))
         return out[:count]
 
-    return CompiledRobot(fk, jacobian, ik, "c", lib_path, n)
+    return CompiledRobot(fk, jacobian, ik, "c", lib_path, n, _rne_c(robot, cc, n))
+
+
+def _rne_c(robot: Robot, cc: str, n: int) -> Callable[[object, object, object], np.ndarray]:
+    """``rne(q, qd, qdd)`` of the exported C, built and loaded on the first call (the
+    recursion of a 6R takes seconds to write out: only then)."""
+    from . import export
+
+    loaded: list[Callable[..., None]] = []  # the loaded function, once built
+
+    def rne(q: object, qd: object, qdd: object) -> np.ndarray:
+        if not loaded:
+            source = export(robot, "c", what=("dynamics",), prefix=_PREFIX)
+            fn = ctypes.CDLL(str(_build(source, cc))).dhsym_arm_rne
+            fn.argtypes = [ctypes.c_void_p] * 4
+            fn.restype = None
+            loaded.append(fn)
+        qa, va, aa = _vector(q, n), _vector(qd, n), _vector(qdd, n)
+        out = np.empty(n)
+        loaded[0](_address(qa), _address(va), _address(aa), _address(out))
+        return out
+
+    return rne

@@ -33,6 +33,10 @@ class MatlabPrinter(OctaveCodePrinter):
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
         return f"safe_sqrt({self._print(expr.args[0])})"
 
+    def _print_Coulomb(self, expr: sp.Expr) -> str:
+        v, up, down = (self._print(a) for a in expr.args)
+        return f"({up}*({v} > 0) + {down}*({v} < 0))"
+
 
 LANGUAGE = Language(
     name="matlab",
@@ -43,6 +47,7 @@ LANGUAGE = Language(
         ("matlab_ik.m.j2", "{prefix}_ik.m", "ik"),
         ("matlab_njoints.m.j2", "{prefix}_njoints.m", None),
         ("matlab_max_ik.m.j2", "{prefix}_max_ik_solutions.m", "ik"),
+        ("matlab_rne.m.j2", "{prefix}_rne.m", "dynamics"),
     ),
     comment="%",
     note="addpath the folder; T = {prefix}_fk(q)",

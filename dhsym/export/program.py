@@ -46,9 +46,12 @@ __all__ = [
     "Output",
     "Parameter",
     "Program",
+    "RNEProgram",
+    "Coulomb",
     "fk_program",
     "ik_program",
     "jacobian_program",
+    "rne_program",
 ]
 
 _REAL = {"real": True}
@@ -383,3 +386,153 @@ def _ordered(body: Sequence[Assign], keep: Iterable[str]) -> tuple[Assign, ...]:
             exprs = [a.expr] + ([a.alt[2], sp.Symbol(a.alt[0])] if a.alt else [])
             live |= {s.name for e in exprs for s in e.free_symbols}
     return tuple(sorted(reversed(needed), key=lambda a: a.level))
+
+
+# --- inverse dynamics -----------------------------------------------------------------------
+
+
+class Coulomb(sp.Function):
+    """``Coulomb(v, up, down)``: ``up`` when ``v > 0``, ``down`` when ``v < 0``, 0 at rest
+    (``robot.rne``'s Coulomb friction; each printer writes it with comparisons)."""
+
+    nargs = 3
+
+
+@dataclass(frozen=True)
+class RNEProgram:
+    """τ(q, q̇, q̈) as a straight-line program: inputs ``q1 …``, ``qd1 …``, ``qdd1 …``.
+
+    ``inputs`` gives each input's name, its array (``q``, ``qd``, ``qdd``) and 0-based
+    index; ``outputs`` are ``τ_k`` (row ``k``, column 0); ``passes`` says what the body
+    computes (the recursion's passes, motor inertia and friction).
+    """
+
+    joints: tuple[str, ...]
+    inputs: tuple[tuple[str, str, int], ...]
+    body: tuple[Assign, ...]
+    outputs: tuple[Output, ...]
+    passes: tuple[str, ...]
+    friction: bool
+    rows: int
+    cols: int = 1
+
+
+_PASSES = (
+    "Recursive Newton-Euler (Luh, Walker and Paul; Craig, Introduction to Robotics, 6.5).",
+    "Outward pass, link 1 to n: angular velocity and acceleration, linear acceleration",
+    "of each frame and centre of mass (gravity enters as an acceleration of the base),",
+    "then F_i = m_i a_ci and N_i = I_i wdot_i + w_i x I_i w_i.",
+    "Inward pass, link n to 1: force f_i and moment n_i, and the joint torque as their",
+    "component about the joint axis.",
+)
+
+
+def _pythagoras(e: sp.Expr) -> sp.Expr:
+    """``k sin²x + k cos²x`` → ``k`` in every sum (the recursion's ``Rᵀ R`` products leave
+    them; exact, so the torques are the same expressions, shorter).
+
+    >>> x, k = sp.symbols("x k", real=True)
+    >>> _pythagoras(k * sp.sin(x) ** 2 + k * sp.cos(x) ** 2 + x)
+    k + x
+    """
+
+    def fold(add: sp.Expr) -> sp.Expr:
+        found: dict[tuple[type, sp.Expr, sp.Expr], sp.Expr] = {}
+        for t in add.args:
+            for f in sp.Mul.make_args(t):
+                if f.is_Pow and f.exp == 2 and isinstance(f.base, (sp.sin, sp.cos)):
+                    rest = sp.Mul(*[g for g in sp.Mul.make_args(t) if g is not f])
+                    found.setdefault((type(f.base), f.base.args[0], rest), t)
+                    break
+        terms = list(add.args)
+        for (fn, x, rest), t in found.items():
+            other = found.get((sp.cos, x, rest)) if fn is sp.sin else None
+            if other is not None and t in terms and other in terms:
+                terms.remove(t)
+                terms.remove(other)
+                terms.append(rest)
+        return sp.Add(*terms) if len(terms) != len(add.args) else add
+
+    return e.replace(lambda a: a.is_Add, fold)
+
+
+def rne_program(
+    robot: Robot,
+    *,
+    symbolic_lengths: bool = False,
+    values: Mapping[object, object] | None = None,
+) -> RNEProgram:
+    """Inverse dynamics τ = rne(q, q̇, q̈) as ``robot.rne`` computes it: the exact
+    recursive Newton–Euler expressions of :mod:`dhsym.dynamics.newton_euler` on the
+    table's numbers (and ``values``), plus motor inertia ``Jm G² q̈`` and friction
+    ``B G² q̇ + |G| Tc`` when given. Every inertial parameter must be a number.
+
+    >>> import dhsym
+    >>> from dhsym.model.tablefile import read_table_text
+    >>> arm = dhsym.Robot(read_table_text('''
+    ... gravity: [0, -9.81, 0]
+    ... joints:
+    ...   - {type: R, theta: q1, d: 0, a: 1, alpha: 0, m: 2, r: [-0.5, 0, 0], I: [0, 0.1, 0.1]}
+    ... '''))
+    >>> prog = rne_program(arm)
+    >>> [(a.name, str(a.expr)) for a in prog.body]
+    [('c1', 'cos(q1)')]
+    >>> [str(o.expr) for o in prog.outputs]  # m g lc cos q1 + (Izz + m lc²) q̈1
+    ['9.81*c1 + 0.6*qdd1']
+    >>> rne_program(dhsym.load("planar2r"))
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: Planar 2R: the dynamics export needs numeric inertial parameters; ...
+    """
+    from dhsym.dynamics.newton_euler import rne_expressions
+    from dhsym.kinematics.numeric import to_float
+
+    name = robot.name or "this robot"
+    if symbolic_lengths:
+        raise DHError(
+            f"{name}: the dynamics export bakes in the numbers; export it without "
+            "--symbolic-lengths (fk, jacobian and ik can take the lengths as parameters)"
+        )
+    dm = robot.dynamics_functions(values).model  # type: ignore[attr-defined]
+    tau = rne_expressions(dm)
+    n = dm.n
+    qs = [sp.Symbol(f"q{k}", **_REAL) for k in range(1, n + 1)]
+    vs = [sp.Symbol(f"qd{k}", **_REAL) for k in range(1, n + 1)]
+    accs = [sp.Symbol(f"qdd{k}", **_REAL) for k in range(1, n + 1)]
+    rename = dict(zip((*dm.variables, *dm.rates, *dm.accelerations), (*qs, *vs, *accs)))
+    exprs = [_pythagoras(t.xreplace(rename)) for t in tau]
+    links = [dm.links[r - 1] for r in dm.joints]
+    friction = False
+    try:
+        for k, L in enumerate(links):
+            viscous = to_float(L.B * L.G**2)
+            up, down = to_float(abs(L.G) * L.Tc[0]), to_float(abs(L.G) * L.Tc[1])
+            if viscous:
+                exprs[k] += sp.Float(viscous, 17) * vs[k]
+            if up or down:
+                exprs[k] += Coulomb(vs[k], sp.Float(up, 17), sp.Float(down, 17))
+            friction = friction or bool(viscous or up or down)
+    except DHError:
+        friction = None  # type: ignore[assignment]
+    known = set(qs) | set(vs) | set(accs)
+    free = sorted({s.name for e in exprs for s in e.free_symbols} - {s.name for s in known})
+    if friction is None or free:
+        missing = ", ".join(free) if free else "friction (B, Tc, G)"
+        raise DHError(
+            f"{name}: the dynamics export needs numeric inertial parameters; no number "
+            f"for {missing}: give m, r, I (and Jm, G, B, Tc) in the table file"
+        )
+    taken = {s.name for s in known}
+    index = {s: k for k, s in enumerate(qs, start=1)}
+    body, reduced = _straight_line(exprs, index, taken)
+    inputs = tuple(
+        (s.name, arr, k)
+        for arr, syms in (("q", qs), ("qd", vs), ("qdd", accs))
+        for k, s in enumerate(syms)
+    )
+    extra = ["Then the motor inertia Jm G^2 qdd" + ("" if friction else ".")]
+    if friction:
+        extra.append("and the friction B G^2 qd + |G| Tc (Tc+ when qd > 0, Tc- when qd < 0).")
+    passes = (*_PASSES, *extra)
+    outputs = tuple(Output(k, 0, e) for k, e in enumerate(reduced))
+    return RNEProgram(tuple(s.name for s in qs), inputs, tuple(body), outputs, passes, friction, n)

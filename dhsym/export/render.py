@@ -38,7 +38,7 @@ if TYPE_CHECKING:
 
     from dhsym.kinematics.robot import Robot
 
-    from .program import IKProgram, Program
+    from .program import IKProgram, Program, RNEProgram
 
 __all__ = ["Context", "Language", "header_lines", "render", "template_dir"]
 
@@ -93,6 +93,7 @@ class Context:
     ik: IKProgram | None
     parameters: tuple[object, ...]
     revolute: tuple[bool, ...]
+    rne: RNEProgram | None = None
 
 
 def _cell(e: sp.Expr) -> str:

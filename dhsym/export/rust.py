@@ -57,6 +57,10 @@ class RustPrinter(RustCodePrinter):
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
         return f"safe_sqrt({self._print(expr.args[0])})"
 
+    def _print_Coulomb(self, expr: sp.Expr) -> str:
+        v, up, down = (self._print(a) for a in expr.args)
+        return f"(if {v} > 0.0 {{ {up} }} else if {v} < 0.0 {{ {down} }} else {{ 0.0 }})"
+
 
 LANGUAGE = Language(
     name="rust",

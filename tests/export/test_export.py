@@ -58,8 +58,8 @@ def test_python_module_runs_for_hostile_names(tmp_path):
     assert np.abs(mod.fk([0.1, 0.2]) - robot.fk([0.1, 0.2])).max() <= 1e-12
 
 
-def test_dynamics_is_not_available_yet():
-    with pytest.raises(DHError, match="not available yet"):
+def test_dynamics_needs_numeric_inertial_parameters():
+    with pytest.raises(DHError, match="needs numeric inertial parameters"):
         dhsym.export(dhsym.load("planar2r"), "c", what="fk,dynamics")
 
 
