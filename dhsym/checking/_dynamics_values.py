@@ -19,7 +19,7 @@ Examples
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -36,7 +36,7 @@ if TYPE_CHECKING:
 
 __all__ = ["dynamics_key", "part_matrix", "question_symbols", "rate_aliases"]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 
 
 def part_matrix(eom: EquationsOfMotion, q: Question) -> Matrix:

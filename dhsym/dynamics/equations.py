@@ -11,7 +11,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 
 __all__ = ["EquationsOfMotion", "NEStep"]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 
 
 @dataclass(frozen=True)

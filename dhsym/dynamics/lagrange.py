@@ -30,7 +30,7 @@ Matrix([
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -53,7 +53,7 @@ __all__ = [
     "tidy",
 ]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 _EZ = Matrix([0, 0, 1])
 #: Sums with more terms than this are left expanded by :func:`tidy`, neither folded nor
 #: collected (a six-joint arm's entries: folding them costs minutes, shortens them little).

@@ -20,7 +20,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -33,7 +33,7 @@ if TYPE_CHECKING:
 
 __all__ = ["DynamicModel", "dynamic_model", "rate_symbols"]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 _ZERO_LINK = LinkInertia(0, (0, 0, 0), sp.zeros(3, 3))
 _NAME = re.compile(r"^(.*?)_?(\d+)$")
 

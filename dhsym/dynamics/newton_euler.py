@@ -37,7 +37,7 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
@@ -53,7 +53,7 @@ if TYPE_CHECKING:
 
 __all__ = ["newton_euler", "rne_expressions"]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 _EZ = Matrix([0, 0, 1])
 _ZERO3 = Matrix.zeros(3, 1)
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -29,7 +29,7 @@ if TYPE_CHECKING:
 
 __all__ = ["Statics", "WRENCH", "statics", "statics_numeric"]
 
-Matrix = sp.ImmutableMatrix
+Matrix: TypeAlias = sp.ImmutableMatrix
 
 #: The symbols of a tip wrench in the base frame: force ``fx, fy, fz``, moment ``nx, ny, nz``.
 WRENCH = tuple(sp.Symbol(s, real=True) for s in ("fx", "fy", "fz", "nx", "ny", "nz"))

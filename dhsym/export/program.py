@@ -493,7 +493,7 @@ def rne_program(
             f"{name}: the dynamics export bakes in the numbers; export it without "
             "--symbolic-lengths (fk, jacobian and ik can take the lengths as parameters)"
         )
-    dm = robot.dynamics_functions(values).model  # type: ignore[attr-defined]
+    dm = robot.dynamics_functions(values).model
     tau = rne_expressions(dm)
     n = dm.n
     qs = [sp.Symbol(f"q{k}", **_REAL) for k in range(1, n + 1)]
