@@ -145,7 +145,7 @@ def derive_dynamics(
         key=_key(name),
         convention=robot.convention.value,
         n=n,
-        gravity=tuple(as_math(sp.sympify(x), nota) for x in lag.model.gravity),
+        gravity=tuple(as_math(x, nota) for x in lag.model.gravity),
         energies=tuple(energies),
         inertia=inertia,
         christoffel=christoffel,

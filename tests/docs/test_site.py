@@ -29,7 +29,11 @@ from tests.conftest import _need
 ROOT = Path(__file__).resolve().parent.parent.parent
 DOCS = ROOT / "docs"
 PAGES = sorted(p for p in DOCS.rglob("*.md") if "_build" not in p.parts)
-EXAMPLES = [p for p in PAGES if "```python\n" in p.read_text(encoding="utf-8")]
+BLOCKS = {p: re.findall(r"```python\n(.*?)```", p.read_text(encoding="utf-8"), re.S) for p in PAGES}
+#: pages whose Python examples are doctests (``>>>`` with their output): they are run
+EXAMPLES = [p for p, blocks in BLOCKS.items() if any(">>> " in b for b in blocks)]
+#: code listings without output (a how-to's recipe): they must at least be valid Python
+LISTINGS = [(p, b) for p, blocks in BLOCKS.items() for b in blocks if ">>> " not in b]
 
 
 def _build_docs_module():
@@ -198,6 +202,13 @@ def test_the_python_examples_of_every_page_run(page):
     runner = doctest.DocTestRunner(optionflags=doctest.NORMALIZE_WHITESPACE | doctest.ELLIPSIS)
     runner.run(test)
     assert runner.tries > 0 and runner.failures == 0
+
+
+@pytest.mark.parametrize(
+    "page, block", LISTINGS, ids=[f"{p.relative_to(DOCS)}:{k}" for k, (p, _) in enumerate(LISTINGS)]
+)
+def test_every_code_listing_is_valid_python(page, block):
+    compile(block, str(page), "exec")
 
 
 # --------------------------------------------------------------------------- the browser

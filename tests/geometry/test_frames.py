@@ -42,7 +42,11 @@ def axes_from_table(table):
     axes = []
     for i, row in enumerate(t.rows, start=1):
         M = home_frame(t, i - 1 if t.convention is Convention.STANDARD else i)
-        axes.append(JointAxis(M[:3, 3], M[:3, 2], row.joint.value, str(i)))
+        # the axis points the way its variable turns or slides the joint: a flipped joint
+        # (theta = -q1, the Jaco's first) turns about -z
+        entry = getattr(row, row.variable_field) if row.variable_field else None
+        sign = entry.diff(row.variable) if row.variable is not None else 1
+        axes.append(JointAxis(M[:3, 3], sign * M[:3, 2], row.joint.value, str(i)))
     T = home_frame(t, t.n + 1)
     return axes, Tool(T[:3, 3], T[:3, 2], T[:3, 1])
 
