@@ -309,13 +309,16 @@ class DHTable:
                     steps.append(e)
                 kw[where] = tuple(steps)
         pairs = tuple(symbol_values(values).items())
-        warnings = (snap_note(found),) if found else ()
+        extra = kw.pop("warnings", ())
+        if not isinstance(extra, Iterable):
+            raise TypeError(f"warnings must be an iterable of str, got {extra!r}")
+        warnings: tuple[str, ...] = (snap_note(found),) if found else ()
         return cls(
             tuple(converted),
             Convention.parse(convention),
             values=pairs,
             angles=unit,
-            warnings=warnings + tuple(kw.pop("warnings", ())),  # type: ignore[arg-type]
+            warnings=warnings + tuple(extra),
             **kw,  # type: ignore[arg-type]
         )
 
@@ -427,7 +430,7 @@ class DHTable:
         base = tuple(Elementary(e.kind, e.axis, e.value.subs(vm)) for e in self.base)
         tool = tuple(Elementary(e.kind, e.axis, e.value.subs(vm)) for e in self.tool)
         gravity = tuple(v.subs(vm) for v in self.gravity)
-        return replace(self, rows=rows, base=base, tool=tool, values=(), gravity=gravity)  # type: ignore[arg-type]
+        return replace(self, rows=rows, base=base, tool=tool, values=(), gravity=gravity)
 
     def _repr_latex_(self) -> str:
         return "$$" + self._latex(None) + "$$"
