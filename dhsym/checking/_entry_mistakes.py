@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator
 from dataclasses import replace
+from typing import TypeAlias, TypeVar
 
 import sympy as sp
 
@@ -49,10 +50,14 @@ __all__ = [
 _MAX_CANDIDATES = 24
 _MAX_EDITS = 400
 
-Edit = Callable[[sp.Basic], Iterator[tuple[sp.Basic, object]]]
+Part = TypeVar("Part")
+#: A rewrite of one node: yields (new node, what changed).
+Edit: TypeAlias = Callable[[sp.Basic], Iterator[tuple[sp.Basic, Part]]]
 
 
-def one_edit(e: sp.Basic, edit: Edit, limit: int = _MAX_EDITS) -> Iterator[tuple[sp.Expr, object]]:
+def one_edit(
+    e: sp.Basic, edit: Edit[Part], limit: int = _MAX_EDITS
+) -> Iterator[tuple[sp.Expr, Part]]:
     """``e`` with one node rewritten by ``edit`` (which yields (new node, what changed)),
     at any depth; at most ``limit`` candidates.
 
@@ -63,7 +68,7 @@ def one_edit(e: sp.Basic, edit: Edit, limit: int = _MAX_EDITS) -> Iterator[tuple
     ['2*y*cos(x)', 'y*cos(2*x)']
     """
 
-    def walk(node: sp.Basic) -> Iterator[tuple[sp.Basic, object]]:
+    def walk(node: sp.Basic) -> Iterator[tuple[sp.Basic, Part]]:
         yield from edit(node)
         if node.is_Atom:
             return
@@ -85,12 +90,12 @@ def _forms(e: sp.Expr) -> list[sp.Expr]:
     return [e] if expanded == e else [e, expanded]
 
 
-def sign_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, str | None]]:
+def sign_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, sp.Expr | None]]:
     """``e`` with its sign flipped, then with one term's sign flipped, at any depth (a term
     inside a bracket or a product), with that term."""
     yield -e, None
 
-    def flip(node: sp.Basic) -> Iterator[tuple[sp.Basic, object]]:
+    def flip(node: sp.Basic) -> Iterator[tuple[sp.Basic, sp.Expr]]:
         if isinstance(node, sp.Add):
             for t in node.args[:_MAX_CANDIDATES]:
                 yield node - 2 * t, t
@@ -102,7 +107,7 @@ def sign_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, str | None]]:
 def dropped_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, sp.Expr]]:
     """``e`` with one term of a sum left out, at any depth, with that term."""
 
-    def drop(node: sp.Basic) -> Iterator[tuple[sp.Basic, object]]:
+    def drop(node: sp.Basic) -> Iterator[tuple[sp.Basic, sp.Expr]]:
         if isinstance(node, sp.Add):
             for t in node.args[:_MAX_CANDIDATES]:
                 yield node - t, t
@@ -111,7 +116,7 @@ def dropped_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, sp.Expr]]:
         yield from one_edit(form, drop)
 
 
-def swap_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, str | None]]:
+def swap_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, sp.Expr | None]]:
     """``e`` with sin and cos swapped: all, those of one angle, or one factor (and which)."""
     atoms = sorted(e.atoms(sp.sin, sp.cos), key=sp.default_sort_key)
     if not atoms:
@@ -126,7 +131,7 @@ def swap_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, str | None]]:
         for a in atoms[:_MAX_CANDIDATES]:
             yield e.xreplace({a: swap[a]}), a
 
-    def one(node: sp.Basic) -> Iterator[tuple[sp.Basic, object]]:
+    def one(node: sp.Basic) -> Iterator[tuple[sp.Basic, sp.Expr]]:
         if isinstance(node, (sp.sin, sp.cos)):
             yield swap[node], node
 
@@ -259,7 +264,7 @@ def joint_index_candidates(
     """
     where = {v: k for k, v in enumerate(joints)}
 
-    def change(node: sp.Basic) -> Iterator[tuple[sp.Basic, object]]:
+    def change(node: sp.Basic) -> Iterator[tuple[sp.Basic, tuple[sp.Basic, sp.Basic]]]:
         if not isinstance(node, (sp.sin, sp.cos)):
             return
         arg = node.args[0]
@@ -309,7 +314,7 @@ def length_candidates(
     """
     skip = set(joints)
 
-    def drop(node: sp.Basic) -> Iterator[tuple[sp.Basic, object]]:
+    def drop(node: sp.Basic) -> Iterator[tuple[sp.Basic, tuple[sp.Basic, sp.Basic]]]:
         if isinstance(node, sp.Mul):
             for f in node.args:
                 if f.is_Symbol and f not in skip:

@@ -17,7 +17,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -26,7 +26,7 @@ import sympy as sp
 
 from dhsym.notation.printers import Notation
 
-from ._ik_values import PoseSample, joint_distance, key_values, same_joints
+from ._ik_values import PoseSample, Rewrite, joint_distance, key_values, same_joints
 from ._mistake_base import Mistake
 from .verdict import Diagnosis
 
@@ -96,6 +96,11 @@ class IKMistake(Mistake):
         return None
 
 
+def _replacing(mapping: Mapping[sp.Expr, sp.Expr]) -> Rewrite:
+    """The rewrite that replaces the nodes of ``mapping`` (as ``xreplace``)."""
+    return lambda e: e.xreplace(mapping)
+
+
 def atan_swaps(steps: Any) -> list[dict[sp.Expr, sp.Expr]]:
     """Each ``atan2(y, x)`` of the steps written ``atan(y/x)``, one at a time, then all."""
     nodes = sorted(set().union(*(st.rhs.atoms(sp.atan2) for st in steps)), key=sp.default_sort_key)
@@ -114,9 +119,7 @@ class AtanForAtan2(IKMistake):
         nota = case.notation
         plain = {b.symbol: 1 for b in case.ik.branches}  # no branch sign (sigma_1) in feedback
         for swap in atan_swaps(case.ik.steps):
-            vals = key_values(
-                case.ik, case.sample.env, case.sample.size, lambda e, s=swap: e.xreplace(s)
-            )
+            vals = key_values(case.ik, case.sample.env, case.sample.size, _replacing(swap))
             args = [[nota.text(a.xreplace(plain)) for a in n.args] for n in swap]
             shown = ", ".join(f"atan({y}/{x}) for atan2({y}, {x})" for y, x in args)
             yield vals, self._detail(shown)
@@ -187,7 +190,7 @@ class WrongRootSign(IKMistake):
                     case.ik,
                     case.sample.env,
                     case.sample.size,
-                    lambda e, o=node, n=new: e.xreplace({o: n}),
+                    _replacing({node: new}),
                 )
                 detail = (
                     f"A sign under the square root is wrong: the answer takes "

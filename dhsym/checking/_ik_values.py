@@ -96,7 +96,7 @@ def pose_sample(
     env: dict[sp.Symbol, np.ndarray] = {}
     for s in robot.table.constants:
         if values is not None and s in values:
-            env[s] = np.full(size, float(values[s]))  # type: ignore[arg-type]
+            env[s] = np.full(size, float(values[s]))  # type: ignore[arg-type]  # a number; float() refuses the rest
         else:
             env[s] = rng.uniform(*TOLERANCES.length_range, size=size)
     for k, v in enumerate(robot.variables):

@@ -244,7 +244,7 @@ def expansion_terms(expr: sp.Basic, cap: int = 10**9) -> int:
         elif isinstance(e, (sp.sin, sp.cos, sp.tan)):
             arg = e.args[0]
             terms = sp.Add.make_args(arg)
-            coeff = max((abs(t.as_coeff_Mul()[0]) for t in terms), default=1)
+            coeff = max((abs(t.as_coeff_Mul()[0]) for t in terms), default=sp.Integer(1))
             mult = int(min(coeff, 10_000)) if coeff.is_Rational and coeff.q == 1 else 1
             n = min(cap, 2 ** min(len(terms) - 1, 60) * max(mult, 1))
         else:

@@ -20,17 +20,32 @@ array([[2., 0.],
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import Protocol
 
 import numpy as np
 
 from dhsym.kinematics.numeric import EvaluationError, evaluate, word_product
 from dhsym.kinematics.transforms import link_word
-from dhsym.model.table import DHTable
+from dhsym.model.table import Convention, DHRow
 
 __all__ = ["EvaluationError", "evaluate", "frames", "word_product"]
 
 
-def frames(table: DHTable, env: Mapping, size: int) -> np.ndarray:
+class Rows(Protocol):
+    """What :func:`frames` reads of a table: a :class:`~dhsym.model.table.DHTable`, or a
+    :class:`~dhsym.checking.tables.Chain` (rows that need not make a valid table)."""
+
+    @property
+    def rows(self) -> tuple[DHRow, ...]: ...
+
+    @property
+    def convention(self) -> Convention: ...
+
+    @property
+    def n(self) -> int: ...
+
+
+def frames(table: Rows, env: Mapping, size: int) -> np.ndarray:
     """The DH frames ``^0T_k`` for k = 0 … n at every point: shape (size, n + 1, 4, 4)."""
     out = np.empty((size, table.n + 1, 4, 4))
     current = np.broadcast_to(np.eye(4), (size, 4, 4)).copy()

@@ -42,6 +42,7 @@ import unicodedata
 from collections import defaultdict
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, replace
+from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -284,11 +285,11 @@ def read_submissions(
             elif entry.is_dir(follow_symlinks=False):
                 subs.append(
                     _guarded(
-                        lambda p=path: _from_folder(p, qids, limits), student_id(entry.name), shown
+                        partial(_from_folder, path, qids, limits), student_id(entry.name), shown
                     )
                 )
             else:
-                subs.append(_guarded(lambda p=path: _from_file(p, qids), student, shown))
+                subs.append(_guarded(partial(_from_file, path, qids), student, shown))
     else:
         raise DHError(f"no submissions folder or CSV file at {src}")
     return sorted(_flag_duplicates(subs), key=lambda s: (s.student, s.source))

@@ -111,7 +111,9 @@ def _mode(header: str) -> str:
     return " "
 
 
-def _cell(text: str, ctx: NameContext, limits: AnswerLimits, row: int, field: str) -> tuple:
+def _cell(
+    text: str, ctx: NameContext, limits: AnswerLimits, row: int, field: str
+) -> tuple[sp.Expr, bool]:
     """(expression, degree-marked?) of one cell."""
     raw = text.strip()
     if not raw:
@@ -222,7 +224,7 @@ def _assemble(
                 raise TableError(
                     f"missing column {need!r}: a DH table has θ, d, a and α", row=r, field=need
                 )
-    parsed = []
+    parsed: list[dict[str, tuple[sp.Expr, bool]]] = []
     for r, raw in enumerate(raw_rows, start=1):
         parsed.append(
             {
@@ -263,7 +265,12 @@ def _assemble(
         except DHError as err:
             raise TableError(err.message, row=r, field=err.field) from None
     try:
-        return DHTable(tuple(rows), convention, name="answer", angles="deg" if shared else "rad")
+        return DHTable(
+            tuple(rows),
+            convention,
+            name="answer",
+            angles=AngleUnit.DEG if shared else AngleUnit.RAD,
+        )
     except DHError as err:
         raise TableError(err.message, row=err.row, field=err.field) from None
 

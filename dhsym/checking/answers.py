@@ -101,7 +101,7 @@ def answer_text(value: object) -> str | bytes:
         value = value.tolist()  # type: ignore[attr-defined]  # a sympy matrix or numpy array
     if isinstance(value, (list, tuple)) and value:
         if all(isinstance(v, str) for v in value):
-            return "\n".join(value)  # type: ignore[arg-type]  # checked on the line above
+            return "\n".join(value)
         if all(isinstance(v, (list, tuple)) for v in value):
             return (
                 "["
@@ -115,7 +115,7 @@ def answer_text(value: object) -> str | bytes:
 def _number_text(value: object) -> str:
     if isinstance(value, bool) or not isinstance(value, (int, float, complex, sp.Basic)):
         if type(value).__module__ == "numpy" and hasattr(value, "item"):
-            return _number_text(value.item())  # type: ignore[attr-defined]  # a numpy scalar
+            return _number_text(value.item())  # a numpy scalar
         raise UnreadableAnswer(
             "expected the answer as text (a string), a number, a sympy expression or a "
             f"matrix, got {type(value).__name__}"
@@ -224,7 +224,7 @@ def cell_literals(
     return template, tuple(found)
 
 
-def expression_cell(text: str, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
+def expression_cell(text: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
     """The text of a single-entry answer (a 1×1 LaTeX matrix is unwrapped)."""
     text = read_text(text, limits)
     cells = latex_matrix_cells(text) if is_latex(text) else None
@@ -282,7 +282,7 @@ def _plain_cells(text: str) -> list[list[str]]:
             return [_split_top(r[1:-1], ",") for r in rows]
         body = inner
     lines = [ln for ln in re.split(r"[;\n]|\\\\", body) if ln.strip()]
-    out = []
+    out: list[list[str]] = []
     for line in lines:
         line = line.strip().strip("|")
         for seps in ("&", "\t", "|", ","):
@@ -297,9 +297,9 @@ def _plain_cells(text: str) -> list[list[str]]:
                     parts = words
         out.append(parts)
     if any(len(r) == 1 for r in out):  # MATLAB rows: [c1 -s1 0 0; s1 c1 0 0; 0 0 1 0]
-        words = [r[0].split() if len(r) == 1 else r for r in out]
-        if all(len(w) == 4 for w in words) and all(_whole_cell(t) for w in words for t in w):
-            return words
+        split = [r[0].split() if len(r) == 1 else r for r in out]
+        if all(len(w) == 4 for w in split) and all(_whole_cell(t) for w in split for t in w):
+            return split
     return out
 
 
@@ -338,7 +338,7 @@ def read_matrix(
 
 
 def matrix_cells(
-    text: str,
+    text: str | bytes,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
     shapes: tuple[tuple[int, int], ...] = ((4, 4), (3, 4)),
 ) -> list[list[str]]:
@@ -368,7 +368,7 @@ def matrix_cells(
 
 
 def read_table(
-    text: str,
+    text: str | bytes,
     ctx: NameContext,
     convention: Convention | str = Convention.STANDARD,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,

@@ -139,7 +139,8 @@ def values(expr: sp.Basic, sample: Sample) -> np.ndarray:
 
     Unknown node types give ``nan`` (never equal to anything).
     """
-    env, memo = sample.env, {}  # subexpressions shared by the entries are computed once
+    env = sample.env
+    memo: dict[sp.Basic, np.ndarray] = {}  # subexpressions shared by the entries, computed once
     if isinstance(expr, sp.MatrixBase):
         r, c = expr.shape
         out = np.empty((sample.size, r, c))

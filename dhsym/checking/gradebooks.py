@@ -100,8 +100,15 @@ _ALIASES = {
     "idnumber": "idnumber",
     "id number": "idnumber",
 }
-_IDENTIFIERS = ("submission", "canvas_id", "sis_user_id", "sis_login_id", "email", "username")
-_IDENTIFIERS += ("idnumber",)
+_IDENTIFIERS: tuple[str, ...] = (
+    "submission",
+    "canvas_id",
+    "sis_user_id",
+    "sis_login_id",
+    "email",
+    "username",
+    "idnumber",
+)
 #: the identifiers written as they are into an LMS file (``submission`` never is)
 _WRITTEN = frozenset(_IDENTIFIERS) - {"submission"}
 _MAX_ROSTER = 50_000_000
@@ -159,7 +166,8 @@ class Roster:
                 f"student id); its columns are: {', '.join(header)}",
                 file=file,
             )
-        entries, seen = [], {}
+        entries: list[RosterEntry] = []
+        seen: dict[tuple[str, str], int] = {}  # (identifier, value) -> its row
         for row_no, row in enumerate(reader, 2):
             if not any(c.strip() for c in row):
                 continue

@@ -515,13 +515,17 @@ def grade(
         for k, outcome in runner:
             sub = todo[k]
             if isinstance(outcome, JobFailure):
-                outcome = _failed_record(sub, a, outcome)
-            if outcome.status != "graded":
+                record = _failed_record(sub, a, outcome)
+            elif isinstance(outcome, GradeRecord):  # unpickled from the worker
+                record = outcome
+            else:
+                raise TypeError(f"a grading job returned {type(outcome).__name__}")
+            if record.status != "graded":
                 failed += 1
             else:
-                outcome = replace(outcome, fingerprint=sub.fingerprint(a, run_fp))
-            _write_pages(root, files[sub.uid], outcome.pages)
-            records[sub.uid] = replace(outcome, pages={})
+                record = replace(record, fingerprint=sub.fingerprint(a, run_fp))
+            _write_pages(root, files[sub.uid], record.pages)
+            records[sub.uid] = replace(record, pages={})
             bar.step()
             if time.monotonic() - last_save > 5.0:
                 save()

@@ -46,6 +46,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError, ParseError
+from dhsym.ik.results import IKSolution
 from dhsym.ik.steps import pose_symbols
 from dhsym.model.parsing import normalize_name
 
@@ -69,6 +70,9 @@ from .tolerances import TOLERANCES
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
 if TYPE_CHECKING:
+    from dhsym.ik.derivation import InverseKinematics
+    from dhsym.kinematics.robot import Robot
+
     from .checker import PreparedKey
 
 __all__ = ["IKAnswer", "check_ik", "prepare_ik", "read_ik_answer"]
@@ -205,7 +209,8 @@ def read_ik_answer(answer: str | bytes, pk: PreparedKey, limits: AnswerLimits) -
     raw = _statements(text)
     if len(raw) > 4 * len(variables) + 40:
         raise UnreadableAnswer(f"the answer has {len(raw)} statements; at most a few per joint")
-    assignments, tuples = [], []
+    assignments: list[tuple[int, sp.Symbol, str, int | None]] = []
+    tuples: list[tuple[int, str]] = []
     helpers_named: dict[str, sp.Symbol] = {}
     for k, s in enumerate(raw):
         if "=" not in s:
@@ -332,14 +337,14 @@ def branch_signs_n(count: int) -> np.ndarray:
     return np.array(list(itertools.product([1, -1], repeat=count)), dtype=float)
 
 
-def _reaches(robot: object, q: np.ndarray, sample: PoseSample, position: bool) -> bool:
+def _reaches(robot: Robot, q: np.ndarray, sample: PoseSample, position: bool) -> bool:
     """True when the joint values ``q`` ``(size, n)`` reach the sample's poses (or points)."""
     env = dict(sample.env)
-    for k, v in enumerate(robot.variables):  # type: ignore[attr-defined]
+    for k, v in enumerate(robot.variables):
         env[v] = q[:, k]
     if np.isnan(q).any():
         return False
-    T = frames(robot.table, env, sample.size)[:, -1]  # type: ignore[attr-defined]
+    T = frames(robot.table, env, sample.size)[:, -1]
     P = pose_symbols()
     goal = np.stack([np.stack([sample.env[P[i, j]] for j in range(4)], -1) for i in range(3)], -2)
     got = T[:, :3, :]
@@ -348,7 +353,7 @@ def _reaches(robot: object, q: np.ndarray, sample: PoseSample, position: bool) -
     return bool(np.allclose(got, goal, atol=TOLERANCES.reach_atol))
 
 
-def _branch_name(ik: object, k: int, nota: object) -> str:
+def _branch_name(ik: InverseKinematics, k: int, nota: object) -> str:
     signs = branch_signs(ik)
     words = {
         "arm": ("right arm", "left arm"),
@@ -357,7 +362,7 @@ def _branch_name(ik: object, k: int, nota: object) -> str:
         "reach": ("+ root", "- root"),
     }
     parts = []
-    for j, b in enumerate(ik.branches):  # type: ignore[attr-defined]
+    for j, b in enumerate(ik.branches):
         s = int(signs[k, j])
         what = words[b.role][0 if s > 0 else 1]
         joint = f"θ{b.joint}" if getattr(b, "joint", None) else ""
@@ -365,11 +370,15 @@ def _branch_name(ik: object, k: int, nota: object) -> str:
     return ", ".join(parts) if parts else "the only solution"
 
 
-def _numeric_names(robot: object, ik: object, sample: PoseSample, key: np.ndarray) -> list[str]:
+def _numeric_names(
+    robot: Robot, ik: InverseKinematics, sample: PoseSample, key: np.ndarray
+) -> list[str]:
     """Each key branch named as the numeric solver names it at the question's pose."""
-    T = frames(robot.table, sample.env, 1)[0, -1]  # type: ignore[attr-defined]
-    position_only = not ik.decoupling.wrist  # type: ignore[attr-defined]
-    sol = robot.ik(T[:3, 3] if position_only else T)  # type: ignore[attr-defined]
+    T = frames(robot.table, sample.env, 1)[0, -1]
+    position_only = not ik.decoupling.wrist
+    sol = robot.ik(T[:3, 3] if position_only else T)
+    if not isinstance(sol, IKSolution):  # one pose gives one solution, not a batch
+        raise TypeError(f"robot.ik of one pose returned {type(sol).__name__}")
     names = []
     for k in range(len(key)):
         found = [
@@ -405,7 +414,7 @@ def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
 def _entries(
     pk: PreparedKey,
     ans: IKAnswer,
-    ik: object,
+    ik: InverseKinematics,
     key: np.ndarray,
     answers: np.ndarray,
     tols: np.ndarray,
@@ -417,7 +426,7 @@ def _entries(
     nota = pk.robot.notation
     variables = list(pk.robot.variables)
     signs = branch_signs(ik)
-    steps = {st.lhs: st for st in ik.steps}  # type: ignore[attr-defined]
+    steps = {st.lhs: st for st in ik.steps}
     out = []
     for s_index, sol in enumerate(ans.solutions):
         rows = [r for r, (s, _) in enumerate(meta) if s == s_index]
@@ -429,7 +438,7 @@ def _entries(
             k = int(np.argmax(ok.sum(axis=(1, 2))))
             nearest = k if r == rows[0] else nearest
             right &= ok[k].all(axis=0)
-        sub = {b.symbol: int(signs[nearest, j]) for j, b in enumerate(ik.branches)}  # type: ignore[attr-defined]
+        sub = {b.symbol: int(signs[nearest, j]) for j, b in enumerate(ik.branches)}
         for j, v in enumerate(variables):
             st = sol.get(j)
             expected = steps[v].rhs.xreplace(sub) if v in steps else sp.nan
@@ -440,9 +449,9 @@ def _entries(
                     s_index + 1,
                     j + 1,
                     good,
-                    nota.text(st.expr) if shown else (st.text if st else ""),
+                    nota.text(st.expr) if st and shown else (st.text if st else ""),
                     f"{nota.text(v)} = {nota.text(expected)}",
-                    nota.latex(st.expr) if shown else "",
+                    nota.latex(st.expr) if st and shown else "",
                     f"{nota.latex(v)} = {nota.latex(expected)}",
                     "numeric" if good else "",
                 )
@@ -471,9 +480,9 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
         if missing:
             parts.append(f"The answer does not give {', '.join(missing)}.")
         if unknown:
-            names = ", ".join(map(str, unknown))
+            used = ", ".join(map(str, unknown))
             parts.append(
-                f"The answer uses {names}, which is neither a pose symbol (n_x … a_z, p_x, "
+                f"The answer uses {used}, which is neither a pose symbol (n_x … a_z, p_x, "
                 "p_y, p_z), a length of this robot, a joint variable nor defined in the answer."
             )
         kind = "unknown_symbol" if unknown else "missing_joint"
@@ -510,14 +519,17 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
         key_d,
         answers,
         tuple(wrong),
-        tuple(int(k) for k in np.flatnonzero(m.hits.any(axis=0).all(axis=1))),
+        tuple(int(k) for k in np.flatnonzero(np.asarray(m.hits.any(axis=0)).all(axis=1))),
         names,
         tols.max(axis=0) if len(tols) else np.full(len(variables), ATOL),
         q.every,
         nota,
         pk.cache,
     )
-    found = [(m.kind, (check_time(), m.explain_ik(case))[1]) for m in IK_MISTAKES]
+    found = []
+    for mistake in IK_MISTAKES:
+        check_time()  # the answer's deadline, before each mistake's search
+        found.append((mistake.kind, mistake.explain_ik(case)))
     diagnoses = tuple(d for kind, d in found if d is not None and kind != "lost_branch")
     if wrong and not diagnoses:
         diagnoses = (
@@ -556,7 +568,7 @@ def _close(a: np.ndarray, b: np.ndarray, revolute: np.ndarray, tol: np.ndarray) 
     d = joint_distance(a, b, revolute)
     scale = np.where(revolute, 1.0, 1.0 + np.abs(np.nan_to_num(b)))
     with np.errstate(invalid="ignore"):
-        return (d <= tol * scale).all(axis=-1)
+        return np.all(d <= tol * scale, axis=-1)
 
 
 @dataclass(frozen=True, eq=False)
@@ -580,7 +592,7 @@ def _match(
     answers: np.ndarray,
     tols: np.ndarray,
     sample: PoseSample,
-    robot: object,
+    robot: Robot,
     position: bool,
 ) -> _Match:
     """Each answer row against every key branch at every point; a row that is no branch
@@ -607,7 +619,7 @@ def _match(
             wrong.append(a)
     same = np.array([[_close(k1, k2, rev, np.full(len(rev), ATOL)) for k2 in key] for k1 in key])
     real = ~np.isnan(key).any(axis=2)  # (K, size)
-    given = hits.any(axis=0)  # (K, size): a branch the answer gives at that point
+    given = np.asarray(hits.any(axis=0))  # (K, size): a branch the answer gives at that point
     covered = bool(
         all(
             (same[k, :, p] & given[:, p]).any() or not real[k, p]
@@ -619,7 +631,7 @@ def _match(
 
 
 def _judge(
-    pk: PreparedKey, ans: IKAnswer, ik: object, sample: PoseSample, position: bool
+    pk: PreparedKey, ans: IKAnswer, ik: InverseKinematics, sample: PoseSample, position: bool
 ) -> tuple[bool, _Match, list]:
     variables = list(pk.robot.variables)
     key = key_values(ik, sample.env, sample.size)
@@ -632,7 +644,7 @@ def _judge(
 def _correct(
     pk: PreparedKey,
     ans: IKAnswer,
-    ik: object,
+    ik: InverseKinematics,
     sample: PoseSample,
     result: tuple,
     position: bool,
@@ -642,9 +654,9 @@ def _correct(
     q, nota = pk.key.question, pk.robot.notation
     ks = sorted({k for k in matched.values() if k is not None})
     if q.pose is not None:
-        names = list(pk.cache["ik pose names"])  # type: ignore[arg-type]  # set by prepare_ik
+        names = list(pk.cache["ik pose names"])  # set by prepare_ik
     else:
-        names = [_branch_name(ik, k, nota) for k in range(2 ** len(ik.branches))]  # type: ignore[attr-defined]
+        names = [_branch_name(ik, k, nota) for k in range(2 ** len(ik.branches))]
     if q.every:
         message = f"Right: every solution is given ({len(ks)} branches)."
     elif len(ks) == 1:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 __all__ = ["GradeRecord"]
 
@@ -81,10 +82,10 @@ class GradeRecord:
     fingerprint: str = ""
     pages: Mapping[str, str] = field(default_factory=dict, repr=False, compare=False)
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """The JSON-ready dict of the grading cache: lists for tuples, no ``pages``;
         ``error`` (and then no ``wrong`` and ``mistakes``) and ``fingerprint`` only when set."""
-        out = {
+        out: dict[str, Any] = {
             "uid": self.uid,
             "student": self.student,
             "name": self.name,
@@ -136,8 +137,8 @@ class GradeRecord:
             source=data["source"],
             flags=tuple(data["flags"]),
             status=data["status"],
-            scores=dict(scores),
-            verdicts=dict(verdicts),
+            scores=dict(data["scores"]),  # a mapping: checked by _need above
+            verdicts=dict(data["verdicts"]),
             kinds=tuple(data["kinds"]),
             score=data["score"],
             max_score=data["max"],

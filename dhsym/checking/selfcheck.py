@@ -36,6 +36,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import overload
 
 import sympy as sp
 
@@ -159,6 +160,30 @@ def _key(key: str | Path | DHTable | Key | None, question: str | None, tool_free
     return Key.load(key, question, tool_free=tool_free)
 
 
+@overload
+def check(
+    answer: None = None,
+    key: str | Path | DHTable | Key | None = None,
+    question: str | None = None,
+    *,
+    tool_free: bool = False,
+    show_key: bool = False,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+) -> object: ...
+
+
+@overload
+def check(
+    answer: str | bytes,
+    key: str | Path | DHTable | Key | None = None,
+    question: str | None = None,
+    *,
+    tool_free: bool = False,
+    show_key: bool = False,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+) -> SelfCheck: ...
+
+
 def check(
     answer: str | bytes | None = None,
     key: str | Path | DHTable | Key | None = None,
@@ -167,12 +192,12 @@ def check(
     tool_free: bool = False,
     show_key: bool = False,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
-) -> SelfCheck:
+) -> SelfCheck | object:
     """Check ``answer`` against ``key`` (a built-in robot, a table file, a table or a
     :class:`Key`) and ``question``; with no answer, return :func:`check_widget`."""
     k = _key(key, question, tool_free)
     if answer is None:
-        return check_widget(k, show_key=show_key, limits=limits)  # type: ignore[return-value]
+        return check_widget(k, show_key=show_key, limits=limits)
     return SelfCheck(check_answer(k, answer, limits=limits), k, show_key)
 
 

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import TypeAlias
 
 import sympy as sp
 
@@ -38,7 +39,7 @@ __all__ = ["INERTIA_KEYS", "LinkInertia"]
 #: The per-row keys of a table file that hold inertial parameters.
 INERTIA_KEYS = ("m", "r", "I", "Jm", "G", "B", "Tc")
 
-Expr = sp.Expr
+Expr: TypeAlias = sp.Expr
 _ZERO = sp.Integer(0)
 
 
@@ -138,7 +139,7 @@ class LinkInertia:
             c = _expr(tc, "Tc", row)
             pair = (c, -c)
         scalars = {k: _expr(data[k], k, row) for k in ("Jm", "G", "B") if k in data}
-        out = cls(m, r, inertia, Tc=pair, **scalars)  # type: ignore[arg-type]
+        out = cls(m, r, inertia, Tc=pair, **scalars)
         out.check(row=row, physical=physical)
         return out
 
@@ -160,7 +161,7 @@ class LinkInertia:
                 [s["Ixz"], s["Iyz"], s["Izz"]],
             ]
         )
-        return cls(symbol(f"m{i}"), tuple(symbol(f"{c}{i}") for c in ("rx", "ry", "rz")), inertia)  # type: ignore[arg-type]
+        return cls(symbol(f"m{i}"), tuple(symbol(f"{c}{i}") for c in ("rx", "ry", "rz")), inertia)
 
     def __post_init__(self) -> None:
         for name in ("m", "Jm", "G", "B"):
@@ -236,12 +237,12 @@ class LinkInertia:
         m = dict(mapping)
         return LinkInertia(
             self.m.subs(m),
-            tuple(v.subs(m) for v in self.r),  # type: ignore[arg-type]
+            tuple(v.subs(m) for v in self.r),
             self.I.subs(m),
             self.Jm.subs(m),
             self.G.subs(m),
             self.B.subs(m),
-            tuple(v.subs(m) for v in self.Tc),  # type: ignore[arg-type]
+            tuple(v.subs(m) for v in self.Tc),
         )
 
     def data(self) -> dict[str, object]:

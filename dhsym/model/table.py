@@ -114,14 +114,14 @@ class DHRow:
         cls, theta: object, d: object = 0, a: object = 0, alpha: object = 0, **kw: object
     ) -> DHRow:
         """A revolute row; θ holds the variable (and maybe a constant offset)."""
-        return cls(JointType.REVOLUTE, theta, d, a, alpha, **kw)  # type: ignore[arg-type]
+        return cls(JointType.REVOLUTE, theta, d, a, alpha, **kw)  # type: ignore[arg-type]  # __post_init__ converts
 
     @classmethod
     def prismatic(
         cls, d: object, theta: object = 0, a: object = 0, alpha: object = 0, **kw: object
     ) -> DHRow:
         """A prismatic row; d holds the variable."""
-        return cls(JointType.PRISMATIC, theta, d, a, alpha, **kw)  # type: ignore[arg-type]
+        return cls(JointType.PRISMATIC, theta, d, a, alpha, **kw)  # type: ignore[arg-type]  # __post_init__ converts
 
     @classmethod
     def fixed(cls, theta: object = 0, d: object = 0, a: object = 0, alpha: object = 0) -> DHRow:
@@ -296,11 +296,11 @@ class DHTable:
                     changes["limits"] = tuple(to_radians(v, unit) for v in row.limits)
             except TableError as err:
                 raise err.located(row=i) from None
-            converted.append(replace(row, **changes))  # type: ignore[arg-type]
+            converted.append(replace(row, **changes))  # type: ignore[arg-type]  # Expr entries and limits
         for where in ("base", "tool"):
             if kw.get(where):
                 steps = []
-                for e in kw[where]:  # type: ignore[attr-defined]
+                for e in kw[where]:  # type: ignore[attr-defined]  # base/tool: Elementary steps (kw is **object)
                     snapped = None
                     if e.kind == "R":
                         value, snapped = snap_entry(e.value, rule, f"{where} R{e.axis}", None)
@@ -309,14 +309,17 @@ class DHTable:
                     steps.append(e)
                 kw[where] = tuple(steps)
         pairs = tuple(symbol_values(values).items())
-        warnings = (snap_note(found),) if found else ()
+        extra = kw.pop("warnings", ())
+        if not isinstance(extra, Iterable):
+            raise TypeError(f"warnings must be an iterable of str, got {extra!r}")
+        warnings: tuple[str, ...] = (snap_note(found),) if found else ()
         return cls(
             tuple(converted),
             Convention.parse(convention),
             values=pairs,
             angles=unit,
-            warnings=warnings + tuple(kw.pop("warnings", ())),  # type: ignore[arg-type]
-            **kw,  # type: ignore[arg-type]
+            warnings=warnings + tuple(extra),
+            **kw,  # type: ignore[arg-type]  # the remaining fields, checked by __post_init__
         )
 
     def __post_init__(self) -> None:
@@ -427,7 +430,7 @@ class DHTable:
         base = tuple(Elementary(e.kind, e.axis, e.value.subs(vm)) for e in self.base)
         tool = tuple(Elementary(e.kind, e.axis, e.value.subs(vm)) for e in self.tool)
         gravity = tuple(v.subs(vm) for v in self.gravity)
-        return replace(self, rows=rows, base=base, tool=tool, values=(), gravity=gravity)  # type: ignore[arg-type]
+        return replace(self, rows=rows, base=base, tool=tool, values=(), gravity=gravity)
 
     def _repr_latex_(self) -> str:
         return "$$" + self._latex(None) + "$$"

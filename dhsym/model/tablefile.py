@@ -66,6 +66,7 @@ from .table import (
     DHRow,
     DHTable,
     Elementary,
+    Expr,
     JointType,
     as_expr,
     to_radians,
@@ -363,7 +364,7 @@ def _plain(value: sp.Expr) -> object:
 
 
 def _would_snap(table: DHTable) -> bool:
-    entries = [(r.theta, r.alpha) for r in table.rows]
+    entries: list[tuple[Expr, ...]] = [(r.theta, r.alpha) for r in table.rows]
     entries += [(e.value,) for e in table.base + table.tool if e.kind == "R"]
     return any(snap_entry(v, AngleSnap(), "", None)[1] for vs in entries for v in vs)
 
@@ -420,7 +421,7 @@ def dump_table(table: DHTable, *, angles: str | None = None) -> str:
             for key, value in row.inertia.data().items():
                 cells[key] = (
                     [_plain(v) for v in value] if isinstance(value, list) else _plain(value)
-                )  # type: ignore[arg-type]
+                )
         lines.append(
             "- "
             + yaml.safe_dump(cells, default_flow_style=True, sort_keys=False, width=10**6).strip()
