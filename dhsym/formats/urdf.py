@@ -748,7 +748,7 @@ def _dh_inertias(
     while stack:
         link, T, body = stack.pop()
         found = inertial.get(link)
-        if found is not None and found.mass != 0:
+        if found is not None and (found.mass != 0 or any(v != 0 for v in found.inertia)):
             bodies[body].append((T * found.origin.rational_matrix, found))
             if body == 0:
                 base.append(link)
@@ -987,6 +987,7 @@ def _render(name: str, links: list[str], joints: list[_Joint], table: DHTable) -
     reach = sum(float(np.linalg.norm(p)) for ps in offsets.values() for p in ps)
     r = max(reach, 0.2) * 0.03
     moved = {j.child: j.kind for j in joints if j.kind != "fixed"}
+    inertias = {f"link{k}": row.inertia for k, row in enumerate(table.rows, start=1)}
     lines = [
         '<?xml version="1.0"?>',
         f"<!-- {name}: written by dhsym from its {table.convention.value} DH table; "
@@ -1013,6 +1014,9 @@ def _render(name: str, links: list[str], joints: list[_Joint], table: DHTable) -
             yaw, pitch = math.atan2(u[1], u[0]), math.atan2(-u[2], math.hypot(u[0], u[1]))
             shape = f'<box size="{_f(length)} {_f(r)} {_f(r)}"/>'
             lines += _visual(p / 2, f"0 {_f(pitch)} {_f(yaw)}", shape, "dhsym_grey")
+        inertia = inertias.get(link)
+        if inertia is not None:
+            lines += _inertial_lines(inertia)
         lines.append("  </link>")
     for j in joints:
         xyz, rpy = _xyz_rpy(j.origin)
@@ -1034,6 +1038,37 @@ def _render(name: str, links: list[str], joints: list[_Joint], table: DHTable) -
         lines.append("  </joint>")
     lines.append("</robot>")
     return "\n".join(lines) + "\n"
+
+
+def _inertial_lines(inertia: LinkInertia) -> list[str]:
+    r"""``<inertial>`` of a DH link: the centre of mass and the inertia about it, both in the
+    link's own frame (DH frame k), so the origin has no rotation. Motor inertia, gearing and
+    friction have no place in URDF and are left out.
+
+    >>> L = LinkInertia(sp.Rational(3, 2), (0, 0, sp.Rational(1, 10)), sp.diag(1, 2, 3))
+    >>> print("\n".join(_inertial_lines(L)))
+        <inertial>
+          <origin xyz="0 0 0.1" rpy="0 0 0"/>
+          <mass value="1.5"/>
+          <inertia ixx="1" ixy="0" ixz="0" iyy="2" iyz="0" izz="3"/>
+        </inertial>
+    """
+    I = inertia.I  # noqa: E741 (the inertia)
+    if inertia.free_symbols:
+        names = ", ".join(sorted(str(s) for s in inertia.free_symbols))
+        raise DHError(f"symbolic inertial parameters {names}: give them numbers to write a URDF")
+    values = {
+        "ixx": I[0, 0], "ixy": I[0, 1], "ixz": I[0, 2],
+        "iyy": I[1, 1], "iyz": I[1, 2], "izz": I[2, 2],
+    }  # fmt: skip
+    moments = " ".join(f'{k}="{_text(sp.sympify(v))}"' for k, v in values.items())
+    return [
+        "    <inertial>",
+        f'      <origin xyz="{" ".join(_text(sp.sympify(v)) for v in inertia.r)}" rpy="0 0 0"/>',
+        f'      <mass value="{_text(inertia.m)}"/>',
+        f"      <inertia {moments}/>",
+        "    </inertial>",
+    ]
 
 
 def _f(x: float) -> str:

@@ -251,3 +251,30 @@ def test_inertials_stay_exact_and_drops_are_named() -> None:
     assert any("base_link (the base" in w for w in imp.table.warnings)
     panda = import_urdf(DATA / "panda.urdf", tip="panda_hand")
     assert any("panda_leftfinger" in w for w in panda.table.warnings)
+
+
+@pytest.mark.slow
+def test_written_inertials_come_back() -> None:
+    """Puma 560 with its published inertial parameters: the URDF holds m, r and I (not the
+    motor inertia, gearing or friction, which URDF has no place for)."""
+    from dataclasses import replace
+
+    from dhsym.kinematics.robot import Robot
+
+    table = dhsym.load("puma560").table.substituted()
+    rigid = replace(
+        table,
+        rows=tuple(
+            replace(row, inertia=replace(row.inertia, Jm=0, G=1, B=0, Tc=(0, 0)))
+            for row in table.rows
+        ),
+    )
+    text = write_urdf(rigid)
+    assert text.count("<inertial>") == 6 and '<mass value="17.4"/>' in text
+    again = from_urdf(text, tip="tool")
+    assert again.table.rows[1].inertia.m == sp.Rational(87, 5)
+    robot = Robot(rigid)
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        q, qd, qdd = (rng.uniform(-1.5, 1.5, 6) for _ in range(3))
+        np.testing.assert_allclose(again.rne(q, qd, qdd), robot.rne(q, qd, qdd), atol=1e-9, rtol=0)
