@@ -12,7 +12,10 @@ the tool. The DH z axes point along the URDF axes and the variables are zero at 
 URDF zero, so q means the same in both: ``robot.fk(q)`` is the URDF chain's pose of the
 tip link in the base link for every q. ``revolute`` and ``continuous`` joints become
 revolute rows, ``prismatic`` ones prismatic rows (``limit`` becomes the row's limits);
-``mimic``, ``floating`` and ``planar`` joints on the chain are refused.
+``mimic``, ``floating`` and ``planar`` joints on the chain are refused. Each link's
+``<inertial>`` becomes part of ``row.inertia`` of the DH link that moves it (links fixed
+below it merged by the parallel-axis theorem), in DH frame k; the base's and off-chain
+links' inertials are left out with a warning.
 
 Angles in ``rpy`` that are a multiple of π/12 rounded to the digits written
 (``1.57079632679``) are read as that multiple, as the table reader does
@@ -25,7 +28,8 @@ and positions that depend on them are read as the simplest exact number within 1
 origins are the constant part of each link matrix, cylinders on the joint axes and boxes
 along the links sized from the DH lengths. In the standard convention the joint moves
 before the constant ``Tx(a) Rx(α)`` of its row, so the body it moves is one more link,
-``link{k}_joint``, fixed to DH frame k.
+``link{k}_joint``, fixed to DH frame k. A row's ``inertia`` becomes ``link{k}``'s
+``<inertial>``, in DH frame k.
 
 Examples
 --------
@@ -300,8 +304,8 @@ class UrdfImport:
     """A URDF chain read as a DH table: the chain, the frame assignment, the table, inertials.
 
     ``inertials`` are the links' ``<inertial>`` as written (in each URDF link's own
-    frame), from the base link to the tip link; they are not yet converted to the DH
-    link frames.
+    frame), from the base link to the tip link; the table's rows carry them converted
+    into the DH link frames (``row.inertia``, see :func:`import_urdf`).
     """
 
     model: UrdfModel
