@@ -784,7 +784,9 @@ def _dh_inertias(
     return out, dropped
 
 
-def _subtree(children: dict[str, list[UrdfJoint]], link: str, inertial: dict) -> list[str]:
+def _subtree(
+    children: dict[str, list[UrdfJoint]], link: str, inertial: dict[str, Inertial | None]
+) -> list[str]:
     """The links with mass in the subtree of ``link`` (``link`` included)."""
     out, stack = [], [link]
     while stack:
@@ -815,7 +817,7 @@ def _combine(parts: Sequence[tuple[Expr, sp.MatrixBase, sp.MatrixBase]]) -> Link
         d = sp.Matrix(p) - c
         total += Ic + mass * ((d.T * d)[0, 0] * sp.eye(3) - d * d.T)
     clean = [_tidy(v) for v in total]
-    return LinkInertia(_tidy(m), tuple(_tidy(v) for v in c), sp.ImmutableMatrix(3, 3, clean))  # type: ignore[arg-type]
+    return LinkInertia(_tidy(m), tuple(_tidy(v) for v in c), sp.ImmutableMatrix(3, 3, clean))
 
 
 def _tidy(value: Expr) -> Expr:
