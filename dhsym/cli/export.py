@@ -1,4 +1,9 @@
-"""``dhsym export``: self-contained source code (C, C++, MATLAB/Octave, Rust, NumPy)."""
+"""``dhsym export``: self-contained source code (C, C++, MATLAB/Octave, Rust, NumPy), or a URDF.
+
+``--lang urdf`` writes one file with :func:`dhsym.formats.urdf.write_urdf` (links, joints,
+limits, simple visuals and the inertials of rows that have them): ``-o arm.urdf`` names the
+file itself; any other ``-o`` is a folder, which gets ``<prefix or robot name>.urdf``.
+"""
 
 from __future__ import annotations
 
@@ -11,18 +16,17 @@ from .common import add_command, load_robot, note_warnings, wrote
 
 __all__ = ["register"]
 
-#: --lang choices: the export room's languages, and urdf (written by `dhsym convert`)
+#: --lang choices: the export room's languages, and urdf (the formats room's URDF writer)
 _LANGS = ("c", "cpp", "matlab", "rust", "python", "urdf")
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
-    from dhsym.errors import DHError
     from dhsym.export import export
 
-    if args.lang == "urdf":
-        raise DHError(f"--lang urdf: use `dhsym convert {args.robot} --to urdf` for a URDF file")
     robot = load_robot(args.robot, args.values)
     note_warnings(robot.table)
+    if args.lang == "urdf":
+        return _write_urdf(robot, args)
     command = " ".join(
         shlex.quote(a)
         for a in ["dhsym", "export", args.robot, "--lang", args.lang, "--what", args.what]
@@ -49,6 +53,27 @@ def _cmd_export(args: argparse.Namespace) -> int:
     return 0
 
 
+def _write_urdf(robot: object, args: argparse.Namespace) -> int:
+    """``--lang urdf``: one URDF file, ``-o`` itself when it ends in ``.urdf``."""
+    from dhsym.errors import DHError
+    from dhsym.formats.urdf import write_urdf
+
+    if args.what != "fk,jacobian,ik":
+        raise DHError("--what does not apply to --lang urdf (a URDF holds the whole robot)")
+    name = args.prefix or Path(args.robot).stem
+    text = write_urdf(robot, name=name)  # type: ignore[arg-type]
+    out = Path(args.output)
+    if out.suffix.lower() == ".urdf":
+        out.parent.mkdir(parents=True, exist_ok=True)
+        path = out
+    else:
+        out.mkdir(parents=True, exist_ok=True)
+        path = out / f"{name}.urdf"
+    path.write_text(text, encoding="utf-8")
+    wrote(path)
+    return 0
+
+
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add ``dhsym export NAME --lang LANG [--what fk,jacobian,ik] [--prefix P] -o DIR``.
 
@@ -62,7 +87,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "export",
         "source code of the fk, Jacobian and closed-form IK: C, C++, MATLAB/Octave, Rust, NumPy",
         epilog="Example: dhsym export puma560 --lang c --prefix puma -o gen/ "
-        "(writes gen/puma.h and gen/puma.c; compile with gcc -std=c99 ... -lm)",
+        "(writes gen/puma.h and gen/puma.c; compile with gcc -std=c99 ... -lm); "
+        "dhsym export puma560 --lang urdf -o arm.urdf (a URDF for robot viewers)",
     )
     c.add_argument("robot", help="built-in robot name (dhsym list) or table file")
     c.add_argument(
@@ -70,7 +96,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         required=True,
         choices=_LANGS,
         help="c (C99, math.h), cpp (C++17 header), matlab (Octave too), rust (no crates), "
-        "python (NumPy); urdf: use `dhsym convert NAME --to urdf`",
+        "python (NumPy), urdf (one URDF file with limits and inertials)",
     )
     c.add_argument(
         "--what",
@@ -85,5 +111,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="lengths and offsets as a run-time parameter array p instead of numbers",
     )
     c.add_argument("--values", help="numbers for symbolic lengths, e.g. a1=1,a2=0.8")
-    c.add_argument("-o", "--output", required=True, metavar="DIR", help="folder for the files")
+    c.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        metavar="DIR",
+        help="folder for the files (--lang urdf: a folder, or the file itself if it ends in .urdf)",
+    )
     c.set_defaults(func=_cmd_export)

@@ -12,7 +12,10 @@ the tool. The DH z axes point along the URDF axes and the variables are zero at 
 URDF zero, so q means the same in both: ``robot.fk(q)`` is the URDF chain's pose of the
 tip link in the base link for every q. ``revolute`` and ``continuous`` joints become
 revolute rows, ``prismatic`` ones prismatic rows (``limit`` becomes the row's limits);
-``mimic``, ``floating`` and ``planar`` joints on the chain are refused.
+``mimic``, ``floating`` and ``planar`` joints on the chain are refused. Each link's
+``<inertial>`` becomes part of ``row.inertia`` of the DH link that moves it (links fixed
+below it merged by the parallel-axis theorem), in DH frame k; the base's and off-chain
+links' inertials are left out with a warning.
 
 Angles in ``rpy`` that are a multiple of π/12 rounded to the digits written
 (``1.57079632679``) are read as that multiple, as the table reader does
@@ -25,7 +28,8 @@ and positions that depend on them are read as the simplest exact number within 1
 origins are the constant part of each link matrix, cylinders on the joint axes and boxes
 along the links sized from the DH lengths. In the standard convention the joint moves
 before the constant ``Tx(a) Rx(α)`` of its row, so the body it moves is one more link,
-``link{k}_joint``, fixed to DH frame k.
+``link{k}_joint``, fixed to DH frame k. A row's ``inertia`` becomes ``link{k}``'s
+``<inertial>``, in DH frame k.
 
 Examples
 --------
@@ -53,7 +57,7 @@ import math
 import os
 import re
 import textwrap
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from pathlib import Path
@@ -69,9 +73,10 @@ from dhsym.geometry.axes import JointAxis, Tool, exact_number
 from dhsym.geometry.conversion import _euler
 from dhsym.geometry.frames import FrameAssignment, assign_frames
 from dhsym.kinematics.numeric import to_float
-from dhsym.kinematics.transforms import link_word, plain_product
+from dhsym.kinematics.transforms import chain_word, link_word, plain_product, rigid_inverse
 from dhsym.model.angles import AngleSnap, Snapped, snap_angle, snap_note
 from dhsym.model.entries import exact_decimal
+from dhsym.model.inertia import LinkInertia
 from dhsym.model.kinds import Convention, JointType
 from dhsym.model.parsing import numeral_problem
 from dhsym.model.table import DHTable, Elementary
@@ -299,8 +304,8 @@ class UrdfImport:
     """A URDF chain read as a DH table: the chain, the frame assignment, the table, inertials.
 
     ``inertials`` are the links' ``<inertial>`` as written (in each URDF link's own
-    frame), from the base link to the tip link; they are not yet converted to the DH
-    link frames.
+    frame), from the base link to the tip link; the table's rows carry them converted
+    into the DH link frames (``row.inertia``, see :func:`import_urdf`).
     """
 
     model: UrdfModel
@@ -669,8 +674,16 @@ def import_urdf(
         replace(row, limits=j.limits if j.kind != "continuous" else None)
         for row, j in zip(fa.table.rows, moving, strict=True)
     )
+    inertias, dropped = _dh_inertias(model, start, moving, replace(fa.table, rows=rows))
+    rows = tuple(
+        replace(row, inertia=inertia) if inertia is not None else row
+        for row, inertia in zip(rows, inertias, strict=True)
+    )
     snapped = [s for j in joints for s in j.snapped]
     note = snap_note(snapped, "snap_angles=False") if snapped else ""
+    notes = [note] if note else []
+    if dropped:
+        notes.append("inertials not in the DH table: " + "; ".join(dropped))
     table = replace(
         fa.table,
         rows=rows,
@@ -681,7 +694,7 @@ def import_urdf(
             + ", ".join(j.name for j in moving)
             + "; DH z axes along the URDF axes, variables zero at the URDF zero."
         ),
-        warnings=(note,) if note else (),
+        warnings=tuple(notes),
     )
     inertials = tuple(
         (name, inertial)
@@ -711,6 +724,106 @@ def from_urdf(
     """
     imp = import_urdf(source, tip, base, convention, snap_angles=snap_angles)
     return imp.robot(**kw)
+
+
+def _dh_inertias(
+    model: UrdfModel, start: str, moving: Sequence[UrdfJoint], table: DHTable
+) -> tuple[list[LinkInertia | None], list[str]]:
+    """Each DH link's inertia (link k moves with row k) in DH frame k, and what was dropped.
+
+    Every link below ``start`` joins the body of its nearest moving ancestor on the chain:
+    links hung on by ``fixed`` joints (a hand, a flange, a tool-centre link) merge into the
+    link they hang on (masses add, centres of mass combine, the parallel-axis theorem moves
+    each inertia to the common centre). Links before the first moving joint form the base,
+    which has no row; links behind a moving joint off the chain (fingers) are not on the
+    chain. Both are named in the returned notes. Rotations stay exact where the ``rpy``
+    angles are (snapped or rational multiples of π); measured angles use
+    :attr:`Origin.rational_matrix`.
+    """
+    rows = {j.name: k for k, j in enumerate(moving, start=1)}
+    children: dict[str, list[UrdfJoint]] = {}
+    for j in model.joints:
+        children.setdefault(j.parent, []).append(j)
+    inertial = dict(model.links)
+    bodies: list[list[tuple[sp.Matrix, Inertial]]] = [[] for _ in range(len(moving) + 1)]
+    base: list[str] = []
+    off: list[str] = []
+    stack: list[tuple[str, sp.Matrix, int]] = [(start, sp.eye(4), 0)]
+    while stack:
+        link, T, body = stack.pop()
+        found = inertial.get(link)
+        if found is not None and (found.mass != 0 or any(v != 0 for v in found.inertia)):
+            bodies[body].append((T * found.origin.rational_matrix, found))
+            if body == 0:
+                base.append(link)
+        for j in children.get(link, []):
+            if j.moving and j.name not in rows or j.kind in ("floating", "planar"):
+                off.extend(_subtree(children, j.child, inertial))
+                continue
+            stack.append((j.child, T * j.origin.rational_matrix, rows.get(j.name, body)))
+    zero = {v: 0 for v in table.variables}
+    out: list[LinkInertia | None] = []
+    for k in range(1, len(moving) + 1):
+        if not bodies[k]:
+            out.append(None)
+            continue
+        to_frame = rigid_inverse(plain_product(chain_word(table, -1, k)).subs(zero))
+        parts = []
+        for T, found in bodies[k]:
+            M = to_frame * T
+            xx, xy, xz, yy, yz, zz = found.inertia
+            Ic = sp.Matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+            R = M[:3, :3]
+            parts.append((found.mass, M[:3, 3], R * Ic * R.T))
+        out.append(_combine(parts))
+    dropped = []
+    if base:
+        dropped.append(", ".join(sorted(base)) + " (the base: it does not move and has no row)")
+    if off:
+        dropped.append(", ".join(off) + " (behind a moving joint that is not on the chain)")
+    return out, dropped
+
+
+def _subtree(
+    children: dict[str, list[UrdfJoint]], link: str, inertial: dict[str, Inertial | None]
+) -> list[str]:
+    """The links with mass in the subtree of ``link`` (``link`` included)."""
+    out, stack = [], [link]
+    while stack:
+        name = stack.pop()
+        found = inertial.get(name)
+        if found is not None and found.mass != 0:
+            out.append(name)
+        stack.extend(j.child for j in children.get(name, []))
+    return out
+
+
+def _combine(parts: Sequence[tuple[Expr, sp.MatrixBase, sp.MatrixBase]]) -> LinkInertia:
+    """One rigid body of several: masses add, the centre of mass is the mass-weighted mean,
+    each inertia moves to it by the parallel-axis theorem ``I + m (|d|² E − d dᵀ)``.
+
+    >>> half = (sp.Integer(1), sp.Matrix([1, 0, 0]), sp.zeros(3))
+    >>> both = _combine([half, (sp.Integer(1), sp.Matrix([-1, 0, 0]), sp.zeros(3))])
+    >>> both.m, both.r, both.I.diagonal()
+    (2, (0, 0, 0), Matrix([[0, 2, 2]]))
+    """
+    m = sum((p[0] for p in parts), sp.Integer(0))
+    if m == 0:
+        c = sp.zeros(3, 1)
+    else:
+        c = sum((p[0] * p[1] for p in parts), sp.zeros(3, 1)) / m
+    total = sp.zeros(3)
+    for mass, p, Ic in parts:
+        d = sp.Matrix(p) - c
+        total += Ic + mass * ((d.T * d)[0, 0] * sp.eye(3) - d * d.T)
+    clean = [_tidy(v) for v in total]
+    return LinkInertia(_tidy(m), tuple(_tidy(v) for v in c), sp.ImmutableMatrix(3, 3, clean))
+
+
+def _tidy(value: Expr) -> Expr:
+    """An exact entry, expanded; sums with float cosines read as exact within 1e-12."""
+    value = sp.expand(value)
+    return exact_number(to_float(value)) if value.has(sp.Float) else value
 
 
 def _geometry(joints: Iterable[UrdfJoint], file: str | None) -> tuple[list[JointAxis], Tool]:
@@ -880,6 +993,7 @@ def _render(name: str, links: list[str], joints: list[_Joint], table: DHTable) -
     reach = sum(float(np.linalg.norm(p)) for ps in offsets.values() for p in ps)
     r = max(reach, 0.2) * 0.03
     moved = {j.child: j.kind for j in joints if j.kind != "fixed"}
+    inertias = {f"link{k}": row.inertia for k, row in enumerate(table.rows, start=1)}
     lines = [
         '<?xml version="1.0"?>',
         f"<!-- {name}: written by dhsym from its {table.convention.value} DH table; "
@@ -906,6 +1020,9 @@ def _render(name: str, links: list[str], joints: list[_Joint], table: DHTable) -
             yaw, pitch = math.atan2(u[1], u[0]), math.atan2(-u[2], math.hypot(u[0], u[1]))
             shape = f'<box size="{_f(length)} {_f(r)} {_f(r)}"/>'
             lines += _visual(p / 2, f"0 {_f(pitch)} {_f(yaw)}", shape, "dhsym_grey")
+        inertia = inertias.get(link)
+        if inertia is not None:
+            lines += _inertial_lines(inertia)
         lines.append("  </link>")
     for j in joints:
         xyz, rpy = _xyz_rpy(j.origin)
@@ -927,6 +1044,37 @@ def _render(name: str, links: list[str], joints: list[_Joint], table: DHTable) -
         lines.append("  </joint>")
     lines.append("</robot>")
     return "\n".join(lines) + "\n"
+
+
+def _inertial_lines(inertia: LinkInertia) -> list[str]:
+    r"""``<inertial>`` of a DH link: the centre of mass and the inertia about it, both in the
+    link's own frame (DH frame k), so the origin has no rotation. Motor inertia, gearing and
+    friction have no place in URDF and are left out.
+
+    >>> L = LinkInertia(sp.Rational(3, 2), (0, 0, sp.Rational(1, 10)), sp.diag(1, 2, 3))
+    >>> print("\n".join(_inertial_lines(L)))
+        <inertial>
+          <origin xyz="0 0 0.1" rpy="0 0 0"/>
+          <mass value="1.5"/>
+          <inertia ixx="1" ixy="0" ixz="0" iyy="2" iyz="0" izz="3"/>
+        </inertial>
+    """
+    I = inertia.I  # noqa: E741 (the inertia)
+    if inertia.free_symbols:
+        names = ", ".join(sorted(str(s) for s in inertia.free_symbols))
+        raise DHError(f"symbolic inertial parameters {names}: give them numbers to write a URDF")
+    values = {
+        "ixx": I[0, 0], "ixy": I[0, 1], "ixz": I[0, 2],
+        "iyy": I[1, 1], "iyz": I[1, 2], "izz": I[2, 2],
+    }  # fmt: skip
+    moments = " ".join(f'{k}="{_text(sp.sympify(v))}"' for k, v in values.items())
+    return [
+        "    <inertial>",
+        f'      <origin xyz="{" ".join(_text(sp.sympify(v)) for v in inertia.r)}" rpy="0 0 0"/>',
+        f'      <mass value="{_text(inertia.m)}"/>',
+        f"      <inertia {moments}/>",
+        "    </inertial>",
+    ]
 
 
 def _f(x: float) -> str:

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+import dhsym
 from dhsym.cli.main import main
 from dhsym.formats.urdf import from_urdf
 from dhsym.model.tablefile import read_table
@@ -53,3 +54,19 @@ def test_errors_are_one_line(capsys) -> None:
     assert err.count("\n") <= 2 and "give the tip link" in err and "tool0" in err
     assert main(["show", "puma560", "--tip", "x"]) == 2
     assert "--tip and --base choose a chain in a URDF file" in capsys.readouterr().err
+
+
+def test_export_lang_urdf_writes_one_file(tmp_path: Path) -> None:
+    assert main(["export", "puma560", "--lang", "urdf", "-o", str(tmp_path / "gen")]) == 0
+    text = (tmp_path / "gen" / "puma560.urdf").read_text()
+    assert text.count("<inertial>") == 6
+    q = [0.3, -0.5, 0.4, 0.2, 0.7, -1.1]
+    back = from_urdf(text, tip="tool")
+    np.testing.assert_allclose(back.fk(q), dhsym.load("puma560").fk(q), atol=1e-12)
+    arm = tmp_path / "arm.urdf"
+    argv = ["export", "planar2r", "--lang", "urdf", "--values", "a1=1,a2=0.5", "-o", str(arm)]
+    assert main(argv) == 0
+    assert from_urdf(arm.read_text(), tip="tool").n == 2
+    argv = ["export", "puma560", "--lang", "urdf", "--prefix", "puma", "-o", str(tmp_path)]
+    assert main(argv) == 0 and (tmp_path / "puma.urdf").is_file()
+    assert main(["export", "puma560", "--lang", "urdf", "--what", "fk", "-o", str(tmp_path)]) == 2

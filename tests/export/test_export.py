@@ -90,7 +90,8 @@ def test_cli_writes_the_files(tmp_path):
     assert main(["export", "planar2r", "--lang", "c", "--prefix", "arm", "-o", str(tmp_path)]) == 0
     text = (tmp_path / "arm.c").read_text()
     assert "made by: dhsym export planar2r --lang c --what fk,jacobian,ik --prefix arm" in text
-    assert main(["export", "planar2r", "--lang", "urdf", "-o", str(tmp_path)]) == 2
+    assert main(["export", "planar2r", "--lang", "urdf", "-o", str(tmp_path)]) == 0
+    assert '<robot name="planar2r">' in (tmp_path / "planar2r.urdf").read_text()
     assert (
         main(["export", "planar2r", "--lang", "c", "--what", "dynamics", "-o", str(tmp_path)]) == 2
     )

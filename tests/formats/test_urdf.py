@@ -146,7 +146,9 @@ def test_load_reads_urdf_paths() -> None:
 
 def test_snap_angles_false_keeps_the_decimals() -> None:
     imp = import_urdf(DATA / "ur5_robot.urdf", tip="tool0", snap_angles=False)
-    assert imp.table.warnings == ()
+    assert not any("angles" in w for w in imp.table.warnings)
+    snapped = import_urdf(DATA / "ur5_robot.urdf", tip="tool0")
+    assert any("angles" in w for w in snapped.table.warnings)
 
 
 def test_written_urdf_is_valid_for_yourdfpy() -> None:
@@ -191,3 +193,90 @@ def test_fixed_rows_and_flipped_joints_are_written() -> None:
         again = from_urdf(text, tip="tool")
         for q in ([0.3, 0.2], [-1.0, 0.6]):
             assert np.abs(again.fk(q) - robot.fk(q)).max() < 1e-12
+
+
+# --- inertials: the DH table's dynamics against pinocchio on the URDF itself -------------------
+
+
+def _chain_only(text: str, tip: str) -> str:
+    """The URDF without the links that hang behind moving joints off the chain to ``tip``
+    (the Panda's fingers), so that pinocchio sees the same bodies as the DH table."""
+    root = ET.fromstring(text)
+    parent = {j.find("child").get("link"): j for j in root.findall("joint")}
+    chain, link = set(), tip
+    while link in parent:
+        chain.add(parent[link].get("name"))
+        link = parent[link].find("parent").get("link")
+    cut = {
+        j.find("child").get("link")
+        for j in root.findall("joint")
+        if j.get("type") != "fixed" and j.get("name") not in chain
+    }
+    for j in root.findall("joint"):  # cut links and everything below them
+        if j.find("parent").get("link") in cut:
+            cut.add(j.find("child").get("link"))
+    for el in list(root):
+        if (el.tag == "link" and el.get("name") in cut) or (
+            el.tag == "joint" and el.find("child").get("link") in cut
+        ):
+            root.remove(el)
+    return ET.tostring(root, encoding="unicode")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+@pytest.mark.parametrize(
+    ("file", "tip"), [("panda.urdf", "panda_hand"), ("ur5_robot.urdf", "tool0")]
+)
+def test_inertials_give_pinocchios_dynamics(file: str, tip: str, convention: str) -> None:
+    pin = pytest.importorskip("pinocchio")
+    text = (DATA / file).read_text()
+    robot = from_urdf(text, tip=tip, convention=convention)
+    assert all(row.inertia is not None for row in robot.table.rows)
+    model = pin.buildModelFromXML(_chain_only(text, tip))
+    data = model.createData()
+    assert model.nq == robot.n
+    rng = np.random.default_rng(7)
+    for _ in range(3):
+        q, qd, qdd = (rng.uniform(-1.5, 1.5, robot.n) for _ in range(3))
+        tau = pin.rnea(model, data, q, qd, qdd)
+        np.testing.assert_allclose(robot.rne(q, qd, qdd), tau, atol=1e-9, rtol=0)
+        M = pin.crba(model, data, q)
+        M = np.triu(M) + np.triu(M, 1).T
+        np.testing.assert_allclose(robot.inertia(q), M, atol=1e-9, rtol=0)
+
+
+def test_inertials_stay_exact_and_drops_are_named() -> None:
+    imp = import_urdf(DATA / "ur5_robot.urdf", tip="tool0")
+    link2 = imp.table.rows[1].inertia
+    assert link2 is not None and link2.m == sp.Rational(8393, 1000)  # mass="8.393"
+    assert any("base_link (the base" in w for w in imp.table.warnings)
+    panda = import_urdf(DATA / "panda.urdf", tip="panda_hand")
+    assert any("panda_leftfinger" in w for w in panda.table.warnings)
+
+
+@pytest.mark.slow
+def test_written_inertials_come_back() -> None:
+    """Puma 560 with its published inertial parameters: the URDF holds m, r and I (not the
+    motor inertia, gearing or friction, which URDF has no place for)."""
+    from dataclasses import replace
+
+    from dhsym.kinematics.robot import Robot
+
+    table = dhsym.load("puma560").table.substituted()
+    rigid = replace(
+        table,
+        rows=tuple(
+            replace(row, inertia=replace(row.inertia, Jm=0, G=1, B=0, Tc=(0, 0)))
+            for row in table.rows
+        ),
+    )
+    text = write_urdf(rigid)
+    assert text.count("<inertial>") == 6 and '<mass value="17.4"/>' in text
+    again = from_urdf(text, tip="tool")
+    assert again.table.rows[1].inertia.m == sp.Rational(87, 5)
+    robot = Robot(rigid)
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        q, qd, qdd = (rng.uniform(-1.5, 1.5, 6) for _ in range(3))
+        np.testing.assert_allclose(again.rne(q, qd, qdd), robot.rne(q, qd, qdd), atol=1e-9, rtol=0)
