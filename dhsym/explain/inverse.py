@@ -18,7 +18,7 @@ Examples
 >>> [r.name.text + " = " + r.text_lines[0] for s in d.parts[0].steps for r in s.results][-1]
 'theta1 = atan2(p_y, p_x) - atan2(a2*S2, a1 + a2*C2)'
 >>> d.branches[0].role, "".join(r.words or r.math.text for r in d.branches[0].sentence)
-('elbow', 'sigma_2 = 1 and sigma_2 = -1: the two elbow configurations (up and down)')
+('elbow', 'sigma_2 = 1 and sigma_2 = -1: the two elbow configurations (elbow up and elbow down)')
 """
 
 from __future__ import annotations
