@@ -30,7 +30,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.ik.results import IKSolution
+from dhsym.ik.results import IKSolution, branch_word
 from dhsym.ik.steps import Branch, Step
 from dhsym.kinematics.robot import Robot
 from dhsym.model.table import DHTable, JointType
@@ -154,8 +154,9 @@ def _check(robot: Robot, q: Sequence[float], nota: Notation) -> IKCheck:
         runs: list[Run] = []
         for k, (part, b, sign) in enumerate(zip(words.split(", "), ik.branches, signs)):
             runs += [Run(", ")] if k else []
-            if b.role == "reach":  # named by its sign: σ_j = ±1 (see the branches above)
-                runs.append(Run(math=as_math(sp.Eq(b.symbol, int(sign)), nota)))
+            if b.role == "reach":  # the words of the IK results, the variable typeset
+                var = robot.variables[b.joint - 1]
+                runs += [Run(branch_word(b.role, sign > 0) + " "), Run(math=as_math(var, nota))]
             else:
                 runs.append(Run(part))
         return tuple(runs)

@@ -50,14 +50,14 @@ def branch_word(role: str, first: bool, variable: object = "") -> str:
     """The name of one branch: derivations, IK results, feedback and notebooks all use it.
 
     ``first`` is the sign +1 for the arm and the wrist, the elbow up for the elbow; a branch
-    of another role (the sign of a root) is named by its variable and the root's sign.
+    of another role (the sign of a square root) is named by that sign and its variable.
 
     >>> branch_word("elbow", True), branch_word("arm", False), branch_word("reach", True, "d3")
-    ('elbow up', 'left arm', 'd3 +√')
+    ('elbow up', 'left arm', 'positive root for d3')
     """
     if role in BRANCH_NAMES:
         return BRANCH_NAMES[role][0 if first else 1]
-    return f"{variable} {'+' if first else '−'}√"
+    return f"{'positive' if first else 'negative'} root for {variable}".rstrip()
 
 
 @dataclass(frozen=True, eq=False)

@@ -89,7 +89,9 @@ def test_handout_sections(tmp_path, capsys):
     assert tex.index(r"\subsection{The Jacobian}") < tex.index(r"\subsection{Inverse kinematics}")
     assert r"\subsection{Forward kinematics}" not in tex
     assert "The standard DH table of this robot" in tex  # the table opens each robot
-    assert "right arm, $\\sigma_{3} = 1$, wrist not flipped" in tex  # the check of the Stanford arm
+    assert (
+        "right arm, positive root for $d_{3}$, wrist not flipped" in tex
+    )  # the check of the Stanford arm
     assert (
         main(["handout", "planar2r", "-o", str(out), "--sections", "fk,ik", "--mode", "problems"])
         == 0
