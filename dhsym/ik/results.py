@@ -53,11 +53,11 @@ def branch_word(role: str, first: bool, variable: object = "") -> str:
     of another role (the sign of a square root) is named by that sign and its variable.
 
     >>> branch_word("elbow", True), branch_word("arm", False), branch_word("reach", True, "d3")
-    ('elbow up', 'left arm', 'positive root for d3')
+    ('elbow up', 'left arm', '+ root for d3')
     """
     if role in BRANCH_NAMES:
         return BRANCH_NAMES[role][0 if first else 1]
-    return f"{'positive' if first else 'negative'} root for {variable}".rstrip()
+    return f"{'+' if first else '-'} root for {variable}".rstrip()
 
 
 @dataclass(frozen=True, eq=False)

@@ -84,7 +84,7 @@ def test_the_check_lists_every_solution_and_each_reproduces_the_pose():
 def test_a_prismatic_branch_is_named_by_its_sign():
     d = derive_inverse("stanford", check=True)
     names = [_say(n) for n, _ in d.check.solutions]
-    assert "right arm, positive root for d3, wrist not flipped" in names
+    assert "right arm, + root for d3, wrist not flipped" in names
     assert all("√" not in n for n in names)
     assert d.to_latex().isascii()
 

@@ -28,5 +28,5 @@ def test_the_derivation_names_the_branches_in_the_same_words():
 
 
 def test_a_branch_without_a_name_of_its_own_is_its_roots_sign():
-    assert branch_word("reach", False, "d3") == "negative root for d3"
+    assert branch_word("reach", False, "d3") == "- root for d3"
     assert branch_word("wrist", True) == "wrist not flipped"
