@@ -602,8 +602,7 @@ class Solver:
             poses = poses[None]
         if poses.ndim != 3 or poses.shape[1:] != (4, 4):
             raise DHError(
-                "raw() takes poses of shape (N, 4, 4) or one pose (4, 4), "
-                f"not {tuple(poses.shape)}"
+                f"raw() takes poses of shape (N, 4, 4) or one pose (4, 4), not {tuple(poses.shape)}"
             )
         q, _, _ = self._evaluate(poses, None, None)
         return q.transpose(2, 1, 0)
