@@ -197,11 +197,11 @@ def _gravity_variants(eom: EquationsOfMotion, part: str) -> Iterator[tuple[Equat
         size = -g0[axes[0]]  # the magnitude, with the sign of "downwards"
         for k in range(3):
             for sign in (1, -1):
-                vec = [sp.Integer(0)] * 3
-                vec[k] = -sign * size
-                if tuple(vec) != tuple(g0) and tuple(vec) != options[0][0]:
+                axis = [sp.Integer(0)] * 3
+                axis[k] = -sign * size
+                if tuple(axis) != tuple(g0) and tuple(axis) != options[0][0]:
                     options.append(
-                        (tuple(vec), f"Gravity is taken along {'-+'[sign < 0]}{'xyz'[k]}: ")
+                        (tuple(axis), f"Gravity is taken along {'-+'[sign < 0]}{'xyz'[k]}: ")
                     )
     for vec, head in options:
         P = sum(potential_energies(replace(dm, gravity=vec)), sp.Integer(0))

@@ -200,6 +200,17 @@ class WrongRootSign(IKMistake):
                 yield vals, detail
 
 
+def _branch_part(name: str, j: int, count: int) -> str | None:
+    """Part ``j`` of a branch name ``"right arm, elbow up, wrist not flipped"`` (``None``
+    when the name has no parts, e.g. ``"branch 3"``).
+
+    >>> _branch_part("right arm, elbow up, wrist flipped", 2, 3), _branch_part("branch 2", 0, 1)
+    ('wrist flipped', None)
+    """
+    parts = name.split(", ")
+    return parts[j] if len(parts) == count and not name.startswith("branch ") else None
+
+
 class LostBranch(IKMistake):
     """Only one sign of a ``±`` given where the question asks for every solution."""
 
@@ -220,8 +231,16 @@ class LostBranch(IKMistake):
         for j, b in enumerate(case.ik.branches):
             given = {int(signs[k, j]) for k in case.matched}
             if len(given) == 1 and {int(signs[k, j]) for k in valid} == {1, -1}:
-                sign = "+" if given == {1} else "-"  # words, not the internal sigma_k
-                parts.append(f"only the {sign} root for θ{b.joint} ({b.role})")
+                # the branch's own name (as the IK results word it), never sigma_k
+                words = {
+                    _branch_part(case.names[k], j, len(case.ik.branches)) for k in case.matched
+                }
+                word = words.pop() if len(words) == 1 else None
+                parts.append(
+                    f"only the {word} branch (θ{b.joint})"
+                    if word
+                    else f"only one sign of the root for θ{b.joint} ({b.role})"
+                )
         lost = "; ".join(parts) if parts else ", ".join(case.names[k] for k in missing)
         detail = (
             f"The answer gives {len(case.matched)} of the {len(valid)} solutions; missing: "

@@ -29,7 +29,7 @@ Examples
 ...                       "theta2 = atan2(-sqrt(1 - c2^2), c2)\n"
 ...                       "theta1 = atan2(py, px) - atan2(a2*S2, a1 + a2*C2)")
 >>> r.verdict.value, r.message
-('correct', 'Right: the branch elbow, - root (θ2).')
+('correct', 'Right: the branch elbow up.')
 >>> r = check_answer(key, "theta2 = acos((px^2 + py^2 - a1^2 - a2^2)/(2*a1*a2))\n"
 ...                       "theta1 = atan(py/px) - atan2(a2*S2, a1 + a2*C2)")
 >>> r.verdict.value, r.kinds
@@ -144,6 +144,7 @@ def prepare_ik(pk: PreparedKey) -> PreparedKey:
     else:  # the key's branches compiled once, before the first answer's clock starts
         sample = pose_sample(robot, values=table.value_map or None)
         key_values(ik, sample.env, sample.size)
+        pk.cache["ik names"] = _reference_names(robot, ik)
     pk.symbols = frozenset(set(table.constants) | set(pose_symbols()[:3, :]))
     return pk
 
@@ -353,21 +354,21 @@ def _reaches(robot: Robot, q: np.ndarray, sample: PoseSample, position: bool) ->
     return bool(np.allclose(got, goal, atol=TOLERANCES.reach_atol))
 
 
-def _branch_name(ik: InverseKinematics, k: int, nota: object) -> str:
-    signs = branch_signs(ik)
-    words = {
-        "arm": ("right arm", "left arm"),
-        "wrist": ("wrist not flipped", "wrist flipped"),
-        "elbow": ("elbow, + root", "elbow, - root"),
-        "reach": ("+ root", "- root"),
-    }
-    parts = []
-    for j, b in enumerate(ik.branches):
-        s = int(signs[k, j])
-        what = words[b.role][0 if s > 0 else 1]
-        joint = f"θ{b.joint}" if getattr(b, "joint", None) else ""
-        parts.append(f"{what} ({joint})" if joint else what)  # no internal sigma_k: words
-    return ", ".join(parts) if parts else "the only solution"
+def _reference_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
+    """Each key branch named as the IK results name it (``"elbow up"``, ``"right arm"``),
+    read at the examples' configuration (:func:`~dhsym.explain.inverse.default_configuration`)
+    with the table's lengths (1 where it gives none), for questions without a pose."""
+    from dhsym.explain.inverse import default_configuration
+    from dhsym.kinematics.robot import Robot
+
+    table = robot.table
+    values = {s: table.value_map.get(s, 1.0) for s in table.constants}
+    try:
+        named = Robot(table.with_values(values))
+        ref = pose_sample(named, q=np.array([default_configuration(named)]), values=values)
+        return tuple(_numeric_names(named, ik, ref, key_values(ik, ref.env, ref.size)))
+    except (DHError, ValueError, ArithmeticError):
+        return tuple(f"branch {k + 1}" for k in range(2 ** len(ik.branches)))
 
 
 def _numeric_names(
@@ -508,11 +509,7 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
     m = _match(key_d, answers, tols, dsample, robot, position)
     wrong = m.wrong
     valid_k = [k for k in range(len(key_d)) if not np.isnan(key_d[k]).any()]
-    names = (
-        pk.cache["ik pose names"]
-        if q.pose is not None
-        else tuple(_branch_name(ik, k, nota) for k in range(len(key_d)))
-    )
+    names = pk.cache["ik pose names"] if q.pose is not None else pk.cache["ik names"]
     case = IKCase(
         ik,
         dsample,
@@ -651,12 +648,12 @@ def _correct(
 ) -> CheckResult:
     _, m, meta = result
     matched = m.branch
-    q, nota = pk.key.question, pk.robot.notation
+    q = pk.key.question
     ks = sorted({k for k in matched.values() if k is not None})
     if q.pose is not None:
         names = list(pk.cache["ik pose names"])  # set by prepare_ik
     else:
-        names = [_branch_name(ik, k, nota) for k in range(2 ** len(ik.branches))]
+        names = list(pk.cache["ik names"])  # set by prepare_ik
     if q.every:
         message = f"Right: every solution is given ({len(ks)} branches)."
     elif len(ks) == 1:

@@ -272,7 +272,7 @@ class Block:
 class FactorData:
     """One named factor of the determinant and the configurations where it vanishes.
 
-    ``kind`` is ``wrist``, ``elbow``, ``shoulder``, ``arm`` or ``constant``; ``title`` and
+    ``kind`` is ``wrist``, ``elbow``, ``shoulder``, ``boundary`` or ``constant``; ``title`` and
     ``description`` are plain words; ``zeros`` are equations ``θ_5 = 0``.
     """
 

@@ -18,7 +18,7 @@ Examples
 >>> [r.name.text + " = " + r.text_lines[0] for s in d.parts[0].steps for r in s.results][-1]
 'theta1 = atan2(p_y, p_x) - atan2(a2*S2, a1 + a2*C2)'
 >>> d.branches[0].role, "".join(r.words or r.math.text for r in d.branches[0].sentence)
-('elbow', 'sigma_2 = 1 and sigma_2 = -1: the two elbow configurations (up and down)')
+('elbow', 'sigma_2 = 1 and sigma_2 = -1: the two elbow configurations (elbow up and elbow down)')
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.ik.results import IKSolution
+from dhsym.ik.results import IKSolution, branch_word
 from dhsym.ik.steps import Branch, Step
 from dhsym.kinematics.robot import Robot
 from dhsym.model.table import DHTable, JointType
@@ -154,8 +154,9 @@ def _check(robot: Robot, q: Sequence[float], nota: Notation) -> IKCheck:
         runs: list[Run] = []
         for k, (part, b, sign) in enumerate(zip(words.split(", "), ik.branches, signs)):
             runs += [Run(", ")] if k else []
-            if b.role == "reach":  # named by its sign: σ_j = ±1 (see the branches above)
-                runs.append(Run(math=as_math(sp.Eq(b.symbol, int(sign)), nota)))
+            if b.role == "reach":  # the words of the IK results, the variable typeset
+                var = robot.variables[b.joint - 1]
+                runs += [Run(branch_word(b.role, sign > 0) + " "), Run(math=as_math(var, nota))]
             else:
                 runs.append(Run(part))
         return tuple(runs)

@@ -586,8 +586,25 @@ class Solver:
         """All branches for poses ``(N, 4, 4)`` (frame 0 to frame n): ``(N, K, n)``, unchecked.
 
         The result is a view of an array laid out joint by joint (branches, then poses).
+        A single pose ``(4, 4)`` is a batch of one: ``(1, K, n)``.
+
+        >>> import dhsym
+        >>> solver = dhsym.load("planar2r").inverse().solver()
+        >>> solver.raw(np.eye(4)).shape
+        (1, 2, 2)
+        >>> solver.raw(np.eye(3))
+        Traceback (most recent call last):
+        ...
+        dhsym.errors.DHError: raw() takes poses of shape (N, 4, 4) or one pose (4, 4), not (3, 3)
         """
-        q, _, _ = self._evaluate(np.asarray(T, dtype=float), None, None)
+        poses = np.asarray(T, dtype=float)
+        if poses.shape == (4, 4):
+            poses = poses[None]
+        if poses.ndim != 3 or poses.shape[1:] != (4, 4):
+            raise DHError(
+                f"raw() takes poses of shape (N, 4, 4) or one pose (4, 4), not {tuple(poses.shape)}"
+            )
+        q, _, _ = self._evaluate(poses, None, None)
         return q.transpose(2, 1, 0)
 
     def _evaluate(

@@ -82,6 +82,7 @@ from dhsym.model.table import Elementary
 from dhsym.notation.layout import sentence, word_expr
 
 from .derivation import InverseKinematics
+from .results import BRANCH_NAMES
 from .steps import (
     Builder,
     Equation,
@@ -136,8 +137,8 @@ def _position(b: Builder, geo: ArmGeometry, target: Matrix) -> None:
             arm = b.branch(
                 "arm",
                 q1,
-                "{plus}: right arm (the point in front of the shoulder, {front}); "
-                "{minus}: left arm",
+                f"{{plus}}: {BRANCH_NAMES['arm'][0]} (the point in front of the shoulder, "
+                f"{{front}}); {{minus}}: {BRANCH_NAMES['arm'][1]}",
                 front=sp.Gt(r, 0),
             )
             sigma = arm.symbol
@@ -315,7 +316,7 @@ def _orientation(b: Builder, pose: Matrix) -> None:
     br = b.branch(
         "wrist",
         wvars[1],
-        "{plus}: wrist not flipped ({up}); {minus}: flipped",
+        f"{{plus}}: {BRANCH_NAMES['wrist'][0]} ({{up}}); {{minus}}: {BRANCH_NAMES['wrist'][1]}",
         up=sp.Gt(sp.sin(wvars[1]), 0),
     )
     sg = br.symbol

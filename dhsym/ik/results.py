@@ -16,8 +16,9 @@ Examples
 from __future__ import annotations
 
 import functools
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import TYPE_CHECKING, cast
 
 import numpy as np
@@ -31,7 +32,32 @@ if TYPE_CHECKING:
     from .general import EliminationSolver
     from .steps import Branch
 
-__all__ = ["IKBatch", "IKSolution"]
+__all__ = ["BRANCH_NAMES", "IKBatch", "IKSolution", "branch_word"]
+
+#: The one list of branch names, by the role of the branch: (first, second). For
+#: ``"arm"`` and ``"wrist"`` the first is the sign +1; for ``"elbow"`` the first is the
+#: elbow above the shoulder-to-wrist line (found from the geometry, not from the sign).
+BRANCH_NAMES: Mapping[str, tuple[str, str]] = MappingProxyType(
+    {
+        "arm": ("right arm", "left arm"),
+        "elbow": ("elbow up", "elbow down"),
+        "wrist": ("wrist not flipped", "wrist flipped"),
+    }
+)
+
+
+def branch_word(role: str, first: bool, variable: object = "") -> str:
+    """The name of one branch: derivations, IK results, feedback and notebooks all use it.
+
+    ``first`` is the sign +1 for the arm and the wrist, the elbow up for the elbow; a branch
+    of another role (the sign of a square root) is named by that sign and its variable.
+
+    >>> branch_word("elbow", True), branch_word("arm", False), branch_word("reach", True, "d3")
+    ('elbow up', 'left arm', '+ root for d3')
+    """
+    if role in BRANCH_NAMES:
+        return BRANCH_NAMES[role][0 if first else 1]
+    return f"{'+' if first else '-'} root for {variable}".rstrip()
 
 
 @dataclass(frozen=True, eq=False)
@@ -147,17 +173,13 @@ def _branch_names(
         return tuple(f"solution {k}" for k in range(1, len(q) + 1))
     parts: list[list[str]] = [[] for _ in range(len(q))]
     for b, col in zip(ik.branches, signs.T):
+        var = solver.robot.variables[b.joint - 1]
         if b.role == "elbow":
             # branch signs come from compiled steps: the solver is a compiler.Solver
             up = _elbow_up(cast("Solver", solver), q, b) if len(q) else np.zeros(0, dtype=bool)
-            words = ["elbow up" if u else "elbow down" for u in up]
-        elif b.role == "arm":
-            words = ["right arm" if sgn > 0 else "left arm" for sgn in col]
-        elif b.role == "wrist":
-            words = ["wrist not flipped" if sgn > 0 else "wrist flipped" for sgn in col]
+            words = [branch_word("elbow", bool(u)) for u in up]
         else:
-            var = solver.robot.variables[b.joint - 1]
-            words = [f"{var} {'+' if sgn > 0 else '−'}√" for sgn in col]
+            words = [branch_word(b.role, bool(sgn > 0), var) for sgn in col]
         for k, w in enumerate(words):
             parts[k].append(w)
     return tuple(", ".join(p) for p in parts)

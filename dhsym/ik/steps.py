@@ -36,6 +36,8 @@ from dhsym.kinematics.simplification import trig_coefficients
 from dhsym.model.table import JointType
 from dhsym.notation.layout import Sentence, sentence
 
+from .results import BRANCH_NAMES
+
 if TYPE_CHECKING:
     from dhsym.kinematics.robot import Robot
 
@@ -166,11 +168,12 @@ class Equation:
 # --- the derivation --------------------------------------------------------------------------
 
 
-#: what the two signs of a ``±√`` mean, by the role of the branch
+#: what the two signs of a ``±√`` mean, by the role of the branch, in the words of
+#: :data:`~dhsym.ik.results.BRANCH_NAMES` (the names the IK results and the feedback use)
 _BRANCH_WORDS = {
-    "elbow": "{plus} and {minus}: the two elbow configurations (up and down)",
-    "arm": "{plus} and {minus}: the two shoulder configurations (right and left arm)",
-    "wrist": "{plus} and {minus}: the two wrist configurations (not flipped and flipped)",
+    role: f"{{plus}} and {{minus}}: the two {part} configurations ({first} and {second})"
+    for role, part in (("elbow", "elbow"), ("arm", "shoulder"), ("wrist", "wrist"))
+    for first, second in (BRANCH_NAMES[role],)
 }
 
 

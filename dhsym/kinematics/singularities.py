@@ -43,6 +43,7 @@ import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from enum import Enum
 from typing import TYPE_CHECKING, Any, TypeAlias
 
 import sympy as sp
@@ -60,7 +61,14 @@ if TYPE_CHECKING:
 
     from .robot import Robot
 
-__all__ = ["Block", "SingularFactor", "Singularities", "factored_det", "singularities"]
+__all__ = [
+    "Block",
+    "SingularFactor",
+    "Singularities",
+    "SingularityKind",
+    "factored_det",
+    "singularities",
+]
 
 Matrix: TypeAlias = sp.ImmutableMatrix
 _MAX_MINORS = 5  # Cauchy–Binet beyond this takes seconds: one redundant joint at most
@@ -115,7 +123,8 @@ def _best_det(matrices: Sequence[sp.MatrixBase]) -> sp.Expr:
 class SingularFactor:
     """One factor of the determinant, with the configurations where it vanishes.
 
-    ``kind`` is ``"wrist"``, ``"elbow"``, ``"shoulder"``, ``"arm"`` or ``"constant"``;
+    ``kind`` is a :class:`SingularityKind` value (``"wrist"``, ``"elbow"``, ``"shoulder"``,
+    ``"boundary"`` or ``"constant"``) and ``name`` its title;
     ``solutions`` lists ``(variable, value)`` pairs when the factor has one variable.
     """
 
@@ -161,30 +170,56 @@ def _divides(factor: sp.Expr, expr: sp.Expr) -> bool:
     return sp.expand(rem) == 0
 
 
+class SingularityKind(str, Enum):
+    """The one list of singularity names, applied by structure (see the module text).
+
+    Every output that names a singular factor (derivations, handouts, feedback, notebooks)
+    takes its name from here: a factor of the wrist block is the *wrist* singularity, one
+    dividing the wrist centre's radial reach the *shoulder*, one in the last arm joint alone
+    the *elbow*, any other factor of the arm block the *boundary* (the arm at the edge of its
+    workspace); a factor without joint variables is a *constant*.
+
+    >>> SingularityKind.SHOULDER.phrase, SingularityKind("boundary").phrase
+    ('shoulder singularity', 'boundary singularity')
+    >>> [k.value for k in SingularityKind]
+    ['constant', 'elbow', 'shoulder', 'boundary', 'wrist']
+    """
+
+    CONSTANT = "constant"
+    ELBOW = "elbow"
+    SHOULDER = "shoulder"
+    BOUNDARY = "boundary"
+    WRIST = "wrist"
+
+    @property
+    def phrase(self) -> str:
+        """The name a student reads: ``"<kind> singularity"`` (``"constant factor"``)."""
+        if self is SingularityKind.CONSTANT:
+            return "constant factor"
+        return f"{self.value} singularity"
+
+
 def _describe(
-    kind: str, robot: Robot, joint: int | None, point: str, offset: sp.Expr | None
+    kind: SingularityKind, robot: Robot, joint: int | None, point: str, offset: sp.Expr | None
 ) -> tuple[str, str]:
-    if kind == "wrist":
-        return (
-            "wrist singularity",
-            "the first and last wrist axes line up, so two wrist joints turn about one axis",
+    if kind is SingularityKind.WRIST:
+        where = "the first and last wrist axes line up, so two wrist joints turn about one axis"
+    elif kind is SingularityKind.ELBOW:
+        where = (
+            f"joint {joint} stretches the arm out or folds it back: the boundary of the workspace"
         )
-    if kind == "elbow":
-        return (
-            "elbow singularity",
-            f"joint {joint} stretches the arm out or folds it back: the boundary of the workspace",
-        )
-    if kind == "shoulder":
+    elif kind is SingularityKind.SHOULDER:
         where = (
             f"the {point} lies on the axis of joint 1"
             if offset is None or offset == 0
             else f"the {point} lies on the line parallel to the axis of joint 1 "
             "at the shoulder offset"
         )
-        return "shoulder singularity", where
-    if kind == "arm":
-        return "arm singularity", "the arm joints lose a direction of motion"
-    return "constant factor", "a length of the table; the arm is singular everywhere if it is 0"
+    elif kind is SingularityKind.BOUNDARY:
+        where = "the arm joints lose a direction of motion: the arm is at the edge of its workspace"
+    else:
+        where = "a length of the table; the arm is singular everywhere if it is 0"
+    return kind.phrase, where
 
 
 # --- the result -----------------------------------------------------------------------------
@@ -356,15 +391,15 @@ def _name_factors(
     for base, power in pairs:
         vs = tuple(v for v in variables if v in base.free_symbols)
         if not vs:
-            kind = "constant"
+            kind = SingularityKind.CONSTANT
         elif base in wrist:
-            kind = "wrist"
+            kind = SingularityKind.WRIST
         elif geo is not None and geo.radial is not None and _divides(base, geo.radial):
-            kind = "shoulder"
+            kind = SingularityKind.SHOULDER
         elif len(vs) == 1 and vs[0] != variables[0] and joints[vs[0]] is JointType.REVOLUTE:
-            kind = "elbow"
+            kind = SingularityKind.ELBOW
         else:
-            kind = "arm"
+            kind = SingularityKind.BOUNDARY
         offset = geo.offset if geo is not None else None
         name, text = _describe(kind, robot, number[vs[0]] if vs else None, point, offset)
         sols = _zeros(base, vs[0], joints[vs[0]]) if len(vs) == 1 else ()
@@ -372,7 +407,7 @@ def _name_factors(
             SingularFactor(
                 base,
                 power,
-                kind,
+                kind.value,
                 name,
                 text,
                 vs,
@@ -380,9 +415,9 @@ def _name_factors(
                 robot.notation,
             )
         )
-    order = {"constant": 0, "elbow": 1, "shoulder": 2, "arm": 3, "wrist": 4}
+    order = [k.value for k in SingularityKind]
     tidy = coeff * sp.Mul(*(b**p for b, p in pairs))
-    return tidy, tuple(sorted(out, key=lambda f: order[f.kind]))
+    return tidy, tuple(sorted(out, key=lambda f: order.index(f.kind)))
 
 
 def _structure(robot: Robot) -> tuple[Decoupling | None, ArmGeometry | None]:
@@ -399,6 +434,16 @@ def _structure(robot: Robot) -> tuple[Decoupling | None, ArmGeometry | None]:
             continue
         return dec, geo
     return None, None
+
+
+def _tool_geometry(robot: Robot, fallback: ArmGeometry | None) -> ArmGeometry | None:
+    """The arm geometry read up to the tool point (every joint an arm joint), so that a
+    positioning arm's shoulder is named as the same arm's shoulder with a wrist is."""
+    try:
+        dec = decouple(robot, 0)
+        return arm_geometry(robot, dec) if dec.arm else fallback
+    except StructureError:
+        return fallback
 
 
 def singularities(robot: Robot) -> Singularities:
@@ -447,6 +492,8 @@ def singularities(robot: Robot) -> Singularities:
         det = _best_det(mats)
         method = "the position rows of J" if measure == "det J_v" else "the non-zero rows of J"
         block = Block("J", Matrix(mats[0]), 0, det)
+        if measure == "det J_v":  # the reach that matters is the tool point's own
+            geo = _tool_geometry(robot, geo)
         det, named = _name_factors(robot, det, set(), geo, "tool point")
         return Singularities(measure, det, named, (block,), rows, method, robot)
     rows = tuple(i for i in range(6) if any(x != 0 for x in J0.row(i)))

@@ -85,7 +85,7 @@ def test_planar2r_key_lines_in_every_format(planar2r):
     assert "     M22 = Izz2 + m2*(a2**2 + rx2**2 + ry2**2 + 2*a2*rx2)" in text
     assert "     g1 = 0\n     g2 = 0" in text
     assert "     c112 = m2*(a1*ry2*C2 + a1*a2*S2 + a1*rx2*S2)" in text
-    assert "   omega_1 = (0, 0, thetadot1)" in text
+    assert "   omega_1 = [0; 0; thetadot1]" in text
     assert "Inward pass, i = 2 .. 1 (f_3 = n_3 = 0):" in text
     md = planar2r.to_markdown()
     assert r"M_{22} &= Izz_{2} + m_{2}(a_{2}^{2} + rx_{2}^{2} + ry_{2}^{2} + 2 a_{2} rx_{2})" in md

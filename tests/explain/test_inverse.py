@@ -47,7 +47,7 @@ def test_the_puma_derivation_reads_like_the_lecture():
     assert "r = sigma_1*sqrt(c_x**2 + c_y**2 - d3**2)" in text
     assert "(the law of cosines): a3*C3 - d4*S3 = K_3 with" in text
     assert "theta3 = atan2(sigma_3*sqrt(a3**2 - K_3**2 + d4**2), K_3) + atan2(-d4, a3)" in text
-    assert "sigma_5 = 1: wrist not flipped (S5 > 0); sigma_5 = -1: flipped" in text
+    assert "sigma_5 = 1: wrist not flipped (S5 > 0); sigma_5 = -1: wrist flipped" in text
     assert "If the wrist is singular (S5 = 0)" in text and "theta4 = 0" in text
     tex = d.to_latex()
     assert r"\theta_{1} &= \operatorname{atan2}\left(c_{y}, c_{x}\right)" in tex
@@ -84,7 +84,7 @@ def test_the_check_lists_every_solution_and_each_reproduces_the_pose():
 def test_a_prismatic_branch_is_named_by_its_sign():
     d = derive_inverse("stanford", check=True)
     names = [_say(n) for n, _ in d.check.solutions]
-    assert "right arm, sigma_3 = 1, wrist not flipped" in names
+    assert "right arm, + root for d3, wrist not flipped" in names
     assert all("√" not in n for n in names)
     assert d.to_latex().isascii()
 

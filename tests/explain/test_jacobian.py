@@ -48,8 +48,8 @@ def test_axis_frames_follow_the_convention():
 def test_the_2r_jacobian_in_every_format():
     d = derive_jacobian("planar2r")
     text = d.to_text()
-    assert "J1 = [z_0 x (o_2 - o_0); z_0] = (-a1*S1 - a2*S12, a1*C1 + a2*C12, 0, 0, 0, 1)" in text
-    assert "o_2 - o_1 = (a2*C12, a2*S12, 0)" in text
+    assert "J1 = [z_0 x (o_2 - o_0); z_0] = [-a1*S1 - a2*S12; a1*C1 + a2*C12; 0; 0; 0; 1]" in text
+    assert "o_2 - o_1 = [a2*C12; a2*S12; 0]" in text
     md = d.to_markdown()
     assert r"J_{2} = \begin{bmatrix} z_{1} \times (o_{2} - o_{1}) \\ z_{1} \end{bmatrix}" in md
     assert r"-a_{1} S_{1} - a_{2} S_{12} & -a_{2} S_{12} \\" in md
@@ -59,11 +59,24 @@ def test_the_2r_jacobian_in_every_format():
     assert tex.isascii()
 
 
+def test_every_column_of_the_text_layout_reads_as_a_column():
+    # a short column on one line is written [a; b; c] (rows separated by ";"), the way
+    # the column formulas J_i = [z x (o - o_i); z] are written, never as a row (a, b, c)
+    text = derive_jacobian("puma560").to_text()
+    assert "   z_0 = [0; 0; 1]\n" in text
+    assert "   J4 = [z_3 x (o_6 - o_3); z_3] = [0; 0; 0; -C1*S23; -S1*S23; C23]\n" in text
+    assert "o_6 - o_4 = [0; 0; 0]" in text
+    for line in text.splitlines():
+        head, _, rest = line.partition(" = ")
+        if head.strip().startswith(("z_", "o_", "J")) and rest.startswith("("):
+            raise AssertionError(f"a column printed as a row: {line!r}")
+
+
 def test_a_prismatic_column_is_its_axis_over_zero():
     d = derive_jacobian("stanford")
     col = d.columns[2]
     assert not col.revolute and col.variable.text == "d3"
-    assert "J3 = [z_2; 0] = (C1*S2, S1*S2, C2, 0, 0, 0)" in d.to_text()
+    assert "J3 = [z_2; 0] = [C1*S2; S1*S2; C2; 0; 0; 0]" in d.to_text()
 
 
 def test_a_wide_jacobian_refers_to_its_columns():

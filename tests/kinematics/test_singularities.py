@@ -134,3 +134,32 @@ def test_many_redundant_joints_are_refused_quickly() -> None:
 
     with pytest.raises(StructureError, match="10 squared minors"):
         singularities(dhsym.load("planar5r"))
+
+
+_RRR = """name: an articulated arm
+convention: standard
+angles: deg
+joints:
+  - {type: R, theta: theta1, d: d1, a: 0, alpha: 90}
+  - {type: R, theta: theta2, d: 0, a: a2, alpha: 0}
+  - {type: R, theta: theta3, d: 0, a: a3, alpha: 0}
+"""
+
+
+def test_one_vocabulary_names_the_same_singularity_the_same_on_every_arm(tmp_path) -> None:
+    from dhsym.kinematics.singularities import SingularityKind
+
+    path = tmp_path / "rrr.yaml"
+    path.write_text(_RRR)
+    arm = {f.kind: f for f in singularities(dhsym.load(path)).factors}
+    puma = {f.kind: f for f in singularities(_robot("puma560")).factors}
+    # the arm's reach a2*C2 + a3*C23 is the shoulder singularity for the bare arm as for the
+    # PUMA (it was "arm singularity" on one and "shoulder" on the other)
+    assert arm["shoulder"].text() == "a2*C2 + a3*C23"
+    assert arm["shoulder"].name == puma["shoulder"].name == "shoulder singularity"
+    assert arm["elbow"].name == puma["elbow"].name == "elbow singularity"
+    names = {k.value: k.phrase for k in SingularityKind}
+    for name in SQUARE:
+        for f in singularities(_robot(name)).factors:
+            assert f.name == names[f.kind]
+    assert "arm singularity" not in names.values()

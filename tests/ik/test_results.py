@@ -1,0 +1,32 @@
+"""Branch names: one vocabulary for IK results, derivations and feedback (issue 24)."""
+
+import numpy as np
+
+import dhsym
+from dhsym.explain.inverse import derive_inverse
+from dhsym.ik.results import BRANCH_NAMES, branch_word
+
+
+def test_every_branch_name_comes_from_the_one_list():
+    words = {w for pair in BRANCH_NAMES.values() for w in pair}
+    robot = dhsym.load("puma560")
+    sol = robot.ik(robot.fk(np.array([0.3, -0.45, 0.6, -0.75, 0.9, -1.05])))
+    assert len(sol.branches) == 8
+    for name in sol.branches:
+        assert set(name.split(", ")) <= words, name
+    parts = {p for name in sol.branches for p in name.split(", ")}
+    assert parts == words  # both names of the arm, the elbow and the wrist occur
+
+
+def test_the_derivation_names_the_branches_in_the_same_words():
+    for name in ("planar2r", "puma560"):
+        d = derive_inverse(name)
+        for b in d.branches:
+            sentence = "".join(r.words or r.math.text for r in b.sentence)
+            assert all(w in sentence for w in BRANCH_NAMES[b.role]), sentence
+            assert "root" not in sentence
+
+
+def test_a_branch_without_a_name_of_its_own_is_its_roots_sign():
+    assert branch_word("reach", False, "d3") == "- root for d3"
+    assert branch_word("wrist", True) == "wrist not flipped"
