@@ -183,7 +183,8 @@ def _module_page(
         if exported:
             lines += ["Names this room exports:", "", "```{eval-rst}", ".. autosummary::", ""]
             lines += [
-                f"   {e[len(name) + 1 :]}"
+                # relative to this room, or the full name of another room's definition
+                f"   {e[len(name) + 1 :] if e.startswith(name + '.') else e}"
                 for e in sorted(exported, key=lambda s: s.rsplit(".", 1)[1])
             ]
             lines += ["```", ""]
@@ -357,9 +358,8 @@ class MistakeCatalogue(Directive):
         kinds = []
         for name in mistakes.__all__:
             cls = getattr(mistakes, name)
-            if inspect.isclass(cls) and getattr(cls, "kind", ""):
+            if inspect.isclass(cls) and isinstance(getattr(cls, "kind", None), str) and cls.kind:
                 kinds.append(cls)
-        kinds.sort(key=lambda c: c.kind)
         rows = []
         for cls in kinds:
             where = ", ".join(used.get(cls.__name__, [])) or "matrix entries"
@@ -367,6 +367,13 @@ class MistakeCatalogue(Directive):
             title = getattr(cls, "title", "") or getattr(cls(), "title", "")
             home = cls.__module__ if _public(cls.__module__) else "dhsym.checking.mistakes"
             rows.append((cls.kind, title, where, doc, f"{home}.{cls.__name__}"))
+        for m in mistakes.dynamics_mistakes():  # one class, one instance per kind
+            cls = type(m)
+            doc = " ".join((inspect.getdoc(cls) or "").split("\n\n")[0].split())
+            rows.append(
+                (m.kind, m.title, "dynamics", doc, f"dhsym.checking.mistakes.{cls.__name__}")
+            )
+        rows.sort(key=lambda r: r[0])
         if type(self.state).__module__.startswith("myst_parser"):
             text = ["| kind | title | checked in | what the student did |", "|---|---|---|---|"]
             for kind, title, where, doc, target in rows:
