@@ -131,7 +131,7 @@ class Transposed(Mistake):
 
 class BlockTransposed(Mistake):
     """One 3×3 block of a 6×n Jacobian written transposed (the rotation block of ^iT_j
-    is :class:`Transposed`)."""
+    is the mistake ``transposed`` of a whole matrix)."""
 
     kind, title = "transposed", "one 3×3 block transposed"
 

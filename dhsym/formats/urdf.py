@@ -1067,10 +1067,10 @@ def _inertial_lines(inertia: LinkInertia) -> list[str]:
         "ixx": I[0, 0], "ixy": I[0, 1], "ixz": I[0, 2],
         "iyy": I[1, 1], "iyz": I[1, 2], "izz": I[2, 2],
     }  # fmt: skip
-    moments = " ".join(f'{k}="{_text(sp.sympify(v))}"' for k, v in values.items())
+    moments = " ".join(f'{k}="{_text(v)}"' for k, v in values.items())
     return [
         "    <inertial>",
-        f'      <origin xyz="{" ".join(_text(sp.sympify(v)) for v in inertia.r)}" rpy="0 0 0"/>',
+        f'      <origin xyz="{" ".join(_text(v) for v in inertia.r)}" rpy="0 0 0"/>',
         f'      <mass value="{_text(inertia.m)}"/>',
         f"      <inertia {moments}/>",
         "    </inertial>",
