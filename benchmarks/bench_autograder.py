@@ -36,8 +36,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_checking import class_answers  # noqa: E402
 
-from dhsym.checking.autograder import AutograderPaths, build_autograder, run_autograder  # noqa: E402
-from dhsym.checking.grading import grade  # noqa: E402
+from dhsym.checking.grading.batch import grade  # noqa: E402
+from dhsym.checking.platforms.autograder import AutograderPaths, build_autograder, run_autograder  # noqa: E402
 
 QIDS = ("q1", "q2", "q3", "q4", "q5")
 

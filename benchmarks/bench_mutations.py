@@ -17,7 +17,7 @@ by one edit, written out in the lecture notation and graded through
   radians (``cos(90)``): the degrees of one row of the table.
 
 The mutations are generated here, independently of the detectors in
-``dhsym/checking/_entry_mistakes.py``. A mutant whose value equals the key's (the edit
+``dhsym/checking/mistakes/_entry_mistakes.py``. A mutant whose value equals the key's (the edit
 of a zero term, a sign of a term that cancels) must be graded CORRECT; so must the key
 itself and its expanded and re-simplified forms. A mutant counts as *diagnosed with the
 right kind* when the first diagnosis names its generating kind, or another kind whose
@@ -43,8 +43,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from dhsym.checking import Key, check_answer  # noqa: E402
-from dhsym.checking.checker import prepare  # noqa: E402
-from dhsym.checking.verdict import Verdict  # noqa: E402
+from dhsym.checking.judging.checker import prepare  # noqa: E402
+from dhsym.checking.judging.verdict import Verdict  # noqa: E402
 from dhsym.kinematics.transforms import link_matrix  # noqa: E402
 from dhsym.model.library import builtin_names  # noqa: E402
 from dhsym.notation.printers import Notation  # noqa: E402

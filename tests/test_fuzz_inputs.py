@@ -13,9 +13,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from dhsym import load_table
-from dhsym.checking.answers import normalize_unicode, read_table
-from dhsym.checking.latex_input import latex_to_text
-from dhsym.checking.names import NameContext
+from dhsym.checking.reading.answer_names import NameContext
+from dhsym.checking.reading.answers import normalize_unicode, read_table
+from dhsym.checking.reading.latex_input import latex_to_text
 from dhsym.errors import DHError
 from dhsym.model.parsing import parse_expression
 from dhsym.model.table import DHTable

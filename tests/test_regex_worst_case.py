@@ -20,7 +20,7 @@ import re
 
 import pytest
 
-from dhsym.checking._runner import JobFailure, Sandbox
+from dhsym.checking.grading._runner import JobFailure, Sandbox
 
 from .checking._jobs import regex_worst_case
 
@@ -32,23 +32,23 @@ except ImportError:  # pragma: no cover - Python 3.10
     import sre_parse
 
 MODULES = [
-    "dhsym.checking._ik_mistakes",
-    "dhsym.checking._ik_values",
-    "dhsym.checking._jacobian_mistakes",
-    "dhsym.checking._report",
-    "dhsym.checking._submissions",
-    "dhsym.checking._table_text",
-    "dhsym.checking.answers",
-    "dhsym.checking.autograder",
-    "dhsym.checking.feedback",
-    "dhsym.checking.gradebooks",
-    "dhsym.checking.grading",
-    "dhsym.checking.inverse",
-    "dhsym.checking.latex_input",
-    "dhsym.checking.names",
-    "dhsym.checking.questions",
-    "dhsym.checking.rounding",
-    "dhsym.checking.selfcheck",
+    "dhsym.checking.mistakes._ik_mistakes",
+    "dhsym.checking.judging._ik_values",
+    "dhsym.checking.mistakes._jacobian_mistakes",
+    "dhsym.checking.grading.report",
+    "dhsym.checking.grading.submissions",
+    "dhsym.checking.reading._table_text",
+    "dhsym.checking.reading.answers",
+    "dhsym.checking.platforms.autograder",
+    "dhsym.checking.grading.feedback",
+    "dhsym.checking.platforms.gradebooks",
+    "dhsym.checking.grading.batch",
+    "dhsym.checking.judging.ik_check",
+    "dhsym.checking.reading.latex_input",
+    "dhsym.checking.reading.answer_names",
+    "dhsym.checking.reading.questions",
+    "dhsym.checking.judging.rounding",
+    "dhsym.checking.platforms.selfcheck",
     "dhsym.cli.common",
     "dhsym.explain.derivation",
     "dhsym.explain.documents",
@@ -224,7 +224,9 @@ def _seconds(pattern: re.Pattern, ops: tuple[str, ...], case: tuple[str, str, st
 def test_every_regex_on_user_text_is_collected():
     assert UNREAD == []
     assert len(PATTERNS) >= 40
-    assert {"dhsym.checking.latex_input._MATRIX", "dhsym.model.parsing._TOKEN"} <= set(PATTERNS)
+    assert {"dhsym.checking.reading.latex_input._MATRIX", "dhsym.model.parsing._TOKEN"} <= set(
+        PATTERNS
+    )
 
 
 @pytest.fixture(scope="module")

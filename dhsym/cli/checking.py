@@ -29,8 +29,8 @@ EXIT_CORRECT, EXIT_INCORRECT, EXIT_UNREADABLE = 0, 1, 2
 
 
 def _read_answer(source: str, limit: int) -> bytes | str:
-    from dhsym.checking._limits import UnreadableAnswer
-    from dhsym.checking.answers import read_answer_file
+    from dhsym.checking.reading.answers import read_answer_file
+    from dhsym.checking.reading.limits import UnreadableAnswer
 
     if source == "-":
         data = (
@@ -45,15 +45,15 @@ def _read_answer(source: str, limit: int) -> bytes | str:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    from dhsym.checking._limits import (
+    from dhsym.checking.grading.feedback import render_check
+    from dhsym.checking.judging.checker import Key, check_answer
+    from dhsym.checking.judging.verdict import CheckResult, Verdict
+    from dhsym.checking.reading.limits import (
         DEFAULT_ANSWER_LIMITS,
         AnswerLimits,
         UnreadableAnswer,
         check_seconds,
     )
-    from dhsym.checking.checker import Key, check_answer
-    from dhsym.checking.feedback import render_check
-    from dhsym.checking.verdict import CheckResult, Verdict
 
     limits = (
         AnswerLimits(seconds=check_seconds(args.timeout, "--timeout"))
@@ -82,13 +82,13 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
 
 def _cmd_grade(args: argparse.Namespace) -> int:
-    from dhsym.checking.grading import Assignment, grade
+    from dhsym.checking.grading.batch import Assignment, grade
     from dhsym.errors import DHError
 
     assignment = Assignment.load(args.assignment)
     roster = None
     if args.gradebook:
-        from dhsym.checking.gradebooks import Roster
+        from dhsym.checking.platforms.gradebooks import Roster
 
         if args.roster:
             roster = Roster.load(args.roster)
@@ -118,7 +118,7 @@ def _cmd_grade(args: argparse.Namespace) -> int:
     print(f"gradebook: {os.path.join(args.output, Path(report.gradebook).name)}")
     print(f"summary:   {os.path.join(args.output, Path(report.summary).name)}")
     if args.gradebook:
-        from dhsym.checking.gradebooks import write_lms_gradebook
+        from dhsym.checking.platforms.gradebooks import write_lms_gradebook
 
         out = write_lms_gradebook(
             args.gradebook, report, assignment, roster, column=args.lms_column
@@ -164,7 +164,7 @@ def _cmd_new_assignment(args: argparse.Namespace) -> int:
 
 
 def _cmd_autograder(args: argparse.Namespace) -> int:
-    from dhsym.checking.autograder import build_autograder, run_autograder
+    from dhsym.checking.platforms.autograder import build_autograder, run_autograder
     from dhsym.errors import DHError
 
     if args.run:

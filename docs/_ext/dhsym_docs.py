@@ -8,7 +8,7 @@
   that ``dhsym`` itself runs (:func:`dhsym.cli.main.build_parser`), every command and
   sub-command, every option with its default and choices;
 - the directive ``dhsym-mistakes``: the mistake catalogue, read from the registry
-  :mod:`dhsym.checking.mistakes`;
+  :mod:`dhsym.checking.mistakes.registry`;
 - ``build-finished``: copies Debian's MathJax 2 (``libjs-mathjax``) into ``_static/``, so
   the site typesets mathematics without the network.
 
@@ -342,7 +342,7 @@ class MistakeCatalogue(Directive):
     has_content = False
 
     def run(self) -> list[nodes.Node]:
-        from dhsym.checking import mistakes
+        from dhsym.checking.mistakes import registry as mistakes
 
         lists = {
             "MATRIX_MISTAKES": "matrices",
@@ -365,13 +365,19 @@ class MistakeCatalogue(Directive):
             where = ", ".join(used.get(cls.__name__, [])) or "matrix entries"
             doc = " ".join((inspect.getdoc(cls) or "").split("\n\n")[0].split())
             title = getattr(cls, "title", "") or getattr(cls(), "title", "")
-            home = cls.__module__ if _public(cls.__module__) else "dhsym.checking.mistakes"
+            home = cls.__module__ if _public(cls.__module__) else "dhsym.checking.mistakes.registry"
             rows.append((cls.kind, title, where, doc, f"{home}.{cls.__name__}"))
         for m in mistakes.dynamics_mistakes():  # one class, one instance per kind
             cls = type(m)
             doc = " ".join((inspect.getdoc(cls) or "").split("\n\n")[0].split())
             rows.append(
-                (m.kind, m.title, "dynamics", doc, f"dhsym.checking.mistakes.{cls.__name__}")
+                (
+                    m.kind,
+                    m.title,
+                    "dynamics",
+                    doc,
+                    f"dhsym.checking.mistakes.registry.{cls.__name__}",
+                )
             )
         rows.sort(key=lambda r: r[0])
         if type(self.state).__module__.startswith("myst_parser"):

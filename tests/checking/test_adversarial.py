@@ -14,7 +14,7 @@ import sympy as sp
 
 import dhsym
 from dhsym.checking import Key, check_answer
-from dhsym.checking.answers import answer_text
+from dhsym.checking.reading.answers import answer_text
 from dhsym.errors import DHError
 
 HOMEWORK = Path(__file__).resolve().parents[2] / "examples" / "homework"
@@ -122,7 +122,7 @@ def _grade(tmp_path: Path, subs: Path, out: Path | None = None):
 
 
 def test_duplicate_ids_never_give_two_lms_rows(tmp_path):
-    from dhsym.checking.gradebooks import Roster, write_lms_gradebook
+    from dhsym.checking.platforms.gradebooks import Roster, write_lms_gradebook
 
     subs = tmp_path / "subs"
     _student(subs / "alice")
@@ -162,7 +162,7 @@ def test_nfc_and_nfd_spellings_are_one_student(tmp_path):
 def test_a_tampered_cache_record_is_regraded_never_trusted(tmp_path, change):
     import json
 
-    from dhsym.checking.grading import CACHE_NAME
+    from dhsym.checking.grading.batch import CACHE_NAME
 
     subs = tmp_path / "subs"
     _student(subs / "alice", "0")
@@ -177,7 +177,7 @@ def test_a_tampered_cache_record_is_regraded_never_trusted(tmp_path, change):
 
 
 def test_no_entry_of_the_submissions_folder_is_dropped_silently(tmp_path):
-    from dhsym.checking.grading import CACHE_NAME
+    from dhsym.checking.grading.batch import CACHE_NAME
 
     subs = tmp_path / "subs"
     _student(subs / "alice")
@@ -219,7 +219,7 @@ def test_a_csv_saved_by_excel_is_read(tmp_path):
 
 
 def test_roster_columns_that_never_reach_the_lms_are_not_refused(tmp_path):
-    from dhsym.checking.gradebooks import Roster
+    from dhsym.checking.platforms.gradebooks import Roster
 
     roster = Roster.from_text("submission,canvas_id\n-alice,17\n=bob,18\n")
     assert [e.submission for e in roster.entries] == ["-alice", "=bob"]
@@ -231,8 +231,8 @@ def test_roster_columns_that_never_reach_the_lms_are_not_refused(tmp_path):
 
 
 def test_autograder_names_every_answer_file_it_does_not_grade(tmp_path):
-    from dhsym.checking.autograder import read_submission, results_json
-    from dhsym.checking.grading import Assignment, check_submission
+    from dhsym.checking.grading.batch import Assignment, check_submission
+    from dhsym.checking.platforms.autograder import read_submission, results_json
 
     hw = tmp_path / "hw.yaml"
     hw.write_text(
@@ -257,7 +257,7 @@ def test_autograder_python_never_imports_from_the_current_folder(tmp_path):
     import subprocess
     import sys
 
-    from dhsym.checking.autograder import _RUN_AUTOGRADER, CONFIG_NAME
+    from dhsym.checking.platforms.autograder import _RUN_AUTOGRADER, CONFIG_NAME
 
     source = tmp_path / "source"
     source.mkdir()
@@ -466,8 +466,8 @@ def test_the_first_ik_check_of_a_process_is_not_charged_for_the_solver():
 
 
 def test_a_proof_after_agreement_is_bounded_by_size_and_time():
-    from dhsym.checking._limits import AnswerLimits, time_limit
-    from dhsym.checking.equivalence import prove_entry
+    from dhsym.checking.judging.equivalence import prove_entry
+    from dhsym.checking.reading.limits import AnswerLimits, time_limit
 
     t1, t2 = sp.symbols("theta1 theta2", real=True)
     key = sp.cos(t1 + t2) ** 6
@@ -494,7 +494,7 @@ def test_no_signal_timer_in_the_library():
 def test_a_time_limit_leaves_the_host_process_alone():
     import signal
 
-    from dhsym.checking._limits import CheckTimeout, check_time, time_limit
+    from dhsym.checking.reading.limits import CheckTimeout, check_time, time_limit
 
     before = signal.getsignal(signal.SIGALRM), signal.getitimer(signal.ITIMER_REAL)
     with time_limit(0.01):
@@ -517,7 +517,7 @@ def _text(matrix: sp.Matrix) -> str:
 
 @pytest.mark.parametrize("robot", ["planar2r", "scara"])
 def test_a_jacobian_in_omega_v_order_is_right_and_named(robot):
-    from dhsym.checking.checker import prepare
+    from dhsym.checking.judging.checker import prepare
 
     key = Key.load(robot, "J")
     J = prepare(key).expected
@@ -561,7 +561,7 @@ def _nodes(expr: sp.Expr, kind: type) -> list[sp.Expr]:
 
 @st.composite
 def _edits(draw: st.DrawFn) -> tuple[Key, tuple[int, int], sp.Expr, sp.Expr]:
-    from dhsym.checking.checker import prepare
+    from dhsym.checking.judging.checker import prepare
 
     robot, question = draw(st.sampled_from(_QUESTIONS))
     key = Key.load(robot, question)
@@ -611,7 +611,7 @@ def test_a_random_edit_that_changes_the_value_is_never_graded_right(case):
     key, (i, j), entry, edited = case
     if not _differs(entry, edited):
         return  # the edit kept the value (cos of a zero angle, a symbol renamed to itself)
-    from dhsym.checking.checker import prepare
+    from dhsym.checking.judging.checker import prepare
 
     matrix = sp.Matrix(prepare(key).expected)
     matrix[i, j] = edited
@@ -620,7 +620,7 @@ def test_a_random_edit_that_changes_the_value_is_never_graded_right(case):
 
 
 def test_the_sandbox_child_never_imports_from_the_current_folder(tmp_path, monkeypatch):
-    from dhsym.checking._runner import Sandbox
+    from dhsym.checking.grading._runner import Sandbox
 
     canary = tmp_path / "shadowed"
     (tmp_path / "json.py").write_text(f"open({str(canary)!r}, 'w').close()\n")

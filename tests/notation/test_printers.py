@@ -201,7 +201,7 @@ CRAIG_DIFFERS = {(0, 1), (1, 1), (2, 1), (1, 2), (2, 3)}
 
 def _reads_back(text: str, table: dhsym.DHTable) -> sp.Expr:
     """Parse printed text as the checker reads an answer; C[12-4] names a difference angle."""
-    from dhsym.checking.names import NameContext
+    from dhsym.checking.reading.answer_names import NameContext
     from dhsym.model.parsing import parse_expression
 
     ctx = NameContext.from_table(table)

@@ -1,0 +1,556 @@
+"""Grading a whole class: an assignment, a folder or CSV of submissions, a report folder.
+
+The assignment (YAML) names the key and the questions::
+
+    title: Homework 3, forward kinematics
+    key: puma560                  # built-in robot or table file (relative to this file)
+    time_limit: 5                 # seconds per answer (above 0, at most 3600)
+    rounding: digits=3            # accepted rounding of decimals (Rounding); per question too
+    questions:
+      - {id: q1, ask: table, points: 4, tool: free}   # tool: free accepts another tool frame
+      - {id: q2, ask: T0_2, points: 2}
+      - {id: q3, ask: A1, points: 1, key: generic_modified_link.yaml}
+
+Submissions are a folder (one sub-folder per student with files ``q1.md``,
+``q2.txt`` …, and/or one ``<student>.yaml`` with ``name:`` and ``answers: {q1: …}``)
+or a CSV file (columns ``student``, optional ``name``, one per question id); the
+rules for answer files and duplicate ids are in :mod:`dhsym.checking.grading.submissions`.
+
+The report folder gets ``gradebook.csv``, ``feedback/<student>.md|.html``,
+``summary.html`` with ``summary.png``, and ``.dhsym-grading-cache.json`` (rewritten
+atomically) so that a rerun skips what is already graded.  Nothing is written
+outside it: student ids become safe file names.
+
+Every submission is isolated: it is read inside its own guard and graded in a
+process that is killed when it overruns (:mod:`dhsym.checking.grading._runner`).  Its
+outcome is its ``status``: ``graded``, ``timeout`` (an answer or the whole
+submission ran out of time) or ``error: …`` (with the reason); the gradebook and
+the summary are written whatever happens.  Only final verdicts are cached: a
+timeout or an error is graded again on the next run, and the cache is keyed by the
+assignment, its keys and every limit (a corrupted cache is ignored with a warning).
+
+Examples
+--------
+>>> safe_name("../../etc/passwd", set()).startswith("etc_passwd-")
+True
+>>> safe_name("alice", set())
+'alice'
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import re
+import statistics
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+from dhsym.errors import DHError
+from dhsym.model.yamlsafe import FileRefused, YAMLInputError, load_yaml, read_limited
+
+from ..judging.checker import Key, check_answer, prepare
+from ..judging.verdict import CheckResult, Verdict
+from ..reading.limits import AnswerLimits, AnswerTimeout, check_seconds, time_limit
+from ._runner import JobFailure, Progress, dask_address, run_dask, run_pool, run_serial
+from .feedback import QuestionFeedback, render_feedback
+from .records import GradeRecord
+from .report import (
+    CACHE_NAME,
+    inside,
+    safe_name,
+    write_atomic,
+    write_gradebook,
+    write_summary,
+)
+from .submissions import Submission, read_submissions
+
+__all__ = [
+    "CACHE_NAME",
+    "check_submission",
+    "Assignment",
+    "AssignmentQuestion",
+    "GradeReport",
+    "Submission",
+    "grade",
+    "grade_submission",
+    "read_submissions",
+    "safe_name",
+]
+
+_ID = re.compile(r"^[A-Za-z0-9_-]{1,40}$")
+_MAX_ASSIGNMENT = 1_000_000
+_MAX_CACHE = 500_000_000
+_MAX_POINTS = 1e6
+_SLACK_SECONDS = 10.0  # reading, rendering and start-up around the answers' own limits
+
+
+@dataclass(frozen=True)
+class AssignmentQuestion:
+    """One question: its id, what is asked, points, the key and whether the tool frame is free."""
+
+    id: str
+    ask: str
+    points: float
+    key: Key
+
+
+@dataclass(frozen=True)
+class Assignment:
+    """A title and questions; ``seconds`` is the time limit of one answer."""
+
+    title: str
+    questions: tuple[AssignmentQuestion, ...]
+    seconds: float = 5.0
+    fingerprint: str = ""
+
+    @property
+    def max_score(self) -> float:
+        """Sum of the points."""
+        return sum(q.points for q in self.questions)
+
+    @classmethod
+    def load(cls, path: str | Path) -> Assignment:
+        """Read an assignment YAML file (keys given as files are relative to it).
+
+        Every problem is a :class:`~dhsym.errors.DHError` naming the file and the
+        question (row) or field.
+        """
+        p = Path(path)
+        try:
+            raw = read_limited(p, _MAX_ASSIGNMENT, what="the assignment")
+            text = raw.decode("utf-8")
+            data = load_yaml(text)
+        except (FileRefused, YAMLInputError) as err:
+            raise DHError(err.message, file=str(p)) from None
+        except UnicodeDecodeError:
+            raise DHError("the assignment is not UTF-8 text", file=str(p)) from None
+        if not isinstance(data, Mapping) or not isinstance(data.get("questions"), list):
+            raise DHError("expected 'questions: [...]' (and 'key:') in the assignment", file=str(p))
+        seconds = check_seconds(data.get("time_limit", 5.0), "time_limit", file=str(p))
+        default = data.get("key")
+        questions, seen, digest = [], set(), [text]
+        for k, q in enumerate(data["questions"], 1):
+            if not isinstance(q, Mapping) or "ask" not in q or "id" not in q:
+                raise DHError("each question needs 'id' and 'ask'", file=str(p), row=k)
+            qid = str(q["id"]) if isinstance(q["id"], (str, int)) else ""
+            if not _ID.match(qid) or qid in seen or qid in ("student", "name"):
+                raise DHError(
+                    f"question id {str(q['id'])[:60]!r}: use letters, digits, '_' or '-', once",
+                    file=str(p),
+                    row=k,
+                    field="id",
+                )
+            seen.add(qid)
+            points = _points(q.get("points", 1), p, k)
+            ref = q.get("key", default)
+            if not isinstance(ref, str) or not ref.strip():
+                raise DHError(
+                    "no key: give 'key:' (a robot name or table file) for the assignment "
+                    "or the question",
+                    file=str(p),
+                    row=k,
+                    field="key",
+                )
+            local = p.parent / ref
+            where: str | Path = (
+                local if local.suffix.lower() in (".yaml", ".yml") or local.exists() else ref
+            )
+            tool = str(q.get("tool", "fixed")).lower() in ("free", "any", "true")
+            ask = q["ask"]
+            if not isinstance(ask, (str, int)):
+                raise DHError("'ask' must be text like T0_2", file=str(p), row=k, field="ask")
+            rounding = q.get("rounding", data.get("rounding"))
+            try:
+                key = Key.load(where, str(ask), tool_free=tool, rounding=rounding)
+            except DHError as err:
+                raise DHError(err.message, file=str(p), row=k, field=err.field or "ask") from None
+            digest.append(repr(key))
+            questions.append(AssignmentQuestion(qid, str(ask), points, key))
+        fp = hashlib.sha256("\n".join(digest).encode()).hexdigest()[:16]
+        title = data.get("title")
+        return cls(
+            " ".join(str(title).split())[:200] if isinstance(title, (str, int)) else p.stem,
+            tuple(questions),
+            seconds,
+            fp,
+        )
+
+
+def _points(value: object, path: Path, row: int) -> float:
+    """Points of a question: a finite number, at least 0."""
+    number = None
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        number = float(value)
+    elif isinstance(value, str):
+        try:
+            number = float(value)
+        except ValueError:
+            number = None
+    if number is None or not math.isfinite(number) or not 0 <= number <= _MAX_POINTS:
+        shown = value if isinstance(value, (int, float)) else repr(value)[:60]
+        raise DHError(
+            f"expected a number of points from 0 to {_MAX_POINTS:g}, got {shown}",
+            file=str(path),
+            row=row,
+            field="points",
+        )
+    return number
+
+
+#: what a timed-out answer is told in a class run (the autograder says its own)
+RERUN = "The answer is checked again on the next run; nothing is kept for now."
+
+
+def _timed_out(q: AssignmentQuestion, seconds: float, then: str) -> CheckResult:
+    text = f"Checking took longer than the time limit of {seconds:g} s. {then}"
+    return CheckResult(q.ask, Verdict.UNREADABLE, text, reason="timeout", key=q.key.name)
+
+
+def check_submission(
+    assignment: Assignment, sub: Submission, limits: AnswerLimits, *, on_timeout: str = RERUN
+) -> tuple[QuestionFeedback, ...]:
+    """Check every question of one submission: its result (``None`` if missing) and score.
+
+    An answer scores the question's points when it is correct and 0 otherwise; an
+    answer that could not be read from its file is ``unreadable``. Each answer runs
+    under the time limit ``limits.seconds``; one that runs out gets an unreadable
+    result whose ``reason`` is ``timeout`` (see :func:`grade_submission`), told
+    ``on_timeout``.  Each key is prepared before its answer's clock starts (its solvers
+    and variants are built once per worker, never on a student's time).
+    """
+    answers, problems = dict(sub.answers), dict(sub.problems)
+    inner = replace(limits, seconds=0)  # the limit is the one below: a timeout stays one
+    out = []
+    for q in assignment.questions:
+        if q.id in answers:
+            prepare(q.key)  # memoised: the first answer of a worker pays it, off the clock
+            try:
+                with time_limit(limits.seconds, AnswerTimeout):
+                    result = check_answer(q.key, answers[q.id], limits=inner)
+            except AnswerTimeout:
+                result = _timed_out(q, limits.seconds, on_timeout)
+        elif q.id in problems:
+            result = CheckResult(
+                q.ask,
+                Verdict.UNREADABLE,
+                f"The answer could not be read: {problems[q.id]}",
+                reason=problems[q.id],
+                key=q.key.name,
+            )
+        else:
+            result = None
+        score = q.points if result is not None and result.correct else 0.0
+        out.append(QuestionFeedback(q.id, q.ask, q.points, score, result))
+    return tuple(out)
+
+
+def _wrong_parts(result: CheckResult) -> tuple[tuple[str, str], ...]:
+    """Where an incorrect answer went wrong, for the class summary: ``[where, example]``
+    per wrong matrix entry (the student's entry) or per wrong table row (the mistake)."""
+    if result.correct:
+        return ()
+    out = [(f"({e.row},{e.col})", e.answer[:120]) for e in result.entries if not e.correct]
+    if not out:
+        for d in result.diagnoses:
+            out.extend((f"row {r}", d.title) for r in d.rows)
+    return tuple(out[:16])
+
+
+def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> GradeRecord:
+    """Grade one submission (runs in a worker): scores, verdicts, kinds and both feedback pages.
+
+    An answer that runs out of time gets the verdict ``timeout`` and the record the
+    status ``timeout`` (never cached, so the next run checks it again).
+    """
+    assignment, sub, limits = job
+    feedback = check_submission(assignment, sub, limits)
+    scores, verdicts, kinds, wrong, mistakes = {}, {}, [], {}, {}
+    timed_out = False
+    for qf in feedback:
+        result = qf.result
+        scores[qf.id] = qf.score
+        if result is not None and result.reason == "timeout":
+            timed_out = True
+            verdicts[qf.id] = "timeout"
+            kinds.append("timeout")
+            continue
+        verdicts[qf.id] = result.verdict.value if result is not None else "missing"
+        if result is not None:
+            unread = ["unreadable"] if verdicts[qf.id] == "unreadable" else []
+            kinds.extend(result.kinds or unread)
+            wrong[qf.id] = _wrong_parts(result)
+            mistakes[qf.id] = tuple(result.kinds)
+    student = {"id": sub.student, "name": sub.name}
+    status = "timeout" if timed_out else "graded"
+    pages = {
+        fmt: render_feedback(
+            student, feedback, title=assignment.title, fmt=fmt, status=status, flags=sub.flags
+        )
+        for fmt in ("md", "html")
+    }
+    return GradeRecord(
+        **_identity(sub),
+        status=status,
+        scores=scores,
+        verdicts=verdicts,
+        kinds=tuple(kinds),
+        score=sum(scores.values()),
+        max_score=assignment.max_score,
+        wrong=wrong,
+        mistakes=mistakes,
+        pages=pages,
+    )
+
+
+def _identity(sub: Submission) -> dict:
+    return {
+        "uid": sub.uid,
+        "student": sub.student,
+        "name": sub.name,
+        "source": sub.source,
+        "flags": tuple(sub.flags),
+    }
+
+
+@dataclass(frozen=True)
+class GradeReport:
+    """What :func:`grade` did and where it wrote."""
+
+    out_dir: Path
+    students: int
+    graded: int
+    skipped: int
+    failed: int
+    mean: float
+    gradebook: Path
+    summary: Path
+    records: tuple[GradeRecord, ...] = field(default=(), repr=False)
+    warnings: tuple[str, ...] = ()
+    #: entries of the submissions folder that are not submissions: (entry, reason)
+    refused: tuple[tuple[str, str], ...] = ()
+
+
+def _failed_record(sub: Submission, assignment: Assignment, failure: JobFailure) -> GradeRecord:
+    """The record of a submission that has no verdicts: ``timeout`` or ``error: reason``."""
+    short = "timeout" if failure.kind == "timeout" else "error"
+    status = "timeout" if short == "timeout" else f"error: {failure.message}"
+    student = {"id": sub.student, "name": sub.name}
+    qs = [QuestionFeedback(q.id, q.ask, q.points, 0.0, None) for q in assignment.questions]
+    pages = {}
+    for fmt in ("md", "html"):
+        try:
+            pages[fmt] = render_feedback(
+                student, qs, title=assignment.title, fmt=fmt, status=status, flags=sub.flags
+            )
+        except Exception:  # noqa: BLE001 - the page of a failure must never fail in turn
+            pages[fmt] = f"Feedback: {status}\n"
+    return GradeRecord(
+        **_identity(sub),
+        status=status,
+        scores={q.id: 0.0 for q in assignment.questions},
+        verdicts={q.id: short for q in assignment.questions},
+        kinds=(short,),
+        score=0.0,
+        max_score=assignment.max_score,
+        error=failure.message,
+        pages=pages,
+    )
+
+
+def _run_fingerprint(a: Assignment, limits: AnswerLimits, deadline: float) -> str:
+    """What a cached verdict depends on besides the answers: assignment, keys, every limit."""
+    from dhsym._version import __version__
+
+    text = "\n".join([a.fingerprint, repr(a.questions), repr(limits), f"{deadline!r}", __version__])
+    return hashlib.sha256(text.encode("utf-8", "replace")).hexdigest()[:16]
+
+
+_FINAL = ("correct", "incorrect", "unreadable", "missing")
+
+
+def _final(record: GradeRecord, a: Assignment) -> bool:
+    """True for a graded record (fingerprinted) with a final verdict for each question of ``a``,
+    each score within ``[0, points]`` of its question, and the total their sum."""
+    points = {q.id: q.points for q in a.questions}
+    return (
+        record.status == "graded"
+        and bool(record.fingerprint)
+        and set(record.scores) == set(points)
+        and set(record.verdicts) == set(points)
+        and all(v in _FINAL for v in record.verdicts.values())
+        and all(0 <= record.scores[q] <= p for q, p in points.items())
+        and math.isclose(record.score, sum(record.scores.values()), rel_tol=1e-9, abs_tol=1e-9)
+        and math.isclose(record.max_score, a.max_score, rel_tol=1e-9)
+    )
+
+
+def _same_submission(record: GradeRecord, sub: Submission) -> bool:
+    """The cached record is this submission's: uid, student, name, source and flags agree."""
+    return (record.uid, record.student, record.name, record.source, tuple(record.flags)) == (
+        sub.uid,
+        sub.student,
+        sub.name,
+        sub.source,
+        tuple(sub.flags),
+    )
+
+
+def _cached_record(value: object, a: Assignment) -> GradeRecord | None:
+    """The record of a cache entry, ``None`` unless it is a well-formed final record for ``a``."""
+    try:
+        record = GradeRecord.from_dict(value)
+    except ValueError:
+        return None
+    return record if _final(record, a) else None
+
+
+def _load_cache(
+    path: Path, run_fp: str, a: Assignment, warnings: list[str]
+) -> dict[str, GradeRecord]:
+    """The cached records of this run's fingerprint; anything malformed is ignored (a warning)."""
+    if not path.exists():
+        return {}
+    try:
+        data = json.loads(read_limited(path, _MAX_CACHE, what="the grading cache"))
+    except (FileRefused, ValueError, RecursionError) as err:
+        reason = err.message if isinstance(err, DHError) else f"not valid JSON ({err})"
+        warnings.append(f"ignoring the grading cache {path.name}: {reason}; grading everything")
+        return {}
+    if not isinstance(data, dict) or not isinstance(data.get("records"), dict):
+        warnings.append(
+            f"ignoring the grading cache {path.name}: it is not a cache written by dhsym; "
+            "grading everything"
+        )
+        return {}
+    if data.get("assignment") != run_fp:
+        return {}  # another assignment, key, limit or dhsym version: everything is regraded
+    cached = {k: _cached_record(r, a) for k, r in data["records"].items()}
+    records = {k: r for k, r in cached.items() if r is not None and r.uid == k}
+    bad = len(cached) - len(records)
+    if bad:
+        warnings.append(f"ignoring {bad} malformed record(s) of the grading cache {path.name}")
+    return records
+
+
+def grade(
+    assignment: str | Path | Assignment,
+    submissions: str | Path,
+    out_dir: str | Path,
+    *,
+    workers: int = 2,
+    timeout: float | None = None,
+    dask: object = None,
+    progress: bool = True,
+    limits: AnswerLimits | None = None,
+) -> GradeReport:
+    """Grade every submission and write the report folder (see the module docstring).
+
+    ``workers`` processes (0: in this process, without isolation), or a Dask cluster
+    with ``dask`` (an address or a ``Client``).  ``timeout`` is the time limit of
+    one answer (default: the assignment's ``time_limit``); a whole submission gets
+    the sum over its questions plus a few seconds before its process is killed.
+    """
+    a = assignment if isinstance(assignment, Assignment) else Assignment.load(assignment)
+    seconds = check_seconds(timeout, "--timeout") if timeout is not None else a.seconds
+    lim = limits or AnswerLimits(seconds=seconds)
+    if not isinstance(workers, int) or not 0 <= workers <= 1024:
+        raise DHError(f"--workers: expected a number of processes from 0 to 1024, got {workers}")
+    if dask is not None:
+        dask = dask_address(dask)
+    root = Path(out_dir).resolve()
+    warnings: list[str] = []
+    refused: list[tuple[str, str]] = []
+    subs = read_submissions(
+        submissions, a, lim, exclude=(root,), warnings=warnings, refused=refused
+    )
+    root.mkdir(parents=True, exist_ok=True)
+    (root / "feedback").mkdir(exist_ok=True)
+    deadline = lim.seconds * max(1, len(a.questions)) + _SLACK_SECONDS
+    run_fp = _run_fingerprint(a, lim, deadline)
+    cache_path = inside(root, CACHE_NAME)
+    cache = _load_cache(cache_path, run_fp, a, warnings)
+    used: set[str] = set()
+    files = {s.uid: safe_name(s.uid, used) for s in subs}
+    todo: list[Submission] = []
+    records: dict[str, GradeRecord] = {}
+    failed = 0
+    for s in subs:
+        old = cache.get(s.uid)
+        names = [inside(root, "feedback", files[s.uid] + ext) for ext in (".md", ".html")]
+        if s.error:
+            records[s.uid] = _failed_record(s, a, JobFailure("error", s.error))
+            failed += 1
+        elif (
+            old
+            and _same_submission(old, s)
+            and old.fingerprint == s.fingerprint(a, run_fp)
+            and all(p.is_file() for p in names)
+        ):
+            records[s.uid] = old
+        else:
+            todo.append(s)
+    jobs = [(a, s, lim) for s in todo]
+    if dask is not None:
+        runner = run_dask(grade_submission, jobs, dask, deadline)
+    elif workers > 0:
+        runner = run_pool(grade_submission, jobs, workers, deadline)
+    else:
+        runner = run_serial(grade_submission, jobs)
+    bar = Progress(len(jobs), enabled=progress)
+    last_save = time.monotonic()
+
+    def save() -> None:
+        final = {k: r.to_dict() for k, r in records.items() if _final(r, a)}
+        write_atomic(cache_path, json.dumps({"assignment": run_fp, "records": final}))
+
+    for s in subs:  # the pages of submissions that could not be read at all
+        if s.error:
+            _write_pages(root, files[s.uid], records[s.uid].pages)
+            records[s.uid] = replace(records[s.uid], pages={})
+    try:
+        for k, outcome in runner:
+            sub = todo[k]
+            if isinstance(outcome, JobFailure):
+                record = _failed_record(sub, a, outcome)
+            elif isinstance(outcome, GradeRecord):  # unpickled from the worker
+                record = outcome
+            else:
+                raise TypeError(f"a grading job returned {type(outcome).__name__}")
+            if record.status != "graded":
+                failed += 1
+            else:
+                record = replace(record, fingerprint=sub.fingerprint(a, run_fp))
+            _write_pages(root, files[sub.uid], record.pages)
+            records[sub.uid] = replace(record, pages={})
+            bar.step()
+            if time.monotonic() - last_save > 5.0:
+                save()
+                last_save = time.monotonic()
+    finally:
+        save()
+    ordered = [records[s.uid] for s in subs if s.uid in records]
+    gradebook = write_gradebook(root, a, ordered, files)
+    summary = write_summary(root, a, ordered, files, refused=refused)
+    scores = [r.score for r in ordered]
+    return GradeReport(
+        root,
+        len(subs),
+        len(jobs),
+        len(subs) - len(jobs) - sum(bool(s.error) for s in subs),
+        failed,
+        statistics.fmean(scores) if scores else 0.0,
+        gradebook,
+        summary,
+        tuple(ordered),
+        tuple(warnings),
+        tuple(refused),
+    )
+
+
+def _write_pages(root: Path, name: str, pages: Mapping[str, str]) -> None:
+    for ext, fmt in ((".md", "md"), (".html", "html")):
+        write_atomic(inside(root, "feedback", name + ext), pages[fmt])

@@ -1,0 +1,672 @@
+r"""Checking inverse-kinematics answers: the joint values as formulas in the pose, or numbers.
+
+A question ``ik`` asks for one solution as formulas in the pose symbols of the
+derivation (``n_x … a_z``, ``p_x``, ``p_y``, ``p_z``, also written ``px``, ``p_{x}``) and
+the robot's lengths; ``ik all`` asks for every solution, each ``±`` written out
+(``\pm``, ``±`` or ``+/-``: every choice of the signs must be a solution);
+``ik@q1,…,qn`` asks for the numbers of the pose these joint values reach (one solution, or
+one per line for ``ik all@…``), rounded or not (a number with d decimals may be off by
+``10^-d``; degrees with ``°``).
+
+An answer is a list of statements, one per line (or separated by ``;``):
+``theta1 = atan2(p_y, p_x) - atan2(a2*S2, a1 + a2*C2)``, helpers first or later
+(``D = (p_x^2 + p_y^2 - a1^2 - a2^2)/(2 a1 a2)``, ``c2 = D``), in plain math or LaTeX
+(``\theta_1 = \operatorname{atan2}(p_y, p_x)``), or the joint values in order
+(``0.3, 0.9``). Nothing is executed: each right-hand side goes through the whitelist parser.
+
+The answer is evaluated at 64 fresh random poses (each from a random configuration and,
+when the answer keeps the lengths as symbols, random lengths) and compared, angles modulo
+2π, with every branch of the key (:func:`dhsym.ik.families.inverse`, each choice
+of its signs σ); any branch is right, and the feedback names it. A wrong answer is
+explained by recomputing the key under each classic mistake
+(:data:`~dhsym.checking.mistakes.registry.IK_MISTAKES`).
+
+Examples
+--------
+>>> from dhsym.checking import Key, check_answer
+>>> key = Key.load("planar2r", "ik")
+>>> r = check_answer(key, "c2 = (px^2 + py^2 - a1^2 - a2^2)/(2*a1*a2)\n"
+...                       "theta2 = atan2(-sqrt(1 - c2^2), c2)\n"
+...                       "theta1 = atan2(py, px) - atan2(a2*S2, a1 + a2*C2)")
+>>> r.verdict.value, r.message
+('correct', 'Right: the branch elbow up.')
+>>> r = check_answer(key, "theta2 = acos((px^2 + py^2 - a1^2 - a2^2)/(2*a1*a2))\n"
+...                       "theta1 = atan(py/px) - atan2(a2*S2, a1 + a2*C2)")
+>>> r.verdict.value, r.kinds
+('incorrect', ('atan_for_atan2',))
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+import sympy as sp
+
+from dhsym.errors import DHError, ParseError
+from dhsym.ik.results import IKSolution
+from dhsym.ik.steps import pose_symbols
+from dhsym.model.parsing import normalize_name
+
+from ..mistakes._ik_mistakes import IKCase
+from ..mistakes.registry import IK_MISTAKES
+from ..reading.answers import _split_top, cell_literals, parse_cell, read_text
+from ..reading.latex_input import flatten_subscripts, is_latex, latex_to_text
+from ..reading.limits import AnswerLimits, UnreadableAnswer, check_time
+from ._ik_values import (
+    ATOL,
+    PoseSample,
+    branch_signs,
+    joint_distance,
+    key_values,
+    pose_sample,
+    same_joints,
+)
+from ._sampled_frames import EvaluationError, evaluate, frames
+from .rounding import value_tolerance
+from .tolerances import TOLERANCES
+from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
+
+if TYPE_CHECKING:
+    from dhsym.ik.derivation import InverseKinematics
+    from dhsym.kinematics.robot import Robot
+
+    from .checker import PreparedKey
+
+__all__ = ["IKAnswer", "check_ik", "prepare_ik", "read_ik_answer"]
+
+_MAX_SIGNS = 6  # ± in one answer (2^6 choices)
+_SIGN_NAME = "pmsign"
+_PLUS_MINUS = re.compile(r"\\pm(?![A-Za-z])|±|\+/-")
+_MINUS_PLUS = re.compile(r"\\mp(?![A-Za-z])|∓|-/\+")
+_WRAPPERS = re.compile(r"\\(?:begin|end)\{[A-Za-z*]+\}|\\\[|\\\]|\$|&")
+_IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+
+
+@dataclass(frozen=True)
+class _Statement:
+    """``target = expr`` from the answer: a joint (``joint`` its index) or a helper."""
+
+    target: sp.Symbol
+    expr: sp.Expr
+    text: str
+    joint: int | None
+    tol: float
+
+
+@dataclass(frozen=True)
+class IKAnswer:
+    """A read answer: its solutions (joint index → statement), helpers and ``±`` signs."""
+
+    solutions: tuple[dict[int, _Statement], ...]
+    helpers: tuple[_Statement, ...]
+    signs: tuple[sp.Symbol, ...]
+
+    @property
+    def symbols(self) -> set[sp.Symbol]:
+        """Every symbol the right-hand sides use."""
+        out: set[sp.Symbol] = set()
+        for st in (*self.helpers, *(s for sol in self.solutions for s in sol.values())):
+            out |= st.expr.free_symbols
+        return out
+
+
+def prepare_ik(pk: PreparedKey) -> PreparedKey:
+    """Derive the key's inverse kinematics once (and the pose of a numeric question)."""
+    robot, q = pk.robot, pk.key.question
+    ik = robot.inverse()
+    if ik.most is not None:
+        raise DHError(
+            f"{robot.name or 'this arm'} is a general 6R: its inverse kinematics is an "
+            "eigenproblem, not closed-form steps to grade"
+        )
+    pk.cache["ik"] = ik
+    table = pk.key.table
+    if q.pose is not None:
+        if len(q.pose) != len(robot.variables):
+            raise DHError(
+                f"question {q.spec!r}: {robot.name} has {len(robot.variables)} joints, "
+                f"got {len(q.pose)} values"
+            )
+        missing = [str(s) for s in table.constants if s not in table.value_map]
+        if missing:
+            raise DHError(
+                f"question {q.spec!r} needs numbers for {', '.join(missing)} (table values)"
+            )
+        pose = pose_sample(robot, q=np.array([q.pose]), values=table.value_map)
+        pk.cache["ik pose"] = pose
+        # the numeric solver and the key's branches at the pose are built here, once per
+        # worker, outside every student's time limit (the first build takes seconds)
+        at_pose = key_values(ik, pose.env, pose.size)
+        pk.cache["ik pose names"] = tuple(_numeric_names(robot, ik, pose, at_pose))
+    else:  # the key's branches compiled once, before the first answer's clock starts
+        sample = pose_sample(robot, values=table.value_map or None)
+        key_values(ik, sample.env, sample.size)
+        pk.cache["ik names"] = _reference_names(robot, ik)
+    pk.symbols = frozenset(set(table.constants) | set(pose_symbols()[:3, :]))
+    return pk
+
+
+# --- reading ------------------------------------------------------------------------------
+
+
+def _statements(text: str) -> list[str]:
+    if is_latex(text):
+        text = _WRAPPERS.sub(" ", text)
+        parts = re.split(r"\\\\|\n|;", text)
+    else:
+        parts = re.split(r"\n|;", text)
+    out = []
+    for part in (p.strip().strip(",") for p in parts):
+        if not part:
+            continue
+        pieces = _split_top(part, ",")
+        if len(pieces) > 1 and all("=" in p for p in pieces):
+            out += [p.strip() for p in pieces]
+        else:
+            out.append(part)
+    return out
+
+
+def _lhs_name(lhs: str) -> str:
+    name = latex_to_text(lhs) if is_latex(lhs) else lhs
+    name = flatten_subscripts(name).replace("{", "").replace("}", "").replace(" ", "")
+    return normalize_name(name) if name else name
+
+
+def _signed(rhs: str, latex: bool, signs: list[sp.Symbol]) -> str:
+    """``±`` as ``+ pmsignK *``: each is a sign σ_K = ±1 of its own."""
+
+    def sub(m: re.Match, sign: str) -> str:
+        if len(signs) >= _MAX_SIGNS:
+            raise UnreadableAnswer(f"the answer has more than {_MAX_SIGNS} signs ±")
+        signs.append(sp.Symbol(f"{_SIGN_NAME}{len(signs) + 1}", real=True))
+        times = r" \cdot " if latex else "*"
+        return f" {sign} {signs[-1].name}{times}"
+
+    rhs = _PLUS_MINUS.sub(lambda m: sub(m, "+"), rhs)
+    return _MINUS_PLUS.sub(lambda m: sub(m, "-"), rhs)
+
+
+def _tolerance(rhs: str, template: sp.Expr, literals: tuple) -> float:
+    """How far a value written with decimals may be from the exact one: one unit in the
+    last digit of the decimals that stand for the value (with at least 3 significant
+    digits; :func:`~dhsym.checking.judging.rounding.value_tolerance`: never a constant that a zero
+    factor removes or another cancels), in degrees when a degree sign is there."""
+    tol = max(ATOL, value_tolerance(template, literals))
+    if re.search(r"°|\\circ|\\degree", rhs):
+        tol = max(tol * np.pi / 180, ATOL)
+    return tol
+
+
+def read_ik_answer(answer: str | bytes, pk: PreparedKey, limits: AnswerLimits) -> IKAnswer:
+    """The statements of an answer (see the module text); refuses what it cannot read."""
+    text = read_text(answer, limits)
+    robot = pk.robot
+    variables = list(robot.variables)
+    lengths = set(pk.key.table.constants)
+    raw = _statements(text)
+    if len(raw) > 4 * len(variables) + 40:
+        raise UnreadableAnswer(f"the answer has {len(raw)} statements; at most a few per joint")
+    assignments: list[tuple[int, sp.Symbol, str, int | None]] = []
+    tuples: list[tuple[int, str]] = []
+    helpers_named: dict[str, sp.Symbol] = {}
+    for k, s in enumerate(raw):
+        if "=" not in s:
+            tuples.append((k, s))
+            continue
+        lhs, rhs = s.split("=", 1)
+        name = _lhs_name(lhs)
+        target = pk.names.symbol(name) if name else None
+        if target in variables:
+            assignments.append((k, target, rhs, variables.index(target)))
+        elif target in lengths:
+            raise UnreadableAnswer(f"{lhs.strip()!r} is a length of the robot, not an unknown")
+        elif name and _IDENTIFIER.match(name):
+            helper = helpers_named.setdefault(name, sp.Symbol(name, real=True))
+            assignments.append((k, helper, rhs, None))
+        else:
+            raise UnreadableAnswer(f"cannot read {lhs.strip()!r} as the name of a joint variable")
+    P = pose_symbols()
+    extra = [(str(P[i, j]), P[i, j]) for i in range(3) for j in range(4)]
+    extra += list(helpers_named.items())
+    signs: list[sp.Symbol] = []
+    solutions: list[dict[int, _Statement]] = []
+    helpers: list[_Statement] = []
+
+    def parse(rhs: str, where: str) -> tuple[sp.Expr, str, float]:
+        signed = _signed(rhs, is_latex(rhs), signs)
+        ctx = pk.names.extended([*extra, *((s.name, s) for s in signs)])
+        expr = parse_cell(signed, ctx, limits, where)
+        template, literals = cell_literals(signed, ctx, limits)
+        return expr, rhs.strip(), _tolerance(rhs, template, literals)
+
+    for k, target, rhs, joint in assignments:
+        expr, shown, tol = parse(rhs, f"statement {k + 1}")
+        st = _Statement(target, expr, shown, joint, tol)
+        if joint is None:
+            helpers.append(st)
+        else:
+            if not solutions or joint in solutions[-1]:
+                solutions.append({})
+            solutions[-1][joint] = st
+    for k, s in tuples:
+        cells = _split_top(s.strip().strip("()[]"), ",")
+        if len(cells) != len(variables):
+            raise UnreadableAnswer(
+                f"statement {k + 1} ({s.strip()[:40]!r}) is not 'name = value' and does not "
+                f"list the {len(variables)} joint values in order"
+            )
+        sol = {}
+        for j, c in enumerate(cells):
+            expr, shown, tol = parse(c, f"statement {k + 1}, value {j + 1}")
+            sol[j] = _Statement(variables[j], expr, shown, j, tol)
+        solutions.append(sol)
+    if not solutions:
+        raise UnreadableAnswer("the answer gives no joint value (write e.g. theta1 = …)")
+    return IKAnswer(tuple(solutions), tuple(helpers), tuple(signs))
+
+
+# --- numbers ---------------------------------------------------------------------------------
+
+
+def _values(
+    ans: IKAnswer, sample: PoseSample, variables: list[sp.Symbol]
+) -> tuple[np.ndarray, np.ndarray, list[tuple[int, dict]]]:
+    """The answer's joint values ``(A, size, n)``: one row per solution and choice of signs;
+    the tolerance per row and joint; which solution and signs each row is."""
+    combos = [
+        dict(zip(ans.signs, choice, strict=True))
+        for choice in (branch_signs_n(len(ans.signs)) if ans.signs else [()])
+    ]
+    n, size = len(variables), sample.size
+    rows, tols, meta = [], [], []
+    for s_index, sol in enumerate(ans.solutions):
+        for combo in combos:
+            local = dict(sample.env)
+            for v in variables:
+                local.pop(v, None)  # the answer's own joint values, not the sample's
+            for sgn, value in combo.items():
+                local[sgn] = np.full(size, float(value))
+            pending = [*ans.helpers, *sol.values()]
+            memo: dict = {}
+            while pending:
+                ready = [st for st in pending if st.expr.free_symbols <= set(local)]
+                if not ready:
+                    break
+                for st in ready:
+                    try:
+                        local[st.target] = evaluate(st.expr, local, size, memo)
+                    except (EvaluationError, OverflowError, TypeError, ValueError):
+                        local[st.target] = np.full(size, np.nan)
+                    pending.remove(st)
+            row = np.full((size, n), np.nan)
+            tol = np.full(n, ATOL)
+            for j, st in sol.items():
+                if st.target in local:
+                    row[:, j] = local[st.target]
+                tol[j] = st.tol
+            rows.append(row)
+            tols.append(tol)
+            meta.append((s_index, combo))
+    return np.array(rows), np.array(tols), meta
+
+
+def _circular(ans: IKAnswer, given: set[sp.Symbol]) -> list[str]:
+    """The joint values of the answer that no order of its statements computes from the
+    ``given`` symbols (pose, lengths, signs): ``theta1 = theta1`` and its longer circles."""
+    out: list[str] = []
+    for sol in ans.solutions:
+        known = set(given)
+        pending = [*ans.helpers, *sol.values()]
+        while True:
+            ready = [st for st in pending if st.expr.free_symbols <= known]
+            if not ready:
+                break
+            known |= {st.target for st in ready}
+            pending = [st for st in pending if st not in ready]
+        out += [str(st.target) for st in sol.values() if st.target not in known]
+    return sorted(set(out))
+
+
+def branch_signs_n(count: int) -> np.ndarray:
+    """Every choice of ``count`` signs, ``+1`` first (as :func:`branch_signs`)."""
+    import itertools
+
+    return np.array(list(itertools.product([1, -1], repeat=count)), dtype=float)
+
+
+def _reaches(robot: Robot, q: np.ndarray, sample: PoseSample, position: bool) -> bool:
+    """True when the joint values ``q`` ``(size, n)`` reach the sample's poses (or points)."""
+    env = dict(sample.env)
+    for k, v in enumerate(robot.variables):
+        env[v] = q[:, k]
+    if np.isnan(q).any():
+        return False
+    T = frames(robot.table, env, sample.size)[:, -1]
+    P = pose_symbols()
+    goal = np.stack([np.stack([sample.env[P[i, j]] for j in range(4)], -1) for i in range(3)], -2)
+    got = T[:, :3, :]
+    if position:
+        got, goal = got[:, :, 3], goal[:, :, 3]
+    return bool(np.allclose(got, goal, atol=TOLERANCES.reach_atol))
+
+
+def _reference_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
+    """Each key branch named as the IK results name it (``"elbow up"``, ``"right arm"``),
+    read at the examples' configuration (:func:`~dhsym.explain.inverse.default_configuration`)
+    with the table's lengths (1 where it gives none), for questions without a pose."""
+    from dhsym.explain.inverse import default_configuration
+    from dhsym.kinematics.robot import Robot
+
+    table = robot.table
+    values = {s: table.value_map.get(s, 1.0) for s in table.constants}
+    try:
+        named = Robot(table.with_values(values))
+        ref = pose_sample(named, q=np.array([default_configuration(named)]), values=values)
+        return tuple(_numeric_names(named, ik, ref, key_values(ik, ref.env, ref.size)))
+    except (DHError, ValueError, ArithmeticError):
+        return tuple(f"branch {k + 1}" for k in range(2 ** len(ik.branches)))
+
+
+def _numeric_names(
+    robot: Robot, ik: InverseKinematics, sample: PoseSample, key: np.ndarray
+) -> list[str]:
+    """Each key branch named as the numeric solver names it at the question's pose."""
+    T = frames(robot.table, sample.env, 1)[0, -1]
+    position_only = not ik.decoupling.wrist
+    sol = robot.ik(T[:3, 3] if position_only else T)
+    if not isinstance(sol, IKSolution):  # one pose gives one solution, not a batch
+        raise TypeError(f"robot.ik of one pose returned {type(sol).__name__}")
+    names = []
+    for k in range(len(key)):
+        found = [
+            name
+            for name, q in zip(sol.branches, sol.q, strict=True)
+            if same_joints(key[k], q[None, :], sample.revolute, TOLERANCES.reach_atol)
+        ]
+        names.append(found[0] if found else f"branch {k + 1}")
+    return names
+
+
+# --- the check --------------------------------------------------------------------------------
+
+
+def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
+    """The question's pose; or random poses, with the table's lengths when the answer writes
+    none of them as symbols (it used their numbers)."""
+    if "ik pose" in pk.cache:
+        return pk.cache["ik pose"]
+    table = pk.key.table
+    valued = set(table.constants) <= set(table.value_map) and not (
+        ans.symbols & set(table.constants)
+    )
+    values = table.value_map if valued else None
+    if fresh:
+        return pose_sample(pk.robot, values=values)
+    key = ("ik sample", valued)
+    if key not in pk.cache:
+        pk.cache[key] = pose_sample(pk.robot, values=values)
+    return pk.cache[key]
+
+
+def _entries(
+    pk: PreparedKey,
+    ans: IKAnswer,
+    ik: InverseKinematics,
+    key: np.ndarray,
+    answers: np.ndarray,
+    tols: np.ndarray,
+    meta: list,
+    revolute: np.ndarray,
+) -> tuple[EntryResult, ...]:
+    """One entry per solution and joint (row: the solution, column: the joint): right when
+    the joint agrees, for every choice of ``±``, with the nearest branch of the key."""
+    nota = pk.robot.notation
+    variables = list(pk.robot.variables)
+    signs = branch_signs(ik)
+    steps = {st.lhs: st for st in ik.steps}
+    out = []
+    for s_index, sol in enumerate(ans.solutions):
+        rows = [r for r, (s, _) in enumerate(meta) if s == s_index]
+        right = np.ones(len(variables), dtype=bool)
+        nearest = 0
+        for r in rows:
+            with np.errstate(invalid="ignore"):
+                ok = joint_distance(answers[r][None], key, revolute) <= tols[r]  # (K, size, n)
+            k = int(np.argmax(ok.sum(axis=(1, 2))))
+            nearest = k if r == rows[0] else nearest
+            right &= ok[k].all(axis=0)
+        sub = {b.symbol: int(signs[nearest, j]) for j, b in enumerate(ik.branches)}
+        for j, v in enumerate(variables):
+            st = sol.get(j)
+            expected = steps[v].rhs.xreplace(sub) if v in steps else sp.nan
+            good = st is not None and bool(right[j])
+            shown = st is not None and not good
+            out.append(
+                EntryResult(
+                    s_index + 1,
+                    j + 1,
+                    good,
+                    nota.text(st.expr) if st and shown else (st.text if st else ""),
+                    f"{nota.text(v)} = {nota.text(expected)}",
+                    nota.latex(st.expr) if st and shown else "",
+                    f"{nota.latex(v)} = {nota.latex(expected)}",
+                    "numeric" if good else "",
+                )
+            )
+    return tuple(out)
+
+
+def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
+    """Check an inverse-kinematics answer against the key (see the module text)."""
+    key, q = pk.key, pk.key.question
+    ik = pk.cache["ik"]
+    robot = pk.robot
+    nota = robot.notation
+    variables = list(robot.variables)
+    try:
+        ans = read_ik_answer(answer, pk, limits)
+    except ParseError as err:
+        raise ParseError(str(err)) from None
+    known = set(pk.symbols) | set(variables) | {st.target for st in ans.helpers} | set(ans.signs)
+    unknown = sorted(ans.symbols - known, key=sp.default_sort_key)
+    missing = sorted(
+        {str(variables[j]) for sol in ans.solutions for j in range(len(variables)) if j not in sol}
+    )
+    if unknown or missing:
+        parts = []
+        if missing:
+            parts.append(f"The answer does not give {', '.join(missing)}.")
+        if unknown:
+            used = ", ".join(map(str, unknown))
+            parts.append(
+                f"The answer uses {used}, which is neither a pose symbol (n_x … a_z, p_x, "
+                "p_y, p_z), a length of this robot, a joint variable nor defined in the answer."
+            )
+        kind = "unknown_symbol" if unknown else "missing_joint"
+        d = Diagnosis(kind, "unknown symbols" if unknown else "joint missing", " ".join(parts))
+        return CheckResult(q.spec, Verdict.INCORRECT, " ".join(parts), diagnoses=(d,), key=key.name)
+    circular = _circular(ans, set(pk.symbols) | set(ans.signs))
+    if circular:
+        text = (
+            f"{', '.join(circular)} cannot be computed from the pose: each is defined through "
+            "itself or through a value that needs it (a joint value must come from p, n, s, "
+            "a and the lengths)."
+        )
+        d = Diagnosis("circular", "defined through itself", text)
+        return CheckResult(q.spec, Verdict.INCORRECT, text, diagnoses=(d,), key=key.name)
+    position = not ik.decoupling.wrist
+    sample = _sample(pk, ans, fresh=True)
+    result = _judge(pk, ans, ik, sample, position)
+    if result[0]:
+        return _correct(pk, ans, ik, sample, result, position)
+    dsample = _sample(pk, ans, fresh=False)
+    key_d = key_values(ik, dsample.env, dsample.size)
+    answers, tols, meta = _values(ans, dsample, variables)
+    m = _match(key_d, answers, tols, dsample, robot, position)
+    wrong = m.wrong
+    valid_k = [k for k in range(len(key_d)) if not np.isnan(key_d[k]).any()]
+    names = pk.cache["ik pose names"] if q.pose is not None else pk.cache["ik names"]
+    case = IKCase(
+        ik,
+        dsample,
+        key_d,
+        answers,
+        tuple(wrong),
+        tuple(int(k) for k in np.flatnonzero(np.asarray(m.hits.any(axis=0)).all(axis=1))),
+        names,
+        tols.max(axis=0) if len(tols) else np.full(len(variables), ATOL),
+        q.every,
+        nota,
+        pk.cache,
+    )
+    found = []
+    for mistake in IK_MISTAKES:
+        check_time()  # the answer's deadline, before each mistake's search
+        found.append((mistake.kind, mistake.explain_ik(case)))
+    diagnoses = tuple(d for kind, d in found if d is not None and kind != "lost_branch")
+    if wrong and not diagnoses:
+        diagnoses = (
+            Diagnosis(
+                "unexplained",
+                "not a solution",
+                "These joint values do not reach the pose (the forward kinematics of the "
+                "answer misses it) and none of the usual mistakes explains it: compare each "
+                "joint with the derivation, step by step.",
+            ),
+        )
+    diagnoses += tuple(d for kind, d in found if d is not None and kind == "lost_branch")
+    if not diagnoses:  # all right, but not all of them (seen on the fresh draw)
+        diagnoses = (
+            Diagnosis(
+                "lost_branch",
+                "a branch is lost",
+                f"The answer gives {len(case.matched)} of the {len(valid_k)} solutions.",
+            ),
+        )
+    entries = _entries(pk, ans, ik, key_d, answers, tols, meta, dsample.revolute)
+    what = (
+        "Not every solution is given"
+        if not wrong
+        else f"{len(wrong)} of {len(answers)} answers (solutions and choices of ±) are wrong"
+        if len(answers) > 1
+        else "The answer is not a solution"
+    )
+    first = diagnoses[0]
+    message = f"{what}. Most likely: {first.title}. {first.detail}"
+    return CheckResult(q.spec, Verdict.INCORRECT, message, entries, diagnoses, key=key.name)
+
+
+def _close(a: np.ndarray, b: np.ndarray, revolute: np.ndarray, tol: np.ndarray) -> np.ndarray:
+    """Per point: ``a`` and ``b`` (``(size, n)``) agree in every joint (angles mod 2π)."""
+    d = joint_distance(a, b, revolute)
+    scale = np.where(revolute, 1.0, 1.0 + np.abs(np.nan_to_num(b)))
+    with np.errstate(invalid="ignore"):
+        return np.all(d <= tol * scale, axis=-1)
+
+
+@dataclass(frozen=True, eq=False)
+class _Match:
+    """How the answer's rows compare with the key's branches, point by point.
+
+    ``hits[a, k, p]``: row ``a`` is branch ``k`` at point ``p``; ``branch[a]`` the branch a
+    row is at every point (None: none, or it changes with the pose); ``wrong`` the rows that
+    are no solution at some point; ``covered`` True when every distinct branch is given at
+    every point.
+    """
+
+    hits: np.ndarray
+    branch: dict[int, int | None]
+    wrong: list[int]
+    covered: bool
+
+
+def _match(
+    key: np.ndarray,
+    answers: np.ndarray,
+    tols: np.ndarray,
+    sample: PoseSample,
+    robot: Robot,
+    position: bool,
+) -> _Match:
+    """Each answer row against every key branch at every point; a row that is no branch
+    but whose forward kinematics reaches the pose at a point is a solution there."""
+    rev = sample.revolute
+    hits = np.array(
+        [
+            [_close(a_row, k_row, rev, t) for k_row in key]
+            for a_row, t in zip(answers, tols, strict=True)
+        ]
+    )
+    hits = hits.reshape(len(answers), len(key), sample.size)
+    branch: dict[int, int | None] = {}
+    wrong = []
+    for a in range(len(answers)):
+        every = np.flatnonzero(hits[a].all(axis=1))
+        if len(every):
+            branch[a] = int(every[0])
+        elif hits[a].any(axis=0).all() or (
+            tols[a].max() <= ATOL and _reaches(robot, answers[a], sample, position)
+        ):
+            branch[a] = None  # a solution at every pose, of a branch that changes with it
+        else:
+            wrong.append(a)
+    same = np.array([[_close(k1, k2, rev, np.full(len(rev), ATOL)) for k2 in key] for k1 in key])
+    real = ~np.isnan(key).any(axis=2)  # (K, size)
+    given = np.asarray(hits.any(axis=0))  # (K, size): a branch the answer gives at that point
+    covered = bool(
+        all(
+            (same[k, :, p] & given[:, p]).any() or not real[k, p]
+            for k in range(len(key))
+            for p in range(sample.size)
+        )
+    )
+    return _Match(hits, branch, wrong, covered)
+
+
+def _judge(
+    pk: PreparedKey, ans: IKAnswer, ik: InverseKinematics, sample: PoseSample, position: bool
+) -> tuple[bool, _Match, list]:
+    variables = list(pk.robot.variables)
+    key = key_values(ik, sample.env, sample.size)
+    answers, tols, meta = _values(ans, sample, variables)
+    m = _match(key, answers, tols, sample, pk.robot, position)
+    right = not m.wrong and (m.covered or not pk.key.question.every)
+    return right, m, meta
+
+
+def _correct(
+    pk: PreparedKey,
+    ans: IKAnswer,
+    ik: InverseKinematics,
+    sample: PoseSample,
+    result: tuple,
+    position: bool,
+) -> CheckResult:
+    _, m, meta = result
+    matched = m.branch
+    q = pk.key.question
+    ks = sorted({k for k in matched.values() if k is not None})
+    if q.pose is not None:
+        names = list(pk.cache["ik pose names"])  # set by prepare_ik
+    else:
+        names = list(pk.cache["ik names"])  # set by prepare_ik
+    if q.every:
+        message = f"Right: every solution is given ({len(ks)} branches)."
+    elif len(ks) == 1:
+        message = f"Right: the branch {names[ks[0]]}."
+    elif ks:
+        message = (
+            "Right: each choice of the signs is a solution ("
+            + "; ".join(names[k] for k in ks)
+            + ")."
+        )
+    else:
+        message = "Right: the joint values reach the pose."
+    key = key_values(ik, sample.env, sample.size)
+    answers, tols, _ = _values(ans, sample, list(pk.robot.variables))
+    entries = _entries(pk, ans, ik, key, answers, tols, meta, sample.revolute)
+    return CheckResult(q.spec, Verdict.CORRECT, message, entries, key=pk.key.name)

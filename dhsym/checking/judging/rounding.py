@@ -1,0 +1,336 @@
+r"""How much rounding of decimals an answer may carry: the instructor's rule, and the test.
+
+A student who writes ``0.7071`` for :math:`\sqrt2/2` or ``cos(θ1 + 1.5708)`` for
+:math:`-\sin θ_1` is right *up to rounding*.  :class:`Rounding` says how much is accepted:
+
+``digits`` (the default, ``digits=3``)
+    A decimal written with at least that many significant digits may be the exact value
+    rounded or truncated to the digits written (``1.5708`` and ``1.5707`` for π/2, not
+    ``1.5709``); a shorter decimal must be exact (``0.02`` for 0.0203 is wrong, ``0.5``
+    for 1/2 is right).
+``abs=<t>`` / ``rel=<t>``
+    Any answer with decimals whose value is within ``t`` of the key (``rel``: ``t`` times
+    the largest size of the entry) at every sample point.
+``off``
+    Decimals must be exact.
+
+Only the numbers that stand for the answer's value count (:func:`standing`): a decimal
+removed by a zero factor (``0*100.0``) or cancelled by another (``100.1 - 100.0``, which
+stands for ``0.1``, one significant digit) gives no rounding room.
+
+The test (:func:`rounding_accepts`) works on the answer as written: each decimal literal
+is a placeholder (:func:`dhsym.model.parsing.parse_expression` with ``literal=``), and at every
+sample point the difference from the key must be what moving each decimal within its
+allowed interval can make (each decimal moved alone through its interval, the change
+modelled by the parabola through its ends and its written value; the changes added).
+
+Examples
+--------
+>>> Rounding.parse("digits=4"), Rounding.parse({"abs": 0.001}), Rounding.parse(None)
+(Rounding('digits=4'), Rounding('abs=0.001'), Rounding('digits=3'))
+>>> decimal_places("0.0203"), decimal_places("1.5708"), decimal_places("7.071e-1")
+((3, 0.0001), (5, 0.0001), (4, 0.0001))
+>>> Rounding.parse("off").describe(0)
+'decimals must be exact'
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+import sympy as sp
+
+from dhsym.errors import DHError
+
+from ._sampled_frames import EvaluationError, evaluate
+from .tolerances import TOLERANCES
+
+__all__ = [
+    "DEFAULT_ROUNDING",
+    "Literal",
+    "Rounding",
+    "decimal_places",
+    "rounding_accepts",
+    "standing",
+    "value_tolerance",
+]
+
+_MODES = ("digits", "abs", "rel", "off")
+# Matched on the stripped text; no two neighbouring parts can take the same characters.
+_SPEC = re.compile(r"(digits|abs|rel)\s*(?:[=:]\s*)?([0-9.eE+-]+)|([0-9]+)\s*digits?")
+_LITERAL = re.compile(r"^(?P<whole>[0-9]*)(?:\.(?P<frac>[0-9]*))?(?:[eE](?P<exp>[+-]?[0-9]+))?$")
+
+
+def decimal_places(text: str) -> tuple[int, float]:
+    """(significant digits written, one unit in the last digit) of a decimal literal.
+
+    Leading zeros do not count, trailing ones do (``1.50`` has 3).  An integer literal
+    (no point, no exponent) is exact: ``(0, 0.0)``.
+    """
+    m = _LITERAL.match(text.strip())
+    if m is None or (m["frac"] is None and m["exp"] is None):
+        return 0, 0.0
+    frac, exp = m["frac"] or "", int(m["exp"] or 0)
+    digits = len((m["whole"] + frac).lstrip("0"))
+    return digits, 10.0 ** (exp - len(frac))
+
+
+@dataclass(frozen=True)
+class Literal:
+    """A numeric literal of an answer: its placeholder symbol, text and exact value."""
+
+    symbol: sp.Symbol
+    text: str
+    value: sp.Rational
+
+    @property
+    def digits(self) -> int:
+        """Significant digits written (0 for an integer)."""
+        return decimal_places(self.text)[0]
+
+    @property
+    def unit(self) -> float:
+        """One unit in the last digit written (0 for an integer)."""
+        return decimal_places(self.text)[1]
+
+
+@dataclass(frozen=True)
+class Rounding:
+    """The accepted rounding: ``mode`` is ``digits``, ``abs``, ``rel`` or ``off``."""
+
+    mode: str = "digits"
+    digits: int = 3
+    tolerance: float = 0.0
+
+    def __post_init__(self) -> None:
+        if self.mode not in _MODES:
+            raise DHError(f"unknown rounding mode {self.mode!r}: expected one of {_MODES}")
+        if self.mode == "digits" and not (type(self.digits) is int and 1 <= self.digits <= 40):
+            raise DHError(f"rounding digits must be 1 … 40, got {self.digits!r}")
+        if self.mode in ("abs", "rel") and not (0 < self.tolerance < 1e6):
+            raise DHError(f"rounding tolerance must be a positive number, got {self.tolerance!r}")
+
+    def __repr__(self) -> str:
+        return f"Rounding({str(self)!r})"
+
+    def __str__(self) -> str:
+        if self.mode == "digits":
+            return f"digits={self.digits}"
+        return "off" if self.mode == "off" else f"{self.mode}={self.tolerance:g}"
+
+    @classmethod
+    def parse(cls, spec: object) -> Rounding:
+        """Read ``digits=4``, ``4 digits``, ``abs=1e-3``, ``rel=0.001``, ``off`` (or
+        ``exact``, ``false``), a mapping ``{digits: 4}`` / ``{abs: 0.001}``, a Rounding, or
+        None for the default.  Anything else is a :class:`~dhsym.errors.DHError`."""
+        if spec is None or isinstance(spec, Rounding):
+            return spec or DEFAULT_ROUNDING
+        if spec is False or (isinstance(spec, str) and spec.strip().lower() in _OFF):
+            return cls("off")
+        if isinstance(spec, Mapping) and len(spec) == 1:
+            ((mode, value),) = spec.items()
+            spec = f"{mode}={value}"
+        m = _SPEC.fullmatch(spec.strip()[:100]) if isinstance(spec, str) else None
+        if m is None:
+            raise DHError(f"unknown rounding {spec!r}: expected digits=N, abs=T, rel=T or off")
+        try:
+            if m[3] is not None or m[1] == "digits":
+                return cls("digits", int(m[3] or m[2]))
+            return cls(m[1], tolerance=float(m[2]))
+        except ValueError:
+            raise DHError(f"unknown rounding {spec!r}: N is a whole number, T a number") from None
+
+    def allowed(self, literal: Literal) -> tuple[float, float]:
+        """How far the true value may lie from a decimal as written: (below, above).
+
+        Rounded: half a unit either way; truncated: up to one unit above (a literal has no
+        sign of its own, so truncation always dropped digits of a larger magnitude).
+        """
+        digits, unit = decimal_places(literal.text)
+        if self.mode != "digits" or digits < self.digits:
+            return 0.0, 0.0
+        return -unit / 2, unit
+
+    def describe(self, digits: int) -> str:
+        """How an entry was accepted, for feedback: ``to 4 significant digits`` …"""
+        if self.mode == "digits":
+            return f"to {digits} significant digit{'s' * (digits != 1)}"
+        if self.mode == "abs":
+            return f"within an absolute tolerance of {self.tolerance:g}"
+        if self.mode == "rel":
+            return f"within a relative tolerance of {self.tolerance:g}"
+        return "decimals must be exact"
+
+
+_OFF = frozenset({"off", "exact", "none", "false", "no"})
+DEFAULT_ROUNDING = Rounding()
+
+
+def _literal_text(value: sp.Rational, unit: float) -> str:
+    """A decimal text of ``|value|`` written to ``unit`` (``decimal_places`` reads it back)."""
+    places = round(-math.log10(unit))
+    if places >= 0:
+        return f"{float(abs(value)):.{places}f}"
+    return f"{round(float(abs(value)) / unit)}e{-places}"  # an integer count of units
+
+
+def standing(
+    template: sp.Expr, literals: tuple[Literal, ...]
+) -> tuple[sp.Expr, tuple[Literal, ...]]:
+    """The answer with only the literals that stand for its value (the tolerance policy).
+
+    A literal whose value is zero is an exact zero, and a literal that a zero factor
+    removes (``0*100.0``) is gone; constants of one sum that cancel (``100.1 - 100.0``,
+    ``100.1 x - 100.0 x``) become one literal, their sum, written to the coarsest of their
+    units (here ``0.1``: one significant digit).  Tolerances then come from what is left.
+
+    >>> a, b, c = (Literal(sp.Dummy(n), t, sp.Rational(t)) for n, t in
+    ...            (("a", "100.1"), ("b", "100.0"), ("c", "0.7071")))
+    >>> x = sp.Symbol("x")
+    >>> t, lits = standing(x + a.symbol - b.symbol + 0 * c.symbol, (a, b, c))
+    >>> [(lit.text, lit.digits) for lit in lits]
+    [('0.1', 1)]
+    """
+    zeros = {lit.symbol: sp.S.Zero for lit in literals if lit.value == 0}
+    template = template.xreplace(zeros) if zeros else template
+    by_symbol = {lit.symbol: lit for lit in literals if lit.symbol not in zeros}
+    merged: list[Literal] = []
+
+    def merge(terms: tuple[sp.Expr, ...]) -> list[sp.Expr]:
+        groups: dict[sp.Expr, list[tuple[sp.Expr, sp.Rational, Literal]]] = {}
+        for term in terms:
+            rest, lit = term.as_independent(*by_symbol, as_Add=False)
+            coeff, factor = rest.as_coeff_Mul()
+            if lit in by_symbol and by_symbol[lit].unit > 0:
+                groups.setdefault(factor, []).append((term, coeff, by_symbol[lit]))
+        out = list(terms)
+        for factor, members in groups.items():
+            signs = {sp.sign(c * m.value) for _, c, m in members}
+            if len(members) < 2 or not {1, -1} <= signs:
+                continue  # only constants that cancel are merged
+            total = sum((c * m.value for _, c, m in members), sp.S.Zero)
+            unit = max(float(abs(c)) * m.unit for _, c, m in members)
+            for term, _, _ in members:
+                out.remove(term)
+            if total != 0:
+                lit = Literal(sp.Dummy(f"m{len(merged)}", real=True), "", abs(total))
+                lit = Literal(lit.symbol, _literal_text(lit.value, unit), lit.value)
+                merged.append(lit)
+                out.append(sp.sign(total) * factor * lit.symbol)
+        return out
+
+    def rebuild(e: sp.Expr) -> sp.Expr:
+        if e.is_Atom:
+            return e
+        args = tuple(rebuild(a) for a in e.args)
+        if e.is_Add:
+            return sp.Add(*merge(args))
+        return e.func(*args) if args != e.args else e
+
+    template = rebuild(template)
+    present = template.free_symbols
+    kept = tuple(lit for lit in (*by_symbol.values(), *merged) if lit.symbol in present)
+    return template, kept
+
+
+def value_tolerance(template: sp.Expr, literals: tuple[Literal, ...], digits: int = 3) -> float:
+    """One unit in the last digit of the finest decimal that stands for the value (with at
+    least ``digits`` significant digits), or 0: how far an inverse-kinematics value written
+    with decimals may be from the exact one.
+
+    >>> lit = Literal(sp.Dummy("n"), "380.0e-3", sp.Rational(38, 100))
+    >>> value_tolerance(lit.symbol, (lit,))
+    0.0001
+    """
+    _, kept = standing(template, literals)
+    units = [lit.unit for lit in kept if lit.unit > 0 and lit.digits >= digits]
+    return max(units, default=0.0)
+
+
+def _at(template: sp.Expr, env: Mapping, size: int, subs: Mapping[sp.Symbol, float]) -> np.ndarray:
+    values = {**env, **{s: np.asarray(float(v)) for s, v in subs.items()}}
+    try:
+        return evaluate(template, values, size)
+    except (EvaluationError, OverflowError, TypeError, ValueError):
+        return np.full(size, np.nan)
+
+
+def _quadratic_range(
+    below: float, above: float, y_below: np.ndarray, y_above: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Range over ``[below, above]`` of the parabola through ``(below, y_below)``, ``(0, 0)``
+    and ``(above, y_above)``: the change of an entry as one decimal moves in its interval
+    (a maximum inside the interval counts, as for ``sin 1.57``).
+
+    >>> lo, hi = _quadratic_range(-1.0, 1.0, np.array([1.0]), np.array([1.0]))
+    >>> float(lo[0]), float(hi[0])
+    (0.0, 1.0)
+    """
+    # y = b t + c t²: two equations, one for each end
+    det = below * above * (above - below)
+    b = (y_below * above**2 - y_above * below**2) / det
+    c = (y_above * below - y_below * above) / det
+    with np.errstate(all="ignore"):
+        vertex = np.where(c != 0, -b / (2 * c), 0.0)
+    inside = (vertex > below) & (vertex < above)
+    y_vertex = np.where(inside, b * vertex + c * vertex**2, 0.0)
+    lo = np.minimum(np.minimum(y_below, y_above), np.minimum(y_vertex, 0.0))
+    hi = np.maximum(np.maximum(y_below, y_above), np.maximum(y_vertex, 0.0))
+    return lo, hi
+
+
+def rounding_accepts(
+    rounding: Rounding,
+    template: sp.Expr,
+    literals: tuple[Literal, ...],
+    env: Mapping,
+    size: int,
+    key: np.ndarray,
+) -> str | None:
+    """How the answer is right up to rounding (``to 4 significant digits`` …), or None.
+
+    ``template`` is the answer with its literals as placeholders, ``env`` the sample
+    (symbol → values at ``size`` points) and ``key`` the key's values there.
+    """
+    template, literals = standing(template, literals)
+    decimals = [lit for lit in literals if decimal_places(lit.text)[1] > 0]
+    if rounding.mode == "off" or not decimals:
+        return None
+    written = {lit.symbol: lit.value for lit in literals}
+    answer = _at(template, env, size, written)
+    with np.errstate(all="ignore"):
+        diff = key - answer
+        if not (np.isfinite(answer).all() and np.isfinite(key).all()):
+            return None
+        room = 1 + TOLERANCES.agree_rtol
+        if rounding.mode == "abs":
+            ok = np.abs(diff) <= rounding.tolerance * room
+            return rounding.describe(0) if ok.all() else None
+        if rounding.mode == "rel":
+            ok = np.abs(diff) <= rounding.tolerance * float(np.abs(key).max()) * room
+            return rounding.describe(0) if ok.all() else None
+        low = high = np.zeros(size)
+        used: list[int] = []
+        for lit in decimals:
+            below, above = rounding.allowed(lit)
+            if below == above == 0:
+                continue
+            ends = [
+                _at(template, env, size, {**written, lit.symbol: float(lit.value) + d}) - answer
+                for d in (below, above)
+            ]
+            if not all(np.isfinite(e).all() for e in ends):
+                return None
+            lo, hi = _quadratic_range(below, above, *ends)
+            low, high = low + lo, high + hi
+            if (hi - lo).max() > 0:
+                used.append(lit.digits)
+        slack = TOLERANCES.agree_rtol * (1 + np.abs(key)) + TOLERANCES.rounding_margin * (
+            high - low
+        )
+        ok = (diff >= low - slack) & (diff <= high + slack)
+    return rounding.describe(min(used)) if used and ok.all() else None

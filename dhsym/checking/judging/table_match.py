@@ -1,0 +1,469 @@
+"""Judging a DH table: does it describe the same robot as the key?
+
+Two tables describe the same robot when, at every configuration, their joint
+axes are the same lines in space (up to where frame 0 is put) and the tool
+frames agree.  The DH freedoms are allowed: a z axis reversed (that joint's
+variable changes sign), x0 chosen differently or frame 0 moved along z0 (a
+constant base transform about/along z0), another common normal between parallel
+axes (d values shift), and another tool frame when the question allows it.
+
+Symbols stand for themselves: an answer that writes symbols is judged with one random
+value per symbol name (:func:`symbolic_values`), so ``d4`` is never ``a2`` because a key
+gives both the same number, and joint variables are matched by position (θ2 in row 1
+is never θ1).  The key's numbers judge only an answer written in numbers, and serve
+the diagnosis.
+
+The check is numeric (:mod:`dhsym.kinematics.numeric`, the core's link words):
+frame 0 of the answer is matched to the key's from the joint axes at the zero
+configuration, then joint by joint at random configurations the axes are
+compared and each joint's sign found; the first joint whose axis is elsewhere is
+where the geometry diverges.
+
+Examples
+--------
+>>> from dhsym import load_table
+>>> from dhsym.model.table import DHRow, DHTable
+>>> key = load_table("planar2r")
+>>> alt = DHTable.from_rows([DHRow.revolute("theta1 - 90", a="a1"),
+...                          DHRow.revolute("theta2", a="a2")], angles="deg")
+>>> m = compare_tables(key, alt)
+>>> m.same_robot, m.differences
+(True, ('x0 rotated by 90° about z0',))
+>>> compare_tables(key, DHTable.from_rows([DHRow.revolute("theta1", a="a2"),
+...                                        DHRow.revolute("theta2", a="a2")])).diverges_at
+2
+"""
+
+from __future__ import annotations
+
+import math
+import zlib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+import sympy as sp
+
+from dhsym.kinematics.numeric import elementary_stack, numeric_rigid_inverse
+from dhsym.model.table import Convention, DHRow, DHTable, JointType
+
+from ..reading.limits import check_time
+from ._sampled_frames import EvaluationError, evaluate, frames
+from .tolerances import TOLERANCES
+
+__all__ = ["Chain", "TableMatch", "compare_tables", "same_cells", "symbolic_values"]
+
+_CONFIGS = 6
+
+
+@dataclass(frozen=True)
+class Chain:
+    """Rows and a convention without the checks of :class:`~dhsym.model.table.DHTable`.
+
+    Mistake variants (a table read in the wrong unit, rows shifted) need not be
+    valid tables; :func:`compare_tables` takes either.
+    """
+
+    rows: tuple[DHRow, ...]
+    convention: Convention
+
+    @property
+    def n(self) -> int:
+        """Number of rows."""
+        return len(self.rows)
+
+    @classmethod
+    def of(cls, table: DHTable | Chain) -> Chain:
+        """The chain of a table."""
+        return cls(tuple(table.rows), Convention(table.convention))
+
+
+@dataclass(frozen=True)
+class TableMatch:
+    """How an answer table relates to the key.
+
+    ``diverges_at`` is the first joint (1-based) whose axis differs, ``n + 1``
+    for the tool frame, 0 when the number or kinds of joints differ.
+    """
+
+    same_robot: bool
+    same_table: bool = False
+    diverges_at: int | None = None
+    differences: tuple[str, ...] = ()
+    reason: str = ""
+    reversed_joints: tuple[int, ...] = ()
+    tool_differs: bool = False
+    base_on_axis: bool = True
+    details: dict = field(default_factory=dict, compare=False, repr=False)
+
+
+def _joints(chain: Chain) -> list[tuple[int, JointType, sp.Symbol, float]]:
+    """(row, kind, variable, sign of the variable in its entry) of every joint."""
+    out = []
+    for i, r in enumerate(chain.rows, 1):
+        if r.variable is None or r.variable_field is None:
+            continue
+        slope = getattr(r, r.variable_field).as_coefficients_dict().get(r.variable, 1)
+        sign = -1.0 if (slope.is_number and slope.is_negative) else 1.0
+        out.append((i, r.joint, r.variable, sign))
+    return out
+
+
+def _variable(row: DHRow) -> sp.Symbol | None:
+    if row.variable is not None:
+        return row.variable
+    entry = getattr(row, row.variable_field) if row.variable_field else sp.Integer(0)
+    syms = sorted(entry.free_symbols, key=sp.default_sort_key)
+    return syms[0] if syms else None
+
+
+def _with_variables(chain: Chain) -> Chain:
+    from dataclasses import replace
+
+    if all(r.variable is not None or r.joint is JointType.FIXED for r in chain.rows):
+        return chain
+    return Chain(
+        tuple(
+            r if r.variable is not None else replace(r, variable=_variable(r)) for r in chain.rows
+        ),
+        chain.convention,
+    )
+
+
+def _constants(chain: Chain) -> set[sp.Symbol]:
+    out: set[sp.Symbol] = set()
+    for r in chain.rows:
+        for e in r.params().values():
+            out |= e.free_symbols
+    return out - {r.variable for r in chain.rows if r.variable is not None}
+
+
+def _constant_env(
+    key: Chain, answer: Chain, values: Mapping[sp.Symbol, sp.Expr], seed: int
+) -> dict[sp.Symbol, float]:
+    env: dict[sp.Symbol, float] = {}
+    for s in _constants(key) | _constants(answer):
+        if s in values:
+            env[s] = float(values[s])
+        else:  # one value per name, whatever else is in the tables
+            rng = np.random.default_rng([seed, zlib.crc32(s.name.encode())])
+            env[s] = float(rng.uniform(*TOLERANCES.length_range))
+    return env
+
+
+def _axes(F: np.ndarray, chain: Chain, joints: list) -> tuple[np.ndarray, np.ndarray]:
+    """Points and directions of the joint axes, shape (K, joints, 3) each."""
+    shift = 1 if chain.convention is Convention.STANDARD else 0
+    idx = [j[0] - shift for j in joints]
+    G = F[:, idx]
+    return G[..., :3, 3], G[..., :3, 2]
+
+
+def _rz_tz(phi: float, t: float, flip: bool) -> np.ndarray:
+    """``Rz(phi) Tz(t)``, followed by a half turn about x when ``flip``."""
+    word = [("R", "z", phi), ("T", "z", t)] + ([("R", "x", math.pi)] if flip else [])
+    out = np.eye(4)
+    for kind, axis, value in word:
+        out = out @ elementary_stack(kind, axis, [value])[0]
+    return out
+
+
+def _normalizer(p: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """A frame with z along the line (p, u), origin at the foot of the base origin."""
+    z = u / np.linalg.norm(u)
+    o = p - np.dot(p, z) * z
+    x = np.array([1.0, 0, 0]) - z[0] * z
+    if np.linalg.norm(x) < TOLERANCES.pick_axis_eps:
+        x = np.array([0, 1.0, 0]) - z[1] * z
+    x /= np.linalg.norm(x)
+    N = np.eye(4)
+    N[:3, 0], N[:3, 1], N[:3, 2], N[:3, 3] = x, np.cross(z, x), z, o
+    return N
+
+
+def _foot(p: np.ndarray, u: np.ndarray) -> tuple[float, np.ndarray] | None:
+    """Height on the z axis and horizontal normal towards a non-vertical line (p, u)."""
+    uz = u[2]
+    if abs(uz * uz - 1) < TOLERANCES.vertical_eps:
+        return None
+    s = (np.dot(u, p) - p[2] * uz) / (uz * uz - 1)
+    h = p[2] + s * uz
+    n = p + s * u - np.array([0, 0, h])
+    if np.linalg.norm(n[:2]) < TOLERANCES.short_length:
+        n = np.cross([0, 0, 1.0], u)
+    return float(h), n
+
+
+def _candidates(Fk: np.ndarray, Fa: np.ndarray, key: Chain, ans: Chain, jk: list, ja: list):
+    """Base transforms worth trying: from the tool at zero, then from the axes at zero."""
+    yield Fa[0, -1] @ numeric_rigid_inverse(Fk[0, -1])
+    Pk, Uk = _axes(Fk[:1], key, jk)
+    Pa, Ua = _axes(Fa[:1], ans, ja)
+    Nk, Na = _normalizer(Pk[0, 0], Uk[0, 0]), _normalizer(Pa[0, 0], Ua[0, 0])
+    iNk, iNa = numeric_rigid_inverse(Nk), numeric_rigid_inverse(Na)
+    for flip in (False, True):
+        F = _rz_tz(0.0, 0.0, flip)
+        phis: list[float] = []
+        t = None
+        for k in range(1, len(jk)):
+            pk = (F @ iNk @ np.append(Pk[0, k], 1))[:3]
+            uk = (F @ iNk)[:3, :3] @ Uk[0, k]
+            pa = (iNa @ np.append(Pa[0, k], 1))[:3]
+            ua = iNa[:3, :3] @ Ua[0, k]
+            fk, fa = _foot(pk, uk), _foot(pa, ua)
+            if fk is not None and fa is not None:
+                base = math.atan2(fa[1][1], fa[1][0]) - math.atan2(fk[1][1], fk[1][0])
+                phis = phis or [base, base + math.pi]
+                t = fa[0] - fk[0]
+                break
+            if (
+                fk is None
+                and fa is None
+                and not phis
+                and np.linalg.norm(pk[:2]) > TOLERANCES.short_length
+            ):
+                phis = [math.atan2(pa[1], pa[0]) - math.atan2(pk[1], pk[0])]
+        if t is None:
+            tk = (F @ iNk @ Fk[0, -1])[2, 3]
+            t = (iNa @ Fa[0, -1])[2, 3] - tk
+        for phi in phis or [0.0]:  # no informative axis: still try frame 0 on frame 0
+            yield Na @ _rz_tz(phi, t, False) @ F @ iNk
+
+
+def _verify(B, key, ans, jk, ja, Fk, env_a, size, tol):
+    """(joints that matched, variable signs, axis directions, E or None)."""
+    signs = [1.0] * len(ja)
+    dirs = [1.0] * len(ja)
+    Pk, Uk = _axes(Fk, key, jk)
+    Pk = (B[:3, :3] @ Pk[..., None])[..., 0] + B[:3, 3]
+    Uk = (B[:3, :3] @ Uk[..., None])[..., 0]
+    Fa = frames(ans, env_a(signs), size)
+    for k, (_, kind, _, _) in enumerate(ja):
+        Pa, Ua = _axes(Fa, ans, ja)
+        cross = np.linalg.norm(np.cross(Ua[:, k], Uk[:, k]), axis=-1)
+        if (cross > tol).any():
+            return k, signs, dirs, None
+        if kind is JointType.REVOLUTE:
+            off = np.linalg.norm(np.cross(Pa[:, k] - Pk[:, k], Ua[:, k]), axis=-1)
+            if (off > tol).any():
+                return k, signs, dirs, None
+        along = np.einsum("ij,ij->i", Ua[:, k], Uk[:, k])
+        dirs[k] = -1.0 if (along < 0).all() else 1.0
+        dots = along * ja[k][3] * jk[k][3]
+        if (dots < 0).all():
+            signs[k] = -1.0
+            Fa = frames(ans, env_a(signs), size)
+        elif (dots < 0).any():
+            return k, signs, dirs, None
+    E = numeric_rigid_inverse(B @ Fk[:, -1]) @ Fa[:, -1]
+    if (np.abs(E - E[0]) > tol).any():
+        return len(ja), signs, dirs, None
+    return len(ja), signs, dirs, E[0]
+
+
+def _deg(x: float) -> str:
+    return f"{math.degrees(x):.4g}°"
+
+
+def _describe(B, E, signs, dirs, joints, Fk0, Fa0, key: Chain, tol) -> tuple[list[str], bool]:
+    out = []
+    on_axis = abs(abs(B[2, 2]) - 1) < tol and np.linalg.norm(B[:2, 3]) < tol
+    flip = B[2, 2] < 0
+    if on_axis:
+        if flip and dirs[0] > 0:
+            out.append("z0 reversed (frame 0 turned over)")
+        phi = math.atan2(B[1, 0], B[0, 0]) * (-1 if flip else 1)
+        if abs(math.remainder(phi, 2 * math.pi)) > tol:
+            out.append(f"x0 rotated by {_deg(math.remainder(-phi, 2 * math.pi))} about z0")
+        if abs(B[2, 3]) > tol:
+            out.append(f"frame 0 moved by {-B[2, 3]:.4g} along z0")
+    else:
+        out.append("frame 0 is not on the axis of joint 1")
+    shift = 1 if key.convention is Convention.STANDARD else 0
+    for k, (s, d, j) in enumerate(zip(signs, dirs, joints), 1):
+        if d < 0:
+            sign = "; its variable changes sign" if s < 0 else ""
+            out.append(
+                f"z{j[0] - shift} reversed (the axis of joint {k} points the other way{sign})"
+            )
+        elif s < 0:
+            out.append(f"the variable of joint {k} changes sign")
+    for f in range(1, key.n):
+        ok, oa = (B @ Fk0[f])[:3, 3], Fa0[f][:3, 3]
+        za = Fa0[f][:3, 2]
+        moved = float(np.dot(oa - ok, za))
+        if abs(moved) > tol and np.linalg.norm(np.cross(oa - ok, za)) < tol:
+            out.append(
+                f"origin of frame {f} moved by {moved:.4g} along z{f} (another common normal)"
+            )
+    if E is not None and (np.abs(E - np.eye(4)) > tol).any():
+        out.append(f"another tool frame (offset {np.round(E[:3, 3], 4).tolist()})")
+    return out, on_axis
+
+
+def _swapped_variable(jk: list, ja: list) -> tuple[int, str] | None:
+    """The first joint whose variable is another joint's variable of the key (joint
+    variables are matched by position: θ2 in row 1 is never the key's θ1)."""
+    names = [j[2] for j in jk]
+    for k, (a, b) in enumerate(zip(jk, ja), 1):
+        if b[2] != a[2] and b[2] in names:
+            other = names.index(b[2]) + 1
+            return k, f"joint {k} moves with {b[2]}, the variable of joint {other}"
+    return None
+
+
+def symbolic_values(key: DHTable, answer: DHTable | Chain) -> Mapping[sp.Symbol, sp.Expr]:
+    """The numbers a table answer is judged with: none when the answer writes symbols
+    (each symbol then stands for itself, with a random value per name, so ``d4`` is never
+    ``a2`` because the key gives both 0.4318), the key's values for an all-number answer.
+
+    >>> from dhsym import load_table
+    >>> key = load_table("puma560")
+    >>> symbolic_values(key, key)
+    {}
+    """
+    return {} if _constants(Chain.of(answer)) else key.value_map
+
+
+def same_cells(
+    key: DHTable | Chain,
+    answer: DHTable | Chain,
+    values: Mapping[sp.Symbol, sp.Expr] | None = None,
+    seed: int = 3,
+) -> bool:
+    """True when both tables have the same rows, cell by cell (joint variables paired)."""
+    k, a = _with_variables(Chain.of(key)), _with_variables(Chain.of(answer))
+    if k.n != a.n or k.convention is not a.convention:
+        return False
+    env = {s: np.array([v]) for s, v in _constant_env(k, a, dict(values or {}), seed).items()}
+    rng = np.random.default_rng(seed)
+    key_variables = {r.variable for r in k.rows if r.variable is not None}
+    for rk, ra in zip(k.rows, a.rows):
+        if rk.joint is not ra.joint:
+            return False
+        if ra.variable != rk.variable and ra.variable in key_variables:
+            return False  # variables are matched by position, never relabelled
+        q = np.array([rng.uniform(*TOLERANCES.symbol_range)])
+        env_k = {**env, rk.variable: q} if rk.variable is not None else env
+        env_a = {**env, ra.variable: q} if ra.variable is not None else env
+        for name in ("theta", "d", "a", "alpha"):
+            try:
+                vk = float(evaluate(getattr(rk, name), env_k, 1)[0])
+                va = float(evaluate(getattr(ra, name), env_a, 1)[0])
+            except EvaluationError:
+                return False
+            if name in ("theta", "alpha"):
+                if not abs(math.remainder(vk - va, 2 * math.pi)) <= TOLERANCES.cell_atol:
+                    return False
+            elif not abs(vk - va) <= TOLERANCES.cell_atol * (1 + abs(vk)):
+                return False
+    return True
+
+
+def compare_tables(
+    key: DHTable | Chain,
+    answer: DHTable | Chain,
+    *,
+    tool_free: bool = False,
+    values: Mapping[sp.Symbol, sp.Expr] | None = None,
+    seed: int = 11,
+) -> TableMatch:
+    """Compare an answer table with the key (see the module docstring).
+
+    ``values`` are numbers for the key's constant symbols (default: the key's own
+    ``values``); symbols without a number get one random value shared by both tables.
+    """
+    if values is None:
+        values = key.value_map if isinstance(key, DHTable) else {}
+    kc, ac = _with_variables(Chain.of(key)), _with_variables(Chain.of(answer))
+    jk, ja = _joints(kc), _joints(ac)
+    if len(jk) != len(ja):
+        return TableMatch(
+            False, diverges_at=0, reason=f"the table has {len(ja)} joints; the robot has {len(jk)}"
+        )
+    for k, ((_, tk, _, _), (_, ta, _, _)) in enumerate(zip(jk, ja), 1):
+        if tk is not ta:
+            kinds = {JointType.REVOLUTE: "revolute", JointType.PRISMATIC: "prismatic"}
+            return TableMatch(
+                False, diverges_at=k, reason=f"joint {k} is {kinds[tk]}, not {kinds[ta]}"
+            )
+    swapped = _swapped_variable(jk, ja)
+    if swapped:
+        return TableMatch(False, diverges_at=swapped[0], reason=swapped[1])
+    if same_cells(kc, ac, values):
+        return TableMatch(True, same_table=True)
+    consts = _constant_env(kc, ac, dict(values), seed)
+    rng = np.random.default_rng(seed)
+    size = _CONFIGS + 1
+    Q = np.zeros((size, len(jk)))
+    for j, (_, kind, _, _) in enumerate(jk):
+        Q[1:, j] = (
+            rng.uniform(*TOLERANCES.revolute_range, _CONFIGS)
+            if kind is JointType.REVOLUTE
+            else rng.uniform(*TOLERANCES.prismatic_range, _CONFIGS)
+        )
+    env_k = {**consts, **{jt[2]: Q[:, j] for j, jt in enumerate(jk)}}
+
+    def env_a(signs: list[float]) -> dict:
+        return {**consts, **{jt[2]: s * Q[:, j] for j, (jt, s) in enumerate(zip(ja, signs))}}
+
+    try:
+        Fk = frames(kc, env_k, size)
+        Fa0 = frames(ac, env_a([1.0] * len(ja)), size)
+    except EvaluationError as err:
+        return TableMatch(False, diverges_at=0, reason=f"cannot evaluate the table: {err}")
+    if not (np.isfinite(Fk).all() and np.isfinite(Fa0).all()):
+        return TableMatch(False, diverges_at=0, reason="the table has undefined values")
+    scale = 1.0 + float(np.abs(Fk[0, :, :3, 3]).max())
+    tol = TOLERANCES.frame_rtol * scale
+    best, found = -1, []
+    for B in _candidates(Fk, Fa0, kc, ac, jk, ja):
+        check_time()  # the answer's deadline (see _limits.time_limit)
+        got, signs, dirs, E = _verify(B, kc, ac, jk, ja, Fk, env_a, size, tol)
+        best = max(best, got)
+        if E is None:
+            continue
+        Fa = frames(ac, env_a(signs), size)
+        diffs, on_axis = _describe(B, E, signs, dirs, ja, Fk[0], Fa[0], kc, tol)
+        tool = bool((np.abs(E - np.eye(4)) > tol).any())
+        flip_only = (
+            kc.convention is Convention.MODIFIED and np.abs(E[:3, 3]).max() < tol and E[2, 2] < 0
+        )
+        ok = on_axis and (not tool or tool_free or flip_only)
+        reversed_ = tuple(k for k, d in enumerate(dirs, 1) if d < 0)
+        reason = (
+            ""
+            if ok
+            else (
+                "frame 0 must lie on the axis of joint 1"
+                if not on_axis
+                else "the arm is right, but the tool frame (last frame) differs from the key's"
+            )
+        )
+        found.append(
+            TableMatch(
+                ok,
+                False,
+                None if ok else len(jk) + 1,
+                tuple(diffs),
+                reason,
+                reversed_,
+                tool,
+                on_axis,
+                {"B": B, "E": E, "signs": signs},
+            )
+        )
+        if ok and len(diffs) <= 1:
+            break
+    if found:
+        return min(found, key=lambda m: (not m.same_robot, len(m.differences)))
+    got = best
+    where = got + 1
+    if where > len(jk):
+        reason = "the joint axes agree, but the last frame moves differently"
+    else:
+        row = jk[got][0]
+        culprit = row - 1 if kc.convention is Convention.STANDARD else row
+        check = f" (check row {culprit})" if culprit >= 1 else " (check frame 0 and row 1)"
+        reason = f"the axis of joint {where} is not where it should be{check}"
+    return TableMatch(False, diverges_at=where, reason=reason)

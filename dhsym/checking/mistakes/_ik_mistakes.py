@@ -1,0 +1,253 @@
+"""Mistakes in inverse kinematics, each recognised by recomputing the key's steps under it.
+
+An :class:`IKCase` holds the key's joint values for every branch and the student's values
+(one row per choice of the ``±`` the student wrote) at the same poses. Each
+:class:`IKMistake` recomputes the derivation with the mistake made (``atan(y/x)`` for
+``atan2(y, x)``; a sign under a square root) and names it when the student's values equal
+the recomputed ones; a *lost branch* is found from which branches the answer covers.
+The public names are re-exported by :mod:`dhsym.checking.mistakes.registry`.
+
+Examples
+--------
+>>> import dhsym
+>>> swaps = atan_swaps(dhsym.load("planar2r").inverse().steps)
+>>> len(swaps), [str(v) for s in swaps[:2] for v in s.values()]
+(4, ['atan(p_y/p_x)', 'atan(a2*sin(theta2)/(a1 + a2*cos(theta2)))'])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import sympy as sp
+
+from dhsym.notation.printers import Notation
+
+from ..judging._ik_values import PoseSample, Rewrite, joint_distance, key_values, same_joints
+from ..judging.verdict import Diagnosis
+from ._mistake_base import Mistake
+
+__all__ = [
+    "IK_MISTAKES",
+    "AtanForAtan2",
+    "IKCase",
+    "IKMistake",
+    "LostBranch",
+    "WrongRootSign",
+    "atan_swaps",
+    "root_rewrites",
+]
+
+_MAX_TERMS = 12  # terms of a radicand whose sign is flipped one at a time
+
+
+@dataclass(frozen=True, eq=False)
+class IKCase:
+    """A wrong inverse-kinematics answer and its key, in numbers at the same poses.
+
+    ``key`` is ``(K, size, n)`` (one row per choice of the signs σ, named in ``names``),
+    ``answers`` ``(A, size, n)`` (one row per choice of the student's ``±``); ``wrong``
+    lists the student's rows that are no branch of the key, ``matched`` the key's
+    branches the answer gives; ``every`` is True when the question asks for all of them.
+    """
+
+    ik: Any
+    sample: PoseSample
+    key: np.ndarray
+    answers: np.ndarray
+    wrong: tuple[int, ...]
+    matched: tuple[int, ...]
+    names: tuple[str, ...]
+    tol: np.ndarray
+    every: bool
+    notation: Notation = field(default_factory=Notation)
+    cache: dict = field(default_factory=dict)
+
+    @property
+    def revolute(self) -> np.ndarray:
+        """Which joints are revolute (compared modulo 2π)."""
+        return self.sample.revolute
+
+
+class IKMistake(Mistake):
+    """A kind of inverse-kinematics mistake: variants of the key's joint values."""
+
+    def ik_variants(self, case: IKCase) -> Iterator[tuple[np.ndarray, str]]:
+        """(the key's joint values ``(K, size, n)`` under this mistake, what the student did)."""
+        return iter(())
+
+    def _variants(self, case: IKCase) -> list[tuple[np.ndarray, str]]:
+        key = (self.kind, case.sample.origin)
+        if key not in case.cache:
+            case.cache[key] = list(self.ik_variants(case))
+        return case.cache[key]
+
+    def explain_ik(self, case: IKCase) -> Diagnosis | None:
+        """A diagnosis when one of the student's wrong rows equals a variant's branch."""
+        for vals, detail in self._variants(case):
+            for a in case.wrong:
+                if any(
+                    same_joints(case.answers[a], v, case.revolute, case.tol, nan=True) for v in vals
+                ):
+                    return Diagnosis(self.kind, self.title, detail)
+        return None
+
+
+def _replacing(mapping: Mapping[sp.Expr, sp.Expr]) -> Rewrite:
+    """The rewrite that replaces the nodes of ``mapping`` (as ``xreplace``)."""
+    return lambda e: e.xreplace(mapping)
+
+
+def atan_swaps(steps: Any) -> list[dict[sp.Expr, sp.Expr]]:
+    """Each ``atan2(y, x)`` of the steps written ``atan(y/x)``, one at a time, then all."""
+    nodes = sorted(set().union(*(st.rhs.atoms(sp.atan2) for st in steps)), key=sp.default_sort_key)
+    swaps = [{n: sp.atan(n.args[0] / n.args[1])} for n in nodes]
+    if len(nodes) > 1:
+        swaps.append({n: sp.atan(n.args[0] / n.args[1]) for n in nodes})
+    return swaps
+
+
+class AtanForAtan2(IKMistake):
+    """``atan(y/x)`` where ``atan2(y, x)`` belongs: the angle is 180° off in half the plane."""
+
+    kind, title = "atan_for_atan2", "atan instead of atan2 (quadrant lost)"
+
+    def ik_variants(self, case: IKCase) -> Iterator[tuple[np.ndarray, str]]:
+        nota = case.notation
+        plain = {b.symbol: 1 for b in case.ik.branches}  # no branch sign (sigma_1) in feedback
+        for swap in atan_swaps(case.ik.steps):
+            vals = key_values(case.ik, case.sample.env, case.sample.size, _replacing(swap))
+            args = [[nota.text(a.xreplace(plain)) for a in n.args] for n in swap]
+            shown = ", ".join(f"atan({y}/{x}) for atan2({y}, {x})" for y, x in args)
+            yield vals, self._detail(shown)
+
+    @staticmethod
+    def _detail(what: str) -> str:
+        return (
+            f"The answer uses {what}: atan(y/x) gives angles between -90° and 90° only, so it "
+            "is 180° off wherever x < 0; atan2(y, x) keeps the quadrant."
+        )
+
+    def explain_ik(self, case: IKCase) -> Diagnosis | None:
+        found = super().explain_ik(case)
+        if found is not None:
+            return found
+        # the student's own formula with an atan: 180° off at some poses, right at the others
+        for a in case.wrong:
+            for k in range(len(case.key)):
+                d = joint_distance(case.answers[a], case.key[k], case.revolute)
+                if np.isnan(d).any():
+                    continue
+                right = d <= case.tol
+                half = np.abs(d - np.pi) <= case.tol
+                if (right | half).all() and half.any() and case.revolute[half.any(axis=0)].all():
+                    joints = [
+                        str(case.ik.robot.variables[j]) for j in np.flatnonzero(half.any(axis=0))
+                    ]
+                    where = "everywhere" if half.all(axis=0).any() and case.sample.size > 1 else ""
+                    what = f"{', '.join(joints)} is 180° off" + (f" {where}" if where else "")
+                    detail = (
+                        f"{what}: the quadrant is lost, as with atan(y/x) in place of "
+                        "atan2(y, x) (atan gives angles between -90° and 90° only)."
+                    )
+                    return Diagnosis(self.kind, self.title, detail)
+        return None
+
+
+def root_rewrites(node: sp.Pow) -> list[sp.Expr]:
+    """``sqrt(R)`` with the sign of ``R`` flipped, then of each of its terms in turn.
+
+    >>> D = sp.Symbol("D", real=True)
+    >>> root_rewrites(sp.sqrt(1 - D**2))
+    [sqrt(-(1 - D**2)), sqrt(-D**2 - 1), sqrt(D**2 + 1)]
+    """
+    R = node.base
+    out = [sp.Pow(sp.Mul(-1, R, evaluate=False), sp.S.Half, evaluate=False)]
+    terms = sp.Add.make_args(R)
+    if len(terms) > 1:
+        out += [sp.Pow(R - 2 * t, sp.S.Half, evaluate=False) for t in terms[:_MAX_TERMS]]
+    return out
+
+
+class WrongRootSign(IKMistake):
+    """A sign under a square root: ``sqrt(D² − 1)`` for ``sqrt(1 − D²)``, ``+d3²`` for ``−d3²``."""
+
+    kind, title = "wrong_root_sign", "wrong sign under the square root"
+
+    def ik_variants(self, case: IKCase) -> Iterator[tuple[np.ndarray, str]]:
+        steps = case.ik.steps
+        nodes = sorted(
+            {p for st in steps for p in st.rhs.atoms(sp.Pow) if p.exp == sp.S.Half},
+            key=sp.default_sort_key,
+        )
+        nota = case.notation
+        for node in nodes:
+            for new in root_rewrites(node):
+                vals = key_values(
+                    case.ik,
+                    case.sample.env,
+                    case.sample.size,
+                    _replacing({node: new}),
+                )
+                detail = (
+                    f"A sign under the square root is wrong: the answer takes "
+                    f"sqrt({nota.text(new.base)}) where the derivation has "
+                    f"sqrt({nota.text(node.base)})."
+                )
+                yield vals, detail
+
+
+def _branch_part(name: str, j: int, count: int) -> str | None:
+    """Part ``j`` of a branch name ``"right arm, elbow up, wrist not flipped"`` (``None``
+    when the name has no parts, e.g. ``"branch 3"``).
+
+    >>> _branch_part("right arm, elbow up, wrist flipped", 2, 3), _branch_part("branch 2", 0, 1)
+    ('wrist flipped', None)
+    """
+    parts = name.split(", ")
+    return parts[j] if len(parts) == count and not name.startswith("branch ") else None
+
+
+class LostBranch(IKMistake):
+    """Only one sign of a ``±`` given where the question asks for every solution."""
+
+    kind, title = "lost_branch", "a branch is lost"
+
+    def explain_ik(self, case: IKCase) -> Diagnosis | None:
+        if not case.every or not case.matched:
+            return None
+        K = len(case.key)
+        valid = [k for k in range(K) if not np.isnan(case.key[k]).any()]
+        missing = [k for k in valid if k not in case.matched]
+        if not missing:
+            return None
+        from ..judging._ik_values import branch_signs
+
+        signs = branch_signs(case.ik)
+        parts = []
+        for j, b in enumerate(case.ik.branches):
+            given = {int(signs[k, j]) for k in case.matched}
+            if len(given) == 1 and {int(signs[k, j]) for k in valid} == {1, -1}:
+                # the branch's own name (as the IK results word it), never sigma_k
+                words = {
+                    _branch_part(case.names[k], j, len(case.ik.branches)) for k in case.matched
+                }
+                word = words.pop() if len(words) == 1 else None
+                parts.append(
+                    f"only the {word} branch (θ{b.joint})"
+                    if word
+                    else f"only one sign of the root for θ{b.joint} ({b.role})"
+                )
+        lost = "; ".join(parts) if parts else ", ".join(case.names[k] for k in missing)
+        detail = (
+            f"The answer gives {len(case.matched)} of the {len(valid)} solutions; missing: "
+            f"{', '.join(case.names[k] for k in missing)}. "
+            + (f"The other sign is a solution too: {lost}." if parts else "")
+        )
+        return Diagnosis(self.kind, self.title, detail.strip())
+
+
+IK_MISTAKES: tuple[IKMistake, ...] = (AtanForAtan2(), WrongRootSign(), LostBranch())

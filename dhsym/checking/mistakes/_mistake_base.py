@@ -1,0 +1,182 @@
+"""What a mistake detector sees, and the base class of every kind of mistake.
+
+A :class:`MatrixCase` (a wrong matrix or entry and its key, with values at a
+random sample) or a :class:`TableCase` (a wrong table and its key) goes to each
+:class:`Mistake`, which recomputes the key under that mistake. The public names
+are re-exported by :mod:`dhsym.checking.mistakes.registry`.
+
+Examples
+--------
+>>> import dhsym
+>>> table = dhsym.load("puma560").table
+>>> cell_text("d", table.rows[2].d, table), cell_text("alpha", table.rows[0].alpha, table)
+('d3 (= 0.15005)', 'pi/2')
+"""
+
+from __future__ import annotations
+
+from abc import ABC
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+import numpy as np
+import sympy as sp
+
+from dhsym.kinematics.numeric import word_product
+from dhsym.kinematics.transforms import inverse_word, link_word
+from dhsym.model.table import AngleUnit, Convention, DHRow, DHTable
+from dhsym.notation.printers import Notation, format_angle
+
+from ..judging.equivalence import Sample, close
+from ..judging.table_match import Chain, same_cells
+from ..judging.verdict import Diagnosis
+
+__all__ = ["MatrixCase", "Mistake", "TableCase", "cell_text"]
+
+
+@dataclass(frozen=True, eq=False)
+class MatrixCase:
+    """A wrong matrix (or entry) answer and the key it is judged against.
+
+    ``expected``/``answer`` are 4×4 (or 1×1 for an entry question at ``entry``,
+    0-based; 6×n for a Jacobian); ``wrong`` lists the 0-based positions that differ;
+    ``cache`` keeps the variants of one key between answers; ``robot`` is the key's robot.
+    """
+
+    rows: tuple[DHRow, ...]
+    convention: Convention
+    frm: int
+    to: int
+    entry: tuple[int, int] | None
+    expected: sp.ImmutableMatrix
+    answer: sp.ImmutableMatrix
+    sample: Sample
+    key_values: np.ndarray
+    answer_values: np.ndarray
+    wrong: tuple[tuple[int, int], ...]
+    notation: Notation = field(default_factory=Notation)
+    cache: dict = field(default_factory=dict)
+    robot: Any = None  # the key's Robot (Jacobian and determinant variants)
+
+    def chain_values(
+        self, rows: tuple[DHRow, ...], convention: Convention, reverse: str = ""
+    ) -> np.ndarray:
+        """Values of ``^frm T_to`` of ``rows`` at the sample (``reverse``: links or factors)."""
+        return self.project(self.full_values(rows, convention, reverse))
+
+    def full_values(
+        self, rows: tuple[DHRow, ...], convention: Convention, reverse: str = ""
+    ) -> np.ndarray:
+        """Values of the whole 4×4 ``^frm T_to`` (also for entry questions)."""
+        lo, hi = sorted((self.frm, self.to))
+        links = [list(link_word(rows[k - 1], convention)) for k in range(lo + 1, hi + 1)]
+        if reverse == "links":
+            links = links[::-1]
+        word = [e for link in links for e in link]
+        if reverse == "factors":
+            word = word[::-1]
+        if self.frm > self.to:
+            word = inverse_word(word)
+        return word_product(word, self.sample.env, self.sample.size)
+
+    def project(self, full: np.ndarray) -> np.ndarray:
+        """Cut full 4×4 values down to the asked entry (if any)."""
+        if self.entry is None:
+            return full
+        r, c = self.entry
+        return full[:, r : r + 1, c : c + 1]
+
+    def label(self, pos: tuple[int, int]) -> tuple[int, int]:
+        """The 1-based (row, column) of a position, in the full matrix."""
+        if self.entry is not None:
+            return self.entry[0] + 1, self.entry[1] + 1
+        return pos[0] + 1, pos[1] + 1
+
+    def where(self, pos: tuple[int, int]) -> str:
+        """``(2,4)``: a 1-based position as the lectures write it."""
+        r, c = self.label(pos)
+        return f"({r},{c})"
+
+
+@dataclass(frozen=True, eq=False)
+class TableCase:
+    """A wrong table answer and the key table."""
+
+    key: DHTable
+    answer: DHTable
+    tool_free: bool = False
+    values: Mapping[sp.Symbol, sp.Expr] = field(default_factory=dict)
+
+
+class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override some
+    """One kind of mistake: a name, a title, and how to recompute the key under it.
+
+    Subclasses override :meth:`matrix_variants` and/or :meth:`table_variants`
+    (or the ``explain_*`` methods for entry-wise mistakes).
+    """
+
+    kind: ClassVar[str] = ""
+    title: ClassVar[str] = ""
+
+    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
+        """(values of the recomputed key at the sample, what the student did)."""
+        return iter(())
+
+    def table_variants(self, case: TableCase) -> Iterator[tuple[Chain, str, tuple[int, ...]]]:
+        """(the key table under this mistake, what the student did, rows involved)."""
+        return iter(())
+
+    def _cached_variants(self, case: MatrixCase) -> list[tuple[np.ndarray, str]]:
+        key = (self.kind, case.sample.origin, case.entry)
+        if key not in case.cache:
+            found = []
+            for vals, detail in self.matrix_variants(case):
+                if not close(vals, case.key_values):
+                    found.append((vals, detail))
+            case.cache[key] = found
+        return case.cache[key]
+
+    def explain_matrix(self, case: MatrixCase, partial: bool = False) -> Diagnosis | None:
+        """A diagnosis when a variant equals the whole answer (or, with ``partial``, the
+        answer at some of its wrong entries)."""
+        for vals, detail in self._cached_variants(case):
+            hits = [
+                p
+                for p in case.wrong
+                if close(vals[:, p[0], p[1]], case.answer_values[:, p[0], p[1]])
+            ]
+            if len(hits) == 1 and not _reproduces(
+                *(v[:, hits[0][0], hits[0][1]] for v in (vals, case.key_values))
+            ):
+                continue  # one constant for a varying entry: a coincidence, not this mistake
+            whole = len(hits) == len(case.wrong) and close(vals, case.answer_values)
+            if hits and (partial or whole):
+                entries = tuple(case.label(p) for p in hits)
+                return Diagnosis(self.kind, self.title, detail, entries)
+        return None
+
+    def explain_table(self, case: TableCase) -> Diagnosis | None:
+        """A diagnosis when the answer table equals a variant of the key table."""
+        for chain, detail, rows in self.table_variants(case):
+            if same_cells(chain, case.answer, case.values):
+                return Diagnosis(self.kind, self.title, detail, rows=rows)
+        return None
+
+
+def _reproduces(variant: np.ndarray, key: np.ndarray) -> bool:
+    """A variant explains a single entry only when it is more than a constant standing in
+    for a varying key entry (``0`` for ``p_x`` is no transposed matrix: any constant is
+    that); a pattern over several entries (a zero column) is explained by its mistake."""
+    constant = bool(np.ptp(variant) <= 1e-12 * (1 + np.abs(variant).max()))
+    return not constant or bool(np.ptp(key) <= 1e-12 * (1 + np.abs(key).max()))
+
+
+def cell_text(name: str, value: sp.Expr, table: DHTable) -> str:
+    """A table cell as a message shows it: angles in the table's unit, lengths with values."""
+    if name in ("theta", "alpha"):
+        return format_angle(value, table.angles is AngleUnit.DEG, latex=False)
+    number = value.subs(table.value_map)
+    if value.free_symbols and not number.free_symbols:
+        return f"{sp.sstr(value)} (= {float(number):g})"
+    return sp.sstr(value)

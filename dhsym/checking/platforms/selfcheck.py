@@ -1,0 +1,275 @@
+r"""Self-check in a notebook: ``dhsym.check(answer, key=…, question=…)``.
+
+``check`` returns a :class:`SelfCheck` that Jupyter shows as rich output
+(``_repr_html_``, ``_repr_markdown_``): the verdict, the entries that differ (typeset,
+as dhsym read them), the most likely mistake, and the key's entries only when the
+teacher allows it (``show_key=True``).  Without an answer, ``check(key=…,
+question=…)`` returns a small widget (needs ``ipywidgets``): a text area for the
+answer (plain math or LaTeX), a live typeset preview of how dhsym reads it, and a
+*Check* button.  The answer is untrusted text throughout: it goes through the same
+whitelist reader and limits as ``dhsym check``.
+
+Notebook graders (otter-grader test files, nbgrader autograder cells) call
+:func:`assert_answer` with the student's variable: it raises ``AssertionError`` with
+the feedback text unless the answer is correct, and a clear one for a variable that
+holds no answer (``...``, ``None``, a number)::
+
+    assert_answer(q2, key="puma560", question="T0_2")
+
+Examples
+--------
+>>> r = check("[[C12, -S12, 0, a1*C1 - a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0,0,1,0]]",
+...           key="planar2r", question="T0_2")
+>>> r.verdict, r.correct
+('incorrect', False)
+>>> "wrong sign" in r._repr_markdown_(), "a_{1} C_{1} + a_{2} C_{12}" in r._repr_html_()
+(True, False)
+>>> r.assert_correct()
+Traceback (most recent call last):
+...
+AssertionError: INCORRECT (0 / 1 points). 1 of 16 entries are wrong. Most likely: wrong sign. ...
+>>> read_answer(Key.load("planar2r", "T0_2[0,3]"), r"a_1 \cos\theta_1 + a2 C12").latex
+'a_{1} C_{1} + a_{2} C_{12}'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import overload
+
+import sympy as sp
+
+from dhsym.errors import DHError
+from dhsym.model.table import DHTable
+
+from ..grading.feedback import QuestionFeedback, render_question_text, render_template
+from ..judging.checker import Key, check_answer, prepare, table_cells
+from ..judging.verdict import CheckResult
+from ..reading.answers import expression_cell, matrix_cells, parse_cell, read_table
+from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
+
+__all__ = ["Reading", "SelfCheck", "assert_answer", "check", "check_widget", "read_answer"]
+
+_READ_ERRORS = (DHError, RecursionError, MemoryError, OverflowError, ValueError, TypeError)
+
+
+@dataclass(frozen=True)
+class Reading:
+    """How dhsym read an answer: LaTeX of the expression or matrix, or the table's cells,
+    or why it could not (``error``; empty with everything else for an empty answer)."""
+
+    latex: str = ""
+    table: tuple[tuple[str, ...], ...] = ()
+    error: str = ""
+
+    def _repr_html_(self) -> str:
+        return render_template("selfcheck_reading.html.j2", reading=self)
+
+
+def read_answer(
+    key: Key, answer: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+) -> Reading:
+    """Read ``answer`` as ``key``'s question expects (no comparison): the live preview."""
+    if not (answer.strip() if isinstance(answer, str) else answer.strip()):
+        return Reading()
+    try:
+        with time_limit(min(limits.seconds, 2.0)):
+            pk = prepare(key)
+            q = key.question
+            if q.kind == "table":
+                return Reading(
+                    table=table_cells(read_table(answer, pk.names, key.table.convention, limits))
+                )
+            nota = pk.robot.notation
+            if q.kind == "entry":
+                return Reading(
+                    latex=nota.latex(parse_cell(expression_cell(answer, limits), pk.names, limits))
+                )
+            cells = matrix_cells(answer, limits)
+            rows = [
+                [parse_cell(c, pk.names, limits, f"entry ({i},{j})") for j, c in enumerate(r, 1)]
+                for i, r in enumerate(cells, 1)
+            ]
+            return Reading(latex=nota.latex(sp.Matrix(rows)))
+    except CheckTimeout as err:
+        return Reading(error=str(err))
+    except _READ_ERRORS as err:
+        return Reading(error=str(err) if isinstance(err, DHError) else type(err).__name__)
+
+
+@dataclass(frozen=True)
+class SelfCheck:
+    """The result of :func:`check`, shown as rich output in a notebook."""
+
+    result: CheckResult
+    key: Key
+    show_key: bool = False
+    points: float = 1.0
+
+    @property
+    def verdict(self) -> str:
+        """``correct``, ``incorrect`` or ``unreadable``."""
+        return self.result.verdict.value
+
+    @property
+    def correct(self) -> bool:
+        """True for a correct answer."""
+        return self.result.correct
+
+    def _data(self) -> dict:
+        r = self.result
+        lead = next(
+            (d for d in r.diagnoses if d.kind not in ("unexplained", "unknown_symbol")), None
+        )
+        return {
+            "r": r,
+            "question": self.key.question,
+            "robot": self.key.table.name or self.key.name,
+            "wrong": [e for e in r.entries if not e.correct],
+            "lead": lead,
+            "show_key": self.show_key,
+        }
+
+    def _repr_html_(self) -> str:
+        return render_template("selfcheck.html.j2", **self._data())
+
+    def _repr_markdown_(self) -> str:
+        return render_template("selfcheck.md.j2", **self._data())
+
+    def feedback_text(self) -> str:
+        """The plain-text feedback (what a notebook grader shows for a failed test)."""
+        score = self.points if self.correct else 0.0
+        qf = QuestionFeedback("1", self.result.question, self.points, score, self.result)
+        return render_question_text(qf, show_key=self.show_key)
+
+    def assert_correct(self) -> None:
+        """Raise ``AssertionError`` with the feedback unless the answer is correct (for
+        otter-grader test files and nbgrader autograder cells)."""
+        if not self.correct:
+            raise AssertionError(self.feedback_text())
+
+
+def _key(key: str | Path | DHTable | Key | None, question: str | None, tool_free: bool) -> Key:
+    if isinstance(key, Key):
+        return key
+    if key is None:
+        raise DHError("give the key: a built-in robot (key='puma560'), a table file or a table")
+    if question is None:
+        raise DHError("give the question: table, T<i>_<j>, A<k>, arm, px/py/pz or T<i>_<j>[r,c]")
+    return Key.load(key, question, tool_free=tool_free)
+
+
+@overload
+def check(
+    answer: None = None,
+    key: str | Path | DHTable | Key | None = None,
+    question: str | None = None,
+    *,
+    tool_free: bool = False,
+    show_key: bool = False,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+) -> object: ...
+
+
+@overload
+def check(
+    answer: str | bytes,
+    key: str | Path | DHTable | Key | None = None,
+    question: str | None = None,
+    *,
+    tool_free: bool = False,
+    show_key: bool = False,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+) -> SelfCheck: ...
+
+
+def check(
+    answer: str | bytes | None = None,
+    key: str | Path | DHTable | Key | None = None,
+    question: str | None = None,
+    *,
+    tool_free: bool = False,
+    show_key: bool = False,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+) -> SelfCheck | object:
+    """Check ``answer`` against ``key`` (a built-in robot, a table file, a table or a
+    :class:`Key`) and ``question``; with no answer, return :func:`check_widget`."""
+    k = _key(key, question, tool_free)
+    if answer is None:
+        return check_widget(k, show_key=show_key, limits=limits)
+    return SelfCheck(check_answer(k, answer, limits=limits), k, show_key)
+
+
+def assert_answer(
+    answer: object,
+    key: str | Path | DHTable | Key | None = None,
+    question: str | None = None,
+    *,
+    tool_free: bool = False,
+    show_key: bool = False,
+) -> None:
+    """Raise ``AssertionError`` (the feedback as its message) unless ``answer`` is a
+    correct answer: the one line of an otter-grader test or an nbgrader test cell.
+
+    >>> assert_answer("a1*C1 + a2*C12", key="planar2r", question="px")
+    >>> assert_answer(..., key="planar2r", question="px")
+    Traceback (most recent call last):
+    ...
+    AssertionError: No answer yet: put your answer in the variable as text ...
+    """
+    if not isinstance(answer, (str, bytes)):
+        raise AssertionError(
+            "No answer yet: put your answer in the variable as text (a string: plain math "
+            f"or LaTeX); it holds {type(answer).__name__}."
+        )
+    check(answer, key, question, tool_free=tool_free, show_key=show_key).assert_correct()
+
+
+def check_widget(
+    key: str | Path | DHTable | Key | None = None,
+    question: str | None = None,
+    *,
+    tool_free: bool = False,
+    show_key: bool = False,
+    answer: str = "",
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+) -> object:
+    """An ipywidgets box: the answer's text area (plain or LaTeX), a live typeset preview
+    of how dhsym reads it, a *Check* button and the result.  CSS classes
+    ``dhsym-answer``, ``dhsym-preview``, ``dhsym-check``, ``dhsym-verdict`` mark the parts."""
+    try:
+        import ipywidgets as w
+    except ImportError:
+        raise DHError(
+            "the self-check widget needs ipywidgets (pip install ipywidgets); "
+            "or call check(answer, key=…, question=…)"
+        ) from None
+    k = _key(key, question, tool_free)
+    q = k.question
+    title = w.HTMLMath(
+        render_template("selfcheck_title.html.j2", question=q, robot=k.table.name or k.name)
+    )
+    area = w.Textarea(
+        value=answer,
+        placeholder="Your answer: plain math (C1, a1*C12, [[…], […]]) or LaTeX",
+        layout=w.Layout(width="100%", height="8em"),
+    )
+    preview = w.HTMLMath(read_answer(k, answer, limits)._repr_html_())
+    button = w.Button(description="Check", button_style="primary", icon="check")
+    verdict = w.HTMLMath("")
+    for widget, css in ((area, "answer"), (preview, "preview"), (button, "check")):
+        widget.add_class(f"dhsym-{css}")
+    verdict.add_class("dhsym-verdict")
+
+    def on_text(change: dict) -> None:
+        preview.value = read_answer(k, change["new"], limits)._repr_html_()
+
+    def on_check(_: object) -> None:
+        verdict.value = SelfCheck(
+            check_answer(k, area.value, limits=limits), k, show_key
+        )._repr_html_()
+
+    area.observe(on_text, names="value")
+    button.on_click(on_check)
+    return w.VBox([title, area, preview, button, verdict])

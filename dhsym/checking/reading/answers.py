@@ -1,0 +1,398 @@
+r"""Reading answers: text from files or strings, expressions, matrices and DH tables.
+
+Every reader takes untrusted text and either returns sympy objects or raises a
+:class:`~dhsym.errors.DHError` (``UnreadableAnswer``, ``ParseError``,
+``TableError``) that says what was wrong: size and type are checked first, plain
+math goes through :func:`dhsym.model.parsing.parse_expression` with the key's
+:class:`~dhsym.checking.reading.answer_names.NameContext` as ``resolve`` hook, LaTeX through
+:mod:`dhsym.checking.reading.latex_input`, tables through :mod:`dhsym.model.tablefile` or the
+pasted-table reader :mod:`dhsym.checking.reading._table_text`.
+
+Examples
+--------
+>>> from dhsym import load_table
+>>> ctx = NameContext.from_table(load_table("planar2r"))
+>>> read_expression("a1*c1 + a2*C12", ctx)
+a1*cos(theta1) + a2*cos(theta1 + theta2)
+>>> read_expression(r"p_x = a_1 C_1 + a_2 C_{12}", ctx)
+a1*cos(theta1) + a2*cos(theta1 + theta2)
+>>> read_matrix("[[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0,0,1,0]]",
+...             ctx)[1, 3]
+a1*sin(theta1) + a2*sin(theta1 + theta2)
+>>> read_table("| Link | θ | α | a | d |\n|---|---|---|---|---|\n| 1 | θ1 | 0 | a1 | 0 |\n"
+...            "| 2 | θ2 | 0 | a2 | 0 |", ctx).rows[1]
+DHRow(R: theta=theta2, d=0, a=a2, alpha=0)
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import sympy as sp
+
+from dhsym.errors import DHError, ParseError, TableError
+from dhsym.model.parsing import parse_expression
+from dhsym.model.table import Convention, DHTable
+from dhsym.model.yamlsafe import FileRefused, read_limited
+
+from ..judging.rounding import Literal
+from ._table_text import TABLE_FORM, grid_table, yaml_table
+from .answer_names import NameContext
+from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
+from .limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer, check_time
+
+__all__ = [
+    "NameContext",
+    "answer_text",
+    "cell_literals",
+    "expression_cell",
+    "matrix_cells",
+    "normalize_unicode",
+    "parse_cell",
+    "read_answer_file",
+    "read_expression",
+    "read_matrix",
+    "read_table",
+    "read_text",
+]
+
+_UNICODE = str.maketrans(
+    {"−": "-", "–": "-", "·": "*", "×": "*", "⋅": "*", "∗": "*", "÷": "/", "⁄": "/"}
+    | {"º": "°", "˚": "°", "\u200b": "", "\u2060": "", "ᵢ": "i", "ⱼ": "j", "₍": "(", "₎": ")"}
+    | {c: " " for c in "\u00a0\u2002\u2003\u2004\u2005\u2006\u2007\u2008\u2009\u200a\u202f"}
+    | {chr(0x2080 + k): str(k) for k in range(10)}  # subscript digits: θ₁ is θ1
+    | {"½": "(1/2)", "¼": "(1/4)", "¾": "(3/4)", "⅓": "(1/3)", "√": " sqrt "}
+)
+_SUPERSCRIPTS = dict(zip("⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻", "0123456789+-"))
+_SUPERSCRIPT_RUN = re.compile("[" + "".join(_SUPERSCRIPTS) + "]+")
+_DEGREE_O = re.compile(  # 90^o, 90^{o}: degrees where the base is a number
+    r"(?<![A-Za-z_0-9.])([0-9]+(?:\.[0-9]*)?|\.[0-9]+)\s*\^\s*(?:o|\{\s*o\s*\}|\(\s*o\s*\))"
+    r"(?![A-Za-z0-9_])"
+)
+_MATRIX_WRAPPER = re.compile(r"^\s*(?:sp\.|sympy\.)?(?:Immutable)?Matrix\s*\((.*)\)\s*$", re.DOTALL)
+# A YAML table: a ``joints:`` key, or a list of rows (``- {theta: …}`` / ``- theta: …``).
+# [ \t] and \w stay on one line and no two parts overlap: linear on any text.
+_YAML_TABLE = re.compile(r"^[ \t]*(?:joints[ \t]*:|-[ \t]+(?:\{|\w+[ \t]*:))", re.MULTILINE)
+
+
+def answer_text(value: object) -> str | bytes:
+    r"""An answer given as a Python value, as the text it stands for.
+
+    Text and bytes are kept; a number or a sympy expression is printed by sympy's
+    printer (and read back by the whitelist parser, never evaluated); a sympy matrix,
+    a numpy array or a list of rows is written ``[[…], […]]``; a list of texts is one
+    statement per line.  Anything else is :class:`UnreadableAnswer`.
+
+    >>> import sympy as sp
+    >>> answer_text(5), answer_text(sp.cos(sp.Symbol("theta1")) / 2)
+    ('5', 'cos(theta1)/2')
+    >>> answer_text([[1, 0], [0, sp.Symbol("c")]]), answer_text(["theta1 = 0", "theta2 = 1"])
+    ('[[1, 0], [0, c]]', 'theta1 = 0\ntheta2 = 1')
+    >>> answer_text({1: 2})  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dhsym.checking.reading.limits.UnreadableAnswer: expected the answer as text ... got dict
+    """
+    if isinstance(value, (str, bytes)):
+        return value
+    shape = getattr(value, "shape", None)
+    if isinstance(value, sp.MatrixBase) or (isinstance(shape, tuple) and len(shape) in (1, 2)):
+        value = value.tolist()  # type: ignore[attr-defined]  # a sympy matrix or numpy array
+    if isinstance(value, (list, tuple)) and value:
+        if all(isinstance(v, str) for v in value):
+            return "\n".join(value)
+        if all(isinstance(v, (list, tuple)) for v in value):
+            return (
+                "["
+                + ", ".join("[" + ", ".join(_number_text(c) for c in row) + "]" for row in value)
+                + "]"
+            )
+        return ", ".join(_number_text(v) for v in value)
+    return _number_text(value)
+
+
+def _number_text(value: object) -> str:
+    if isinstance(value, bool) or not isinstance(value, (int, float, complex, sp.Basic)):
+        if type(value).__module__ == "numpy" and hasattr(value, "item"):
+            return _number_text(value.item())  # a numpy scalar
+        raise UnreadableAnswer(
+            "expected the answer as text (a string), a number, a sympy expression or a "
+            f"matrix, got {type(value).__name__}"
+        )
+    if isinstance(value, float):
+        return repr(float(value))  # also numpy's float64, a float
+    return sp.sstr(value)
+
+
+def read_text(data: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
+    """Check size and encoding of an answer and return it as text.
+
+    >>> read_text(b"\\x00\\x01\\xff")
+    Traceback (most recent call last):
+    ...
+    dhsym.checking.reading.limits.UnreadableAnswer: the answer is not text (binary data)
+    """
+    data = answer_text(data)
+    size = len(data) if isinstance(data, bytes) else len(data.encode("utf-8", "replace"))
+    if size > limits.max_bytes:
+        raise UnreadableAnswer(f"the answer is {size} bytes; at most {limits.max_bytes} are read")
+    if isinstance(data, bytes):
+        if b"\x00" in data:
+            raise UnreadableAnswer("the answer is not text (binary data)")
+        try:
+            data = data.decode("utf-8")
+        except UnicodeDecodeError:
+            raise UnreadableAnswer("the answer is not UTF-8 text") from None
+    if not isinstance(data, str):
+        raise UnreadableAnswer(f"expected text, got {type(data).__name__}")
+    if "\x00" in data:
+        raise UnreadableAnswer("the answer is not text (binary data)")
+    text = normalize_unicode(data.lstrip("\ufeff"))
+    if not text.strip():
+        raise UnreadableAnswer("the answer is empty")
+    return text
+
+
+def normalize_unicode(text: str) -> str:
+    """ASCII for the Unicode that answers carry: ``−`` ``·`` ``×`` ``θ₁`` ``sin²`` ``√2`` ``½``.
+
+    Superscript runs become ``^(…)`` (``^{…}`` in LaTeX), subscript digits plain digits,
+    ``º`` and ``˚`` the degree sign, odd spaces plain spaces.
+
+    >>> normalize_unicode("1 − 2 sin²((θ₁+θ₂)/2) · √2")
+    '1 - 2 sin^(2)((θ1+θ2)/2) *  sqrt 2'
+    """
+    sup = ("^{", "}") if is_latex(text) else ("^(", ")")
+    text = _SUPERSCRIPT_RUN.sub(
+        lambda m: sup[0] + "".join(_SUPERSCRIPTS[c] for c in m[0]) + sup[1], text
+    )
+    return text.translate(_UNICODE)
+
+
+def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
+    """Read an answer file: a regular file only, at most ``limits.max_bytes`` of it."""
+    try:
+        data = read_limited(path, limits.max_bytes, what=f"the answer file {path}")
+    except FileRefused as err:
+        raise UnreadableAnswer(err.message) from None
+    return read_text(data, limits)
+
+
+def _cell_text(cell: str) -> str:
+    """One cell or expression as parser text (LaTeX translated, subscripts flattened,
+    ``[ ]`` and ``{ }`` used as brackets, ``90^o`` as degrees)."""
+    cell = cell.strip()
+    if is_latex(cell):
+        return latex_to_text(cell)
+    cell = cell.replace("**", "^")
+    if "=" in cell:
+        cell = cell.rsplit("=", 1)[1]
+    cell = _DEGREE_O.sub(r"\1°", flatten_subscripts(cell))
+    return cell.translate(_BRACKETS)
+
+
+_BRACKETS = str.maketrans("[]{}", "()()")
+
+
+def _parse(cell: str, ctx: NameContext, limits: AnswerLimits, where: str, **kw) -> sp.Expr:
+    try:
+        return parse_expression(
+            _cell_text(cell), resolve=ctx.resolve, limits=limits.parse, textbook=True, **kw
+        )
+    except ParseError as err:
+        raise ParseError(f"{where}: {err.message}") from None
+
+
+def cell_literals(
+    cell: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+) -> tuple[sp.Expr, tuple[Literal, ...]]:
+    """The cell with each numeric literal as a placeholder symbol, and the literals.
+
+    >>> from dhsym import load_table
+    >>> t, lits = cell_literals("0.7071 C1 + 2", NameContext.from_table(load_table("planar2r")))
+    >>> [(lit.text, lit.value) for lit in lits], t.subs({lit.symbol: lit.value for lit in lits})
+    ([('0.7071', 7071/10000), ('2', 2)], 7071*cos(theta1)/10000 + 2)
+    """
+    found: list[Literal] = []
+
+    def placeholder(text: str, value: sp.Rational) -> sp.Expr:
+        found.append(Literal(sp.Dummy(f"n{len(found)}", real=True), text, value))
+        return found[-1].symbol
+
+    template = _parse(cell, ctx, limits, "the answer", literal=placeholder)
+    return template, tuple(found)
+
+
+def expression_cell(text: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
+    """The text of a single-entry answer (a 1×1 LaTeX matrix is unwrapped)."""
+    text = read_text(text, limits)
+    cells = latex_matrix_cells(text) if is_latex(text) else None
+    if cells is not None:
+        if len(cells) != 1 or len(cells[0]) != 1:
+            raise UnreadableAnswer("expected a single expression, got a matrix")
+        text = cells[0][0]
+    return text
+
+
+def read_expression(
+    text: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+) -> sp.Expr:
+    """One entry (``p_x``, an element of a matrix) in plain math or LaTeX."""
+    return parse_cell(expression_cell(text, limits), ctx, limits)
+
+
+def parse_cell(
+    cell: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS, where: str = ""
+) -> sp.Expr:
+    """One cell (plain math or LaTeX) as an expression, names resolved by ``ctx``."""
+    check_time()  # the answer's deadline (see _limits.time_limit)
+    return _parse(cell, ctx, limits, where or "the answer")
+
+
+def _split_top(text: str, seps: str) -> list[str]:
+    """Split at separators that are outside parentheses and brackets."""
+    out, depth, start = [], 0, 0
+    for k, ch in enumerate(text):
+        if ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+        elif ch in seps and depth == 0:
+            out.append(text[start:k])
+            start = k + 1
+    out.append(text[start:])
+    return out
+
+
+def _plain_cells(text: str) -> list[list[str]]:
+    """Cells of a plain-text matrix: ``[[…], […]]``, ``[a, b; c, d]`` or one row per line."""
+    m = _MATRIX_WRAPPER.match(text)
+    if m:
+        text = m[1]
+    if "=" in text:
+        text = text.rsplit("=", 1)[1]
+    body = text.strip()
+    if body.startswith("[") and body.endswith("]"):
+        inner = body[1:-1].strip()
+        if inner.startswith("["):
+            rows = [r.strip() for r in _split_top(inner, ",") if r.strip()]
+            if not all(r.startswith("[") and r.endswith("]") for r in rows):
+                raise UnreadableAnswer("expected rows in brackets: [[a, b, …], [c, d, …], …]")
+            return [_split_top(r[1:-1], ",") for r in rows]
+        body = inner
+    lines = [ln for ln in re.split(r"[;\n]|\\\\", body) if ln.strip()]
+    out: list[list[str]] = []
+    for line in lines:
+        line = line.strip().strip("|")
+        for seps in ("&", "\t", "|", ","):
+            parts = _split_top(line, seps)
+            if len(parts) > 1:
+                break
+        else:
+            parts = re.split(r"\s{2,}", line)
+            if len(parts) == 1:
+                words = line.split()
+                if all(re.fullmatch(r"[-+]?[0-9.]+(?:e[-+]?[0-9]+)?", w) for w in words):
+                    parts = words
+        out.append(parts)
+    if any(len(r) == 1 for r in out):  # MATLAB rows: [c1 -s1 0 0; s1 c1 0 0; 0 0 1 0]
+        split = [r[0].split() if len(r) == 1 else r for r in out]
+        if all(len(w) == 4 for w in split) and all(_whole_cell(t) for w in split for t in w):
+            return split
+    return out
+
+
+def _whole_cell(word: str) -> bool:
+    """True when a space-free word can be a cell by itself (no dangling operator or bracket)."""
+    if word[-1] in "+-*/^(" or word[0] in "*/^)":
+        return False
+    depth = 0
+    for ch in word:
+        depth += (ch == "(") - (ch == ")")
+        if depth < 0:
+            return False
+    return depth == 0
+
+
+def read_matrix(
+    text: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+) -> sp.ImmutableMatrix:
+    r"""A 4×4 homogeneous matrix (or its top three rows) in plain math or LaTeX.
+
+    >>> from dhsym import load_table
+    >>> ctx = NameContext.from_table(load_table("planar2r"))
+    >>> read_matrix("C1 -S1 0 0", ctx)
+    Traceback (most recent call last):
+    ...
+    dhsym.checking.reading.limits.UnreadableAnswer: expected a 4×4 matrix (or its top 3 rows), got 1 row of 4 cells
+    """  # noqa: E501
+    cells = matrix_cells(text, limits)
+    entries = [
+        [_parse(c, ctx, limits, f"entry ({i},{j})") for j, c in enumerate(row, 1)]
+        for i, row in enumerate(cells, 1)
+    ]
+    if len(cells) == 3:
+        entries.append([sp.Integer(0)] * 3 + [sp.Integer(1)])
+    return sp.ImmutableMatrix(entries)
+
+
+def matrix_cells(
+    text: str | bytes,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    shapes: tuple[tuple[int, int], ...] = ((4, 4), (3, 4)),
+) -> list[list[str]]:
+    """The cells of a matrix answer as the student wrote them (3 or 4 rows of 4, or ``shapes``).
+
+    >>> matrix_cells(r"$\\begin{pmatrix} c_1 & -s_1 & 0 & 0 \\\\ s_1 & c_1 & 0 & 0 \\\\"
+    ...              r" 0&0&1&0 \\end{pmatrix}$")[1]
+    ['s_1', 'c_1', '0', '0']
+    """
+    text = read_text(text, limits)
+    cells = latex_matrix_cells(text) if is_latex(text) else None
+    if cells is None:
+        cells = _plain_cells(text)
+    if len(cells) > limits.max_rows or any(len(r) > limits.max_columns for r in cells):
+        raise UnreadableAnswer("the matrix has too many rows or columns")
+    shape = (len(cells), len({len(r) for r in cells}) == 1 and len(cells[0]) or 0)
+    if shape not in shapes:
+        widths = sorted({len(r) for r in cells})
+        got = f"{len(cells)} row{'s' * (len(cells) != 1)} of " + "/".join(map(str, widths))
+        wanted = (
+            "a 4×4 matrix (or its top 3 rows)"
+            if shapes == ((4, 4), (3, 4))
+            else "a " + " or ".join(f"{r}×{c}" for r, c in shapes) + " matrix"
+        )
+        raise UnreadableAnswer(f"expected {wanted}, got {got} cell" + ("s" * (widths != [1])))
+    return cells
+
+
+def read_table(
+    text: str | bytes,
+    ctx: NameContext,
+    convention: Convention | str = Convention.STANDARD,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+) -> DHTable:
+    """A DH table: the YAML table format, CSV, or a pasted Markdown / plain-text table.
+
+    Columns may come in any order with headers like ``theta``, ``θ``, ``$\\theta_i$``,
+    ``alpha_{i-1}``, ``Link``, ``J``; angles in degrees or radians.  Headers with
+    ``i-1`` mean the modified convention, otherwise ``convention`` (the key's).
+    """
+    text = read_text(text, limits)
+    try:
+        if _YAML_TABLE.search(text):
+            return yaml_table(text, ctx, Convention.parse(convention), limits)
+        return grid_table(text, ctx, Convention.parse(convention), limits)
+    except TableError as err:
+        if err.row is None:  # the form itself was not recognised: say what is expected
+            raise TableError(f"{err.message}; {TABLE_FORM}", field=err.field) from None
+        raise
+    except UnreadableAnswer as err:
+        if err.message.startswith("expected a table"):
+            raise UnreadableAnswer(f"{err.message}; {TABLE_FORM}") from None
+        raise
+    except ParseError:
+        raise
+    except DHError as err:
+        raise TableError(str(err)) from None

@@ -1,0 +1,66 @@
+"""The job runners: a hung job is killed on time, costs no other job anything, and is reported."""
+
+from __future__ import annotations
+
+import io
+import time
+
+import pytest
+
+from dhsym.checking.grading._runner import JobFailure, Progress, Sandbox, run_pool, run_serial
+
+from .._jobs import die, stuck_or_square
+
+
+def test_hung_worker_is_killed_and_the_batch_goes_on():
+    t0 = time.monotonic()
+    out = dict(run_pool(time.sleep, [0.01, 300, 0.01, 0.02], workers=2, deadline=2.0, preload=()))
+    assert time.monotonic() - t0 < 60
+    assert out[1] == JobFailure("timeout", "no result within 2 s")
+    assert out[0] is None and out[2] is None and out[3] is None
+
+
+def test_a_job_stuck_in_c_code_is_killed_and_no_other_job_pays():
+    jobs = [-1, 2, 3, -1, 4, 5, 6]
+    out = dict(run_pool(stuck_or_square, jobs, workers=1, deadline=5.0, preload=()))
+    assert out[0] == out[3] == JobFailure("timeout", "no result within 5 s")
+    assert [out[k] for k in (1, 2, 4, 5, 6)] == [4, 9, 16, 25, 36]
+
+
+def test_errors_are_results():
+    out = dict(run_serial(int, ["1", "x"]))
+    assert out[0] == 1 and isinstance(out[1], JobFailure) and out[1].kind == "error"
+    out = dict(run_pool(int, ["2", "y"], workers=1, deadline=30, preload=()))
+    assert out[0] == 2 and out[1].kind == "error"
+
+
+def test_a_job_that_kills_its_process_is_an_error_and_the_sandbox_recovers():
+    with Sandbox(preload=()) as box:
+        failure = box.call(die, None, deadline=30)
+        assert failure == JobFailure("error", "the worker process died (exit code 3)")
+        assert box.call(abs, -5, deadline=30) == 5
+
+
+def test_progress_bar_lines():
+    buf = io.StringIO()
+    p = Progress(4, stream=buf)
+    for _ in range(4):
+        p.step()
+    assert buf.getvalue().count("grading [") == 4 and "4/4" in buf.getvalue()
+
+
+@pytest.mark.slow
+def test_dask_thread_stuck_in_c_code_costs_no_other_job():
+    """One Dask worker thread: every job queues behind the stuck ones, and none times out."""
+    distributed = pytest.importorskip("dask.distributed")
+    from dhsym.checking.grading._runner import run_dask
+
+    jobs = [-1, 2, -1, 3, 4, 5]
+    with distributed.LocalCluster(
+        n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster:
+        out = dict(
+            run_dask(stuck_or_square, jobs, cluster.scheduler_address, deadline=5.0, preload=())
+        )
+    assert out[0] == out[2] == JobFailure("timeout", "no result within 5 s")
+    assert [out[k] for k in (1, 3, 4, 5)] == [4, 9, 16, 25]

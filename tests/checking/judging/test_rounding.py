@@ -1,0 +1,130 @@
+"""Rounding the instructor controls: the rule, the test, per check and per assignment."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from dhsym.checking import Assignment, Key, check_answer
+from dhsym.checking.judging.rounding import DEFAULT_ROUNDING, Rounding, decimal_places
+from dhsym.errors import DHError
+
+CORPUS = Path(__file__).resolve().parents[2] / "data" / "answers"
+TWIST45 = CORPUS / "tables" / "twist45.yaml"  # entry T0_1[2,1] is sqrt(2)/2 = 0.70710678…
+
+
+def check(answer: str, rounding: object = None, question: str = "T0_1[2,1]"):
+    return check_answer(Key.load(TWIST45, question, rounding=rounding), answer)
+
+
+@pytest.mark.parametrize(
+    ("spec", "text"),
+    [
+        (None, "digits=3"),
+        ("digits=4", "digits=4"),
+        ("4 digits", "digits=4"),
+        ({"digits": 2}, "digits=2"),
+        ("abs=1e-3", "abs=0.001"),
+        ({"rel": 0.01}, "rel=0.01"),
+        ("off", "off"),
+        (False, "off"),  # YAML reads 'rounding: off' as false
+        (Rounding("abs", tolerance=0.5), "abs=0.5"),
+    ],
+)
+def test_rounding_rules_are_read(spec, text):
+    assert str(Rounding.parse(spec)) == text
+
+
+@pytest.mark.parametrize("spec", ["digits=0", "digits=x", "abs=-1", "rel=0", "sometimes", 3])
+def test_bad_rounding_rules_are_refused(spec):
+    with pytest.raises(DHError, match="rounding"):
+        Rounding.parse(spec)
+
+
+def test_digits_and_unit_of_a_decimal_as_written():
+    assert decimal_places("0.0203") == (3, 1e-4)
+    assert decimal_places("1.50") == (3, 0.01)
+    assert decimal_places("7.071e-1") == (4, 1e-4)
+    assert decimal_places("12") == (0, 0.0)
+
+
+@pytest.mark.parametrize(
+    ("answer", "verdict"),
+    [
+        ("0.7071", "correct"),  # rounded to 4 digits
+        ("0.707", "correct"),  # rounded and truncated to 3 digits
+        ("0.70711", "correct"),
+        ("0.7072", "incorrect"),  # neither rounded nor truncated
+        ("0.71", "incorrect"),  # 2 significant digits: must be exact
+        ("0.7", "incorrect"),
+        ("sqrt(2)/2", "correct"),
+    ],
+)
+def test_default_rule_digits_written_and_at_least_three(answer, verdict):
+    assert DEFAULT_ROUNDING == Rounding("digits", 3)
+    assert check(answer).verdict.value == verdict
+
+
+def test_the_issue_examples():
+    puma = "puma560"
+    pi_half = check_answer(Key.load(puma, "T0_3[0,1]"), "cos(theta1 + 1.5708)")
+    assert pi_half.correct and pi_half.entries[0].proof == "rounding"
+    a3 = check_answer(Key.load(puma, "T0_3[2,3]"), "0.4318 S2 + 0.02 S23")  # a3 = 0.0203
+    assert not a3.correct
+
+
+def test_feedback_says_up_to_rounding_and_to_how_many_digits():
+    r = check("0.7071")
+    assert r.message == "The entry is right up to rounding (to 4 significant digits)."
+    assert r.entries[0].rounding == "to 4 significant digits"
+    assert r.to_json()["entries"][0]["rounding"] == "to 4 significant digits"
+    m = check(
+        "[[C1, -0.707*S1, 0.7071*S1, a1*C1], [S1, 0.7071*C1, -0.7071*C1, a1*S1],"
+        " [0, 0.7071, 0.7071, 0]]",
+        question="T0_1",
+    )
+    assert m.correct
+    assert m.message == (
+        "All 16 entries are right; 6 of them up to rounding "
+        "(to 3 significant digits; to 4 significant digits)."
+    )
+    assert check("0.71", "abs=0.01").message.endswith("(within an absolute tolerance of 0.01).")
+
+
+@pytest.mark.parametrize(
+    ("answer", "rounding", "verdict"),
+    [
+        ("0.71", "digits=2", "correct"),
+        ("0.71", None, "incorrect"),
+        ("0.7071", "digits=5", "incorrect"),
+        ("0.71", "abs=0.01", "correct"),
+        ("0.72", "abs=0.01", "incorrect"),
+        ("0.7075", "rel=0.001", "correct"),
+        ("0.7", "rel=0.001", "incorrect"),
+        ("0.7071", "off", "incorrect"),
+        ("sqrt(2)/2", "off", "correct"),
+    ],
+)
+def test_the_instructor_sets_the_rounding_both_ways(answer, rounding, verdict):
+    assert check(answer, rounding).verdict.value == verdict
+
+
+def test_rounding_in_the_assignment_and_per_question(tmp_path):
+    (tmp_path / "twist45.yaml").write_text(TWIST45.read_text(encoding="utf-8"), encoding="utf-8")
+    (tmp_path / "hw.yaml").write_text(
+        "key: twist45.yaml\nrounding: digits=2\nquestions:\n"
+        "  - {id: q1, ask: 'T0_1[2,1]'}\n"
+        "  - {id: q2, ask: 'T0_1[2,1]', rounding: off}\n"
+        "  - {id: q3, ask: 'T0_1[2,1]', rounding: {abs: 0.1}}\n",
+        encoding="utf-8",
+    )
+    a = Assignment.load(tmp_path / "hw.yaml")
+    assert [str(q.key.rounding) for q in a.questions] == ["digits=2", "off", "abs=0.1"]
+    verdicts = [check_answer(q.key, "0.71").verdict.value for q in a.questions]
+    assert verdicts == ["correct", "incorrect", "correct"]
+    (tmp_path / "bad.yaml").write_text(
+        "key: twist45.yaml\nrounding: roughly\nquestions: [{id: q1, ask: A1}]\n", encoding="utf-8"
+    )
+    with pytest.raises(DHError, match="bad.yaml.*unknown rounding 'roughly'"):
+        Assignment.load(tmp_path / "bad.yaml")

@@ -1,0 +1,132 @@
+"""Valid alternative tables of the PUMA 560 and the Stanford arm; where wrong tables diverge."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+import sympy as sp
+
+from dhsym import load_table
+from dhsym.checking.judging.table_match import Chain, compare_tables, same_cells
+from dhsym.model.table import DHTable
+
+pi = sp.pi
+PUMA, STANFORD = load_table("puma560"), load_table("stanford")
+
+
+def table(key: DHTable, rows) -> DHTable:
+    return DHTable(tuple(rows), key.convention, values=key.values)
+
+
+def reverse_z(key: DHTable, k: int) -> list:
+    """Reverse z_k (the axis of joint k+1, standard): α_k += π; row k+1 variable, d and α flip."""
+    rows = list(key.rows)
+    rows[k - 1] = replace(rows[k - 1], alpha=rows[k - 1].alpha + pi - 2 * pi)
+    nxt = rows[k]
+    own = nxt.variable_field
+    rows[k] = replace(
+        nxt,
+        d=-nxt.d if own != "d" else -nxt.d,
+        alpha=nxt.alpha + pi,
+        **({"theta": -nxt.theta} if own == "theta" else {"theta": -nxt.theta}),
+    )
+    return rows
+
+
+def shift_d(key: DHTable, k: int, t: sp.Expr) -> list:
+    """Move origin k along z_k when z_k ∥ z_{k+1}: d_k += t, d_{k+1} -= t."""
+    rows = list(key.rows)
+    rows[k - 1] = replace(rows[k - 1], d=rows[k - 1].d + t)
+    rows[k] = replace(rows[k], d=rows[k].d - t)
+    return rows
+
+
+@pytest.mark.parametrize("k", [1, 2, 3, 4, 5])
+def test_puma_with_a_reversed_z_axis_is_a_valid_alternative(k):
+    m = compare_tables(PUMA, table(PUMA, reverse_z(PUMA, k)))
+    assert m.same_robot and not m.same_table
+    assert m.reversed_joints == (k + 1,)
+    assert any(f"z{k} reversed" in d for d in m.differences)
+
+
+def test_puma_other_common_normal_x0_and_frame0_freedoms():
+    m = compare_tables(PUMA, table(PUMA, shift_d(PUMA, 2, sp.Rational(1, 10))))
+    assert (
+        m.same_robot
+        and "origin of frame 2 moved by 0.1 along z2 (another common normal)" in m.differences
+    )
+    rows = list(PUMA.rows)
+    rows[0] = replace(rows[0], theta=rows[0].theta - pi / 2)
+    m = compare_tables(PUMA, table(PUMA, rows))
+    assert m.same_robot and m.differences == ("x0 rotated by 90° about z0",)
+    rows = list(PUMA.rows)
+    rows[0] = replace(rows[0], d=sp.Rational(67, 100))
+    m = compare_tables(PUMA, table(PUMA, rows))
+    assert m.same_robot and "frame 0 moved by -0.67 along z0" in m.differences
+    rows = [replace(PUMA.rows[0], theta=-PUMA.rows[0].variable, alpha=-pi / 2), *PUMA.rows[1:]]
+    m = compare_tables(PUMA, table(PUMA, rows))
+    assert m.same_robot and m.reversed_joints == (1,)
+
+
+def test_puma_combined_freedoms():
+    rows = shift_d(PUMA, 2, sp.Rational(1, 20))  # then z1 reversed, then x0 turned
+    rows = reverse_z(table(PUMA, rows), 1)
+    rows[0] = replace(rows[0], theta=rows[0].theta + pi)
+    m = compare_tables(PUMA, table(PUMA, rows))
+    assert m.same_robot and len(m.differences) == 3
+
+
+@pytest.mark.parametrize("k", [1, 2, 4, 5])
+def test_stanford_reversed_axes_are_valid_alternatives(k):
+    m = compare_tables(STANFORD, table(STANFORD, reverse_z(STANFORD, k)))
+    assert m.same_robot and m.reversed_joints == (k + 1,)
+
+
+def test_stanford_prismatic_axis_reversed_and_d_shift():
+    rows = list(STANFORD.rows)
+    rows[1] = replace(rows[1], alpha=rows[1].alpha - pi)
+    rows[2] = replace(rows[2], d=-rows[2].variable, alpha=rows[2].alpha + pi)
+    m = compare_tables(STANFORD, table(STANFORD, rows))
+    assert m.same_robot and m.reversed_joints == (3,)
+    m = compare_tables(STANFORD, table(STANFORD, shift_d(STANFORD, 3, sp.Rational(1, 5))))
+    assert m.same_robot and any("frame 3" in d for d in m.differences)
+
+
+def test_tool_frame_is_fixed_unless_the_question_frees_it():
+    rows = list(PUMA.rows)
+    rows[5] = replace(rows[5], d=sp.Rational(56, 1000))
+    m = compare_tables(PUMA, table(PUMA, rows))
+    assert not m.same_robot and m.tool_differs and m.diverges_at == 7
+    m = compare_tables(PUMA, table(PUMA, rows), tool_free=True)
+    assert m.same_robot and m.tool_differs
+
+
+@pytest.mark.parametrize(
+    ("row", "change", "joint"),
+    [(2, {"a": sp.Rational(1, 2)}, 3), (1, {"alpha": 0}, 2), (4, {"d": 0}, 5)],
+)
+def test_first_joint_where_the_geometry_diverges(row, change, joint):
+    rows = list(PUMA.rows)
+    rows[row - 1] = replace(rows[row - 1], **change)
+    m = compare_tables(PUMA, DHTable(tuple(rows), PUMA.convention))
+    assert not m.same_robot and m.diverges_at == joint
+    assert f"check row {row}" in m.reason
+
+
+def test_joint_count_and_kinds():
+    short = DHTable(PUMA.rows[:5], PUMA.convention)
+    assert compare_tables(PUMA, short).reason == "the table has 5 joints; the robot has 6"
+    rows = list(STANFORD.rows)
+    rows[2] = replace(rows[2], joint="R", theta=sp.Symbol("q3", real=True), d=0, variable=None)
+    m = compare_tables(STANFORD, DHTable(tuple(rows), STANFORD.convention))
+    assert m.diverges_at == 3 and "prismatic" in m.reason
+
+
+def test_same_cells_ignores_variable_names_and_full_turns():
+    rows = [
+        replace(r, theta=sp.Symbol(f"q{k}", real=True), variable=None)
+        for k, r in enumerate(PUMA.rows, 1)
+    ]
+    assert same_cells(PUMA, DHTable(tuple(rows), PUMA.convention), PUMA.value_map)
+    assert not same_cells(PUMA, Chain(PUMA.rows[:5], PUMA.convention))

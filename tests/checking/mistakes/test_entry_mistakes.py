@@ -1,0 +1,77 @@
+"""The mistakes students really make, named in feedback (issue 24, item 2), and a sample
+of the mutation benchmark (``benchmarks/bench_mutations.py``)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+from dhsym.checking import Key, check_answer
+from dhsym.checking.judging.verdict import Verdict
+
+PX = "T0_6[0,3]"  # p_x of the PUMA 560: C1*(a2*C2 + a3*C23 - d4*S23) + d3*S1
+
+
+@pytest.fixture(scope="module")
+def px() -> Key:
+    return Key.load("puma560", PX)
+
+
+@pytest.mark.parametrize(
+    ("answer", "kind", "words"),
+    [
+        ("C1*(a2*C2 - a3*C23 - d4*S23) + d3*S1", "wrong_sign", "a3*C23 has the wrong sign"),
+        ("a2*C1*C2 - a3*C1*C23 - d4*C1*S23 + d3*S1", "wrong_sign", "wrong sign"),
+        ("C1*(a2*C2 + a3*C23) + d3*S1", "dropped_term", "-d4*S23 is missing"),
+        ("C1*(a2*C2 + a3*C23 - d4*C23) + d3*S1", "sin_cos_swapped", "S23 and C23"),
+        ("C1*(a2*C2 + a3*C12 - d4*S23) + d3*S1", "wrong_joint_index", "C12 is written where C23"),
+        ("C1*(a2*C2 + C23 - d4*S23) + d3*S1", "missing_length", "length a3 is missing"),
+    ],
+)
+def test_a_single_slip_is_named(px, answer, kind, words):
+    r = check_answer(px, answer)
+    assert r.verdict is Verdict.INCORRECT
+    assert r.kinds[0] == kind, r.message
+    assert words in r.message, r.message
+    assert "none of the usual mistakes" not in r.message
+
+
+def test_the_transpose_of_one_jacobian_block_is_named():
+    import sympy as sp
+
+    from dhsym.checking.judging.checker import prepare
+
+    key = Key.load("puma560", "J")
+    J = sp.Matrix(prepare(key).expected)
+    J[0:3, 0:3] = J[0:3, 0:3].T
+    nota = key_notation(key)
+    text = "[" + ", ".join("[" + ", ".join(nota.text(x) for x in row) + "]" for row in J.tolist())
+    r = check_answer(key, text + "]")
+    assert r.verdict is Verdict.INCORRECT
+    assert r.kinds[0] == "transposed", r.message
+    assert "block of columns 1 to 3" in r.message
+
+
+def key_notation(key: Key):
+    from dhsym.kinematics.robot import Robot
+
+    return Robot(key.table).notation
+
+
+@pytest.mark.slow
+def test_mutation_benchmark_sample():
+    """A seeded sample of the benchmark: every kind named, no correct answer graded wrong."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "benchmarks"))
+    import bench_mutations as bm
+
+    mutants = bm.matrix_mutants("planar2r", "T0_2") + bm.matrix_mutants("example1_rrp", "T0_3")
+    mutants += bm.degree_mutants("planar2r")
+    outcomes = bm.run(mutants)
+    correct = [o for o in outcomes if o.mutant.kind is None]
+    wrong = [o for o in outcomes if o.mutant.kind is not None]
+    assert correct and not [o for o in correct if o.false_wrong]
+    assert {o.mutant.kind for o in wrong} >= {"wrong_sign", "dropped_term", "sin_cos_swapped"}
+    right = sum(o.right for o in wrong) / len(wrong)
+    assert right >= 0.95, [(o.mutant.where, o.mutant.kind, o.kind) for o in wrong if not o.right]
