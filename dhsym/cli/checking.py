@@ -82,7 +82,8 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
 
 def _cmd_grade(args: argparse.Namespace) -> int:
-    from dhsym.checking.grading.batch import Assignment, grade
+    from dhsym.checking.grading.assignment import Assignment
+    from dhsym.checking.grading.batch import grade
     from dhsym.errors import DHError
 
     assignment = Assignment.load(args.assignment)

@@ -162,7 +162,7 @@ def test_nfc_and_nfd_spellings_are_one_student(tmp_path):
 def test_a_tampered_cache_record_is_regraded_never_trusted(tmp_path, change):
     import json
 
-    from dhsym.checking.grading.batch import CACHE_NAME
+    from dhsym.checking.grading.report_files import CACHE_NAME
 
     subs = tmp_path / "subs"
     _student(subs / "alice", "0")
@@ -177,7 +177,7 @@ def test_a_tampered_cache_record_is_regraded_never_trusted(tmp_path, change):
 
 
 def test_no_entry_of_the_submissions_folder_is_dropped_silently(tmp_path):
-    from dhsym.checking.grading.batch import CACHE_NAME
+    from dhsym.checking.grading.report_files import CACHE_NAME
 
     subs = tmp_path / "subs"
     _student(subs / "alice")
@@ -231,7 +231,8 @@ def test_roster_columns_that_never_reach_the_lms_are_not_refused(tmp_path):
 
 
 def test_autograder_names_every_answer_file_it_does_not_grade(tmp_path):
-    from dhsym.checking.grading.batch import Assignment, check_submission
+    from dhsym.checking.grading.assignment import Assignment
+    from dhsym.checking.grading.batch import check_submission
     from dhsym.checking.platforms.autograder import read_submission, results_json
 
     hw = tmp_path / "hw.yaml"

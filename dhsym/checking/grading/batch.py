@@ -1,17 +1,7 @@
 """Grading a whole class: an assignment, a folder or CSV of submissions, a report folder.
 
-The assignment (YAML) names the key and the questions::
-
-    title: Homework 3, forward kinematics
-    key: puma560                  # built-in robot or table file (relative to this file)
-    time_limit: 5                 # seconds per answer (above 0, at most 3600)
-    rounding: digits=3            # accepted rounding of decimals (Rounding); per question too
-    questions:
-      - {id: q1, ask: table, points: 4, tool: free}   # tool: free accepts another tool frame
-      - {id: q2, ask: T0_2, points: 2}
-      - {id: q3, ask: A1, points: 1, key: generic_modified_link.yaml}
-
-Submissions are a folder (one sub-folder per student with files ``q1.md``,
+The assignment (YAML, :class:`~dhsym.checking.grading.assignment.Assignment`) names the
+key and the questions. Submissions are a folder (one sub-folder per student with files ``q1.md``,
 ``q2.txt`` …, and/or one ``<student>.yaml`` with ``name:`` and ``answers: {q1: …}``)
 or a CSV file (columns ``student``, optional ``name``, one per question id); the
 rules for answer files and duplicate ids are in :mod:`dhsym.checking.grading.submissions`.
@@ -29,12 +19,8 @@ the summary are written whatever happens.  Only final verdicts are cached: a
 timeout or an error is graded again on the next run, and the cache is keyed by the
 assignment, its keys and every limit (a corrupted cache is ignored with a warning).
 
-Examples
---------
->>> safe_name("../../etc/passwd", set()).startswith("etc_passwd-")
-True
->>> safe_name("alice", set())
-'alice'
+The assignment file is read by :mod:`~dhsym.checking.grading.assignment`, the report
+folder's files are written through :mod:`~dhsym.checking.grading.report_files`.
 """
 
 from __future__ import annotations
@@ -42,7 +28,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import re
 import statistics
 import time
 from collections.abc import Mapping
@@ -50,155 +35,28 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from dhsym.errors import DHError
-from dhsym.model.yamlsafe import FileRefused, YAMLInputError, load_yaml, read_limited
+from dhsym.model.yamlsafe import FileRefused, read_limited
 
-from ..judging.checker import Key, check_answer, prepare
+from ..judging.checker import check_answer, prepare
 from ..judging.verdict import CheckResult, Verdict
 from ..reading.limits import AnswerLimits, AnswerTimeout, check_seconds, time_limit
 from ._runner import JobFailure, Progress, dask_address, run_dask, run_pool, run_serial
+from .assignment import Assignment, AssignmentQuestion
 from .feedback import QuestionFeedback, render_feedback
 from .records import GradeRecord
-from .report import (
-    CACHE_NAME,
-    inside,
-    safe_name,
-    write_atomic,
-    write_gradebook,
-    write_summary,
-)
+from .report import write_gradebook, write_summary
+from .report_files import CACHE_NAME, inside, safe_name, write_atomic
 from .submissions import Submission, read_submissions
 
 __all__ = [
-    "CACHE_NAME",
     "check_submission",
-    "Assignment",
-    "AssignmentQuestion",
     "GradeReport",
-    "Submission",
     "grade",
     "grade_submission",
-    "read_submissions",
-    "safe_name",
 ]
 
-_ID = re.compile(r"^[A-Za-z0-9_-]{1,40}$")
-_MAX_ASSIGNMENT = 1_000_000
 _MAX_CACHE = 500_000_000
-_MAX_POINTS = 1e6
 _SLACK_SECONDS = 10.0  # reading, rendering and start-up around the answers' own limits
-
-
-@dataclass(frozen=True)
-class AssignmentQuestion:
-    """One question: its id, what is asked, points, the key and whether the tool frame is free."""
-
-    id: str
-    ask: str
-    points: float
-    key: Key
-
-
-@dataclass(frozen=True)
-class Assignment:
-    """A title and questions; ``seconds`` is the time limit of one answer."""
-
-    title: str
-    questions: tuple[AssignmentQuestion, ...]
-    seconds: float = 5.0
-    fingerprint: str = ""
-
-    @property
-    def max_score(self) -> float:
-        """Sum of the points."""
-        return sum(q.points for q in self.questions)
-
-    @classmethod
-    def load(cls, path: str | Path) -> Assignment:
-        """Read an assignment YAML file (keys given as files are relative to it).
-
-        Every problem is a :class:`~dhsym.errors.DHError` naming the file and the
-        question (row) or field.
-        """
-        p = Path(path)
-        try:
-            raw = read_limited(p, _MAX_ASSIGNMENT, what="the assignment")
-            text = raw.decode("utf-8")
-            data = load_yaml(text)
-        except (FileRefused, YAMLInputError) as err:
-            raise DHError(err.message, file=str(p)) from None
-        except UnicodeDecodeError:
-            raise DHError("the assignment is not UTF-8 text", file=str(p)) from None
-        if not isinstance(data, Mapping) or not isinstance(data.get("questions"), list):
-            raise DHError("expected 'questions: [...]' (and 'key:') in the assignment", file=str(p))
-        seconds = check_seconds(data.get("time_limit", 5.0), "time_limit", file=str(p))
-        default = data.get("key")
-        questions, seen, digest = [], set(), [text]
-        for k, q in enumerate(data["questions"], 1):
-            if not isinstance(q, Mapping) or "ask" not in q or "id" not in q:
-                raise DHError("each question needs 'id' and 'ask'", file=str(p), row=k)
-            qid = str(q["id"]) if isinstance(q["id"], (str, int)) else ""
-            if not _ID.match(qid) or qid in seen or qid in ("student", "name"):
-                raise DHError(
-                    f"question id {str(q['id'])[:60]!r}: use letters, digits, '_' or '-', once",
-                    file=str(p),
-                    row=k,
-                    field="id",
-                )
-            seen.add(qid)
-            points = _points(q.get("points", 1), p, k)
-            ref = q.get("key", default)
-            if not isinstance(ref, str) or not ref.strip():
-                raise DHError(
-                    "no key: give 'key:' (a robot name or table file) for the assignment "
-                    "or the question",
-                    file=str(p),
-                    row=k,
-                    field="key",
-                )
-            local = p.parent / ref
-            where: str | Path = (
-                local if local.suffix.lower() in (".yaml", ".yml") or local.exists() else ref
-            )
-            tool = str(q.get("tool", "fixed")).lower() in ("free", "any", "true")
-            ask = q["ask"]
-            if not isinstance(ask, (str, int)):
-                raise DHError("'ask' must be text like T0_2", file=str(p), row=k, field="ask")
-            rounding = q.get("rounding", data.get("rounding"))
-            try:
-                key = Key.load(where, str(ask), tool_free=tool, rounding=rounding)
-            except DHError as err:
-                raise DHError(err.message, file=str(p), row=k, field=err.field or "ask") from None
-            digest.append(repr(key))
-            questions.append(AssignmentQuestion(qid, str(ask), points, key))
-        fp = hashlib.sha256("\n".join(digest).encode()).hexdigest()[:16]
-        title = data.get("title")
-        return cls(
-            " ".join(str(title).split())[:200] if isinstance(title, (str, int)) else p.stem,
-            tuple(questions),
-            seconds,
-            fp,
-        )
-
-
-def _points(value: object, path: Path, row: int) -> float:
-    """Points of a question: a finite number, at least 0."""
-    number = None
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        number = float(value)
-    elif isinstance(value, str):
-        try:
-            number = float(value)
-        except ValueError:
-            number = None
-    if number is None or not math.isfinite(number) or not 0 <= number <= _MAX_POINTS:
-        shown = value if isinstance(value, (int, float)) else repr(value)[:60]
-        raise DHError(
-            f"expected a number of points from 0 to {_MAX_POINTS:g}, got {shown}",
-            file=str(path),
-            row=row,
-            field="points",
-        )
-    return number
 
 
 #: what a timed-out answer is told in a class run (the autograder says its own)

@@ -1,112 +1,35 @@
-"""Writing the report folder: safe file names, atomic writes, the gradebook and the summary.
+"""Writing the report folder: the gradebook and the summary.
 
-Every path is checked to stay inside the report folder, every file is written
-to a temporary name and renamed, and CSV cells that a spreadsheet would run as
-a formula are quoted. The summary page (HTML, from a template) shows a chart
-of the scores and of the mistake kinds, and per question its difficulty (the share
-of the class that got it right) and the most common wrong entries, each with one
-example answer: what to re-teach, in one page.
-
-Examples
---------
->>> safe_name("con", set())
-'con-...'
->>> csv_cell("=HYPERLINK()")
-"'=HYPERLINK()"
+Files are written through :mod:`~dhsym.checking.grading.report_files` (paths that stay
+inside the folder, atomic writes, CSV cells that a spreadsheet never runs). The summary
+page (HTML, from a template) shows a chart of the scores and of the mistake kinds, and
+per question its difficulty (the share of the class that got it right) and the most
+common wrong entries, each with one example answer: what to re-teach, in one page.
 """
 
 from __future__ import annotations
 
 import csv
-import hashlib
 import io
 import math
-import os
-import re
 import statistics
 from collections import Counter
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from dhsym.errors import DHError
-
 from .feedback import render_summary
+from .report_files import csv_cell, inside, write_atomic
 
 if TYPE_CHECKING:
-    from .batch import Assignment
+    from .assignment import Assignment
     from .records import GradeRecord
 
 __all__ = [
-    "CACHE_NAME",
-    "csv_cell",
-    "inside",
-    "name_base",
     "question_picture",
-    "safe_name",
-    "write_atomic",
     "write_gradebook",
     "write_summary",
 ]
-
-CACHE_NAME = ".dhsym-grading-cache.json"
-
-_RESERVED = frozenset(
-    {
-        "con",
-        "prn",
-        "aux",
-        "nul",
-        *(f"com{i}" for i in range(10)),
-        *(f"lpt{i}" for i in range(10)),
-    }
-)
-
-
-def name_base(student: str) -> str:
-    """The file-name form of a student id before it is made unique (ids equal here collide).
-
-    >>> name_base("Ann Lee"), name_base("ann_lee"), name_base("../..")
-    ('Ann_Lee', 'ann_lee', 'student')
-    """
-    return re.sub(r"[^A-Za-z0-9._-]+", "_", student).strip("._-")[:60] or "student"
-
-
-def safe_name(student: str, used: set[str]) -> str:
-    """A file name for a student id: ``[A-Za-z0-9._-]``, no leading dot, unique, short."""
-    base = name_base(student)
-    name = base
-    if name != student or name.lower() in used or name.lower() in _RESERVED:
-        name = f"{base}-{hashlib.sha1(student.encode('utf-8', 'replace')).hexdigest()[:8]}"
-    while name.lower() in used:
-        name += "_"
-    used.add(name.lower())
-    return name
-
-
-def inside(root: Path, *parts: str) -> Path:
-    """``root / parts``, resolved; an error if that leaves the (resolved) report folder."""
-    path = root.joinpath(*parts).resolve()
-    if not path.is_relative_to(root):
-        raise DHError(f"refusing to write outside the report folder: {path}")
-    return path
-
-
-def write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to a temporary file beside ``path``, then rename it over ``path``.
-
-    Text that is not valid Unicode (a lone surrogate from a file name that is not
-    UTF-8) is written with ``\\x`` escapes, never an encoding error.
-    """
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_bytes(text.encode("utf-8", "backslashreplace"))
-    os.replace(tmp, path)
-
-
-def csv_cell(value: object) -> str:
-    """``value`` as a CSV cell that a spreadsheet shows as text, never runs as a formula."""
-    s = str(value)
-    return "'" + s if s[:1] in ("=", "+", "-", "@", "\t", "\r") else s
 
 
 def write_gradebook(root: Path, a: Assignment, records: Sequence[GradeRecord], files: dict) -> Path:

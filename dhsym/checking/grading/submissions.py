@@ -50,10 +50,10 @@ from dhsym.errors import DHError
 from dhsym.model.yamlsafe import FileRefused, YAMLLimits, load_yaml, read_limited
 
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
-from .report import CACHE_NAME, name_base
+from .report_files import CACHE_NAME, name_base
 
 if TYPE_CHECKING:
-    from .batch import Assignment
+    from .assignment import Assignment
 
 __all__ = ["Submission", "identity", "read_submissions", "student_id"]
 

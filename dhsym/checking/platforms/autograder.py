@@ -62,9 +62,10 @@ import yaml
 
 from dhsym.errors import DHError
 
-from ..grading.batch import Assignment, check_submission
+from ..grading.assignment import Assignment
+from ..grading.batch import check_submission
 from ..grading.feedback import QuestionFeedback, render_question_text
-from ..grading.report import write_atomic
+from ..grading.report_files import write_atomic
 from ..grading.submissions import Submission, _from_file, _from_folder
 from ..reading.limits import AnswerLimits
 

@@ -34,8 +34,8 @@ columns that every row has are written: ``ID number``, ``Email address``,
 **Generic**: ``student, name, email, lms_id, <question ids…>, total, max, status``.
 
 Every cell that a spreadsheet would run as a formula is neutralised (names, section,
-title: :func:`~dhsym.checking.grading.report.csv_cell`); an LMS *identifier* that starts like a
-formula is refused instead (changing it would make the LMS miss the student).  The
+title: :func:`~dhsym.checking.grading.report_files.csv_cell`); an LMS *identifier* that starts
+like a formula is refused instead (changing it would make the LMS miss the student).  The
 ``submission`` column is only matched, never written, so it may start with anything.
 
 Examples
@@ -62,10 +62,11 @@ from typing import TYPE_CHECKING
 from dhsym.errors import DHError
 from dhsym.model.yamlsafe import read_limited
 
-from ..grading.report import csv_cell, inside, write_atomic
+from ..grading.report_files import csv_cell, inside, write_atomic
 
 if TYPE_CHECKING:
-    from ..grading.batch import Assignment, GradeReport
+    from ..grading.assignment import Assignment
+    from ..grading.batch import GradeReport
     from ..grading.records import GradeRecord
 
 __all__ = [

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from dhsym.checking import Assignment, grade, read_submissions
-from dhsym.checking.grading.batch import CACHE_NAME, safe_name
+from dhsym.checking.grading.report_files import CACHE_NAME, safe_name
 
 HW = Path(__file__).resolve().parents[3] / "examples" / "homework"
 EXPECTED = {

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from dhsym.checking.grading.batch import Assignment, grade
+from dhsym.checking import Assignment, grade
 from dhsym.checking.grading.records import GradeRecord
 from dhsym.checking.grading.report import question_picture, write_summary
 

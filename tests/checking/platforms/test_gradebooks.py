@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from dhsym.checking.grading.batch import Assignment, grade
+from dhsym.checking import Assignment, grade
 from dhsym.checking.platforms.gradebooks import CANVAS_HEADER, Roster, write_lms_gradebook
 from dhsym.cli.main import main
 from dhsym.errors import DHError

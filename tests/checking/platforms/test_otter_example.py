@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from dhsym.checking.grading.batch import Assignment, grade, read_submissions
+from dhsym.checking import Assignment, grade, read_submissions
 
 pytestmark = [pytest.mark.jupyter, pytest.mark.slow]
 

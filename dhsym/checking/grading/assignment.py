@@ -1,0 +1,162 @@
+r"""The assignment file: a title, the questions with their keys and points, the time limit.
+
+The assignment (YAML) names the key and the questions::
+
+    title: Homework 3, forward kinematics
+    key: puma560                  # built-in robot or table file (relative to this file)
+    time_limit: 5                 # seconds per answer (above 0, at most 3600)
+    rounding: digits=3            # accepted rounding of decimals (Rounding); per question too
+    questions:
+      - {id: q1, ask: table, points: 4, tool: free}   # tool: free accepts another tool frame
+      - {id: q2, ask: T0_2, points: 2}
+      - {id: q3, ask: A1, points: 1, key: generic_modified_link.yaml}
+
+Every key is described in the assignment-file reference of the documentation.
+
+Examples
+--------
+>>> import tempfile
+>>> from pathlib import Path
+>>> folder = Path(tempfile.mkdtemp())
+>>> _ = (folder / "hw.yaml").write_text(
+...     "title: HW 1\nkey: planar2r\nquestions:\n"
+...     "  - {id: q1, ask: T0_2, points: 2}\n  - {id: q2, ask: table}\n"
+... )
+>>> a = Assignment.load(folder / "hw.yaml")
+>>> a.title, [q.id for q in a.questions], a.max_score
+('HW 1', ['q1', 'q2'], 3.0)
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+from dhsym.errors import DHError
+from dhsym.model.yamlsafe import FileRefused, YAMLInputError, load_yaml, read_limited
+
+from ..judging.checker import Key
+from ..reading.limits import check_seconds
+
+__all__ = ["Assignment", "AssignmentQuestion"]
+
+_ID = re.compile(r"^[A-Za-z0-9_-]{1,40}$")
+_MAX_ASSIGNMENT = 1_000_000
+_MAX_POINTS = 1e6
+
+
+@dataclass(frozen=True)
+class AssignmentQuestion:
+    """One question: its id, what is asked, points, the key and whether the tool frame is free."""
+
+    id: str
+    ask: str
+    points: float
+    key: Key
+
+
+@dataclass(frozen=True)
+class Assignment:
+    """A title and questions; ``seconds`` is the time limit of one answer."""
+
+    title: str
+    questions: tuple[AssignmentQuestion, ...]
+    seconds: float = 5.0
+    fingerprint: str = ""
+
+    @property
+    def max_score(self) -> float:
+        """Sum of the points."""
+        return sum(q.points for q in self.questions)
+
+    @classmethod
+    def load(cls, path: str | Path) -> Assignment:
+        """Read an assignment YAML file (keys given as files are relative to it).
+
+        Every problem is a :class:`~dhsym.errors.DHError` naming the file and the
+        question (row) or field.
+        """
+        p = Path(path)
+        try:
+            raw = read_limited(p, _MAX_ASSIGNMENT, what="the assignment")
+            text = raw.decode("utf-8")
+            data = load_yaml(text)
+        except (FileRefused, YAMLInputError) as err:
+            raise DHError(err.message, file=str(p)) from None
+        except UnicodeDecodeError:
+            raise DHError("the assignment is not UTF-8 text", file=str(p)) from None
+        if not isinstance(data, Mapping) or not isinstance(data.get("questions"), list):
+            raise DHError("expected 'questions: [...]' (and 'key:') in the assignment", file=str(p))
+        seconds = check_seconds(data.get("time_limit", 5.0), "time_limit", file=str(p))
+        default = data.get("key")
+        questions, seen, digest = [], set(), [text]
+        for k, q in enumerate(data["questions"], 1):
+            if not isinstance(q, Mapping) or "ask" not in q or "id" not in q:
+                raise DHError("each question needs 'id' and 'ask'", file=str(p), row=k)
+            qid = str(q["id"]) if isinstance(q["id"], (str, int)) else ""
+            if not _ID.match(qid) or qid in seen or qid in ("student", "name"):
+                raise DHError(
+                    f"question id {str(q['id'])[:60]!r}: use letters, digits, '_' or '-', once",
+                    file=str(p),
+                    row=k,
+                    field="id",
+                )
+            seen.add(qid)
+            points = _points(q.get("points", 1), p, k)
+            ref = q.get("key", default)
+            if not isinstance(ref, str) or not ref.strip():
+                raise DHError(
+                    "no key: give 'key:' (a robot name or table file) for the assignment "
+                    "or the question",
+                    file=str(p),
+                    row=k,
+                    field="key",
+                )
+            local = p.parent / ref
+            where: str | Path = (
+                local if local.suffix.lower() in (".yaml", ".yml") or local.exists() else ref
+            )
+            tool = str(q.get("tool", "fixed")).lower() in ("free", "any", "true")
+            ask = q["ask"]
+            if not isinstance(ask, (str, int)):
+                raise DHError("'ask' must be text like T0_2", file=str(p), row=k, field="ask")
+            rounding = q.get("rounding", data.get("rounding"))
+            try:
+                key = Key.load(where, str(ask), tool_free=tool, rounding=rounding)
+            except DHError as err:
+                raise DHError(err.message, file=str(p), row=k, field=err.field or "ask") from None
+            digest.append(repr(key))
+            questions.append(AssignmentQuestion(qid, str(ask), points, key))
+        fp = hashlib.sha256("\n".join(digest).encode()).hexdigest()[:16]
+        title = data.get("title")
+        return cls(
+            " ".join(str(title).split())[:200] if isinstance(title, (str, int)) else p.stem,
+            tuple(questions),
+            seconds,
+            fp,
+        )
+
+
+def _points(value: object, path: Path, row: int) -> float:
+    """Points of a question: a finite number, at least 0."""
+    number = None
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        number = float(value)
+    elif isinstance(value, str):
+        try:
+            number = float(value)
+        except ValueError:
+            number = None
+    if number is None or not math.isfinite(number) or not 0 <= number <= _MAX_POINTS:
+        shown = value if isinstance(value, (int, float)) else repr(value)[:60]
+        raise DHError(
+            f"expected a number of points from 0 to {_MAX_POINTS:g}, got {shown}",
+            file=str(path),
+            row=row,
+            field="points",
+        )
+    return number
