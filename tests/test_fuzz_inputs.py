@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from dhsym import load_table
 from dhsym.checking.reading.answer_names import NameContext
-from dhsym.checking.reading.answers import normalize_unicode, read_table
+from dhsym.checking.reading.answers import normalize_unicode, read_answer_table
 from dhsym.checking.reading.latex_input import latex_to_text
 from dhsym.errors import DHError
 from dhsym.model.parsing import parse_expression
@@ -150,6 +150,6 @@ def test_pasted_table_reader_answers_or_refuses(rows):
         for row in rows
     )
     try:
-        assert isinstance(read_table(text, CTX), DHTable)
+        assert isinstance(read_answer_table(text, CTX), DHTable)
     except DHError as err:
         assert str(err)

@@ -44,7 +44,13 @@ from ..mistakes.registry import (
     diagnose_table,
 )
 from ..reading.answer_names import NameContext
-from ..reading.answers import cell_literals, expression_cell, matrix_cells, parse_cell, read_table
+from ..reading.answers import (
+    cell_literals,
+    expression_cell,
+    matrix_cells,
+    parse_cell,
+    read_answer_table,
+)
 from ..reading.limits import (
     DEFAULT_ANSWER_LIMITS,
     AnswerLimits,
@@ -563,7 +569,7 @@ def _one(q: Question) -> str:
 def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
     key = pk.key
     table = key.table
-    ans = read_table(answer, pk.names, table.convention, limits)
+    ans = read_answer_table(answer, pk.names, table.convention, limits)
     values_ = table.value_map  # for the diagnosis; the verdict is symbolic first
     extra = {"expected_table": table_cells(table), "answer_table": table_cells(ans)}
     note = (

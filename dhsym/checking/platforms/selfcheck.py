@@ -46,7 +46,7 @@ from dhsym.model.table import DHTable
 from ..grading.feedback import QuestionFeedback, render_question_text, render_template
 from ..judging.checker import Key, check_answer, prepare, table_cells
 from ..judging.verdict import CheckResult
-from ..reading.answers import expression_cell, matrix_cells, parse_cell, read_table
+from ..reading.answers import expression_cell, matrix_cells, parse_cell, read_answer_table
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
 
 __all__ = ["Reading", "SelfCheck", "assert_answer", "check", "check_widget", "read_answer"]
@@ -79,7 +79,9 @@ def read_answer(
             q = key.question
             if q.kind == "table":
                 return Reading(
-                    table=table_cells(read_table(answer, pk.names, key.table.convention, limits))
+                    table=table_cells(
+                        read_answer_table(answer, pk.names, key.table.convention, limits)
+                    )
                 )
             nota = pk.robot.notation
             if q.kind == "entry":

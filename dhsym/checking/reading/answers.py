@@ -19,7 +19,7 @@ a1*cos(theta1) + a2*cos(theta1 + theta2)
 >>> read_matrix("[[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0,0,1,0]]",
 ...             ctx)[1, 3]
 a1*sin(theta1) + a2*sin(theta1 + theta2)
->>> read_table("| Link | θ | α | a | d |\n|---|---|---|---|---|\n| 1 | θ1 | 0 | a1 | 0 |\n"
+>>> read_answer_table("| Link | θ | α | a | d |\n|---|---|---|---|---|\n| 1 | θ1 | 0 | a1 | 0 |\n"
 ...            "| 2 | θ2 | 0 | a2 | 0 |", ctx).rows[1]
 DHRow(R: theta=theta2, d=0, a=a2, alpha=0)
 """
@@ -51,9 +51,9 @@ __all__ = [
     "normalize_unicode",
     "parse_cell",
     "read_answer_file",
+    "read_answer_table",
     "read_expression",
     "read_matrix",
-    "read_table",
     "read_text",
 ]
 
@@ -367,13 +367,16 @@ def matrix_cells(
     return cells
 
 
-def read_table(
+def read_answer_table(
     text: str | bytes,
     ctx: NameContext,
     convention: Convention | str = Convention.STANDARD,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
 ) -> DHTable:
-    """A DH table: the YAML table format, CSV, or a pasted Markdown / plain-text table.
+    """A student's DH table: the YAML table format, CSV, or a pasted Markdown / plain-text table.
+
+    The text is untrusted and names the key's symbols (``ctx``); a teacher's table *file* is
+    read by :func:`dhsym.read_table` instead.
 
     Columns may come in any order with headers like ``theta``, ``θ``, ``$\\theta_i$``,
     ``alpha_{i-1}``, ``Link``, ``J``; angles in degrees or radians.  Headers with

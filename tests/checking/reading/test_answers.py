@@ -12,9 +12,9 @@ from dhsym.checking.reading.answer_names import NameContext
 from dhsym.checking.reading.answers import (
     matrix_cells,
     read_answer_file,
+    read_answer_table,
     read_expression,
     read_matrix,
-    read_table,
     read_text,
 )
 from dhsym.checking.reading.limits import UnreadableAnswer
@@ -96,7 +96,7 @@ def test_the_lecture_tables_read_as_the_built_in_robots(robot, start, rows):
 
     key = load_table(robot)
     text = _seed_table("001_7792e01642df3866.txt", start, rows)
-    answer = read_table(text, NameContext.from_table(key), key.convention)
+    answer = read_answer_table(text, NameContext.from_table(key), key.convention)
     assert answer.n == key.n
     assert compare_tables(key, answer).same_robot
 
@@ -105,18 +105,19 @@ def test_columns_in_any_order_csv_yaml_and_modified_headers():
     key = load_table("planar2r")
     ctx = NameContext.from_table(key)
     csv_text = "alpha,a,d,theta\n0,a1,0,theta1\n0,a2,0,theta2\n"
-    assert [r.params() for r in read_table(csv_text, ctx).rows] == [r.params() for r in key.rows]
+    rows = read_answer_table(csv_text, ctx).rows
+    assert [r.params() for r in rows] == [r.params() for r in key.rows]
     yaml_text = (
         "angles: deg\njoints:\n- {type: R, theta: q1, d: 0, a: a_1, alpha: 0}\n"
         "- {type: R, theta: q2, d: 0, a: a_2, alpha: 0}\n"
     )
-    t = read_table(yaml_text, ctx)
+    t = read_answer_table(yaml_text, ctx)
     assert t.rows[0].a == a1 and t.convention is Convention.STANDARD
     md = (
         "| i | $\\alpha_{i-1}$ | $a_{i-1}$ | $d_i$ | $\\theta_i$ |\n|--|--|--|--|--|\n"
         "| 1 | 0 | 0 | 0 | θ1 |\n| 2 | 0 | a1 | 0 | θ2 |"
     )
-    assert read_table(md, ctx).convention is Convention.MODIFIED
+    assert read_answer_table(md, ctx).convention is Convention.MODIFIED
 
 
 @pytest.mark.parametrize(
@@ -130,7 +131,7 @@ def test_columns_in_any_order_csv_yaml_and_modified_headers():
 )
 def test_bad_tables_say_what_is_wrong(text, match):
     with pytest.raises(DHError, match=match):
-        read_table(text, P2)
+        read_answer_table(text, P2)
 
 
 def test_text_limits(tmp_path):
