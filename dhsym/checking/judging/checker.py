@@ -203,7 +203,7 @@ def _expected(pk: PreparedKey) -> sp.ImmutableMatrix:
     ``[det J]`` factored (the measure of :func:`~dhsym.kinematics.singularities.singularities`)."""
     q, robot = pk.key.question, pk.robot
     if q.kind == "jacobian":
-        J = robot.jacobian().matrix  # type: ignore[attr-defined]
+        J = robot.jacobian().matrix
         if q.entry is not None and not q.entry[1] < J.cols:
             raise DHError(f"question {q.spec!r}: the columns of J are 0 … {J.cols - 1}")
         return sp.ImmutableMatrix(J)
@@ -229,7 +229,7 @@ def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
             ("i", "theta_i", "d_i", "a_i", "alpha_i", "joint"),
             ("theta", "d", "a", "alpha"),
         )
-    rows = [head]
+    rows: list[tuple[str, ...]] = [head]
     for i, row in enumerate(table.rows, 1):
         cells = [str(i)]
         for name in order:
@@ -315,7 +315,7 @@ def _compare(
     sample = Sample.random(pk.symbols | set(unknown), fixed=value_map if valued else None)
     kv = values(expected, sample)
     av = values(ans, sample)
-    near = close(av, kv, EXACT_RTOL, axis=0)
+    near = np.asarray(close(av, kv, EXACT_RTOL, axis=0))
     entries, wrong = [], []
     for i in range(expected.rows):
         for j in range(expected.cols):
@@ -571,7 +571,7 @@ def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> 
     table = key.table
     ans = read_answer_table(answer, pk.names, table.convention, limits)
     values_ = table.value_map  # for the diagnosis; the verdict is symbolic first
-    extra = {"expected_table": table_cells(table), "answer_table": table_cells(ans)}
+    expected_table, answer_table = table_cells(table), table_cells(ans)
     note = (
         " (Your angles were read as degrees, from a value above 2π, a ° or deg mark"
         " or the file's angles: deg.)"
@@ -587,7 +587,8 @@ def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> 
                 Verdict.CORRECT,
                 "Your table is the key's table." + note,
                 key=key.name,
-                **extra,
+                expected_table=expected_table,
+                answer_table=answer_table,
             )
         how = "; ".join(match.differences) or "other but equivalent entries"
         return CheckResult(
@@ -597,7 +598,8 @@ def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> 
             f"with other frame choices ({how}).{note}",
             alternative=how,
             key=key.name,
-            **extra,
+            expected_table=expected_table,
+            answer_table=answer_table,
         )
     diagnoses = diagnose_table(TableCase(table, ans, key.tool_free, values_))
     if not diagnoses:
@@ -619,5 +621,11 @@ def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> 
         f"The table is wrong. Most likely: {diagnoses[0].title}. {diagnoses[0].detail}{where}{note}"
     )
     return CheckResult(
-        "table", Verdict.INCORRECT, message, diagnoses=diagnoses, key=key.name, **extra
+        "table",
+        Verdict.INCORRECT,
+        message,
+        diagnoses=diagnoses,
+        key=key.name,
+        expected_table=expected_table,
+        answer_table=answer_table,
     )

@@ -28,8 +28,6 @@ Examples
 --------
 >>> Rounding.parse("digits=4"), Rounding.parse({"abs": 0.001}), Rounding.parse(None)
 (Rounding('digits=4'), Rounding('abs=0.001'), Rounding('digits=3'))
->>> decimal_places("0.0203"), decimal_places("1.5708"), decimal_places("7.071e-1")
-((3, 0.0001), (5, 0.0001), (4, 0.0001))
 >>> Rounding.parse("off").describe(0)
 'decimals must be exact'
 """
@@ -46,14 +44,13 @@ import sympy as sp
 
 from dhsym.errors import DHError
 
+from ..reading.literals import Literal, decimal_places
 from ._sampled_frames import EvaluationError, evaluate
 from .tolerances import TOLERANCES
 
 __all__ = [
     "DEFAULT_ROUNDING",
-    "Literal",
     "Rounding",
-    "decimal_places",
     "rounding_accepts",
     "standing",
     "value_tolerance",
@@ -62,40 +59,6 @@ __all__ = [
 _MODES = ("digits", "abs", "rel", "off")
 # Matched on the stripped text; no two neighbouring parts can take the same characters.
 _SPEC = re.compile(r"(digits|abs|rel)\s*(?:[=:]\s*)?([0-9.eE+-]+)|([0-9]+)\s*digits?")
-_LITERAL = re.compile(r"^(?P<whole>[0-9]*)(?:\.(?P<frac>[0-9]*))?(?:[eE](?P<exp>[+-]?[0-9]+))?$")
-
-
-def decimal_places(text: str) -> tuple[int, float]:
-    """(significant digits written, one unit in the last digit) of a decimal literal.
-
-    Leading zeros do not count, trailing ones do (``1.50`` has 3).  An integer literal
-    (no point, no exponent) is exact: ``(0, 0.0)``.
-    """
-    m = _LITERAL.match(text.strip())
-    if m is None or (m["frac"] is None and m["exp"] is None):
-        return 0, 0.0
-    frac, exp = m["frac"] or "", int(m["exp"] or 0)
-    digits = len((m["whole"] + frac).lstrip("0"))
-    return digits, 10.0 ** (exp - len(frac))
-
-
-@dataclass(frozen=True)
-class Literal:
-    """A numeric literal of an answer: its placeholder symbol, text and exact value."""
-
-    symbol: sp.Symbol
-    text: str
-    value: sp.Rational
-
-    @property
-    def digits(self) -> int:
-        """Significant digits written (0 for an integer)."""
-        return decimal_places(self.text)[0]
-
-    @property
-    def unit(self) -> float:
-        """One unit in the last digit written (0 for an integer)."""
-        return decimal_places(self.text)[1]
 
 
 @dataclass(frozen=True)

@@ -244,11 +244,11 @@ class DynamicsMistake(Mistake):
     which: str = ""
 
     @property
-    def kind(self) -> str:  # type: ignore[override]
+    def kind(self) -> str:  # type: ignore[override]  # one class, its instances are the kinds
         return self.which
 
     @property
-    def title(self) -> str:  # type: ignore[override]
+    def title(self) -> str:  # type: ignore[override]  # per instance, like kind
         return _TITLES[self.which]
 
     def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:

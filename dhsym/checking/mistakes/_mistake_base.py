@@ -77,7 +77,7 @@ class MatrixCase:
         if reverse == "factors":
             word = word[::-1]
         if self.frm > self.to:
-            word = inverse_word(word)
+            word = list(inverse_word(word))
         return word_product(word, self.sample.env, self.sample.size)
 
     def project(self, full: np.ndarray) -> np.ndarray:

@@ -66,7 +66,9 @@ class IndexShift(Mistake):
 def _no_offset(row: DHRow) -> DHRow:
     if row.variable is None or row.offset == 0:
         return row
-    return replace(row, **{row.variable_field: row.variable})  # type: ignore[arg-type]
+    if row.variable_field == "theta":
+        return replace(row, theta=row.variable)
+    return replace(row, d=row.variable)
 
 
 class OffsetMissing(Mistake):

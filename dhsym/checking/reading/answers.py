@@ -36,11 +36,11 @@ from dhsym.model.parsing import parse_expression
 from dhsym.model.table import Convention, DHTable
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
-from ..judging.rounding import Literal
 from ._table_text import TABLE_FORM, grid_table, yaml_table
 from .answer_names import NameContext
 from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
 from .limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer, check_time
+from .literals import Literal
 
 __all__ = [
     "NameContext",

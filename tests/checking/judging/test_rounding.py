@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from dhsym.checking import Assignment, Key, check_answer
-from dhsym.checking.judging.rounding import DEFAULT_ROUNDING, Rounding, decimal_places
+from dhsym.checking.judging.rounding import DEFAULT_ROUNDING, Rounding
 from dhsym.errors import DHError
 
 CORPUS = Path(__file__).resolve().parents[2] / "data" / "answers"
@@ -40,13 +40,6 @@ def test_rounding_rules_are_read(spec, text):
 def test_bad_rounding_rules_are_refused(spec):
     with pytest.raises(DHError, match="rounding"):
         Rounding.parse(spec)
-
-
-def test_digits_and_unit_of_a_decimal_as_written():
-    assert decimal_places("0.0203") == (3, 1e-4)
-    assert decimal_places("1.50") == (3, 0.01)
-    assert decimal_places("7.071e-1") == (4, 1e-4)
-    assert decimal_places("12") == (0, 0.0)
 
 
 @pytest.mark.parametrize(
