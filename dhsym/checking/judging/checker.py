@@ -322,7 +322,7 @@ def _compare(
             a, e = ans[i, j], expected[i, j]
             k = i * expected.cols + j
             proof, note = "", ""
-            check_time()  # the answer's deadline (see _limits.time_limit)
+            check_time()  # the answer's deadline (see reading.limits.time_limit)
             target = e.subs(value_map) if valued else e
             if near[i, j]:
                 exact = prove_entry(a, target, limits, agreed=True) if not unknown else None

@@ -418,7 +418,7 @@ def compare_tables(
     tol = TOLERANCES.frame_rtol * scale
     best, found = -1, []
     for B in _candidates(Fk, Fa0, kc, ac, jk, ja):
-        check_time()  # the answer's deadline (see _limits.time_limit)
+        check_time()  # the answer's deadline (see reading.limits.time_limit)
         got, signs, dirs, E = _verify(B, kc, ac, jk, ja, Fk, env_a, size, tol)
         best = max(best, got)
         if E is None:

@@ -134,7 +134,7 @@ def diagnose_matrix(
     ``J``: :data:`JACOBIAN_MISTAKES`; ``det J``: :data:`DET_MISTAKES`).
     """
     for m in mistakes:
-        check_time()  # the answer's deadline (see _limits.time_limit)
+        check_time()  # the answer's deadline (see reading.limits.time_limit)
         d = m.explain_matrix(case)
         if d is not None:
             return (d,)

@@ -246,7 +246,7 @@ def parse_cell(
     cell: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS, where: str = ""
 ) -> sp.Expr:
     """One cell (plain math or LaTeX) as an expression, names resolved by ``ctx``."""
-    check_time()  # the answer's deadline (see _limits.time_limit)
+    check_time()  # the answer's deadline (see reading.limits.time_limit)
     return _parse(cell, ctx, limits, where or "the answer")
 
 
