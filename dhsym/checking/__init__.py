@@ -12,6 +12,12 @@ notebook: :func:`check` (rich result, or a widget without an answer); on an auto
 platform: :mod:`~dhsym.checking.platforms.autograder`; LMS imports:
 :mod:`~dhsym.checking.platforms.gradebooks`.
 Student text is untrusted throughout: see :class:`AnswerLimits`.
+
+Inside, five sub-rooms: :mod:`~dhsym.checking.reading` (student text to sympy),
+:mod:`~dhsym.checking.judging` (against the key), :mod:`~dhsym.checking.mistakes` (what
+explains a wrong answer), :mod:`~dhsym.checking.grading` (a class, its report folder) and
+:mod:`~dhsym.checking.platforms` (autograders, LMS gradebooks, notebooks). Every name below
+is loaded from its sub-room on first use.
 """
 
 from __future__ import annotations
