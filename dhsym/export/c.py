@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 
 from sympy.printing.c import C99CodePrinter
 
-from .render import Language
+from .languages import Language
 
 if TYPE_CHECKING:
     import sympy as sp

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 
 from sympy.printing.cxx import CXX17CodePrinter
 
-from .render import Language
+from .languages import Language
 
 if TYPE_CHECKING:
     import sympy as sp

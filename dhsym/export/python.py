@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 
 from sympy.printing.numpy import NumPyPrinter
 
-from .render import Language
+from .languages import Language
 
 if TYPE_CHECKING:
     import sympy as sp

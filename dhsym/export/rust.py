@@ -18,7 +18,7 @@ import sympy as sp
 from sympy.printing.codeprinter import CodePrinter
 from sympy.printing.rust import RustCodePrinter
 
-from .render import Language
+from .languages import Language
 
 __all__ = ["LANGUAGE", "RustPrinter"]
 
