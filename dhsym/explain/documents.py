@@ -280,7 +280,9 @@ def _graphic(name: str | None) -> TeX | None:
     return TeX(name)
 
 
-def _figures(robots: Sequence[Robot], keys: Sequence[str], folder: Path, stem: str) -> dict:
+def _figures(
+    robots: Sequence[Robot], keys: Sequence[str], folder: Path, stem: str
+) -> dict[str, str]:
     try:
         from dhsym.plot.figures import plot_robot
     except ImportError as err:

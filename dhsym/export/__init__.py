@@ -64,7 +64,8 @@ def _language(lang: str) -> Language:
 
     if lang not in LANGUAGES:
         raise DHError(f"unknown language {lang!r}: choose one of {', '.join(LANGUAGES)}")
-    return import_module(f"{__name__}.{lang}").LANGUAGE
+    language: Language = import_module(f"{__name__}.{lang}").LANGUAGE
+    return language
 
 
 def _parts(what: str | Iterable[str]) -> tuple[str, ...]:

@@ -112,7 +112,7 @@ def render_files(lang: Language, ctx: Context, what: Sequence[str]) -> dict[str,
     printer = lang.printer()
 
     def code(e: sp.Expr) -> str:
-        return printer.doprint(e)
+        return str(printer.doprint(e))
 
     def comment(text: str) -> list[str]:
         return comment_lines(text)
