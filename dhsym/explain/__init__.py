@@ -15,7 +15,7 @@ __getattr__, __dir__ = lazy_exports(
         "compile_pdf": "latex",
         "Derivation": "derivation",
         "derive": "derivation",
-        "derive_dynamics": "dynamics",
+        "derive_dynamics": "equations_of_motion",
         "derive_inverse": "inverse_kinematics",
         "derive_jacobian": "velocity_kinematics",
         "derive_singularities": "velocity_kinematics",

@@ -36,7 +36,7 @@ from dhsym.notation.printers import Notation, TrigStyle
 
 from .data import Document
 from .derivation import Derivation, as_robot, derive, general_link
-from .dynamics import derive_dynamics
+from .equations_of_motion import derive_dynamics
 from .inverse_kinematics import derive_inverse
 from .latex import compile_pdf
 from .rendering import environment, render, render_template
