@@ -26,8 +26,8 @@ ROOMS = {
     "plot",
 }
 #: Rooms whose ``__init__`` lists its names through ``lazy_exports`` or ``public_dir``
-#: (dhsym.dynamics imports its names eagerly, dhsym.cli exports ``main`` only).
-LAZY_ROOMS = sorted(ROOMS - {"cli", "dynamics"})
+#: (not yet dhsym.dynamics, which imports its names eagerly).
+LAZY_ROOMS = sorted(ROOMS - {"dynamics"})
 
 
 def _public(names: list[str]) -> set[str]:
