@@ -6,18 +6,17 @@
 a1*cos(theta1) + a2*cos(theta1 + theta2)
 """
 
-from __future__ import annotations
-
-from ._lazy import lazy_exports
+from . import _lazy
 
 # Every name loads on first use (PEP 562): `import dhsym` costs almost nothing, so that
 # `dhsym --help` starts fast, and the names a program uses import only what they need.
-__getattr__, __dir__ = lazy_exports(
+__getattr__, __dir__ = _lazy.lazy_exports(
     __name__,
     {
         # the rooms themselves
         "checking": "checking",
         "cli": "cli",
+        "dynamics": "dynamics",
         "explain": "explain",
         "formats": "formats",
         "export": "export",

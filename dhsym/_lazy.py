@@ -10,14 +10,21 @@ Examples
 'parse_expression'
 >>> "parse_expression" in dir_()
 True
+
+``dir()`` of such a package lists what it exports and its dunder attributes, not
+the names its ``__init__`` happens to import (``annotations``, ``lazy_exports``):
+
+>>> "lazy_exports" in dir_(), "annotations" in dir_()
+(False, False)
 """
 
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable, Mapping
+import sys
+from collections.abc import Callable, Iterable, Mapping
 
-__all__ = ["lazy_exports"]
+__all__ = ["lazy_exports", "public_dir"]
 
 
 def lazy_exports(
@@ -40,6 +47,22 @@ def lazy_exports(
         return getattr(importlib.import_module(target), name)
 
     def __dir__() -> list[str]:
-        return sorted(set(names) | set(importlib.import_module(package).__dict__))
+        return public_dir(package, names)
 
     return __getattr__, __dir__
+
+
+def public_dir(package: str, names: Iterable[str] = ()) -> list[str]:
+    """What ``dir(package)`` shows: its ``__all__``, ``names`` and its dunder attributes.
+
+    Names the module's code imports for itself (``annotations``, ``lazy_exports``,
+    ``sys``) and private ones stay out, as do submodules imported along the way.
+
+    >>> import dhsym.model
+    >>> public_dir("dhsym.model") == sorted(
+    ...     {*dhsym.model.__all__, *(n for n in vars(dhsym.model) if n.startswith("__"))})
+    True
+    """
+    namespace = vars(sys.modules[package])
+    dunders = {n for n in namespace if n.startswith("__") and n.endswith("__")}
+    return sorted(set(namespace.get("__all__", ())) | set(names) | dunders)

@@ -81,3 +81,29 @@ def test_builders_and_printers_refuse_text_or_parse_it_safely():
         with pytest.raises(ParseError):
             call()
     assert [t.text for t in Notation().tokens("a1 + 1", latex=False)] == ["a1", " + ", "1"]
+
+
+# --- one name, one module -------------------------------------------------------------------
+
+
+def _shared_module_names(files: list[Path]) -> dict[str, list[str]]:
+    """File names (a leading ``_`` ignored) that more than one module under dhsym/ has."""
+    by_name: dict[str, list[str]] = {}
+    for p in files:
+        if p.stem in ("__init__", "__main__"):
+            continue
+        by_name.setdefault(p.stem.lstrip("_"), []).append(p.as_posix())
+    return {name: paths for name, paths in sorted(by_name.items()) if len(paths) > 1}
+
+
+def test_no_two_modules_share_a_name():
+    package = SCRIPT.parents[1] / "dhsym"
+    files = [p.relative_to(package.parent) for p in sorted(package.rglob("*.py"))]
+    shared = _shared_module_names(files)
+    listing = "; ".join(f"{name}: {', '.join(paths)}" for name, paths in shared.items())
+    assert shared == {}, f"modules that share a name: {listing}"
+
+
+def test_the_scan_sees_modules_that_share_a_name():
+    files = [Path(p) for p in ("a/x.py", "b/_x.py", "a/__init__.py", "b/__init__.py", "c/y.py")]
+    assert _shared_module_names(files) == {"x": ["a/x.py", "b/_x.py"]}

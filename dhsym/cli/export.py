@@ -11,8 +11,12 @@ import argparse
 import shlex
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .common import add_command, load_robot, note_warnings, wrote
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.robot import Robot
 
 __all__ = ["register"]
 
@@ -53,7 +57,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
     return 0
 
 
-def _write_urdf(robot: object, args: argparse.Namespace) -> int:
+def _write_urdf(robot: Robot, args: argparse.Namespace) -> int:
     """``--lang urdf``: one URDF file, ``-o`` itself when it ends in ``.urdf``."""
     from dhsym.errors import DHError
     from dhsym.formats.urdf import write_urdf
@@ -61,7 +65,7 @@ def _write_urdf(robot: object, args: argparse.Namespace) -> int:
     if args.what != "fk,jacobian,ik":
         raise DHError("--what does not apply to --lang urdf (a URDF holds the whole robot)")
     name = args.prefix or Path(args.robot).stem
-    text = write_urdf(robot, name=name)  # type: ignore[arg-type]
+    text = write_urdf(robot, name=name)
     out = Path(args.output)
     if out.suffix.lower() == ".urdf":
         out.parent.mkdir(parents=True, exist_ok=True)

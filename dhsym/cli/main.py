@@ -19,13 +19,13 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from . import checking, documents, export, geometry, plots, robots
+from . import checking, export, geometry, handouts, plots, robots
 from .common import HelpFormatter, run_quietly
 
 __all__ = ["COMMAND_GROUPS", "build_parser", "main"]
 
 #: The command groups, in the order ``dhsym --help`` lists them.
-COMMAND_GROUPS = (robots, documents, plots, geometry, checking, export)
+COMMAND_GROUPS = (robots, handouts, plots, geometry, checking, export)
 
 _DESCRIPTION = """\
 Denavit-Hartenberg tables to closed-form kinematics in lecture notation

@@ -38,7 +38,7 @@ from dhsym.errors import DHError
 from dhsym.kinematics.pose import Pose
 from dhsym.kinematics.robot import Robot
 from dhsym.kinematics.transforms import chain_word, elementary_matrix
-from dhsym.model.table import AngleUnit, Convention, DHTable
+from dhsym.model.table import AngleUnit, Convention, DHTable, Elementary
 from dhsym.notation.escape import TeX
 from dhsym.notation.layout import (
     LATEX_WIDTH,
@@ -155,7 +155,7 @@ def _frame_notes(table: DHTable, frm: int, to: int, n: int, nota: Notation) -> t
     """Say where the table's base and tool transforms are (``convert`` moves lengths there):
     ^0T_n below stops at the last DH frame."""
 
-    def word(steps: tuple) -> str:
+    def word(steps: tuple[Elementary, ...]) -> str:
         return "·".join(f"{e.kind}{e.axis}({nota.text(e.value)})" for e in steps)
 
     out = []

@@ -36,11 +36,11 @@ from dhsym.notation.printers import Notation, TrigStyle
 
 from .data import Document
 from .derivation import Derivation, as_robot, derive, general_link
-from .dynamics import derive_dynamics
-from .inverse import derive_inverse
-from .jacobian import derive_jacobian, derive_singularities
+from .equations_of_motion import derive_dynamics
+from .inverse_kinematics import derive_inverse
 from .latex import compile_pdf
 from .rendering import environment, render, render_template
+from .velocity_kinematics import derive_jacobian, derive_singularities
 
 __all__ = [
     "SECTION_TITLES",
@@ -94,10 +94,11 @@ def document(
     or ``dynamics``.
 
     ``options`` are those of :func:`~dhsym.explain.derivation.derive` (``fk``),
-    :func:`~dhsym.explain.jacobian.derive_jacobian` (``frame``, ``point``),
-    :func:`~dhsym.explain.jacobian.derive_singularities` or
-    :func:`~dhsym.explain.inverse.derive_inverse` (``check``); ``numeric`` substitutes the
-    table's numbers for its lengths. Options a derivation does not take are refused.
+    :func:`~dhsym.explain.velocity_kinematics.derive_jacobian` (``frame``, ``point``),
+    :func:`~dhsym.explain.velocity_kinematics.derive_singularities` or
+    :func:`~dhsym.explain.inverse_kinematics.derive_inverse` (``check``); ``numeric``
+    substitutes the table's numbers for its lengths. Options a derivation does not take are
+    refused.
 
     >>> document("planar2r", "ik").count
     2
@@ -279,7 +280,9 @@ def _graphic(name: str | None) -> TeX | None:
     return TeX(name)
 
 
-def _figures(robots: Sequence[Robot], keys: Sequence[str], folder: Path, stem: str) -> dict:
+def _figures(
+    robots: Sequence[Robot], keys: Sequence[str], folder: Path, stem: str
+) -> dict[str, str]:
     try:
         from dhsym.plot.figures import plot_robot
     except ImportError as err:

@@ -1,6 +1,7 @@
-r"""Rendering through the Jinja2 templates: the environments, and one derivation as a document.
+r"""Rendering the document templates: their environments, and one derivation as a document.
 
-The templates come from :func:`dhsym.explain.templates.loader`: a user folder given
+The renderer is the one of :mod:`dhsym.notation.templates` (the
+:data:`~dhsym.notation.templates.DOCUMENT` family): a user folder given
 with ``template_dir`` comes first, so a file there replaces the built-in one
 of the same name, and ``base/NAME`` always reaches the built-in (to extend it
 and override single blocks)::
@@ -29,18 +30,18 @@ Planar 2R: forward kinematics (standard DH convention)
 from __future__ import annotations
 
 from collections.abc import Sequence
-from functools import lru_cache
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from dhsym.errors import DHError
-from dhsym.notation.escape import TeX, _clean_text, escape_latex, escape_markdown
+from dhsym.notation import templates
 from dhsym.notation.tables import text_table
-
-from .templates import loader
+from dhsym.notation.templates import DOCUMENT, format_name, format_suffix, render_template
 
 if TYPE_CHECKING:  # a derivation renders itself through render(): no import at run time
     import jinja2
+
+    from dhsym.notation.templates import Filters
 
     from .data import Document
 
@@ -74,70 +75,19 @@ def _text_columns(items: Sequence[str], width: int = 96) -> list[str]:
     return ["".join(i.ljust(colw) for i in row).rstrip() for row in rows]
 
 
+_TEXT: Filters = (("grid", _text_grid), ("table", text_table), ("columns", _text_columns))
+
+
 def environment(kind: str = "latex", template_dir: str | Path | None = None) -> jinja2.Environment:
-    """The Jinja2 environment for ``kind`` (``latex``, ``markdown`` or ``text``).
-
-    Built once per kind and template folder (templates compile once; Jinja2 reloads a
-    template file that changes on disk).
+    """The Jinja2 environment of the document templates for ``kind`` (``latex``,
+    ``markdown`` or ``text``): :func:`dhsym.notation.templates.environment` of the
+    :data:`~dhsym.notation.templates.DOCUMENT` family, with the text filters
+    (``grid``, ``table``, ``columns``) for ``text``.
     """
-    if template_dir is not None:
-        template_dir = Path(template_dir).resolve()
-    return _environment(kind, template_dir)
-
-
-@lru_cache(maxsize=8)
-def _environment(kind: str, template_dir: Path | None) -> jinja2.Environment:
-    import jinja2
-    from markupsafe import Markup
-
-    if kind not in _KINDS:
+    fmt = format_name(kind)
+    if fmt not in _KINDS:
         raise DHError(f"unknown format {kind!r}: expected one of {', '.join(_KINDS)}")
-    common: dict[str, Any] = dict(
-        loader=loader(template_dir),
-        undefined=jinja2.StrictUndefined,
-        trim_blocks=True,
-        lstrip_blocks=True,
-        keep_trailing_newline=True,
-        extensions=["jinja2.ext.do"],
-    )
-    if kind == "text":
-        env = jinja2.Environment(autoescape=False, finalize=_clean_text, **common)
-        env.filters.update(grid=_text_grid, table=text_table, columns=_text_columns)
-        return env
-    escape = escape_latex if kind == "latex" else escape_markdown
-
-    def finalize(value: object) -> object:
-        if isinstance(value, Markup):
-            return value  # macro output, already finalised piece by piece
-        if isinstance(value, TeX):
-            return Markup(value)
-        return Markup(escape(value))
-
-    delimiters: dict[str, Any] = dict(
-        block_start_string="((*",
-        block_end_string="*))",
-        variable_start_string="(((",
-        variable_end_string=")))",
-        comment_start_string="((=",
-        comment_end_string="=))",
-    )
-    env = jinja2.Environment(
-        autoescape=True, finalize=finalize, **(delimiters if kind == "latex" else {}), **common
-    )
-    env.filters["tex"] = lambda s: Markup(TeX(s))  # for literal LaTeX assembled in a template
-    return env
-
-
-def render_template(env: jinja2.Environment, name: str, **context: object) -> str:
-    """Render template ``name``; template mistakes (often in a user folder) become DHError."""
-    import jinja2
-
-    try:
-        return env.get_template(name).render(**context)
-    except jinja2.TemplateError as err:
-        line, file = getattr(err, "lineno", None), getattr(err, "filename", None)
-        where = f"{file}:{line}: " if line else ""
-        raise DHError(f"template {name}: {where}{err.message or err}") from None
+    return templates.environment(fmt, DOCUMENT, template_dir, _TEXT if fmt == "text" else ())
 
 
 def render(
@@ -149,10 +99,6 @@ def render(
     ``jacobian.md.j2``, …); a LaTeX fragment is ``fragment.tex.j2`` around ``<kind>.tex.j2``.
     """
     env = environment(fmt, template_dir)
-    kind = derivation.kind
-    name = {
-        "latex": "fragment.tex.j2",
-        "markdown": f"{kind}.md.j2",
-        "text": f"{kind}.txt.j2",
-    }[fmt]
+    suffix = format_suffix(fmt)
+    name = "fragment.tex.j2" if suffix == "tex" else f"{derivation.kind}.{suffix}.j2"
     return render_template(env, name, d=derivation)

@@ -4,7 +4,7 @@ C++, MATLAB, Rust, NumPy.
 The room turns a robot's exact closed forms (:mod:`dhsym.kinematics`) into
 self-contained source files with no dependency on dhsym: :mod:`.program` is the
 front end (named straight-line programs), :mod:`.ik_source` the one adapter to the IK
-derivation, :mod:`.render` and the templates in ``templates/export`` the back end, one
+derivation, :mod:`.languages` and the templates in ``templates/export`` the back end, one
 module per language (:mod:`.c`, :mod:`.cpp`, :mod:`.matlab`, :mod:`.rust`,
 :mod:`.python`), and :mod:`.compiled` builds the C once and loads it with ``ctypes``.
 May import model, notation, kinematics, ik (the derivation, read by :mod:`.ik_source`) and
@@ -47,7 +47,7 @@ from dhsym.errors import DHError
 if TYPE_CHECKING:
     from dhsym.kinematics.robot import Robot
 
-    from .render import Language
+    from .languages import Language
 
 __all__ = ["DEFAULT_PARTS", "LANGUAGES", "PARTS", "export"]
 
@@ -64,7 +64,8 @@ def _language(lang: str) -> Language:
 
     if lang not in LANGUAGES:
         raise DHError(f"unknown language {lang!r}: choose one of {', '.join(LANGUAGES)}")
-    return import_module(f"{__name__}.{lang}").LANGUAGE
+    language: Language = import_module(f"{__name__}.{lang}").LANGUAGE
+    return language
 
 
 def _parts(what: str | Iterable[str]) -> tuple[str, ...]:
@@ -122,9 +123,9 @@ def export(
     ...
     dhsym.errors.DHError: Planar 2R: the dynamics export needs numeric inertial parameters; ...
     """
+    from .languages import Context, header_lines, render_files
     from .names import comment_lines, identifier
     from .program import fk_program, ik_program, jacobian_program, rne_program
-    from .render import Context, header_lines, render
 
     parts = _parts(what)
     language = _language(lang)
@@ -154,7 +155,7 @@ def export(
         revolute=tuple(r.joint.value == "R" for r in robot.table.rows if r.variable is not None),
     )
     effective = tuple(sorted(set(parts) | {"fk"}))
-    return render(language, ctx, effective)
+    return render_files(language, ctx, effective)
 
 
 class _CallableModule(types.ModuleType):
@@ -162,6 +163,13 @@ class _CallableModule(types.ModuleType):
 
     def __call__(self, *args: Any, **kw: Any) -> dict[str, str]:  # export's, passed on
         return export(*args, **kw)
+
+
+def __dir__() -> list[str]:
+    """What ``dir(dhsym.export)`` shows: the room's ``__all__``, not its imports."""
+    from dhsym._lazy import public_dir
+
+    return public_dir(__name__)
 
 
 sys.modules[__name__].__class__ = _CallableModule

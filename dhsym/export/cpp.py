@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 
 from sympy.printing.cxx import CXX17CodePrinter
 
-from .render import Language
+from .languages import Language
 
 if TYPE_CHECKING:
     import sympy as sp
@@ -31,8 +31,8 @@ class CppPrinter(CXX17CodePrinter):
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
         return f"detail::safe_sqrt({self._print(expr.args[0])})"
 
-    def _print_Coulomb(self, expr: object) -> str:
-        v, up, down = (self._print(a) for a in expr.args)  # type: ignore[attr-defined]
+    def _print_Coulomb(self, expr: sp.Expr) -> str:
+        v, up, down = (self._print(a) for a in expr.args)
         return f"({v} > 0.0 ? {up} : ({v} < 0.0 ? {down} : 0.0))"
 
 

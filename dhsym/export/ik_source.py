@@ -92,7 +92,7 @@ class IKSource:
     @property
     def count(self) -> int:
         """Number of branches (``MAX_IK_SOLUTIONS``)."""
-        return 2 ** len(self.signs)
+        return int(2 ** len(self.signs))
 
     def singular_guard(self, step: IKStep) -> tuple[sp.Symbol, float]:
         """The symbol whose magnitude decides the singular value of ``step``, and below what."""

@@ -18,7 +18,7 @@ from __future__ import annotations
 import sympy as sp
 from sympy.printing.octave import OctaveCodePrinter
 
-from .render import Language
+from .languages import Language
 
 __all__ = ["LANGUAGE", "MatlabPrinter"]
 

@@ -279,7 +279,8 @@ def jacobian_program(robot: Robot, *, symbolic_lengths: bool = False) -> Program
 
 
 def _dependencies(e: sp.Expr) -> set[sp.Symbol]:
-    return e.free_symbols
+    symbols: set[sp.Symbol] = e.free_symbols
+    return symbols
 
 
 def ik_program(robot: Robot, *, symbolic_lengths: bool = False) -> IKProgram:
@@ -502,7 +503,7 @@ def rne_program(
     rename = dict(zip((*dm.variables, *dm.rates, *dm.accelerations), (*qs, *vs, *accs)))
     exprs = [_pythagoras(t.xreplace(rename)) for t in tau]
     links = [dm.links[r - 1] for r in dm.joints]
-    friction = False
+    friction: bool | None = False  # None: the friction is not numeric
     try:
         for k, L in enumerate(links):
             viscous = to_float(L.B * L.G**2)
@@ -513,7 +514,7 @@ def rne_program(
                 exprs[k] += Coulomb(vs[k], sp.Float(up, 17), sp.Float(down, 17))
             friction = friction or bool(viscous or up or down)
     except DHError:
-        friction = None  # type: ignore[assignment]
+        friction = None
     known = set(qs) | set(vs) | set(accs)
     free = sorted({s.name for e in exprs for s in e.free_symbols} - {s.name for s in known})
     if friction is None or free:

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 
 from sympy.printing.numpy import NumPyPrinter
 
-from .render import Language
+from .languages import Language
 
 if TYPE_CHECKING:
     import sympy as sp
@@ -32,8 +32,8 @@ class PythonPrinter(NumPyPrinter):
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
         return f"_safe_sqrt({self._print(expr.args[0])})"
 
-    def _print_Coulomb(self, expr: object) -> str:
-        v, up, down = (self._print(a) for a in expr.args)  # type: ignore[attr-defined]
+    def _print_Coulomb(self, expr: sp.Expr) -> str:
+        v, up, down = (self._print(a) for a in expr.args)
         return f"numpy.where({v} > 0, {up}, numpy.where({v} < 0, {down}, 0.0))"
 
 

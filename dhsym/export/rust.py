@@ -18,7 +18,7 @@ import sympy as sp
 from sympy.printing.codeprinter import CodePrinter
 from sympy.printing.rust import RustCodePrinter
 
-from .render import Language
+from .languages import Language
 
 __all__ = ["LANGUAGE", "RustPrinter"]
 
@@ -39,7 +39,7 @@ class RustPrinter(RustCodePrinter):
         # sympy's Rust _print_Mul re-multiplies float-cast factors and can lose the
         # brackets of a sum (0.1*c5*(c2*w13 - w12) -> 0.1*c5*-w12 + c2*w13); every number
         # here is already a float, so the generic printer is right
-        return CodePrinter._print_Mul(self, expr)
+        return str(CodePrinter._print_Mul(self, expr))
 
     def _print_Pow(self, expr: sp.Pow) -> str:
         base, exp = expr.args
@@ -48,7 +48,7 @@ class RustPrinter(RustCodePrinter):
             if not isinstance(base, sp.Symbol | sp.Indexed):
                 inner = f"({inner})"
             return f"{inner}.powi({int(exp)})"
-        return super()._print_Pow(expr)
+        return str(super()._print_Pow(expr))
 
     def _print_Indexed(self, expr: sp.Indexed) -> str:
         i, j = (int(k) for k in expr.indices)

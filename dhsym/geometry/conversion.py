@@ -65,7 +65,7 @@ _AXES = "xyz"
 
 
 def _nonzero(e: Elementary) -> bool:
-    return sp.simplify(e.value) != 0
+    return bool(sp.simplify(e.value) != 0)
 
 
 def _word(*elems: Elementary) -> tuple[Elementary, ...]:
@@ -273,7 +273,11 @@ def _same(A: Any, B: Any, exact: bool) -> bool:
     return bool(np.allclose(A, B, atol=1e-10))
 
 
-def _euler(R: Any, seq: tuple[int, int, int], exact: bool, gimbal: bool | None = None):
+#: Euler angles (a, b, c) and whether the middle one locks the outer two, or None.
+_Found = tuple[tuple[Any, Any, Any], bool | None] | None
+
+
+def _euler(R: Any, seq: tuple[int, int, int], exact: bool, gimbal: bool | None = None) -> _Found:
     """Angles (a, b, c) with ``R = R_i(a) R_j(b) R_k(c)`` (Tait–Bryan or proper Euler), or None.
 
     ``gimbal``: when the middle angle locks the outer two, c = 0 and a takes
@@ -301,7 +305,9 @@ def _euler(R: Any, seq: tuple[int, int, int], exact: bool, gimbal: bool | None =
     return _checked(R, seq, (a, b, c), gimbal, exact)
 
 
-def _checked(R: Any, seq: tuple[int, int, int], angles: tuple, gimbal: bool, exact: bool):
+def _checked(
+    R: Any, seq: tuple[int, int, int], angles: tuple[Any, ...], gimbal: bool | None, exact: bool
+) -> _Found:
     i, j, k = seq
     a, b, c = angles
     ok = _same(_rot(i, a, exact) @ _rot(j, b, exact) @ _rot(k, c, exact), R, exact)

@@ -260,7 +260,7 @@ def _axes(axes: Sequence[JointAxis | Sequence[object]]) -> tuple[JointAxis, ...]
     return tuple(out)
 
 
-def _check_pairs(axes: tuple[JointAxis, ...], vals: dict) -> None:
+def _check_pairs(axes: tuple[JointAxis, ...], vals: dict[Any, Any]) -> None:
     for k in range(1, len(axes)):
         L1, L2 = axes[k - 1], axes[k]
         rel = common_normal(L1, L2, values=vals).relation
@@ -279,7 +279,7 @@ def _check_pairs(axes: tuple[JointAxis, ...], vals: dict) -> None:
             )
 
 
-def _base(base: object, axis: JointAxis, vals: dict) -> Frame:
+def _base(base: object, axis: JointAxis, vals: dict[Any, Any]) -> Frame:
     f = base if isinstance(base, Frame) else Frame.from_matrix(base, 0)
     if not is_zero_vector(simplify_vector(f.z - axis.direction)):
         raise GeometryError(
@@ -418,7 +418,7 @@ def _reference(axis: JointAxis) -> tuple[Vector, Vector]:
     return axis.foot((0, 0, 0)), unit(v)
 
 
-def _closest(candidate: Vector, ref: Vector, vals: dict) -> tuple[Vector, str]:
+def _closest(candidate: Vector, ref: Vector, vals: dict[Any, Any]) -> tuple[Vector, str]:
     s = sign_of(candidate.dot(ref), vals, what="a direction")
     return (Vector(-candidate), "−") if s < 0 else (candidate, "+")
 
@@ -431,7 +431,9 @@ _Link = tuple[CommonNormal, Vector, str, Vector, Vector]
 Built = tuple[list[Frame], list[Vector], list[Step]]
 
 
-def _link(L1: JointAxis, L2: JointAxis, start: Vector, prev_x: Vector, vals: dict) -> _Link:
+def _link(
+    L1: JointAxis, L2: JointAxis, start: Vector, prev_x: Vector, vals: dict[Any, Any]
+) -> _Link:
     """x along the common normal of L1 and L2; returns (normal, x, sign, foot on L1, on L2).
 
     Parallel lines: the normal through ``start``; intersecting: the sign of
@@ -447,7 +449,7 @@ def _link(L1: JointAxis, L2: JointAxis, start: Vector, prev_x: Vector, vals: dic
 
 
 def place_standard(
-    axes: tuple[JointAxis, ...], base: Frame | None, tool: Tool | None, vals: dict
+    axes: tuple[JointAxis, ...], base: Frame | None, tool: Tool | None, vals: dict[Any, Any]
 ) -> Built:
     n = len(axes)
     log = [say("numbering", "standard numbering", n=str(n))]
@@ -482,7 +484,7 @@ def place_standard(
 
 
 def _standard_last(
-    Ln: JointAxis, prev: Frame, tool: Tool | None, vals: dict, n: int
+    Ln: JointAxis, prev: Frame, tool: Tool | None, vals: dict[Any, Any], n: int
 ) -> tuple[Frame, Vector, Step]:
     if tool is None:
         return Frame(n, prev.origin, prev.x, prev.z), prev.origin, say("last link", "no tool", n)
@@ -503,7 +505,7 @@ def _standard_last(
 
 
 def place_modified(
-    axes: tuple[JointAxis, ...], base: Frame | None, tool: Tool | None, vals: dict
+    axes: tuple[JointAxis, ...], base: Frame | None, tool: Tool | None, vals: dict[Any, Any]
 ) -> Built:
     n = len(axes)
     log = [say("numbering", "modified numbering", n=str(n))]

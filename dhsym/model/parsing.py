@@ -214,7 +214,7 @@ class _Parser:
         text: str,
         resolve: _Resolve | None,
         limits: ParseLimits,
-        where: dict,
+        where: dict[str, Any],
         textbook: bool = False,
         literal: _Literal | None = None,
     ):

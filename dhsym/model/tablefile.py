@@ -49,6 +49,7 @@ from __future__ import annotations
 import json
 from collections.abc import Mapping
 from pathlib import Path
+from typing import Any
 
 import sympy as sp
 import yaml
@@ -233,7 +234,7 @@ def _check_variables(
                 )
 
 
-def _gravity(top: Mapping) -> dict[str, object]:
+def _gravity(top: Mapping[str, Any]) -> dict[str, object]:
     if "gravity" not in top:
         return {}
     g = top["gravity"]
@@ -266,7 +267,13 @@ def _row(entry: object, i: int, physical: bool = True) -> DHRow:
         raise err.located(row=i) from None
 
 
-def _build_row(row: dict, params: dict, kw: dict, i: int, physical: bool = True) -> DHRow:
+def _build_row(
+    row: dict[str, Any],
+    params: dict[str, sp.Expr],
+    kw: dict[str, Any],
+    i: int,
+    physical: bool = True,
+) -> DHRow:
     from .parsing import symbol
 
     joint = row["type"]
@@ -341,7 +348,7 @@ def _text(value: sp.Expr) -> str:
     >>> _text(sp.atan(sp.Rational(1, 3)) + sp.Symbol("q1"))
     'q1 + atan2(1/3, 1)'
     """
-    return _Reader().doprint(value)
+    return str(_Reader().doprint(value))
 
 
 def _plain(value: sp.Expr) -> object:

@@ -54,6 +54,7 @@ import re
 import stat
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import yaml
 
@@ -120,7 +121,7 @@ class _Loader(yaml.SafeLoader):
     """
 
     max_digits = DEFAULT_YAML_LIMITS.max_digits
-    yaml_implicit_resolvers: dict = {}  # filled below with the core schema of YAML 1.2
+    yaml_implicit_resolvers: dict[Any, Any] = {}  # filled below with the core schema of YAML 1.2
 
     def construct_yaml_int(self, node: yaml.ScalarNode) -> int:
         text = str(node.value)
@@ -134,7 +135,7 @@ class _Loader(yaml.SafeLoader):
             return int(text[2:], 8 if text[1] == "o" else 16)
         return int(text, 10)
 
-    def construct_mapping(self, node: yaml.Node, deep: bool = False) -> dict:
+    def construct_mapping(self, node: yaml.Node, deep: bool = False) -> dict[Any, Any]:
         if isinstance(node, yaml.MappingNode):
             seen: dict[object, int] = {}
             for key_node, _ in node.value:

@@ -1,5 +1,6 @@
 """The notation room: lecture printers (C12, S23, c1), formula layout and line breaking,
-the one view of a DH table, and escaping of user text for LaTeX and Markdown.
+the one view of a DH table, escaping of user text for LaTeX and Markdown, and the one
+template renderer (:mod:`~dhsym.notation.templates`) of documents, feedback and code.
 
 May import :mod:`dhsym.model`; never kinematics, documents or checking.
 """

@@ -63,7 +63,7 @@ from dataclasses import dataclass, field, replace
 from enum import Enum
 from functools import cached_property
 from itertools import product as _combinations
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
@@ -176,7 +176,7 @@ class Product:
     coeff: sp.Expr = sp.S.One
     factors: tuple[sp.Expr | Sum, ...] = ()
     whole: sp.Expr | None = None
-    key: tuple = field(default=(), compare=False)
+    key: tuple[Any, ...] = field(default=(), compare=False)
     sines: int = 0
 
     def flipped(self) -> Product:
@@ -425,17 +425,17 @@ class Notation:
         return tuple(pos + neg)
 
     @cached_property
-    def _factor_keys(self) -> dict[sp.Expr, tuple]:
+    def _factor_keys(self) -> dict[sp.Expr, tuple[Any, ...]]:
         return {}  # a memo of _factor_key: the same few leaves recur in every entry
 
-    def _factor_key(self, f: sp.Expr) -> tuple:
+    def _factor_key(self, f: sp.Expr) -> tuple[Any, ...]:
         """(group, index, letter, name): number, symbol, joint trig, other trig, other, bracket."""
         key = self._factor_keys.get(f)
         if key is None:
             key = self._factor_keys[f] = self._compute_factor_key(f)
         return key
 
-    def _compute_factor_key(self, f: sp.Expr) -> tuple:
+    def _compute_factor_key(self, f: sp.Expr) -> tuple[Any, ...]:
         base, exp = (f.base, f.exp) if f.is_Pow else (f, 1)
         name = (getattr(base, "name", ""), str(exp))  # ties: a2 before d2, S1 before S1**2
         if f.is_number:
@@ -453,7 +453,7 @@ class Notation:
             return (5, (), 0, name)
         return (4, tuple(sorted(self._index(s) for s in f.free_symbols)), 0, name)
 
-    def _term_key(self, factors: Sequence[sp.Expr | Sum], whole: sp.Expr | None) -> tuple:
+    def _term_key(self, factors: Sequence[sp.Expr | Sum], whole: sp.Expr | None) -> tuple[Any, ...]:
         """Rule 3: the indices of the printed factors, a bracket by its first term."""
         index: list[tuple[int, ...]] = []
         letters: list[tuple[int, int]] = []
@@ -502,7 +502,7 @@ def _orient(negative: bool, brackets: list[Sum]) -> tuple[bool, list[Sum]]:
     ]
     if len(options) > 4:  # more brackets than anyone writes: inner ones only
         options = [o[:1] for o in options]
-    best: tuple | None = None
+    best: tuple[Any, ...] | None = None
     choice: tuple[bool, list[Sum]] = (negative, brackets)
     for bs in _combinations(*options):
         flips = sum(b is not orig for b, orig in zip(bs, brackets))
@@ -591,7 +591,13 @@ def _angle_head(arg: sp.Expr) -> str:
     return sp.latex(sp.Symbol(names.pop())) if len(names) == 1 and "" not in names else r"\theta"
 
 
-class _LayoutMixin:
+if TYPE_CHECKING:  # the mixin's methods call sympy's printer, next in the MRO
+    from sympy.printing.printer import Printer as _PrinterBase
+else:
+    _PrinterBase = object
+
+
+class _LayoutMixin(_PrinterBase):
     """Tokens of an arranged formula; shared by the LaTeX and the text printer."""
 
     _nota: Notation
@@ -602,11 +608,11 @@ class _LayoutMixin:
     def doprint(self, expr: object) -> str:
         """Print ``expr``; a formula with decimal lengths prints every finite decimal as one."""
         self._decimals = self._nota.decimals or uses_decimals(expr)
-        return super().doprint(expr)  # type: ignore[misc]
+        return str(super().doprint(expr))
 
     def _print_Rational(self, expr: sp.Rational) -> str:
         dec = exact_decimal(expr) if expr.q > 1 else None
-        return dec if dec is not None else super()._print_Rational(expr)  # type: ignore[misc]  # a mixin: sympy's printer is next in the MRO
+        return dec if dec is not None else str(super()._print_Rational(expr))
 
     def _print_Add(self, expr: sp.Add, order: object = None) -> str:
         return self._layout(expr)
@@ -616,7 +622,7 @@ class _LayoutMixin:
 
     def _print_whole(self, expr: sp.Expr) -> str:
         """A term sympy prints itself (a fraction): sympy's own ``_print_Mul``."""
-        return super()._print_Mul(expr) if expr.is_Mul else self._print(expr)  # type: ignore[misc]  # a mixin: sympy's printer is next in the MRO
+        return str(super()._print_Mul(expr)) if expr.is_Mul else self._print(expr)
 
     def tokens(self, tree: Sum, depth: int = 0) -> list[Token]:
         """The tokens of ``tree`` (from :meth:`Notation.arrange`)."""
@@ -743,13 +749,13 @@ def format_angle(value: sp.Expr, degrees: bool, latex: bool = True) -> str:
     '-90°'
     """
     if not degrees:
-        return sp.latex(value) if latex else sp.sstr(value)
+        return str(sp.latex(value) if latex else sp.sstr(value))
     sym_part = sp.Add(*[t for t in sp.Add.make_args(value) if t.free_symbols])
     const = sp.nsimplify(sp.expand((value - sym_part) * 180 / sp.pi))
     deg = exact_decimal(const) if isinstance(const, sp.Rational) and const.q > 1 else None
     deg = deg or str(const)
     unit = "^{\\circ}" if latex else "°"
-    head = sp.latex(sym_part) if latex else sp.sstr(sym_part)
+    head = str(sp.latex(sym_part) if latex else sp.sstr(sym_part))
     if sym_part == 0:
         return f"{deg}{unit}" if const != 0 else "0"
     if const == 0:

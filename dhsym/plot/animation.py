@@ -35,7 +35,8 @@ def joint_path(q0: object, q1: object, steps: int) -> np.ndarray:
         )
     if steps < 2:
         raise DHError(f"a path needs at least 2 steps, got {steps}")
-    return a + np.linspace(0.0, 1.0, steps)[:, None] * (b - a)
+    path: np.ndarray = a + np.linspace(0.0, 1.0, steps)[:, None] * (b - a)
+    return path
 
 
 def _writer(suffix: str, fps: int) -> Any:

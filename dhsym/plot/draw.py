@@ -208,7 +208,7 @@ def _joint_glyph(ax: Any, g: JointGlyph, L: float, dim: int, alpha: float) -> np
     return np.array(ends)
 
 
-def equal_axes(ax: Any, points: np.ndarray, dim: int, limits: tuple | None) -> None:
+def equal_axes(ax: Any, points: np.ndarray, dim: int, limits: tuple[Any, float] | None) -> None:
     """Equal scales on every axis: a cube around ``points``, or ``(centre, half_width)``."""
     if limits is None:
         lo, hi = points[:, :dim].min(axis=0), points[:, :dim].max(axis=0)

@@ -76,10 +76,12 @@ def _ellipse_points(e: VelocityEllipse, scale: float, n: int = 60) -> np.ndarray
     M = e.directions * (e.axes * scale)
     if e.dim == 2:
         t = np.linspace(0.0, 2 * np.pi, n)
-        return e.centre[:2] + (M @ np.vstack([np.cos(t), np.sin(t)])).T
+        ring: np.ndarray = e.centre[:2] + (M @ np.vstack([np.cos(t), np.sin(t)])).T
+        return ring
     u, v = np.meshgrid(np.linspace(0, 2 * np.pi, n), np.linspace(0, np.pi, n // 2))
     ball = np.stack([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)], axis=-1)
-    return e.centre + ball @ M.T
+    surface: np.ndarray = e.centre + ball @ M.T
+    return surface
 
 
 def plot_manipulability(

@@ -261,7 +261,8 @@ def plot_robot(
     points = draw(ax, sk, dim, frames=frames, labels=labels, alpha=alpha)
     equal_axes(ax, points, dim, limits)
     ax.set_title(_title(robot, qv) if title is None else title, fontsize=11)
-    return ax.figure
+    figure: Figure = ax.figure
+    return figure
 
 
 def view_limits(
@@ -303,7 +304,8 @@ def workspace_points(robot: Any, n: int = 4000, *, seed: int = 0) -> np.ndarray:
         raise DHError(f"the workspace needs at least one sample, got {n}")
     lo, hi = _ranges(robot)
     Q = np.random.default_rng(seed).uniform(lo, hi, size=(n, len(lo)))
-    return robot.fk(Q)[:, :3, 3]
+    origins: np.ndarray = robot.fk(Q)[:, :3, 3]
+    return origins
 
 
 def plot_workspace(
@@ -348,4 +350,5 @@ def plot_workspace(
         else title,
         fontsize=11,
     )
-    return ax.figure
+    figure: Figure = ax.figure
+    return figure

@@ -17,8 +17,8 @@ from dhsym.explain.documents import (
     render_handout,
     write_handout,
 )
-from dhsym.explain.templates import builtin_dir
 from dhsym.notation.escape import escape_markdown
+from dhsym.notation.templates import builtin_dir
 
 ROW_2R = r"C_{12} & -S_{12} & 0 & a_{1} C_{1} + a_{2} C_{12} \\"
 PX_PUMA = r"p_{x} &= C_{1}(a_{2} C_{2} + a_{3} C_{23} - d_{4} S_{23}) + d_{3} S_{1}"

@@ -15,7 +15,7 @@ import sympy as sp
 import dhsym
 from dhsym.cli.main import main
 from dhsym.errors import DHError
-from dhsym.explain.inverse import derive_inverse
+from dhsym.explain.inverse_kinematics import derive_inverse
 from dhsym.ik import IKBatch, IKSolution
 from dhsym.ik.general import EliminationSolver
 from dhsym.model.tablefile import read_table

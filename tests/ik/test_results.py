@@ -3,7 +3,7 @@
 import numpy as np
 
 import dhsym
-from dhsym.explain.inverse import derive_inverse
+from dhsym.explain.inverse_kinematics import derive_inverse
 from dhsym.ik.results import BRANCH_NAMES, branch_word
 
 

@@ -21,14 +21,17 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from dhsym.errors import DHError
-from dhsym.explain.templates import loader
 from dhsym.notation.escape import escape_markdown
+from dhsym.notation.templates import FEEDBACK, environment
 
 from ..judging.verdict import CheckResult
+
+if TYPE_CHECKING:  # jinja2 is imported when a page is rendered
+    import jinja2
 
 __all__ = [
     "QuestionFeedback",
@@ -89,24 +92,19 @@ def _mathml(tex: object) -> object:
     return Markup(latex_mathml(str(tex)))  # noqa: S704 - MathML built from an element tree
 
 
-@lru_cache(maxsize=3)
-def _environment(fmt: str):  # noqa: ANN202 - jinja2 is imported lazily
-    """Jinja2 environment for ``html`` (autoescaped), ``md`` or ``txt`` (plain text)."""
-    import jinja2
+_FILTERS = (
+    ("md", escape_markdown),
+    ("code", md_code),
+    ("mdmath", md_math),
+    ("points", _points),
+    ("mathml", _mathml),
+)
 
-    env = jinja2.Environment(
-        loader=loader(),
-        autoescape=(fmt == "html"),
-        undefined=jinja2.StrictUndefined,
-        trim_blocks=False,
-        keep_trailing_newline=True,
-    )
-    env.filters["md"] = escape_markdown
-    env.filters["code"] = md_code
-    env.filters["mdmath"] = md_math
-    env.filters["points"] = _points
-    env.filters["mathml"] = _mathml
-    return env
+
+def _environment(fmt: str) -> jinja2.Environment:
+    """The environment for ``html`` (autoescaped), ``md`` or ``txt`` (plain text): the
+    one renderer's :data:`~dhsym.notation.templates.FEEDBACK` family, with the filters."""
+    return environment(fmt, FEEDBACK, filters=_FILTERS)
 
 
 def render_feedback(

@@ -356,9 +356,10 @@ def _reaches(robot: Robot, q: np.ndarray, sample: PoseSample, position: bool) ->
 
 def _reference_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
     """Each key branch named as the IK results name it (``"elbow up"``, ``"right arm"``),
-    read at the examples' configuration (:func:`~dhsym.explain.inverse.default_configuration`)
-    with the table's lengths (1 where it gives none), for questions without a pose."""
-    from dhsym.explain.inverse import default_configuration
+    read at the examples' configuration
+    (:func:`~dhsym.explain.inverse_kinematics.default_configuration`) with the table's
+    lengths (1 where it gives none), for questions without a pose."""
+    from dhsym.explain.inverse_kinematics import default_configuration
     from dhsym.kinematics.robot import Robot
 
     table = robot.table

@@ -1,10 +1,12 @@
-"""The common back end: what every language's template is fed, and the rendering.
+"""The languages' common back end: what every language's template is fed, and the rendering.
 
 A :class:`Language` is a code printer (a subclass of one of sympy's), the templates
-that lay out its files, and how its files are named. :func:`render` builds the
-context once — the header (DH table, convention, dhsym version, the command), the
-programs of :mod:`dhsym.export.program` and the names — and renders each template
-with ``code`` (an expression in the language) and ``comment`` (safe comment lines).
+that lay out its files, and how its files are named. :func:`render_files` renders each
+template of a language (through the one renderer, :mod:`dhsym.notation.templates`, its
+:data:`~dhsym.notation.templates.CODE` family: the templates in ``templates/export``)
+with the :class:`Context` built once — the header (DH table, convention, dhsym version,
+the command), the programs of :mod:`dhsym.export.program` and the names — and with
+``code`` (an expression in the language) and ``comment`` (safe comment lines).
 
 Examples
 --------
@@ -22,49 +24,20 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from functools import cache
-from importlib import resources
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 import sympy as sp
 
-from dhsym.errors import DHError
+from dhsym.notation.templates import CODE, environment
 
 from .names import comment_lines
 
 if TYPE_CHECKING:
-    import jinja2
-
     from dhsym.kinematics.robot import Robot
 
     from .program import IKProgram, Program, RNEProgram
 
-__all__ = ["Context", "Language", "header_lines", "render", "template_dir"]
-
-
-def template_dir() -> Path:
-    """The export templates: package data ``dhsym/templates/export``, or the source tree's."""
-    packaged = Path(str(resources.files("dhsym"))) / "templates" / "export"
-    source = Path(__file__).resolve().parents[2] / "templates" / "export"
-    for folder in (packaged, source):
-        if (folder / "c_source.c.j2").is_file():
-            return folder
-    raise DHError(f"dhsym's export templates are missing (looked in {packaged} and {source})")
-
-
-@cache
-def _environment(folder: str) -> jinja2.Environment:
-    import jinja2
-
-    return jinja2.Environment(
-        loader=jinja2.FileSystemLoader(folder),
-        trim_blocks=True,
-        lstrip_blocks=True,
-        keep_trailing_newline=True,
-        undefined=jinja2.StrictUndefined,
-        autoescape=False,  # noqa: S701  (source code, not HTML; user text goes through comment())
-    )
+__all__ = ["Context", "Language", "header_lines", "render_files"]
 
 
 @dataclass(frozen=True)
@@ -133,13 +106,13 @@ def header_lines(robot: Robot, command: str) -> list[str]:
     return [safe for line in lines for safe in comment_lines(line)]
 
 
-def render(lang: Language, ctx: Context, what: Sequence[str]) -> dict[str, str]:
+def render_files(lang: Language, ctx: Context, what: Sequence[str]) -> dict[str, str]:
     """The files of ``lang`` for ``ctx``: file name → text (deterministic)."""
-    env = _environment(str(template_dir()))
+    env = environment("text", CODE)
     printer = lang.printer()
 
     def code(e: sp.Expr) -> str:
-        return printer.doprint(e)
+        return str(printer.doprint(e))
 
     def comment(text: str) -> list[str]:
         return comment_lines(text)

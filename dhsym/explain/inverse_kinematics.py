@@ -49,7 +49,7 @@ from dhsym.notation.layout import (
 from dhsym.notation.printers import Notation, TrigStyle
 
 from .data import BranchData, IKCheck, IKDerivation, IKPart, IKStepData
-from .jacobian import _key, styled
+from .velocity_kinematics import _key, styled
 
 __all__ = ["default_configuration", "derive_inverse"]
 

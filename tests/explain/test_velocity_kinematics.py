@@ -6,7 +6,7 @@ import pytest
 import sympy as sp
 
 import dhsym
-from dhsym.explain.jacobian import derive_jacobian, derive_singularities
+from dhsym.explain.velocity_kinematics import derive_jacobian, derive_singularities
 from dhsym.kinematics.jacobian import geometric_jacobian
 from dhsym.kinematics.singularities import singularities
 

@@ -43,7 +43,7 @@ from dhsym.notation.layout import (
 from dhsym.notation.printers import Notation, TrigStyle
 
 from .data import DynamicsDerivation, EnergyData, NEStepData
-from .jacobian import _key, styled
+from .velocity_kinematics import _key, styled
 
 __all__ = ["derive_dynamics"]
 

@@ -9,7 +9,7 @@ import pytest
 import dhsym
 from dhsym.cli.main import main
 from dhsym.explain.documents import document, render_derivation
-from dhsym.explain.dynamics import derive_dynamics
+from dhsym.explain.equations_of_motion import derive_dynamics
 from dhsym.kinematics.robot import Robot
 from dhsym.model.tablefile import read_table_text
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import dhsym
-from dhsym.explain.inverse import default_configuration, derive_inverse
+from dhsym.explain.inverse_kinematics import default_configuration, derive_inverse
 
 ROBOTS = ["planar2r", "scara", "stanford", "puma560", "puma560_modified", "cylindrical"]
 
