@@ -27,9 +27,9 @@ sys.path.insert(0, str(ROOT))
 
 import dhsym  # noqa: E402
 from dhsym.dynamics import lagrange, newton_euler  # noqa: E402
-from dhsym.kinematics.robot import Robot  # noqa: E402
 from dhsym.kinematics.simplification import prove_equal  # noqa: E402
 from dhsym.model.tablefile import read_table_text  # noqa: E402
+from dhsym.robot import Robot  # noqa: E402
 
 
 def timed(f, *a, **k):

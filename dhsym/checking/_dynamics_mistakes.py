@@ -48,7 +48,7 @@ from .equivalence import values
 from .questions import Question
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.robot import Robot
 
 __all__ = [
     "KINETIC_JOINTS",

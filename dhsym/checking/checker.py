@@ -27,10 +27,10 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.kinematics.robot import Robot
 from dhsym.model.library import load_table
 from dhsym.model.table import AngleUnit, Convention, DHTable, JointType
 from dhsym.notation.printers import format_angle
+from dhsym.robot import Robot
 
 from ._dynamics_mistakes import dynamics_mistakes
 from ._limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, check_time, time_limit

@@ -31,12 +31,12 @@ import sympy as sp
 
 from dhsym.errors import DHError
 
-from .names import comment_lines
+from .identifiers import comment_lines
 
 if TYPE_CHECKING:
     import jinja2
 
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import Chain
 
     from .program import IKProgram, Program, RNEProgram
 
@@ -100,7 +100,7 @@ def _cell(e: sp.Expr) -> str:
     return " ".join(comment_lines(str(e)))
 
 
-def header_lines(robot: Robot, command: str) -> list[str]:
+def header_lines(robot: Chain, command: str) -> list[str]:
     """The header comment: what the file is, the DH table, the convention, how it was made."""
     from dhsym._version import __version__
 

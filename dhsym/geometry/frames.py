@@ -71,7 +71,7 @@ from .conversion import transform_word
 from .sentences import say
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import Chain
 
 __all__ = ["FrameAssignment", "VariableMap", "assign_frames"]
 
@@ -108,11 +108,11 @@ class FrameAssignment:
         """The steps as plain sentences."""
         return [s.text for s in self.steps]
 
-    def robot(self) -> Robot:
-        """A :class:`~dhsym.kinematics.robot.Robot` for the table."""
-        from dhsym.kinematics.robot import Robot
+    def chain(self) -> Chain:
+        """A :class:`~dhsym.kinematics.chain.Chain` for the table."""
+        from dhsym.kinematics.chain import Chain
 
-        return Robot(self.table)
+        return Chain(self.table)
 
     def verify(self, samples: int = 5, *, seed: int = 0, tol: float = 1e-9) -> float:
         """Largest error of the table against the input geometry at home and random q.

@@ -20,7 +20,7 @@ __getattr__, __dir__ = lazy_exports(
     {
         "IKBatch": "results",
         "IKSolution": "results",
-        "InverseKinematics": "derivation",
+        "InverseKinematics": "closed_form",
         "NumericSolution": "levenberg_marquardt",
         "Structure": "structure",
         "StructureError": "dhsym.kinematics.decoupling",

@@ -1,5 +1,5 @@
 """The kinematics room: the one transform kernel (elementary matrices, words, ^iT_j, rigid
-inverse), the compact closed form and its proof, compiled numbers, ``Pose`` and ``Robot``,
+inverse), the compact closed form and its proof, compiled numbers, ``Pose`` and ``Chain``,
 and kinematic decoupling (:mod:`.decoupling`), on which the Jacobian's factors and the
 inverse kinematics (:mod:`dhsym.ik`) both rest.
 
@@ -12,24 +12,21 @@ from dhsym._lazy import lazy_exports
 __getattr__, __dir__ = lazy_exports(
     __name__,
     {
+        "Chain": "chain",
         "chain_word": "transforms",
         "compile_exprs": "numeric",
         "compile_pose": "numeric",
         "compile_word": "numeric",
         "compose": "simplification",
         "link_word": "transforms",
-        "load": "robot",
         "numeric_equal": "simplification",
         "plain_product": "transforms",
         "Pose": "pose",
-        "InverseKinematics": "dhsym.ik.derivation",
         "Jacobian": "jacobian",
         "analytic_jacobian": "jacobian",
         "geometric_jacobian": "jacobian",
-        "numeric_ik": "dhsym.ik.levenberg_marquardt",
         "prove_equal": "simplification",
         "rigid_inverse": "transforms",
-        "Robot": "robot",
         "to_float": "numeric",
         "Rx": "transforms",
         "Ry": "transforms",
@@ -41,10 +38,9 @@ __getattr__, __dir__ = lazy_exports(
 )
 
 __all__ = [
-    "InverseKinematics",
     "Jacobian",
+    "Chain",
     "Pose",
-    "Robot",
     "Rx",
     "Ry",
     "Rz",
@@ -59,9 +55,7 @@ __all__ = [
     "compose",
     "geometric_jacobian",
     "link_word",
-    "load",
     "numeric_equal",
-    "numeric_ik",
     "plain_product",
     "prove_equal",
     "rigid_inverse",

@@ -10,7 +10,7 @@ import pytest
 
 import dhsym
 from dhsym.errors import DHError
-from dhsym.export.compiled import compiled
+from dhsym.export.shared_library import compiled
 from dhsym.model.table import DHRow, DHTable
 
 from ..conftest import _need
