@@ -129,5 +129,5 @@ def dynamic_model(robot: Chain, *, textbook: bool = True) -> DynamicModel:
         rate_symbols(variables, 2),
         table.joint_rows,
         tuple(table.rows[r - 1].joint for r in table.joint_rows),
-        tuple(sp.expand(g) for g in gravity),  # type: ignore[arg-type]
+        tuple(sp.expand(g) for g in gravity),
     )

@@ -210,12 +210,17 @@ def newton_euler(
             return rne_expressions(dm, qd=list(v), qdd=zeros, gravity=(0, 0, 0))
 
         single = [h(unit[:, j]) for j in range(n)]
-        c = [[single[i] if i == j else None for j in range(n)] for i in range(n)]
-        for i in range(n):
-            for j in range(i + 1, n):
-                c[i][j] = c[j][i] = (h(unit[:, i] + unit[:, j]) - single[i] - single[j]) / 2
+        pairs = {
+            (i, j): (h(unit[:, i] + unit[:, j]) - single[i] - single[j]) / 2
+            for i in range(n)
+            for j in range(i + 1, n)
+        }
+
+        def c(i: int, j: int) -> Matrix:  # symmetric in i, j
+            return single[i] if i == j else pairs[(min(i, j), max(i, j))]
+
         chris = tuple(
-            tuple(tuple(c[i][j][k] for k in range(n)) for j in range(n)) for i in range(n)
+            tuple(tuple(c(i, j)[k] for k in range(n)) for j in range(n)) for i in range(n)
         )
         C = Matrix(n, n, lambda k, j: sum(chris[i][j][k] * qd[i] for i in range(n)))
         return EquationsOfMotion(

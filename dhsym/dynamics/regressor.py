@@ -102,7 +102,8 @@ def _link_symbols(i: int) -> tuple[sp.Symbol, ...]:
 def regressor(robot: Chain, model: DynamicModel | None = None) -> Regressor:
     """The regressor Y of ``robot`` (the links' own parameters are not used: π is symbolic)."""
     dm = model or dynamic_model(robot)
-    moments, params = [], []
+    moments: list[tuple[sp.Symbol, Matrix, Matrix]] = []
+    params: list[sp.Symbol] = []
     for i in range(1, len(dm.links) + 1):
         XX, XY, XZ, YY, YZ, ZZ, MX, MY, MZ, M = s = _link_symbols(i)
         Lo = Matrix([[XX, XY, XZ], [XY, YY, YZ], [XZ, YZ, ZZ]])

@@ -71,5 +71,5 @@ def statics_numeric(
     F = np.asarray(wrench, dtype=float)
     if F.shape[-1:] != (6,):
         raise DHError(f"a wrench has 6 entries [fx, fy, fz, nx, ny, nz], got shape {F.shape}")
-    J = np.asarray(robot.jacobian(q, values=values))
+    J = np.asarray(robot.jacobian(np.asarray(q, dtype=float), values=values))
     return np.einsum("...ij,...i->...j", J, F)
