@@ -46,7 +46,7 @@ if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `im
 
     from .jacobian import AnalyticJacobian, Jacobian
 
-__all__ = ["MAX_CLOSED_FORM", "Chain", "frame_name"]
+__all__ = ["MAX_CLOSED_FORM", "Chain", "JacobianKey", "PoseKey", "frame_name"]
 
 
 #: Largest estimated size (expression nodes, :func:`.simplification.closed_form_size`) of
