@@ -138,7 +138,7 @@ def main() -> int:
     try:
         import pinocchio as pin
 
-        from tests.dynamics.test_compiled import pin_model
+        from tests.dynamics.test_compiled_dynamics import pin_model
     except ImportError:
         print("pinocchio: not installed (pip install pin)")
         return 0
