@@ -19,6 +19,7 @@ __getattr__, __dir__ = lazy_exports(
     __name__,
     {
         "IKBatch": "results",
+        "IKCache": "choices",
         "IKSolution": "results",
         "InverseKinematics": "closed_form",
         "NumericSolution": "levenberg_marquardt",
@@ -36,6 +37,7 @@ __getattr__, __dir__ = lazy_exports(
 
 __all__ = [
     "IKBatch",
+    "IKCache",
     "IKSolution",
     "InverseKinematics",
     "NumericSolution",
