@@ -43,7 +43,7 @@ __getattr__, __dir__ = lazy_exports(
         "read_table_text": "dhsym.model.tablefile",
         # notation, kinematics
         "Notation": "dhsym.notation.printers",
-        "Chain": "dhsym.kinematics.chain",
+        "KinematicChain": "dhsym.kinematics.chain",
         "Pose": "dhsym.kinematics.pose",
         "Robot": "dhsym.robot",
         "load": "dhsym.robot",
@@ -96,7 +96,7 @@ __getattr__, __dir__ = lazy_exports(
 
 __all__ = [
     "AngleUnit",
-    "Chain",
+    "KinematicChain",
     "ChainError",
     "Convention",
     "DHError",

@@ -1,7 +1,7 @@
-"""``Robot``: the facade over a :class:`~dhsym.kinematics.chain.Chain` with the conveniences
-of the rooms above the kinematics.
+"""``Robot``: the facade over a :class:`~dhsym.kinematics.chain.KinematicChain` with the
+conveniences of the rooms above the kinematics.
 
-A :class:`Robot` is a :class:`~dhsym.kinematics.chain.Chain` (table, notation, ``^iT_j``,
+A :class:`Robot` is a :class:`~dhsym.kinematics.chain.KinematicChain` (table, notation, ``^iT_j``,
 ``fk``, ``jacobian``, …) that also derives and solves its inverse kinematics
 (:mod:`dhsym.ik`), its dynamics (:mod:`dhsym.dynamics`), draws itself (:mod:`dhsym.plot`),
 writes itself in other tools' formats (:mod:`dhsym.formats`) and loads its exported C
@@ -28,7 +28,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from dhsym.errors import DHError
-from dhsym.kinematics.chain import Chain
+from dhsym.kinematics.chain import KinematicChain
 from dhsym.model.kinds import Convention
 from dhsym.model.library import load_table
 from dhsym.model.table import DHTable
@@ -50,11 +50,11 @@ if TYPE_CHECKING:
 __all__ = ["Robot", "from_rtb", "from_urdf", "inverse", "load"]
 
 
-class Robot(Chain):
-    """A :class:`~dhsym.kinematics.chain.Chain` with inverse kinematics, dynamics, plots,
+class Robot(KinematicChain):
+    """A :class:`~dhsym.kinematics.chain.KinematicChain` with inverse kinematics, dynamics, plots,
     file formats and compiled code, each reached on first use and cached.
 
-    ``compact`` and ``style`` set how its matrices print (as for ``Chain``).
+    ``compact`` and ``style`` set how its matrices print (as for ``KinematicChain``).
     """
 
     def __init__(

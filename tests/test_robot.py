@@ -1,4 +1,4 @@
-"""The facade: Robot is a Chain with the rooms above the kinematics, cached in typed fields."""
+"""The facade: Robot is a KinematicChain with the rooms above it, cached in typed fields."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import dhsym
 from dhsym.errors import DHError
 from dhsym.formats.urdf import chain_from_urdf
 from dhsym.ik.choices import IKCache
-from dhsym.kinematics.chain import Chain
+from dhsym.kinematics.chain import KinematicChain
 from dhsym.robot import Robot, from_rtb, from_urdf, inverse, load
 
 SLIDE = """<robot name="slide"><link name="a"/><link name="b"/>
@@ -22,12 +22,12 @@ SLIDE = """<robot name="slide"><link name="a"/><link name="b"/>
 
 def test_the_public_names_are_the_facade():
     r = dhsym.load("planar2r")
-    assert type(r) is Robot and isinstance(r, Chain)
+    assert type(r) is Robot and isinstance(r, KinematicChain)
     assert dhsym.Robot is Robot and dhsym.load is load and dhsym.inverse is inverse
     assert dhsym.from_urdf is from_urdf and dhsym.from_rtb is from_rtb
-    assert dhsym.Chain is Chain
+    assert dhsym.KinematicChain is KinematicChain
     assert repr(r) == "Robot('Planar 2R', RR, standard)"
-    assert repr(Chain(r.table)) == "Chain('Planar 2R', RR, standard)"
+    assert repr(KinematicChain(r.table)) == "KinematicChain('Planar 2R', RR, standard)"
 
 
 def test_the_inverse_is_derived_once_and_kept():
@@ -43,7 +43,7 @@ def test_ik_with_a_joint_given_derives_the_sub_chain_once():
     T = r.fk(q)
     first = r.ik(T, free={7: 0.7})
     given = r.ik_cache().given(7)
-    assert type(given.cache.chain) is Chain and given.row == r.n
+    assert type(given.cache.chain) is KinematicChain and given.row == r.n
     second = r.ik(T, free={7: 0.7})
     assert r.ik_cache().given(7) is given
     assert np.array_equal(first.q, second.q)
@@ -54,7 +54,7 @@ def test_ik_on_a_chain_with_its_own_cache_matches_the_robot():
     from dhsym.ik.choices import solve
 
     r = load("puma560")
-    chain = Chain(r.table)
+    chain = KinematicChain(r.table)
     T = r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
     cache = IKCache(chain)
     mine = solve(chain, T, cache=cache)
@@ -87,7 +87,7 @@ def test_the_compiled_dynamics_are_kept_per_values():
 def test_from_urdf_and_load_give_robots_the_formats_room_a_chain():
     r = from_urdf(SLIDE, convention="modified")
     c = chain_from_urdf(SLIDE, convention="modified")
-    assert type(r) is Robot and type(c) is Chain
+    assert type(r) is Robot and type(c) is KinematicChain
     assert r.table == c.table and float(r.fk([0.2])[0, 3]) == pytest.approx(0.2)
     assert type(load(SLIDE, convention="modified")) is Robot
 
@@ -101,5 +101,5 @@ def test_from_rtb_gives_a_robot():
 def test_the_rooms_below_build_chains():
     from tests.geometry.test_frames import MEASURED
 
-    assert type(dhsym.assign_frames(MEASURED).chain()) is Chain
-    assert type(dhsym.formats.urdf.import_urdf(SLIDE).chain()) is Chain
+    assert type(dhsym.assign_frames(MEASURED).chain()) is KinematicChain
+    assert type(dhsym.formats.urdf.import_urdf(SLIDE).chain()) is KinematicChain

@@ -29,7 +29,7 @@ from dhsym.model.inertia import LinkInertia
 from dhsym.model.table import JointType
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["DynamicModel", "dynamic_model", "rate_symbols"]
 
@@ -64,7 +64,7 @@ class DynamicModel:
     gravitational acceleration written in DH frame 0.
     """
 
-    robot: Chain = field(compare=False, repr=False)
+    robot: KinematicChain = field(compare=False, repr=False)
     links: tuple[LinkInertia, ...]
     variables: tuple[sp.Symbol, ...]
     rates: tuple[sp.Symbol, ...]
@@ -101,7 +101,7 @@ class DynamicModel:
         return tuple(self.links[r - 1].Jm * self.links[r - 1].G ** 2 for r in self.joints)
 
 
-def dynamic_model(robot: Chain, *, textbook: bool = True) -> DynamicModel:
+def dynamic_model(robot: KinematicChain, *, textbook: bool = True) -> DynamicModel:
     """The inertial model of ``robot``; rows without parameters get the textbook set.
 
     With ``textbook=False`` a joint row without parameters is an error.

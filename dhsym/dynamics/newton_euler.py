@@ -49,7 +49,7 @@ from .lagrange import christoffel_symbols, coriolis_matrix, tidy
 from .model import DynamicModel, dynamic_model
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["newton_euler", "rne_expressions"]
 
@@ -184,7 +184,7 @@ def rne_expressions(
 
 
 def newton_euler(
-    robot: Chain, model: DynamicModel | None = None, *, tidy_steps: bool | None = None
+    robot: KinematicChain, model: DynamicModel | None = None, *, tidy_steps: bool | None = None
 ) -> EquationsOfMotion:
     """The equations of motion by recursive Newton–Euler, with the recursion as steps.
 

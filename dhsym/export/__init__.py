@@ -46,7 +46,7 @@ from dhsym.errors import DHError
 
 if TYPE_CHECKING:
     from dhsym.ik.choices import IKCache
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
     from .render import Language
 
@@ -83,7 +83,7 @@ def _parts(what: str | Iterable[str]) -> tuple[str, ...]:
 
 
 def export(
-    robot: Chain,
+    robot: KinematicChain,
     lang: str,
     what: str | Iterable[str] = DEFAULT_PARTS,
     prefix: str | None = None,
@@ -97,7 +97,7 @@ def export(
     Parameters
     ----------
     robot
-        A :class:`~dhsym.kinematics.chain.Chain`.
+        A :class:`~dhsym.kinematics.chain.KinematicChain`.
     lang
         ``"c"``, ``"cpp"``, ``"matlab"``, ``"rust"`` or ``"python"`` (NumPy).
     what

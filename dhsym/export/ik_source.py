@@ -52,7 +52,7 @@ from dhsym.kinematics.decoupling import StructureError
 from dhsym.model.table import JointType
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["IKSource", "IKStep", "ik_source", "pose_input"]
 
@@ -109,7 +109,7 @@ class IKSource:
         return numbers._with_safe_sqrt(e)
 
 
-def derivation(robot: Chain, cache: IKCache | None = None) -> InverseKinematics:
+def derivation(robot: KinematicChain, cache: IKCache | None = None) -> InverseKinematics:
     """The closed form of ``robot`` (derived in ``cache``, by default a fresh
     :class:`~dhsym.ik.choices.IKCache`), or one :class:`~dhsym.errors.DHError` saying why
     it cannot be exported (the general 6R: its eigenvalue solver is not exported; no
@@ -140,7 +140,7 @@ def derivation(robot: Chain, cache: IKCache | None = None) -> InverseKinematics:
     return ik
 
 
-def _straight_line_steps(robot: Chain, ik: InverseKinematics) -> None:
+def _straight_line_steps(robot: KinematicChain, ik: InverseKinematics) -> None:
     """Refuse a derivation whose steps are not straight-line code (naming why): every
     step must be an expression of the pose, earlier steps and the branch signs."""
     known = set(ik.pose.free_symbols) | {b.symbol for b in ik.branches}
@@ -165,7 +165,7 @@ def _printable(f: sp.Expr) -> bool:
 
 
 def ik_source(
-    robot: Chain, ik: InverseKinematics | None = None, *, cache: IKCache | None = None
+    robot: KinematicChain, ik: InverseKinematics | None = None, *, cache: IKCache | None = None
 ) -> IKSource:
     """Read the closed form of ``robot`` (``ik``, else derived in ``cache``: see
     :func:`derivation`) into an :class:`IKSource`.
@@ -223,7 +223,7 @@ def ik_source(
     )
 
 
-def _branch_names(robot: Chain, ik: InverseKinematics) -> tuple[str, ...]:
+def _branch_names(robot: KinematicChain, ik: InverseKinematics) -> tuple[str, ...]:
     """The name ``robot.ik`` gives each branch, in its order (signs ``+`` first, the first
     sign slowest), one part per branch sign. Elbow names depend on the geometry, so they
     are read off the solver at sample poses; a part that changes between samples (the

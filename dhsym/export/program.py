@@ -39,7 +39,7 @@ from .ik_source import IKSource, ik_source
 
 if TYPE_CHECKING:
     from dhsym.ik.choices import IKCache
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = [
     "Assign",
@@ -140,12 +140,12 @@ class IKProgram:
 # --- shared pieces ------------------------------------------------------------------------
 
 
-def _joint_symbols(robot: Chain) -> dict[sp.Symbol, sp.Symbol]:
+def _joint_symbols(robot: KinematicChain) -> dict[sp.Symbol, sp.Symbol]:
     return {v: sp.Symbol(f"q{k}", **_REAL) for k, v in enumerate(robot.variables, start=1)}
 
 
 def _constants(
-    robot: Chain, symbolic_lengths: bool, taken: set[str]
+    robot: KinematicChain, symbolic_lengths: bool, taken: set[str]
 ) -> tuple[dict[sp.Symbol, sp.Expr], tuple[Parameter, ...]]:
     """What the table's constant symbols become: numbers, or parameters ``p_<name>``."""
     values = robot.table.value_map
@@ -240,7 +240,7 @@ def _straight_line(
 
 
 def _prepared(
-    robot: Chain, matrix: sp.Matrix, symbolic_lengths: bool
+    robot: KinematicChain, matrix: sp.Matrix, symbolic_lengths: bool
 ) -> tuple[list[sp.Expr], tuple[Parameter, ...], dict[sp.Symbol, int], set[str]]:
     qs = _joint_symbols(robot)
     taken = {s.name for s in qs.values()}
@@ -250,7 +250,7 @@ def _prepared(
     return exprs, params, index, taken
 
 
-def _program(robot: Chain, matrix: sp.Matrix, symbolic_lengths: bool) -> Program:
+def _program(robot: KinematicChain, matrix: sp.Matrix, symbolic_lengths: bool) -> Program:
     exprs, params, index, taken = _prepared(robot, matrix, symbolic_lengths)
     body, reduced = _straight_line(exprs, index, taken)
     rows, cols = matrix.shape
@@ -258,12 +258,12 @@ def _program(robot: Chain, matrix: sp.Matrix, symbolic_lengths: bool) -> Program
     return Program(tuple(s.name for s in index), params, tuple(body), outputs, rows, cols)
 
 
-def fk_program(robot: Chain, *, symbolic_lengths: bool = False) -> Program:
+def fk_program(robot: KinematicChain, *, symbolic_lengths: bool = False) -> Program:
     """World to tool (``robot.fk``) as a :class:`Program` with a 4×4 result."""
     return _program(robot, robot.tool_pose().matrix, symbolic_lengths)
 
 
-def jacobian_program(robot: Chain, *, symbolic_lengths: bool = False) -> Program:
+def jacobian_program(robot: KinematicChain, *, symbolic_lengths: bool = False) -> Program:
     """The geometric Jacobian of ``robot.jacobian(q)`` (base frame of ``fk``, tool point),
     6 × n.
 
@@ -284,7 +284,7 @@ def _dependencies(e: sp.Expr) -> set[sp.Symbol]:
 
 
 def ik_program(
-    robot: Chain, *, symbolic_lengths: bool = False, cache: IKCache | None = None
+    robot: KinematicChain, *, symbolic_lengths: bool = False, cache: IKCache | None = None
 ) -> IKProgram:
     """The closed-form IK of ``robot`` as assignments, each step with its sentence.
 
@@ -460,7 +460,7 @@ def _pythagoras(e: sp.Expr) -> sp.Expr:
 
 
 def rne_program(
-    robot: Chain,
+    robot: KinematicChain,
     *,
     symbolic_lengths: bool = False,
     values: Mapping[object, object] | None = None,

@@ -36,7 +36,7 @@ from .identifiers import comment_lines
 if TYPE_CHECKING:
     import jinja2
 
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
     from .program import IKProgram, Program, RNEProgram
 
@@ -100,7 +100,7 @@ def _cell(e: sp.Expr) -> str:
     return " ".join(comment_lines(str(e)))
 
 
-def header_lines(robot: Chain, command: str) -> list[str]:
+def header_lines(robot: KinematicChain, command: str) -> list[str]:
     """The header comment: what the file is, the DH table, the convention, how it was made."""
     from dhsym._version import __version__
 

@@ -54,7 +54,7 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
     from dhsym.ik.choices import IKCache
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["CompiledRobot", "cache_dir", "compiled"]
 
@@ -132,7 +132,7 @@ def _address(a: np.ndarray) -> int:
 
 
 def compiled(
-    robot: Chain,
+    robot: KinematicChain,
     lang: str = "c",
     *,
     cache: IKCache | None = None,
@@ -207,7 +207,7 @@ def compiled(
     return CompiledRobot(fk, jacobian, ik, "c", lib_path, n, _rne_c(robot, cc, n))
 
 
-def _rne_numpy(robot: Chain) -> Callable[[object, object, object], np.ndarray]:
+def _rne_numpy(robot: KinematicChain) -> Callable[[object, object, object], np.ndarray]:
     """``rne(q, qd, qdd)`` on dhsym's NumPy path, compiled on the first call."""
     from dhsym.dynamics.compiled_dynamics import DynamicsFunctions, dynamics_functions
 
@@ -221,7 +221,9 @@ def _rne_numpy(robot: Chain) -> Callable[[object, object, object], np.ndarray]:
     return rne
 
 
-def _rne_c(robot: Chain, cc: str, n: int) -> Callable[[object, object, object], np.ndarray]:
+def _rne_c(
+    robot: KinematicChain, cc: str, n: int
+) -> Callable[[object, object, object], np.ndarray]:
     """``rne(q, qd, qdd)`` of the exported C, built and loaded on the first call (the
     recursion of a 6R takes seconds to write out: only then)."""
     from . import export

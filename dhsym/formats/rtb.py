@@ -42,7 +42,7 @@ from dhsym.model.parsing import symbol
 from dhsym.model.table import DHRow, DHTable, Elementary
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["table_from_rtb", "to_rtb"]
 
@@ -131,7 +131,7 @@ def _snapped_limits(limits: tuple[sp.Expr, ...]) -> tuple[sp.Expr, ...]:
     return tuple(out)
 
 
-def to_rtb(robot: Chain | DHTable) -> object:
+def to_rtb(robot: KinematicChain | DHTable) -> object:
     """A roboticstoolbox ``DHRobot`` with the table's offsets, flips, limits, base and tool.
 
     Needs ``roboticstoolbox`` (``pip install roboticstoolbox-python``) and numbers for

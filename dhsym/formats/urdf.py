@@ -85,7 +85,7 @@ from dhsym.model.tablefile import dump_table
 from .xmlsafe import read_xml, read_xml_file
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = [
     "MAX_CHAIN",
@@ -326,11 +326,12 @@ class UrdfImport:
         """The frame-assignment sentences, one per choice."""
         return self.assignment.step_texts
 
-    def chain(self, **kw: Any) -> Chain:  # Chain's keywords: compact, style
-        """A :class:`~dhsym.kinematics.chain.Chain` of the table (``compact``, ``style``)."""
-        from dhsym.kinematics.chain import Chain
+    def chain(self, **kw: Any) -> KinematicChain:  # its keywords: compact, style
+        """A :class:`~dhsym.kinematics.chain.KinematicChain` of the table (``compact``,
+        ``style``)."""
+        from dhsym.kinematics.chain import KinematicChain
 
-        return Chain(self.table, **kw)
+        return KinematicChain(self.table, **kw)
 
 
 # --- reading ---------------------------------------------------------------------------------
@@ -712,8 +713,9 @@ def chain_from_urdf(
     *,
     snap_angles: AngleSnap | bool | float | None = True,
     **kw: object,
-) -> Chain:
-    """A :class:`~dhsym.kinematics.chain.Chain` from a URDF file or text (see :func:`import_urdf`).
+) -> KinematicChain:
+    """A :class:`~dhsym.kinematics.chain.KinematicChain` from a URDF file or text (see
+    :func:`import_urdf`).
 
     >>> r = chain_from_urdf('''<robot name="slide"><link name="a"/><link name="b"/>
     ...   <joint name="s" type="prismatic"><parent link="a"/><child link="b"/>
@@ -890,7 +892,7 @@ class _Joint:
     sign: int = 1  # -1: the variable turns about (slides along) -z (a flipped joint)
 
 
-def write_urdf(robot: Chain | DHTable, *, name: str | None = None) -> str:
+def write_urdf(robot: KinematicChain | DHTable, *, name: str | None = None) -> str:
     """A URDF of a DH table: one link per DH frame, joints on the DH z axes, simple visuals.
 
     Symbolic lengths need numbers (the table's ``values``). The joint variables keep

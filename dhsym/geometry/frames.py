@@ -71,7 +71,7 @@ from .conversion import transform_word
 from .sentences import say
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["FrameAssignment", "VariableMap", "assign_frames"]
 
@@ -108,11 +108,11 @@ class FrameAssignment:
         """The steps as plain sentences."""
         return [s.text for s in self.steps]
 
-    def chain(self) -> Chain:
-        """A :class:`~dhsym.kinematics.chain.Chain` for the table."""
-        from dhsym.kinematics.chain import Chain
+    def chain(self) -> KinematicChain:
+        """A :class:`~dhsym.kinematics.chain.KinematicChain` for the table."""
+        from dhsym.kinematics.chain import KinematicChain
 
-        return Chain(self.table)
+        return KinematicChain(self.table)
 
     def verify(self, samples: int = 5, *, seed: int = 0, tol: float = 1e-9) -> float:
         """Largest error of the table against the input geometry at home and random q.

@@ -31,7 +31,7 @@ from dhsym.model.table import DHRow, JointType
 from .results import IKBatch, IKSolution
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
     from .closed_form import InverseKinematics
 
@@ -40,7 +40,7 @@ __all__ = ["GivenJoint", "IKCache", "solve", "sweep_free_joint", "within_limits"
 _TWO_PI = 2 * np.pi
 
 
-def _limits(robot: Chain) -> tuple[np.ndarray, np.ndarray]:
+def _limits(robot: KinematicChain) -> tuple[np.ndarray, np.ndarray]:
     """Lower and upper joint limits ``(n,)`` (±inf where the table gives none)."""
     values = robot.table.value_map
     lo, hi = [], []
@@ -56,13 +56,13 @@ def _limits(robot: Chain) -> tuple[np.ndarray, np.ndarray]:
     return np.array(lo), np.array(hi)
 
 
-def _revolute(robot: Chain) -> np.ndarray:
+def _revolute(robot: KinematicChain) -> np.ndarray:
     return np.array(
         [r.joint is JointType.REVOLUTE for r in robot.table.rows if r.variable is not None]
     )
 
 
-def within_limits(robot: Chain, sol: IKSolution) -> IKSolution:
+def within_limits(robot: KinematicChain, sol: IKSolution) -> IKSolution:
     """The solutions inside the joint limits, each angle shifted by 2πk into its range
     (the shift nearest to the middle of the range when several fit).
 
@@ -83,7 +83,7 @@ def within_limits(robot: Chain, sol: IKSolution) -> IKSolution:
     return sol.take(np.nonzero(inside)[0], q)
 
 
-def nearest_first(robot: Chain, sol: IKSolution, q0: object) -> IKSolution:
+def nearest_first(robot: KinematicChain, sol: IKSolution, q0: object) -> IKSolution:
     """The solutions ordered by distance from ``q0`` (angle differences wrapped to [−π, π]).
 
     >>> import dhsym
@@ -108,14 +108,14 @@ class IKCache:
     (:meth:`given`). :class:`dhsym.robot.Robot` keeps one; :func:`solve` makes a fresh one
     when given none.
 
-    >>> from dhsym.kinematics.chain import Chain
+    >>> from dhsym.kinematics.chain import KinematicChain
     >>> from dhsym.model.library import load_table
-    >>> cache = IKCache(Chain(load_table("planar2r")))
+    >>> cache = IKCache(KinematicChain(load_table("planar2r")))
     >>> cache.inverse() is cache.inverse(), cache.inverse().count
     (True, 2)
     """
 
-    chain: Chain
+    chain: KinematicChain
     _inverse: InverseKinematics | None = field(default=None, init=False, repr=False)
     _given: dict[int, GivenJoint] = field(default_factory=dict, init=False, repr=False)
 
@@ -146,10 +146,10 @@ class GivenJoint:
     row: int
 
 
-def _sub_chain(robot: Chain, joint: int) -> tuple[Chain, int]:
+def _sub_chain(robot: KinematicChain, joint: int) -> tuple[KinematicChain, int]:
     """The arm without joint ``joint`` (1-based): the chain after it (first joint), before it
     (last joint), or with its row made constant (its variable becomes a symbol to give)."""
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
     table = robot.table
     rows = table.joint_rows
@@ -175,7 +175,7 @@ def _sub_chain(robot: Chain, joint: int) -> tuple[Chain, int]:
         tool=(),
         values=tuple((s, v) for s, v in table.values if s in used),
     )
-    return Chain(sub), row
+    return KinematicChain(sub), row
 
 
 def _solve_free(
@@ -228,7 +228,7 @@ def _solve_free(
 
 
 def solve(
-    robot: Chain,
+    robot: KinematicChain,
     T: object,
     *,
     check: str | None = "pose",
@@ -285,7 +285,7 @@ def solve(
 
 
 def sweep_free_joint(
-    robot: Chain,
+    robot: KinematicChain,
     T: object,
     joint: int,
     *,

@@ -47,7 +47,7 @@ from .steps import Step, pose_symbols
 from .structure import GENERAL_6R
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["EliminationSolver", "derive_general"]
 
@@ -75,7 +75,7 @@ class EliminationSolver:
     fk: Callable[[np.ndarray], np.ndarray] = field(repr=False)
 
     @property
-    def robot(self) -> Chain:
+    def robot(self) -> KinematicChain:
         """The robot solved."""
         return self.ik.robot
 
@@ -193,12 +193,12 @@ def _near_singular(
     return s[:, -1] < singular_tol * s[:, 0]
 
 
-def _all_numbers(robot: Chain) -> bool:
+def _all_numbers(robot: KinematicChain) -> bool:
     known = robot.table.value_map
     return all(s in known for s in robot.table.constants)
 
 
-def derive_general(robot: Chain) -> InverseKinematics:
+def derive_general(robot: KinematicChain) -> InverseKinematics:
     """The general 6R by Raghavan–Roth elimination, as derivation steps and a solver.
 
     With numbers for every length the elimination is compiled here (about a second; it

@@ -40,7 +40,7 @@ from .steps import Branch, Step, pose_symbols
 from .structure import INVERTED, PARALLEL, SPHERICAL_WRIST, classify
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["derive_inverted", "reversed_table"]
 
@@ -83,7 +83,7 @@ def reversed_table(table: DHTable) -> DHTable:
     )
 
 
-def derive_inverted(robot: Chain) -> InverseKinematics:
+def derive_inverted(robot: KinematicChain) -> InverseKinematics:
     """The closed form of ``robot`` through its reversed chain.
 
     >>> import dhsym
@@ -93,11 +93,11 @@ def derive_inverted(robot: Chain) -> InverseKinematics:
     >>> ik.family, ik.count
     ('inverted chain', 8)
     """
-    from dhsym.kinematics.chain import Chain
+    from dhsym.kinematics.chain import KinematicChain
 
     table = robot.table
     n = table.n
-    back = Chain(reversed_table(table))
+    back = KinematicChain(reversed_table(table))
     family = classify(back).family
     derive = {SPHERICAL_WRIST: derive_decoupled, PARALLEL: derive_parallel}.get(family)
     if derive is None:

@@ -1,10 +1,13 @@
 """The kinematics room: the one transform kernel (elementary matrices, words, ^iT_j, rigid
-inverse), the compact closed form and its proof, compiled numbers, ``Pose`` and ``Chain``,
-and kinematic decoupling (:mod:`.decoupling`), on which the Jacobian's factors and the
-inverse kinematics (:mod:`dhsym.ik`) both rest.
+inverse), the compact closed form and its proof, compiled numbers, ``Pose``,
+``KinematicChain`` (the typed core every room above takes: table, notation, cached ``^iT_j``,
+compiled fk and Jacobian functions), Jacobians, singularities and kinematic decoupling
+(:mod:`.decoupling`), on which the Jacobian's factors and the inverse kinematics
+(:mod:`dhsym.ik`) both rest.
 
-May import :mod:`dhsym.model` and :mod:`dhsym.notation` (``Robot.plot`` reaches the plot
-room and ``Robot.inverse``/``Robot.ik`` the :mod:`dhsym.ik` room at call time: conveniences).
+May import :mod:`dhsym.model` and :mod:`dhsym.notation`, nothing else: the conveniences
+that reach the rooms above (``ik``, ``dynamics``, ``plot``, …) are
+:class:`dhsym.robot.Robot`'s.
 """
 
 from dhsym._lazy import lazy_exports
@@ -12,7 +15,7 @@ from dhsym._lazy import lazy_exports
 __getattr__, __dir__ = lazy_exports(
     __name__,
     {
-        "Chain": "chain",
+        "KinematicChain": "chain",
         "chain_word": "transforms",
         "compile_exprs": "numeric",
         "compile_pose": "numeric",
@@ -39,7 +42,7 @@ __getattr__, __dir__ = lazy_exports(
 
 __all__ = [
     "Jacobian",
-    "Chain",
+    "KinematicChain",
     "Pose",
     "Rx",
     "Ry",

@@ -1,15 +1,16 @@
-"""``Chain``: the typed core around a :class:`~dhsym.model.table.DHTable` and the pure functions.
+"""``KinematicChain``: the typed core around a :class:`~dhsym.model.table.DHTable` and the
+pure functions.
 
-A ``Chain`` holds the table, its notation, the cached ``^iT_j`` and the compiled fk and
+A ``KinematicChain`` holds the table, its notation, the cached ``^iT_j`` and the compiled fk and
 Jacobian functions: everything the kinematics room provides. The algorithms of the rooms
 above (:mod:`dhsym.ik`, :mod:`dhsym.dynamics`, :mod:`dhsym.geometry`, :mod:`dhsym.plot`,
-:mod:`dhsym.formats`, :mod:`dhsym.export`) take a ``Chain``; :class:`dhsym.robot.Robot`
+:mod:`dhsym.formats`, :mod:`dhsym.export`) take a ``KinematicChain``; :class:`dhsym.robot.Robot`
 is the facade that adds their conveniences (``ik``, ``dynamics``, ``plot``, …).
 
 Examples
 --------
 >>> from dhsym.model.table import DHTable, DHRow
->>> r = Chain(DHTable.from_rows([DHRow.revolute("theta1", a="a1"),
+>>> r = KinematicChain(DHTable.from_rows([DHRow.revolute("theta1", a="a1"),
 ...                              DHRow.revolute("theta2", a="a2")], name="2R"))
 >>> print(r.arm_matrix().text())
 Matrix([
@@ -46,7 +47,7 @@ if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `im
 
     from .jacobian import AnalyticJacobian, Jacobian
 
-__all__ = ["MAX_CLOSED_FORM", "Chain", "JacobianKey", "PoseKey", "frame_name"]
+__all__ = ["MAX_CLOSED_FORM", "KinematicChain", "JacobianKey", "PoseKey", "frame_name"]
 
 
 #: Largest estimated size (expression nodes, :func:`.simplification.closed_form_size`) of
@@ -77,7 +78,7 @@ class JacobianKey:
     values: object
 
 
-class Chain:
+class KinematicChain:
     """Kinematics of one DH table: link matrices, ``^iT_j``, the arm matrix, ``fk``.
 
     Frames are numbered 0 … n (DH frames); ``-1`` is the world frame before the
@@ -182,7 +183,7 @@ class Chain:
         >>> from dhsym.model.table import DHRow, DHTable
         >>> rows = [DHRow.revolute(f"q{k}", d=f"d{k}", a=f"a{k}", alpha=(-1) ** k * sp.pi / 2)
         ...         for k in range(1, 17)]
-        >>> Chain(DHTable.from_rows(rows, name="snake")).transform(0, 16)
+        >>> KinematicChain(DHTable.from_rows(rows, name="snake")).transform(0, 16)
         Traceback (most recent call last):
         ...
         dhsym.errors.DHError: ^0T_16 of snake is too large to write out in closed form ...
@@ -242,7 +243,7 @@ class Chain:
         ``values`` given (the table's own values are fixed for this robot).
 
         >>> from dhsym.model.library import load_table
-        >>> r = Chain(load_table("planar2r"))
+        >>> r = KinematicChain(load_table("planar2r"))
         >>> r.fk_function() is r.fk_function(), r.fk_function(0, 1)([0.5, 0.0])[0, 3]
         (True, np.float64(0.8775825618903728))
         """

@@ -9,7 +9,7 @@ import numpy as np
 import dhsym
 from dhsym.export.shared_library import compiled
 from dhsym.ik.choices import IKCache
-from dhsym.kinematics.chain import Chain
+from dhsym.kinematics.chain import KinematicChain
 
 from ..conftest import _need
 
@@ -47,7 +47,7 @@ def test_compiled_derives_in_the_cache_it_is_given(monkeypatch, tmp_path):
     monkeypatch.setenv("CC", "")
     monkeypatch.setattr(shutil, "which", lambda name: None)
     r = dhsym.load("planar2r")
-    cache = IKCache(Chain(r.table))
+    cache = IKCache(KinematicChain(r.table))
     compiled(cache.chain, cache=cache)
     derived = cache.inverse()
     assert derived is cache.inverse()  # derived once, by compiled, and kept

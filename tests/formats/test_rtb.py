@@ -13,7 +13,7 @@ import sympy as sp
 import dhsym
 from dhsym.errors import FormatError
 from dhsym.formats.rtb import table_from_rtb, to_rtb
-from dhsym.kinematics.chain import Chain
+from dhsym.kinematics.chain import KinematicChain
 
 # roboticstoolbox-python 1.5.0, rtb.models.DH.Puma560(): the links' documented attributes
 # (sigma, theta, d, a, alpha, offset, qlim, isflip) and fkine([0.1, ..., 0.6]).A, recorded
@@ -49,7 +49,7 @@ def puma() -> Obj:
 
 
 def test_from_rtb_reproduces_recorded_fkine() -> None:
-    r = Chain(table_from_rtb(puma()))
+    r = KinematicChain(table_from_rtb(puma()))
     assert r.table.rows[2].d == sp.Rational("0.15005")
     assert r.table.rows[0].alpha == sp.pi / 2 and r.table.rows[1].limits == (
         -sp.pi / 4,
@@ -79,7 +79,9 @@ def test_flipped_joints_keep_the_meaning_of_q() -> None:
     ]
     base = np.eye(4)
     base[:3, 3] = [0.0, 0.0, 0.7]
-    r = Chain(table_from_rtb(Obj(links=links, mdh=False, base=base, tool=None, name="flip")))
+    r = KinematicChain(
+        table_from_rtb(Obj(links=links, mdh=False, base=base, tool=None, name="flip"))
+    )
     assert r.table.rows[0].offset == sp.Rational(1, 4) and r.table.base
     for q in ([0.3, 0.2], [-1.0, 0.6]):
         A1 = _link_A(0, 0, 0.3, 0.2, 0.5, -q[0] + 0.25)
@@ -106,7 +108,7 @@ def test_both_ways_with_the_toolbox() -> None:
     rng = np.random.default_rng(0)
     for model in (rtb.models.DH.Puma560(), rtb.models.DH.Panda(), rtb.models.DH.Stanford()):
         q = rng.uniform(-1, 1, model.n)
-        r = Chain(table_from_rtb(model))
+        r = KinematicChain(table_from_rtb(model))
         assert np.abs(r.fk(q) - model.fkine(q).A).max() < 1e-12
         assert np.abs(to_rtb(r).fkine(q).A - model.fkine(q).A).max() < 1e-12
     for table in (
