@@ -27,9 +27,9 @@ sys.path.insert(0, str(ROOT))
 
 import dhsym  # noqa: E402
 from dhsym.dynamics import lagrange, newton_euler  # noqa: E402
-from dhsym.kinematics.robot import Robot  # noqa: E402
 from dhsym.kinematics.simplification import prove_equal  # noqa: E402
 from dhsym.model.tablefile import read_table_text  # noqa: E402
+from dhsym.robot import Robot  # noqa: E402
 
 
 def timed(f, *a, **k):
@@ -138,7 +138,7 @@ def main() -> int:
     try:
         import pinocchio as pin
 
-        from tests.dynamics.test_compiled import pin_model
+        from tests.dynamics.test_compiled_dynamics import pin_model
     except ImportError:
         print("pinocchio: not installed (pip install pin)")
         return 0

@@ -3,7 +3,7 @@ axes): fk and IK (all branches) per call.
 
 Measured three ways in one run: in C (a loop of 1,000,000 fk and 200,000 ik calls over
 varying inputs, timed with clock_gettime inside the program, gcc -O2), through ctypes
-(dhsym.export.compiled, timeit), and dhsym's own NumPy/float path (robot.fk, robot.ik)
+(dhsym.export.shared_library, timeit), and dhsym's own NumPy/float path (robot.fk, robot.ik)
 as the reference; EAIK's ``IK`` (Python call into its C++, all solutions, unchecked)
 when installed and the table suits it; roboticstoolbox is not compared. Then the PUMA
 560's inverse dynamics: the exported ``rne`` in a C loop (200,000 calls), through ctypes
@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 import dhsym
-from dhsym.export.compiled import compiled
+from dhsym.export.shared_library import compiled
 
 _MAIN = r"""
 #include <stdio.h>

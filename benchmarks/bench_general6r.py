@@ -30,10 +30,10 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from dhsym.ik import general6r as g  # noqa: E402
-from dhsym.kinematics.robot import Robot  # noqa: E402
 from dhsym.model.library import builtin_table  # noqa: E402
 from dhsym.model.table import DHRow, DHTable  # noqa: E402
 from dhsym.model.tablefile import read_table  # noqa: E402
+from dhsym.robot import Robot  # noqa: E402
 from tests.ik._multistart import contains, multistart_lm  # noqa: E402
 
 DATA = ROOT / "tests" / "data" / "general6r"

@@ -87,7 +87,7 @@ def main() -> int:
     for name, fn in rows:
         t = median_time(fn, args.repeat)
         print(f"  {name:20s} {1000 * t:9.2f} ms   {t / reference:8.0f} x xml")
-    robot = import_urdf(text, tip=TIP).robot()
+    robot = import_urdf(text, tip=TIP).chain()
     t0 = time.perf_counter()
     robot.fk(np.zeros(7))
     first = time.perf_counter() - t0

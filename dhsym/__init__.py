@@ -42,9 +42,10 @@ __getattr__, __dir__ = _lazy.lazy_exports(
         "read_table_text": "dhsym.model.tablefile",
         # notation, kinematics
         "Notation": "dhsym.notation.printers",
+        "KinematicChain": "dhsym.kinematics.chain",
         "Pose": "dhsym.kinematics.pose",
-        "Robot": "dhsym.kinematics.robot",
-        "load": "dhsym.kinematics.robot",
+        "Robot": "dhsym.robot",
+        "load": "dhsym.robot",
         # explain
         "Derivation": "dhsym.explain.derivation",
         "derive": "dhsym.explain.derivation",
@@ -76,11 +77,11 @@ __getattr__, __dir__ = _lazy.lazy_exports(
         "Mechanism": "dhsym.geometry.joints",
         "PAIRS": "dhsym.geometry.joints",
         "mobility": "dhsym.geometry.joints",
-        "inverse": "dhsym.kinematics.robot",
+        "inverse": "dhsym.robot",
         "singularities": "dhsym.kinematics.singularities",
         # formats
-        "from_rtb": "dhsym.formats.rtb",
-        "from_urdf": "dhsym.formats.urdf",
+        "from_rtb": "dhsym.robot",
+        "from_urdf": "dhsym.robot",
         "FormatError": "dhsym.errors",
         # errors, version
         "ChainError": "dhsym.errors",
@@ -94,6 +95,7 @@ __getattr__, __dir__ = _lazy.lazy_exports(
 
 __all__ = [
     "AngleUnit",
+    "KinematicChain",
     "ChainError",
     "Convention",
     "DHError",

@@ -118,9 +118,9 @@ print("variable map (variable = sign*q + offset):", [(str(m.variable), m.sign, m
 
 # %%
 q = np.random.default_rng(0).uniform(-np.pi, np.pi, (100, 6))
-ours, theirs = puma.robot().fk(q), dhsym.Robot(corke).fk(q - [0, 0, np.pi / 2, 0, 0, 0])
+ours, theirs = dhsym.Robot(puma.table).fk(q), dhsym.Robot(corke).fk(q - [0, 0, np.pi / 2, 0, 0, 0])
 print("largest difference over 100 random configurations:", np.abs(ours - theirs).max())
-fig = puma.robot().plot([0] * 6, scale=0.12, title="PUMA 560 stretched out: frames from the DH algorithm")
+fig = dhsym.Robot(puma.table).plot([0] * 6, scale=0.12, title="PUMA 560 stretched out: frames from the DH algorithm")
 fig.axes[0].view_init(elev=25, azim=-60)
 fig
 
@@ -155,7 +155,7 @@ display(scara.table)
 builtin = dhsym.load_table("scara")
 q = np.random.default_rng(1).uniform(-1, 1, (50, 4))
 print("same rows as the built-in SCARA:", [r.params() for r in scara.table.rows] == [r.params() for r in builtin.substituted().rows])
-print("largest difference to the built-in SCARA:", np.abs(scara.robot().fk(q) - dhsym.Robot(builtin).fk(q)).max())
+print("largest difference to the built-in SCARA:", np.abs(dhsym.Robot(scara.table).fk(q) - dhsym.Robot(builtin).fk(q)).max())
 try:
     assign_frames([((0, 0, 0), (0, 0, 1), "R"), ((1, 0, 0), (1, 0, 0), "P"), ((1, 1, 0), (1, 0, 0), "P")])
 except GeometryError as err:

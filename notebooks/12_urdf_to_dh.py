@@ -117,7 +117,7 @@ for k, step in enumerate(ur5.steps, start=1):
 # three links (the shoulder and the two parallel axes that make the planar part of the arm).
 
 # %%
-robot = ur5.robot()
+robot = dhsym.Robot(ur5.table)
 robot.transform(0, 3)
 
 # %% [markdown]

@@ -33,8 +33,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # the table loads when a command runs
-    from dhsym.kinematics.robot import Robot
     from dhsym.model.table import DHTable
+    from dhsym.robot import Robot
 
 __all__ = [
     "EXIT_BROKEN_PIPE",
@@ -238,7 +238,7 @@ def load_robot(
     ``values:`` or from ``--values``; the error names both ways.
     """
     from dhsym.errors import DHError
-    from dhsym.kinematics.robot import Robot
+    from dhsym.robot import Robot
 
     table = load_table_arg(name, tip, base)
     if values:

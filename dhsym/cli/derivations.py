@@ -27,9 +27,9 @@ import sympy as sp
 
 from dhsym import __version__
 from dhsym.kinematics.jacobian import geometric_jacobian
-from dhsym.kinematics.robot import Robot
 from dhsym.kinematics.singularities import singularities
 from dhsym.notation.printers import Notation
+from dhsym.robot import Robot
 
 __all__ = [
     "JSON_SCHEMA_VERSION",

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 from .common import add_command, load_robot, note_warnings, wrote
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.robot import Robot
 
 __all__ = ["register"]
 

@@ -27,7 +27,7 @@ def _cmd_handout(args: argparse.Namespace) -> int:
     from dhsym.errors import DHError
     from dhsym.explain.documents import render_handout, write_handout
     from dhsym.explain.latex import run_latex
-    from dhsym.kinematics.robot import load
+    from dhsym.robot import load
 
     robots = [load(name, compact=not args.full, style=args.notation) for name in args.robots]
     options = dict(

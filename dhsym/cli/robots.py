@@ -30,7 +30,7 @@ from .common import (
 if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
     import sympy as sp
 
-    from dhsym.kinematics.robot import Robot
+    from dhsym.robot import Robot
 
 __all__ = ["JSON_SCHEMA_VERSION", "derive_json", "register"]
 
@@ -47,10 +47,10 @@ def _cmd_list(args: argparse.Namespace) -> int:
 
 
 def _cmd_show(args: argparse.Namespace) -> int:
-    from dhsym.kinematics.robot import Robot
     from dhsym.model.entries import exact_decimal
     from dhsym.model.tablefile import dump_table
     from dhsym.notation.tables import table_markdown
+    from dhsym.robot import Robot
 
     robot = Robot(load_table_arg(args.robot, args.tip, args.base))
     t = robot.table
@@ -132,7 +132,7 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
 
 
 def _cmd_derive(args: argparse.Namespace) -> int:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.robot import Robot
 
     table = load_table_arg(args.robot, args.tip, args.base)
     robot = Robot(table, compact=not args.full, style=args.notation)

@@ -1,4 +1,4 @@
-"""Robot dynamics: the equations of motion of a DH chain, derived as the lecture does.
+"""KinematicChain dynamics: the equations of motion of a DH chain, derived as the lecture does.
 
 Owns the inertial model of a chain, Lagrange–Euler and recursive Newton–Euler (both DH
 conventions), statics, the regressor and base parameters, and their compiled numbers.

@@ -1,6 +1,6 @@
 r"""Lagrange–Euler: the energies of each link, M(q), the Christoffel symbols, C and g.
 
-Spong, Hutchinson and Vidyasagar, *Robot Modeling and Control*, §7.2–7.4:
+Spong, Hutchinson and Vidyasagar, *KinematicChain Modeling and Control*, §7.2–7.4:
 
 .. math::
 
@@ -14,7 +14,7 @@ Spong, Hutchinson and Vidyasagar, *Robot Modeling and Control*, §7.2–7.4:
 
 The Jacobians of each link are written in the link's own frame *i* (where ``I_i`` is
 given), so ``R_i I_i R_i^T`` is ``I_i`` itself; they come from the compact transforms
-of :class:`~dhsym.kinematics.robot.Robot`, so entries stay in C/S form. Each entry is
+of :class:`~dhsym.kinematics.chain.KinematicChain`, so entries stay in C/S form. Each entry is
 expanded and folded by the targeted sum-angle identities (no ``simplify``). A motor's
 ``Jm G²`` is added to the diagonal of M.
 
@@ -42,7 +42,7 @@ from .equations import EquationsOfMotion
 from .model import DynamicModel, dynamic_model
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = [
     "potential_energies",
@@ -165,7 +165,7 @@ def potential_energies(dm: DynamicModel) -> tuple[sp.Expr, ...]:
     return tuple(out)
 
 
-def lagrange(robot: Robot, model: DynamicModel | None = None) -> EquationsOfMotion:
+def lagrange(robot: KinematicChain, model: DynamicModel | None = None) -> EquationsOfMotion:
     """The equations of motion by Lagrange–Euler (see the module docstring)."""
     dm = model or dynamic_model(robot)
     n = dm.n

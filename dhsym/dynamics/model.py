@@ -29,7 +29,7 @@ from dhsym.model.inertia import LinkInertia
 from dhsym.model.table import JointType
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["DynamicModel", "dynamic_model", "rate_symbols"]
 
@@ -64,7 +64,7 @@ class DynamicModel:
     gravitational acceleration written in DH frame 0.
     """
 
-    robot: Robot = field(compare=False, repr=False)
+    robot: KinematicChain = field(compare=False, repr=False)
     links: tuple[LinkInertia, ...]
     variables: tuple[sp.Symbol, ...]
     rates: tuple[sp.Symbol, ...]
@@ -101,7 +101,7 @@ class DynamicModel:
         return tuple(self.links[r - 1].Jm * self.links[r - 1].G ** 2 for r in self.joints)
 
 
-def dynamic_model(robot: Robot, *, textbook: bool = True) -> DynamicModel:
+def dynamic_model(robot: KinematicChain, *, textbook: bool = True) -> DynamicModel:
     """The inertial model of ``robot``; rows without parameters get the textbook set.
 
     With ``textbook=False`` a joint row without parameters is an error.
@@ -129,5 +129,5 @@ def dynamic_model(robot: Robot, *, textbook: bool = True) -> DynamicModel:
         rate_symbols(variables, 2),
         table.joint_rows,
         tuple(table.rows[r - 1].joint for r in table.joint_rows),
-        tuple(sp.expand(g) for g in gravity),  # type: ignore[arg-type]
+        tuple(sp.expand(g) for g in gravity),
     )

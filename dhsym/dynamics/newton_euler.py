@@ -49,7 +49,7 @@ from .lagrange import christoffel_symbols, coriolis_matrix, tidy
 from .model import DynamicModel, dynamic_model
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["newton_euler", "rne_expressions"]
 
@@ -184,7 +184,7 @@ def rne_expressions(
 
 
 def newton_euler(
-    robot: Robot, model: DynamicModel | None = None, *, tidy_steps: bool | None = None
+    robot: KinematicChain, model: DynamicModel | None = None, *, tidy_steps: bool | None = None
 ) -> EquationsOfMotion:
     """The equations of motion by recursive Newton–Euler, with the recursion as steps.
 
@@ -210,12 +210,17 @@ def newton_euler(
             return rne_expressions(dm, qd=list(v), qdd=zeros, gravity=(0, 0, 0))
 
         single = [h(unit[:, j]) for j in range(n)]
-        c = [[single[i] if i == j else None for j in range(n)] for i in range(n)]
-        for i in range(n):
-            for j in range(i + 1, n):
-                c[i][j] = c[j][i] = (h(unit[:, i] + unit[:, j]) - single[i] - single[j]) / 2
+        pairs = {
+            (i, j): (h(unit[:, i] + unit[:, j]) - single[i] - single[j]) / 2
+            for i in range(n)
+            for j in range(i + 1, n)
+        }
+
+        def c(i: int, j: int) -> Matrix:  # symmetric in i, j
+            return single[i] if i == j else pairs[(min(i, j), max(i, j))]
+
         chris = tuple(
-            tuple(tuple(c[i][j][k] for k in range(n)) for j in range(n)) for i in range(n)
+            tuple(tuple(c(i, j)[k] for k in range(n)) for j in range(n)) for i in range(n)
         )
         C = Matrix(n, n, lambda k, j: sum(chris[i][j][k] * qd[i] for i in range(n)))
         return EquationsOfMotion(

@@ -39,7 +39,7 @@ from .model import DynamicModel, dynamic_model
 from .newton_euler import rne_expressions
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = [
     "STANDARD_NAMES",
@@ -99,10 +99,11 @@ def _link_symbols(i: int) -> tuple[sp.Symbol, ...]:
     return tuple(sp.Symbol(f"{n}{i}", real=True) for n in STANDARD_NAMES)
 
 
-def regressor(robot: Robot, model: DynamicModel | None = None) -> Regressor:
+def regressor(robot: KinematicChain, model: DynamicModel | None = None) -> Regressor:
     """The regressor Y of ``robot`` (the links' own parameters are not used: π is symbolic)."""
     dm = model or dynamic_model(robot)
-    moments, params = [], []
+    moments: list[tuple[sp.Symbol, Matrix, Matrix]] = []
+    params: list[sp.Symbol] = []
     for i in range(1, len(dm.links) + 1):
         XX, XY, XZ, YY, YZ, ZZ, MX, MY, MZ, M = s = _link_symbols(i)
         Lo = Matrix([[XX, XY, XZ], [XY, YY, YZ], [XZ, YZ, ZZ]])
@@ -134,7 +135,7 @@ def standard_values(model: DynamicModel) -> dict[sp.Symbol, sp.Expr]:
 
 
 def base_parameters(
-    robot: Robot, *, states: int = 40, seed: int = 0, tol: float = 1e-9
+    robot: KinematicChain, *, states: int = 40, seed: int = 0, tol: float = 1e-9
 ) -> BaseParameters:
     """The base parameters by QR of Y stacked at ``states`` random states (Gautier).
 

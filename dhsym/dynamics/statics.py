@@ -25,7 +25,7 @@ from dhsym.kinematics.jacobian import compact, geometric_jacobian
 from dhsym.notation.printers import Notation
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["Statics", "WRENCH", "statics", "statics_numeric"]
 
@@ -42,7 +42,7 @@ class Statics:
     tau: Matrix
     wrench: tuple[sp.Symbol, ...]
     jacobian: Matrix
-    robot: Robot = field(repr=False, compare=False)
+    robot: KinematicChain = field(repr=False, compare=False)
 
     @property
     def notation(self) -> Notation:
@@ -50,7 +50,7 @@ class Statics:
         return self.robot.notation
 
 
-def statics(robot: Robot) -> Statics:
+def statics(robot: KinematicChain) -> Statics:
     """The exact ``τ = Jᵀ F`` of ``robot`` (geometric Jacobian at the tool, base frame)."""
     J = geometric_jacobian(robot).matrix
     tau = (J.T * Matrix(WRENCH)).applyfunc(
@@ -60,7 +60,11 @@ def statics(robot: Robot) -> Statics:
 
 
 def statics_numeric(
-    robot: Robot, q: object, wrench: object, *, values: Mapping[object, object] | None = None
+    robot: KinematicChain,
+    q: object,
+    wrench: object,
+    *,
+    values: Mapping[object, object] | None = None,
 ) -> np.ndarray:
     """τ = J(q)ᵀ F for one state ``(n,)`` or a batch ``(..., n)``; ``wrench`` ``(..., 6)``.
 
@@ -71,5 +75,5 @@ def statics_numeric(
     F = np.asarray(wrench, dtype=float)
     if F.shape[-1:] != (6,):
         raise DHError(f"a wrench has 6 entries [fx, fy, fz, nx, ny, nz], got shape {F.shape}")
-    J = np.asarray(robot.jacobian(q, values=values))
+    J = np.asarray(robot.jacobian(np.asarray(q, dtype=float), values=values))
     return np.einsum("...ij,...i->...j", J, F)

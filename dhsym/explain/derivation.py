@@ -36,7 +36,6 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.kinematics.pose import Pose
-from dhsym.kinematics.robot import Robot
 from dhsym.kinematics.transforms import chain_word, elementary_matrix
 from dhsym.model.table import AngleUnit, Convention, DHTable, Elementary
 from dhsym.notation.escape import TeX
@@ -56,6 +55,7 @@ from dhsym.notation.layout import (
 )
 from dhsym.notation.printers import Notation, TrigStyle
 from dhsym.notation.tables import table_view
+from dhsym.robot import Robot
 
 from .data import (
     Derivation,
@@ -239,7 +239,7 @@ def as_robot(name_or_robot: object) -> Robot:
     if isinstance(name_or_robot, DHTable):
         return Robot(name_or_robot)
     if isinstance(name_or_robot, (str, Path)):
-        from dhsym.kinematics.robot import load
+        from dhsym.robot import load
 
         return load(name_or_robot)
     raise DHError(

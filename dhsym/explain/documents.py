@@ -29,10 +29,10 @@ from typing import Any
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.kinematics.robot import Robot
 from dhsym.model.table import DHTable
 from dhsym.notation.escape import TeX
 from dhsym.notation.printers import Notation, TrigStyle
+from dhsym.robot import Robot
 
 from .data import Document
 from .derivation import Derivation, as_robot, derive, general_link

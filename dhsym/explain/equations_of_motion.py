@@ -27,7 +27,6 @@ from pathlib import Path
 import sympy as sp
 
 from dhsym.dynamics.equations import EquationsOfMotion, NEStep
-from dhsym.kinematics.robot import Robot
 from dhsym.model.table import DHTable
 from dhsym.notation.escape import TeX
 from dhsym.notation.layout import (
@@ -41,6 +40,7 @@ from dhsym.notation.layout import (
     matrix_block,
 )
 from dhsym.notation.printers import Notation, TrigStyle
+from dhsym.robot import Robot
 
 from .data import DynamicsDerivation, EnergyData, NEStepData
 from .velocity_kinematics import _key, styled

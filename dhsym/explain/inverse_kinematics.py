@@ -32,7 +32,6 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.ik.results import IKSolution, branch_word
 from dhsym.ik.steps import Branch, Step
-from dhsym.kinematics.robot import Robot
 from dhsym.model.table import DHTable, JointType
 from dhsym.notation.escape import TeX
 from dhsym.notation.layout import (
@@ -47,6 +46,7 @@ from dhsym.notation.layout import (
     sentence_runs,
 )
 from dhsym.notation.printers import Notation, TrigStyle
+from dhsym.robot import Robot
 
 from .data import BranchData, IKCheck, IKDerivation, IKPart, IKStepData
 from .velocity_kinematics import _key, styled

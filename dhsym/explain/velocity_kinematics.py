@@ -32,7 +32,6 @@ from pathlib import Path
 import sympy as sp
 
 from dhsym.kinematics.jacobian import geometric_jacobian
-from dhsym.kinematics.robot import Robot
 from dhsym.kinematics.singularities import singularities
 from dhsym.model.table import DHTable, JointType
 from dhsym.notation.escape import TeX
@@ -48,6 +47,7 @@ from dhsym.notation.layout import (
     matrix_block,
 )
 from dhsym.notation.printers import Notation, TrigStyle
+from dhsym.robot import Robot
 
 from .data import Block, FactorData, JacobianColumnData, JacobianDerivation, SingularityDerivation
 from .derivation import as_robot

@@ -6,7 +6,7 @@ self-contained source files with no dependency on dhsym: :mod:`.program` is the
 front end (named straight-line programs), :mod:`.ik_source` the one adapter to the IK
 derivation, :mod:`.languages` and the templates in ``templates/export`` the back end, one
 module per language (:mod:`.c`, :mod:`.cpp`, :mod:`.matlab`, :mod:`.rust`,
-:mod:`.python`), and :mod:`.compiled` builds the C once and loads it with ``ctypes``.
+:mod:`.python`), and :mod:`.shared_library` builds the C once and loads it with ``ctypes``.
 May import model, notation, kinematics, ik (the derivation, read by :mod:`.ik_source`) and
 dynamics (the Newton–Euler recursion, read by :func:`.program.rne_program`).
 
@@ -45,7 +45,8 @@ from typing import TYPE_CHECKING, Any
 from dhsym.errors import DHError
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.ik.choices import IKCache
+    from dhsym.kinematics.chain import KinematicChain
 
     from .languages import Language
 
@@ -83,20 +84,21 @@ def _parts(what: str | Iterable[str]) -> tuple[str, ...]:
 
 
 def export(
-    robot: Robot,
+    robot: KinematicChain,
     lang: str,
     what: str | Iterable[str] = DEFAULT_PARTS,
     prefix: str | None = None,
     symbolic_lengths: bool = False,
     *,
     command: str | None = None,
+    cache: IKCache | None = None,
 ) -> dict[str, str]:
     """Self-contained source files for ``robot`` in ``lang``: file name → text.
 
     Parameters
     ----------
     robot
-        A :class:`~dhsym.kinematics.robot.Robot`.
+        A :class:`~dhsym.kinematics.chain.KinematicChain`.
     lang
         ``"c"``, ``"cpp"``, ``"matlab"``, ``"rust"`` or ``"python"`` (NumPy).
     what
@@ -112,6 +114,9 @@ def export(
         baking in its values.
     command
         The command line to name in the header (the CLI passes its own).
+    cache
+        Where the closed-form IK is derived and kept (:class:`dhsym.ik.choices.IKCache`;
+        ``Robot.compiled`` passes the robot's own); by default a fresh one.
 
     The same input gives the same bytes.
 
@@ -123,8 +128,8 @@ def export(
     ...
     dhsym.errors.DHError: Planar 2R: the dynamics export needs numeric inertial parameters; ...
     """
+    from .identifiers import comment_lines, identifier
     from .languages import Context, header_lines, render_files
-    from .names import comment_lines, identifier
     from .program import fk_program, ik_program, jacobian_program, rne_program
 
     parts = _parts(what)
@@ -135,7 +140,9 @@ def export(
             ", symbolic_lengths=True)" if symbolic_lengths else ")"
         )
     rne = rne_program(robot, symbolic_lengths=symbolic_lengths) if "dynamics" in parts else None
-    ik = ik_program(robot, symbolic_lengths=symbolic_lengths) if "ik" in parts else None
+    ik = (
+        ik_program(robot, symbolic_lengths=symbolic_lengths, cache=cache) if "ik" in parts else None
+    )
     fk = fk_program(robot, symbolic_lengths=symbolic_lengths)
     jac = (
         jacobian_program(robot, symbolic_lengths=symbolic_lengths) if "jacobian" in parts else None

@@ -43,7 +43,8 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.ik import compiler as numbers
-from dhsym.ik.derivation import InverseKinematics
+from dhsym.ik.choices import IKCache
+from dhsym.ik.closed_form import InverseKinematics
 from dhsym.ik.results import IKBatch
 from dhsym.ik.results import _branch_names as solver_branch_names
 from dhsym.ik.structure import GENERAL_6R, classify
@@ -51,7 +52,7 @@ from dhsym.kinematics.decoupling import StructureError
 from dhsym.model.table import JointType
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["IKSource", "IKStep", "ik_source", "pose_input"]
 
@@ -108,9 +109,11 @@ class IKSource:
         return numbers._with_safe_sqrt(e)
 
 
-def derivation(robot: Robot) -> InverseKinematics:
-    """``robot.inverse()``, or one :class:`~dhsym.errors.DHError` saying why it cannot be
-    exported (the general 6R: its eigenvalue solver is not exported; no closed form).
+def derivation(robot: KinematicChain, cache: IKCache | None = None) -> InverseKinematics:
+    """The closed form of ``robot`` (derived in ``cache``, by default a fresh
+    :class:`~dhsym.ik.choices.IKCache`), or one :class:`~dhsym.errors.DHError` saying why
+    it cannot be exported (the general 6R: its eigenvalue solver is not exported; no
+    closed form).
 
     >>> import dhsym
     >>> derivation(dhsym.load("ur3")).family
@@ -127,7 +130,7 @@ def derivation(robot: Robot) -> InverseKinematics:
         "code); export fk and jacobian only"
     )
     try:
-        ik = robot.inverse()
+        ik = (cache if cache is not None else IKCache(robot)).inverse()
     except StructureError as err:
         if classify(robot).family == GENERAL_6R:
             raise general from None
@@ -137,7 +140,7 @@ def derivation(robot: Robot) -> InverseKinematics:
     return ik
 
 
-def _straight_line_steps(robot: Robot, ik: InverseKinematics) -> None:
+def _straight_line_steps(robot: KinematicChain, ik: InverseKinematics) -> None:
     """Refuse a derivation whose steps are not straight-line code (naming why): every
     step must be an expression of the pose, earlier steps and the branch signs."""
     known = set(ik.pose.free_symbols) | {b.symbol for b in ik.branches}
@@ -161,8 +164,11 @@ def _printable(f: sp.Expr) -> bool:
     return isinstance(f, (sp.sin, sp.cos, sp.tan, sp.atan2, sp.atan, sp.asin, sp.acos, sp.Abs))
 
 
-def ik_source(robot: Robot, ik: InverseKinematics | None = None) -> IKSource:
-    """Read the derivation of ``robot.inverse()`` into an :class:`IKSource`.
+def ik_source(
+    robot: KinematicChain, ik: InverseKinematics | None = None, *, cache: IKCache | None = None
+) -> IKSource:
+    """Read the closed form of ``robot`` (``ik``, else derived in ``cache``: see
+    :func:`derivation`) into an :class:`IKSource`.
 
     Raises
     ------
@@ -170,7 +176,7 @@ def ik_source(robot: Robot, ik: InverseKinematics | None = None) -> IKSource:
         For an arm without a closed form, and for the general 6R (its eigenvalue solver
         is not exported).
     """
-    ik = ik if ik is not None else derivation(robot)
+    ik = ik if ik is not None else derivation(robot, cache)
     _straight_line_steps(robot, ik)
     pose = ik.pose
     T = pose_input()
@@ -217,7 +223,7 @@ def ik_source(robot: Robot, ik: InverseKinematics | None = None) -> IKSource:
     )
 
 
-def _branch_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
+def _branch_names(robot: KinematicChain, ik: InverseKinematics) -> tuple[str, ...]:
     """The name ``robot.ik`` gives each branch, in its order (signs ``+`` first, the first
     sign slowest), one part per branch sign. Elbow names depend on the geometry, so they
     are read off the solver at sample poses; a part that changes between samples (the
@@ -232,7 +238,7 @@ def _branch_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
             q[:, k] = rng.uniform(0.2, 0.8, 32)
     seen: list[list[set[str]]] = [[set() for _ in range(B)] for _ in combos]
     try:
-        batch = robot.ik(robot.fk(q))
+        batch = ik.solve(robot.fk(q), check="pose", tol=1e-9, singular_tol=1e-6)
         assert isinstance(batch, IKBatch)  # N poses give a batch
         solver = batch.solver
         for i in range(len(q)):

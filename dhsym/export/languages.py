@@ -30,10 +30,10 @@ import sympy as sp
 
 from dhsym.notation.templates import CODE, environment
 
-from .names import comment_lines
+from .identifiers import comment_lines
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
     from .program import IKProgram, Program, RNEProgram
 
@@ -73,7 +73,7 @@ def _cell(e: sp.Expr) -> str:
     return " ".join(comment_lines(str(e)))
 
 
-def header_lines(robot: Robot, command: str) -> list[str]:
+def header_lines(robot: KinematicChain, command: str) -> list[str]:
     """The header comment: what the file is, the DH table, the convention, how it was made."""
     from dhsym._version import __version__
 

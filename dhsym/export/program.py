@@ -34,11 +34,12 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.model.table import JointType
 
+from .identifiers import identifier
 from .ik_source import IKSource, ik_source
-from .names import identifier
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.ik.choices import IKCache
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = [
     "Assign",
@@ -139,12 +140,12 @@ class IKProgram:
 # --- shared pieces ------------------------------------------------------------------------
 
 
-def _joint_symbols(robot: Robot) -> dict[sp.Symbol, sp.Symbol]:
+def _joint_symbols(robot: KinematicChain) -> dict[sp.Symbol, sp.Symbol]:
     return {v: sp.Symbol(f"q{k}", **_REAL) for k, v in enumerate(robot.variables, start=1)}
 
 
 def _constants(
-    robot: Robot, symbolic_lengths: bool, taken: set[str]
+    robot: KinematicChain, symbolic_lengths: bool, taken: set[str]
 ) -> tuple[dict[sp.Symbol, sp.Expr], tuple[Parameter, ...]]:
     """What the table's constant symbols become: numbers, or parameters ``p_<name>``."""
     values = robot.table.value_map
@@ -239,7 +240,7 @@ def _straight_line(
 
 
 def _prepared(
-    robot: Robot, matrix: sp.Matrix, symbolic_lengths: bool
+    robot: KinematicChain, matrix: sp.Matrix, symbolic_lengths: bool
 ) -> tuple[list[sp.Expr], tuple[Parameter, ...], dict[sp.Symbol, int], set[str]]:
     qs = _joint_symbols(robot)
     taken = {s.name for s in qs.values()}
@@ -249,7 +250,7 @@ def _prepared(
     return exprs, params, index, taken
 
 
-def _program(robot: Robot, matrix: sp.Matrix, symbolic_lengths: bool) -> Program:
+def _program(robot: KinematicChain, matrix: sp.Matrix, symbolic_lengths: bool) -> Program:
     exprs, params, index, taken = _prepared(robot, matrix, symbolic_lengths)
     body, reduced = _straight_line(exprs, index, taken)
     rows, cols = matrix.shape
@@ -257,12 +258,12 @@ def _program(robot: Robot, matrix: sp.Matrix, symbolic_lengths: bool) -> Program
     return Program(tuple(s.name for s in index), params, tuple(body), outputs, rows, cols)
 
 
-def fk_program(robot: Robot, *, symbolic_lengths: bool = False) -> Program:
+def fk_program(robot: KinematicChain, *, symbolic_lengths: bool = False) -> Program:
     """World to tool (``robot.fk``) as a :class:`Program` with a 4×4 result."""
     return _program(robot, robot.tool_pose().matrix, symbolic_lengths)
 
 
-def jacobian_program(robot: Robot, *, symbolic_lengths: bool = False) -> Program:
+def jacobian_program(robot: KinematicChain, *, symbolic_lengths: bool = False) -> Program:
     """The geometric Jacobian of ``robot.jacobian(q)`` (base frame of ``fk``, tool point),
     6 × n.
 
@@ -283,7 +284,9 @@ def _dependencies(e: sp.Expr) -> set[sp.Symbol]:
     return symbols
 
 
-def ik_program(robot: Robot, *, symbolic_lengths: bool = False) -> IKProgram:
+def ik_program(
+    robot: KinematicChain, *, symbolic_lengths: bool = False, cache: IKCache | None = None
+) -> IKProgram:
     """The closed-form IK of ``robot`` as assignments, each step with its sentence.
 
     >>> import dhsym
@@ -293,7 +296,7 @@ def ik_program(robot: Robot, *, symbolic_lengths: bool = False) -> IKProgram:
     >>> [a.name for a in prog.body]
     ['d_2', 'q2', 'c2', 's2', 'q1', 'c12', 's12', 'c1', 's1']
     """
-    src = ik_source(robot)
+    src = ik_source(robot, cache=cache)
     qs = _joint_symbols(robot)
     taken = {s.name for s in qs.values()} | {f"i{k}" for k in range(1, len(src.signs) + 1)}
     pose_names = {s: sp.Symbol(identifier(s.name), **_REAL) for s in src.pose_symbols}
@@ -458,7 +461,7 @@ def _pythagoras(e: sp.Expr) -> sp.Expr:
 
 
 def rne_program(
-    robot: Robot,
+    robot: KinematicChain,
     *,
     symbolic_lengths: bool = False,
     values: Mapping[object, object] | None = None,
@@ -485,6 +488,7 @@ def rne_program(
     ...
     dhsym.errors.DHError: Planar 2R: the dynamics export needs numeric inertial parameters; ...
     """
+    from dhsym.dynamics.compiled_dynamics import numeric_model
     from dhsym.dynamics.newton_euler import rne_expressions
     from dhsym.kinematics.numeric import to_float
 
@@ -494,7 +498,7 @@ def rne_program(
             f"{name}: the dynamics export bakes in the numbers; export it without "
             "--symbolic-lengths (fk, jacobian and ik can take the lengths as parameters)"
         )
-    dm = robot.dynamics_functions(values).model
+    dm = numeric_model(robot, values)
     tau = rne_expressions(dm)
     n = dm.n
     qs = [sp.Symbol(f"q{k}", **_REAL) for k in range(1, n + 1)]

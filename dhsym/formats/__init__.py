@@ -9,8 +9,8 @@ __getattr__, __dir__ = lazy_exports(
     {
         "UrdfImport": "urdf",
         "UrdfModel": "urdf",
-        "from_rtb": "rtb",
-        "from_urdf": "urdf",
+        "table_from_rtb": "rtb",
+        "chain_from_urdf": "urdf",
         "import_urdf": "urdf",
         "read_urdf": "urdf",
         "write_urdf": "urdf",
@@ -22,8 +22,8 @@ __getattr__, __dir__ = lazy_exports(
 __all__ = [
     "UrdfImport",
     "UrdfModel",
-    "from_rtb",
-    "from_urdf",
+    "table_from_rtb",
+    "chain_from_urdf",
     "import_urdf",
     "read_urdf",
     "read_xml",

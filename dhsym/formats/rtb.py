@@ -1,6 +1,6 @@
 """Robotics Toolbox for Python (``roboticstoolbox``) DH robots both ways.
 
-:func:`from_rtb` reads a ``DHRobot`` through its documented attributes only
+:func:`table_from_rtb` reads a ``DHRobot`` into a DH table through its documented attributes only
 (``robot.links``, ``robot.mdh``, ``robot.base``, ``robot.tool``, ``robot.name``; each
 link's ``sigma``, ``theta``, ``d``, ``a``, ``alpha``, ``offset``, ``qlim`` and
 ``isflip``), so it needs no import of the toolbox. The toolbox's link transform is
@@ -19,8 +19,8 @@ Examples
 >>> from types import SimpleNamespace as Obj
 >>> link = Obj(sigma=0, theta=0.0, d=0.5, a=0.0, alpha=1.5707963267948966, offset=0.0,
 ...            qlim=None, isflip=True)
->>> r = from_rtb(Obj(links=[link], mdh=False, base=None, tool=None, name="one"))
->>> r.table.rows[0], r.table.rows[0].offset
+>>> table = table_from_rtb(Obj(links=[link], mdh=False, base=None, tool=None, name="one"))
+>>> table.rows[0], table.rows[0].offset
 (DHRow(R: theta=-theta1, d=1/2, a=0, alpha=pi/2), 0)
 """
 
@@ -42,9 +42,9 @@ from dhsym.model.parsing import symbol
 from dhsym.model.table import DHRow, DHTable, Elementary
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["from_rtb", "to_rtb"]
+__all__ = ["table_from_rtb", "to_rtb"]
 
 
 def _number(value: object, where: str) -> sp.Expr:
@@ -70,22 +70,21 @@ def _transform(value: object, where: str) -> tuple[Elementary, ...]:
     return transform_word(exact_matrix(M.tolist()))
 
 
-def from_rtb(robot: object, *, name: str | None = None) -> Robot:
-    """A :class:`~dhsym.kinematics.robot.Robot` from a roboticstoolbox ``DHRobot``.
+def table_from_rtb(robot: object, *, name: str | None = None) -> DHTable:
+    """A :class:`~dhsym.model.table.DHTable` from a roboticstoolbox ``DHRobot`` (``dhsym.from_rtb``
+    makes it a :class:`~dhsym.robot.Robot`).
 
     >>> from types import SimpleNamespace as Obj
     >>> links = [Obj(sigma=0, theta=0.0, d=0.0, a=0.4318, alpha=0.0, offset=0.0,
     ...              qlim=[-0.7853981633974483, 3.9269908169872414], isflip=False),
     ...          Obj(sigma=1, theta=0.0, d=0.0, a=0.0, alpha=0.0, offset=0.1,
     ...              qlim=[0.0, 0.5], isflip=False)]
-    >>> r = from_rtb(Obj(links=links, mdh=False, base=None, tool=None, name="RP"))
-    >>> r.table.rows[0], r.table.rows[1]
+    >>> table = table_from_rtb(Obj(links=links, mdh=False, base=None, tool=None, name="RP"))
+    >>> table.rows[0], table.rows[1]
     (DHRow(R: theta=theta1, d=0, a=2159/5000, alpha=0), DHRow(P: theta=0, d=d2 + 1/10, ...))
-    >>> r.table.rows[0].limits
+    >>> table.rows[0].limits
     (-pi/4, 5*pi/4)
     """
-    from dhsym.kinematics.robot import Robot
-
     links: Sequence[object] = list(getattr(robot, "links", None) or [])
     if not links:
         raise FormatError("expected a roboticstoolbox DHRobot with links", field="links")
@@ -119,7 +118,7 @@ def from_rtb(robot: object, *, name: str | None = None) -> Robot:
         base=_transform(getattr(robot, "base", None), "base"),
         tool=_transform(getattr(robot, "tool", None), "tool"),
     )
-    return Robot(table)
+    return table
 
 
 def _snapped_limits(limits: tuple[sp.Expr, ...]) -> tuple[sp.Expr, ...]:
@@ -132,7 +131,7 @@ def _snapped_limits(limits: tuple[sp.Expr, ...]) -> tuple[sp.Expr, ...]:
     return tuple(out)
 
 
-def to_rtb(robot: Robot | DHTable) -> object:
+def to_rtb(robot: KinematicChain | DHTable) -> object:
     """A roboticstoolbox ``DHRobot`` with the table's offsets, flips, limits, base and tool.
 
     Needs ``roboticstoolbox`` (``pip install roboticstoolbox-python``) and numbers for

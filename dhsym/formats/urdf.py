@@ -41,12 +41,12 @@ Examples
 ...   <joint name="elbow" type="continuous"><parent link="upper"/><child link="tip"/>
 ...     <origin xyz="0.25 0 0"/><axis xyz="0 0 1"/></joint>
 ... </robot>'''
->>> robot = from_urdf(text)
+>>> robot = chain_from_urdf(text)
 >>> [(r.theta, r.d, r.a, r.alpha) for r in robot.table.rows]
 [(theta1, 0, 1/4, 0), (theta2, 1/10, 0, 0)]
 >>> robot.table.rows[0].limits, robot.table.rows[1].label
 ((-31/10, 31/10), 'elbow')
->>> again = from_urdf(write_urdf(robot))
+>>> again = chain_from_urdf(write_urdf(robot))
 >>> bool(abs(again.fk([0.3, -0.2]) - robot.fk([0.3, -0.2])).max() < 1e-12)
 True
 """
@@ -85,7 +85,7 @@ from dhsym.model.tablefile import dump_table
 from .xmlsafe import read_xml, read_xml_file
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = [
     "MAX_CHAIN",
@@ -95,7 +95,7 @@ __all__ = [
     "UrdfImport",
     "UrdfJoint",
     "UrdfModel",
-    "from_urdf",
+    "chain_from_urdf",
     "import_urdf",
     "is_urdf_source",
     "read_urdf",
@@ -326,11 +326,12 @@ class UrdfImport:
         """The frame-assignment sentences, one per choice."""
         return self.assignment.step_texts
 
-    def robot(self, **kw: Any) -> Robot:  # Robot's keywords: compact, style
-        """A :class:`~dhsym.kinematics.robot.Robot` of the table (``compact``, ``style``)."""
-        from dhsym.kinematics.robot import Robot
+    def chain(self, **kw: Any) -> KinematicChain:  # its keywords: compact, style
+        """A :class:`~dhsym.kinematics.chain.KinematicChain` of the table (``compact``,
+        ``style``)."""
+        from dhsym.kinematics.chain import KinematicChain
 
-        return Robot(self.table, **kw)
+        return KinematicChain(self.table, **kw)
 
 
 # --- reading ---------------------------------------------------------------------------------
@@ -704,7 +705,7 @@ def import_urdf(
     return UrdfImport(model, start, tip, joints, fa, table, inertials)
 
 
-def from_urdf(
+def chain_from_urdf(
     source: str | os.PathLike[str],
     tip: str | None = None,
     base: str | None = None,
@@ -712,10 +713,11 @@ def from_urdf(
     *,
     snap_angles: AngleSnap | bool | float | None = True,
     **kw: object,
-) -> Robot:
-    """A :class:`~dhsym.kinematics.robot.Robot` from a URDF file or text (see :func:`import_urdf`).
+) -> KinematicChain:
+    """A :class:`~dhsym.kinematics.chain.KinematicChain` from a URDF file or text (see
+    :func:`import_urdf`).
 
-    >>> r = from_urdf('''<robot name="slide"><link name="a"/><link name="b"/>
+    >>> r = chain_from_urdf('''<robot name="slide"><link name="a"/><link name="b"/>
     ...   <joint name="s" type="prismatic"><parent link="a"/><child link="b"/>
     ...     <axis xyz="1 0 0"/><limit lower="0" upper="0.5" effort="1" velocity="1"/></joint>
     ... </robot>''', convention="modified")
@@ -723,7 +725,7 @@ def from_urdf(
     (DHRow(P: theta=0, d=d1, a=0, alpha=0), np.float64(0.2))
     """
     imp = import_urdf(source, tip, base, convention, snap_angles=snap_angles)
-    return imp.robot(**kw)
+    return imp.chain(**kw)
 
 
 def _dh_inertias(
@@ -890,13 +892,13 @@ class _Joint:
     sign: int = 1  # -1: the variable turns about (slides along) -z (a flipped joint)
 
 
-def write_urdf(robot: Robot | DHTable, *, name: str | None = None) -> str:
+def write_urdf(robot: KinematicChain | DHTable, *, name: str | None = None) -> str:
     """A URDF of a DH table: one link per DH frame, joints on the DH z axes, simple visuals.
 
     Symbolic lengths need numbers (the table's ``values``). The joint variables keep
     their meaning: URDF joint k at q is the table's variable k at q.
 
-    >>> from dhsym.kinematics.robot import load
+    >>> from dhsym.robot import load
     >>> text = write_urdf(load("planar2r").table.with_values({"a1": 1, "a2": 0.5}))
     >>> print(text.splitlines()[3])
     <robot name="Planar_2R">

@@ -71,7 +71,7 @@ from .conversion import transform_word
 from .sentences import say
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["FrameAssignment", "VariableMap", "assign_frames"]
 
@@ -108,11 +108,11 @@ class FrameAssignment:
         """The steps as plain sentences."""
         return [s.text for s in self.steps]
 
-    def robot(self) -> Robot:
-        """A :class:`~dhsym.kinematics.robot.Robot` for the table."""
-        from dhsym.kinematics.robot import Robot
+    def chain(self) -> KinematicChain:
+        """A :class:`~dhsym.kinematics.chain.KinematicChain` for the table."""
+        from dhsym.kinematics.chain import KinematicChain
 
-        return Robot(self.table)
+        return KinematicChain(self.table)
 
     def verify(self, samples: int = 5, *, seed: int = 0, tol: float = 1e-9) -> float:
         """Largest error of the table against the input geometry at home and random q.

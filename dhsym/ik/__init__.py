@@ -19,8 +19,9 @@ __getattr__, __dir__ = lazy_exports(
     __name__,
     {
         "IKBatch": "results",
+        "IKCache": "choices",
         "IKSolution": "results",
-        "InverseKinematics": "derivation",
+        "InverseKinematics": "closed_form",
         "NumericSolution": "levenberg_marquardt",
         "Structure": "structure",
         "StructureError": "dhsym.kinematics.decoupling",
@@ -36,6 +37,7 @@ __getattr__, __dir__ = lazy_exports(
 
 __all__ = [
     "IKBatch",
+    "IKCache",
     "IKSolution",
     "InverseKinematics",
     "NumericSolution",

@@ -20,7 +20,7 @@ True
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import replace
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -31,14 +31,16 @@ from dhsym.model.table import DHRow, JointType
 from .results import IKBatch, IKSolution
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["solve", "sweep_free_joint", "within_limits", "nearest_first"]
+    from .closed_form import InverseKinematics
+
+__all__ = ["GivenJoint", "IKCache", "solve", "sweep_free_joint", "within_limits", "nearest_first"]
 
 _TWO_PI = 2 * np.pi
 
 
-def _limits(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
+def _limits(robot: KinematicChain) -> tuple[np.ndarray, np.ndarray]:
     """Lower and upper joint limits ``(n,)`` (±inf where the table gives none)."""
     values = robot.table.value_map
     lo, hi = [], []
@@ -54,13 +56,13 @@ def _limits(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
     return np.array(lo), np.array(hi)
 
 
-def _revolute(robot: Robot) -> np.ndarray:
+def _revolute(robot: KinematicChain) -> np.ndarray:
     return np.array(
         [r.joint is JointType.REVOLUTE for r in robot.table.rows if r.variable is not None]
     )
 
 
-def within_limits(robot: Robot, sol: IKSolution) -> IKSolution:
+def within_limits(robot: KinematicChain, sol: IKSolution) -> IKSolution:
     """The solutions inside the joint limits, each angle shifted by 2πk into its range
     (the shift nearest to the middle of the range when several fit).
 
@@ -81,7 +83,7 @@ def within_limits(robot: Robot, sol: IKSolution) -> IKSolution:
     return sol.take(np.nonzero(inside)[0], q)
 
 
-def nearest_first(robot: Robot, sol: IKSolution, q0: object) -> IKSolution:
+def nearest_first(robot: KinematicChain, sol: IKSolution, q0: object) -> IKSolution:
     """The solutions ordered by distance from ``q0`` (angle differences wrapped to [−π, π]).
 
     >>> import dhsym
@@ -99,10 +101,55 @@ def nearest_first(robot: Robot, sol: IKSolution, q0: object) -> IKSolution:
     return sol.take(np.argsort(np.linalg.norm(d, axis=1), kind="stable"))
 
 
-def _sub_robot(robot: Robot, joint: int) -> tuple[Robot, int]:
+@dataclass(eq=False)
+class IKCache:
+    """The inverse kinematics of one chain, derived on first use and kept: the closed form
+    (:meth:`inverse`) and, for ``free={joint: value}``, the chains with that joint given
+    (:meth:`given`). :class:`dhsym.robot.Robot` keeps one; :func:`solve` makes a fresh one
+    when given none.
+
+    >>> from dhsym.kinematics.chain import KinematicChain
+    >>> from dhsym.model.library import load_table
+    >>> cache = IKCache(KinematicChain(load_table("planar2r")))
+    >>> cache.inverse() is cache.inverse(), cache.inverse().count
+    (True, 2)
+    """
+
+    chain: KinematicChain
+    _inverse: InverseKinematics | None = field(default=None, init=False, repr=False)
+    _given: dict[int, GivenJoint] = field(default_factory=dict, init=False, repr=False)
+
+    def inverse(self) -> InverseKinematics:
+        """The closed form derived step by step (:func:`dhsym.ik.families.inverse`), cached."""
+        from .families import inverse
+
+        if self._inverse is None:
+            self._inverse = inverse(self.chain)
+        return self._inverse
+
+    def given(self, joint: int) -> GivenJoint:
+        """The chain with joint ``joint`` (1-based) given, and its own cache."""
+        found = self._given.get(joint)
+        if found is None:
+            sub, row = _sub_chain(self.chain, joint)
+            found = self._given[joint] = GivenJoint(IKCache(sub), row)
+        return found
+
+
+@dataclass(frozen=True, eq=False)
+class GivenJoint:
+    """The arm with one joint given: the chain left (with its :class:`IKCache`) and the
+    row of the given joint (1: the chain after it; n: the chain before it; else its row
+    made constant)."""
+
+    cache: IKCache
+    row: int
+
+
+def _sub_chain(robot: KinematicChain, joint: int) -> tuple[KinematicChain, int]:
     """The arm without joint ``joint`` (1-based): the chain after it (first joint), before it
     (last joint), or with its row made constant (its variable becomes a symbol to give)."""
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
     table = robot.table
     rows = table.joint_rows
@@ -128,18 +175,11 @@ def _sub_robot(robot: Robot, joint: int) -> tuple[Robot, int]:
         tool=(),
         values=tuple((s, v) for s, v in table.values if s in used),
     )
-    return Robot(sub), row
-
-
-def _free_ik(robot: Robot, joint: int) -> tuple[Robot, int]:
-    given = robot._given_joint.get(joint)
-    if given is None:
-        given = robot._given_joint[joint] = _sub_robot(robot, joint)
-    return given
+    return KinematicChain(sub), row
 
 
 def _solve_free(
-    robot: Robot,
+    cache: IKCache,
     T: np.ndarray,
     joint: int,
     value: float,
@@ -149,7 +189,9 @@ def _solve_free(
     values: Mapping[object, object] | None,
 ) -> IKSolution:
     """Every solution of the pose ``T`` with joint ``joint`` at ``value``."""
-    sub, row = _free_ik(robot, joint)
+    robot = cache.chain
+    given = cache.given(joint)
+    row = given.row
     n = len(robot.variables)
     var = robot.variables[joint - 1]
     q = np.zeros(n)
@@ -166,7 +208,7 @@ def _solve_free(
         inner = inner @ np.linalg.inv(robot.fk_function(robot.n - 1, robot.n, values)(q))
     else:
         extra[var] = value
-    part = sub.inverse().solve(
+    part = given.cache.inverse().solve(
         inner, check="pose", tol=tol, singular_tol=singular_tol, values=extra or None
     )
     assert isinstance(part, IKSolution)
@@ -186,7 +228,7 @@ def _solve_free(
 
 
 def solve(
-    robot: Robot,
+    robot: KinematicChain,
     T: object,
     *,
     check: str | None = "pose",
@@ -196,6 +238,7 @@ def solve(
     free: Mapping[int, float] | None = None,
     limits: bool = False,
     near: object = None,
+    cache: IKCache | None = None,
 ) -> IKSolution | IKBatch:
     """Every closed-form solution of ``T``, with a joint given, within limits, nearest first.
 
@@ -204,7 +247,7 @@ def solve(
     T
         One pose ``(4, 4)`` or a batch ``(N, 4, 4)`` (positions for arms without a wrist).
     check, tol, singular_tol, values
-        As :meth:`dhsym.ik.derivation.InverseKinematics.solve`.
+        As :meth:`dhsym.ik.closed_form.InverseKinematics.solve`.
     free
         ``{joint: value}``: one joint (1-based) given; the others solved in closed form.
         One pose only.
@@ -212,7 +255,12 @@ def solve(
         Keep only solutions within the joint limits of the table (one pose).
     near
         Order the solutions by distance from these joint values (one pose).
+    cache
+        The :class:`IKCache` of ``robot`` to derive in and keep (``Robot.ik`` passes its
+        own); by default a fresh one, so the closed form is derived on this call.
     """
+    if cache is None:
+        cache = IKCache(robot)
     arr = np.asarray(T, dtype=float)
     single = arr.ndim in (1, 2) and not (arr.ndim == 2 and arr.shape[-1] == 3)
     if (free or limits or near is not None) and not single:
@@ -222,10 +270,10 @@ def solve(
             raise DHError(f"free: give exactly one joint, got {len(free)}")
         ((joint, value),) = free.items()
         sol: IKSolution | IKBatch = _solve_free(
-            robot, arr, int(joint), float(value), tol=tol, singular_tol=singular_tol, values=values
+            cache, arr, int(joint), float(value), tol=tol, singular_tol=singular_tol, values=values
         )
     else:
-        sol = robot.inverse().solve(
+        sol = cache.inverse().solve(
             arr, check=check, tol=tol, singular_tol=singular_tol, values=values
         )
     if isinstance(sol, IKSolution):
@@ -237,15 +285,17 @@ def solve(
 
 
 def sweep_free_joint(
-    robot: Robot,
+    robot: KinematicChain,
     T: object,
     joint: int,
     *,
     num: int = 36,
     values: Mapping[object, object] | None = None,
+    cache: IKCache | None = None,
 ) -> list[tuple[float, IKSolution]]:
     """The given joint swept over its range (``num`` values): the solutions within the
-    joint limits at each value, as ``(value, solutions)`` for the values that have some.
+    joint limits at each value, as ``(value, solutions)`` for the values that have some
+    (the chain with that joint given is derived once, in ``cache``: see :func:`solve`).
 
     >>> import dhsym
     >>> r = dhsym.load("panda")
@@ -258,9 +308,11 @@ def sweep_free_joint(
     a, b = lo[joint - 1], hi[joint - 1]
     if not np.isfinite(a + b):
         a, b = -np.pi, np.pi
+    if cache is None:
+        cache = IKCache(robot)
     out = []
     for v in np.linspace(a, b, num):
-        sol = solve(robot, T, values=values, free={joint: float(v)}, limits=True)
+        sol = solve(robot, T, values=values, free={joint: float(v)}, limits=True, cache=cache)
         assert isinstance(sol, IKSolution)
         if len(sol):
             out.append((float(v), sol))

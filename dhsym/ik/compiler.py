@@ -35,7 +35,7 @@ import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 import sympy as sp
@@ -51,7 +51,7 @@ if TYPE_CHECKING:
 
     from dhsym.kinematics.singularities import Singularities
 
-    from .derivation import InverseKinematics
+    from .closed_form import InverseKinematics
 
 __all__ = ["Solver"]
 
@@ -431,6 +431,22 @@ class Layout:
         )
 
 
+#: The programs a :class:`Solver` compiles (see :meth:`Solver._program`).
+ProgramKind = Literal["raw", "checked", "scalar", "singular"]
+
+
+@dataclass
+class Programs:
+    """The lambdified programs of one :class:`Solver`, each built on first use: ``raw`` and
+    ``checked`` (numpy, all branches by broadcasting), ``scalar`` (floats, every branch
+    written out), ``singular`` (numpy: θ4 and θ6 at a singular wrist)."""
+
+    raw: Callable[..., list[Any]] | None = None
+    checked: Callable[..., list[Any]] | None = None
+    scalar: Callable[..., list[Any]] | None = None
+    singular: Callable[..., list[Any]] | None = None
+
+
 class Solver:
     """The steps of an :class:`InverseKinematics`, compiled for numbers.
 
@@ -494,7 +510,7 @@ class Solver:
         self._factor_exprs: tuple[sp.Expr, ...] = ()
         self._frames: dict[int | None, Callable[[ArrayLike], np.ndarray]] = {}
         # lambdified programs: lists of floats (scalar) or of arrays (numpy)
-        self._compiled: dict[str, Callable[..., list[Any]]] = {}
+        self._programs = Programs()
 
     def frame(self, k: int | None = None) -> Callable[[ArrayLike], np.ndarray]:
         """The compiled ``^0T_k`` (``None``: the whole ``fk``, world to tool), cached."""
@@ -508,7 +524,7 @@ class Solver:
         return np.array(M.evalf(), dtype=float)
 
     # -- the compiled programs ----------------------------------------------------------------
-    def _outputs(self, kind: str) -> list[sp.Expr]:
+    def _outputs(self, kind: ProgramKind) -> list[sp.Expr]:
         """What a program computes for each branch (``kind`` as in :meth:`_program`).
 
         ``"raw"``: the joint values (angles wrapped) and ``|sin θ5|``. ``"checked"`` and
@@ -530,14 +546,15 @@ class Solver:
         whole = Residual(*[diffs[c] for c in _ALL if c not in _POSITION], position)
         return joints + [whole, position] + closeness
 
-    def _program(self, kind: str) -> Callable[..., list[Any]]:
+    def _program(self, kind: ProgramKind) -> Callable[..., list[Any]]:
         """The compiled program of one ``kind``, built on first use.
 
         ``"raw"`` and ``"checked"`` (numpy, all branches by broadcasting), ``"scalar"``
         (floats, every branch written out), ``"singular"`` (numpy: θ4 and θ6 at a
         singular wrist).
         """
-        if kind not in self._compiled:
+        built: Callable[..., list[Any]] | None = getattr(self._programs, kind)
+        if built is None:
             if kind == "singular":
                 # θ4 as this program computes it, θ4 at sin θ5 = 0, θ6 from the whole rotation
                 # with that θ4 (the pair stays consistent: near sin θ5 = 0 each alone is
@@ -576,10 +593,9 @@ class Solver:
             else:
                 program, reduced = _reuse_names(program, reduced)
                 args, modules = self.pose_args + self.signs, _NUMPY
-            self._compiled[kind] = sp.lambdify(
-                args, reduced, modules=modules, cse=lambda exprs: (program, exprs)
-            )
-        return self._compiled[kind]
+            built = sp.lambdify(args, reduced, modules=modules, cse=lambda exprs: (program, exprs))
+            setattr(self._programs, kind, built)
+        return built
 
     # -- raw closed form ----------------------------------------------------------------------
     def raw(self, T: np.ndarray) -> np.ndarray:

@@ -2,7 +2,7 @@ r"""The closed form by kinematic decoupling (spherical wrist, planar arms), as l
 
 :func:`derive_decoupled` reads the structure of a DH table (never its name) and derives the
 joint values from a pose ``T = [n s a p; 0 0 0 1]`` step by step, the way the
-lectures do (Spong, Hutchinson and Vidyasagar, *Robot Modeling and Control*, §5.3;
+lectures do (Spong, Hutchinson and Vidyasagar, *KinematicChain Modeling and Control*, §5.3;
 Craig, *Introduction to Robotics*, §4.7):
 
 1. **Kinematic decoupling.** When the last three axes meet in one point (a spherical
@@ -81,7 +81,7 @@ from dhsym.kinematics.transforms import chain_word, plain_product
 from dhsym.model.table import Elementary
 from dhsym.notation.layout import sentence, word_expr
 
-from .derivation import InverseKinematics
+from .closed_form import InverseKinematics
 from .results import BRANCH_NAMES
 from .steps import (
     Builder,
@@ -94,7 +94,7 @@ from .steps import (
 )
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["derive_decoupled"]
 
@@ -392,7 +392,7 @@ def _sizes(joints: int) -> list[int]:
     return [0] if joints in (1, 2) else []  # more than six joints: redundant, nothing to try
 
 
-def _structure_text(robot: Robot, dec: Decoupling) -> str:
+def _structure_text(robot: KinematicChain, dec: Decoupling) -> str:
     number = {r: i for i, r in enumerate(robot.table.joint_rows, start=1)}
 
     def joints(rows: Sequence[int]) -> str:
@@ -441,7 +441,7 @@ def _wrist_centre(b: Builder, pose: Matrix) -> Matrix:
     return Matrix(names)
 
 
-def derive_decoupled(robot: Robot) -> InverseKinematics:
+def derive_decoupled(robot: KinematicChain) -> InverseKinematics:
     """The closed form by kinematic decoupling: spherical wrist, last joint revolute, or a
     positioning arm (tried in this order for the number of joints).
 

@@ -25,19 +25,19 @@ from typing import TYPE_CHECKING
 
 from dhsym.kinematics.decoupling import StructureError
 
+from .closed_form import InverseKinematics
 from .decoupled import derive_decoupled
-from .derivation import InverseKinematics
 from .inverted import derive_inverted
 from .parallel import derive_parallel
 from .structure import DECOUPLED, GENERAL_6R, INVERTED, PARALLEL, SPHERICAL_WRIST, classify
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["derivations", "general_6r", "inverse"]
 
 
-def general_6r(robot: Robot) -> InverseKinematics:
+def general_6r(robot: KinematicChain) -> InverseKinematics:
     """The general 6R (no three consecutive axes parallel or meeting): every solution by the
     Raghavan–Roth elimination (:func:`dhsym.ik.general.derive_general`).
 
@@ -51,13 +51,13 @@ def general_6r(robot: Robot) -> InverseKinematics:
     return derive_general(robot)
 
 
-def derivations(family: str) -> tuple[Callable[[Robot], InverseKinematics], ...]:
+def derivations(family: str) -> tuple[Callable[[KinematicChain], InverseKinematics], ...]:
     """The derivations to try, in order, for an arm of ``family``.
 
     >>> [f.__name__ for f in derivations("three parallel axes")]
     ['derive_parallel']
     """
-    table: dict[str, tuple[Callable[[Robot], InverseKinematics], ...]] = {
+    table: dict[str, tuple[Callable[[KinematicChain], InverseKinematics], ...]] = {
         SPHERICAL_WRIST: (derive_decoupled,),
         DECOUPLED: (derive_decoupled,),
         PARALLEL: (derive_parallel,),
@@ -67,7 +67,7 @@ def derivations(family: str) -> tuple[Callable[[Robot], InverseKinematics], ...]
     return table[family]
 
 
-def inverse(robot: Robot) -> InverseKinematics:
+def inverse(robot: KinematicChain) -> InverseKinematics:
     """Derive the closed-form inverse kinematics of ``robot`` from the structure of its table.
 
     Raises

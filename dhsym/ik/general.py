@@ -6,7 +6,7 @@ a point (the Kinova Jaco and Mico) has no closed form by decoupling. Its pose eq
 reduce to one polynomial of degree 16 in the half-angle tangent of one joint (Raghavan
 and Roth, 1993), solved as a matrix eigenproblem (Manocha and Canny, 1994) by
 :mod:`dhsym.ik.general6r`. :func:`derive_general` writes that method as the steps of
-an :class:`~dhsym.ik.derivation.InverseKinematics` (no branch signs: up to 16 solutions,
+an :class:`~dhsym.ik.closed_form.InverseKinematics` (no branch signs: up to 16 solutions,
 named ``solution 1`` … in the order of their joint values), and
 :class:`EliminationSolver` gives ``Robot.ik`` the :class:`~dhsym.ik.results.IKSolution`
 and :class:`~dhsym.ik.results.IKBatch` of every other family, each solution checked by
@@ -40,14 +40,14 @@ from dhsym.kinematics.numeric import values_key
 from dhsym.model.table import JointType
 from dhsym.notation.layout import sentence
 
-from .derivation import InverseKinematics
+from .closed_form import InverseKinematics
 from .general6r import General6R, general_6r
 from .results import IKBatch, IKSolution
 from .steps import Step, pose_symbols
 from .structure import GENERAL_6R
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["EliminationSolver", "derive_general"]
 
@@ -75,7 +75,7 @@ class EliminationSolver:
     fk: Callable[[np.ndarray], np.ndarray] = field(repr=False)
 
     @property
-    def robot(self) -> Robot:
+    def robot(self) -> KinematicChain:
         """The robot solved."""
         return self.ik.robot
 
@@ -193,12 +193,12 @@ def _near_singular(
     return s[:, -1] < singular_tol * s[:, 0]
 
 
-def _all_numbers(robot: Robot) -> bool:
+def _all_numbers(robot: KinematicChain) -> bool:
     known = robot.table.value_map
     return all(s in known for s in robot.table.constants)
 
 
-def derive_general(robot: Robot) -> InverseKinematics:
+def derive_general(robot: KinematicChain) -> InverseKinematics:
     """The general 6R by Raghavan–Roth elimination, as derivation steps and a solver.
 
     With numbers for every length the elimination is compiled here (about a second; it

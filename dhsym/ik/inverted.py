@@ -33,14 +33,14 @@ from dhsym.model.parsing import symbol
 from dhsym.model.table import DHRow, DHTable, JointType
 from dhsym.notation.layout import sentence
 
+from .closed_form import InverseKinematics
 from .decoupled import derive_decoupled
-from .derivation import InverseKinematics
 from .parallel import derive_parallel
 from .steps import Branch, Step, pose_symbols
 from .structure import INVERTED, PARALLEL, SPHERICAL_WRIST, classify
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["derive_inverted", "reversed_table"]
 
@@ -83,7 +83,7 @@ def reversed_table(table: DHTable) -> DHTable:
     )
 
 
-def derive_inverted(robot: Robot) -> InverseKinematics:
+def derive_inverted(robot: KinematicChain) -> InverseKinematics:
     """The closed form of ``robot`` through its reversed chain.
 
     >>> import dhsym
@@ -93,11 +93,11 @@ def derive_inverted(robot: Robot) -> InverseKinematics:
     >>> ik.family, ik.count
     ('inverted chain', 8)
     """
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
     table = robot.table
     n = table.n
-    back = Robot(reversed_table(table))
+    back = KinematicChain(reversed_table(table))
     family = classify(back).family
     derive = {SPHERICAL_WRIST: derive_decoupled, PARALLEL: derive_parallel}.get(family)
     if derive is None:

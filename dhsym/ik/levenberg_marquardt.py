@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["NumericSolution", "numeric_ik"]
 
@@ -45,7 +45,7 @@ def _rotation_error(R: np.ndarray, goal: np.ndarray) -> np.ndarray:
 
 
 def numeric_ik(
-    robot: Robot,
+    robot: KinematicChain,
     T: object,
     q0: object = None,
     *,

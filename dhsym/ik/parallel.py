@@ -47,12 +47,12 @@ from dhsym.kinematics.transforms import chain_word
 from dhsym.model.table import Elementary
 from dhsym.notation.layout import sentence
 
-from .derivation import InverseKinematics
+from .closed_form import InverseKinematics
 from .steps import Builder, Equation, pose_symbols, rot_z, solve_equations, solve_joint_from_entry
 from .structure import PARALLEL
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["derive_parallel"]
 
@@ -70,7 +70,7 @@ def _constant(e: sp.Expr, zero: dict[sp.Symbol, int]) -> sp.Expr:
     return sp.nsimplify(sp.simplify(e.xreplace(zero)), rational=False)
 
 
-def derive_parallel(robot: Robot) -> InverseKinematics:
+def derive_parallel(robot: KinematicChain) -> InverseKinematics:
     """The closed form of a 6R arm whose axes 2, 3, 4 are parallel and axes 5, 6 meet.
 
     Raises

@@ -3,7 +3,7 @@
 The axes of neighbouring joints keep their relation whatever the joint values: parallel,
 meeting in a point, or skew. Three consecutive axes that are parallel or meet in one
 point are what the closed forms rest on (Pieper's condition; Spong, Hutchinson and
-Vidyasagar, *Robot Modeling and Control*, §5.3): the last three meeting is the
+Vidyasagar, *KinematicChain Modeling and Control*, §5.3): the last three meeting is the
 spherical wrist, three parallel in the middle is the arm of the Universal Robots, and
 the same at the start of the chain is solved by reading the chain backwards.
 
@@ -34,7 +34,7 @@ from dhsym.kinematics.jacobian import axis_frame
 from dhsym.model.table import JointType
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = [
     "DECOUPLED",
@@ -85,7 +85,7 @@ class Structure:
         return "; ".join(self.sentences) or "no three consecutive axes parallel or meeting"
 
 
-def _axes(robot: Robot, values: object = None) -> tuple[np.ndarray, np.ndarray]:
+def _axes(robot: KinematicChain, values: object = None) -> tuple[np.ndarray, np.ndarray]:
     """Points ``(n, 3)`` and unit directions ``(n, 3)`` of the joint axes at a random pose."""
     rng = np.random.default_rng(7)
     table = robot.table
@@ -118,7 +118,7 @@ def _meet(p: np.ndarray, u: np.ndarray, q: np.ndarray, v: np.ndarray) -> np.ndar
     return p + s * u
 
 
-def classify(robot: Robot, values: object = None) -> Structure:
+def classify(robot: KinematicChain, values: object = None) -> Structure:
     """The relations of consecutive joint axes of ``robot`` and its family of closed forms.
 
     >>> import dhsym

@@ -1,10 +1,13 @@
 """The kinematics room: the one transform kernel (elementary matrices, words, ^iT_j, rigid
-inverse), the compact closed form and its proof, compiled numbers, ``Pose`` and ``Robot``,
-and kinematic decoupling (:mod:`.decoupling`), on which the Jacobian's factors and the
-inverse kinematics (:mod:`dhsym.ik`) both rest.
+inverse), the compact closed form and its proof, compiled numbers, ``Pose``,
+``KinematicChain`` (the typed core every room above takes: table, notation, cached ``^iT_j``,
+compiled fk and Jacobian functions), Jacobians, singularities and kinematic decoupling
+(:mod:`.decoupling`), on which the Jacobian's factors and the inverse kinematics
+(:mod:`dhsym.ik`) both rest.
 
-May import :mod:`dhsym.model` and :mod:`dhsym.notation` (``Robot.plot`` reaches the plot
-room and ``Robot.inverse``/``Robot.ik`` the :mod:`dhsym.ik` room at call time: conveniences).
+May import :mod:`dhsym.model` and :mod:`dhsym.notation`, nothing else: the conveniences
+that reach the rooms above (``ik``, ``dynamics``, ``plot``, …) are
+:class:`dhsym.robot.Robot`'s.
 """
 
 from dhsym._lazy import lazy_exports
@@ -12,24 +15,21 @@ from dhsym._lazy import lazy_exports
 __getattr__, __dir__ = lazy_exports(
     __name__,
     {
+        "KinematicChain": "chain",
         "chain_word": "transforms",
         "compile_exprs": "numeric",
         "compile_pose": "numeric",
         "compile_word": "numeric",
         "compose": "simplification",
         "link_word": "transforms",
-        "load": "robot",
         "numeric_equal": "simplification",
         "plain_product": "transforms",
         "Pose": "pose",
-        "InverseKinematics": "dhsym.ik.derivation",
         "Jacobian": "jacobian",
         "analytic_jacobian": "jacobian",
         "geometric_jacobian": "jacobian",
-        "numeric_ik": "dhsym.ik.levenberg_marquardt",
         "prove_equal": "simplification",
         "rigid_inverse": "transforms",
-        "Robot": "robot",
         "to_float": "numeric",
         "Rx": "transforms",
         "Ry": "transforms",
@@ -41,10 +41,9 @@ __getattr__, __dir__ = lazy_exports(
 )
 
 __all__ = [
-    "InverseKinematics",
     "Jacobian",
+    "KinematicChain",
     "Pose",
-    "Robot",
     "Rx",
     "Ry",
     "Rz",
@@ -59,9 +58,7 @@ __all__ = [
     "compose",
     "geometric_jacobian",
     "link_word",
-    "load",
     "numeric_equal",
-    "numeric_ik",
     "plain_product",
     "prove_equal",
     "rigid_inverse",

@@ -32,7 +32,7 @@ from .simplification import compose, normalize_word, prove_equal
 from .transforms import chain_word
 
 if TYPE_CHECKING:
-    from .robot import Robot
+    from .chain import KinematicChain
 
 __all__ = ["ArmGeometry", "Decoupling", "StructureError", "arm_geometry", "decouple"]
 
@@ -58,7 +58,7 @@ class Decoupling:
     centre_in_last: Matrix
 
 
-def _joint_rows(robot: Robot) -> list[int]:
+def _joint_rows(robot: KinematicChain) -> list[int]:
     return [i for i, r in enumerate(robot.table.rows, start=1) if r.variable is not None]
 
 
@@ -70,7 +70,7 @@ def _independent(expr: Matrix, variables: set[sp.Symbol]) -> bool:
     return all(prove_equal(expr.diff(v), Matrix.zeros(*expr.shape)) for v in hit)
 
 
-def decouple(robot: Robot, size: int) -> Decoupling:
+def decouple(robot: KinematicChain, size: int) -> Decoupling:
     """Split ``robot`` into an arm and a wrist of ``size`` revolute joints (0, 1, 2 or 3).
 
     A wrist of 2 is a pair of last axes that meet (the point where they meet is fixed in
@@ -156,7 +156,7 @@ class ArmGeometry:
         return compose(self.prefix)
 
 
-def arm_geometry(robot: Robot, dec: Decoupling) -> ArmGeometry:
+def arm_geometry(robot: KinematicChain, dec: Decoupling) -> ArmGeometry:
     """Read the arm part of ``dec`` as ``prefix · first(q1) · point``.
 
     >>> import dhsym

@@ -1,6 +1,6 @@
 r"""The manipulator Jacobian in lecture form: geometric and analytic, exact and compiled.
 
-Column *i* of the geometric Jacobian (Spong, Hutchinson and Vidyasagar, *Robot
+Column *i* of the geometric Jacobian (Spong, Hutchinson and Vidyasagar, *KinematicChain
 Modeling and Control*, §4.6) is, for a revolute and a prismatic joint,
 
 .. math::
@@ -58,7 +58,7 @@ from .transforms import Rx, Ry, Rz
 if TYPE_CHECKING:
     import numpy as np
 
-    from .robot import Robot
+    from .chain import KinematicChain
 
 __all__ = [
     "EULER_SETS",
@@ -108,7 +108,7 @@ def compact(expr: sp.Expr) -> sp.Expr:
     return min(candidates, key=sp.count_ops)
 
 
-def resolve_frame(robot: Robot, frame: int | str) -> int:
+def resolve_frame(robot: KinematicChain, frame: int | str) -> int:
     """A frame number for ``frame``: ``"base"`` and ``"tool"`` are the ends of ``fk``.
 
     ``"base"`` is the world frame when the table has a base transform, else frame 0;
@@ -129,7 +129,7 @@ def resolve_frame(robot: Robot, frame: int | str) -> int:
     raise DHError(f"frame must be 'base', 'tool' or a frame number -1 … {n + 1}; got {frame!r}")
 
 
-def axis_frame(robot: Robot, row: int) -> int:
+def axis_frame(robot: KinematicChain, row: int) -> int:
     """The frame whose z axis is the axis of the joint in ``row`` (1-based).
 
     Standard convention: frame ``row − 1``; modified (Craig): frame ``row``.
@@ -141,7 +141,7 @@ def axis_frame(robot: Robot, row: int) -> int:
     return row - 1 if robot.convention is Convention.STANDARD else row
 
 
-def _joint_rows(robot: Robot) -> list[tuple[int, sp.Symbol, JointType, sp.Expr]]:
+def _joint_rows(robot: KinematicChain) -> list[tuple[int, sp.Symbol, JointType, sp.Expr]]:
     """(row, variable, joint type, d entry / d variable) for every joint row."""
     out = []
     for i, row in enumerate(robot.table.rows, start=1):
@@ -158,7 +158,7 @@ def _joint_rows(robot: Robot) -> list[tuple[int, sp.Symbol, JointType, sp.Expr]]
     return out
 
 
-def _label(robot: Robot, frame: int) -> int | str:
+def _label(robot: KinematicChain, frame: int) -> int | str:
     if frame == -1:
         return "W"
     if frame == robot.n + 1:
@@ -202,7 +202,7 @@ class Jacobian:
     columns: tuple[JacobianColumn, ...]
     frame: int | str
     point: int | str
-    robot: Robot = field(compare=False, repr=False)
+    robot: KinematicChain = field(compare=False, repr=False)
 
     @property
     def linear(self) -> Matrix:
@@ -268,7 +268,7 @@ class Jacobian:
 
 
 def geometric_jacobian(
-    robot: Robot, frame: int | str = "base", point: int | str = "tool"
+    robot: KinematicChain, frame: int | str = "base", point: int | str = "tool"
 ) -> Jacobian:
     """The geometric Jacobian of ``robot`` in compact form.
 
@@ -387,7 +387,7 @@ class AnalyticJacobian:
 
 
 def analytic_jacobian(
-    robot: Robot, euler: str = "zyz", frame: int | str = "base"
+    robot: KinematicChain, euler: str = "zyz", frame: int | str = "base"
 ) -> AnalyticJacobian:
     """The analytic Jacobian for the Euler set ``euler`` (``"zyz"`` or ``"rpy"``).
 
@@ -412,12 +412,12 @@ def analytic_jacobian(
 # --- numbers -----------------------------------------------------------------------------
 
 
-def _values(robot: Robot, values: Mapping[Any, object] | None) -> dict[sp.Symbol, sp.Expr]:
+def _values(robot: KinematicChain, values: Mapping[Any, object] | None) -> dict[sp.Symbol, sp.Expr]:
     return robot.table.with_values(values or {}).value_map
 
 
 def jacobian_function(
-    robot: Robot,
+    robot: KinematicChain,
     frame: int | str = "base",
     point: int | str = "tool",
     values: Mapping[Any, object] | None = None,
@@ -456,7 +456,7 @@ def euler_angles(R: object, euler: str = "zyz") -> np.ndarray:
 
 
 def analytic_jacobian_function(
-    robot: Robot,
+    robot: KinematicChain,
     euler: str = "zyz",
     values: Mapping[Any, object] | None = None,
 ) -> Callable[[object], np.ndarray]:

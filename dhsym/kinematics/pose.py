@@ -86,7 +86,7 @@ class Pose(_Matrix):
         The letter of its label (``T``; ``R_z`` for a factor).
     word
         The elementary transforms whose product it is, when known (poses of a
-        :class:`~dhsym.kinematics.robot.Robot`): products and inverses are then
+        :class:`~dhsym.kinematics.chain.KinematicChain`): products and inverses are then
         rebuilt in the same compact form as ``robot.transform``.
 
     ``rotation``, ``position`` and the n, s, a columns (normal, sliding, approach)

@@ -59,7 +59,7 @@ if TYPE_CHECKING:
 
     from dhsym.notation.printers import Notation
 
-    from .robot import Robot
+    from .chain import KinematicChain
 
 __all__ = [
     "Block",
@@ -200,7 +200,11 @@ class SingularityKind(str, Enum):
 
 
 def _describe(
-    kind: SingularityKind, robot: Robot, joint: int | None, point: str, offset: sp.Expr | None
+    kind: SingularityKind,
+    robot: KinematicChain,
+    joint: int | None,
+    point: str,
+    offset: sp.Expr | None,
 ) -> tuple[str, str]:
     if kind is SingularityKind.WRIST:
         where = "the first and last wrist axes line up, so two wrist joints turn about one axis"
@@ -250,7 +254,7 @@ class Singularities:
     blocks: tuple[Block, ...]
     rows: tuple[int, ...]
     method: str
-    robot: Robot = field(compare=False, repr=False)
+    robot: KinematicChain = field(compare=False, repr=False)
 
     def text(self) -> str:
         """``det J = …`` in plain text."""
@@ -312,7 +316,7 @@ class Singularities:
 
 
 def _compile(
-    expr: sp.Expr, robot: Robot, values: Mapping[Any, object] | None
+    expr: sp.Expr, robot: KinematicChain, values: Mapping[Any, object] | None
 ) -> Callable[[object], np.ndarray]:
     import numpy as np
 
@@ -330,12 +334,12 @@ def _compile(
 # --- building -------------------------------------------------------------------------------
 
 
-def _rotation_about_z0(robot: Robot, k: int) -> bool:
+def _rotation_about_z0(robot: KinematicChain, k: int) -> bool:
     z = robot.transform(0, k).matrix[:3, 2]
     return list(z) == [0, 0, 1]
 
 
-def _wrist_blocks(robot: Robot, dec: Decoupling) -> tuple[Block, ...]:
+def _wrist_blocks(robot: KinematicChain, dec: Decoupling) -> tuple[Block, ...]:
     frames = range(0, dec.centre + 1)
     blocks = []
     if dec.arm:
@@ -375,7 +379,7 @@ def _normal_product(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
 
 
 def _name_factors(
-    robot: Robot,
+    robot: KinematicChain,
     det: sp.Expr,
     wrist_factors: set[sp.Expr],
     geo: ArmGeometry | None,
@@ -420,7 +424,7 @@ def _name_factors(
     return tidy, tuple(sorted(out, key=lambda f: order.index(f.kind)))
 
 
-def _structure(robot: Robot) -> tuple[Decoupling | None, ArmGeometry | None]:
+def _structure(robot: KinematicChain) -> tuple[Decoupling | None, ArmGeometry | None]:
     joints = len(robot.variables)
     for size in (3, 1, 0):
         if size >= joints and not (size == 3 and joints == 3):
@@ -436,7 +440,7 @@ def _structure(robot: Robot) -> tuple[Decoupling | None, ArmGeometry | None]:
     return None, None
 
 
-def _tool_geometry(robot: Robot, fallback: ArmGeometry | None) -> ArmGeometry | None:
+def _tool_geometry(robot: KinematicChain, fallback: ArmGeometry | None) -> ArmGeometry | None:
     """The arm geometry read up to the tool point (every joint an arm joint), so that a
     positioning arm's shoulder is named as the same arm's shoulder with a wrist is."""
     try:
@@ -446,7 +450,7 @@ def _tool_geometry(robot: Robot, fallback: ArmGeometry | None) -> ArmGeometry | 
         return fallback
 
 
-def singularities(robot: Robot) -> Singularities:
+def singularities(robot: KinematicChain) -> Singularities:
     """The factored Jacobian determinant of ``robot`` and its named singular factors.
 
     >>> import dhsym

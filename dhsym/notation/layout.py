@@ -24,14 +24,17 @@ import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from types import MappingProxyType
+from typing import TYPE_CHECKING
 
 import sympy as sp
 
 from dhsym.model.entries import exact_decimal
-from dhsym.model.table import Elementary
 
 from .escape import TeX
 from .printers import Notation, Token, delimiter
+
+if TYPE_CHECKING:  # the model imports this room at call time (a table's view): no circle
+    from dhsym.model.table import Elementary
 
 __all__ = [
     "LATEX_WIDTH",
@@ -317,6 +320,7 @@ def word_expr(word: Sequence[Elementary]) -> sp.Expr:
     """A word of elementary transforms as a product ``R_z(θ_i) T_z(d_i) …`` the printers print
     (non-commuting factors, zero factors left out).
 
+    >>> from dhsym.model.table import Elementary
     >>> t = sp.Symbol("theta4", real=True)
     >>> Notation().text(word_expr([Elementary("R", "z", t), Elementary("R", "x", -sp.pi / 2)]))
     'R_z(theta4)*R_x(-pi/2)'

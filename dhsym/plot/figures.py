@@ -2,8 +2,9 @@
 
 The geometry is computed first, as plain numbers (:func:`skeleton`): every frame
 ``{0} … {n}`` (plus ``{W}`` and ``{tool}`` when the table has base and tool
-transforms) from the compiled ``^0T_k`` of :meth:`~dhsym.kinematics.robot.Robot.fk_function`,
-and each row's ``d`` and ``a`` segments where its convention puts them:
+transforms) from the compiled ``^0T_k`` of
+:meth:`~dhsym.kinematics.chain.KinematicChain.fk_function`, and each row's ``d`` and ``a``
+segments where its convention puts them:
 
 * standard: from ``O_{i-1}`` along ``z_{i-1}`` by ``d_i``, then along ``x_i`` by ``a_i``;
 * modified: from ``O_{i-1}`` along ``x_{i-1}`` by ``a_{i-1}``, then along ``z_i`` by ``d_i``.
@@ -223,7 +224,7 @@ def plot_robot(
     Parameters
     ----------
     robot
-        A :class:`~dhsym.kinematics.robot.Robot`.
+        A :class:`~dhsym.kinematics.chain.KinematicChain`.
     q
         Joint values (radians and lengths; degrees for revolute joints with
         ``deg=True``). ``None`` draws the zero configuration.

@@ -8,7 +8,7 @@ import numpy as np
 
 import dhsym
 from dhsym.cli.main import main
-from dhsym.formats.urdf import from_urdf
+from dhsym.formats.urdf import chain_from_urdf
 from dhsym.model.tablefile import read_table
 
 UR5 = str(Path(__file__).resolve().parents[1] / "data" / "urdf" / "ur5_robot.urdf")
@@ -22,8 +22,8 @@ def test_convert_urdf_to_a_table_file_with_its_origin(tmp_path: Path, capsys) ->
     assert "# Frame assignment:" in text
     table = read_table(out)
     q = np.linspace(-1, 1, 6)
-    reference = from_urdf(UR5, tip="tool0").fk(q)
-    from dhsym.kinematics.robot import Robot
+    reference = chain_from_urdf(UR5, tip="tool0").fk(q)
+    from dhsym.robot import Robot
 
     assert np.abs(Robot(table).fk(q) - reference).max() < 1e-9
     assert "fk agrees with the URDF chain" in capsys.readouterr().err
@@ -61,12 +61,12 @@ def test_export_lang_urdf_writes_one_file(tmp_path: Path) -> None:
     text = (tmp_path / "gen" / "puma560.urdf").read_text()
     assert text.count("<inertial>") == 6
     q = [0.3, -0.5, 0.4, 0.2, 0.7, -1.1]
-    back = from_urdf(text, tip="tool")
+    back = chain_from_urdf(text, tip="tool")
     np.testing.assert_allclose(back.fk(q), dhsym.load("puma560").fk(q), atol=1e-12)
     arm = tmp_path / "arm.urdf"
     argv = ["export", "planar2r", "--lang", "urdf", "--values", "a1=1,a2=0.5", "-o", str(arm)]
     assert main(argv) == 0
-    assert from_urdf(arm.read_text(), tip="tool").n == 2
+    assert chain_from_urdf(arm.read_text(), tip="tool").n == 2
     argv = ["export", "puma560", "--lang", "urdf", "--prefix", "puma", "-o", str(tmp_path)]
     assert main(argv) == 0 and (tmp_path / "puma.urdf").is_file()
     assert main(["export", "puma560", "--lang", "urdf", "--what", "fk", "-o", str(tmp_path)]) == 2

@@ -266,7 +266,7 @@ def test_pages_typeset_their_mathematics_offline(served, need_chromium, need_pla
     pages = {
         "index.html": "dhsym",
         "tutorials/notebooks/03_puma560.html": "PUMA 560",
-        "api/dhsym.kinematics.robot.html": "Robot",
+        "api/dhsym.robot.html": "Robot",
     }
     outside: list[str] = []
     local = urlsplit(served).netloc
@@ -292,7 +292,7 @@ def test_pages_typeset_their_mathematics_offline(served, need_chromium, need_pla
                 page.goto(f"{served}/{path}", wait_until="load")
                 assert words in page.title() + page.inner_text("main"), path
                 if path.startswith("api/"):
-                    assert page.locator("[id='dhsym.kinematics.robot.Robot']").count() == 1
+                    assert page.locator("[id='dhsym.robot.Robot']").count() == 1
                 page.wait_for_function(MATHJAX_DONE, timeout=120_000)
                 assert page.evaluate(f"{MATH}.length") > 0 and page.evaluate(UNTYPESET) == 0
                 errors = page.evaluate("document.querySelectorAll('.MathJax_Error, merror').length")

@@ -12,9 +12,9 @@ import dhsym
 from dhsym.dynamics import lagrange
 from dhsym.dynamics.lagrange import christoffel_symbols, link_jacobians, tidy
 from dhsym.dynamics.model import dynamic_model
-from dhsym.kinematics.robot import Robot
 from dhsym.kinematics.simplification import prove_equal
 from dhsym.model.tablefile import read_table_text
+from dhsym.robot import Robot
 
 S = sp.Symbol
 

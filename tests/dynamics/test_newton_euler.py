@@ -9,9 +9,9 @@ import dhsym
 from dhsym.dynamics import lagrange, newton_euler
 from dhsym.dynamics.model import dynamic_model
 from dhsym.dynamics.newton_euler import rne_expressions
-from dhsym.kinematics.robot import Robot
 from dhsym.kinematics.simplification import prove_equal
 from dhsym.model.tablefile import read_table_text
+from dhsym.robot import Robot
 
 # Craig's RRR arm (modified DH, Introduction to Robotics, Fig. 3.6 style), twisted and offset
 MODIFIED_3R = """

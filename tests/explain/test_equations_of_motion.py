@@ -10,8 +10,8 @@ import dhsym
 from dhsym.cli.main import main
 from dhsym.explain.documents import document, render_derivation
 from dhsym.explain.equations_of_motion import derive_dynamics
-from dhsym.kinematics.robot import Robot
 from dhsym.model.tablefile import read_table_text
+from dhsym.robot import Robot
 
 # Spong, Hutchinson and Vidyasagar, Robot Modeling and Control, §7.3: the two-link planar
 # elbow arm, hanging in the x-y plane (frame i at the far end of link i, standard DH).

@@ -12,7 +12,8 @@ import sympy as sp
 
 import dhsym
 from dhsym.errors import FormatError
-from dhsym.formats.rtb import from_rtb, to_rtb
+from dhsym.formats.rtb import table_from_rtb, to_rtb
+from dhsym.kinematics.chain import KinematicChain
 
 # roboticstoolbox-python 1.5.0, rtb.models.DH.Puma560(): the links' documented attributes
 # (sigma, theta, d, a, alpha, offset, qlim, isflip) and fkine([0.1, ..., 0.6]).A, recorded
@@ -48,7 +49,7 @@ def puma() -> Obj:
 
 
 def test_from_rtb_reproduces_recorded_fkine() -> None:
-    r = from_rtb(puma())
+    r = KinematicChain(table_from_rtb(puma()))
     assert r.table.rows[2].d == sp.Rational("0.15005")
     assert r.table.rows[0].alpha == sp.pi / 2 and r.table.rows[1].limits == (
         -sp.pi / 4,
@@ -78,7 +79,9 @@ def test_flipped_joints_keep_the_meaning_of_q() -> None:
     ]
     base = np.eye(4)
     base[:3, 3] = [0.0, 0.0, 0.7]
-    r = from_rtb(Obj(links=links, mdh=False, base=base, tool=None, name="flip"))
+    r = KinematicChain(
+        table_from_rtb(Obj(links=links, mdh=False, base=base, tool=None, name="flip"))
+    )
     assert r.table.rows[0].offset == sp.Rational(1, 4) and r.table.base
     for q in ([0.3, 0.2], [-1.0, 0.6]):
         A1 = _link_A(0, 0, 0.3, 0.2, 0.5, -q[0] + 0.25)
@@ -88,10 +91,10 @@ def test_flipped_joints_keep_the_meaning_of_q() -> None:
 
 def test_bad_attributes_are_refused() -> None:
     with pytest.raises(FormatError, match="links"):
-        from_rtb(Obj(links=[], mdh=False))
+        table_from_rtb(Obj(links=[], mdh=False))
     bad = Obj(sigma=0, theta=0.0, d="x", a=0, alpha=0, offset=0, qlim=None, isflip=False)
     with pytest.raises(FormatError, match=r"links\[0\].d: expected a number"):
-        from_rtb(Obj(links=[bad], mdh=False, base=None, tool=None, name="b"))
+        table_from_rtb(Obj(links=[bad], mdh=False, base=None, tool=None, name="b"))
 
 
 def test_to_rtb_says_what_to_install(monkeypatch) -> None:
@@ -105,7 +108,7 @@ def test_both_ways_with_the_toolbox() -> None:
     rng = np.random.default_rng(0)
     for model in (rtb.models.DH.Puma560(), rtb.models.DH.Panda(), rtb.models.DH.Stanford()):
         q = rng.uniform(-1, 1, model.n)
-        r = from_rtb(model)
+        r = KinematicChain(table_from_rtb(model))
         assert np.abs(r.fk(q) - model.fkine(q).A).max() < 1e-12
         assert np.abs(to_rtb(r).fkine(q).A - model.fkine(q).A).max() < 1e-12
     for table in (

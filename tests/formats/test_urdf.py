@@ -12,7 +12,7 @@ import sympy as sp
 
 import dhsym
 from dhsym.errors import FormatError
-from dhsym.formats.urdf import from_urdf, import_urdf, write_urdf
+from dhsym.formats.urdf import chain_from_urdf, import_urdf, write_urdf
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "urdf"
 
@@ -79,7 +79,7 @@ def urdf_pose(path: Path, tip: str, q: np.ndarray) -> np.ndarray:
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 @pytest.mark.parametrize(("file", "tip", "n"), ROBOTS)
 def test_fk_equals_the_urdf_chain(file: str, tip: str, n: int, convention: str) -> None:
-    robot = from_urdf(DATA / file, tip=tip, convention=convention)
+    robot = chain_from_urdf(DATA / file, tip=tip, convention=convention)
     assert robot.table.n == n
     rng = np.random.default_rng(7)
     for q in [np.zeros(n), *rng.uniform(-math.pi, math.pi, (6, n))]:
@@ -88,9 +88,9 @@ def test_fk_equals_the_urdf_chain(file: str, tip: str, n: int, convention: str) 
 
 @pytest.mark.parametrize(("file", "tip", "n"), ROBOTS)
 def test_round_trip_keeps_fk(file: str, tip: str, n: int) -> None:
-    robot = from_urdf(DATA / file, tip=tip)
+    robot = chain_from_urdf(DATA / file, tip=tip)
     for convention in ("standard", "modified"):
-        again = from_urdf(write_urdf(dhsym.convert(robot.table, convention)), tip="tool")
+        again = chain_from_urdf(write_urdf(dhsym.convert(robot.table, convention)), tip="tool")
         q = np.random.default_rng(3).uniform(-math.pi, math.pi, (5, n))
         assert np.abs(again.fk(q) - robot.fk(q)).max() < 1e-9
 
@@ -133,7 +133,7 @@ def test_mimic_joint_on_the_chain_is_refused() -> None:
 
 def test_base_link_and_text_input() -> None:
     text = (DATA / "ur5_robot.urdf").read_text()
-    r = from_urdf(text, tip="wrist_3_link", base="shoulder_link")
+    r = chain_from_urdf(text, tip="wrist_3_link", base="shoulder_link")
     assert r.table.n == 5
     with pytest.raises(FormatError, match="not above"):
         import_urdf(text, tip="base", base="wrist_3_link")
@@ -154,7 +154,7 @@ def test_snap_angles_false_keeps_the_decimals() -> None:
 def test_written_urdf_is_valid_for_yourdfpy() -> None:
     import yourdfpy  # in the test extra: a missing validator is a failure, not a skip
 
-    robot = from_urdf(DATA / "panda.urdf", tip="panda_hand")
+    robot = chain_from_urdf(DATA / "panda.urdf", tip="panda_hand")
     for convention in ("standard", "modified"):
         text = write_urdf(dhsym.convert(robot.table, convention))
         import io
@@ -190,7 +190,7 @@ def test_fixed_rows_and_flipped_joints_are_written() -> None:
         robot = dhsym.Robot(DHTable.from_rows(rows, convention=convention, name="odd"))
         text = robot.to_urdf()
         assert '<axis xyz="0 0 -1"/>' in text and 'name="joint2" type="fixed"' in text
-        again = from_urdf(text, tip="tool")
+        again = chain_from_urdf(text, tip="tool")
         for q in ([0.3, 0.2], [-1.0, 0.6]):
             assert np.abs(again.fk(q) - robot.fk(q)).max() < 1e-12
 
@@ -231,7 +231,7 @@ def _chain_only(text: str, tip: str) -> str:
 def test_inertials_give_pinocchios_dynamics(file: str, tip: str, convention: str) -> None:
     pin = pytest.importorskip("pinocchio")
     text = (DATA / file).read_text()
-    robot = from_urdf(text, tip=tip, convention=convention)
+    robot = dhsym.from_urdf(text, tip=tip, convention=convention)
     assert all(row.inertia is not None for row in robot.table.rows)
     model = pin.buildModelFromXML(_chain_only(text, tip))
     data = model.createData()
@@ -261,7 +261,7 @@ def test_written_inertials_come_back() -> None:
     motor inertia, gearing or friction, which URDF has no place for)."""
     from dataclasses import replace
 
-    from dhsym.kinematics.robot import Robot
+    from dhsym.robot import Robot
 
     table = dhsym.load("puma560").table.substituted()
     rigid = replace(
@@ -273,7 +273,7 @@ def test_written_inertials_come_back() -> None:
     )
     text = write_urdf(rigid)
     assert text.count("<inertial>") == 6 and '<mass value="17.4"/>' in text
-    again = from_urdf(text, tip="tool")
+    again = dhsym.from_urdf(text, tip="tool")
     assert again.table.rows[1].inertia.m == sp.Rational(87, 5)
     robot = Robot(rigid)
     rng = np.random.default_rng(3)

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from dhsym.errors import FormatError, GeometryError
-from dhsym.formats.urdf import from_urdf, import_urdf, read_urdf
+from dhsym.formats.urdf import chain_from_urdf, import_urdf, read_urdf
 
 
 def urdf(joints: str, links: str = "abc") -> str:
@@ -48,7 +48,7 @@ def test_zero_length_axis_is_refused() -> None:
 
 def test_fixed_joint_axis_is_ignored() -> None:
     text = urdf(joint("j", "a", "b") + joint("f", "b", "c", "fixed", '<axis xyz="0 0 0"/>'))
-    assert from_urdf(text).table.n == 1
+    assert chain_from_urdf(text).table.n == 1
 
 
 def test_cycle_without_root_is_refused() -> None:
@@ -106,7 +106,7 @@ def test_meshes_and_package_paths_are_never_opened(tmp_path: Path) -> None:
     )
     path = tmp_path / "r.urdf"
     path.write_text(text)
-    assert from_urdf(path).table.n == 1
+    assert chain_from_urdf(path).table.n == 1
 
 
 def test_xacro_files_say_how_to_expand_them(tmp_path: Path) -> None:

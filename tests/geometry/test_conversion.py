@@ -19,7 +19,6 @@ from dhsym.geometry.conversion import (
     to_standard,
     transform_word,
 )
-from dhsym.kinematics.robot import Robot
 from dhsym.kinematics.transforms import (
     Rx,
     Ry,
@@ -33,6 +32,7 @@ from dhsym.kinematics.transforms import (
 )
 from dhsym.model.table import Convention, DHRow, DHTable, Elementary
 from dhsym.model.tablefile import read_table
+from dhsym.robot import Robot
 
 pi = sp.pi
 

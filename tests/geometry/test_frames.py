@@ -21,9 +21,9 @@ import dhsym
 from dhsym.errors import GeometryError
 from dhsym.geometry.axes import Frame, JointAxis, Tool
 from dhsym.geometry.frames import assign_frames
-from dhsym.kinematics.robot import Robot
 from dhsym.kinematics.transforms import chain_word, plain_product
 from dhsym.model.table import Convention, Elementary
+from dhsym.robot import Robot
 
 pi = sp.pi
 S = lambda n: sp.Symbol(n, real=True)  # noqa: E731
@@ -339,7 +339,7 @@ def test_measured_geometry_works_through_frames_fk_and_convert(capsys, tmp_path)
     fa = assign_frames(MEASURED, tool=tool)  # verified at home and 5 random configurations
     big = [n for r in fa.table.rows for n in r.a.atoms(sp.Integer) if abs(n) > 2**63]
     assert big  # the exact forms hold integers that numpy cannot take the root of
-    robot = fa.robot()
+    robot = fa.chain()
     q = np.array([0.3, -1.1, 0.05])
     T = robot.fk(q)
     np.testing.assert_allclose(T, robot.fk([q, q])[1], atol=1e-15)

@@ -23,7 +23,7 @@ from dhsym.geometry.joints import (
     serial_6r,
     stewart_platform,
 )
-from dhsym.kinematics.robot import Robot
+from dhsym.robot import Robot
 
 
 def test_the_table_of_pairs_is_seed_000s():

@@ -23,3 +23,15 @@ def test_raw_names_the_shape_it_expects():
     solver = dhsym.load("planar2r").inverse().solver()
     with pytest.raises(DHError, match=r"\(N, 4, 4\) or one pose \(4, 4\), not \(3, 3\)"):
         solver.raw(np.eye(3))
+
+
+def test_the_programs_are_built_on_first_use_and_kept():
+    import dhsym
+
+    r = dhsym.load("planar2r")
+    solver = r.inverse().solver()
+    assert solver._programs.checked is None and solver._programs.raw is None
+    solver.solve(r.fk([[0.4, 0.9], [0.1, -0.3]]), check="position")
+    built = solver._programs.checked
+    assert built is not None and solver._program("checked") is built
+    assert solver._programs.raw is None  # only what was asked for

@@ -22,11 +22,11 @@ from dhsym.ik.general6r import (
     standard_chain,
 )
 from dhsym.kinematics.numeric import word_product
-from dhsym.kinematics.robot import Robot
 from dhsym.kinematics.transforms import chain_word
 from dhsym.model.library import builtin_table
 from dhsym.model.table import DHRow, DHTable, Elementary
 from dhsym.model.tablefile import read_table
+from dhsym.robot import Robot
 
 from ._multistart import contains, multistart_lm, wrapped_distance
 

@@ -395,8 +395,8 @@ joints:
 
 
 def _robot(text: str):
-    from dhsym.kinematics.robot import Robot
     from dhsym.model.tablefile import read_table_text
+    from dhsym.robot import Robot
 
     return Robot(read_table_text(text))
 

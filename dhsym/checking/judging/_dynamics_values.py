@@ -32,7 +32,7 @@ from dhsym.model.table import JointType
 from ..reading.questions import Question
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.robot import Robot
 
 __all__ = ["dynamics_key", "part_matrix", "question_symbols", "rate_aliases"]
 

@@ -27,10 +27,10 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.kinematics.robot import Robot
 from dhsym.model.library import load_table
 from dhsym.model.table import AngleUnit, Convention, DHTable, JointType
 from dhsym.notation.printers import format_angle
+from dhsym.robot import Robot
 
 from ..mistakes._dynamics_mistakes import dynamics_mistakes
 from ..mistakes.registry import (

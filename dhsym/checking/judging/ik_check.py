@@ -70,8 +70,8 @@ from .tolerances import TOLERANCES
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
 if TYPE_CHECKING:
-    from dhsym.ik.derivation import InverseKinematics
-    from dhsym.kinematics.robot import Robot
+    from dhsym.ik.closed_form import InverseKinematics
+    from dhsym.robot import Robot
 
     from .checker import PreparedKey
 
@@ -360,7 +360,7 @@ def _reference_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
     (:func:`~dhsym.explain.inverse_kinematics.default_configuration`) with the table's
     lengths (1 where it gives none), for questions without a pose."""
     from dhsym.explain.inverse_kinematics import default_configuration
-    from dhsym.kinematics.robot import Robot
+    from dhsym.robot import Robot
 
     table = robot.table
     values = {s: table.value_map.get(s, 1.0) for s in table.constants}

@@ -48,7 +48,7 @@ from ..reading.questions import Question
 from ._mistake_base import MatrixCase, Mistake
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.robot import Robot
 
 __all__ = [
     "KINETIC_JOINTS",

@@ -11,8 +11,8 @@ from dhsym.checking.reading.questions import Question
 from dhsym.dynamics.lagrange import link_jacobians
 from dhsym.dynamics.model import dynamic_model
 from dhsym.errors import DHError
-from dhsym.kinematics.robot import Robot
 from dhsym.model.tablefile import read_table_text
+from dhsym.robot import Robot
 
 SPONG = """
 name: Two-link planar elbow arm (Spong)

@@ -55,7 +55,7 @@ def test_the_transpose_of_one_jacobian_block_is_named():
 
 
 def key_notation(key: Key):
-    from dhsym.kinematics.robot import Robot
+    from dhsym.robot import Robot
 
     return Robot(key.table).notation
 

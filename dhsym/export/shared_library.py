@@ -53,7 +53,8 @@ from dhsym.errors import DHError
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from dhsym.kinematics.robot import Robot
+    from dhsym.ik.choices import IKCache
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["CompiledRobot", "cache_dir", "compiled"]
 
@@ -130,20 +131,32 @@ def _address(a: np.ndarray) -> int:
     return a.__array_interface__["data"][0]
 
 
-def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
+def compiled(
+    robot: KinematicChain,
+    lang: str = "c",
+    *,
+    cache: IKCache | None = None,
+    rne: Callable[[object, object, object], np.ndarray] | None = None,
+) -> CompiledRobot:
     """The robot's fk, Jacobian and IK as exported C loaded with ctypes (built once, cached).
 
     Falls back to dhsym's NumPy path when no C compiler is found. The IK is included
-    when the robot has a closed form.
+    when the robot has a closed form. ``cache`` is where the closed-form IK is derived
+    and kept (a fresh :class:`~dhsym.ik.choices.IKCache` by default); ``rne`` the NumPy
+    inverse dynamics of the fallback (by default compiled on its first call).
+    ``Robot.compiled`` passes the robot's own.
     """
     if lang != "c":
         raise DHError(f"compiled(): only 'c' is built and loaded; got {lang!r}")
+    from dhsym.ik.choices import IKCache, solve
+
     from . import export
     from .ik_source import derivation
 
+    cache = cache if cache is not None else IKCache(robot)
     n = len(robot.variables)
     try:
-        derivation(robot)  # no closed form, or the general 6R: not exported
+        derivation(robot, cache)  # no closed form, or the general 6R: not exported
         what: tuple[str, ...] = ("fk", "jacobian", "ik")
     except DHError:
         what = ("fk", "jacobian")
@@ -152,13 +165,13 @@ def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
         return CompiledRobot(
             lambda q: robot.fk(q),
             lambda q: robot.jacobian(q),
-            lambda T: np.asarray(robot.ik(T)),
+            lambda T: np.asarray(solve(robot, T, cache=cache)),
             "numpy",
             None,
             n,
-            lambda q, qd, qdd: np.asarray(robot.rne(q, qd, qdd)),
+            rne if rne is not None else _rne_numpy(robot),
         )
-    lib_path = _build(export(robot, "c", what=what, prefix=_PREFIX), cc)
+    lib_path = _build(export(robot, "c", what=what, prefix=_PREFIX, cache=cache), cc)
     lib = ctypes.CDLL(str(lib_path))
     ptr = ctypes.c_void_p
     for name in ("fk", "jacobian") + (("ik",) if "ik" in what else ()):
@@ -167,7 +180,7 @@ def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
         fn.restype = ctypes.c_int if name == "ik" else None
     fk_c, jac_c = lib.dhsym_arm_fk, lib.dhsym_arm_jacobian
     ik_c = lib.dhsym_arm_ik if "ik" in what else None
-    K = 2 ** len(robot.inverse().branches) if ik_c is not None else 0
+    K = 2 ** len(cache.inverse().branches) if ik_c is not None else 0
 
     def fk(q: object) -> np.ndarray:
         qa = _vector(q, n)
@@ -194,7 +207,23 @@ def compiled(robot: Robot, lang: str = "c") -> CompiledRobot:
     return CompiledRobot(fk, jacobian, ik, "c", lib_path, n, _rne_c(robot, cc, n))
 
 
-def _rne_c(robot: Robot, cc: str, n: int) -> Callable[[object, object, object], np.ndarray]:
+def _rne_numpy(robot: KinematicChain) -> Callable[[object, object, object], np.ndarray]:
+    """``rne(q, qd, qdd)`` on dhsym's NumPy path, compiled on the first call."""
+    from dhsym.dynamics.compiled_dynamics import DynamicsFunctions, dynamics_functions
+
+    built: list[DynamicsFunctions] = []  # the compiled dynamics, once built
+
+    def rne(q: object, qd: object, qdd: object) -> np.ndarray:
+        if not built:
+            built.append(dynamics_functions(robot))
+        return np.asarray(built[0].rne(q, qd, qdd))
+
+    return rne
+
+
+def _rne_c(
+    robot: KinematicChain, cc: str, n: int
+) -> Callable[[object, object, object], np.ndarray]:
     """``rne(q, qd, qdd)`` of the exported C, built and loaded on the first call (the
     recursion of a 6R takes seconds to write out: only then)."""
     from . import export

@@ -29,7 +29,7 @@ from dhsym.kinematics.numeric import values_key
 from .steps import Branch, Step
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
     from .compiler import Solver
     from .general import EliminationSolver
@@ -53,7 +53,7 @@ class InverseKinematics:
     (``wrist``), and which frame's origin that point is (``centre``).
     """
 
-    robot: Robot = field(compare=False, repr=False)
+    robot: KinematicChain = field(compare=False, repr=False)
     structure: str
     decoupling: Decoupling
     pose: Matrix

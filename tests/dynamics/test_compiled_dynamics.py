@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import dhsym
-from dhsym.kinematics.robot import Robot
 from dhsym.model.tablefile import read_table_text
+from dhsym.robot import Robot
 from tests.conftest import _need
 
 PARAMS = """

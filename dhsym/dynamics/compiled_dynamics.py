@@ -14,9 +14,9 @@ Every argument is one state ``(n,)`` or a batch ``(..., n)``.
 
 Examples
 --------
->>> from dhsym.kinematics.robot import Robot
+>>> from dhsym.kinematics.chain import KinematicChain
 >>> from dhsym.model.tablefile import read_table_text
->>> pendulum = Robot(read_table_text('''
+>>> pendulum = KinematicChain(read_table_text('''
 ... gravity: [0, -9.81, 0]
 ... joints: [{type: R, theta: q1, d: 0, a: 1, alpha: 0, m: 2, r: [-0.5, 0, 0], I: [0, 0.1, 0.1]}]
 ... '''))
@@ -43,9 +43,9 @@ from .model import DynamicModel, dynamic_model
 from .newton_euler import rne_expressions
 
 if TYPE_CHECKING:
-    from dhsym.kinematics.robot import Robot
+    from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["DynamicsFunctions", "Trajectory", "dynamics_functions"]
+__all__ = ["DynamicsFunctions", "Trajectory", "dynamics_functions", "numeric_model"]
 
 _CHUNK = 4096
 
@@ -238,12 +238,21 @@ class DynamicsFunctions:
 
 
 def dynamics_functions(
-    robot: Robot, values: Mapping[object, object] | None = None, *, textbook: bool = True
+    robot: KinematicChain, values: Mapping[object, object] | None = None, *, textbook: bool = True
 ) -> DynamicsFunctions:
     """Compile the dynamics of ``robot`` with the table's values and ``values`` (numbers
     for lengths and inertial symbols), substituted before the recursion is written out
-    (zero products vanish there), so the compiled code is as short as the numbers allow."""
-    from dhsym.kinematics.robot import Robot
+    (zero products vanish there), so the compiled code is as short as the numbers allow
+    (the model: :func:`numeric_model`)."""
+    return DynamicsFunctions(numeric_model(robot, values, textbook=textbook))
+
+
+def numeric_model(
+    robot: KinematicChain, values: Mapping[object, object] | None = None, *, textbook: bool = True
+) -> DynamicModel:
+    """The dynamic model of ``robot`` with the table's values and ``values`` (numbers for
+    lengths and inertial symbols) substituted, as :func:`dynamics_functions` compiles it."""
+    from dhsym.kinematics.chain import KinematicChain
     from dhsym.model.table import symbol_values
 
     table = robot.table
@@ -253,9 +262,9 @@ def dynamics_functions(
         *(g.free_symbols for g in table.gravity),
     )
     vals = {**table.value_map, **{k: v for k, v in extra.items() if k in known}}
-    numeric = Robot(replace(table, values=tuple(vals.items())).substituted())
+    numeric = KinematicChain(replace(table, values=tuple(vals.items())).substituted())
     dm = dynamic_model(numeric, textbook=textbook)
     if extra:  # values for the textbook symbols of rows without parameters
         gravity = tuple(g.xreplace(extra) for g in dm.gravity)
         dm = replace(dm, links=tuple(L.subs(extra) for L in dm.links), gravity=gravity)
-    return DynamicsFunctions(dm)
+    return dm

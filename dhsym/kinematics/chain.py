@@ -1,9 +1,16 @@
-"""``Robot``: a thin class around a :class:`~dhsym.model.table.DHTable` and the pure functions.
+"""``KinematicChain``: the typed core around a :class:`~dhsym.model.table.DHTable` and the
+pure functions.
+
+A ``KinematicChain`` holds the table, its notation, the cached ``^iT_j`` and the compiled fk and
+Jacobian functions: everything the kinematics room provides. The algorithms of the rooms
+above (:mod:`dhsym.ik`, :mod:`dhsym.dynamics`, :mod:`dhsym.geometry`, :mod:`dhsym.plot`,
+:mod:`dhsym.formats`, :mod:`dhsym.export`) take a ``KinematicChain``; :class:`dhsym.robot.Robot`
+is the facade that adds their conveniences (``ik``, ``dynamics``, ``plot``, …).
 
 Examples
 --------
 >>> from dhsym.model.table import DHTable, DHRow
->>> r = Robot(DHTable.from_rows([DHRow.revolute("theta1", a="a1"),
+>>> r = KinematicChain(DHTable.from_rows([DHRow.revolute("theta1", a="a1"),
 ...                              DHRow.revolute("theta2", a="a2")], name="2R"))
 >>> print(r.arm_matrix().text())
 Matrix([
@@ -21,14 +28,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from functools import cache
-from pathlib import Path
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, overload
 
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.model.library import load_table
 from dhsym.model.table import Convention, DHTable, Elementary, JointType
 from dhsym.notation.printers import Notation, TrigStyle, decimal_lengths
 
@@ -38,18 +43,11 @@ from .transforms import chain_word, link_word, plain_product
 
 if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `import sympy`
     import numpy as np
-    from matplotlib.figure import Figure
     from numpy.typing import ArrayLike
-
-    from dhsym.dynamics.compiled import DynamicsFunctions, Trajectory
-    from dhsym.dynamics.equations import EquationsOfMotion
-    from dhsym.dynamics.statics import Statics
-    from dhsym.ik.derivation import InverseKinematics
-    from dhsym.ik.results import IKBatch, IKSolution
 
     from .jacobian import AnalyticJacobian, Jacobian
 
-__all__ = ["MAX_CLOSED_FORM", "Robot"]
+__all__ = ["MAX_CLOSED_FORM", "KinematicChain", "JacobianKey", "PoseKey", "frame_name"]
 
 
 #: Largest estimated size (expression nodes, :func:`.simplification.closed_form_size`) of
@@ -60,7 +58,27 @@ __all__ = ["MAX_CLOSED_FORM", "Robot"]
 MAX_CLOSED_FORM = 30_000
 
 
-class Robot:
+@dataclass(frozen=True)
+class PoseKey:
+    """What a compiled ``q -> ^iT_j`` is cached by: the frames (``None``: world, tool) and
+    the ``values`` given (:func:`.numeric.values_key`)."""
+
+    i: int | None
+    j: int | None
+    values: object
+
+
+@dataclass(frozen=True)
+class JacobianKey:
+    """What a compiled numeric Jacobian is cached by: its frame, Euler angles (``None``: the
+    geometric Jacobian) and the ``values`` given (:func:`.numeric.values_key`)."""
+
+    frame: int | str
+    euler: str | None
+    values: object
+
+
+class KinematicChain:
     """Kinematics of one DH table: link matrices, ``^iT_j``, the arm matrix, ``fk``.
 
     Frames are numbered 0 … n (DH frames); ``-1`` is the world frame before the
@@ -82,22 +100,15 @@ class Robot:
             style=style,
             decimals=decimal_lengths([v for r in table.rows for v in (r.d, r.a)]),
         )
-        self._transform = cache(self._compute_transform)
+        # ^iT_j in closed form, by frames
+        self._transforms: dict[tuple[int, int], Pose] = {}
         # compiled fk: a PoseFunction, or a compile_word product for a chain too long to
         # write out (both take one configuration or a batch)
-        self._fk_cache: dict[tuple[object, object, object], Callable[[ArrayLike], np.ndarray]] = {}
+        self._fk_functions: dict[PoseKey, Callable[[ArrayLike], np.ndarray]] = {}
         # world -> tool with the table's values
         self._fk_default: Callable[[ArrayLike], np.ndarray] | None = None
-        # typed caches: numeric Jacobians by (frame, euler, values), the derived inverse,
-        # and the sub-robots of ``ik(free=...)`` by joint (see jacobian, inverse, ik)
-        self._jacobian_functions: dict[
-            tuple[int | str, str | None, object], Callable[[object], np.ndarray]
-        ] = {}
-        self._inverse: InverseKinematics | None = None
-        self._given_joint: dict[int, tuple[Robot, int]] = {}
-        # the equations of motion by method, and their compiled numbers by values
-        self._dynamics: dict[str, EquationsOfMotion] = {}
-        self._dynamics_functions: dict[object, DynamicsFunctions] = {}
+        # numeric Jacobians by frame, Euler angles and values
+        self._jacobian_functions: dict[JacobianKey, Callable[[object], np.ndarray]] = {}
 
     # -- description -----------------------------------------------------------------
     @property
@@ -122,7 +133,7 @@ class Robot:
 
     def __repr__(self) -> str:
         kinds = "".join(r.joint.value for r in self.table.rows)
-        return f"Robot({self.name!r}, {kinds}, {self.convention.value})"
+        return f"{type(self).__name__}({self.name!r}, {kinds}, {self.convention.value})"
 
     def _repr_markdown_(self) -> str:
         return f"**{self.name}** ({self.convention.value} DH)\n\n" + self.table._repr_markdown_()
@@ -157,7 +168,10 @@ class Robot:
         Raises :class:`~dhsym.errors.DHError` when its closed form would be too large
         (see :meth:`check_transform_size`).
         """
-        return self._transform(i, j)
+        pose = self._transforms.get((i, j))
+        if pose is None:
+            pose = self._transforms[(i, j)] = self._compute_transform(i, j)
+        return pose
 
     def transform_size(self, i: int, j: int) -> int:
         """Estimated size of ``^iT_j`` in closed form (expression nodes), found in microseconds."""
@@ -169,7 +183,7 @@ class Robot:
         >>> from dhsym.model.table import DHRow, DHTable
         >>> rows = [DHRow.revolute(f"q{k}", d=f"d{k}", a=f"a{k}", alpha=(-1) ** k * sp.pi / 2)
         ...         for k in range(1, 17)]
-        >>> Robot(DHTable.from_rows(rows, name="snake")).transform(0, 16)
+        >>> KinematicChain(DHTable.from_rows(rows, name="snake")).transform(0, 16)
         Traceback (most recent call last):
         ...
         dhsym.errors.DHError: ^0T_16 of snake is too large to write out in closed form ...
@@ -192,7 +206,7 @@ class Robot:
         self.check_transform_size(i, j)
         word = chain_word(self.table, i, j)
         return Pose(
-            compose(word), _frame_name(i, self.n), _frame_name(j, self.n), self.notation, word=word
+            compose(word), frame_name(i, self.n), frame_name(j, self.n), self.notation, word=word
         )
 
     def plain_transform(self, i: int, j: int) -> sp.ImmutableMatrix:
@@ -228,14 +242,15 @@ class Robot:
         The cache key is what changes between calls: the frames and the
         ``values`` given (the table's own values are fixed for this robot).
 
-        >>> r = load("planar2r")
+        >>> from dhsym.model.library import load_table
+        >>> r = KinematicChain(load_table("planar2r"))
         >>> r.fk_function() is r.fk_function(), r.fk_function(0, 1)([0.5, 0.0])[0, 3]
         (True, np.float64(0.8775825618903728))
         """
         from .numeric import compile_pose, compile_word, values_key
 
-        key = (i, j, values_key(values))
-        f = self._fk_cache.get(key)
+        key = PoseKey(i, j, values_key(values))
+        f = self._fk_functions.get(key)
         if f is None:
             if i is None and j is None:
                 i = -1 if self.table.base else 0
@@ -246,7 +261,7 @@ class Robot:
                 f = compile_pose(self.transform(i, j).matrix, self.variables, vals)
             else:  # too long for a closed form: the elementary transforms, multiplied as numbers
                 f = compile_word(chain_word(self.table, i, j), self.variables, vals)
-            self._fk_cache[key] = f
+            self._fk_functions[key] = f
         return f
 
     def fk(
@@ -323,7 +338,7 @@ class Robot:
             return jac.geometric_jacobian(self, frame)
         from .numeric import values_key
 
-        key = (frame, euler, values_key(values))
+        key = JacobianKey(frame, euler, values_key(values))
         f = self._jacobian_functions.get(key)
         if f is None:
             if euler is not None:
@@ -335,206 +350,21 @@ class Robot:
             self._jacobian_functions[key] = f
         return f(q)
 
-    def inverse(self) -> InverseKinematics:
-        """The closed-form inverse kinematics derived step by step (:mod:`dhsym.ik`), cached."""
-        from dhsym.ik.families import inverse
-
-        if self._inverse is None:
-            self._inverse = inverse(self)
-        return self._inverse
-
-    def ik(
-        self,
-        T: object,
-        *,
-        check: str | None = "pose",
-        tol: float = 1e-9,
-        singular_tol: float = 1e-6,
-        values: Mapping[object, object] | None = None,
-        free: Mapping[int, float] | None = None,
-        limits: bool = False,
-        near: object = None,
-    ) -> IKSolution | IKBatch:
-        """Every closed-form solution of a pose or a batch of poses (see :mod:`dhsym.ik`).
-
-        One pose ``(4, 4)`` gives an ``IKSolution`` (``.q`` is ``(k, n)``, with branch
-        names); a batch ``(N, 4, 4)`` gives an ``IKBatch`` (padded ``(N, K, n)`` with a
-        validity mask). ``free={7: 0.3}`` gives joint 7 (1-based) and solves the others;
-        ``limits=True`` keeps the solutions within the joint limits (angles shifted by
-        2π into range); ``near=q0`` orders them by distance to ``q0``
-        (:func:`dhsym.ik.choices.solve`).
-        """
-        from dhsym.ik.choices import solve
-
-        return solve(
-            self,
-            T,
-            check=check,
-            tol=tol,
-            singular_tol=singular_tol,
-            values=values,
-            free=free,
-            limits=limits,
-            near=near,
-        )
-
-    def to_urdf(self, *, name: str | None = None) -> str:
-        """A URDF of this robot, one link per DH frame (see :func:`dhsym.formats.urdf.write_urdf`).
-
-        >>> arm = Robot(load("planar2r").table.with_values({"a1": 1, "a2": 0.5}))
-        >>> arm.to_urdf().count("<link ")
-        6
-        """
-        from dhsym.formats.urdf import write_urdf
-
-        return write_urdf(self, name=name)
-
-    def to_rtb(self) -> object:
-        """A roboticstoolbox ``DHRobot`` of this robot (see :func:`dhsym.formats.rtb.to_rtb`;
-        needs ``pip install roboticstoolbox-python``)."""
-        from dhsym.formats.rtb import to_rtb
-
-        return to_rtb(self)
-
-    def compiled(self, lang: str = "c") -> object:
-        """fk, Jacobian and IK as exported C built once (a file cache) and called by ctypes;
-        dhsym's NumPy path without a compiler (see :mod:`dhsym.export.compiled`)."""
-        from dhsym.export.compiled import compiled
-
-        return compiled(self, lang)
-
-    # -- dynamics (dhsym.dynamics, loaded on first use) ----------------------------------
-    def dynamics(self, method: str = "lagrange") -> EquationsOfMotion:
-        """The equations of motion, exact (``"lagrange"`` or ``"newton-euler"``), cached.
-
-        Rows without inertial parameters get the textbook symbols (``m1``, ``rx1``, …).
-        See :mod:`dhsym.dynamics`.
-        """
-        from dhsym.dynamics import lagrange, newton_euler
-
-        methods = {"lagrange": lagrange, "newton-euler": newton_euler, "ne": newton_euler}
-        key = str(method).strip().lower().replace("_", "-")
-        if key not in methods:
-            raise DHError(f"unknown dynamics method {method!r}: expected lagrange or newton-euler")
-        name = methods[key].__name__
-        if name not in self._dynamics:
-            self._dynamics[name] = methods[key](self)
-        return self._dynamics[name]
-
-    def dynamics_functions(self, values: Mapping[Any, object] | None = None) -> DynamicsFunctions:
-        """The compiled dynamics (:class:`dhsym.dynamics.compiled.DynamicsFunctions`), cached."""
-        from dhsym.dynamics.compiled import dynamics_functions
-
-        from .numeric import values_key
-
-        key = values_key(values)
-        if key not in self._dynamics_functions:
-            self._dynamics_functions[key] = dynamics_functions(self, values)
-        return self._dynamics_functions[key]
-
-    def rne(
-        self, q: object, qd: object, qdd: object, *, values: Mapping[object, object] | None = None
-    ) -> np.ndarray:
-        """Joint torques τ(q, q̇, q̈), with motor inertia ``Jm G²`` and friction when given.
-
-        One state ``(n,)`` → ``(n,)``; a batch ``(..., n)`` → ``(..., n)``.
-        """
-        return self.dynamics_functions(values).rne(q, qd, qdd)
-
-    def inertia(self, q: object, *, values: Mapping[object, object] | None = None) -> np.ndarray:
-        """The inertia matrix M(q): ``(n,)`` → ``(n, n)``, ``(..., n)`` → ``(..., n, n)``."""
-        return self.dynamics_functions(values).inertia(q)
-
-    def coriolis(
-        self, q: object, qd: object, *, values: Mapping[object, object] | None = None
-    ) -> np.ndarray:
-        """C(q, q̇) from the Christoffel symbols; ``C @ qd`` is the velocity term."""
-        return self.dynamics_functions(values).coriolis(q, qd)
-
-    def gravload(self, q: object, *, values: Mapping[object, object] | None = None) -> np.ndarray:
-        """The gravity torques g(q)."""
-        return self.dynamics_functions(values).gravload(q)
-
-    def accel(
-        self, q: object, qd: object, tau: object, *, values: Mapping[object, object] | None = None
-    ) -> np.ndarray:
-        """Forward dynamics q̈ = M⁻¹(τ − C q̇ − g − friction)."""
-        return self.dynamics_functions(values).accel(q, qd, tau)
-
-    def simulate(
-        self,
-        q0: object,
-        qd0: object,
-        duration: float,
-        *,
-        dt: float = 1e-3,
-        tau: object = None,
-        values: Mapping[object, object] | None = None,
-    ) -> Trajectory:
-        """Fixed-step RK4 integration of the motion (a ``Trajectory``: ``t``, ``q``, ``qd``)."""
-        return self.dynamics_functions(values).simulate(q0, qd0, duration, dt=dt, tau=tau)
-
-    def statics(
-        self,
-        q: object = None,
-        wrench: object = None,
-        *,
-        values: Mapping[object, object] | None = None,
-    ) -> Statics | np.ndarray:
-        """τ = Jᵀ F: exact (no ``q``), or the torques that balance a tip wrench ``[f; n]``
-        (base frame) at ``q``, batched like :meth:`jacobian`."""
-        from dhsym.dynamics.statics import statics, statics_numeric
-
-        if q is None:
-            return statics(self)
-        return statics_numeric(self, q, wrench, values=values)
-
-    def plot(self, q: object = None, **kw: Any) -> Figure:
-        """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plot.figures`).
-
-        ``kw`` are the options of :func:`dhsym.plot.figures.plot_robot` (``ax``, ``frames``,
-        ``labels``, ``deg``, ``view``, ``scale``, ``title``, ``limits``, ``alpha``).
-        """
-        from dhsym.plot.figures import plot_robot
-
-        return plot_robot(self, q, **kw)
-
     # -- helpers ---------------------------------------------------------------------
     def _check_row(self, i: int) -> None:
         if not 1 <= i <= self.n:
             raise IndexError(f"{self.name or 'robot'} has links 1 … {self.n}; got {i}")
 
 
-def _frame_name(i: int, n: int) -> int | str:
+def frame_name(i: int, n: int) -> int | str:
+    """Frame ``i`` of a chain of ``n`` links as printed: ``W`` (world, -1), ``tool`` (n + 1)
+    or the number.
+
+    >>> frame_name(-1, 6), frame_name(3, 6), frame_name(7, 6)
+    ('W', 3, 'tool')
+    """
     if i == -1:
         return "W"
     if i == n + 1:
         return "tool"
     return i
-
-
-def load(name_or_path: str | Path, **kw: Any) -> Robot:
-    """A :class:`Robot` from a built-in name or a table file (``compact``, ``style`` as Robot).
-
-    A ``.urdf`` path (or URDF text) is read by :func:`dhsym.formats.urdf.from_urdf`, which
-    also takes ``tip``, ``base``, ``convention`` and ``snap_angles``.
-
-    >>> load("planar2r").name
-    'Planar 2R'
-    """
-    text = str(name_or_path)
-    if text.lstrip().startswith("<") or Path(text).suffix.lower() in (".urdf", ".xacro"):
-        from dhsym.formats.urdf import from_urdf  # the formats room, at call time
-
-        return from_urdf(name_or_path, **kw)
-    return Robot(load_table(name_or_path), **kw)
-
-
-def inverse(robot: Robot | str | Path) -> InverseKinematics:
-    """The closed-form inverse kinematics of a robot or built-in name, derived step by step.
-
-    >>> ik = inverse("planar2r")
-    >>> [b.role for b in ik.branches], ik.count
-    (['elbow'], 2)
-    """
-    return (robot if isinstance(robot, Robot) else load(robot)).inverse()

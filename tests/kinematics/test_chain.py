@@ -1,4 +1,4 @@
-"""The seeds' matrices, reproduced by Robot (entry by entry)."""
+"""The seeds' matrices, reproduced by KinematicChain (entry by entry)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import sympy as sp
 
 import dhsym
 from dhsym.errors import DHError
-from dhsym.kinematics.robot import Robot
+from dhsym.kinematics.chain import KinematicChain
 from dhsym.model.table import DHRow, DHTable
 
 S = lambda n: sp.Symbol(n, real=True)  # noqa: E731
@@ -223,7 +223,7 @@ def test_sixty_twisted_joints_fk_without_a_closed_form():
     rows = [
         DHRow.revolute(f"q{k}", d=0.1, a=0.2, alpha=(-1) ** k * sp.pi / 2) for k in range(1, n + 1)
     ]
-    robot = Robot(DHTable.from_rows(rows, name="snake"))
+    robot = KinematicChain(DHTable.from_rows(rows, name="snake"))
     assert robot.transform_size(0, n) > 10**12
     with pytest.raises(DHError, match="too large to write out in closed form"):
         robot.transform(0, n)

@@ -1,0 +1,304 @@
+"""``Robot``: the facade over a :class:`~dhsym.kinematics.chain.KinematicChain` with the
+conveniences of the rooms above the kinematics.
+
+A :class:`Robot` is a :class:`~dhsym.kinematics.chain.KinematicChain` (table, notation, ``^iT_j``,
+``fk``, ``jacobian``, …) that also derives and solves its inverse kinematics
+(:mod:`dhsym.ik`), its dynamics (:mod:`dhsym.dynamics`), draws itself (:mod:`dhsym.plot`),
+writes itself in other tools' formats (:mod:`dhsym.formats`) and loads its exported C
+(:mod:`dhsym.export`). It is a room of its own, above all of these and below
+:mod:`dhsym.explain`; each room it reaches is imported on first use. What it computes is
+cached in typed fields, one per kind of result.
+
+Examples
+--------
+>>> r = load("planar2r")
+>>> r
+Robot('Planar 2R', RR, standard)
+>>> [b.role for b in r.inverse().branches]
+['elbow']
+>>> r.ik(r.fk([0.4, 0.9]), check="position").q.shape
+(2, 2)
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from dhsym.errors import DHError
+from dhsym.kinematics.chain import KinematicChain
+from dhsym.model.kinds import Convention
+from dhsym.model.library import load_table
+from dhsym.model.table import DHTable
+from dhsym.notation.printers import TrigStyle
+
+if TYPE_CHECKING:
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    from dhsym.dynamics.compiled_dynamics import DynamicsFunctions, Trajectory
+    from dhsym.dynamics.equations import EquationsOfMotion
+    from dhsym.dynamics.statics import Statics
+    from dhsym.export.shared_library import CompiledRobot
+    from dhsym.ik.choices import IKCache
+    from dhsym.ik.closed_form import InverseKinematics
+    from dhsym.ik.results import IKBatch, IKSolution
+    from dhsym.model.angles import AngleSnap
+
+__all__ = ["Robot", "from_rtb", "from_urdf", "inverse", "load"]
+
+
+class Robot(KinematicChain):
+    """A :class:`~dhsym.kinematics.chain.KinematicChain` with inverse kinematics, dynamics, plots,
+    file formats and compiled code, each reached on first use and cached.
+
+    ``compact`` and ``style`` set how its matrices print (as for ``KinematicChain``).
+    """
+
+    def __init__(
+        self, table: DHTable, *, compact: bool = True, style: TrigStyle | str = TrigStyle.UPPER
+    ) -> None:
+        super().__init__(table, compact=compact, style=style)
+        # the derived inverse kinematics and the sub-chains of ``ik(free=...)``
+        self._ik_cache: IKCache | None = None
+        # the equations of motion, one field per method
+        self._lagrange: EquationsOfMotion | None = None
+        self._newton_euler: EquationsOfMotion | None = None
+        # the compiled dynamics by the values given (dhsym.kinematics.numeric.values_key)
+        self._dynamics_functions: dict[object, DynamicsFunctions] = {}
+
+    # -- inverse kinematics (dhsym.ik) -------------------------------------------------
+    def ik_cache(self) -> IKCache:
+        """The derived inverse kinematics of this robot and of its sub-chains with a joint
+        given (:class:`dhsym.ik.choices.IKCache`), made on first use."""
+        from dhsym.ik.choices import IKCache
+
+        if self._ik_cache is None:
+            self._ik_cache = IKCache(self)
+        return self._ik_cache
+
+    def inverse(self) -> InverseKinematics:
+        """The closed-form inverse kinematics derived step by step (:mod:`dhsym.ik`), cached."""
+        return self.ik_cache().inverse()
+
+    def ik(
+        self,
+        T: object,
+        *,
+        check: str | None = "pose",
+        tol: float = 1e-9,
+        singular_tol: float = 1e-6,
+        values: Mapping[object, object] | None = None,
+        free: Mapping[int, float] | None = None,
+        limits: bool = False,
+        near: object = None,
+    ) -> IKSolution | IKBatch:
+        """Every closed-form solution of a pose or a batch of poses (see :mod:`dhsym.ik`).
+
+        One pose ``(4, 4)`` gives an ``IKSolution`` (``.q`` is ``(k, n)``, with branch
+        names); a batch ``(N, 4, 4)`` gives an ``IKBatch`` (padded ``(N, K, n)`` with a
+        validity mask). ``free={7: 0.3}`` gives joint 7 (1-based) and solves the others;
+        ``limits=True`` keeps the solutions within the joint limits (angles shifted by
+        2π into range); ``near=q0`` orders them by distance to ``q0``
+        (:func:`dhsym.ik.choices.solve`).
+        """
+        from dhsym.ik.choices import solve
+
+        return solve(
+            self,
+            T,
+            check=check,
+            tol=tol,
+            singular_tol=singular_tol,
+            values=values,
+            free=free,
+            limits=limits,
+            near=near,
+            cache=self.ik_cache(),
+        )
+
+    # -- formats and compiled code (dhsym.formats, dhsym.export) -------------------------
+    def to_urdf(self, *, name: str | None = None) -> str:
+        """A URDF of this robot, one link per DH frame (see :func:`dhsym.formats.urdf.write_urdf`).
+
+        >>> arm = Robot(load("planar2r").table.with_values({"a1": 1, "a2": 0.5}))
+        >>> arm.to_urdf().count("<link ")
+        6
+        """
+        from dhsym.formats.urdf import write_urdf
+
+        return write_urdf(self, name=name)
+
+    def to_rtb(self) -> object:
+        """A roboticstoolbox ``DHRobot`` of this robot (see :func:`dhsym.formats.rtb.to_rtb`;
+        needs ``pip install roboticstoolbox-python``)."""
+        from dhsym.formats.rtb import to_rtb
+
+        return to_rtb(self)
+
+    def compiled(self, lang: str = "c") -> CompiledRobot:
+        """fk, Jacobian and IK as exported C built once (a file cache) and called by ctypes;
+        dhsym's NumPy path without a compiler (see :mod:`dhsym.export.shared_library`)."""
+        from dhsym.export.shared_library import compiled
+
+        return compiled(self, lang, cache=self.ik_cache(), rne=self.rne)
+
+    # -- dynamics (dhsym.dynamics) -------------------------------------------------------
+    def dynamics(self, method: str = "lagrange") -> EquationsOfMotion:
+        """The equations of motion, exact (``"lagrange"`` or ``"newton-euler"``), cached.
+
+        Rows without inertial parameters get the textbook symbols (``m1``, ``rx1``, …).
+        See :mod:`dhsym.dynamics`.
+        """
+        from dhsym.dynamics import lagrange, newton_euler
+
+        key = str(method).strip().lower().replace("_", "-")
+        if key == "lagrange":
+            if self._lagrange is None:
+                self._lagrange = lagrange(self)
+            return self._lagrange
+        if key in ("newton-euler", "ne"):
+            if self._newton_euler is None:
+                self._newton_euler = newton_euler(self)
+            return self._newton_euler
+        raise DHError(f"unknown dynamics method {method!r}: expected lagrange or newton-euler")
+
+    def dynamics_functions(self, values: Mapping[Any, object] | None = None) -> DynamicsFunctions:
+        """The compiled dynamics, cached by ``values``
+        (:class:`dhsym.dynamics.compiled_dynamics.DynamicsFunctions`)."""
+        from dhsym.dynamics.compiled_dynamics import dynamics_functions
+        from dhsym.kinematics.numeric import values_key
+
+        key = values_key(values)
+        f = self._dynamics_functions.get(key)
+        if f is None:
+            f = self._dynamics_functions[key] = dynamics_functions(self, values)
+        return f
+
+    def rne(
+        self, q: object, qd: object, qdd: object, *, values: Mapping[object, object] | None = None
+    ) -> np.ndarray:
+        """Joint torques τ(q, q̇, q̈), with motor inertia ``Jm G²`` and friction when given.
+
+        One state ``(n,)`` → ``(n,)``; a batch ``(..., n)`` → ``(..., n)``.
+        """
+        return self.dynamics_functions(values).rne(q, qd, qdd)
+
+    def inertia(self, q: object, *, values: Mapping[object, object] | None = None) -> np.ndarray:
+        """The inertia matrix M(q): ``(n,)`` → ``(n, n)``, ``(..., n)`` → ``(..., n, n)``."""
+        return self.dynamics_functions(values).inertia(q)
+
+    def coriolis(
+        self, q: object, qd: object, *, values: Mapping[object, object] | None = None
+    ) -> np.ndarray:
+        """C(q, q̇) from the Christoffel symbols; ``C @ qd`` is the velocity term."""
+        return self.dynamics_functions(values).coriolis(q, qd)
+
+    def gravload(self, q: object, *, values: Mapping[object, object] | None = None) -> np.ndarray:
+        """The gravity torques g(q)."""
+        return self.dynamics_functions(values).gravload(q)
+
+    def accel(
+        self, q: object, qd: object, tau: object, *, values: Mapping[object, object] | None = None
+    ) -> np.ndarray:
+        """Forward dynamics q̈ = M⁻¹(τ − C q̇ − g − friction)."""
+        return self.dynamics_functions(values).accel(q, qd, tau)
+
+    def simulate(
+        self,
+        q0: object,
+        qd0: object,
+        duration: float,
+        *,
+        dt: float = 1e-3,
+        tau: object = None,
+        values: Mapping[object, object] | None = None,
+    ) -> Trajectory:
+        """Fixed-step RK4 integration of the motion (a ``Trajectory``: ``t``, ``q``, ``qd``)."""
+        return self.dynamics_functions(values).simulate(q0, qd0, duration, dt=dt, tau=tau)
+
+    def statics(
+        self,
+        q: object = None,
+        wrench: object = None,
+        *,
+        values: Mapping[object, object] | None = None,
+    ) -> Statics | np.ndarray:
+        """τ = Jᵀ F: exact (no ``q``), or the torques that balance a tip wrench ``[f; n]``
+        (base frame) at ``q``, batched like :meth:`jacobian`."""
+        from dhsym.dynamics.statics import statics, statics_numeric
+
+        if q is None:
+            return statics(self)
+        return statics_numeric(self, q, wrench, values=values)
+
+    # -- pictures (dhsym.plot) -----------------------------------------------------------
+    def plot(self, q: object = None, **kw: Any) -> Figure:
+        """A matplotlib Figure of the arm with its DH frames (see :mod:`dhsym.plot.figures`).
+
+        ``kw`` are the options of :func:`dhsym.plot.figures.plot_robot` (``ax``, ``frames``,
+        ``labels``, ``deg``, ``view``, ``scale``, ``title``, ``limits``, ``alpha``).
+        """
+        from dhsym.plot.figures import plot_robot
+
+        return plot_robot(self, q, **kw)
+
+
+def load(name_or_path: str | Path, **kw: Any) -> Robot:
+    """A :class:`Robot` from a built-in name or a table file (``compact``, ``style`` as Robot).
+
+    A ``.urdf`` path (or URDF text) is read by :func:`from_urdf`, which also takes ``tip``,
+    ``base``, ``convention`` and ``snap_angles``.
+
+    >>> load("planar2r").name
+    'Planar 2R'
+    """
+    text = str(name_or_path)
+    if text.lstrip().startswith("<") or Path(text).suffix.lower() in (".urdf", ".xacro"):
+        return from_urdf(name_or_path, **kw)
+    return Robot(load_table(name_or_path), **kw)
+
+
+def from_urdf(
+    source: str | os.PathLike[str],
+    tip: str | None = None,
+    base: str | None = None,
+    convention: Convention | str = "standard",
+    *,
+    snap_angles: AngleSnap | bool | float | None = True,
+    **kw: Any,
+) -> Robot:
+    """A :class:`Robot` from a URDF file or text (see :func:`dhsym.formats.urdf.import_urdf`);
+    ``kw`` are Robot's keywords (``compact``, ``style``).
+
+    >>> r = from_urdf('''<robot name="slide"><link name="a"/><link name="b"/>
+    ...   <joint name="s" type="prismatic"><parent link="a"/><child link="b"/>
+    ...     <axis xyz="1 0 0"/><limit lower="0" upper="0.5" effort="1" velocity="1"/></joint>
+    ... </robot>''', convention="modified")
+    >>> r, r.fk([0.2])[0, 3]
+    (Robot('slide', P, modified), np.float64(0.2))
+    """
+    from dhsym.formats.urdf import import_urdf
+
+    imp = import_urdf(source, tip, base, convention, snap_angles=snap_angles)
+    return Robot(imp.table, **kw)
+
+
+def from_rtb(robot: object, *, name: str | None = None) -> Robot:
+    """A :class:`Robot` from a roboticstoolbox ``DHRobot`` (see
+    :func:`dhsym.formats.rtb.table_from_rtb`)."""
+    from dhsym.formats.rtb import table_from_rtb
+
+    return Robot(table_from_rtb(robot, name=name))
+
+
+def inverse(robot: Robot | str | Path) -> InverseKinematics:
+    """The closed-form inverse kinematics of a robot or built-in name, derived step by step.
+
+    >>> ik = inverse("planar2r")
+    >>> [b.role for b in ik.branches], ik.count
+    (['elbow'], 2)
+    """
+    return (robot if isinstance(robot, Robot) else load(robot)).inverse()
