@@ -231,7 +231,7 @@ REPORT/summary.html; a rerun skips what is already graded."""
 )
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add the ``check``, ``grade`` and ``autograder`` sub-commands."""
     c = add_command(
         subparsers,

@@ -78,7 +78,7 @@ def _write_urdf(robot: Robot, args: argparse.Namespace) -> int:
     return 0
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add ``dhsym export NAME --lang LANG [--what fk,jacobian,ik] [--prefix P] -o DIR``.
 
     >>> sub = argparse.ArgumentParser().add_subparsers()

@@ -62,7 +62,7 @@ def _cmd_convert(args: argparse.Namespace) -> int:
     return 0
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add ``dhsym convert NAME|FILE --to modified|standard [-o FILE]``.
 
     >>> sub = argparse.ArgumentParser().add_subparsers()

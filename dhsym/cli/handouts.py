@@ -64,7 +64,7 @@ def _cmd_handout(args: argparse.Namespace) -> int:
     return 0
 
 
-def _register_handout(subparsers: argparse._SubParsersAction) -> None:
+def _register_handout(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     h = add_command(
         subparsers,
         "handout",
@@ -191,7 +191,7 @@ def _register_notebooks(subparsers: Any) -> None:
     _add_commands(p.add_subparsers(dest="notebooks_command", required=True, metavar="ACTION"))
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add ``handout`` and ``notebooks build|run|export``."""
     _register_handout(subparsers)
     _register_notebooks(subparsers)

@@ -27,7 +27,7 @@ _FORMATS = ("png", "pdf", "svg")
 def _format(args: argparse.Namespace) -> str:
     """The picture format: ``--format``, else the suffix of ``-o``, else SVG for ``-o -``."""
     if args.format:
-        return args.format
+        return str(args.format)
     if args.output == STDOUT:
         return "svg"
     suffix = Path(args.output).suffix.lower().lstrip(".")

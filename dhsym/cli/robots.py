@@ -311,7 +311,7 @@ ROBOT_HELP = "built-in robot name (dhsym list), table file, or URDF file (with -
 VALUES_HELP = "numbers for the table's symbolic lengths, e.g. a2=0.43,d3=0.15"
 
 
-def register(sub: argparse._SubParsersAction) -> None:
+def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add ``list``, ``show``, ``derive``, ``fk`` and ``ik``."""
     add_command(sub, "list", "list the built-in robots").set_defaults(func=_cmd_list)
 

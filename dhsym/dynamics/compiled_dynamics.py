@@ -28,9 +28,9 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import sympy as sp
@@ -61,15 +61,15 @@ class _Compiled:
         self.size = int(np.prod(shape)) if shape else 1
         self._exprs = list(exprs)
         self._args = list(args)
-        self._batch: object = None
-        self._single: object = None
+        self._batch: Callable[..., list[Any]] | None = None
+        self._single: Callable[..., list[Any]] | None = None
 
     def __call__(self, *parts: np.ndarray) -> np.ndarray:
         lead = parts[0].shape[:-1]
         if not lead:  # one state: plain Python floats
             if self._single is None:
                 self._single = compile_exprs(self._exprs, self._args, floats=True)
-            values = self._single(*[x for p in parts for x in p.tolist()])  # type: ignore[operator]
+            values = self._single(*[x for p in parts for x in p.tolist()])
             return np.array(values, dtype=float).reshape(self.shape)
         if self._batch is None:
             self._batch = compile_exprs(self._exprs, self._args)
@@ -79,7 +79,7 @@ class _Compiled:
         for start in range(0, N, _CHUNK):
             cols = [c for p in flat for c in p[start : start + _CHUNK].T]
             size = min(_CHUNK, N - start)
-            for k, v in enumerate(self._batch(*cols)):  # type: ignore[operator]
+            for k, v in enumerate(self._batch(*cols)):
                 out[start : start + size, k] = v
         return out.reshape(*lead, *self.shape)
 
@@ -137,7 +137,8 @@ class DynamicsFunctions:
         """The friction torque ``B G² q̇ + |G| Tc`` (``Tc+`` when ``q̇ > 0``, ``Tc−`` below)."""
         (v,) = self._states(qd)
         coulomb = np.where(v > 0, self._coulomb[:, 0], np.where(v < 0, self._coulomb[:, 1], 0.0))
-        return self._viscous * v + coulomb
+        torque: np.ndarray = self._viscous * v + coulomb
+        return torque
 
     def rne(self, q: object, qd: object, qdd: object, *, friction: bool = True) -> np.ndarray:
         """Joint torques τ(q, q̇, q̈) (with gravity, motor inertia and friction)."""
@@ -175,7 +176,8 @@ class DynamicsFunctions:
         """C(q, q̇) with ``C[k, j] = Σ_i c_ijk q̇_i``, ``(..., n, n)``."""
         Q, V = self._states(q, qd)
         c = self.christoffel(Q)
-        return np.einsum("...ijk,...i->...kj", c, V)
+        C: np.ndarray = np.einsum("...ijk,...i->...kj", c, V)
+        return C
 
     def gravload(self, q: object) -> np.ndarray:
         """g(q), the torques that hold the arm still against gravity."""
@@ -192,7 +194,8 @@ class DynamicsFunctions:
         """Total energy ``½ q̇ᵀ M q̇ + P(q)`` (motor inertia included)."""
         Q, V = self._states(q, qd)
         kinetic = 0.5 * np.einsum("...i,...ij,...j->...", V, self.inertia(Q), V)
-        return kinetic + self._potential(Q)[..., 0]
+        total: np.ndarray = kinetic + self._potential(Q)[..., 0]
+        return total
 
     def simulate(
         self,

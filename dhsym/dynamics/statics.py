@@ -76,4 +76,5 @@ def statics_numeric(
     if F.shape[-1:] != (6,):
         raise DHError(f"a wrench has 6 entries [fx, fy, fz, nx, ny, nz], got shape {F.shape}")
     J = np.asarray(robot.jacobian(np.asarray(q, dtype=float), values=values))
-    return np.einsum("...ij,...i->...j", J, F)
+    tau: np.ndarray = np.einsum("...ij,...i->...j", J, F)
+    return tau

@@ -128,7 +128,8 @@ def _vector(q: object, n: int) -> np.ndarray:
 
 
 def _address(a: np.ndarray) -> int:
-    return a.__array_interface__["data"][0]
+    address: int = a.__array_interface__["data"][0]
+    return address
 
 
 def compiled(

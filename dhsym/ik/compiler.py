@@ -621,7 +621,8 @@ class Solver:
                 f"raw() takes poses of shape (N, 4, 4) or one pose (4, 4), not {tuple(poses.shape)}"
             )
         q, _, _ = self._evaluate(poses, None, None)
-        return q.transpose(2, 1, 0)
+        angles: np.ndarray = q.transpose(2, 1, 0)
+        return angles
 
     def _evaluate(
         self, inner: np.ndarray, target: np.ndarray | None, cells: Sequence[int] | None

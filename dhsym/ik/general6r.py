@@ -52,8 +52,9 @@ Examples
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
+from typing import TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -126,6 +127,10 @@ class StandardLink:
     alpha: sp.Expr
 
 
+# a rigid motion of polynomial entries: the rotation's rows and the translation
+_Rigid: TypeAlias = tuple[list[list[PolyElement]], list[PolyElement]]
+
+
 @dataclass(frozen=True)
 class _Chain:
     """``T = base · A1 ⋯ A6 · tool`` with standard links: the form the elimination works on."""
@@ -162,7 +167,9 @@ class _Chain:
         return _Chain(tuple(links), base, tool)
 
 
-def standard_chain(table: DHTable) -> tuple[tuple[StandardLink, ...], tuple, tuple]:
+def standard_chain(
+    table: DHTable,
+) -> tuple[tuple[StandardLink, ...], tuple[Elementary, ...], tuple[Elementary, ...]]:
     """The arm of a six-joint revolute table as ``base · A1 ⋯ A6 · tool`` in standard form.
 
     A modified row holds ``α_{i−1}, a_{i−1}``: since ``Rx`` and ``Tx`` commute, the product
@@ -268,22 +275,22 @@ def _derive() -> _Derivation:
     def red(p: PolyElement) -> PolyElement:
         return p.rem(rel)
 
-    def link(i: int) -> tuple[list, list]:
+    def link(i: int) -> _Rigid:
         c, s, la, mu, a, d = (g[f"{k}{i}"] for k in ("c", "s", "la", "mu", "a", "d"))
         return [[c, -s * la, s * mu], [s, c * la, -c * mu], [R(0), mu, la]], [a * c, a * s, d]
 
-    def mul(X: tuple, Y: tuple) -> tuple:
+    def mul(X: _Rigid, Y: _Rigid) -> _Rigid:
         (R1, t1), (R2, t2) = X, Y
         Rm = [[sum(R1[i][k] * R2[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
         return Rm, [sum(R1[i][k] * t2[k] for k in range(3)) + t1[i] for i in range(3)]
 
-    def inv(X: tuple) -> tuple:
+    def inv(X: _Rigid) -> _Rigid:
         Rm, t = X
         RT = [[Rm[j][i] for j in range(3)] for i in range(3)]
         return RT, [-sum(RT[i][k] * t[k] for k in range(3)) for i in range(3)]
 
-    def fourteen(p: list, u: list) -> tuple[PolyElement, ...]:
-        def dot(v: list, w: list) -> PolyElement:
+    def fourteen(p: list[PolyElement], u: list[PolyElement]) -> tuple[PolyElement, ...]:
+        def dot(v: list[PolyElement], w: list[PolyElement]) -> PolyElement:
             return red(sum(x * y for x, y in zip(v, w, strict=True)))
 
         cross = (p[1] * u[2] - p[2] * u[1], p[2] * u[0] - p[0] * u[2], p[0] * u[1] - p[1] * u[0])
@@ -301,7 +308,9 @@ def _derive() -> _Derivation:
     return _Derivation(tuple(names), left, fourteen(pR, lR))
 
 
-def _terms(d: _Derivation, side: str):
+def _terms(
+    d: _Derivation, side: str
+) -> Iterator[tuple[int, int, int, int, dict[str, int], tuple[int, ...]]]:
     """Each term of each equation as ``(row, joint part, product column, constants, pose)``.
 
     The joint part of the left side is 0, 1, 2 for ``1, c3, s3`` and the column indexes
@@ -326,8 +335,9 @@ def _terms(d: _Derivation, side: str):
             yield row, part, col_of[key], int(coeff), c, pose
 
 
-def _link_constants(links: Sequence[StandardLink], exact: bool) -> dict[str, object]:
-    out: dict[str, object] = {}
+def _link_constants(links: Sequence[StandardLink], exact: bool) -> dict[str, sp.Expr | float]:
+    """The link constants ``la_i, mu_i, a_i, d_i`` of links 1–5: exact, or as floats."""
+    out: dict[str, sp.Expr | float] = {}
     for i, L in enumerate(links[:5], start=1):
         c, s = cos_sin(L.alpha)
         vals = {"la": c, "mu": s, "a": L.a, "d": L.d}
@@ -462,7 +472,8 @@ class _Arrangement:
     def target(self, T: np.ndarray) -> np.ndarray:
         """``base⁻¹ · T · tool⁻¹`` of this arrangement (T inverted first when reversed)."""
         Tt = numeric_rigid_inverse(T) if self.reverse else T
-        return self.base_inv @ Tt @ self.tool_inv
+        target: np.ndarray = self.base_inv @ Tt @ self.tool_inv
+        return target
 
     def links(self, theta: np.ndarray) -> np.ndarray:
         """The link matrices ``(k, 6, 4, 4)`` at chain angles ``theta (k, 6)``."""
@@ -525,7 +536,9 @@ def _arrangement(chain: _Chain, reverse: bool, d: _Derivation, H: np.ndarray) ->
     )
 
 
-def _pencil(arr: _Arrangement, Tp: np.ndarray, delta: float):
+def _pencil(
+    arr: _Arrangement, Tp: np.ndarray, delta: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Σ(x) = A x² + B x + C (12×12 each) at the target ``Tp``, with θ3 = φ + δ, x = tan(φ/2).
 
     Also returns what back-substitution needs: the QR factors of ``Q``, the constants ``r``
@@ -781,7 +794,8 @@ def _distinct(q: np.ndarray, tol: float = 1e-6) -> np.ndarray:
     near = (np.abs(np.remainder(diff + math.pi, 2 * math.pi) - math.pi) < tol).all(axis=2)
     keep = ~np.tril(near, -1).any(axis=1)
     out = q[keep]
-    return out[np.lexsort(out.T[::-1])]
+    rows: np.ndarray = out[np.lexsort(out.T[::-1])]
+    return rows
 
 
 def general_6r(

@@ -36,12 +36,14 @@ def _rotation_error(R: np.ndarray, goal: np.ndarray) -> np.ndarray:
     v = 0.5 * np.array([E[2, 1] - E[1, 2], E[0, 2] - E[2, 0], E[1, 0] - E[0, 1]])
     s, c = float(np.linalg.norm(v)), (float(np.trace(E)) - 1.0) / 2.0
     if s > 1e-9:
-        return np.arctan2(s, c) / s * v
+        rotvec: np.ndarray = np.arctan2(s, c) / s * v
+        return rotvec
     if c > 0:
         return v
     k = int(np.argmax(np.linalg.norm(E + np.eye(3), axis=0)))  # a half turn: axis from E + I
     axis = (E + np.eye(3))[:, k]
-    return np.pi * axis / np.linalg.norm(axis)
+    half_turn: np.ndarray = np.pi * axis / np.linalg.norm(axis)
+    return half_turn
 
 
 def numeric_ik(

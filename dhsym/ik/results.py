@@ -116,7 +116,8 @@ class IKSolution:
         return iter(self.q)
 
     def __getitem__(self, k: int) -> np.ndarray:
-        return self.q[k]
+        row: np.ndarray = self.q[k]
+        return row
 
     def __array__(self, dtype: DTypeLike | None = None, copy: object = None) -> np.ndarray:
         return self.q if dtype is None else self.q.astype(dtype)
@@ -143,7 +144,8 @@ class IKBatch:
     @property
     def count(self) -> np.ndarray:
         """``(N,)`` number of solutions of each pose."""
-        return self.valid.sum(axis=1)
+        counts: np.ndarray = self.valid.sum(axis=1)
+        return counts
 
     @property
     def near_singular(self) -> np.ndarray:
@@ -208,4 +210,5 @@ def _elbow_up(solver: Solver, q: np.ndarray, branch: Branch) -> np.ndarray:
     n = np.cross(h, w_perp)
     n = n * np.where(n[:, 2] < 0, -1.0, 1.0)[:, None]
     above = np.einsum("ij,ij->i", e_perp, n) > 0
-    return np.where(planar, left, above)
+    elbow_up: np.ndarray = np.where(planar, left, above)
+    return elbow_up

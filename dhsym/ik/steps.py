@@ -130,7 +130,7 @@ def _reduce(expr: sp.Expr, revolute: Sequence[sp.Symbol]) -> sp.Expr:
         s, c = sp.sin(x), sp.cos(x)
 
         def is_power(t: sp.Expr, s: sp.Expr = s) -> bool:
-            return t.is_Pow and t.base == s and t.exp.is_Integer and t.exp >= 2
+            return bool(t.is_Pow and t.base == s and t.exp.is_Integer and t.exp >= 2)
 
         def lower(t: sp.Pow, s: sp.Expr = s, c: sp.Expr = c) -> sp.Expr:
             k = int(t.exp)
@@ -145,7 +145,7 @@ def _poly_coefficients(e: sp.Expr, d: sp.Symbol) -> list[sp.Expr] | None:
     poly = sp.Poly(e, d)
     if poly.degree() > 2 or poly.degree() < 1:
         return None
-    coeffs = poly.all_coeffs()
+    coeffs: list[sp.Expr] = poly.all_coeffs()
     if any(d in c.free_symbols for c in coeffs):
         return None
     return coeffs

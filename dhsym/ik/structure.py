@@ -115,7 +115,8 @@ def _meet(p: np.ndarray, u: np.ndarray, q: np.ndarray, v: np.ndarray) -> np.ndar
     # p + s u = q + t v, solved in the least-squares sense
     A = np.stack([u, -v], axis=1)
     s, _ = np.linalg.lstsq(A, q - p, rcond=None)[0]
-    return p + s * u
+    point: np.ndarray = p + s * u
+    return point
 
 
 def classify(robot: KinematicChain, values: object = None) -> Structure:

@@ -345,7 +345,8 @@ def euler_symbols(euler: str = "zyz") -> tuple[sp.Symbol, sp.Symbol, sp.Symbol]:
     (phi, theta, psi)
     """
     _euler_axes(euler)
-    return sp.symbols("phi theta psi", real=True)
+    angles: tuple[sp.Symbol, sp.Symbol, sp.Symbol] = sp.symbols("phi theta psi", real=True)
+    return angles
 
 
 def rate_matrix(euler: str = "zyz") -> Matrix:
@@ -477,7 +478,7 @@ def analytic_jacobian_function(
         cells = inverse(ang[..., 0], ang[..., 1], ang[..., 2])
         shape = ang.shape[:-1]
         Binv = np.stack([np.broadcast_to(np.asarray(c, float), shape) for c in cells], -1)
-        out = J.copy()
+        out: np.ndarray = J.copy()
         out[..., 3:, :] = Binv.reshape(*shape, 3, 3) @ J[..., 3:, :]
         return out
 

@@ -197,7 +197,7 @@ def as_basic(value: object) -> sp.Basic:
 
 def compile_exprs(
     exprs: Sequence[sp.Basic], variables: Sequence[sp.Symbol], *, floats: bool = False
-) -> Callable[..., list]:
+) -> Callable[..., list[Any]]:
     """Compile ``exprs`` once into ``f(*variables) -> list`` (numpy arrays, or plain floats).
 
     Constants are folded to floats first (:func:`float_constants`); symbols
@@ -221,7 +221,10 @@ def compile_exprs(
     # numpy's namespace as a module: modules="numpy" would run `from numpy import *`, which
     # imports all of numpy's lazy submodules (as long as importing numpy itself)
     module = "math" if floats else [np]
-    return sp.lambdify(list(variables), folded, modules=module, cse=True)
+    compiled: Callable[..., list[Any]] = sp.lambdify(
+        list(variables), folded, modules=module, cse=True
+    )
+    return compiled
 
 
 class PoseFunction:
@@ -234,7 +237,9 @@ class PoseFunction:
 
     __slots__ = ("_batch", "_single", "n")
 
-    def __init__(self, single: Callable[..., list], batch: Callable[..., list], n: int) -> None:
+    def __init__(
+        self, single: Callable[..., list[Any]], batch: Callable[..., list[Any]], n: int
+    ) -> None:
         self._single = single
         self._batch = batch
         self.n = n
@@ -468,7 +473,7 @@ def word_product(
     size: int,
     *,
     prefixes: bool = False,
-    memo: dict | None = None,
+    memo: dict[object, np.ndarray] | None = None,
 ) -> np.ndarray:
     """The product of a word of elementary transforms at ``size`` points: ``(size, 4, 4)``.
 
@@ -521,7 +526,10 @@ _CONSTANT = object()  # the walker's mark of a subtree without symbols
 
 
 def evaluate(
-    expr: sp.Basic, env: Mapping[sp.Basic, np.ndarray], size: int, memo: dict | None = None
+    expr: sp.Basic,
+    env: Mapping[sp.Basic, np.ndarray],
+    size: int,
+    memo: dict[object, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Values of ``expr`` at ``size`` points (``(size,)``); ``env`` maps each symbol to its values.
 
@@ -547,10 +555,11 @@ def evaluate(
                 out = _constant(expr, memo)
     except (OverflowError, ZeroDivisionError) as err:  # e.g. x**(10**400)
         raise EvaluationError(f"cannot evaluate numerically ({type(err).__name__})") from None
-    return np.broadcast_to(np.asarray(out, dtype=float), (size,)).copy()
+    values: np.ndarray = np.broadcast_to(np.asarray(out, dtype=float), (size,)).copy()
+    return values
 
 
-def _constant(e: sp.Basic, memo: dict) -> np.ndarray:
+def _constant(e: sp.Basic, memo: dict[object, np.ndarray]) -> np.ndarray:
     key = ("constant", e)
     hit = memo.get(key)
     if hit is None:
@@ -561,7 +570,7 @@ def _constant(e: sp.Basic, memo: dict) -> np.ndarray:
     return hit
 
 
-def _walk(e: sp.Basic, env: Mapping, memo: dict) -> Any:
+def _walk(e: sp.Basic, env: Mapping[sp.Basic, np.ndarray], memo: dict[object, np.ndarray]) -> Any:
     """Values of ``e`` at every point, or :data:`_CONSTANT` for a subtree without symbols.
 
     (``Any``: an ``np.ndarray`` or the ``_CONSTANT`` mark, told apart by ``is``.)
@@ -591,7 +600,8 @@ def _walk(e: sp.Basic, env: Mapping, memo: dict) -> Any:
     return val
 
 
-def _apply(e: sp.Basic, args: list) -> np.ndarray:
+def _apply(e: sp.Basic, args: list[np.ndarray]) -> np.ndarray:
+    val: np.ndarray
     if e.is_Add:
         val = args[0]
         for a in args[1:]:
@@ -603,9 +613,12 @@ def _apply(e: sp.Basic, args: list) -> np.ndarray:
             val = val * a
         return val
     if e.is_Pow:
-        return np.power(args[0], args[1])
+        val = np.power(args[0], args[1])
+        return val
     if type(e) in _UNARY:
-        return _UNARY[type(e)](args[0])
+        val = _UNARY[type(e)](args[0])
+        return val
     if isinstance(e, sp.atan2):
-        return np.arctan2(args[0], args[1])
+        val = np.arctan2(args[0], args[1])
+        return val
     raise EvaluationError(f"cannot evaluate {type(e).__name__} numerically")

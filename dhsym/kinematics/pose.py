@@ -106,6 +106,14 @@ class Pose(_Matrix):
 
     _op_priority = 10.02  # above Matrix (10.01): M * pose and pose * M come here
 
+    # the pose's own attributes, set in __new__ (declared: sympy's base class is untyped)
+    _plain: sp.ImmutableMatrix
+    _frm: int | str
+    _to: int | str
+    _notation: Notation
+    _symbol: str
+    _word: tuple[Elementary, ...] | None
+
     def __new__(
         cls,
         matrix: Iterable[Iterable[object]],
@@ -123,7 +131,7 @@ class Pose(_Matrix):
             plain = _Matrix([[as_basic(x) for x in row] for row in matrix])
         if plain.shape != (4, 4):
             raise ValueError(f"a pose is a 4×4 homogeneous transform, got shape {plain.shape}")
-        obj = Basic.__new__(cls, *plain.args)
+        obj: Pose = Basic.__new__(cls, *plain.args)
         obj._rows, obj._cols, obj._rep = 4, 4, plain._rep
         obj._plain = plain
         obj._frm, obj._to, obj._symbol = frm, to, symbol
@@ -143,7 +151,8 @@ class Pose(_Matrix):
     @property
     def func(self) -> type:
         """sympy rebuilds ``func(*args)``: a plain ``ImmutableMatrix``."""
-        return _Matrix
+        matrix_type: type = _Matrix
+        return matrix_type
 
     def __hash__(self) -> int:
         return hash(self._plain)
@@ -219,10 +228,14 @@ class Pose(_Matrix):
         """``T0_2`` style label for plain text."""
         return f"{self.symbol}{self.frm}_{self.to}"
 
-    def count_ops(self, visual: bool | None = None) -> int:
-        """``sympy.count_ops`` summed over the 16 entries (a size measure)."""
+    def count_ops(self, visual: bool | None = None) -> int | sp.Expr:
+        """``sympy.count_ops`` summed over the 16 entries (a size measure).
+
+        With ``visual`` the count is sympy's expression of the operations (``2*ADD + ...``).
+        """
         if visual:
-            return sp.count_ops(self._plain, visual=True)
+            ops: sp.Expr = sp.count_ops(self._plain, visual=True)
+            return ops
         return int(sum(sp.count_ops(e) for e in self._plain))
 
     def subs(self, *args: object, **kwargs: object) -> Pose:
@@ -327,11 +340,11 @@ class Pose(_Matrix):
         from sympy.printing.codeprinter import CodePrinter
 
         if isinstance(printer, CodePrinter):  # code must evaluate: cos(theta1), not C1
-            return printer._print(self._plain)
+            return str(printer._print(self._plain))
         return self.text()
 
     def _sympyrepr(self, printer: Any) -> str:  # a sympy printer (untyped)
-        return printer._print(self._plain)
+        return str(printer._print(self._plain))
 
     def _pretty(self, printer: Any) -> object:  # a sympy printer (untyped)
         """``sympy.pprint``: the matrix with the abbreviations as symbols (C₁₂, S₁)."""

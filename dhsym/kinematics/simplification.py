@@ -61,7 +61,7 @@ _FLOAT_TOL = 1e-12
 
 def _is_zero_turn(e: Elementary) -> bool:
     if e.kind == "T":
-        return e.value == 0
+        return bool(e.value == 0)
     v = e.value
     return v == 0 or (not v.free_symbols and (v / (2 * sp.pi)).is_integer is True)
 

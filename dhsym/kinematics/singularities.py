@@ -167,7 +167,7 @@ def _divides(factor: sp.Expr, expr: sp.Expr) -> bool:
     if not f.free_symbols:
         return False
     _, rem = sp.div(e, f)
-    return sp.expand(rem) == 0
+    return bool(sp.expand(rem) == 0)
 
 
 class SingularityKind(str, Enum):
