@@ -20,6 +20,11 @@ failed twice.  So a job costs only its own result, never another job's:
 All yield ``(index, outcome)`` as jobs finish, where the outcome is the job's
 return value or a :class:`JobFailure` (``timeout`` or ``error``).
 
+A job function may keep what its jobs share for the life of its worker: given
+``state`` (a picklable factory, e.g. a class), each worker calls it once and runs
+``fn(job, that_state)`` for every job it gets — the grader's prepared keys
+(:class:`~dhsym.checking.checker.PreparedKeys`), built once per child process.
+
 Run as a script (``python …/_runner.py MODULE…``, without importing the package)
 this module is the child of a sandbox: it imports the modules, then answers framed
 pickled jobs on its standard input (the parent is the only writer: nothing a
@@ -94,11 +99,14 @@ class Progress:
             self.stream.flush()
 
 
-def run_serial(fn: Callable, jobs: Sequence) -> Iterator[tuple[int, object]]:
+def run_serial(
+    fn: Callable, jobs: Sequence, state: Callable[[], object] | None = None
+) -> Iterator[tuple[int, object]]:
     """Run the jobs one after another in this process (time limits from inside the job)."""
+    shared = state() if state is not None else None
     for k, job in enumerate(jobs):
         try:
-            yield k, fn(job)
+            yield k, (fn(job) if state is None else fn(job, shared))
         except Exception as err:  # noqa: BLE001 - one bad job never stops the batch
             yield k, JobFailure("error", f"{type(err).__name__}: {err}")
 
@@ -210,9 +218,16 @@ class Sandbox:
         except subprocess.TimeoutExpired:
             pass
 
-    def call(self, fn: Callable, job: object, deadline: float) -> object:
-        """``fn(job)`` in the child, or a :class:`JobFailure` (timeout: the child is killed)."""
-        payload = pickle.dumps((fn, job), protocol=pickle.HIGHEST_PROTOCOL)
+    def call(
+        self,
+        fn: Callable,
+        job: object,
+        deadline: float,
+        state: Callable[[], object] | None = None,
+    ) -> object:
+        """``fn(job)`` in the child (``fn(job, s)`` with the child's ``s = state()``), or a
+        :class:`JobFailure` (timeout: the child is killed)."""
+        payload = pickle.dumps((fn, [job], state), protocol=pickle.HIGHEST_PROTOCOL)
         died = ""
         for _attempt in range(2):  # a job whose process dies gets one more, fresh process
             try:
@@ -243,7 +258,11 @@ class Sandbox:
         return JobFailure("error", died)
 
     def call_many(
-        self, fn: Callable, jobs: Sequence, deadline: float
+        self,
+        fn: Callable,
+        jobs: Sequence,
+        deadline: float,
+        state: Callable[[], object] | None = None,
     ) -> Iterator[tuple[int, object]]:
         """``(k, fn(jobs[k]))`` for every job, in order, as each finishes (or a
         :class:`JobFailure`): one message carries the whole batch to the child, and
@@ -258,10 +277,10 @@ class Sandbox:
         while start < len(jobs):
             rest = list(jobs[start:])
             try:
-                payload = pickle.dumps((fn, rest, True), protocol=pickle.HIGHEST_PROTOCOL)
+                payload = pickle.dumps((fn, rest, state), protocol=pickle.HIGHEST_PROTOCOL)
             except Exception:  # noqa: BLE001 - a job that cannot be sent: one by one
                 for k in range(start, len(jobs)):
-                    yield k, self.call(fn, jobs[k], deadline)
+                    yield k, self.call(fn, jobs[k], deadline, state)
                 return
             try:
                 if self.proc is None or self.proc.poll() is not None:
@@ -274,7 +293,7 @@ class Sandbox:
                 return
             except OSError:
                 self.close()  # the child died before it read the batch: a fresh one
-                yield start, self.call(fn, jobs[start], deadline)
+                yield start, self.call(fn, jobs[start], deadline, state)
                 start += 1
                 continue
             fd = self.proc.stdout.fileno()
@@ -290,7 +309,7 @@ class Sandbox:
                     break
                 except (_Gone, OSError, EOFError, pickle.UnpicklingError):
                     self.close()  # it died in this job: the job gets one fresh process alone
-                    yield start, self.call(fn, jobs[start], deadline)
+                    yield start, self.call(fn, jobs[start], deadline, state)
                     start += 1
                     break
                 yield start, (value if status == "ok" else JobFailure("error", value))
@@ -312,7 +331,11 @@ atexit.register(_close_all)
 
 
 def run_in_sandbox(
-    fn: Callable, job: object, deadline: float, preload: Sequence[str] = _PRELOAD
+    fn: Callable,
+    job: object,
+    deadline: float,
+    preload: Sequence[str] = _PRELOAD,
+    state: Callable[[], object] | None = None,
 ) -> object:
     """``fn(job)`` in this thread's own :class:`Sandbox` (a Dask task runs this)."""
     boxes = getattr(_LOCAL, "boxes", None)
@@ -323,7 +346,7 @@ def run_in_sandbox(
         box = boxes[tuple(preload)] = Sandbox(preload)
         with _ALL_LOCK:
             _ALL.append(box)
-    return box.call(fn, job, deadline)
+    return box.call(fn, job, deadline, state)
 
 
 def run_pool(
@@ -333,6 +356,7 @@ def run_pool(
     deadline: float,
     preload: Sequence[str] = _PRELOAD,
     batch: int | None = None,
+    state: Callable[[], object] | None = None,
 ) -> Iterator[tuple[int, object]]:
     """Run the jobs in ``workers`` sandboxes; each job gets ``deadline`` seconds of work.
 
@@ -357,7 +381,7 @@ def run_pool(
                     if not pending:
                         return
                     ks = pending.popleft()
-                for j, outcome in box.call_many(fn, [jobs[k] for k in ks], deadline):
+                for j, outcome in box.call_many(fn, [jobs[k] for k in ks], deadline, state):
                     results.put((ks[j], outcome))
                     if stop.is_set():
                         return
@@ -443,6 +467,7 @@ def run_dask(
     address: object,
     deadline: float,
     preload: Sequence[str] = _PRELOAD,
+    state: Callable[[], object] | None = None,
 ) -> Iterator[tuple[int, object]]:
     """Run the jobs on a Dask cluster (``address`` or a ``Client``), each in a sandbox.
 
@@ -469,7 +494,9 @@ def run_dask(
         while pending or running:
             while pending and len(running) < slots:
                 k = pending.popleft()
-                fut = client.submit(run_in_sandbox, fn, jobs[k], deadline, preload, pure=False)
+                fut = client.submit(
+                    run_in_sandbox, fn, jobs[k], deadline, preload, state, pure=False
+                )
                 running[fut] = (k, time.monotonic())
             done = [f for f in running if f.done()]
             if not done:
@@ -500,25 +527,29 @@ def _serve(preload: Sequence[str]) -> None:
     for name in preload:
         importlib.import_module(name)
     _write_frame(out, pickle.dumps(("ready", None)))
+    states: dict[object, object] = {}  # this worker's state per job function's factory
     while True:
         head = inp.read(_HEADER.size)
         if len(head) < _HEADER.size:
             return
         (n,) = _HEADER.unpack(head)
         message = pickle.loads(inp.read(n))  # noqa: S301 - written by the parent only
-        if len(message) == 3:  # a batch (Sandbox.call_many): one reply per job, in order
-            fn, batch, _ = message
-        else:
-            fn, job = message
-            batch = [job]
+        fn, batch, factory = message  # a batch: one reply per job, in order
         for job in batch:
-            _write_frame(out, _run_one(fn, job))
+            _write_frame(out, _run_one(fn, job, factory, states))
 
 
-def _run_one(fn: Callable, job: object) -> bytes:
+def _run_one(
+    fn: Callable, job: object, factory: Callable[[], object] | None, states: dict
+) -> bytes:
     """The reply to one job: ``("ok", result)`` or ``("error", text)``, pickled."""
     try:
-        reply = ("ok", fn(job))
+        if factory is None:
+            reply = ("ok", fn(job))
+        else:
+            if factory not in states:
+                states[factory] = factory()
+            reply = ("ok", fn(job, states[factory]))
     except (KeyboardInterrupt, SystemExit):
         raise
     except BaseException as err:  # noqa: BLE001 - the job's failure is its result

@@ -65,6 +65,7 @@ from dhsym.errors import DHError
 from ._limits import AnswerLimits
 from ._report import write_atomic
 from ._submissions import Submission, _from_file, _from_folder
+from .checker import PreparedKeys
 from .feedback import QuestionFeedback, render_question_text
 from .grading import Assignment, check_submission
 
@@ -480,11 +481,11 @@ def run_autograder(paths: AutograderPaths | None = None) -> dict:
     out = p.results / "results.json"
     try:
         config = json.loads((p.source / CONFIG_NAME).read_text(encoding="utf-8"))
-        assignment = Assignment.load(p.source / str(config["assignment"]))
+        keys = PreparedKeys()  # each key prepared once, here, before any answer's clock
+        assignment = Assignment.load(p.source / str(config["assignment"]), keys)
         limits = AnswerLimits(seconds=assignment.seconds)
         sub = read_submission(p.submission, assignment, limits, p.metadata)
-        # the keys were prepared by Assignment.load, before the first question's clock
-        feedback = check_submission(assignment, sub, limits, on_timeout=_NO_RERUN)
+        feedback = check_submission(assignment, sub, limits, on_timeout=_NO_RERUN, keys=keys)
         data = results_json(
             assignment,
             feedback,
