@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -72,7 +72,7 @@ from .rounding import DEFAULT_ROUNDING, Rounding, rounding_accepts
 from .table_match import compare_tables, symbolic_values
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
-__all__ = ["Key", "PreparedKey", "check_answer", "prepare", "table_cells"]
+__all__ = ["Key", "PreparedKey", "PreparedKeys", "check_answer", "prepare", "table_cells"]
 
 
 @dataclass(frozen=True)
@@ -97,11 +97,13 @@ class Key:
         *,
         tool_free: bool = False,
         rounding: object = None,
+        keys: PreparedKeys | None = None,
     ) -> Key:
         """A key from a built-in robot name, a table file or a table.
 
         ``rounding``: anything :meth:`Rounding.parse` reads (``"digits=4"``, ``"abs=1e-3"``,
         ``{"rel": 0.001}``, ``"off"``); None is the default (3 significant digits).
+        The key is prepared once to check it (into ``keys`` when given, for later use).
         """
         if not isinstance(ref, (str, Path, DHTable)):
             raise DHError(
@@ -112,27 +114,58 @@ class Key:
         q = question if isinstance(question, Question) else Question.parse(question, table.n)
         name = table.name or (Path(ref).stem if not isinstance(ref, DHTable) else "")
         key = cls(table, q, name, tool_free, Rounding.parse(rounding))
-        prepare(key)  # a key that cannot be checked against (too large, wrong values) stops here
+        # a key that cannot be checked against (too large, wrong values) stops here
+        keys.get(key) if keys is not None else prepare(key)
         return key
+
+
+@dataclass(frozen=True, eq=False)
+class DiagnosisSample:
+    """The points the mistakes of wrong answers are recomputed at (fixed per key, so the
+    mistakes' variants are computed once per worker) and the key's values there.
+
+    Only the diagnosis uses them: every verdict draws its own fresh points.
+    """
+
+    sample: Sample
+    key_values: np.ndarray
 
 
 @dataclass(eq=False)
 class PreparedKey:
-    """What checking many answers to one key shares: the robot, names, caches.
+    """What checking many answers to one key shares: the robot, names, derived values.
 
-    ``samples`` and ``key_values`` serve only the diagnosis of wrong answers (the
-    mistakes' variants are cached per key); every verdict draws its own points.
+    Built once per worker (:class:`PreparedKeys`) before any answer's clock starts;
+    every field is typed.  ``symbolic``/``valued`` serve only the diagnosis of wrong
+    answers (:class:`DiagnosisSample`); every verdict draws its own points.
+    ``variant_values`` is the mistake catalogue's memo: a mistake's values at a
+    diagnosis sample, by (mistake, sample origin, …), computed on the first wrong answer
+    that needs them.
     """
 
     key: Key
     robot: Robot
     names: NameContext
     expected: sp.ImmutableMatrix | None = None
+    #: ``expected`` with the table's numbers for its lengths (the exact proofs of answers
+    #: that use the numbers)
+    expected_valued: sp.ImmutableMatrix | None = None
     expected_text: tuple[tuple[str, str], ...] = ()
-    samples: dict[str, Sample] = field(default_factory=dict)
-    key_values: dict[str, np.ndarray] = field(default_factory=dict)
-    cache: dict = field(default_factory=dict)
+    symbolic: DiagnosisSample | None = None
+    valued: DiagnosisSample | None = None
     symbols: frozenset[sp.Symbol] = frozenset()
+    #: a determinant key's singularities (a Jacobian key's, once a diagnosis needs them)
+    singularities: Any = None
+    #: a dynamics key's part under each catalogued mistake: (kind, matrix, detail)
+    dynamics_variants: tuple[tuple[str, sp.ImmutableMatrix, str], ...] = ()
+    #: an inverse-kinematics key: its solution, the question's pose (``ik@…``), the
+    #: branches' names there or in general, and the random poses of the diagnosis
+    ik: Any = None
+    ik_pose: Any = None
+    ik_pose_names: tuple = ()
+    ik_names: tuple = ()
+    ik_samples: dict[bool, Any] = field(default_factory=dict)
+    variant_values: dict[tuple, Any] = field(default_factory=dict)
 
     def sample_for(self, answer: sp.Basic) -> str:
         """``valued`` (the table's numbers for its lengths) when the answer uses none of
@@ -142,10 +175,57 @@ class PreparedKey:
             return "valued"
         return "symbolic"
 
+    def diagnosis(self, answer: sp.Basic) -> DiagnosisSample:
+        """The diagnosis sample for ``answer`` (:meth:`sample_for`)."""
+        out = self.valued if self.sample_for(answer) == "valued" else self.symbolic
+        assert out is not None, "a matrix key has its diagnosis samples"
+        return out
 
-@lru_cache(maxsize=64)
+    def singular(self) -> Any:
+        """The key's :func:`~dhsym.kinematics.singularities.singularities`, derived once."""
+        if self.singularities is None:
+            from dhsym.kinematics.singularities import singularities
+
+            self.singularities = singularities(self.robot)
+        return self.singularities
+
+
+class PreparedKeys:
+    """A worker's prepared keys: each :class:`Key` (a frozen value) prepared once, on
+    first use, and kept as long as this map (a grading worker's life).
+
+    >>> keys = PreparedKeys()
+    >>> k = Key.load("planar2r", "T0_2")
+    >>> keys.get(k) is keys.get(Key.load("planar2r", "T0_2")), len(keys)
+    (True, 1)
+    """
+
+    def __init__(self) -> None:
+        self._prepared: dict[Key, PreparedKey] = {}
+
+    def __len__(self) -> int:
+        return len(self._prepared)
+
+    def get(self, key: Key) -> PreparedKey:
+        """``key`` prepared (:func:`prepare`), the first time only."""
+        pk = self._prepared.get(key)
+        if pk is None:
+            pk = self._prepared[key] = prepare(key)
+        return pk
+
+
+def _diagnosis_samples(pk: PreparedKey, syms: set[sp.Symbol]) -> None:
+    assert pk.expected is not None
+    for name, fixed in (("symbolic", None), ("valued", pk.key.table.value_map)):
+        sample = Sample.random(syms, fixed=fixed)
+        setattr(pk, name, DiagnosisSample(sample, values(pk.expected, sample)))
+    value_map = pk.key.table.value_map
+    pk.expected_valued = pk.expected.subs(value_map) if value_map else pk.expected
+
+
 def prepare(key: Key) -> PreparedKey:
-    """Prepare a key once per process (memoised: keys are frozen values)."""
+    """Prepare a key: its robot, names, expected answer and what the diagnosis of wrong
+    answers shares.  Not memoised: a worker keeps its keys in :class:`PreparedKeys`."""
     table = key.table
     robot = Robot(table)
     names = NameContext.from_table(table)
@@ -165,10 +245,7 @@ def prepare(key: Key) -> PreparedKey:
     pk.expected_text = tuple((nota.text(e), nota.latex(e)) for e in pk.expected)
     syms = set(table.variables) | set(table.constants)
     pk.symbols = frozenset(syms)
-    pk.samples["symbolic"] = Sample.random(syms)
-    pk.samples["valued"] = Sample.random(syms, fixed=table.value_map)
-    for name, s in pk.samples.items():
-        pk.key_values[name] = values(pk.expected, s)
+    _diagnosis_samples(pk, syms)
     return pk
 
 
@@ -186,15 +263,12 @@ def _prepare_dynamics(pk: PreparedKey) -> PreparedKey:
     else:
         eom = robot.dynamics()
         pk.expected = part_matrix(eom, q)
-        pk.cache["dynamics variants"] = variant_matrices(robot, eom, q)
+        pk.dynamics_variants = tuple(variant_matrices(robot, eom, q))
     nota = robot.notation
     pk.expected_text = tuple((nota.text(e), nota.latex(e)) for e in pk.expected)
     syms = set(table.variables) | set(table.constants) | set(extra)
     pk.symbols = frozenset(syms)
-    pk.samples["symbolic"] = Sample.random(syms)
-    pk.samples["valued"] = Sample.random(syms, fixed=table.value_map)
-    for name, s in pk.samples.items():
-        pk.key_values[name] = values(pk.expected, s)
+    _diagnosis_samples(pk, syms)
     return pk
 
 
@@ -211,7 +285,7 @@ def _expected(pk: PreparedKey) -> sp.ImmutableMatrix:
         from dhsym.kinematics.singularities import singularities
 
         s = singularities(robot)
-        pk.cache["singularities"] = s
+        pk.singularities = s
         return sp.ImmutableMatrix([[s.determinant]])
     return robot.transform(q.frm, q.to).matrix
 
@@ -255,7 +329,11 @@ def _unreadable(key: Key, reason: str) -> CheckResult:
 
 
 def check_answer(
-    key: Key, answer: str | bytes, *, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+    key: Key,
+    answer: str | bytes,
+    *,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    keys: PreparedKeys | None = None,
 ) -> CheckResult:
     """Check one answer (text or bytes, untrusted) against ``key``.
 
@@ -264,12 +342,15 @@ def check_answer(
     its :class:`~dhsym.errors.DHError`; an exception of any other kind is a bug of dhsym
     and is raised too, never disguised as an unreadable answer.
     The whole check runs under ``limits.seconds`` (where a time limit is possible).
+    ``keys`` is the caller's map of prepared keys (a grading worker's): without it the
+    key is prepared for this one check.
     """
     if not isinstance(key, Key):
         raise DHError(
             f"check_answer: expected a Key (Key.load(robot, question)), got {type(key).__name__}"
         )
-    pk = prepare(key)  # a fault of the key raises here: it is never the answer's
+    # a fault of the key raises here: it is never the answer's
+    pk = keys.get(key) if keys is not None else prepare(key)
     try:
         with time_limit(limits.seconds):
             if key.question.kind == "table":
@@ -307,8 +388,13 @@ def _compare(
     60-digit numbers.  Not equal → right up to rounding if the key's :class:`Rounding`
     accepts its decimals (``rounding``).
     """
-    q, nota, expected = pk.key.question, pk.robot.notation, pk.expected
-    assert expected is not None
+    q, nota, expected, expected_valued = (
+        pk.key.question,
+        pk.robot.notation,
+        pk.expected,
+        pk.expected_valued,
+    )
+    assert expected is not None and expected_valued is not None
     unknown = sorted(ans.free_symbols - pk.names.symbols, key=sp.default_sort_key)
     valued = pk.sample_for(ans) == "valued"
     value_map = pk.key.table.value_map
@@ -323,7 +409,7 @@ def _compare(
             k = i * expected.cols + j
             proof, note = "", ""
             check_time()  # the answer's deadline (see reading.limits.time_limit)
-            target = e.subs(value_map) if valued else e
+            target = expected_valued[i, j] if valued else e
             if near[i, j]:
                 exact = prove_entry(a, target, limits, agreed=True) if not unknown else None
                 if exact is None or (exact is False and agree_precisely(a, target)):
@@ -372,9 +458,9 @@ def _rounded(
 def _diagnosis_values(pk: PreparedKey, ans: sp.ImmutableMatrix, unknown: list) -> tuple:
     """The key's diagnosis sample (fixed per key, so the mistakes' variants are cached),
     extended with the unknown symbols, the key's and the answer's values there."""
-    which = pk.sample_for(ans)
-    sample = pk.samples[which].extended(unknown)
-    return sample, pk.key_values[which], values(ans, sample)
+    d = pk.diagnosis(ans)
+    sample = d.sample.extended(unknown)
+    return sample, d.key_values, values(ans, sample)
 
 
 def _pos(k: int, q: Question, cols: int = 4) -> str:
@@ -531,8 +617,9 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
         av,
         tuple(wrong),
         nota,
-        pk.cache,
+        pk.variant_values,
         pk.robot,
+        pk,
     )
     kinds = {
         "jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()),

@@ -122,7 +122,7 @@ def prepare_ik(pk: PreparedKey) -> PreparedKey:
             f"{robot.name or 'this arm'} is a general 6R: its inverse kinematics is an "
             "eigenproblem, not closed-form steps to grade"
         )
-    pk.cache["ik"] = ik
+    pk.ik = ik
     table = pk.key.table
     if q.pose is not None:
         if len(q.pose) != len(robot.variables):
@@ -136,15 +136,15 @@ def prepare_ik(pk: PreparedKey) -> PreparedKey:
                 f"question {q.spec!r} needs numbers for {', '.join(missing)} (table values)"
             )
         pose = pose_sample(robot, q=np.array([q.pose]), values=table.value_map)
-        pk.cache["ik pose"] = pose
+        pk.ik_pose = pose
         # the numeric solver and the key's branches at the pose are built here, once per
         # worker, outside every student's time limit (the first build takes seconds)
         at_pose = key_values(ik, pose.env, pose.size)
-        pk.cache["ik pose names"] = tuple(_numeric_names(robot, ik, pose, at_pose))
+        pk.ik_pose_names = tuple(_numeric_names(robot, ik, pose, at_pose))
     else:  # the key's branches compiled once, before the first answer's clock starts
         sample = pose_sample(robot, values=table.value_map or None)
         key_values(ik, sample.env, sample.size)
-        pk.cache["ik names"] = _reference_names(robot, ik)
+        pk.ik_names = _reference_names(robot, ik)
     pk.symbols = frozenset(set(table.constants) | set(pose_symbols()[:3, :]))
     return pk
 
@@ -397,8 +397,8 @@ def _numeric_names(
 def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
     """The question's pose; or random poses, with the table's lengths when the answer writes
     none of them as symbols (it used their numbers)."""
-    if "ik pose" in pk.cache:
-        return pk.cache["ik pose"]
+    if pk.ik_pose is not None:
+        return pk.ik_pose
     table = pk.key.table
     valued = set(table.constants) <= set(table.value_map) and not (
         ans.symbols & set(table.constants)
@@ -406,10 +406,9 @@ def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
     values = table.value_map if valued else None
     if fresh:
         return pose_sample(pk.robot, values=values)
-    key = ("ik sample", valued)
-    if key not in pk.cache:
-        pk.cache[key] = pose_sample(pk.robot, values=values)
-    return pk.cache[key]
+    if valued not in pk.ik_samples:
+        pk.ik_samples[valued] = pose_sample(pk.robot, values=values)
+    return pk.ik_samples[valued]
 
 
 def _entries(
@@ -463,7 +462,7 @@ def _entries(
 def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
     """Check an inverse-kinematics answer against the key (see the module text)."""
     key, q = pk.key, pk.key.question
-    ik = pk.cache["ik"]
+    ik = pk.ik
     robot = pk.robot
     nota = robot.notation
     variables = list(robot.variables)
@@ -509,7 +508,7 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
     m = _match(key_d, answers, tols, dsample, robot, position)
     wrong = m.wrong
     valid_k = [k for k in range(len(key_d)) if not np.isnan(key_d[k]).any()]
-    names = pk.cache["ik pose names"] if q.pose is not None else pk.cache["ik names"]
+    names = pk.ik_pose_names if q.pose is not None else pk.ik_names
     case = IKCase(
         ik,
         dsample,
@@ -521,7 +520,7 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
         tols.max(axis=0) if len(tols) else np.full(len(variables), ATOL),
         q.every,
         nota,
-        pk.cache,
+        pk.variant_values,
     )
     found = []
     for mistake in IK_MISTAKES:
@@ -651,9 +650,9 @@ def _correct(
     q = pk.key.question
     ks = sorted({k for k in matched.values() if k is not None})
     if q.pose is not None:
-        names = list(pk.cache["ik pose names"])  # set by prepare_ik
+        names = list(pk.ik_pose_names)  # set by prepare_ik
     else:
-        names = list(pk.cache["ik names"])  # set by prepare_ik
+        names = list(pk.ik_names)  # set by prepare_ik
     if q.every:
         message = f"Right: every solution is given ({len(ks)} branches)."
     elif len(ks) == 1:
