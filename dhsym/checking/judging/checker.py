@@ -18,7 +18,6 @@ Examples
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -44,12 +43,13 @@ from ..mistakes.registry import (
     diagnose_table,
 )
 from ..reading.answer_names import NameContext
-from ..reading.answers import (
-    cell_literals,
-    expression_cell,
-    matrix_cells,
-    parse_cell,
-    read_answer_table,
+from ..reading.answer_value import (
+    AnswerForm,
+    IKAnswer,
+    MatrixAnswer,
+    ReadCell,
+    TableAnswer,
+    read_answer_value,
 )
 from ..reading.limits import (
     DEFAULT_ANSWER_LIMITS,
@@ -174,6 +174,22 @@ class PreparedKey:
         if valued and not (answer.free_symbols & valued):
             return "valued"
         return "symbolic"
+
+    def form(self) -> AnswerForm:
+        """What reading an answer to this key needs: the question, the names, the key's
+        shape, the joints whose Jacobian column may be missing, the convention, the joint
+        variables and the lengths."""
+        table = self.key.table
+        joints = [r.joint for r in table.rows if r.variable is not None]
+        return AnswerForm(
+            self.key.question,
+            self.names,
+            self.expected.shape if self.expected is not None else (4, 4),
+            tuple(k for k, j in enumerate(joints) if j is JointType.PRISMATIC),
+            table.convention,
+            tuple(self.robot.variables),
+            frozenset(table.constants),
+        )
 
     def diagnosis(self, answer: sp.Basic) -> DiagnosisSample:
         """The diagnosis sample for ``answer`` (:meth:`sample_for`)."""
@@ -353,13 +369,14 @@ def check_answer(
     pk = keys.get(key) if keys is not None else prepare(key)
     try:
         with time_limit(limits.seconds):
-            if key.question.kind == "table":
-                return _check_table(pk, answer, limits)
-            if key.question.kind == "ik":
+            read = read_answer_value(pk.form(), answer, limits)  # the one reading
+            if isinstance(read, TableAnswer):
+                return _check_table(pk, read)
+            if isinstance(read, IKAnswer):
                 from .ik_check import check_ik
 
-                return check_ik(pk, answer, limits)
-            return _check_matrix(pk, answer, limits)
+                return check_ik(pk, read)
+            return _check_matrix(pk, read, limits)
     except CheckTimeout as err:
         return _unreadable(key, str(err))
     except DHError as err:
@@ -375,11 +392,8 @@ def _shown(cell: str) -> str:
     return cell if len(cell) <= 200 else cell[:199] + "…"
 
 
-_DECIMAL = re.compile(r"[0-9]\.|\.[0-9]|[0-9][eE]")
-
-
 def _compare(
-    pk: PreparedKey, ans: sp.ImmutableMatrix, cells: list[str], limits: AnswerLimits
+    pk: PreparedKey, ans: sp.ImmutableMatrix, cells: tuple[ReadCell, ...], limits: AnswerLimits
 ) -> tuple:
     """Entry results, wrong positions and the unknown symbols, at fresh random points.
 
@@ -424,14 +438,14 @@ def _compare(
                     proof = "exact"
                 elif agree_precisely(a, target):
                     proof = "numeric"
-            if not proof and _DECIMAL.search(cells[k]):
-                note = _rounded(pk, cells[k], sample, kv[:, i, j], limits)
+            if not proof and cells[k].template is not None:
+                note = _rounded(pk, cells[k], sample, kv[:, i, j])
                 proof = "rounding" if note else ""
             if not proof:
                 wrong.append((i, j))
             where = (q.entry[0] + 1, q.entry[1] + 1) if q.entry else (i + 1, j + 1)
             e_text, e_latex = pk.expected_text[k]
-            raw = cells[k]
+            raw = cells[k].text
             if proof or len(raw) > 160:  # right, or long: what the student wrote
                 a_text, a_latex = _shown(raw), ""
             else:  # wrong: the student's entry in the key's notation
@@ -442,16 +456,12 @@ def _compare(
     return entries, wrong, unknown
 
 
-def _rounded(
-    pk: PreparedKey, cell: str, sample: Sample, key: np.ndarray, limits: AnswerLimits
-) -> str:
-    """How the cell is right up to rounding under the key's rule, or ``""``."""
-    try:
-        template, literals = cell_literals(cell, pk.names, limits)
-    except DHError:
-        return ""
-    env = sample.extended(template.free_symbols - set(sample.symbols)).env
-    how = rounding_accepts(pk.key.rounding, template, literals, env, sample.size, key)
+def _rounded(pk: PreparedKey, cell: ReadCell, sample: Sample, key: np.ndarray) -> str:
+    """How the cell, written with decimals, is right up to rounding under the key's rule,
+    or ``""``."""
+    assert cell.template is not None
+    env = sample.extended(cell.template.free_symbols - set(sample.symbols)).env
+    how = rounding_accepts(pk.key.rounding, cell.template, cell.literals, env, sample.size, key)
     return how or ""
 
 
@@ -461,12 +471,6 @@ def _diagnosis_values(pk: PreparedKey, ans: sp.ImmutableMatrix, unknown: list) -
     d = pk.diagnosis(ans)
     sample = d.sample.extended(unknown)
     return sample, d.key_values, values(ans, sample)
-
-
-def _pos(k: int, q: Question, cols: int = 4) -> str:
-    if q.entry is not None or q.kind == "det" or q.index is not None:
-        return "the answer"
-    return f"entry ({k // cols + 1},{k % cols + 1})"
 
 
 def _index_renames(unknown: list[sp.Symbol], names: NameContext) -> dict[sp.Symbol, sp.Symbol]:
@@ -482,64 +486,28 @@ def _index_renames(unknown: list[sp.Symbol], names: NameContext) -> dict[sp.Symb
     return out
 
 
-def _answer_matrix(
-    pk: PreparedKey, answer: str | bytes, limits: AnswerLimits
-) -> tuple[sp.ImmutableMatrix, list[str], tuple[Diagnosis, ...]]:
-    """The answer as a matrix of the key's shape, its cells, and what its shape tells.
-
-    A Jacobian with one column too few gets a zero column where a prismatic joint's column
-    belongs (its diagnosis names the missing column)."""
-    key, q, expected = pk.key, pk.key.question, pk.expected
-    assert expected is not None
-    if q.entry is not None or q.kind == "det" or expected.shape == (1, 1):
-        cells = [expression_cell(answer, limits)]
-        parsed = [parse_cell(cells[0], pk.names, limits, "the answer")]
-        return sp.ImmutableMatrix(1, 1, parsed), cells, ()
-    if q.kind == "dynamics":
-        rows, cols = expected.shape
-        shapes = ((rows, cols), (cols, rows)) if cols == 1 else ((rows, cols),)
-        grid = matrix_cells(answer, limits, shapes)
-        cells = [c for row in grid for c in row]  # a row vector is read as the column
-        parsed = [
-            parse_cell(c, pk.names, limits, f"entry {k + 1}" if cols == 1 else _pos(k, q, cols))
-            for k, c in enumerate(cells)
-        ]
-        return sp.ImmutableMatrix(rows, cols, parsed), cells, ()
-    if q.kind != "jacobian":
-        grid = matrix_cells(answer, limits)
-        cells = [c for row in grid for c in row] + ["0", "0", "0", "1"] * (len(grid) == 3)
-        parsed = [parse_cell(c, pk.names, limits, _pos(k, q)) for k, c in enumerate(cells)]
-        return sp.ImmutableMatrix(4, 4, parsed), cells, ()
-    n = expected.cols
-    joints = [r.joint for r in key.table.rows if r.variable is not None]
-    prismatic = [k for k, j in enumerate(joints) if j is JointType.PRISMATIC]
-    shapes = ((6, n), (6, n - 1)) if prismatic else ((6, n),)
-    grid = matrix_cells(answer, limits, shapes)
-    cols = len(grid[0])
-    parsed = [
-        [parse_cell(c, pk.names, limits, f"entry ({i},{j})") for j, c in enumerate(row, 1)]
-        for i, row in enumerate(grid, 1)
-    ]
-    if cols == n:
-        return sp.ImmutableMatrix(parsed), [c for row in grid for c in row], ()
-    k = prismatic[0]  # one column short: the prismatic joint's column left out
-    for row, cells_row in zip(parsed, grid, strict=True):
-        row.insert(k, sp.Integer(0))
-        cells_row.insert(k, "0")
+def _shape_lead(pk: PreparedKey, answer: MatrixAnswer) -> tuple[Diagnosis, ...]:
+    """What the answer's shape tells: a Jacobian one column short left out the column of
+    a prismatic joint (the reader put zeros there)."""
+    k = answer.missing_column
+    if k is None:
+        return ()
+    n = answer.shape[1]
     var = pk.robot.variables[k]
-    lead = Diagnosis(
-        "missing_column",
-        "column of a prismatic joint missing",
-        f"The answer has {n - 1} columns; J has one per joint, {n}: column {k + 1} belongs to "
-        f"the prismatic joint {var}, whose column is its axis over zero (no rotation).",
-        tuple((i + 1, k + 1) for i in range(6)),
+    return (
+        Diagnosis(
+            "missing_column",
+            "column of a prismatic joint missing",
+            f"The answer has {n - 1} columns; J has one per joint, {n}: column {k + 1} belongs "
+            f"to the prismatic joint {var}, whose column is its axis over zero (no rotation).",
+            tuple((i + 1, k + 1) for i in range(6)),
+        ),
     )
-    return sp.ImmutableMatrix(parsed), [c for row in grid for c in row], (lead,)
 
 
-def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
+def _check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) -> CheckResult:
     key, q, nota = pk.key, pk.key.question, pk.robot.notation
-    ans, cells, shape_lead = _answer_matrix(pk, answer, limits)
+    ans, cells, shape_lead = answer.matrix, answer.cells, _shape_lead(pk, answer)
     entries, wrong, unknown = _compare(pk, ans, cells, limits)
     total = len(entries)
     lead: tuple[Diagnosis, ...] = ()
@@ -584,7 +552,7 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
         cols = ans.cols  # [ω; v]: the same Jacobian with the angular rows first
         swapped = sp.ImmutableMatrix.vstack(ans[3:, :], ans[:3, :])
         order = [*range(3 * cols, 6 * cols), *range(3 * cols)]
-        other = _compare(pk, swapped, [cells[k] for k in order], limits)
+        other = _compare(pk, swapped, tuple(cells[k] for k in order), limits)
         if not other[1]:
             return CheckResult(
                 q.spec,
@@ -653,16 +621,16 @@ def _one(q: Question) -> str:
     return "Your determinant" if q.kind == "det" else "The entry"
 
 
-def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
+def _check_table(pk: PreparedKey, answer: TableAnswer) -> CheckResult:
     key = pk.key
     table = key.table
-    ans = read_answer_table(answer, pk.names, table.convention, limits)
+    ans = answer.table
     values_ = table.value_map  # for the diagnosis; the verdict is symbolic first
     expected_table, answer_table = table_cells(table), table_cells(ans)
     note = (
         " (Your angles were read as degrees, from a value above 2π, a ° or deg mark"
         " or the file's angles: deg.)"
-        if ans.angles is AngleUnit.DEG and table.angles is not AngleUnit.DEG
+        if answer.degrees and table.angles is not AngleUnit.DEG
         else ""
     )
     judged = symbolic_values(table, ans)

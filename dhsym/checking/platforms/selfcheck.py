@@ -46,7 +46,7 @@ from dhsym.model.table import DHTable
 from ..grading.feedback import QuestionFeedback, render_question_text, render_template
 from ..judging.checker import Key, PreparedKeys, check_answer, table_cells
 from ..judging.verdict import CheckResult
-from ..reading.answers import expression_cell, matrix_cells, parse_cell, read_answer_table
+from ..reading.answer_value import IKAnswer, TableAnswer, read_answer_value
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
 
 __all__ = ["Reading", "SelfCheck", "assert_answer", "check", "check_widget", "read_answer"]
@@ -82,24 +82,19 @@ def read_answer(
     try:
         with time_limit(min(limits.seconds, 2.0)):
             pk = keys.get(key)
-            q = key.question
-            if q.kind == "table":
+            read = read_answer_value(pk.form(), answer, limits)
+            if isinstance(read, TableAnswer):
+                return Reading(table=table_cells(read.table))
+            nota = pk.robot.notation
+            if isinstance(read, IKAnswer):  # the statements as equations, in order read
+                statements = (*read.helpers, *(st for sol in read.solutions for st in sol.values()))
                 return Reading(
-                    table=table_cells(
-                        read_answer_table(answer, pk.names, key.table.convention, limits)
+                    latex=nota.latex(
+                        sp.Tuple(*(sp.Eq(st.target, st.expr, evaluate=False) for st in statements))
                     )
                 )
-            nota = pk.robot.notation
-            if q.kind == "entry":
-                return Reading(
-                    latex=nota.latex(parse_cell(expression_cell(answer, limits), pk.names, limits))
-                )
-            cells = matrix_cells(answer, limits)
-            rows = [
-                [parse_cell(c, pk.names, limits, f"entry ({i},{j})") for j, c in enumerate(r, 1)]
-                for i, r in enumerate(cells, 1)
-            ]
-            return Reading(latex=nota.latex(sp.Matrix(rows)))
+            value = read.matrix[0, 0] if read.shape == (1, 1) else read.matrix
+            return Reading(latex=nota.latex(value))
     except CheckTimeout as err:
         return Reading(error=str(err))
     except _READ_ERRORS as err:
