@@ -68,7 +68,7 @@ def bench_single(repeat: int) -> None:
     wrong = matrix_text(W, puma.notation)
     key = Key.load("puma560", "T0_6")
     try:  # the key prepared once, as a grading worker does (PreparedKeys)
-        from dhsym.checking.checker import PreparedKeys
+        from dhsym.checking import PreparedKeys
 
         keys = PreparedKeys()
 
