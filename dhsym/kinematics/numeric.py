@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
+from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -68,6 +69,7 @@ __all__ = [
     "compile_word",
     "elementary_stack",
     "evaluate",
+    "evaluate_many",
     "float_constants",
     "numeric_rigid_inverse",
     "to_float",
@@ -116,6 +118,8 @@ def to_float(expr: object) -> float:
             value = _rational_float(e)
         elif e.is_Float:
             value = float(e)
+        elif (turn := _pi_multiple(e)) is not None:  # θ = π/2 in a table: no evalf
+            value = float(turn * _PI)
         else:
             v = sp.N(e, _DIGITS)
             re, im = v.as_real_imag()
@@ -126,6 +130,24 @@ def to_float(expr: object) -> float:
     if not math.isfinite(value):
         raise DHError(f"the number {_short(expr)} is too large for a float")
     return value
+
+
+#: π to 60 digits, exact as a fraction: ``float(r * _PI)`` is the rounded value of ``r·π``
+_PI = Fraction(314159265358979323846264338327950288419716939937510582097494, 10**59)
+
+
+def _pi_multiple(e: sp.Basic) -> Fraction | None:
+    """``r`` when ``e`` is ``π`` or ``r·π`` with a rational ``r`` (an angle of a table), else None.
+
+    >>> _pi_multiple(-sp.pi / 2), _pi_multiple(sp.pi), _pi_multiple(sp.sqrt(2))
+    (Fraction(-1, 2), Fraction(1, 1), None)
+    """
+    if e is sp.pi:
+        return Fraction(1)
+    if e.is_Mul and len(e.args) == 2 and e.args[1] is sp.pi and e.args[0].is_Rational:
+        r = e.args[0]
+        return Fraction(int(r.p), int(r.q))
+    return None
 
 
 def _rational_float(r: sp.Rational) -> float:
@@ -462,7 +484,8 @@ def _multiply(
         if e.value.is_zero:  # an exact zero; no sympify per call
             out.append(out[-1])
             continue
-        factor = elementary_stack(e.kind, e.axis, np.broadcast_to(np.asarray(v), (size,)))
+        v = np.asarray(v, dtype=float)
+        factor = elementary_stack(e.kind, e.axis, v if v.shape == (size,) else _points(v, size))
         out.append(out[-1] @ factor)
     return np.stack(out, axis=1) if prefixes else np.array(out[-1])
 
@@ -490,8 +513,8 @@ def word_product(
            [0., 2.]])
     """
     memo = {} if memo is None else memo
-    values = [evaluate(e.value, env, size, memo) for e in word]
-    return _multiply(word, values, size, prefixes)
+    values = evaluate_many([e.value for e in word], env, size, memo)
+    return _multiply(word, list(values), size, prefixes)
 
 
 def numeric_rigid_inverse(T: np.ndarray) -> np.ndarray:
@@ -555,8 +578,49 @@ def evaluate(
                 out = _constant(expr, memo)
     except (OverflowError, ZeroDivisionError) as err:  # e.g. x**(10**400)
         raise EvaluationError(f"cannot evaluate numerically ({type(err).__name__})") from None
-    values: np.ndarray = np.broadcast_to(np.asarray(out, dtype=float), (size,)).copy()
-    return values
+    return _points(out, size)
+
+
+def evaluate_many(
+    exprs: Sequence[sp.Basic],
+    env: Mapping[sp.Basic, np.ndarray],
+    size: int,
+    memo: dict[object, np.ndarray] | None = None,
+) -> np.ndarray:
+    """Values of several expressions at ``size`` points: shape ``(len(exprs), size)``.
+
+    One walk over all of them (:func:`evaluate`'s rules), their shared subtrees computed
+    once: the entries of a matrix, the factors of a word.  The first expression without
+    a value raises :class:`EvaluationError`.
+
+    >>> x = sp.Symbol("x")
+    >>> evaluate_many([sp.cos(x), 2 * sp.cos(x), sp.pi / 2], {x: np.array([0.0, np.pi])}, 2)
+    array([[ 1.        , -1.        ],
+           [ 2.        , -2.        ],
+           [ 1.57079633,  1.57079633]])
+    """
+    memo = {} if memo is None else memo
+    out = np.empty((len(exprs), size))
+    try:
+        with np.errstate(all="ignore"):
+            for k, expr in enumerate(exprs):
+                val = _walk(expr, env, memo)
+                out[k] = _points(_constant(expr, memo) if val is _CONSTANT else val, size)
+    except (OverflowError, ZeroDivisionError) as err:  # e.g. x**(10**400)
+        raise EvaluationError(f"cannot evaluate numerically ({type(err).__name__})") from None
+    return out
+
+
+def _points(value: object, size: int) -> np.ndarray:
+    """A walker's result as a fresh float array of ``size`` points (a constant repeated)."""
+    arr: np.ndarray = np.asarray(value, dtype=float)
+    if arr.shape == (size,):
+        copied: np.ndarray = arr.copy()
+        return copied
+    if arr.ndim == 0:
+        return np.full(size, float(arr))
+    points: np.ndarray = np.broadcast_to(arr, (size,)).copy()
+    return points
 
 
 def _constant(e: sp.Basic, memo: dict[object, np.ndarray]) -> np.ndarray:

@@ -50,3 +50,23 @@ def worst_case_text(prefix: str, filler: str, kind: str, n: int) -> str:
         return prefix + filler * n + "\x00"
     unit = prefix + filler if kind == "pairs" else prefix
     return unit * max(1, n // max(1, len(unit))) + "\x00"
+
+
+def die_or_square(n: int) -> int:
+    """``n * n``; a negative ``n`` ends the process at once (exit code 3)."""
+    if n < 0:
+        os._exit(3)
+    return n * n
+
+
+class Counter:
+    """A worker's state for :func:`count_calls`: how many jobs it has run."""
+
+    def __init__(self) -> None:
+        self.calls = 0
+
+
+def count_calls(_: object, state: Counter) -> tuple[int, int]:
+    """(this process's id, the number of jobs its state has seen, this one included)."""
+    state.calls += 1
+    return os.getpid(), state.calls

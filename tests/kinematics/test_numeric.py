@@ -146,3 +146,29 @@ def test_compile_word_multiplies_elementaries_numerically():
     assert prefixes.shape == (7, len(word) + 1, 4, 4)
     np.testing.assert_allclose(prefixes[:, -1], f(Q))
     np.testing.assert_array_equal(prefixes[:, 0], np.broadcast_to(np.eye(4), (7, 4, 4)))
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(table=dh_tables(max_rows=3), data=st.data())
+def test_evaluate_many_agrees_with_evaluate_entry_by_entry(table, data):
+    """The matrix walk (one memo, all entries) gives each entry's own walk, to the bit."""
+    from dhsym.kinematics.numeric import evaluate, evaluate_many
+
+    robot = dhsym.Robot(table)
+    M = robot.transform(0, table.n).matrix
+    syms = sorted(M.free_symbols, key=sp.default_sort_key)
+    size = data.draw(st.integers(1, 8))
+    env = {s: np.asarray(data.draw(arrays(float, size, elements=st.floats(-3, 3)))) for s in syms}
+    many = evaluate_many(list(M), env, size)
+    one = np.array([evaluate(e, env, size) for e in M])
+    assert many.shape == (16, size)
+    np.testing.assert_array_equal(many, one)
+
+
+def test_rational_multiples_of_pi_round_as_the_30_digit_value():
+    from dhsym.kinematics.numeric import to_float
+
+    rng = np.random.default_rng(7)
+    for p, q in rng.integers(1, 721, size=(200, 2)):
+        e = sp.Rational(int(p) - 360, int(q)) * sp.pi
+        assert to_float(e) == float(sp.N(e, 30)), e

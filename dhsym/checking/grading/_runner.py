@@ -6,7 +6,10 @@ deadline, whatever the job is doing — a regular expression or a C loop that no
 signal interrupts included.  A job that kills its process is reported once it
 failed twice.  So a job costs only its own result, never another job's:
 
-- :func:`run_pool` drives ``workers`` sandboxes from as many threads;
+- :func:`run_pool` drives ``workers`` sandboxes from as many threads, sending each
+  child a *batch* of jobs at a time (:meth:`Sandbox.call_many`: one message out,
+  one result back per job as it finishes, each job under its own deadline; after a
+  kill the rest of the batch goes on in a fresh child);
 - :func:`run_dask` sends each job to a Dask worker, where it runs in a sandbox of
   the worker thread (any ``--nthreads`` is safe: a hung job blocks nothing but its
   own child process, which is killed on time);
@@ -16,6 +19,11 @@ failed twice.  So a job costs only its own result, never another job's:
 
 All yield ``(index, outcome)`` as jobs finish, where the outcome is the job's
 return value or a :class:`JobFailure` (``timeout`` or ``error``).
+
+A job function may keep what its jobs share for the life of its worker: given
+``state`` (a picklable factory, e.g. a class), each worker calls it once and runs
+``fn(job, that_state)`` for every job it gets — the grader's prepared keys
+(:class:`~dhsym.checking.judging.checker.PreparedKeys`), built once per child process.
 
 Run as a script (``python …/_runner.py MODULE…``, without importing the package)
 this module is the child of a sandbox: it imports the modules, then answers framed
@@ -91,11 +99,14 @@ class Progress:
             self.stream.flush()
 
 
-def run_serial(fn: Callable, jobs: Sequence) -> Iterator[tuple[int, object]]:
+def run_serial(
+    fn: Callable, jobs: Sequence, state: Callable[[], object] | None = None
+) -> Iterator[tuple[int, object]]:
     """Run the jobs one after another in this process (time limits from inside the job)."""
+    shared = state() if state is not None else None
     for k, job in enumerate(jobs):
         try:
-            yield k, fn(job)
+            yield k, (fn(job) if state is None else fn(job, shared))
         except Exception as err:  # noqa: BLE001 - one bad job never stops the batch
             yield k, JobFailure("error", f"{type(err).__name__}: {err}")
 
@@ -207,9 +218,16 @@ class Sandbox:
         except subprocess.TimeoutExpired:
             pass
 
-    def call(self, fn: Callable, job: object, deadline: float) -> object:
-        """``fn(job)`` in the child, or a :class:`JobFailure` (timeout: the child is killed)."""
-        payload = pickle.dumps((fn, job), protocol=pickle.HIGHEST_PROTOCOL)
+    def call(
+        self,
+        fn: Callable,
+        job: object,
+        deadline: float,
+        state: Callable[[], object] | None = None,
+    ) -> object:
+        """``fn(job)`` in the child (``fn(job, s)`` with the child's ``s = state()``), or a
+        :class:`JobFailure` (timeout: the child is killed)."""
+        payload = pickle.dumps((fn, [job], state), protocol=pickle.HIGHEST_PROTOCOL)
         died = ""
         for _attempt in range(2):  # a job whose process dies gets one more, fresh process
             try:
@@ -239,6 +257,64 @@ class Sandbox:
             return value if status == "ok" else JobFailure("error", value)
         return JobFailure("error", died)
 
+    def call_many(
+        self,
+        fn: Callable,
+        jobs: Sequence,
+        deadline: float,
+        state: Callable[[], object] | None = None,
+    ) -> Iterator[tuple[int, object]]:
+        """``(k, fn(jobs[k]))`` for every job, in order, as each finishes (or a
+        :class:`JobFailure`): one message carries the whole batch to the child, and
+        objects the jobs share (the assignment) are pickled once for all of them.
+
+        Each job has ``deadline`` seconds from the moment the child is free for it (the
+        result of the job before it came back).  A job that overruns is a ``timeout``
+        and its child is killed; the jobs after it go on in a fresh child.  A job whose
+        child dies is run once more alone (:meth:`call`); the jobs after it go on.
+        """
+        start = 0
+        while start < len(jobs):
+            rest = list(jobs[start:])
+            try:
+                payload = pickle.dumps((fn, rest, state), protocol=pickle.HIGHEST_PROTOCOL)
+            except Exception:  # noqa: BLE001 - a job that cannot be sent: one by one
+                for k in range(start, len(jobs)):
+                    yield k, self.call(fn, jobs[k], deadline, state)
+                return
+            try:
+                if self.proc is None or self.proc.poll() is not None:
+                    self._start()
+                assert self.proc is not None and self.proc.stdin and self.proc.stdout
+                _write_frame(self.proc.stdin, payload)
+            except RuntimeError as err:
+                for k in range(start, len(jobs)):
+                    yield k, JobFailure("error", str(err))
+                return
+            except OSError:
+                self.close()  # the child died before it read the batch: a fresh one
+                yield start, self.call(fn, jobs[start], deadline, state)
+                start += 1
+                continue
+            fd = self.proc.stdout.fileno()
+            while start < len(jobs):
+                try:
+                    end = time.monotonic() + deadline
+                    (n,) = _HEADER.unpack(_read_exact(fd, _HEADER.size, end))
+                    status, value = pickle.loads(_read_exact(fd, n, end))
+                except _Expired:
+                    self.close()
+                    yield start, JobFailure("timeout", f"no result within {deadline:g} s")
+                    start += 1
+                    break
+                except (_Gone, OSError, EOFError, pickle.UnpicklingError):
+                    self.close()  # it died in this job: the job gets one fresh process alone
+                    yield start, self.call(fn, jobs[start], deadline, state)
+                    start += 1
+                    break
+                yield start, (value if status == "ok" else JobFailure("error", value))
+                start += 1
+
 
 _LOCAL = threading.local()
 _ALL: list[Sandbox] = []
@@ -255,7 +331,11 @@ atexit.register(_close_all)
 
 
 def run_in_sandbox(
-    fn: Callable, job: object, deadline: float, preload: Sequence[str] = _PRELOAD
+    fn: Callable,
+    job: object,
+    deadline: float,
+    preload: Sequence[str] = _PRELOAD,
+    state: Callable[[], object] | None = None,
 ) -> object:
     """``fn(job)`` in this thread's own :class:`Sandbox` (a Dask task runs this)."""
     boxes = getattr(_LOCAL, "boxes", None)
@@ -266,7 +346,7 @@ def run_in_sandbox(
         box = boxes[tuple(preload)] = Sandbox(preload)
         with _ALL_LOCK:
             _ALL.append(box)
-    return box.call(fn, job, deadline)
+    return box.call(fn, job, deadline, state)
 
 
 def run_pool(
@@ -275,38 +355,65 @@ def run_pool(
     workers: int,
     deadline: float,
     preload: Sequence[str] = _PRELOAD,
+    batch: int | None = None,
+    state: Callable[[], object] | None = None,
 ) -> Iterator[tuple[int, object]]:
-    """Run the jobs in ``workers`` sandboxes; each job gets ``deadline`` seconds of work."""
+    """Run the jobs in ``workers`` sandboxes; each job gets ``deadline`` seconds of work.
+
+    Jobs go to the children in batches of ``batch`` (default: about an eighth of a
+    worker's share, 1 … 16), each job still under its own deadline
+    (:meth:`Sandbox.call_many`); results come as jobs finish.
+    """
     import queue
-    from concurrent.futures import ThreadPoolExecutor, as_completed
 
-    boxes: queue.SimpleQueue[Sandbox] = queue.SimpleQueue()
-    owned = [Sandbox(preload) for _ in range(max(1, workers))]
-    for box in owned:
-        boxes.put(box)
+    n = max(1, workers)
+    size = batch or max(1, min(16, len(jobs) // (8 * n)))
+    pending = deque(range(k, min(k + size, len(jobs))) for k in range(0, len(jobs), size))
+    results: queue.SimpleQueue[tuple[int, object] | None] = queue.SimpleQueue()
+    owned = [Sandbox(preload) for _ in range(n)]
     stop = threading.Event()
+    lock = threading.Lock()
 
-    def task(k: int) -> tuple[int, object]:
-        if stop.is_set():
-            return k, JobFailure("error", "the run was stopped")
-        box = boxes.get()
+    def work(box: Sandbox) -> None:
         try:
-            if stop.is_set():  # stopped while this job waited for a free process
-                return k, JobFailure("error", "the run was stopped")
-            return k, box.call(fn, jobs[k], deadline)
+            while not stop.is_set():
+                with lock:
+                    if not pending:
+                        return
+                    ks = pending.popleft()
+                for j, outcome in box.call_many(fn, [jobs[k] for k in ks], deadline, state):
+                    results.put((ks[j], outcome))
+                    if stop.is_set():
+                        return
+        except Exception as err:  # noqa: BLE001 - a fault of the runner: every job left fails
+            with lock:
+                left = [k for ks in pending for k in ks]
+                pending.clear()
+            for k in left:
+                results.put((k, JobFailure("error", f"{type(err).__name__}: {err}")))
         finally:
-            boxes.put(box)
+            results.put(None)
 
-    pool = ThreadPoolExecutor(max_workers=len(owned), thread_name_prefix="dhsym-grade")
+    threads = [
+        threading.Thread(target=work, args=(box,), name=f"dhsym-grade-{i}", daemon=True)
+        for i, box in enumerate(owned)
+    ]
+    for t in threads:
+        t.start()
     try:
-        futures = [pool.submit(task, k) for k in range(len(jobs))]
-        for fut in as_completed(futures):
-            yield fut.result()
+        running = len(threads)
+        while running:
+            item = results.get()
+            if item is None:
+                running -= 1
+            else:
+                yield item
     finally:
         stop.set()
         for box in owned:  # a stopped run: running children die, waiting threads return
             box.close()
-        pool.shutdown(wait=True, cancel_futures=True)
+        for t in threads:
+            t.join()
         for box in owned:
             box.close()
 
@@ -360,6 +467,7 @@ def run_dask(
     address: object,
     deadline: float,
     preload: Sequence[str] = _PRELOAD,
+    state: Callable[[], object] | None = None,
 ) -> Iterator[tuple[int, object]]:
     """Run the jobs on a Dask cluster (``address`` or a ``Client``), each in a sandbox.
 
@@ -386,7 +494,9 @@ def run_dask(
         while pending or running:
             while pending and len(running) < slots:
                 k = pending.popleft()
-                fut = client.submit(run_in_sandbox, fn, jobs[k], deadline, preload, pure=False)
+                fut = client.submit(
+                    run_in_sandbox, fn, jobs[k], deadline, preload, state, pure=False
+                )
                 running[fut] = (k, time.monotonic())
             done = [f for f in running if f.done()]
             if not done:
@@ -417,23 +527,37 @@ def _serve(preload: Sequence[str]) -> None:
     for name in preload:
         importlib.import_module(name)
     _write_frame(out, pickle.dumps(("ready", None)))
+    states: dict[object, object] = {}  # this worker's state per job function's factory
     while True:
         head = inp.read(_HEADER.size)
         if len(head) < _HEADER.size:
             return
         (n,) = _HEADER.unpack(head)
-        fn, job = pickle.loads(inp.read(n))  # noqa: S301 - written by the parent only
-        try:
+        message = pickle.loads(inp.read(n))  # noqa: S301 - written by the parent only
+        fn, batch, factory = message  # a batch: one reply per job, in order
+        for job in batch:
+            _write_frame(out, _run_one(fn, job, factory, states))
+
+
+def _run_one(
+    fn: Callable, job: object, factory: Callable[[], object] | None, states: dict
+) -> bytes:
+    """The reply to one job: ``("ok", result)`` or ``("error", text)``, pickled."""
+    try:
+        if factory is None:
             reply = ("ok", fn(job))
-        except (KeyboardInterrupt, SystemExit):
-            raise
-        except BaseException as err:  # noqa: BLE001 - the job's failure is its result
-            reply = ("error", f"{type(err).__name__}: {err}")
-        try:
-            data = pickle.dumps(reply, protocol=pickle.HIGHEST_PROTOCOL)
-        except Exception as err:  # noqa: BLE001
-            data = pickle.dumps(("error", f"the result cannot be sent back: {err}"))
-        _write_frame(out, data)
+        else:
+            if factory not in states:
+                states[factory] = factory()
+            reply = ("ok", fn(job, states[factory]))
+    except (KeyboardInterrupt, SystemExit):
+        raise
+    except BaseException as err:  # noqa: BLE001 - the job's failure is its result
+        reply = ("error", f"{type(err).__name__}: {err}")
+    try:
+        return pickle.dumps(reply, protocol=pickle.HIGHEST_PROTOCOL)
+    except Exception as err:  # noqa: BLE001
+        return pickle.dumps(("error", f"the result cannot be sent back: {err}"))
 
 
 if __name__ == "__main__":

@@ -39,7 +39,7 @@ from pathlib import Path
 from dhsym.errors import DHError
 from dhsym.model.yamlsafe import FileRefused, YAMLInputError, load_yaml, read_limited
 
-from ..judging.checker import Key
+from ..judging.checker import Key, PreparedKeys
 from ..reading.limits import check_seconds
 
 __all__ = ["Assignment", "AssignmentQuestion"]
@@ -74,11 +74,11 @@ class Assignment:
         return sum(q.points for q in self.questions)
 
     @classmethod
-    def load(cls, path: str | Path) -> Assignment:
+    def load(cls, path: str | Path, keys: PreparedKeys | None = None) -> Assignment:
         """Read an assignment YAML file (keys given as files are relative to it).
 
-        Every problem is a :class:`~dhsym.errors.DHError` naming the file and the
-        question (row) or field.
+        Each key is prepared once to check it, into ``keys`` when given.  Every problem
+        is a :class:`~dhsym.errors.DHError` naming the file and the question (row) or field.
         """
         p = Path(path)
         try:
@@ -126,7 +126,7 @@ class Assignment:
                 raise DHError("'ask' must be text like T0_2", file=str(p), row=k, field="ask")
             rounding = q.get("rounding", data.get("rounding"))
             try:
-                key = Key.load(where, str(ask), tool_free=tool, rounding=rounding)
+                key = Key.load(where, str(ask), tool_free=tool, rounding=rounding, keys=keys)
             except DHError as err:
                 raise DHError(err.message, file=str(p), row=k, field=err.field or "ask") from None
             digest.append(repr(key))

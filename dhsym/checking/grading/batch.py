@@ -37,7 +37,7 @@ from pathlib import Path
 from dhsym.errors import DHError
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
-from ..judging.checker import check_answer, prepare
+from ..judging.checker import PreparedKeys, check_answer
 from ..judging.verdict import CheckResult, Verdict
 from ..reading.limits import AnswerLimits, AnswerTimeout, check_seconds, time_limit
 from ._runner import JobFailure, Progress, dask_address, run_dask, run_pool, run_serial
@@ -69,7 +69,12 @@ def _timed_out(q: AssignmentQuestion, seconds: float, then: str) -> CheckResult:
 
 
 def check_submission(
-    assignment: Assignment, sub: Submission, limits: AnswerLimits, *, on_timeout: str = RERUN
+    assignment: Assignment,
+    sub: Submission,
+    limits: AnswerLimits,
+    *,
+    on_timeout: str = RERUN,
+    keys: PreparedKeys | None = None,
 ) -> tuple[QuestionFeedback, ...]:
     """Check every question of one submission: its result (``None`` if missing) and score.
 
@@ -78,17 +83,19 @@ def check_submission(
     under the time limit ``limits.seconds``; one that runs out gets an unreadable
     result whose ``reason`` is ``timeout`` (see :func:`grade_submission`), told
     ``on_timeout``.  Each key is prepared before its answer's clock starts (its solvers
-    and variants are built once per worker, never on a student's time).
+    and variants are built once per worker, in the worker's ``keys``, never on a
+    student's time).
     """
+    keys = keys if keys is not None else PreparedKeys()
     answers, problems = dict(sub.answers), dict(sub.problems)
     inner = replace(limits, seconds=0)  # the limit is the one below: a timeout stays one
     out = []
     for q in assignment.questions:
         if q.id in answers:
-            prepare(q.key)  # memoised: the first answer of a worker pays it, off the clock
+            keys.get(q.key)  # the worker's first answer to this key pays it, off the clock
             try:
                 with time_limit(limits.seconds, AnswerTimeout):
-                    result = check_answer(q.key, answers[q.id], limits=inner)
+                    result = check_answer(q.key, answers[q.id], limits=inner, keys=keys)
             except AnswerTimeout:
                 result = _timed_out(q, limits.seconds, on_timeout)
         elif q.id in problems:
@@ -118,14 +125,18 @@ def _wrong_parts(result: CheckResult) -> tuple[tuple[str, str], ...]:
     return tuple(out[:16])
 
 
-def grade_submission(job: tuple[Assignment, Submission, AnswerLimits]) -> GradeRecord:
+def grade_submission(
+    job: tuple[Assignment, Submission, AnswerLimits], keys: PreparedKeys | None = None
+) -> GradeRecord:
     """Grade one submission (runs in a worker): scores, verdicts, kinds and both feedback pages.
 
-    An answer that runs out of time gets the verdict ``timeout`` and the record the
-    status ``timeout`` (never cached, so the next run checks it again).
+    ``keys`` are the worker's prepared keys (the runners give each worker one
+    :class:`~dhsym.checking.judging.checker.PreparedKeys`).  An answer that runs out of time gets
+    the verdict ``timeout`` and the record the status ``timeout`` (never cached, so the
+    next run checks it again).
     """
     assignment, sub, limits = job
-    feedback = check_submission(assignment, sub, limits)
+    feedback = check_submission(assignment, sub, limits, keys=keys)
     scores, verdicts, kinds, wrong, mistakes = {}, {}, [], {}, {}
     timed_out = False
     for qf in feedback:
@@ -353,11 +364,11 @@ def grade(
             todo.append(s)
     jobs = [(a, s, lim) for s in todo]
     if dask is not None:
-        runner = run_dask(grade_submission, jobs, dask, deadline)
+        runner = run_dask(grade_submission, jobs, dask, deadline, state=PreparedKeys)
     elif workers > 0:
-        runner = run_pool(grade_submission, jobs, workers, deadline)
+        runner = run_pool(grade_submission, jobs, workers, deadline, state=PreparedKeys)
     else:
-        runner = run_serial(grade_submission, jobs)
+        runner = run_serial(grade_submission, jobs, state=PreparedKeys)
     bar = Progress(len(jobs), enabled=progress)
     last_save = time.monotonic()
 

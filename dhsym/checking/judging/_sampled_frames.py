@@ -24,11 +24,11 @@ from typing import Protocol
 
 import numpy as np
 
-from dhsym.kinematics.numeric import EvaluationError, evaluate, word_product
+from dhsym.kinematics.numeric import EvaluationError, evaluate, evaluate_many, word_product
 from dhsym.kinematics.transforms import link_word
 from dhsym.model.table import Convention, DHRow
 
-__all__ = ["EvaluationError", "evaluate", "frames", "word_product"]
+__all__ = ["EvaluationError", "evaluate", "evaluate_many", "frames", "word_product"]
 
 
 class Rows(Protocol):

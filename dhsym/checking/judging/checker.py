@@ -18,10 +18,9 @@ Examples
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -44,12 +43,13 @@ from ..mistakes.registry import (
     diagnose_table,
 )
 from ..reading.answer_names import NameContext
-from ..reading.answers import (
-    cell_literals,
-    expression_cell,
-    matrix_cells,
-    parse_cell,
-    read_answer_table,
+from ..reading.answer_value import (
+    AnswerForm,
+    IKAnswer,
+    MatrixAnswer,
+    ReadCell,
+    TableAnswer,
+    read_answer_value,
 )
 from ..reading.limits import (
     DEFAULT_ANSWER_LIMITS,
@@ -72,7 +72,7 @@ from .rounding import DEFAULT_ROUNDING, Rounding, rounding_accepts
 from .table_match import compare_tables, symbolic_values
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
-__all__ = ["Key", "PreparedKey", "check_answer", "prepare", "table_cells"]
+__all__ = ["Key", "PreparedKey", "PreparedKeys", "check_answer", "prepare", "table_cells"]
 
 
 @dataclass(frozen=True)
@@ -97,11 +97,13 @@ class Key:
         *,
         tool_free: bool = False,
         rounding: object = None,
+        keys: PreparedKeys | None = None,
     ) -> Key:
         """A key from a built-in robot name, a table file or a table.
 
         ``rounding``: anything :meth:`Rounding.parse` reads (``"digits=4"``, ``"abs=1e-3"``,
         ``{"rel": 0.001}``, ``"off"``); None is the default (3 significant digits).
+        The key is prepared once to check it (into ``keys`` when given, for later use).
         """
         if not isinstance(ref, (str, Path, DHTable)):
             raise DHError(
@@ -112,27 +114,58 @@ class Key:
         q = question if isinstance(question, Question) else Question.parse(question, table.n)
         name = table.name or (Path(ref).stem if not isinstance(ref, DHTable) else "")
         key = cls(table, q, name, tool_free, Rounding.parse(rounding))
-        prepare(key)  # a key that cannot be checked against (too large, wrong values) stops here
+        # a key that cannot be checked against (too large, wrong values) stops here
+        keys.get(key) if keys is not None else prepare(key)
         return key
+
+
+@dataclass(frozen=True, eq=False)
+class DiagnosisSample:
+    """The points the mistakes of wrong answers are recomputed at (fixed per key, so the
+    mistakes' variants are computed once per worker) and the key's values there.
+
+    Only the diagnosis uses them: every verdict draws its own fresh points.
+    """
+
+    sample: Sample
+    key_values: np.ndarray
 
 
 @dataclass(eq=False)
 class PreparedKey:
-    """What checking many answers to one key shares: the robot, names, caches.
+    """What checking many answers to one key shares: the robot, names, derived values.
 
-    ``samples`` and ``key_values`` serve only the diagnosis of wrong answers (the
-    mistakes' variants are cached per key); every verdict draws its own points.
+    Built once per worker (:class:`PreparedKeys`) before any answer's clock starts;
+    every field is typed.  ``symbolic``/``valued`` serve only the diagnosis of wrong
+    answers (:class:`DiagnosisSample`); every verdict draws its own points.
+    ``variant_values`` is the mistake catalogue's memo: a mistake's values at a
+    diagnosis sample, by (mistake, sample origin, …), computed on the first wrong answer
+    that needs them.
     """
 
     key: Key
     robot: Robot
     names: NameContext
     expected: sp.ImmutableMatrix | None = None
+    #: ``expected`` with the table's numbers for its lengths (the exact proofs of answers
+    #: that use the numbers)
+    expected_valued: sp.ImmutableMatrix | None = None
     expected_text: tuple[tuple[str, str], ...] = ()
-    samples: dict[str, Sample] = field(default_factory=dict)
-    key_values: dict[str, np.ndarray] = field(default_factory=dict)
-    cache: dict = field(default_factory=dict)
+    symbolic: DiagnosisSample | None = None
+    valued: DiagnosisSample | None = None
     symbols: frozenset[sp.Symbol] = frozenset()
+    #: a determinant key's singularities (a Jacobian key's, once a diagnosis needs them)
+    singularities: Any = None
+    #: a dynamics key's part under each catalogued mistake: (kind, matrix, detail)
+    dynamics_variants: tuple[tuple[str, sp.ImmutableMatrix, str], ...] = ()
+    #: an inverse-kinematics key: its solution, the question's pose (``ik@…``), the
+    #: branches' names there or in general, and the random poses of the diagnosis
+    ik: Any = None
+    ik_pose: Any = None
+    ik_pose_names: tuple = ()
+    ik_names: tuple = ()
+    ik_samples: dict[bool, Any] = field(default_factory=dict)
+    variant_values: dict[tuple, Any] = field(default_factory=dict)
 
     def sample_for(self, answer: sp.Basic) -> str:
         """``valued`` (the table's numbers for its lengths) when the answer uses none of
@@ -142,10 +175,73 @@ class PreparedKey:
             return "valued"
         return "symbolic"
 
+    def form(self) -> AnswerForm:
+        """What reading an answer to this key needs: the question, the names, the key's
+        shape, the joints whose Jacobian column may be missing, the convention, the joint
+        variables and the lengths."""
+        table = self.key.table
+        joints = [r.joint for r in table.rows if r.variable is not None]
+        return AnswerForm(
+            self.key.question,
+            self.names,
+            self.expected.shape if self.expected is not None else (4, 4),
+            tuple(k for k, j in enumerate(joints) if j is JointType.PRISMATIC),
+            table.convention,
+            tuple(self.robot.variables),
+            frozenset(table.constants),
+        )
 
-@lru_cache(maxsize=64)
+    def diagnosis(self, answer: sp.Basic) -> DiagnosisSample:
+        """The diagnosis sample for ``answer`` (:meth:`sample_for`)."""
+        out = self.valued if self.sample_for(answer) == "valued" else self.symbolic
+        assert out is not None, "a matrix key has its diagnosis samples"
+        return out
+
+    def singular(self) -> Any:
+        """The key's :func:`~dhsym.kinematics.singularities.singularities`, derived once."""
+        if self.singularities is None:
+            from dhsym.kinematics.singularities import singularities
+
+            self.singularities = singularities(self.robot)
+        return self.singularities
+
+
+class PreparedKeys:
+    """A worker's prepared keys: each :class:`Key` (a frozen value) prepared once, on
+    first use, and kept as long as this map (a grading worker's life).
+
+    >>> keys = PreparedKeys()
+    >>> k = Key.load("planar2r", "T0_2")
+    >>> keys.get(k) is keys.get(Key.load("planar2r", "T0_2")), len(keys)
+    (True, 1)
+    """
+
+    def __init__(self) -> None:
+        self._prepared: dict[Key, PreparedKey] = {}
+
+    def __len__(self) -> int:
+        return len(self._prepared)
+
+    def get(self, key: Key) -> PreparedKey:
+        """``key`` prepared (:func:`prepare`), the first time only."""
+        pk = self._prepared.get(key)
+        if pk is None:
+            pk = self._prepared[key] = prepare(key)
+        return pk
+
+
+def _diagnosis_samples(pk: PreparedKey, syms: set[sp.Symbol]) -> None:
+    assert pk.expected is not None
+    for name, fixed in (("symbolic", None), ("valued", pk.key.table.value_map)):
+        sample = Sample.random(syms, fixed=fixed)
+        setattr(pk, name, DiagnosisSample(sample, values(pk.expected, sample)))
+    value_map = pk.key.table.value_map
+    pk.expected_valued = pk.expected.subs(value_map) if value_map else pk.expected
+
+
 def prepare(key: Key) -> PreparedKey:
-    """Prepare a key once per process (memoised: keys are frozen values)."""
+    """Prepare a key: its robot, names, expected answer and what the diagnosis of wrong
+    answers shares.  Not memoised: a worker keeps its keys in :class:`PreparedKeys`."""
     table = key.table
     robot = Robot(table)
     names = NameContext.from_table(table)
@@ -165,10 +261,7 @@ def prepare(key: Key) -> PreparedKey:
     pk.expected_text = tuple((nota.text(e), nota.latex(e)) for e in pk.expected)
     syms = set(table.variables) | set(table.constants)
     pk.symbols = frozenset(syms)
-    pk.samples["symbolic"] = Sample.random(syms)
-    pk.samples["valued"] = Sample.random(syms, fixed=table.value_map)
-    for name, s in pk.samples.items():
-        pk.key_values[name] = values(pk.expected, s)
+    _diagnosis_samples(pk, syms)
     return pk
 
 
@@ -186,15 +279,12 @@ def _prepare_dynamics(pk: PreparedKey) -> PreparedKey:
     else:
         eom = robot.dynamics()
         pk.expected = part_matrix(eom, q)
-        pk.cache["dynamics variants"] = variant_matrices(robot, eom, q)
+        pk.dynamics_variants = tuple(variant_matrices(robot, eom, q))
     nota = robot.notation
     pk.expected_text = tuple((nota.text(e), nota.latex(e)) for e in pk.expected)
     syms = set(table.variables) | set(table.constants) | set(extra)
     pk.symbols = frozenset(syms)
-    pk.samples["symbolic"] = Sample.random(syms)
-    pk.samples["valued"] = Sample.random(syms, fixed=table.value_map)
-    for name, s in pk.samples.items():
-        pk.key_values[name] = values(pk.expected, s)
+    _diagnosis_samples(pk, syms)
     return pk
 
 
@@ -211,7 +301,7 @@ def _expected(pk: PreparedKey) -> sp.ImmutableMatrix:
         from dhsym.kinematics.singularities import singularities
 
         s = singularities(robot)
-        pk.cache["singularities"] = s
+        pk.singularities = s
         return sp.ImmutableMatrix([[s.determinant]])
     return robot.transform(q.frm, q.to).matrix
 
@@ -255,7 +345,11 @@ def _unreadable(key: Key, reason: str) -> CheckResult:
 
 
 def check_answer(
-    key: Key, answer: str | bytes, *, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+    key: Key,
+    answer: str | bytes,
+    *,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    keys: PreparedKeys | None = None,
 ) -> CheckResult:
     """Check one answer (text or bytes, untrusted) against ``key``.
 
@@ -264,21 +358,25 @@ def check_answer(
     its :class:`~dhsym.errors.DHError`; an exception of any other kind is a bug of dhsym
     and is raised too, never disguised as an unreadable answer.
     The whole check runs under ``limits.seconds`` (where a time limit is possible).
+    ``keys`` is the caller's map of prepared keys (a grading worker's): without it the
+    key is prepared for this one check.
     """
     if not isinstance(key, Key):
         raise DHError(
             f"check_answer: expected a Key (Key.load(robot, question)), got {type(key).__name__}"
         )
-    pk = prepare(key)  # a fault of the key raises here: it is never the answer's
+    # a fault of the key raises here: it is never the answer's
+    pk = keys.get(key) if keys is not None else prepare(key)
     try:
         with time_limit(limits.seconds):
-            if key.question.kind == "table":
-                return _check_table(pk, answer, limits)
-            if key.question.kind == "ik":
+            read = read_answer_value(pk.form(), answer, limits)  # the one reading
+            if isinstance(read, TableAnswer):
+                return _check_table(pk, read)
+            if isinstance(read, IKAnswer):
                 from .ik_check import check_ik
 
-                return check_ik(pk, answer, limits)
-            return _check_matrix(pk, answer, limits)
+                return check_ik(pk, read)
+            return _check_matrix(pk, read, limits)
     except CheckTimeout as err:
         return _unreadable(key, str(err))
     except DHError as err:
@@ -294,11 +392,8 @@ def _shown(cell: str) -> str:
     return cell if len(cell) <= 200 else cell[:199] + "…"
 
 
-_DECIMAL = re.compile(r"[0-9]\.|\.[0-9]|[0-9][eE]")
-
-
 def _compare(
-    pk: PreparedKey, ans: sp.ImmutableMatrix, cells: list[str], limits: AnswerLimits
+    pk: PreparedKey, ans: sp.ImmutableMatrix, cells: tuple[ReadCell, ...], limits: AnswerLimits
 ) -> tuple:
     """Entry results, wrong positions and the unknown symbols, at fresh random points.
 
@@ -307,8 +402,13 @@ def _compare(
     60-digit numbers.  Not equal → right up to rounding if the key's :class:`Rounding`
     accepts its decimals (``rounding``).
     """
-    q, nota, expected = pk.key.question, pk.robot.notation, pk.expected
-    assert expected is not None
+    q, nota, expected, expected_valued = (
+        pk.key.question,
+        pk.robot.notation,
+        pk.expected,
+        pk.expected_valued,
+    )
+    assert expected is not None and expected_valued is not None
     unknown = sorted(ans.free_symbols - pk.names.symbols, key=sp.default_sort_key)
     valued = pk.sample_for(ans) == "valued"
     value_map = pk.key.table.value_map
@@ -323,7 +423,7 @@ def _compare(
             k = i * expected.cols + j
             proof, note = "", ""
             check_time()  # the answer's deadline (see reading.limits.time_limit)
-            target = e.subs(value_map) if valued else e
+            target = expected_valued[i, j] if valued else e
             if near[i, j]:
                 exact = prove_entry(a, target, limits, agreed=True) if not unknown else None
                 if exact is None or (exact is False and agree_precisely(a, target)):
@@ -338,14 +438,14 @@ def _compare(
                     proof = "exact"
                 elif agree_precisely(a, target):
                     proof = "numeric"
-            if not proof and _DECIMAL.search(cells[k]):
-                note = _rounded(pk, cells[k], sample, kv[:, i, j], limits)
+            if not proof and cells[k].template is not None:
+                note = _rounded(pk, cells[k], sample, kv[:, i, j])
                 proof = "rounding" if note else ""
             if not proof:
                 wrong.append((i, j))
             where = (q.entry[0] + 1, q.entry[1] + 1) if q.entry else (i + 1, j + 1)
             e_text, e_latex = pk.expected_text[k]
-            raw = cells[k]
+            raw = cells[k].text
             if proof or len(raw) > 160:  # right, or long: what the student wrote
                 a_text, a_latex = _shown(raw), ""
             else:  # wrong: the student's entry in the key's notation
@@ -356,31 +456,21 @@ def _compare(
     return entries, wrong, unknown
 
 
-def _rounded(
-    pk: PreparedKey, cell: str, sample: Sample, key: np.ndarray, limits: AnswerLimits
-) -> str:
-    """How the cell is right up to rounding under the key's rule, or ``""``."""
-    try:
-        template, literals = cell_literals(cell, pk.names, limits)
-    except DHError:
-        return ""
-    env = sample.extended(template.free_symbols - set(sample.symbols)).env
-    how = rounding_accepts(pk.key.rounding, template, literals, env, sample.size, key)
+def _rounded(pk: PreparedKey, cell: ReadCell, sample: Sample, key: np.ndarray) -> str:
+    """How the cell, written with decimals, is right up to rounding under the key's rule,
+    or ``""``."""
+    assert cell.template is not None
+    env = sample.extended(cell.template.free_symbols - set(sample.symbols)).env
+    how = rounding_accepts(pk.key.rounding, cell.template, cell.literals, env, sample.size, key)
     return how or ""
 
 
 def _diagnosis_values(pk: PreparedKey, ans: sp.ImmutableMatrix, unknown: list) -> tuple:
     """The key's diagnosis sample (fixed per key, so the mistakes' variants are cached),
     extended with the unknown symbols, the key's and the answer's values there."""
-    which = pk.sample_for(ans)
-    sample = pk.samples[which].extended(unknown)
-    return sample, pk.key_values[which], values(ans, sample)
-
-
-def _pos(k: int, q: Question, cols: int = 4) -> str:
-    if q.entry is not None or q.kind == "det" or q.index is not None:
-        return "the answer"
-    return f"entry ({k // cols + 1},{k % cols + 1})"
+    d = pk.diagnosis(ans)
+    sample = d.sample.extended(unknown)
+    return sample, d.key_values, values(ans, sample)
 
 
 def _index_renames(unknown: list[sp.Symbol], names: NameContext) -> dict[sp.Symbol, sp.Symbol]:
@@ -396,64 +486,28 @@ def _index_renames(unknown: list[sp.Symbol], names: NameContext) -> dict[sp.Symb
     return out
 
 
-def _answer_matrix(
-    pk: PreparedKey, answer: str | bytes, limits: AnswerLimits
-) -> tuple[sp.ImmutableMatrix, list[str], tuple[Diagnosis, ...]]:
-    """The answer as a matrix of the key's shape, its cells, and what its shape tells.
-
-    A Jacobian with one column too few gets a zero column where a prismatic joint's column
-    belongs (its diagnosis names the missing column)."""
-    key, q, expected = pk.key, pk.key.question, pk.expected
-    assert expected is not None
-    if q.entry is not None or q.kind == "det" or expected.shape == (1, 1):
-        cells = [expression_cell(answer, limits)]
-        parsed = [parse_cell(cells[0], pk.names, limits, "the answer")]
-        return sp.ImmutableMatrix(1, 1, parsed), cells, ()
-    if q.kind == "dynamics":
-        rows, cols = expected.shape
-        shapes = ((rows, cols), (cols, rows)) if cols == 1 else ((rows, cols),)
-        grid = matrix_cells(answer, limits, shapes)
-        cells = [c for row in grid for c in row]  # a row vector is read as the column
-        parsed = [
-            parse_cell(c, pk.names, limits, f"entry {k + 1}" if cols == 1 else _pos(k, q, cols))
-            for k, c in enumerate(cells)
-        ]
-        return sp.ImmutableMatrix(rows, cols, parsed), cells, ()
-    if q.kind != "jacobian":
-        grid = matrix_cells(answer, limits)
-        cells = [c for row in grid for c in row] + ["0", "0", "0", "1"] * (len(grid) == 3)
-        parsed = [parse_cell(c, pk.names, limits, _pos(k, q)) for k, c in enumerate(cells)]
-        return sp.ImmutableMatrix(4, 4, parsed), cells, ()
-    n = expected.cols
-    joints = [r.joint for r in key.table.rows if r.variable is not None]
-    prismatic = [k for k, j in enumerate(joints) if j is JointType.PRISMATIC]
-    shapes = ((6, n), (6, n - 1)) if prismatic else ((6, n),)
-    grid = matrix_cells(answer, limits, shapes)
-    cols = len(grid[0])
-    parsed = [
-        [parse_cell(c, pk.names, limits, f"entry ({i},{j})") for j, c in enumerate(row, 1)]
-        for i, row in enumerate(grid, 1)
-    ]
-    if cols == n:
-        return sp.ImmutableMatrix(parsed), [c for row in grid for c in row], ()
-    k = prismatic[0]  # one column short: the prismatic joint's column left out
-    for row, cells_row in zip(parsed, grid, strict=True):
-        row.insert(k, sp.Integer(0))
-        cells_row.insert(k, "0")
+def _shape_lead(pk: PreparedKey, answer: MatrixAnswer) -> tuple[Diagnosis, ...]:
+    """What the answer's shape tells: a Jacobian one column short left out the column of
+    a prismatic joint (the reader put zeros there)."""
+    k = answer.missing_column
+    if k is None:
+        return ()
+    n = answer.shape[1]
     var = pk.robot.variables[k]
-    lead = Diagnosis(
-        "missing_column",
-        "column of a prismatic joint missing",
-        f"The answer has {n - 1} columns; J has one per joint, {n}: column {k + 1} belongs to "
-        f"the prismatic joint {var}, whose column is its axis over zero (no rotation).",
-        tuple((i + 1, k + 1) for i in range(6)),
+    return (
+        Diagnosis(
+            "missing_column",
+            "column of a prismatic joint missing",
+            f"The answer has {n - 1} columns; J has one per joint, {n}: column {k + 1} belongs "
+            f"to the prismatic joint {var}, whose column is its axis over zero (no rotation).",
+            tuple((i + 1, k + 1) for i in range(6)),
+        ),
     )
-    return sp.ImmutableMatrix(parsed), [c for row in grid for c in row], (lead,)
 
 
-def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
+def _check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) -> CheckResult:
     key, q, nota = pk.key, pk.key.question, pk.robot.notation
-    ans, cells, shape_lead = _answer_matrix(pk, answer, limits)
+    ans, cells, shape_lead = answer.matrix, answer.cells, _shape_lead(pk, answer)
     entries, wrong, unknown = _compare(pk, ans, cells, limits)
     total = len(entries)
     lead: tuple[Diagnosis, ...] = ()
@@ -498,7 +552,7 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
         cols = ans.cols  # [ω; v]: the same Jacobian with the angular rows first
         swapped = sp.ImmutableMatrix.vstack(ans[3:, :], ans[:3, :])
         order = [*range(3 * cols, 6 * cols), *range(3 * cols)]
-        other = _compare(pk, swapped, [cells[k] for k in order], limits)
+        other = _compare(pk, swapped, tuple(cells[k] for k in order), limits)
         if not other[1]:
             return CheckResult(
                 q.spec,
@@ -531,8 +585,9 @@ def _check_matrix(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) ->
         av,
         tuple(wrong),
         nota,
-        pk.cache,
+        pk.variant_values,
         pk.robot,
+        pk,
     )
     kinds = {
         "jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()),
@@ -566,16 +621,16 @@ def _one(q: Question) -> str:
     return "Your determinant" if q.kind == "det" else "The entry"
 
 
-def _check_table(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
+def _check_table(pk: PreparedKey, answer: TableAnswer) -> CheckResult:
     key = pk.key
     table = key.table
-    ans = read_answer_table(answer, pk.names, table.convention, limits)
+    ans = answer.table
     values_ = table.value_map  # for the diagnosis; the verdict is symbolic first
     expected_table, answer_table = table_cells(table), table_cells(ans)
     note = (
         " (Your angles were read as degrees, from a value above 2π, a ° or deg mark"
         " or the file's angles: deg.)"
-        if ans.angles is AngleUnit.DEG and table.angles is not AngleUnit.DEG
+        if answer.degrees and table.angles is not AngleUnit.DEG
         else ""
     )
     judged = symbolic_values(table, ans)

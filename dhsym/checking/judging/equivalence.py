@@ -58,7 +58,7 @@ from ..reading.limits import (
     expansion_terms,
     time_left,
 )
-from ._sampled_frames import EvaluationError, evaluate
+from ._sampled_frames import EvaluationError, evaluate, evaluate_many
 from .tolerances import TOLERANCES
 
 __all__ = [
@@ -143,6 +143,11 @@ def values(expr: sp.Basic, sample: Sample) -> np.ndarray:
     memo: dict[sp.Basic, np.ndarray] = {}  # subexpressions shared by the entries, computed once
     if isinstance(expr, sp.MatrixBase):
         r, c = expr.shape
+        try:  # every entry in one walk (the usual case) ...
+            flat = evaluate_many(list(expr), env, sample.size, memo)
+            return np.ascontiguousarray(flat.T.reshape(sample.size, r, c))
+        except (EvaluationError, OverflowError, TypeError, ValueError):
+            pass  # ... else entry by entry: only the entries without a value are nan
         out = np.empty((sample.size, r, c))
         for i in range(r):
             for j in range(c):

@@ -38,23 +38,20 @@ Examples
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 import sympy as sp
 
-from dhsym.errors import DHError, ParseError
+from dhsym.errors import DHError
 from dhsym.ik.results import IKSolution
 from dhsym.ik.steps import pose_symbols
-from dhsym.model.parsing import normalize_name
 
 from ..mistakes._ik_mistakes import IKCase
 from ..mistakes.registry import IK_MISTAKES
-from ..reading.answers import _split_top, cell_literals, parse_cell, read_text
-from ..reading.latex_input import flatten_subscripts, is_latex, latex_to_text
-from ..reading.limits import AnswerLimits, UnreadableAnswer, check_time
+from ..reading.answer_value import IKAnswer, IKStatement
+from ..reading.limits import check_time
 from ._ik_values import (
     ATOL,
     PoseSample,
@@ -75,42 +72,7 @@ if TYPE_CHECKING:
 
     from .checker import PreparedKey
 
-__all__ = ["IKAnswer", "check_ik", "prepare_ik", "read_ik_answer"]
-
-_MAX_SIGNS = 6  # ± in one answer (2^6 choices)
-_SIGN_NAME = "pmsign"
-_PLUS_MINUS = re.compile(r"\\pm(?![A-Za-z])|±|\+/-")
-_MINUS_PLUS = re.compile(r"\\mp(?![A-Za-z])|∓|-/\+")
-_WRAPPERS = re.compile(r"\\(?:begin|end)\{[A-Za-z*]+\}|\\\[|\\\]|\$|&")
-_IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
-
-
-@dataclass(frozen=True)
-class _Statement:
-    """``target = expr`` from the answer: a joint (``joint`` its index) or a helper."""
-
-    target: sp.Symbol
-    expr: sp.Expr
-    text: str
-    joint: int | None
-    tol: float
-
-
-@dataclass(frozen=True)
-class IKAnswer:
-    """A read answer: its solutions (joint index → statement), helpers and ``±`` signs."""
-
-    solutions: tuple[dict[int, _Statement], ...]
-    helpers: tuple[_Statement, ...]
-    signs: tuple[sp.Symbol, ...]
-
-    @property
-    def symbols(self) -> set[sp.Symbol]:
-        """Every symbol the right-hand sides use."""
-        out: set[sp.Symbol] = set()
-        for st in (*self.helpers, *(s for sol in self.solutions for s in sol.values())):
-            out |= st.expr.free_symbols
-        return out
+__all__ = ["check_ik", "prepare_ik"]
 
 
 def prepare_ik(pk: PreparedKey) -> PreparedKey:
@@ -122,7 +84,7 @@ def prepare_ik(pk: PreparedKey) -> PreparedKey:
             f"{robot.name or 'this arm'} is a general 6R: its inverse kinematics is an "
             "eigenproblem, not closed-form steps to grade"
         )
-    pk.cache["ik"] = ik
+    pk.ik = ik
     table = pk.key.table
     if q.pose is not None:
         if len(q.pose) != len(robot.variables):
@@ -136,137 +98,30 @@ def prepare_ik(pk: PreparedKey) -> PreparedKey:
                 f"question {q.spec!r} needs numbers for {', '.join(missing)} (table values)"
             )
         pose = pose_sample(robot, q=np.array([q.pose]), values=table.value_map)
-        pk.cache["ik pose"] = pose
+        pk.ik_pose = pose
         # the numeric solver and the key's branches at the pose are built here, once per
         # worker, outside every student's time limit (the first build takes seconds)
         at_pose = key_values(ik, pose.env, pose.size)
-        pk.cache["ik pose names"] = tuple(_numeric_names(robot, ik, pose, at_pose))
+        pk.ik_pose_names = tuple(_numeric_names(robot, ik, pose, at_pose))
     else:  # the key's branches compiled once, before the first answer's clock starts
         sample = pose_sample(robot, values=table.value_map or None)
         key_values(ik, sample.env, sample.size)
-        pk.cache["ik names"] = _reference_names(robot, ik)
+        pk.ik_names = _reference_names(robot, ik)
     pk.symbols = frozenset(set(table.constants) | set(pose_symbols()[:3, :]))
     return pk
 
 
-# --- reading ------------------------------------------------------------------------------
-
-
-def _statements(text: str) -> list[str]:
-    if is_latex(text):
-        text = _WRAPPERS.sub(" ", text)
-        parts = re.split(r"\\\\|\n|;", text)
-    else:
-        parts = re.split(r"\n|;", text)
-    out = []
-    for part in (p.strip().strip(",") for p in parts):
-        if not part:
-            continue
-        pieces = _split_top(part, ",")
-        if len(pieces) > 1 and all("=" in p for p in pieces):
-            out += [p.strip() for p in pieces]
-        else:
-            out.append(part)
-    return out
-
-
-def _lhs_name(lhs: str) -> str:
-    name = latex_to_text(lhs) if is_latex(lhs) else lhs
-    name = flatten_subscripts(name).replace("{", "").replace("}", "").replace(" ", "")
-    return normalize_name(name) if name else name
-
-
-def _signed(rhs: str, latex: bool, signs: list[sp.Symbol]) -> str:
-    """``±`` as ``+ pmsignK *``: each is a sign σ_K = ±1 of its own."""
-
-    def sub(m: re.Match, sign: str) -> str:
-        if len(signs) >= _MAX_SIGNS:
-            raise UnreadableAnswer(f"the answer has more than {_MAX_SIGNS} signs ±")
-        signs.append(sp.Symbol(f"{_SIGN_NAME}{len(signs) + 1}", real=True))
-        times = r" \cdot " if latex else "*"
-        return f" {sign} {signs[-1].name}{times}"
-
-    rhs = _PLUS_MINUS.sub(lambda m: sub(m, "+"), rhs)
-    return _MINUS_PLUS.sub(lambda m: sub(m, "-"), rhs)
-
-
-def _tolerance(rhs: str, template: sp.Expr, literals: tuple) -> float:
+def _tolerance(st: IKStatement) -> float:
     """How far a value written with decimals may be from the exact one: one unit in the
     last digit of the decimals that stand for the value (with at least 3 significant
     digits; :func:`~dhsym.checking.judging.rounding.value_tolerance`: never a constant that a zero
     factor removes or another cancels), in degrees when a degree sign is there."""
-    tol = max(ATOL, value_tolerance(template, literals))
-    if re.search(r"°|\\circ|\\degree", rhs):
+    cell = st.cell
+    written = value_tolerance(cell.template, cell.literals) if cell.template is not None else 0.0
+    tol = max(ATOL, written)
+    if st.degrees:
         tol = max(tol * np.pi / 180, ATOL)
     return tol
-
-
-def read_ik_answer(answer: str | bytes, pk: PreparedKey, limits: AnswerLimits) -> IKAnswer:
-    """The statements of an answer (see the module text); refuses what it cannot read."""
-    text = read_text(answer, limits)
-    robot = pk.robot
-    variables = list(robot.variables)
-    lengths = set(pk.key.table.constants)
-    raw = _statements(text)
-    if len(raw) > 4 * len(variables) + 40:
-        raise UnreadableAnswer(f"the answer has {len(raw)} statements; at most a few per joint")
-    assignments: list[tuple[int, sp.Symbol, str, int | None]] = []
-    tuples: list[tuple[int, str]] = []
-    helpers_named: dict[str, sp.Symbol] = {}
-    for k, s in enumerate(raw):
-        if "=" not in s:
-            tuples.append((k, s))
-            continue
-        lhs, rhs = s.split("=", 1)
-        name = _lhs_name(lhs)
-        target = pk.names.symbol(name) if name else None
-        if target in variables:
-            assignments.append((k, target, rhs, variables.index(target)))
-        elif target in lengths:
-            raise UnreadableAnswer(f"{lhs.strip()!r} is a length of the robot, not an unknown")
-        elif name and _IDENTIFIER.match(name):
-            helper = helpers_named.setdefault(name, sp.Symbol(name, real=True))
-            assignments.append((k, helper, rhs, None))
-        else:
-            raise UnreadableAnswer(f"cannot read {lhs.strip()!r} as the name of a joint variable")
-    P = pose_symbols()
-    extra = [(str(P[i, j]), P[i, j]) for i in range(3) for j in range(4)]
-    extra += list(helpers_named.items())
-    signs: list[sp.Symbol] = []
-    solutions: list[dict[int, _Statement]] = []
-    helpers: list[_Statement] = []
-
-    def parse(rhs: str, where: str) -> tuple[sp.Expr, str, float]:
-        signed = _signed(rhs, is_latex(rhs), signs)
-        ctx = pk.names.extended([*extra, *((s.name, s) for s in signs)])
-        expr = parse_cell(signed, ctx, limits, where)
-        template, literals = cell_literals(signed, ctx, limits)
-        return expr, rhs.strip(), _tolerance(rhs, template, literals)
-
-    for k, target, rhs, joint in assignments:
-        expr, shown, tol = parse(rhs, f"statement {k + 1}")
-        st = _Statement(target, expr, shown, joint, tol)
-        if joint is None:
-            helpers.append(st)
-        else:
-            if not solutions or joint in solutions[-1]:
-                solutions.append({})
-            solutions[-1][joint] = st
-    for k, s in tuples:
-        cells = _split_top(s.strip().strip("()[]"), ",")
-        if len(cells) != len(variables):
-            raise UnreadableAnswer(
-                f"statement {k + 1} ({s.strip()[:40]!r}) is not 'name = value' and does not "
-                f"list the {len(variables)} joint values in order"
-            )
-        sol = {}
-        for j, c in enumerate(cells):
-            expr, shown, tol = parse(c, f"statement {k + 1}, value {j + 1}")
-            sol[j] = _Statement(variables[j], expr, shown, j, tol)
-        solutions.append(sol)
-    if not solutions:
-        raise UnreadableAnswer("the answer gives no joint value (write e.g. theta1 = …)")
-    return IKAnswer(tuple(solutions), tuple(helpers), tuple(signs))
 
 
 # --- numbers ---------------------------------------------------------------------------------
@@ -307,7 +162,7 @@ def _values(
             for j, st in sol.items():
                 if st.target in local:
                     row[:, j] = local[st.target]
-                tol[j] = st.tol
+                tol[j] = _tolerance(st)
             rows.append(row)
             tols.append(tol)
             meta.append((s_index, combo))
@@ -398,8 +253,8 @@ def _numeric_names(
 def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
     """The question's pose; or random poses, with the table's lengths when the answer writes
     none of them as symbols (it used their numbers)."""
-    if "ik pose" in pk.cache:
-        return pk.cache["ik pose"]
+    if pk.ik_pose is not None:
+        return pk.ik_pose
     table = pk.key.table
     valued = set(table.constants) <= set(table.value_map) and not (
         ans.symbols & set(table.constants)
@@ -407,10 +262,9 @@ def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
     values = table.value_map if valued else None
     if fresh:
         return pose_sample(pk.robot, values=values)
-    key = ("ik sample", valued)
-    if key not in pk.cache:
-        pk.cache[key] = pose_sample(pk.robot, values=values)
-    return pk.cache[key]
+    if valued not in pk.ik_samples:
+        pk.ik_samples[valued] = pose_sample(pk.robot, values=values)
+    return pk.ik_samples[valued]
 
 
 def _entries(
@@ -461,17 +315,15 @@ def _entries(
     return tuple(out)
 
 
-def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> CheckResult:
-    """Check an inverse-kinematics answer against the key (see the module text)."""
+def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
+    """Check an inverse-kinematics answer, as read
+    (:func:`~dhsym.checking.reading.answer_value.read_answer_value`), against the key (see
+    the module text)."""
     key, q = pk.key, pk.key.question
-    ik = pk.cache["ik"]
+    ik = pk.ik
     robot = pk.robot
     nota = robot.notation
     variables = list(robot.variables)
-    try:
-        ans = read_ik_answer(answer, pk, limits)
-    except ParseError as err:
-        raise ParseError(str(err)) from None
     known = set(pk.symbols) | set(variables) | {st.target for st in ans.helpers} | set(ans.signs)
     unknown = sorted(ans.symbols - known, key=sp.default_sort_key)
     missing = sorted(
@@ -510,7 +362,7 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
     m = _match(key_d, answers, tols, dsample, robot, position)
     wrong = m.wrong
     valid_k = [k for k in range(len(key_d)) if not np.isnan(key_d[k]).any()]
-    names = pk.cache["ik pose names"] if q.pose is not None else pk.cache["ik names"]
+    names = pk.ik_pose_names if q.pose is not None else pk.ik_names
     case = IKCase(
         ik,
         dsample,
@@ -522,7 +374,7 @@ def check_ik(pk: PreparedKey, answer: str | bytes, limits: AnswerLimits) -> Chec
         tols.max(axis=0) if len(tols) else np.full(len(variables), ATOL),
         q.every,
         nota,
-        pk.cache,
+        pk.variant_values,
     )
     found = []
     for mistake in IK_MISTAKES:
@@ -652,9 +504,9 @@ def _correct(
     q = pk.key.question
     ks = sorted({k for k in matched.values() if k is not None})
     if q.pose is not None:
-        names = list(pk.cache["ik pose names"])  # set by prepare_ik
+        names = list(pk.ik_pose_names)  # set by prepare_ik
     else:
-        names = list(pk.cache["ik names"])  # set by prepare_ik
+        names = list(pk.ik_names)  # set by prepare_ik
     if q.every:
         message = f"Right: every solution is given ({len(ks)} branches)."
     elif len(ks) == 1:

@@ -230,14 +230,16 @@ def _candidates(Fk: np.ndarray, Fa: np.ndarray, key: Chain, ans: Chain, jk: list
             yield Na @ _rz_tz(phi, t, False) @ F @ iNk
 
 
-def _verify(B, key, ans, jk, ja, Fk, env_a, size, tol):
-    """(joints that matched, variable signs, axis directions, E or None)."""
+def _verify(B, key, ans, jk, ja, Fk, frames_a, size, tol):
+    """(joints that matched, variable signs, axis directions, E or None).
+
+    ``frames_a(signs)`` are the answer's frames with its variables' signs."""
     signs = [1.0] * len(ja)
     dirs = [1.0] * len(ja)
     Pk, Uk = _axes(Fk, key, jk)
     Pk = (B[:3, :3] @ Pk[..., None])[..., 0] + B[:3, 3]
     Uk = (B[:3, :3] @ Uk[..., None])[..., 0]
-    Fa = frames(ans, env_a(signs), size)
+    Fa = frames_a(signs)
     for k, (_, kind, _, _) in enumerate(ja):
         Pa, Ua = _axes(Fa, ans, ja)
         cross = np.linalg.norm(np.cross(Ua[:, k], Uk[:, k]), axis=-1)
@@ -252,7 +254,7 @@ def _verify(B, key, ans, jk, ja, Fk, env_a, size, tol):
         dots = along * ja[k][3] * jk[k][3]
         if (dots < 0).all():
             signs[k] = -1.0
-            Fa = frames(ans, env_a(signs), size)
+            Fa = frames_a(signs)
         elif (dots < 0).any():
             return k, signs, dirs, None
     E = numeric_rigid_inverse(B @ Fk[:, -1]) @ Fa[:, -1]
@@ -407,9 +409,17 @@ def compare_tables(
     def env_a(signs: list[float]) -> dict:
         return {**consts, **{jt[2]: s * Q[:, j] for j, (jt, s) in enumerate(zip(ja, signs))}}
 
+    seen: dict[tuple[float, ...], np.ndarray] = {}  # the answer's frames per sign pattern
+
+    def frames_a(signs: list[float]) -> np.ndarray:
+        key = tuple(signs)
+        if key not in seen:
+            seen[key] = frames(ac, env_a(signs), size)
+        return seen[key]
+
     try:
         Fk = frames(kc, env_k, size)
-        Fa0 = frames(ac, env_a([1.0] * len(ja)), size)
+        Fa0 = frames_a([1.0] * len(ja))
     except EvaluationError as err:
         return TableMatch(False, diverges_at=0, reason=f"cannot evaluate the table: {err}")
     if not (np.isfinite(Fk).all() and np.isfinite(Fa0).all()):
@@ -419,11 +429,11 @@ def compare_tables(
     best, found = -1, []
     for B in _candidates(Fk, Fa0, kc, ac, jk, ja):
         check_time()  # the answer's deadline (see reading.limits.time_limit)
-        got, signs, dirs, E = _verify(B, kc, ac, jk, ja, Fk, env_a, size, tol)
+        got, signs, dirs, E = _verify(B, kc, ac, jk, ja, Fk, frames_a, size, tol)
         best = max(best, got)
         if E is None:
             continue
-        Fa = frames(ac, env_a(signs), size)
+        Fa = frames_a(signs)
         diffs, on_axis = _describe(B, E, signs, dirs, ja, Fk[0], Fa[0], kc, tol)
         tool = bool((np.abs(E - np.eye(4)) > tol).any())
         flip_only = (

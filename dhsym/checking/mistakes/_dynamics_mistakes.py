@@ -252,7 +252,8 @@ class DynamicsMistake(Mistake):
         return _TITLES[self.which]
 
     def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
-        for kind, matrix, detail in case.cache.get("dynamics variants", ()):
+        variants = case.prepared.dynamics_variants if case.prepared is not None else ()
+        for kind, matrix, detail in variants:
             if kind == self.which:
                 k = ("dynamics variant", kind, detail, case.sample.origin)
                 if k not in case.cache:

@@ -154,11 +154,11 @@ class PrismaticColumn(Mistake):
 
 
 def _singular(case: MatrixCase) -> Any:
-    if "singularities" not in case.cache:
-        from dhsym.kinematics.singularities import singularities
+    if case.prepared is not None:
+        return case.prepared.singular()  # derived once per worker
+    from dhsym.kinematics.singularities import singularities
 
-        case.cache["singularities"] = singularities(case.robot)
-    return case.cache["singularities"]
+    return singularities(case.robot)
 
 
 class MissingFactor(Mistake):

@@ -41,7 +41,8 @@ class MatrixCase:
 
     ``expected``/``answer`` are 4×4 (or 1×1 for an entry question at ``entry``,
     0-based; 6×n for a Jacobian); ``wrong`` lists the 0-based positions that differ;
-    ``cache`` keeps the variants of one key between answers; ``robot`` is the key's robot.
+    ``cache`` keeps the variants of one key between answers (the prepared key's
+    ``variant_values``); ``robot`` is the key's robot, ``prepared`` its PreparedKey.
     """
 
     rows: tuple[DHRow, ...]
@@ -58,6 +59,7 @@ class MatrixCase:
     notation: Notation = field(default_factory=Notation)
     cache: dict = field(default_factory=dict)
     robot: Any = None  # the key's Robot (Jacobian and determinant variants)
+    prepared: Any = None  # the PreparedKey (its singularities, its dynamics variants)
 
     def chain_values(
         self, rows: tuple[DHRow, ...], convention: Convention, reverse: str = ""

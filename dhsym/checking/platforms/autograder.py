@@ -67,6 +67,7 @@ from ..grading.batch import check_submission
 from ..grading.feedback import QuestionFeedback, render_question_text
 from ..grading.report_files import write_atomic
 from ..grading.submissions import Submission, _from_file, _from_folder
+from ..judging.checker import PreparedKeys
 from ..reading.limits import AnswerLimits
 
 __all__ = [
@@ -481,11 +482,11 @@ def run_autograder(paths: AutograderPaths | None = None) -> dict:
     out = p.results / "results.json"
     try:
         config = json.loads((p.source / CONFIG_NAME).read_text(encoding="utf-8"))
-        assignment = Assignment.load(p.source / str(config["assignment"]))
+        keys = PreparedKeys()  # each key prepared once, here, before any answer's clock
+        assignment = Assignment.load(p.source / str(config["assignment"]), keys)
         limits = AnswerLimits(seconds=assignment.seconds)
         sub = read_submission(p.submission, assignment, limits, p.metadata)
-        # the keys were prepared by Assignment.load, before the first question's clock
-        feedback = check_submission(assignment, sub, limits, on_timeout=_NO_RERUN)
+        feedback = check_submission(assignment, sub, limits, on_timeout=_NO_RERUN, keys=keys)
         data = results_json(
             assignment,
             feedback,

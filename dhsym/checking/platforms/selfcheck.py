@@ -44,9 +44,9 @@ from dhsym.errors import DHError
 from dhsym.model.table import DHTable
 
 from ..grading.feedback import QuestionFeedback, render_question_text, render_template
-from ..judging.checker import Key, check_answer, prepare, table_cells
+from ..judging.checker import Key, PreparedKeys, check_answer, table_cells
 from ..judging.verdict import CheckResult
-from ..reading.answers import expression_cell, matrix_cells, parse_cell, read_answer_table
+from ..reading.answer_value import IKAnswer, TableAnswer, read_answer_value
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
 
 __all__ = ["Reading", "SelfCheck", "assert_answer", "check", "check_widget", "read_answer"]
@@ -68,32 +68,33 @@ class Reading:
 
 
 def read_answer(
-    key: Key, answer: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS
+    key: Key,
+    answer: str | bytes,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    keys: PreparedKeys | None = None,
 ) -> Reading:
-    """Read ``answer`` as ``key``'s question expects (no comparison): the live preview."""
+    """Read ``answer`` as ``key``'s question expects (no comparison): the live preview.
+
+    ``keys``: the caller's prepared keys (a widget keeps its own), else a fresh map."""
+    keys = keys if keys is not None else PreparedKeys()
     if not (answer.strip() if isinstance(answer, str) else answer.strip()):
         return Reading()
     try:
         with time_limit(min(limits.seconds, 2.0)):
-            pk = prepare(key)
-            q = key.question
-            if q.kind == "table":
+            pk = keys.get(key)
+            read = read_answer_value(pk.form(), answer, limits)
+            if isinstance(read, TableAnswer):
+                return Reading(table=table_cells(read.table))
+            nota = pk.robot.notation
+            if isinstance(read, IKAnswer):  # the statements as equations, in order read
+                statements = (*read.helpers, *(st for sol in read.solutions for st in sol.values()))
                 return Reading(
-                    table=table_cells(
-                        read_answer_table(answer, pk.names, key.table.convention, limits)
+                    latex=nota.latex(
+                        sp.Tuple(*(sp.Eq(st.target, st.expr, evaluate=False) for st in statements))
                     )
                 )
-            nota = pk.robot.notation
-            if q.kind == "entry":
-                return Reading(
-                    latex=nota.latex(parse_cell(expression_cell(answer, limits), pk.names, limits))
-                )
-            cells = matrix_cells(answer, limits)
-            rows = [
-                [parse_cell(c, pk.names, limits, f"entry ({i},{j})") for j, c in enumerate(r, 1)]
-                for i, r in enumerate(cells, 1)
-            ]
-            return Reading(latex=nota.latex(sp.Matrix(rows)))
+            value = read.matrix[0, 0] if read.shape == (1, 1) else read.matrix
+            return Reading(latex=nota.latex(value))
     except CheckTimeout as err:
         return Reading(error=str(err))
     except _READ_ERRORS as err:
@@ -248,6 +249,7 @@ def check_widget(
             "or call check(answer, key=…, question=…)"
         ) from None
     k = _key(key, question, tool_free)
+    keys = PreparedKeys()  # this widget's key, prepared once for every keystroke and check
     q = k.question
     title = w.HTMLMath(
         render_template("selfcheck_title.html.j2", question=q, robot=k.table.name or k.name)
@@ -257,7 +259,7 @@ def check_widget(
         placeholder="Your answer: plain math (C1, a1*C12, [[…], […]]) or LaTeX",
         layout=w.Layout(width="100%", height="8em"),
     )
-    preview = w.HTMLMath(read_answer(k, answer, limits)._repr_html_())
+    preview = w.HTMLMath(read_answer(k, answer, limits, keys)._repr_html_())
     button = w.Button(description="Check", button_style="primary", icon="check")
     verdict = w.HTMLMath("")
     for widget, css in ((area, "answer"), (preview, "preview"), (button, "check")):
@@ -265,11 +267,11 @@ def check_widget(
     verdict.add_class("dhsym-verdict")
 
     def on_text(change: dict) -> None:
-        preview.value = read_answer(k, change["new"], limits)._repr_html_()
+        preview.value = read_answer(k, change["new"], limits, keys)._repr_html_()
 
     def on_check(_: object) -> None:
         verdict.value = SelfCheck(
-            check_answer(k, area.value, limits=limits), k, show_key
+            check_answer(k, area.value, limits=limits, keys=keys), k, show_key
         )._repr_html_()
 
     area.observe(on_text, names="value")

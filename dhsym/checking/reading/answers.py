@@ -52,6 +52,7 @@ __all__ = [
     "parse_cell",
     "read_answer_file",
     "read_answer_table",
+    "read_cell",
     "read_expression",
     "read_matrix",
     "read_text",
@@ -196,12 +197,63 @@ _BRACKETS = str.maketrans("[]{}", "()()")
 
 
 def _parse(cell: str, ctx: NameContext, limits: AnswerLimits, where: str, **kw) -> sp.Expr:
+    return _parse_text(_cell_text(cell), ctx, limits, where, **kw)
+
+
+def _parse_text(text: str, ctx: NameContext, limits: AnswerLimits, where: str, **kw) -> sp.Expr:
+    """Parser text (see :func:`_cell_text`) through the whitelist parser."""
     try:
-        return parse_expression(
-            _cell_text(cell), resolve=ctx.resolve, limits=limits.parse, textbook=True, **kw
-        )
+        return parse_expression(text, resolve=ctx.resolve, limits=limits.parse, textbook=True, **kw)
     except ParseError as err:
         raise ParseError(f"{where}: {err.message}") from None
+
+
+def _template(
+    text: str, ctx: NameContext, limits: AnswerLimits
+) -> tuple[sp.Expr, tuple[Literal, ...]]:
+    """Parser text with each numeric literal as a placeholder, and the literals."""
+    found: list[Literal] = []
+
+    def placeholder(text: str, value: sp.Rational) -> sp.Expr:
+        found.append(Literal(sp.Dummy(f"n{len(found)}", real=True), text, value))
+        return found[-1].symbol
+
+    template = _parse_text(text, ctx, limits, "the answer", literal=placeholder)
+    return template, tuple(found)
+
+
+#: a cell written with decimals (a point or an exponent): only these carry rounding
+DECIMAL = re.compile(r"[0-9]\.|\.[0-9]|[0-9][eE]")
+
+
+def read_cell(
+    cell: str, ctx: NameContext, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS, where: str = ""
+) -> tuple[sp.Expr, tuple[sp.Expr, tuple[Literal, ...]] | None]:
+    """One cell, translated once: its exact value and, when it is written with decimals,
+    its literals as written (the cell with placeholders, the literals; None when the
+    placeholder reading fails, as the rounding of such a cell is then not judged).
+
+    The whitelist parser reads a decimal cell twice from the one translated text: once
+    exact (its checks, such as division by zero, see the values) and once with
+    placeholders.
+
+    >>> from dhsym import load_table
+    >>> ctx = NameContext.from_table(load_table("planar2r"))
+    >>> value, (template, lits) = read_cell(r"0.7071 \\cos\\theta_1", ctx)
+    >>> value, [lit.text for lit in lits]
+    (7071*cos(theta1)/10000, ['0.7071'])
+    >>> read_cell("a1*C1", ctx)
+    (a1*cos(theta1), None)
+    """
+    check_time()  # the answer's deadline (see reading.limits.time_limit)
+    text = _cell_text(cell)
+    value = _parse_text(text, ctx, limits, where or "the answer")
+    if not DECIMAL.search(cell):
+        return value, None
+    try:
+        return value, _template(text, ctx, limits)
+    except DHError:
+        return value, None
 
 
 def cell_literals(
@@ -214,14 +266,7 @@ def cell_literals(
     >>> [(lit.text, lit.value) for lit in lits], t.subs({lit.symbol: lit.value for lit in lits})
     ([('0.7071', 7071/10000), ('2', 2)], 7071*cos(theta1)/10000 + 2)
     """
-    found: list[Literal] = []
-
-    def placeholder(text: str, value: sp.Rational) -> sp.Expr:
-        found.append(Literal(sp.Dummy(f"n{len(found)}", real=True), text, value))
-        return found[-1].symbol
-
-    template = _parse(cell, ctx, limits, "the answer", literal=placeholder)
-    return template, tuple(found)
+    return _template(_cell_text(cell), ctx, limits)
 
 
 def expression_cell(text: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:

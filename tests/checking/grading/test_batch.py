@@ -176,7 +176,7 @@ def test_every_submission_may_fail_and_the_gradebook_is_still_written(tmp_path, 
     assert status["carol"] == "error: could not be read (RuntimeError: disk on fire)"
     assert _totals(out)["bob"] == EXPECTED["bob"]
 
-    def boom(job):
+    def boom(job, keys=None):
         raise RuntimeError("checker crashed")
 
     monkeypatch.setattr(grading, "grade_submission", boom)

@@ -9,7 +9,7 @@ import pytest
 
 from dhsym.checking.grading._runner import JobFailure, Progress, Sandbox, run_pool, run_serial
 
-from .._jobs import die, stuck_or_square
+from .._jobs import Counter, count_calls, die, die_or_square, stuck_or_square
 
 
 def test_hung_worker_is_killed_and_the_batch_goes_on():
@@ -64,3 +64,36 @@ def test_dask_thread_stuck_in_c_code_costs_no_other_job():
         )
     assert out[0] == out[2] == JobFailure("timeout", "no result within 5 s")
     assert [out[k] for k in (1, 3, 4, 5)] == [4, 9, 16, 25]
+
+
+def test_a_batch_goes_on_after_a_timeout_in_its_middle_each_job_on_its_own_clock():
+    jobs = [2, 3, -1, 4, 5]
+    with Sandbox(preload=()) as box:
+        out = dict(box.call_many(stuck_or_square, jobs, deadline=5.0))
+    assert out[2] == JobFailure("timeout", "no result within 5 s")
+    assert [out[k] for k in (0, 1, 3, 4)] == [4, 9, 16, 25]
+
+
+def test_a_batch_goes_on_after_a_job_kills_its_process():
+    with Sandbox(preload=()) as box:
+        out = list(box.call_many(die_or_square, [2, -3, 4], deadline=30))
+    assert out == [
+        (0, 4),
+        (1, JobFailure("error", "the worker process died (exit code 3)")),
+        (2, 16),
+    ]
+
+
+def test_each_worker_builds_its_state_once_and_keeps_it_between_batches():
+    out = dict(
+        run_pool(
+            count_calls, list(range(12)), workers=2, deadline=30, preload=(), batch=2, state=Counter
+        )
+    )
+    pids = {pid for pid, _ in out.values()}
+    assert len(pids) <= 2
+    for pid in pids:  # one Counter per child: its calls count 1, 2, 3 … across batches
+        seen = sorted(n for p, n in out.values() if p == pid)
+        assert seen == list(range(1, len(seen) + 1))
+    serial = dict(run_serial(count_calls, [0, 1, 2], state=Counter))
+    assert [n for _, n in serial.values()] == [1, 2, 3]

@@ -45,7 +45,7 @@ def test_sample_points_are_fresh_for_every_draw():
 
 
 def test_every_check_draws_its_own_points(monkeypatch):
-    from dhsym.checking import Key, check_answer
+    from dhsym.checking import Key, PreparedKeys, check_answer
     from dhsym.checking.judging import checker
 
     drawn = []
@@ -55,11 +55,11 @@ def test_every_check_draws_its_own_points(monkeypatch):
         drawn.append(real(*args, **kwargs))
         return drawn[-1]
 
-    key = Key.load("planar2r", "T0_2[0,3]")
-    check_answer(key, "a1 C1 + a2 C12")  # prepares the key (its diagnosis samples)
+    key, keys = Key.load("planar2r", "T0_2[0,3]"), PreparedKeys()
+    check_answer(key, "a1 C1 + a2 C12", keys=keys)  # prepares the key (its diagnosis samples)
     monkeypatch.setattr(checker.Sample, "random", spy)
-    assert check_answer(key, "a1 C1 + a2 C12").correct
-    assert check_answer(key, "a1 C1 + a2 C12").correct
+    assert check_answer(key, "a1 C1 + a2 C12", keys=keys).correct  # the worker's prepared key
+    assert check_answer(key, "a1 C1 + a2 C12", keys=keys).correct
     assert len(drawn) == 2 and not np.allclose(drawn[0].table, drawn[1].table)
 
 

@@ -7,7 +7,7 @@ import pytest
 
 import dhsym
 from dhsym.checking import Key, check_answer
-from dhsym.checking.judging.ik_check import read_ik_answer
+from dhsym.checking.reading.answer_value import read_answer_value
 from dhsym.ik.results import BRANCH_NAMES
 
 D = "((p_x^2 + p_y^2 - a1^2 - a2^2)/(2*a1*a2))"
@@ -183,12 +183,12 @@ def test_reading_statements_and_helpers():
     from dhsym.checking.reading.limits import DEFAULT_ANSWER_LIMITS
 
     pk = prepare(Key.load("planar2r", "ik"))
-    ans = read_ik_answer(
-        "c2 = D; D = 0.5\ntheta2 = acos(c2), theta1 = 1", pk, DEFAULT_ANSWER_LIMITS
+    ans = read_answer_value(
+        pk.form(), "c2 = D; D = 0.5\ntheta2 = acos(c2), theta1 = 1", DEFAULT_ANSWER_LIMITS
     )
     assert [h.target.name for h in ans.helpers] == ["c2", "D"]
     assert sorted(ans.solutions[0]) == [0, 1]
-    ans = read_ik_answer("0.1, 0.2\n0.3, 0.4", pk, DEFAULT_ANSWER_LIMITS)
+    ans = read_answer_value(pk.form(), "0.1, 0.2\n0.3, 0.4", DEFAULT_ANSWER_LIMITS)
     assert len(ans.solutions) == 2
 
 

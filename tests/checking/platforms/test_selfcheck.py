@@ -50,6 +50,20 @@ def test_read_answer_is_the_live_preview():
     assert table.table[1][1] == "theta1"
 
 
+def test_the_preview_reads_as_the_check_does():
+    """The preview is the check's own reading: a Jacobian 6×n, a determinant, IK statements."""
+    jac = Key.load("planar2r", "J")
+    rows = "; ".join(
+        ", ".join(["-a1*S1 - a2*S12", "-a2*S12"] if i == 0 else ["0", "0"]) for i in range(6)
+    )
+    assert read_answer(jac, rows).latex.startswith(r"\begin{bmatrix}")
+    assert read_answer(jac, rows).error == ""
+    assert read_answer(Key.load("planar2r", "det J"), "a1*a2*S2").latex == r"a_{1} a_{2} S_{2}"
+    ik = read_answer(Key.load("planar2r", "ik"), "theta1 = atan2(py, px); theta2 = 0")
+    assert ik.error == ""
+    assert r"\theta_{1} = \operatorname{atan2}\left(p_{y}, p_{x}\right)" in ik.latex
+
+
 def test_bad_key_or_question_is_the_teachers_error():
     with pytest.raises(DHError):
         check("1", key="planar2r", question="T0_9")
