@@ -25,9 +25,8 @@ ROOMS = {
     "notation",
     "plot",
 }
-#: Rooms whose ``__init__`` lists its names through ``lazy_exports`` or ``public_dir``
-#: (not yet dhsym.dynamics, which imports its names eagerly).
-LAZY_ROOMS = sorted(ROOMS - {"dynamics"})
+#: Every room's ``__init__`` lists its names through ``lazy_exports`` or ``public_dir``.
+LAZY_ROOMS = sorted(ROOMS)
 
 
 def _public(names: list[str]) -> set[str]:

@@ -1,4 +1,4 @@
-"""KinematicChain dynamics: the equations of motion of a DH chain, derived as the lecture does.
+"""Robot dynamics: the equations of motion of a DH chain, derived as the lecture does.
 
 Owns the inertial model of a chain, Lagrange–Euler and recursive Newton–Euler (both DH
 conventions), statics, the regressor and base parameters, and their compiled numbers.
@@ -6,6 +6,8 @@ May import ``model``, ``notation`` and ``kinematics``.
 """
 
 from __future__ import annotations
+
+from dhsym._lazy import public_dir
 
 from .equations import EquationsOfMotion, NEStep
 from .lagrange import lagrange
@@ -29,3 +31,7 @@ __all__ = [
     "newton_euler",
     "rate_symbols",
 ]
+
+
+def __dir__() -> list[str]:
+    return public_dir(__name__)

@@ -1,6 +1,6 @@
 r"""Lagrange–Euler: the energies of each link, M(q), the Christoffel symbols, C and g.
 
-Spong, Hutchinson and Vidyasagar, *KinematicChain Modeling and Control*, §7.2–7.4:
+Spong, Hutchinson and Vidyasagar, *Robot Modeling and Control*, §7.2–7.4:
 
 .. math::
 

@@ -2,7 +2,7 @@ r"""The closed form by kinematic decoupling (spherical wrist, planar arms), as l
 
 :func:`derive_decoupled` reads the structure of a DH table (never its name) and derives the
 joint values from a pose ``T = [n s a p; 0 0 0 1]`` step by step, the way the
-lectures do (Spong, Hutchinson and Vidyasagar, *KinematicChain Modeling and Control*, §5.3;
+lectures do (Spong, Hutchinson and Vidyasagar, *Robot Modeling and Control*, §5.3;
 Craig, *Introduction to Robotics*, §4.7):
 
 1. **Kinematic decoupling.** When the last three axes meet in one point (a spherical

@@ -621,7 +621,7 @@ def _eigen_qz(big: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _candidates(arr: _Arrangement, Tp: np.ndarray) -> np.ndarray:
-    """KinematicChain angles ``(k, 6)`` of every real eigenvalue, before polishing."""
+    """Chain angles ``(k, 6)`` of every real eigenvalue, before polishing."""
     best = None
     for delta in _SHIFTS:
         found = _pencil(arr, Tp, delta), delta

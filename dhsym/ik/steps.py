@@ -5,7 +5,7 @@ A derivation (one module per family of arms in :mod:`dhsym.ik`) is a list of
 :class:`Step` (``symbol = exact expression``, with the sentence that explains it) and of
 :class:`Branch` (a sign ``σ = ±1`` chosen by a ``±√``). :class:`Builder` collects them;
 :func:`solve_equations` takes equations ``expr = 0`` and solves them one unknown at a
-time as the lectures do (Spong, Hutchinson and Vidyasagar, *KinematicChain Modeling and Control*,
+time as the lectures do (Spong, Hutchinson and Vidyasagar, *Robot Modeling and Control*,
 §5.3): two equations linear in ``cos θ`` and ``sin θ`` give one ``atan2``; one equation
 ``A cos θ + B sin θ = K`` gives two solutions, ``atan2(B, A) ± atan2(√(A² + B² − K²), K)``;
 a prismatic joint comes from a linear or quadratic equation.

@@ -3,7 +3,7 @@
 The axes of neighbouring joints keep their relation whatever the joint values: parallel,
 meeting in a point, or skew. Three consecutive axes that are parallel or meet in one
 point are what the closed forms rest on (Pieper's condition; Spong, Hutchinson and
-Vidyasagar, *KinematicChain Modeling and Control*, §5.3): the last three meeting is the
+Vidyasagar, *Robot Modeling and Control*, §5.3): the last three meeting is the
 spherical wrist, three parallel in the middle is the arm of the Universal Robots, and
 the same at the start of the chain is solved by reading the chain backwards.
 

@@ -1,6 +1,6 @@
 r"""The manipulator Jacobian in lecture form: geometric and analytic, exact and compiled.
 
-Column *i* of the geometric Jacobian (Spong, Hutchinson and Vidyasagar, *KinematicChain
+Column *i* of the geometric Jacobian (Spong, Hutchinson and Vidyasagar, *Robot
 Modeling and Control*, §4.6) is, for a revolute and a prismatic joint,
 
 .. math::

@@ -2,7 +2,7 @@ r"""The manipulability ellipse: where the tool can move fast, drawn on the arm.
 
 For a unit ball of joint rates ``‖q̇‖ = 1`` the tool's linear velocity ``v = J_v q̇`` fills
 the ellipsoid ``vᵀ (J_v J_vᵀ)⁻¹ v = 1`` (Yoshikawa; Spong, Hutchinson and Vidyasagar,
-*KinematicChain Modeling and Control*, §4.12): its semi-axes point along the left singular
+*Robot Modeling and Control*, §4.12): its semi-axes point along the left singular
 vectors of ``J_v`` and are as long as its singular values; their product is the
 manipulability ``w = sqrt(det(J_v J_vᵀ))``. It flattens as the arm nears a singularity
 and collapses to a segment there (the planar 2R stretched out: ``S2 = 0``).

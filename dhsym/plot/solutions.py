@@ -1,6 +1,6 @@
 """Every inverse-kinematics solution of one pose, drawn side by side (matplotlib).
 
-:func:`plot_solutions` takes the solutions of :meth:`~dhsym.kinematics.chain.KinematicChain.ik`
+:func:`plot_solutions` takes the solutions of :meth:`~dhsym.robot.Robot.ik`
 (an :class:`~dhsym.ik.results.IKSolution`, or a ``(k, n)`` array with names) and
 draws the arm in each, one panel per solution titled with its branch (left/right arm,
 elbow up/down, wrist flipped or not), all with one view so that they compare, and the
