@@ -492,7 +492,7 @@ def _multiply(
 
 def word_product(
     word: Sequence[Elementary],
-    env: Mapping[sp.Basic, np.ndarray],
+    env: Mapping[sp.Basic, np.ndarray | float],
     size: int,
     *,
     prefixes: bool = False,
@@ -550,7 +550,7 @@ _CONSTANT = object()  # the walker's mark of a subtree without symbols
 
 def evaluate(
     expr: sp.Basic,
-    env: Mapping[sp.Basic, np.ndarray],
+    env: Mapping[sp.Basic, np.ndarray | float],
     size: int,
     memo: dict[object, np.ndarray] | None = None,
 ) -> np.ndarray:
@@ -583,7 +583,7 @@ def evaluate(
 
 def evaluate_many(
     exprs: Sequence[sp.Basic],
-    env: Mapping[sp.Basic, np.ndarray],
+    env: Mapping[sp.Basic, np.ndarray | float],
     size: int,
     memo: dict[object, np.ndarray] | None = None,
 ) -> np.ndarray:
@@ -634,7 +634,9 @@ def _constant(e: sp.Basic, memo: dict[object, np.ndarray]) -> np.ndarray:
     return hit
 
 
-def _walk(e: sp.Basic, env: Mapping[sp.Basic, np.ndarray], memo: dict[object, np.ndarray]) -> Any:
+def _walk(
+    e: sp.Basic, env: Mapping[sp.Basic, np.ndarray | float], memo: dict[object, np.ndarray]
+) -> Any:
     """Values of ``e`` at every point, or :data:`_CONSTANT` for a subtree without symbols.
 
     (``Any``: an ``np.ndarray`` or the ``_CONSTANT`` mark, told apart by ``is``.)

@@ -100,7 +100,7 @@ class Progress:
 
 
 def run_serial(
-    fn: Callable, jobs: Sequence, state: Callable[[], object] | None = None
+    fn: Callable[..., object], jobs: Sequence[object], state: Callable[[], object] | None = None
 ) -> Iterator[tuple[int, object]]:
     """Run the jobs one after another in this process (time limits from inside the job)."""
     shared = state() if state is not None else None
@@ -162,7 +162,7 @@ class Sandbox:
 
     def __init__(self, preload: Sequence[str] = _PRELOAD) -> None:
         self.preload = tuple(preload)
-        self.proc: subprocess.Popen | None = None
+        self.proc: subprocess.Popen[bytes] | None = None
 
     def __enter__(self) -> Sandbox:
         return self
@@ -220,7 +220,7 @@ class Sandbox:
 
     def call(
         self,
-        fn: Callable,
+        fn: Callable[..., object],
         job: object,
         deadline: float,
         state: Callable[[], object] | None = None,
@@ -259,8 +259,8 @@ class Sandbox:
 
     def call_many(
         self,
-        fn: Callable,
-        jobs: Sequence,
+        fn: Callable[..., object],
+        jobs: Sequence[object],
         deadline: float,
         state: Callable[[], object] | None = None,
     ) -> Iterator[tuple[int, object]]:
@@ -331,7 +331,7 @@ atexit.register(_close_all)
 
 
 def run_in_sandbox(
-    fn: Callable,
+    fn: Callable[..., object],
     job: object,
     deadline: float,
     preload: Sequence[str] = _PRELOAD,
@@ -350,8 +350,8 @@ def run_in_sandbox(
 
 
 def run_pool(
-    fn: Callable,
-    jobs: Sequence,
+    fn: Callable[..., object],
+    jobs: Sequence[object],
     workers: int,
     deadline: float,
     preload: Sequence[str] = _PRELOAD,
@@ -462,8 +462,8 @@ def dask_address(address: object) -> object:
 
 
 def run_dask(
-    fn: Callable,
-    jobs: Sequence,
+    fn: Callable[..., object],
+    jobs: Sequence[object],
     address: object,
     deadline: float,
     preload: Sequence[str] = _PRELOAD,
@@ -476,7 +476,7 @@ def run_dask(
     job that the cluster does not return at all within a generous backstop
     (twice the deadline plus the sandbox's start-up) is reported ``timeout``.
     """
-    from dask.distributed import Client
+    from dask.distributed import Client, Future
 
     from dhsym.errors import DHError
 
@@ -490,7 +490,7 @@ def run_dask(
     try:
         slots = max(1, sum(client.nthreads().values())) * 2
         pending = deque(range(len(jobs)))
-        running: dict = {}
+        running: dict[Future[object], tuple[int, float]] = {}  # future -> (job, start)
         while pending or running:
             while pending and len(running) < slots:
                 k = pending.popleft()
@@ -527,7 +527,9 @@ def _serve(preload: Sequence[str]) -> None:
     for name in preload:
         importlib.import_module(name)
     _write_frame(out, pickle.dumps(("ready", None)))
-    states: dict[object, object] = {}  # this worker's state per job function's factory
+    states: dict[
+        Callable[[], object], object
+    ] = {}  # this worker's state per job function's factory
     while True:
         head = inp.read(_HEADER.size)
         if len(head) < _HEADER.size:
@@ -540,7 +542,10 @@ def _serve(preload: Sequence[str]) -> None:
 
 
 def _run_one(
-    fn: Callable, job: object, factory: Callable[[], object] | None, states: dict
+    fn: Callable[..., object],
+    job: object,
+    factory: Callable[[], object] | None,
+    states: dict[Callable[[], object], object],
 ) -> bytes:
     """The reply to one job: ``("ok", result)`` or ``("error", text)``, pickled."""
     try:

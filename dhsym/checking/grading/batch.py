@@ -33,6 +33,7 @@ import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import TypedDict
 
 from dhsym.errors import DHError
 from dhsym.model.yamlsafe import FileRefused, read_limited
@@ -175,7 +176,17 @@ def grade_submission(
     )
 
 
-def _identity(sub: Submission) -> dict:
+class _Identity(TypedDict):
+    """Who a record is about (the first fields of a :class:`GradeRecord`)."""
+
+    uid: str
+    student: str
+    name: str
+    source: str
+    flags: tuple[str, ...]
+
+
+def _identity(sub: Submission) -> _Identity:
     return {
         "uid": sub.uid,
         "student": sub.student,

@@ -16,7 +16,7 @@ import statistics
 from collections import Counter
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .feedback import render_summary
 from .report_files import csv_cell, inside, write_atomic
@@ -32,7 +32,9 @@ __all__ = [
 ]
 
 
-def write_gradebook(root: Path, a: Assignment, records: Sequence[GradeRecord], files: dict) -> Path:
+def write_gradebook(
+    root: Path, a: Assignment, records: Sequence[GradeRecord], files: dict[str, str]
+) -> Path:
     """``gradebook.csv``: a row per student, the points per question, total and feedback file."""
     buf = io.StringIO()
     w = csv.writer(buf)
@@ -68,7 +70,7 @@ def write_gradebook(root: Path, a: Assignment, records: Sequence[GradeRecord], f
     return path
 
 
-def _chart(root: Path, a: Assignment, records: Sequence[GradeRecord], kinds: Counter) -> Path:
+def _chart(root: Path, a: Assignment, records: Sequence[GradeRecord], kinds: Counter[str]) -> Path:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from matplotlib.ticker import MaxNLocator
@@ -101,8 +103,8 @@ def _difficulty(share: float) -> str:
 
 
 def question_picture(
-    a: Assignment, records: Sequence[GradeRecord], files: dict, top: int = 5
-) -> list[dict]:
+    a: Assignment, records: Sequence[GradeRecord], files: dict[str, str], top: int = 5
+) -> list[dict[str, Any]]:
     """Per question: verdict counts, share right, difficulty, and the most common wrong
     entries (matrix entries, or table rows) with one example answer and its student.
 
@@ -123,7 +125,7 @@ def question_picture(
     n = max(len(records), 1)
     for q in a.questions:
         v = Counter(r.verdicts.get(q.id, "missing") for r in records)
-        where: Counter = Counter()
+        where: Counter[str] = Counter()
         example: dict[str, tuple[str, str, str]] = {}  # place -> (answer, student, uid)
         mistakes = Counter(k for r in records for k in r.mistakes.get(q.id, ()))
         for r in records:
@@ -164,14 +166,14 @@ def write_summary(
     root: Path,
     a: Assignment,
     records: Sequence[GradeRecord],
-    files: dict,
+    files: dict[str, str],
     *,
     refused: Sequence[tuple[str, str]] = (),
 ) -> Path:
     """``summary.html`` and its chart ``summary.png``: scores, verdicts, mistake kinds, and
     per question its difficulty and most common wrong entries (what to re-teach); the
     entries of the submissions folder that were not graded, each with its reason."""
-    kinds: Counter = Counter(k for r in records for k in r.kinds)
+    kinds: Counter[str] = Counter(k for r in records for k in r.kinds)
     chart = _chart(root, a, records, kinds)
     per_q = question_picture(a, records, files)
     scores = [r.score for r in records]

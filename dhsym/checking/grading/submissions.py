@@ -295,7 +295,7 @@ def read_submissions(
     return sorted(_flag_duplicates(subs), key=lambda s: (s.student, s.source))
 
 
-def _refusal(entry: os.DirEntry, path: Path, reports: set[Path]) -> str:
+def _refusal(entry: os.DirEntry[str], path: Path, reports: set[Path]) -> str:
     """Why a folder entry is not a submission, or ``""`` when it is one."""
     if entry.is_symlink():
         return "a symbolic link (never followed: make it a real folder or file)"

@@ -116,7 +116,9 @@ def branch_signs(ik: Any) -> np.ndarray:
     return np.array(list(itertools.product([1, -1], repeat=B)), dtype=float).reshape(2**B, B)
 
 
-def _evaluate(e: sp.Expr, env: Mapping, size: int, memo: dict) -> np.ndarray:
+def _evaluate(
+    e: sp.Expr, env: Mapping[sp.Basic, np.ndarray], size: int, memo: dict[object, np.ndarray]
+) -> np.ndarray:
     try:
         return evaluate(e, env, size, memo)
     except (EvaluationError, OverflowError, TypeError, ValueError):
@@ -138,7 +140,7 @@ def key_values(
         local = dict(env)
         for b, sign in zip(ik.branches, choice, strict=True):
             local[b.symbol] = np.full(size, sign)
-        memo: dict = {}
+        memo: dict[object, np.ndarray] = {}
         for st, e in zip(ik.steps, rhs, strict=True):
             local[st.lhs] = _evaluate(e, local, size, memo)
         for j, v in enumerate(variables):
@@ -148,14 +150,18 @@ def key_values(
 
 def joint_distance(a: np.ndarray, b: np.ndarray, revolute: np.ndarray) -> np.ndarray:
     """``|a − b|`` joint by joint, angles modulo 2π (NaN where either is NaN)."""
-    d = a - b
+    d: np.ndarray = a - b
     with np.errstate(invalid="ignore"):
         d = np.where(revolute, np.abs(np.remainder(d + np.pi, 2 * np.pi) - np.pi), np.abs(d))
     return d
 
 
 def same_joints(
-    a: np.ndarray, b: np.ndarray, revolute: np.ndarray, tol: np.ndarray | float = ATOL, nan=False
+    a: np.ndarray,
+    b: np.ndarray,
+    revolute: np.ndarray,
+    tol: np.ndarray | float = ATOL,
+    nan: bool = False,
 ) -> bool:
     """True when ``a`` and ``b`` (``(size, n)``) agree at every point, angles modulo 2π.
 

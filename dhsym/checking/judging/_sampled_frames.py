@@ -23,6 +23,7 @@ from collections.abc import Mapping
 from typing import Protocol
 
 import numpy as np
+import sympy as sp
 
 from dhsym.kinematics.numeric import EvaluationError, evaluate, evaluate_many, word_product
 from dhsym.kinematics.transforms import link_word
@@ -45,12 +46,12 @@ class Rows(Protocol):
     def n(self) -> int: ...
 
 
-def frames(table: Rows, env: Mapping, size: int) -> np.ndarray:
+def frames(table: Rows, env: Mapping[sp.Basic, np.ndarray | float], size: int) -> np.ndarray:
     """The DH frames ``^0T_k`` for k = 0 … n at every point: shape (size, n + 1, 4, 4)."""
     out = np.empty((size, table.n + 1, 4, 4))
     current = np.broadcast_to(np.eye(4), (size, 4, 4)).copy()
     out[:, 0] = current
-    memo: dict = {}
+    memo: dict[object, np.ndarray] = {}
     for k, row in enumerate(table.rows, start=1):
         current = current @ word_product(link_word(row, table.convention), env, size, memo=memo)
         out[:, k] = current

@@ -162,10 +162,10 @@ class PreparedKey:
     #: branches' names there or in general, and the random poses of the diagnosis
     ik: Any = None
     ik_pose: Any = None
-    ik_pose_names: tuple = ()
-    ik_names: tuple = ()
+    ik_pose_names: tuple[str, ...] = ()
+    ik_names: tuple[str, ...] = ()
     ik_samples: dict[bool, Any] = field(default_factory=dict)
-    variant_values: dict[tuple, Any] = field(default_factory=dict)
+    variant_values: dict[tuple[object, ...], Any] = field(default_factory=dict)
 
     def sample_for(self, answer: sp.Basic) -> str:
         """``valued`` (the table's numbers for its lengths) when the answer uses none of
@@ -394,7 +394,7 @@ def _shown(cell: str) -> str:
 
 def _compare(
     pk: PreparedKey, ans: sp.ImmutableMatrix, cells: tuple[ReadCell, ...], limits: AnswerLimits
-) -> tuple:
+) -> tuple[list[EntryResult], list[tuple[int, int]], list[sp.Basic]]:
     """Entry results, wrong positions and the unknown symbols, at fresh random points.
 
     Per entry: equal at every point → the exact proof if affordable (``exact``), else the
@@ -416,7 +416,8 @@ def _compare(
     kv = values(expected, sample)
     av = values(ans, sample)
     near = np.asarray(close(av, kv, EXACT_RTOL, axis=0))
-    entries, wrong = [], []
+    entries: list[EntryResult] = []
+    wrong: list[tuple[int, int]] = []
     for i in range(expected.rows):
         for j in range(expected.cols):
             a, e = ans[i, j], expected[i, j]
@@ -465,7 +466,9 @@ def _rounded(pk: PreparedKey, cell: ReadCell, sample: Sample, key: np.ndarray) -
     return how or ""
 
 
-def _diagnosis_values(pk: PreparedKey, ans: sp.ImmutableMatrix, unknown: list) -> tuple:
+def _diagnosis_values(
+    pk: PreparedKey, ans: sp.ImmutableMatrix, unknown: list[sp.Basic]
+) -> tuple[Sample, np.ndarray, np.ndarray]:
     """The key's diagnosis sample (fixed per key, so the mistakes' variants are cached),
     extended with the unknown symbols, the key's and the answer's values there."""
     d = pk.diagnosis(ans)

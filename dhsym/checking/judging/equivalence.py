@@ -156,7 +156,9 @@ def values(expr: sp.Basic, sample: Sample) -> np.ndarray:
     return _values(expr, env, sample.size, memo)
 
 
-def _values(expr: sp.Basic, env: Mapping, size: int, memo: dict) -> np.ndarray:
+def _values(
+    expr: sp.Basic, env: Mapping[sp.Basic, np.ndarray], size: int, memo: dict[object, np.ndarray]
+) -> np.ndarray:
     try:
         return evaluate(expr, env, size, memo)
     except (EvaluationError, OverflowError, TypeError, ValueError):
@@ -245,7 +247,8 @@ def _magnitude(expr: sp.Expr, sample: Sample) -> np.ndarray:
         return out
     if expr.is_Pow and expr.exp.is_Integer and expr.exp > 0:
         return _magnitude(expr.base, sample) ** int(expr.exp)
-    return np.abs(np.broadcast_to(values(expr, sample), (sample.size,)))
+    size: np.ndarray = np.abs(np.broadcast_to(values(expr, sample), (sample.size,)))
+    return size
 
 
 def cancellation(answer: sp.Expr, sample: Sample, difference: np.ndarray) -> bool:

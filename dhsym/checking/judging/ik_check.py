@@ -39,7 +39,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -73,6 +73,9 @@ if TYPE_CHECKING:
     from .checker import PreparedKey
 
 __all__ = ["check_ik", "prepare_ik"]
+
+#: per row of the answer's values: (which solution, the choice of its signs ±)
+_Meta: TypeAlias = list[tuple[int, dict[sp.Symbol, Any]]]
 
 
 def prepare_ik(pk: PreparedKey) -> PreparedKey:
@@ -129,7 +132,7 @@ def _tolerance(st: IKStatement) -> float:
 
 def _values(
     ans: IKAnswer, sample: PoseSample, variables: list[sp.Symbol]
-) -> tuple[np.ndarray, np.ndarray, list[tuple[int, dict]]]:
+) -> tuple[np.ndarray, np.ndarray, _Meta]:
     """The answer's joint values ``(A, size, n)``: one row per solution and choice of signs;
     the tolerance per row and joint; which solution and signs each row is."""
     combos = [
@@ -137,7 +140,9 @@ def _values(
         for choice in (branch_signs_n(len(ans.signs)) if ans.signs else [()])
     ]
     n, size = len(variables), sample.size
-    rows, tols, meta = [], [], []
+    rows: list[np.ndarray] = []
+    tols: list[np.ndarray] = []
+    meta: _Meta = []
     for s_index, sol in enumerate(ans.solutions):
         for combo in combos:
             local = dict(sample.env)
@@ -146,7 +151,7 @@ def _values(
             for sgn, value in combo.items():
                 local[sgn] = np.full(size, float(value))
             pending = [*ans.helpers, *sol.values()]
-            memo: dict = {}
+            memo: dict[object, np.ndarray] = {}
             while pending:
                 ready = [st for st in pending if st.expr.free_symbols <= set(local)]
                 if not ready:
@@ -254,7 +259,8 @@ def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
     """The question's pose; or random poses, with the table's lengths when the answer writes
     none of them as symbols (it used their numbers)."""
     if pk.ik_pose is not None:
-        return pk.ik_pose
+        pose: PoseSample = pk.ik_pose
+        return pose
     table = pk.key.table
     valued = set(table.constants) <= set(table.value_map) and not (
         ans.symbols & set(table.constants)
@@ -264,7 +270,8 @@ def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
         return pose_sample(pk.robot, values=values)
     if valued not in pk.ik_samples:
         pk.ik_samples[valued] = pose_sample(pk.robot, values=values)
-    return pk.ik_samples[valued]
+    sample: PoseSample = pk.ik_samples[valued]
+    return sample
 
 
 def _entries(
@@ -274,7 +281,7 @@ def _entries(
     key: np.ndarray,
     answers: np.ndarray,
     tols: np.ndarray,
-    meta: list,
+    meta: _Meta,
     revolute: np.ndarray,
 ) -> tuple[EntryResult, ...]:
     """One entry per solution and joint (row: the solution, column: the joint): right when
@@ -418,7 +425,8 @@ def _close(a: np.ndarray, b: np.ndarray, revolute: np.ndarray, tol: np.ndarray) 
     d = joint_distance(a, b, revolute)
     scale = np.where(revolute, 1.0, 1.0 + np.abs(np.nan_to_num(b)))
     with np.errstate(invalid="ignore"):
-        return np.all(d <= tol * scale, axis=-1)
+        ok: np.ndarray = np.all(d <= tol * scale, axis=-1)
+    return ok
 
 
 @dataclass(frozen=True, eq=False)
@@ -482,7 +490,7 @@ def _match(
 
 def _judge(
     pk: PreparedKey, ans: IKAnswer, ik: InverseKinematics, sample: PoseSample, position: bool
-) -> tuple[bool, _Match, list]:
+) -> tuple[bool, _Match, _Meta]:
     variables = list(pk.robot.variables)
     key = key_values(ik, sample.env, sample.size)
     answers, tols, meta = _values(ans, sample, variables)
@@ -496,7 +504,7 @@ def _correct(
     ans: IKAnswer,
     ik: InverseKinematics,
     sample: PoseSample,
-    result: tuple,
+    result: tuple[bool, _Match, _Meta],
     position: bool,
 ) -> CheckResult:
     _, m, meta = result

@@ -214,7 +214,12 @@ def value_tolerance(template: sp.Expr, literals: tuple[Literal, ...], digits: in
     return max(units, default=0.0)
 
 
-def _at(template: sp.Expr, env: Mapping, size: int, subs: Mapping[sp.Symbol, float]) -> np.ndarray:
+def _at(
+    template: sp.Expr,
+    env: Mapping[sp.Basic, np.ndarray],
+    size: int,
+    subs: Mapping[sp.Symbol, float],
+) -> np.ndarray:
     values = {**env, **{s: np.asarray(float(v)) for s, v in subs.items()}}
     try:
         return evaluate(template, values, size)
@@ -250,7 +255,7 @@ def rounding_accepts(
     rounding: Rounding,
     template: sp.Expr,
     literals: tuple[Literal, ...],
-    env: Mapping,
+    env: Mapping[sp.Basic, np.ndarray],
     size: int,
     key: np.ndarray,
 ) -> str | None:

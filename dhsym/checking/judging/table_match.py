@@ -38,8 +38,9 @@ from __future__ import annotations
 
 import math
 import zlib
-from collections.abc import Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
+from typing import TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -94,10 +95,14 @@ class TableMatch:
     reversed_joints: tuple[int, ...] = ()
     tool_differs: bool = False
     base_on_axis: bool = True
-    details: dict = field(default_factory=dict, compare=False, repr=False)
+    details: dict[str, object] = field(default_factory=dict, compare=False, repr=False)
 
 
-def _joints(chain: Chain) -> list[tuple[int, JointType, sp.Symbol, float]]:
+#: a joint of a chain: (its row, 1-based; its kind; its variable; the variable's sign)
+_Joint: TypeAlias = tuple[int, JointType, sp.Symbol, float]
+
+
+def _joints(chain: Chain) -> list[_Joint]:
     """(row, kind, variable, sign of the variable in its entry) of every joint."""
     out = []
     for i, r in enumerate(chain.rows, 1):
@@ -151,7 +156,7 @@ def _constant_env(
     return env
 
 
-def _axes(F: np.ndarray, chain: Chain, joints: list) -> tuple[np.ndarray, np.ndarray]:
+def _axes(F: np.ndarray, chain: Chain, joints: list[_Joint]) -> tuple[np.ndarray, np.ndarray]:
     """Points and directions of the joint axes, shape (K, joints, 3) each."""
     shift = 1 if chain.convention is Convention.STANDARD else 0
     idx = [j[0] - shift for j in joints]
@@ -194,7 +199,9 @@ def _foot(p: np.ndarray, u: np.ndarray) -> tuple[float, np.ndarray] | None:
     return float(h), n
 
 
-def _candidates(Fk: np.ndarray, Fa: np.ndarray, key: Chain, ans: Chain, jk: list, ja: list):
+def _candidates(
+    Fk: np.ndarray, Fa: np.ndarray, key: Chain, ans: Chain, jk: list[_Joint], ja: list[_Joint]
+) -> Iterator[np.ndarray]:
     """Base transforms worth trying: from the tool at zero, then from the axes at zero."""
     yield Fa[0, -1] @ numeric_rigid_inverse(Fk[0, -1])
     Pk, Uk = _axes(Fk[:1], key, jk)
@@ -230,7 +237,17 @@ def _candidates(Fk: np.ndarray, Fa: np.ndarray, key: Chain, ans: Chain, jk: list
             yield Na @ _rz_tz(phi, t, False) @ F @ iNk
 
 
-def _verify(B, key, ans, jk, ja, Fk, frames_a, size, tol):
+def _verify(
+    B: np.ndarray,
+    key: Chain,
+    ans: Chain,
+    jk: list[_Joint],
+    ja: list[_Joint],
+    Fk: np.ndarray,
+    frames_a: Callable[[list[float]], np.ndarray],
+    size: int,
+    tol: float,
+) -> tuple[int, list[float], list[float], np.ndarray | None]:
     """(joints that matched, variable signs, axis directions, E or None).
 
     ``frames_a(signs)`` are the answer's frames with its variables' signs."""
@@ -267,9 +284,19 @@ def _deg(x: float) -> str:
     return f"{math.degrees(x):.4g}°"
 
 
-def _describe(B, E, signs, dirs, joints, Fk0, Fa0, key: Chain, tol) -> tuple[list[str], bool]:
-    out = []
-    on_axis = abs(abs(B[2, 2]) - 1) < tol and np.linalg.norm(B[:2, 3]) < tol
+def _describe(
+    B: np.ndarray,
+    E: np.ndarray | None,
+    signs: list[float],
+    dirs: list[float],
+    joints: list[_Joint],
+    Fk0: np.ndarray,
+    Fa0: np.ndarray,
+    key: Chain,
+    tol: float,
+) -> tuple[list[str], bool]:
+    out: list[str] = []
+    on_axis = bool(abs(abs(B[2, 2]) - 1) < tol and np.linalg.norm(B[:2, 3]) < tol)
     flip = B[2, 2] < 0
     if on_axis:
         if flip and dirs[0] > 0:
@@ -303,7 +330,7 @@ def _describe(B, E, signs, dirs, joints, Fk0, Fa0, key: Chain, tol) -> tuple[lis
     return out, on_axis
 
 
-def _swapped_variable(jk: list, ja: list) -> tuple[int, str] | None:
+def _swapped_variable(jk: list[_Joint], ja: list[_Joint]) -> tuple[int, str] | None:
     """The first joint whose variable is another joint's variable of the key (joint
     variables are matched by position: θ2 in row 1 is never the key's θ1)."""
     names = [j[2] for j in jk]
@@ -404,9 +431,12 @@ def compare_tables(
             if kind is JointType.REVOLUTE
             else rng.uniform(*TOLERANCES.prismatic_range, _CONFIGS)
         )
-    env_k = {**consts, **{jt[2]: Q[:, j] for j, jt in enumerate(jk)}}
+    env_k: dict[sp.Basic, np.ndarray | float] = {
+        **consts,
+        **{jt[2]: Q[:, j] for j, jt in enumerate(jk)},
+    }
 
-    def env_a(signs: list[float]) -> dict:
+    def env_a(signs: list[float]) -> dict[sp.Basic, np.ndarray | float]:
         return {**consts, **{jt[2]: s * Q[:, j] for j, (jt, s) in enumerate(zip(ja, signs))}}
 
     seen: dict[tuple[float, ...], np.ndarray] = {}  # the answer's frames per sign pattern

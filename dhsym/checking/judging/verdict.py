@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import Enum
+from typing import Any
 
 __all__ = ["CheckResult", "Diagnosis", "EntryResult", "JSON_SCHEMA_VERSION", "Verdict"]
 
@@ -155,7 +156,7 @@ class CheckResult:
         }
 
     @classmethod
-    def from_json(cls, data: dict) -> CheckResult:
+    def from_json(cls, data: dict[str, Any]) -> CheckResult:
         """Rebuild a result from :meth:`to_json` output (the grading cache)."""
         return cls(
             question=str(data["question"]),

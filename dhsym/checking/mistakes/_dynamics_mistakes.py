@@ -114,7 +114,7 @@ def _with(
     part: str,
     M: Matrix | None = None,
     g: Matrix | None = None,
-    christoffel: tuple | None = None,
+    christoffel: tuple[tuple[tuple[sp.Expr, ...], ...], ...] | None = None,
 ) -> EquationsOfMotion:
     """``eom`` with its M (and so its Christoffel symbols and C), g or Christoffel symbols
     replaced, and what ``part`` depends on rebuilt (the rest is the key's)."""
@@ -214,7 +214,9 @@ def _gravity_variants(eom: EquationsOfMotion, part: str) -> Iterator[tuple[Equat
         )
 
 
-def variant_matrices(robot: Robot, eom: EquationsOfMotion, q: Question) -> tuple:
+def variant_matrices(
+    robot: Robot, eom: EquationsOfMotion, q: Question
+) -> tuple[tuple[str, Matrix, str], ...]:
     """Every variant of the key of ``q``: ``(kind, matrix, detail)`` triples.
 
     >>> import dhsym
@@ -223,7 +225,7 @@ def variant_matrices(robot: Robot, eom: EquationsOfMotion, q: Question) -> tuple
     >>> sorted({k for k, _, _ in found})
     ['gravity_direction', 'l_for_lc']
     """
-    out = []
+    out: list[tuple[str, Matrix, str]] = []
     kinds = ["christoffel_indices"] + (list(_KINETIC) if eom.model.n <= KINETIC_JOINTS else [])
     for kind in kinds:
         if q.part not in _CHANGES[kind]:

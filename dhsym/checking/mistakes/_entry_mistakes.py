@@ -25,14 +25,14 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator
 from dataclasses import replace
-from typing import TypeAlias, TypeVar
+from typing import TypeAlias, TypeVar, cast
 
 import sympy as sp
 
 from ..judging.equivalence import close, values
 from ..judging.table_match import Chain, same_cells
 from ..judging.verdict import Diagnosis
-from ._mistake_base import MatrixCase, Mistake, cell_text
+from ._mistake_base import MatrixCase, Mistake, TableCase, cell_text
 
 __all__ = [
     "DroppedTerm",
@@ -146,11 +146,12 @@ class EntryMistake(Mistake):
     ) -> Iterator[tuple[sp.Expr, object]]:
         raise NotImplementedError
 
-    def message(self, case: MatrixCase, where: tuple[int, int], e: sp.Expr, part: object) -> str:
+    def message(self, case: MatrixCase, where: str, e: sp.Expr, part: object) -> str:
         raise NotImplementedError
 
-    def explain_matrix(self, case, partial=True):
-        hits, details = [], []
+    def explain_matrix(self, case: MatrixCase, partial: bool = True) -> Diagnosis | None:
+        hits: list[tuple[int, int]] = []
+        details: list[str] = []
         for p in case.wrong:
             e = case.expected[p]
             for cand, part in self.candidates(e, case):
@@ -163,7 +164,7 @@ class EntryMistake(Mistake):
             return None
         return Diagnosis(self.kind, self.title, " ".join(details), tuple(hits))
 
-    def explain_table(self, case):
+    def explain_table(self, case: TableCase) -> Diagnosis | None:
         return None
 
 
@@ -183,23 +184,27 @@ class WrongSign(EntryMistake):
 
     kind, title = "wrong_sign", "wrong sign"
 
-    def candidates(self, e, case=None):
+    def candidates(
+        self, e: sp.Expr, case: MatrixCase | None = None
+    ) -> Iterator[tuple[sp.Expr, object]]:
         return sign_candidates(e)
 
-    def message(self, case, where, e, part):
+    def message(self, case: MatrixCase, where: str, e: sp.Expr, part: object) -> str:
         nota = case.notation
         if part is None:
             return f"Entry {where} has the wrong sign: it is {nota.text(e)}, not {nota.text(-e)}."
         inside = "" if part in sp.Add.make_args(e) else " (inside a bracket)"
         return f"In entry {where} the term {nota.text(part)} has the wrong sign{inside}."
 
-    def explain_table(self, case):
+    def explain_table(self, case: TableCase) -> Diagnosis | None:
         key = case.key
         for k, row in enumerate(key.rows):
             for name, value in row.params().items():
                 if value == 0 or name == row.variable_field and value == row.variable:
                     continue
-                flipped = -value if name != row.variable_field else 2 * row.variable - value
+                # name is the joint's own column here: the entry holds the joint variable
+                variable = cast(sp.Expr, row.variable)
+                flipped = -value if name != row.variable_field else 2 * variable - value
                 rows = tuple(
                     replace(r, **{name: flipped}) if j == k else r for j, r in enumerate(key.rows)
                 )
@@ -219,13 +224,16 @@ class SinCosSwapped(EntryMistake):
 
     kind, title = "sin_cos_swapped", "sin and cos swapped"
 
-    def candidates(self, e, case=None):
+    def candidates(
+        self, e: sp.Expr, case: MatrixCase | None = None
+    ) -> Iterator[tuple[sp.Expr, object]]:
         return swap_candidates(e)
 
-    def message(self, case, where, e, part):
+    def message(self, case: MatrixCase, where: str, e: sp.Expr, part: object) -> str:
         if part is None:
             return f"In entry {where} sin and cos are swapped: it is {case.notation.text(e)}."
-        partner = (sp.sin if isinstance(part, sp.cos) else sp.cos)(part.args[0])
+        factor = cast(sp.Basic, part)  # swap_candidates: None or the swapped sin/cos factor
+        partner = (sp.sin if isinstance(factor, sp.cos) else sp.cos)(factor.args[0])
         return (
             f"In entry {where} sin and cos of the same angle are swapped "
             f"({case.notation.text(part)} and {case.notation.text(partner)}): "
@@ -238,10 +246,12 @@ class DroppedTerm(EntryMistake):
 
     kind, title = "dropped_term", "a term is missing"
 
-    def candidates(self, e, case=None):
+    def candidates(
+        self, e: sp.Expr, case: MatrixCase | None = None
+    ) -> Iterator[tuple[sp.Expr, object]]:
         return dropped_candidates(e)
 
-    def message(self, case, where, e, part):
+    def message(self, case: MatrixCase, where: str, e: sp.Expr, part: object) -> str:
         return f"In entry {where} the term {case.notation.text(part)} is missing."
 
 
@@ -291,11 +301,15 @@ class WrongJointIndex(EntryMistake):
 
     kind, title = "wrong_joint_index", "wrong joint index in a sum angle"
 
-    def candidates(self, e, case=None):
+    def candidates(
+        self, e: sp.Expr, case: MatrixCase | None = None
+    ) -> Iterator[tuple[sp.Expr, object]]:
         return joint_index_candidates(e, _joints(case)) if case is not None else iter(())
 
-    def message(self, case, where, e, part):
-        wrong, right = (case.notation.text(x) for x in part)
+    def message(self, case: MatrixCase, where: str, e: sp.Expr, part: object) -> str:
+        # joint_index_candidates: (the wrong factor, the right one)
+        pair = cast(tuple[sp.Basic, sp.Basic], part)
+        wrong, right = (case.notation.text(x) for x in pair)
         return (
             f"In entry {where} {wrong} is written where {right} belongs: count the joints "
             "whose angles add up in that factor."
@@ -328,13 +342,15 @@ class MissingLength(EntryMistake):
 
     kind, title = "missing_length", "a length factor is missing"
 
-    def candidates(self, e, case=None):
+    def candidates(
+        self, e: sp.Expr, case: MatrixCase | None = None
+    ) -> Iterator[tuple[sp.Expr, object]]:
         if case is None:
             return iter(())
         return length_candidates(e, [r.variable for r in case.rows if r.variable is not None])
 
-    def message(self, case, where, e, part):
-        length, product = part
+    def message(self, case: MatrixCase, where: str, e: sp.Expr, part: object) -> str:
+        length, product = cast(tuple[sp.Basic, sp.Basic], part)  # length_candidates' pair
         return (
             f"In entry {where} the length {case.notation.text(length)} is missing "
             f"from {case.notation.text(product)}."

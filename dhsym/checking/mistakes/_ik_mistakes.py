@@ -64,7 +64,7 @@ class IKCase:
     tol: np.ndarray
     every: bool
     notation: Notation = field(default_factory=Notation)
-    cache: dict = field(default_factory=dict)
+    cache: dict[tuple[object, ...], Any] = field(default_factory=dict)
 
     @property
     def revolute(self) -> np.ndarray:
@@ -83,7 +83,8 @@ class IKMistake(Mistake):
         key = (self.kind, case.sample.origin)
         if key not in case.cache:
             case.cache[key] = list(self.ik_variants(case))
-        return case.cache[key]
+        cached: list[tuple[np.ndarray, str]] = case.cache[key]
+        return cached
 
     def explain_ik(self, case: IKCase) -> Diagnosis | None:
         """A diagnosis when one of the student's wrong rows equals a variant's branch."""

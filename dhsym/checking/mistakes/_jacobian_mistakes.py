@@ -48,7 +48,8 @@ def _cached(case: MatrixCase, key: str, build: Any) -> np.ndarray:
     k = (key, case.sample.origin)
     if k not in case.cache:
         case.cache[k] = values(build(), case.sample)
-    return case.cache[k]
+    cached: np.ndarray = case.cache[k]
+    return cached
 
 
 def _column(z: Matrix, lever: Matrix, revolute: bool, rate: sp.Expr) -> Matrix:

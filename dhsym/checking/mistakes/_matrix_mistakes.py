@@ -14,13 +14,15 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
-from dhsym.model.table import Convention
+from dhsym.model.table import Convention, DHTable
 
 from ..judging.table_match import Chain, compare_tables
 from ..judging.verdict import Diagnosis
-from ._mistake_base import MatrixCase, Mistake
+from ._mistake_base import MatrixCase, Mistake, TableCase
 
 __all__ = ["BlockTransposed", "OtherConvention", "ReverseOrder", "Transposed"]
 
@@ -35,7 +37,7 @@ class Transposed(Mistake):
 
     kind, title = "transposed", "matrix transposed"
 
-    def matrix_variants(self, case):
+    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
         full = np.asarray(case.cache.setdefault(("full", case.sample.origin), _full(case)))
         yield (
             case.project(np.swapaxes(full, 1, 2)),
@@ -61,7 +63,7 @@ class BlockTransposed(Mistake):
 
     kind, title = "transposed", "one 3×3 block transposed"
 
-    def matrix_variants(self, case):
+    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
         vals = np.asarray(case.key_values)
         if vals.ndim != 3 or vals.shape[1] != 6:
             return
@@ -89,7 +91,7 @@ class ReverseOrder(Mistake):
 
     kind, title = "reverse_order", "product in reverse order"
 
-    def matrix_variants(self, case):
+    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
         if abs(case.to - case.frm) > 1:
             yield (
                 case.chain_values(case.rows, case.convention, "links"),
@@ -113,7 +115,7 @@ class OtherConvention(Mistake):
 
     kind, title = "other_convention", "other DH convention"
 
-    def matrix_variants(self, case):
+    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
         other = _other(case.convention)
         yield (
             case.chain_values(case.rows, other),
@@ -123,14 +125,14 @@ class OtherConvention(Mistake):
             ),
         )
 
-    def explain_table(self, case):
+    def explain_table(self, case: TableCase) -> Diagnosis | None:
         key_conv, other = case.key.convention, _other(case.key.convention)
         declared = case.answer.convention is not key_conv
         valid = (
             f"Your table is a valid {other.value}-convention table of this robot, but the "
             f"question asks for the {key_conv.value} convention ({_FORMULA[key_conv]})."
         )
-        tries = [(Chain(case.answer.rows, other), valid)]
+        tries: list[tuple[DHTable | Chain, str]] = [(Chain(case.answer.rows, other), valid)]
         if declared:
             tries = [
                 (case.answer, valid),

@@ -57,7 +57,7 @@ class MatrixCase:
     answer_values: np.ndarray
     wrong: tuple[tuple[int, int], ...]
     notation: Notation = field(default_factory=Notation)
-    cache: dict = field(default_factory=dict)
+    cache: dict[tuple[object, ...], Any] = field(default_factory=dict)
     robot: Any = None  # the key's Robot (Jacobian and determinant variants)
     prepared: Any = None  # the PreparedKey (its singularities, its dynamics variants)
 
@@ -137,7 +137,8 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
                 if not close(vals, case.key_values):
                     found.append((vals, detail))
             case.cache[key] = found
-        return case.cache[key]
+        cached: list[tuple[np.ndarray, str]] = case.cache[key]
+        return cached
 
     def explain_matrix(self, case: MatrixCase, partial: bool = False) -> Diagnosis | None:
         """A diagnosis when a variant equals the whole answer (or, with ``partial``, the
@@ -181,4 +182,4 @@ def cell_text(name: str, value: sp.Expr, table: DHTable) -> str:
     number = value.subs(table.value_map)
     if value.free_symbols and not number.free_symbols:
         return f"{sp.sstr(value)} (= {float(number):g})"
-    return sp.sstr(value)
+    return str(sp.sstr(value))

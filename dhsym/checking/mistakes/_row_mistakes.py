@@ -13,15 +13,18 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import replace
+from typing import cast
 
+import numpy as np
 import sympy as sp
 
 from dhsym.model.table import Convention, DHRow, JointType
 
 from ..judging.table_match import Chain, same_cells
 from ..judging.verdict import Diagnosis
-from ._mistake_base import Mistake, cell_text
+from ._mistake_base import MatrixCase, Mistake, TableCase, cell_text
 
 __all__ = ["DegreesAsRadians", "IndexShift", "OffsetMissing", "SingleWrongRow", "shifted"]
 
@@ -41,7 +44,9 @@ class IndexShift(Mistake):
 
     kind, title = "index_shift", "α/a index shifted by one row"
 
-    def _variants(self, rows, convention):
+    def _variants(
+        self, rows: tuple[DHRow, ...], convention: Convention
+    ) -> Iterator[tuple[tuple[DHRow, ...], str]]:
         own = "α_{i-1}, a_{i-1}" if convention is Convention.MODIFIED else "α_i, a_i"
         for step in (1, -1):
             for names in (("alpha", "a"), ("alpha",)):
@@ -54,11 +59,11 @@ class IndexShift(Mistake):
                     ),
                 )
 
-    def matrix_variants(self, case):
+    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
         for rows, detail in self._variants(case.rows, case.convention):
             yield case.chain_values(rows, case.convention), detail
 
-    def table_variants(self, case):
+    def table_variants(self, case: TableCase) -> Iterator[tuple[Chain, str, tuple[int, ...]]]:
         for rows, detail in self._variants(case.key.rows, case.key.convention):
             yield Chain(rows, case.key.convention), detail, ()
 
@@ -76,12 +81,16 @@ class OffsetMissing(Mistake):
 
     kind, title = "offset_missing", "joint offset missing"
 
-    def _variants(self, rows):
+    def _variants(
+        self, rows: tuple[DHRow, ...]
+    ) -> Iterator[tuple[tuple[DHRow, ...], str, tuple[int, ...]]]:
         with_offset = [k for k, r in enumerate(rows) if r.variable is not None and r.offset != 0]
         if not with_offset:
             return
+        # rows with a variable are joint rows, whose variable_field is "theta" or "d"
         names = ", ".join(
-            f"row {k + 1}: {sp.sstr(getattr(rows[k], rows[k].variable_field))}" for k in with_offset
+            f"row {k + 1}: {sp.sstr(getattr(rows[k], cast(str, rows[k].variable_field)))}"
+            for k in with_offset
         )
         yield (
             tuple(_no_offset(r) for r in rows),
@@ -93,16 +102,16 @@ class OffsetMissing(Mistake):
                 tuple(_no_offset(r) if j == k else r for j, r in enumerate(rows)),
                 (
                     f"The joint offset of row {k + 1} is missing: the entry is "
-                    f"{sp.sstr(getattr(rows[k], rows[k].variable_field))}."
+                    f"{sp.sstr(getattr(rows[k], cast(str, rows[k].variable_field)))}."
                 ),
                 (k + 1,),
             )
 
-    def matrix_variants(self, case):
+    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
         for rows, detail, _ in self._variants(case.rows):
             yield case.chain_values(rows, case.convention), detail
 
-    def table_variants(self, case):
+    def table_variants(self, case: TableCase) -> Iterator[tuple[Chain, str, tuple[int, ...]]]:
         for rows, detail, where in self._variants(case.key.rows):
             yield Chain(rows, case.key.convention), detail, where
 
@@ -116,7 +125,9 @@ class DegreesAsRadians(Mistake):
 
     kind, title = "degrees_as_radians", "degrees read as radians"
 
-    def _variants(self, rows):
+    def _variants(
+        self, rows: tuple[DHRow, ...]
+    ) -> Iterator[tuple[tuple[DHRow, ...], str, tuple[int, ...]]]:
         """All rows' angles, then one row's (the degrees in one row of a table)."""
         if not any(_angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0 for r in rows):
             return
@@ -136,11 +147,11 @@ class DegreesAsRadians(Mistake):
                 (k + 1,),
             )
 
-    def matrix_variants(self, case):
+    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
         for rows, detail, _ in self._variants(case.rows):
             yield case.chain_values(rows, case.convention), detail
 
-    def table_variants(self, case):
+    def table_variants(self, case: TableCase) -> Iterator[tuple[Chain, str, tuple[int, ...]]]:
         for rows, detail, where in self._variants(case.key.rows):
             yield Chain(rows, case.key.convention), detail, where
 
@@ -157,7 +168,7 @@ class SingleWrongRow(Mistake):
 
     kind, title = "single_wrong_row", "one wrong row"
 
-    def explain_table(self, case):
+    def explain_table(self, case: TableCase) -> Diagnosis | None:
         key, ans = case.key, case.answer
         if key.n != ans.n:
             return None
@@ -175,7 +186,9 @@ class SingleWrongRow(Mistake):
                 n
                 for n in ("theta", "d", "a", "alpha")
                 if not same_cells(
-                    *(_one(t.rows[k], n, key.convention) for t in (key, ans)), case.values
+                    _one(key.rows[k], n, key.convention),
+                    _one(ans.rows[k], n, key.convention),
+                    case.values,
                 )
             ]
             if ans.rows[k].joint is not key.rows[k].joint:

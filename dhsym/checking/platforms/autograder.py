@@ -57,6 +57,7 @@ import zipfile
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import yaml
 
@@ -95,7 +96,7 @@ _visibility = {"enum": list(VISIBILITIES)}
 #: every field it lists, with its type; nothing else is allowed, so a result that
 #: validates uses only documented fields.  A top-level ``score`` or a ``score`` on
 #: every test is required ("optional, but required if not on each test case").
-RESULTS_SCHEMA: dict = {
+RESULTS_SCHEMA: dict[str, Any] = {
     "$schema": "https://json-schema.org/draft/2020-12/schema",
     "title": "Gradescope autograder results.json",
     "type": "object",
@@ -429,7 +430,7 @@ def results_json(
     show_key: bool = False,
     seconds: float = 0.0,
     flags: tuple[str, ...] = (),
-) -> dict:
+) -> dict[str, Any]:
     """The ``results.json`` object for one graded submission (the specification's format);
     ``flags`` (answer files that were not graded) are notes of its ``output``.
 
@@ -470,7 +471,7 @@ def results_json(
     }
 
 
-def run_autograder(paths: AutograderPaths | None = None) -> dict:
+def run_autograder(paths: AutograderPaths | None = None) -> dict[str, Any]:
     """Grade the submission in ``paths.submission`` and write ``results.json``.
 
     If grading itself fails (a broken autograder, not a bad answer: bad answers are

@@ -36,7 +36,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import overload
+from typing import Any, overload
 
 import sympy as sp
 
@@ -120,7 +120,7 @@ class SelfCheck:
         """True for a correct answer."""
         return self.result.correct
 
-    def _data(self) -> dict:
+    def _data(self) -> dict[str, object]:
         r = self.result
         lead = next(
             (d for d in r.diagnoses if d.kind not in ("unexplained", "unknown_symbol")), None
@@ -266,7 +266,7 @@ def check_widget(
         widget.add_class(f"dhsym-{css}")
     verdict.add_class("dhsym-verdict")
 
-    def on_text(change: dict) -> None:
+    def on_text(change: dict[str, Any]) -> None:
         preview.value = read_answer(k, change["new"], limits, keys)._repr_html_()
 
     def on_check(_: object) -> None:

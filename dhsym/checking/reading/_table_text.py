@@ -13,6 +13,7 @@ import math
 import re
 from collections.abc import Mapping
 from dataclasses import replace
+from typing import Any
 
 import sympy as sp
 
@@ -326,7 +327,7 @@ def yaml_table(
             raise UnreadableAnswer(f"the YAML answer: {err.message}") from None
         raise TableError(err.message) from None
     if isinstance(data, list):
-        top: Mapping = {"joints": data}
+        top: Mapping[object, Any] = {"joints": data}
     elif isinstance(data, Mapping) and isinstance(data.get("joints"), list):
         top = data
     else:

@@ -300,7 +300,7 @@ def _lhs_name(lhs: str) -> str:
 def _signed(rhs: str, latex: bool, signs: list[sp.Symbol]) -> str:
     """``±`` as ``+ pmsignK *``: each is a sign σ_K = ±1 of its own."""
 
-    def sub(m: re.Match, sign: str) -> str:
+    def sub(m: re.Match[str], sign: str) -> str:
         if len(signs) >= _MAX_SIGNS:
             raise UnreadableAnswer(f"the answer has more than {_MAX_SIGNS} signs ±")
         signs.append(sp.Symbol(f"{_SIGN_NAME}{len(signs) + 1}", real=True))

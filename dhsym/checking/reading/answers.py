@@ -27,6 +27,7 @@ DHRow(R: theta=theta2, d=0, a=a2, alpha=0)
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 import sympy as sp
@@ -123,7 +124,7 @@ def _number_text(value: object) -> str:
         )
     if isinstance(value, float):
         return repr(float(value))  # also numpy's float64, a float
-    return sp.sstr(value)
+    return str(sp.sstr(value))
 
 
 def read_text(data: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:
@@ -196,14 +197,23 @@ def _cell_text(cell: str) -> str:
 _BRACKETS = str.maketrans("[]{}", "()()")
 
 
-def _parse(cell: str, ctx: NameContext, limits: AnswerLimits, where: str, **kw) -> sp.Expr:
-    return _parse_text(_cell_text(cell), ctx, limits, where, **kw)
+def _parse(cell: str, ctx: NameContext, limits: AnswerLimits, where: str) -> sp.Expr:
+    return _parse_text(_cell_text(cell), ctx, limits, where)
 
 
-def _parse_text(text: str, ctx: NameContext, limits: AnswerLimits, where: str, **kw) -> sp.Expr:
+def _parse_text(
+    text: str,
+    ctx: NameContext,
+    limits: AnswerLimits,
+    where: str,
+    *,
+    literal: Callable[[str, sp.Rational], sp.Expr] | None = None,
+) -> sp.Expr:
     """Parser text (see :func:`_cell_text`) through the whitelist parser."""
     try:
-        return parse_expression(text, resolve=ctx.resolve, limits=limits.parse, textbook=True, **kw)
+        return parse_expression(
+            text, resolve=ctx.resolve, limits=limits.parse, textbook=True, literal=literal
+        )
     except ParseError as err:
         raise ParseError(f"{where}: {err.message}") from None
 
