@@ -43,7 +43,7 @@ from dhsym.notation.printers import Notation, TrigStyle
 from dhsym.robot import Robot
 
 from .data import DynamicsDerivation, EnergyData, NEStepData
-from .velocity_kinematics import _key, styled
+from .velocity_kinematics import label_key, styled
 
 __all__ = ["derive_dynamics"]
 
@@ -142,7 +142,7 @@ def derive_dynamics(
     name = robot.name or "robot"
     return DynamicsDerivation(
         name=name,
-        key=_key(name),
+        key=label_key(name),
         convention=robot.convention.value,
         n=n,
         gravity=tuple(as_math(x, nota) for x in lag.model.gravity),

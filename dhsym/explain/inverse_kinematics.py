@@ -49,7 +49,7 @@ from dhsym.notation.printers import Notation, TrigStyle
 from dhsym.robot import Robot
 
 from .data import BranchData, IKCheck, IKDerivation, IKPart, IKStepData
-from .velocity_kinematics import _key, styled
+from .velocity_kinematics import label_key, styled
 
 __all__ = ["default_configuration", "derive_inverse"]
 
@@ -242,7 +242,7 @@ def derive_inverse(
     name = robot.name or "robot"
     return IKDerivation(
         name=name,
-        key=_key(name),
+        key=label_key(name),
         convention=robot.convention.value,
         n=len(robot.variables),
         structure=ik.structure,

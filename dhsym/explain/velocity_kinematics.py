@@ -52,7 +52,7 @@ from dhsym.robot import Robot
 from .data import Block, FactorData, JacobianColumnData, JacobianDerivation, SingularityDerivation
 from .derivation import as_robot
 
-__all__ = ["derive_jacobian", "derive_singularities", "styled"]
+__all__ = ["derive_jacobian", "derive_singularities", "label_key", "styled"]
 
 
 def styled(
@@ -69,7 +69,12 @@ def styled(
     return Robot(robot.table, compact=compact, style=style)
 
 
-def _key(name: str) -> str:
+def label_key(name: str) -> str:
+    """A robot's name as a LaTeX label and file key: lower case, words joined by ``-``.
+
+    >>> label_key("PUMA 560 (modified)"), label_key("")
+    ('puma-560-modified', 'robot')
+    """
     return re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-") or "robot"
 
 
@@ -166,7 +171,7 @@ def derive_jacobian(
     name = robot.name or "robot"
     return JacobianDerivation(
         name=name,
-        key=_key(name),
+        key=label_key(name),
         convention=robot.convention.value,
         n=len(J.columns),
         frame=_frame_math(J.frame),
@@ -248,7 +253,7 @@ def derive_singularities(
     name = robot.name or "robot"
     return SingularityDerivation(
         name=name,
-        key=_key(name),
+        key=label_key(name),
         convention=robot.convention.value,
         n=len(robot.variables),
         method=method,

@@ -45,8 +45,7 @@ from dhsym.errors import DHError
 from dhsym.ik import compiler as numbers
 from dhsym.ik.choices import IKCache
 from dhsym.ik.closed_form import InverseKinematics
-from dhsym.ik.results import IKBatch
-from dhsym.ik.results import _branch_names as solver_branch_names
+from dhsym.ik.results import IKBatch, solver_branch_names
 from dhsym.ik.structure import GENERAL_6R, classify
 from dhsym.kinematics.decoupling import StructureError
 from dhsym.model.table import JointType

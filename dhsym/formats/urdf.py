@@ -70,7 +70,7 @@ import sympy as sp
 
 from dhsym.errors import DHError, FormatError
 from dhsym.geometry.axes import JointAxis, Tool, exact_number
-from dhsym.geometry.conversion import _euler
+from dhsym.geometry.conversion import euler_solution
 from dhsym.geometry.frames import FrameAssignment, assign_frames
 from dhsym.kinematics.numeric import to_float
 from dhsym.kinematics.transforms import chain_word, link_word, plain_product, rigid_inverse
@@ -978,7 +978,7 @@ def _text(value: Expr) -> str:
 def _xyz_rpy(T: sp.MatrixBase) -> tuple[str, str]:
     xyz = " ".join(_text(sp.simplify(T[i, 3])) for i in range(3))
     R = np.array([[to_float(T[i, j]) for j in range(3)] for i in range(3)])
-    found = _euler(R, (2, 1, 0), exact=False)
+    found = euler_solution(R, (2, 1, 0), exact=False)
     yaw, pitch, roll = (0.0, 0.0, 0.0) if found is None else found[0]
     rpy = " ".join(repr(float(a) + 0.0) if abs(a) > 1e-15 else "0" for a in (roll, pitch, yaw))
     return xyz, rpy

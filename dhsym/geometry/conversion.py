@@ -55,6 +55,7 @@ from .axes import exact_matrix
 __all__ = [
     "check_conversion",
     "convert",
+    "euler_solution",
     "rotation_word",
     "to_modified",
     "to_standard",
@@ -277,11 +278,17 @@ def _same(A: Any, B: Any, exact: bool) -> bool:
 _Found = tuple[tuple[Any, Any, Any], bool | None] | None
 
 
-def _euler(R: Any, seq: tuple[int, int, int], exact: bool, gimbal: bool | None = None) -> _Found:
+def euler_solution(
+    R: Any, seq: tuple[int, int, int], exact: bool, gimbal: bool | None = None
+) -> _Found:
     """Angles (a, b, c) with ``R = R_i(a) R_j(b) R_k(c)`` (Tait–Bryan or proper Euler), or None.
 
     ``gimbal``: when the middle angle locks the outer two, c = 0 and a takes
-    the whole turn (decided numerically, then reused for the exact solve).
+    the whole turn (decided numerically, then reused for the exact solve). Returns the
+    angles and whether the middle angle locked, or None; the URDF reader uses it for rpy.
+
+    >>> euler_solution(sp.Matrix([[0, -1, 0], [1, 0, 0], [0, 0, 1]]), (2, 1, 0), exact=True)
+    ((pi/2, 0, 0), False)
     """
     i, j, k = seq
     atan2, sqrt = (sp.atan2, sp.sqrt) if exact else (np.arctan2, np.sqrt)
@@ -359,7 +366,7 @@ def rotation_word(R: sp.MatrixBase) -> tuple[Elementary, ...]:
         raise DHError(f"not a rotation matrix: {R.tolist()}")
     ranked = []
     for order, seq in enumerate(_SEQUENCES):
-        found = _euler(Rn, seq, exact=False)
+        found = euler_solution(Rn, seq, exact=False)
         if found is not None:
             angles, gimbal = found
             nonzero = sum(abs(x) > 1e-12 for x in angles)
@@ -370,7 +377,7 @@ def rotation_word(R: sp.MatrixBase) -> tuple[Elementary, ...]:
         found = None
         if all(x is not None for x in nice):  # k·π/720: check the exact angles directly
             found = _checked(R, seq, tuple(nice), gimbal, exact=True)
-        found = found or _euler(R, seq, exact=True, gimbal=gimbal)
+        found = found or euler_solution(R, seq, exact=True, gimbal=gimbal)
         if found is not None:
             return _word(
                 *(Elementary("R", _AXES[ax], v) for ax, v in zip(seq, found[0], strict=True))

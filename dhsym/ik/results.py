@@ -32,7 +32,7 @@ if TYPE_CHECKING:
     from .general import EliminationSolver
     from .steps import Branch
 
-__all__ = ["BRANCH_NAMES", "IKBatch", "IKSolution", "branch_word"]
+__all__ = ["BRANCH_NAMES", "IKBatch", "IKSolution", "branch_word", "solver_branch_names"]
 
 #: The one list of branch names, by the role of the branch: (first, second). For
 #: ``"arm"`` and ``"wrist"`` the first is the sign +1; for ``"elbow"`` the first is the
@@ -82,7 +82,7 @@ class IKSolution:
         """The name of each solution's branch (computed on first use)."""
         if self.names is not None:
             return self.names
-        return _branch_names(self.solver, self.q, self.signs)
+        return solver_branch_names(self.solver, self.q, self.signs)
 
     def take(self, keep: np.ndarray, q: np.ndarray | None = None) -> IKSolution:
         """The solutions ``keep`` (indices, in that order), with joint values ``q`` when given.
@@ -167,9 +167,13 @@ class IKBatch:
         )
 
 
-def _branch_names(
+def solver_branch_names(
     solver: Solver | EliminationSolver, q: np.ndarray, signs: np.ndarray
 ) -> tuple[str, ...]:
+    """Each solution's branch in words (``"left arm, elbow up, wrist flipped"``), as
+    :class:`IKSolution` names them; ``"solution k"`` for a general 6R, which has no signs.
+    The export room names its generated branches with the same words.
+    """
     ik = solver.ik
     if not ik.branches:  # no signs (the general 6R): numbered in the order of their values
         return tuple(f"solution {k}" for k in range(1, len(q) + 1))

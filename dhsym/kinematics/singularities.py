@@ -51,7 +51,7 @@ import sympy as sp
 from dhsym.model.table import JointType
 
 from .decoupling import ArmGeometry, Decoupling, StructureError, arm_geometry, decouple
-from .jacobian import _values, axis_frame, geometric_jacobian
+from .jacobian import axis_frame, geometric_jacobian
 from .simplification import fold_sum_angles, prove_equal, trig_coefficients
 
 if TYPE_CHECKING:
@@ -322,7 +322,9 @@ def _compile(
 
     from .numeric import compile_matrix
 
-    inner = compile_matrix(sp.Matrix([[expr]]), robot.variables, _values(robot, values))
+    inner = compile_matrix(
+        sp.Matrix([[expr]]), robot.variables, robot.table.with_values(values or {}).value_map
+    )
 
     def evaluate(q: object) -> np.ndarray:
         out = inner(q)

@@ -28,7 +28,7 @@ from __future__ import annotations
 import re
 import unicodedata
 
-__all__ = ["TeX", "escape_latex", "escape_markdown"]
+__all__ = ["TeX", "clean_text", "escape_latex", "escape_markdown"]
 
 
 class TeX(str):
@@ -228,12 +228,16 @@ def escape_markdown(text: object) -> str:
     >>> print(escape_markdown("a_1 *b* <script> $x$ [a](b)"))
     a\_1 \*b\* &lt;script&gt; \$x\$ \[a\](b)
     """
-    s = _clean_text(text).translate(_MD_ENTITIES)
+    s = clean_text(text).translate(_MD_ENTITIES)
     return " ".join(_MD_SPECIAL.sub(r"\\\1", s).splitlines())
 
 
-def _clean_text(text: object) -> str:
-    """Drop control and format characters (terminal escapes, bidi overrides)."""
+def clean_text(text: object) -> str:
+    """Drop control and format characters (terminal escapes, bidi overrides).
+
+    >>> clean_text("ok\x1b[31m red\u202e")
+    'ok[31m red'
+    """
     return "".join(
         ch for ch in str(text) if ch in "\n\t" or unicodedata.category(ch) not in ("Cc", "Cf")
     )

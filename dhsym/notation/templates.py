@@ -47,7 +47,7 @@ from typing import TYPE_CHECKING, Any
 
 from dhsym.errors import DHError
 
-from .escape import TeX, _clean_text, escape_latex, escape_markdown
+from .escape import TeX, clean_text, escape_latex, escape_markdown
 
 if TYPE_CHECKING:  # jinja2 is imported when a document is rendered
     import jinja2
@@ -209,7 +209,7 @@ def _environment(
         if fmt == "html":
             raise DHError(f"the {family.name} templates have no html format")
         env = jinja2.Environment(
-            autoescape=False, finalize=_clean_text, extensions=["jinja2.ext.do"], **common
+            autoescape=False, finalize=clean_text, extensions=["jinja2.ext.do"], **common
         )
     else:
         escape = escape_latex if fmt == "latex" else escape_markdown

@@ -12,7 +12,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from markdown_it import MarkdownIt
 
-from dhsym.notation.escape import TeX, _clean_text, escape_latex, escape_markdown
+from dhsym.notation.escape import TeX, clean_text, escape_latex, escape_markdown
 
 HOSTILE = [
     r"\input{/etc/passwd}",
@@ -201,7 +201,7 @@ def test_markdown_shows_exactly_the_cleaned_text(text):
     out = escape_markdown(text)
     assert "\n" not in out and "<" not in out and ">" not in out
     assert re.search(r"(?<!\\)[`*_\[\]#|$~{}!]", out.replace("\\\\", "")) is None
-    assert _unescape_markdown(out) == " ".join(_clean_text(text).splitlines())
+    assert _unescape_markdown(out) == " ".join(clean_text(text).splitlines())
 
 
 @given(st.text(alphabet="ab _*[]()#<>&`|$!~ ", max_size=40).map(str.strip))
@@ -220,6 +220,6 @@ def test_a_markdown_renderer_shows_the_text_without_markup(text):
 
 
 def test_clean_text_drops_terminal_escapes_and_bidi_but_keeps_layout():
-    assert _clean_text("a\x1b[2Jb\u202ec\u200bd\x00") == "a[2Jbcd"
-    assert _clean_text("x\ty\nz") == "x\ty\nz"
-    assert _clean_text(3) == "3"
+    assert clean_text("a\x1b[2Jb\u202ec\u200bd\x00") == "a[2Jbcd"
+    assert clean_text("x\ty\nz") == "x\ty\nz"
+    assert clean_text(3) == "3"

@@ -161,7 +161,7 @@ def check_text(result: CheckResult) -> str:
     The other entry is right.
     <BLANKLINE>
     """
-    from dhsym.notation.escape import _clean_text
+    from dhsym.notation.escape import clean_text
     from dhsym.notation.tables import text_table
 
     where = f" ({result.key})" if result.key else ""
@@ -191,7 +191,7 @@ def check_text(result: CheckResult) -> str:
     for title, table in tables:
         if table:
             lines += ["", title, *("  " + t for t in text_table(table[0], table[1:]))]
-    return "\n".join(_clean_text(line) for line in lines) + "\n"
+    return "\n".join(clean_text(line) for line in lines) + "\n"
 
 
 def render_summary(data: Mapping[str, object]) -> str:
