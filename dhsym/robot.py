@@ -40,7 +40,7 @@ if TYPE_CHECKING:
 
     from dhsym.dynamics.compiled_dynamics import DynamicsFunctions, Trajectory
     from dhsym.dynamics.equations import EquationsOfMotion
-    from dhsym.dynamics.statics import Statics
+    from dhsym.dynamics.static_forces import Statics
     from dhsym.export.shared_library import CompiledRobot
     from dhsym.ik.choices import IKCache
     from dhsym.ik.closed_form import InverseKinematics
@@ -228,7 +228,7 @@ class Robot(KinematicChain):
     ) -> Statics | np.ndarray:
         """τ = Jᵀ F: exact (no ``q``), or the torques that balance a tip wrench ``[f; n]``
         (base frame) at ``q``, batched like :meth:`jacobian`."""
-        from dhsym.dynamics.statics import statics, statics_numeric
+        from dhsym.dynamics.static_forces import statics, statics_numeric
 
         if q is None:
             return statics(self)

@@ -43,7 +43,7 @@ import sympy as sp
 
 import dhsym
 from dhsym.dynamics import base_parameters
-from dhsym.dynamics.regressor import standard_values
+from dhsym.dynamics.inertial_parameters import standard_values
 
 puma = dhsym.load("puma560")
 puma.plot()

@@ -10,11 +10,11 @@ from __future__ import annotations
 from dhsym._lazy import public_dir
 
 from .equations import EquationsOfMotion, NEStep
-from .lagrange import lagrange
+from .inertial_parameters import BaseParameters, Regressor, base_parameters, regressor
+from .lagrange_euler import lagrange
 from .model import DynamicModel, dynamic_model, rate_symbols
-from .newton_euler import newton_euler
-from .regressor import BaseParameters, Regressor, base_parameters, regressor
-from .statics import Statics, statics
+from .recursive_newton_euler import newton_euler
+from .static_forces import Statics, statics
 
 __all__ = [
     "BaseParameters",

@@ -38,9 +38,9 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.kinematics.numeric import compile_exprs, to_float
 
-from .lagrange import potential_energies
+from .lagrange_euler import potential_energies
 from .model import DynamicModel, dynamic_model
-from .newton_euler import rne_expressions
+from .recursive_newton_euler import rne_expressions
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain

@@ -467,7 +467,7 @@ def rne_program(
     values: Mapping[object, object] | None = None,
 ) -> RNEProgram:
     """Inverse dynamics τ = rne(q, q̇, q̈) as ``robot.rne`` computes it: the exact
-    recursive Newton–Euler expressions of :mod:`dhsym.dynamics.newton_euler` on the
+    recursive Newton–Euler expressions of :mod:`dhsym.dynamics.recursive_newton_euler` on the
     table's numbers (and ``values``), plus motor inertia ``Jm G² q̈`` and friction
     ``B G² q̇ + |G| Tc`` when given. Every inertial parameter must be a number.
 
@@ -489,7 +489,7 @@ def rne_program(
     dhsym.errors.DHError: Planar 2R: the dynamics export needs numeric inertial parameters; ...
     """
     from dhsym.dynamics.compiled_dynamics import numeric_model
-    from dhsym.dynamics.newton_euler import rne_expressions
+    from dhsym.dynamics.recursive_newton_euler import rne_expressions
     from dhsym.kinematics.numeric import to_float
 
     name = robot.name or "this robot"

@@ -216,7 +216,7 @@ class LinkInertia:
         """The standard 10 parameters as given here: ``m, r, I`` (about the centre of mass).
 
         The linear-in-parameters form uses first moments ``m r`` and the inertia about
-        the link origin instead (:mod:`dhsym.dynamics.regressor`).
+        the link origin instead (:mod:`dhsym.dynamics.inertial_parameters`).
         """
         I = self.I  # noqa: E741
         return (self.m, *self.r, I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[1, 2], I[0, 2])

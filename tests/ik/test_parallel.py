@@ -3,8 +3,6 @@ conventions, the same solutions as the numeric solver and as EAIK."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -13,20 +11,7 @@ from hypothesis import strategies as st
 import dhsym
 from dhsym.ik import numeric_ik
 
-DATA = Path(__file__).parents[1] / "data" / "rtb"
-
-
-def _random_q(robot: dhsym.Robot, n: int, seed: int = 0) -> np.ndarray:
-    rng = np.random.default_rng(seed)
-    return rng.uniform(-np.pi, np.pi, (n, len(robot.variables)))
-
-
-def _recovered(robot: dhsym.Robot, q: np.ndarray, **kw: object) -> np.ndarray:
-    """For each row of q: True when a solution of ik(fk(q)) equals it modulo 2π."""
-    batch = robot.ik(robot.fk(q), **kw)
-    d = batch.q - q[:, None, :]
-    d = np.abs(np.angle(np.exp(1j * d)))  # angle differences modulo 2π
-    return np.nan_to_num(d, nan=np.inf).max(axis=-1).min(axis=-1) < 1e-7
+from ._roundtrip import random_q, recovered
 
 
 def test_ur5_has_eight_named_solutions() -> None:
@@ -42,8 +27,8 @@ def test_ur5_has_eight_named_solutions() -> None:
 @pytest.mark.parametrize("name", ["ur3", "ur5", "ur10"])
 def test_ur_recovers_a_thousand_random_configurations(name: str) -> None:
     r = dhsym.load(name)
-    q = _random_q(r, 1000)
-    ok = _recovered(r, q)
+    q = random_q(r, 1000)
+    ok = recovered(r, q)
     # the few misses are configurations within rounding of sin θ5 = 0 (none in 1,000 draws)
     assert ok.mean() == 1.0
 
@@ -52,8 +37,8 @@ def test_ur_recovers_a_thousand_random_configurations(name: str) -> None:
 def test_ur5_in_modified_dh_is_solved_directly() -> None:
     r = dhsym.Robot(dhsym.to_modified(dhsym.load("ur5").table))
     assert r.inverse().family == "three parallel axes"
-    q = _random_q(r, 1000, seed=1)
-    assert _recovered(r, q).all()
+    q = random_q(r, 1000, seed=1)
+    assert recovered(r, q).all()
 
 
 def test_closed_form_and_levenberg_marquardt_agree_on_ur5() -> None:
@@ -75,7 +60,7 @@ def test_the_same_solutions_as_eaik(name: str) -> None:
     col = {k: [float(getattr(row, k).xreplace(vals)) for row in r.table.rows] for k in ("a", "d")}
     alpha = [float(row.alpha) for row in r.table.rows]
     bot = eaik.DhRobot(np.array(alpha), np.array(col["a"]), np.array(col["d"]))
-    for q in _random_q(r, 20, seed=5):
+    for q in random_q(r, 20, seed=5):
         T = r.fk(q)
         ours = r.ik(T).q
         found = bot.IK(T)
@@ -98,7 +83,7 @@ def test_any_arm_of_the_ur_shape_recovers_random_configurations(
     r = dhsym.load("ur5")
     d1, a2, a3, d4, d5, d6 = lengths
     values = {"d1": d1, "a2": -a2, "a3": -a3, "d4": d4, "d5": d5, "d6": d6}
-    q = _random_q(r, 200, seed)
+    q = random_q(r, 200, seed)
     batch = r.ik(r.fk(q, values=values), values=values)
     d = np.abs(np.angle(np.exp(1j * (batch.q - q[:, None, :]))))
     found = np.nan_to_num(d, nan=np.inf).max(axis=-1).min(axis=-1) < 1e-7

@@ -2,27 +2,10 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
-import numpy as np
-
 import dhsym
 from dhsym.ik import classify
 
-DATA = Path(__file__).parents[1] / "data" / "rtb"
-
-
-def _random_q(robot: dhsym.Robot, n: int, seed: int = 0) -> np.ndarray:
-    rng = np.random.default_rng(seed)
-    return rng.uniform(-np.pi, np.pi, (n, len(robot.variables)))
-
-
-def _recovered(robot: dhsym.Robot, q: np.ndarray, **kw: object) -> np.ndarray:
-    """For each row of q: True when a solution of ik(fk(q)) equals it modulo 2π."""
-    batch = robot.ik(robot.fk(q), **kw)
-    d = batch.q - q[:, None, :]
-    d = np.abs(np.angle(np.exp(1j * d)))  # angle differences modulo 2π
-    return np.nan_to_num(d, nan=np.inf).max(axis=-1).min(axis=-1) < 1e-7
+from ._roundtrip import random_q, recovered
 
 
 def test_the_classification_is_printed_from_the_axes_in_either_convention() -> None:
@@ -45,4 +28,4 @@ def test_a_general_6r_is_solved_by_the_elimination() -> None:
     r = dhsym.Robot(replace(table, rows=tuple(rows)))
     assert classify(r).family == "general 6R"
     assert r.inverse().family == "general 6R"
-    assert _recovered(r, _random_q(r, 10)).all()
+    assert recovered(r, random_q(r, 10)).all()

@@ -25,7 +25,7 @@ import sympy as sp
 
 from dhsym.dynamics.equations import EquationsOfMotion
 from dhsym.dynamics.model import dynamic_model
-from dhsym.dynamics.statics import WRENCH, statics
+from dhsym.dynamics.static_forces import WRENCH, statics
 from dhsym.errors import DHError
 from dhsym.model.table import JointType
 

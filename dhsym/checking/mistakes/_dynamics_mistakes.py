@@ -32,7 +32,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.dynamics.equations import EquationsOfMotion
-from dhsym.dynamics.lagrange import (
+from dhsym.dynamics.lagrange_euler import (
     christoffel_symbols,
     coriolis_matrix,
     lagrange,

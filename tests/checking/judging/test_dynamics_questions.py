@@ -8,7 +8,7 @@ import sympy as sp
 
 from dhsym.checking.judging.checker import Key, check_answer
 from dhsym.checking.reading.questions import Question
-from dhsym.dynamics.lagrange import link_jacobians
+from dhsym.dynamics.lagrange_euler import link_jacobians
 from dhsym.dynamics.model import dynamic_model
 from dhsym.errors import DHError
 from dhsym.model.tablefile import read_table_text

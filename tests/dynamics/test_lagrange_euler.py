@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 import dhsym
 from dhsym.dynamics import lagrange
-from dhsym.dynamics.lagrange import christoffel_symbols, link_jacobians, tidy
+from dhsym.dynamics.lagrange_euler import christoffel_symbols, link_jacobians, tidy
 from dhsym.dynamics.model import dynamic_model
 from dhsym.kinematics.simplification import prove_equal
 from dhsym.model.tablefile import read_table_text

@@ -34,9 +34,9 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.kinematics.numeric import compile_exprs
 
-from .lagrange import tidy
+from .lagrange_euler import tidy
 from .model import DynamicModel, dynamic_model
-from .newton_euler import rne_expressions
+from .recursive_newton_euler import rne_expressions
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain

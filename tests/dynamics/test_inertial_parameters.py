@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 import dhsym
 from dhsym.dynamics import base_parameters, lagrange, regressor
-from dhsym.dynamics.regressor import standard_values
+from dhsym.dynamics.inertial_parameters import standard_values
 from dhsym.kinematics.simplification import prove_equal
 
 

@@ -8,7 +8,7 @@ import sympy as sp
 import dhsym
 from dhsym.dynamics import lagrange, newton_euler
 from dhsym.dynamics.model import dynamic_model
-from dhsym.dynamics.newton_euler import rne_expressions
+from dhsym.dynamics.recursive_newton_euler import rne_expressions
 from dhsym.kinematics.simplification import prove_equal
 from dhsym.model.tablefile import read_table_text
 from dhsym.robot import Robot

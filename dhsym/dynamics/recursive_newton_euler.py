@@ -45,7 +45,7 @@ from dhsym.kinematics.transforms import plain_product
 from dhsym.model.table import Convention, Elementary, JointType
 
 from .equations import EquationsOfMotion, NEStep
-from .lagrange import christoffel_symbols, coriolis_matrix, tidy
+from .lagrange_euler import christoffel_symbols, coriolis_matrix, tidy
 from .model import DynamicModel, dynamic_model
 
 if TYPE_CHECKING:

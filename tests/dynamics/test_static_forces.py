@@ -7,7 +7,7 @@ import pytest
 import sympy as sp
 
 import dhsym
-from dhsym.dynamics.statics import WRENCH, statics
+from dhsym.dynamics.static_forces import WRENCH, statics
 
 
 def test_planar_arm_statics_in_compact_form():
