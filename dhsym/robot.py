@@ -147,7 +147,8 @@ class Robot(KinematicChain):
 
     # -- dynamics (dhsym.dynamics) -------------------------------------------------------
     def dynamics(self, method: str = "lagrange") -> EquationsOfMotion:
-        """The equations of motion, exact (``"lagrange"`` or ``"newton-euler"``), cached.
+        r"""The equations of motion :math:`M(q)\,\ddot q + C(q, \dot q)\,\dot q + g(q) = \tau`,
+        exact (``"lagrange"`` or ``"newton-euler"``), cached.
 
         Rows without inertial parameters get the textbook symbols (``m1``, ``rx1``, …).
         See :mod:`dhsym.dynamics`.

@@ -17,6 +17,7 @@ import importlib
 import inspect
 import re
 import sys
+import textwrap
 import threading
 from http.server import SimpleHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
@@ -211,7 +212,7 @@ def test_the_python_examples_of_every_page_run(page):
     "page, block", LISTINGS, ids=[f"{p.relative_to(DOCS)}:{k}" for k, (p, _) in enumerate(LISTINGS)]
 )
 def test_every_code_listing_is_valid_python(page, block):
-    compile(block, str(page), "exec")
+    compile(textwrap.dedent(block), str(page), "exec")  # a listing may sit in a list item
 
 
 # --------------------------------------------------------------------------- the browser
