@@ -613,13 +613,7 @@ def evaluate_many(
 
 def _points(value: object, size: int) -> np.ndarray:
     """A walker's result as a fresh float array of ``size`` points (a constant repeated)."""
-    arr: np.ndarray = np.asarray(value, dtype=float)
-    if arr.shape == (size,):
-        copied: np.ndarray = arr.copy()
-        return copied
-    if arr.ndim == 0:
-        return np.full(size, float(arr))
-    points: np.ndarray = np.broadcast_to(arr, (size,)).copy()
+    points: np.ndarray = np.broadcast_to(np.asarray(value, dtype=float), (size,)).copy()
     return points
 
 

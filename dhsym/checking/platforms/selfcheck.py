@@ -153,14 +153,21 @@ class SelfCheck:
             raise AssertionError(self.feedback_text())
 
 
-def _key(key: str | Path | DHTable | Key | None, question: str | None, tool_free: bool) -> Key:
+def _key(
+    key: str | Path | DHTable | Key | None,
+    question: str | None,
+    tool_free: bool,
+    keys: PreparedKeys | None = None,
+) -> Key:
+    """The key asked for; one loaded here is prepared into ``keys`` (to check it), so
+    that the check that follows does not prepare it again."""
     if isinstance(key, Key):
         return key
     if key is None:
         raise DHError("give the key: a built-in robot (key='puma560'), a table file or a table")
     if question is None:
         raise DHError("give the question: table, T<i>_<j>, A<k>, arm, px/py/pz or T<i>_<j>[r,c]")
-    return Key.load(key, question, tool_free=tool_free)
+    return Key.load(key, question, tool_free=tool_free, keys=keys)
 
 
 @overload
@@ -198,10 +205,11 @@ def check(
 ) -> SelfCheck | object:
     """Check ``answer`` against ``key`` (a built-in robot, a table file, a table or a
     :class:`Key`) and ``question``; with no answer, return :func:`check_widget`."""
-    k = _key(key, question, tool_free)
+    keys = PreparedKeys()  # the key prepared once, for loading it and for this check
+    k = _key(key, question, tool_free, keys)
     if answer is None:
         return check_widget(k, show_key=show_key, limits=limits)
-    return SelfCheck(check_answer(k, answer, limits=limits), k, show_key)
+    return SelfCheck(check_answer(k, answer, limits=limits, keys=keys), k, show_key)
 
 
 def assert_answer(
@@ -248,8 +256,8 @@ def check_widget(
             "the self-check widget needs ipywidgets (pip install ipywidgets); "
             "or call check(answer, key=…, question=…)"
         ) from None
-    k = _key(key, question, tool_free)
     keys = PreparedKeys()  # this widget's key, prepared once for every keystroke and check
+    k = _key(key, question, tool_free, keys)
     q = k.question
     title = w.HTMLMath(
         render_template("selfcheck_title.html.j2", question=q, robot=k.table.name or k.name)
