@@ -1,26 +1,70 @@
 """The rooms' imports point one way and form no circles (scripts/import_graph.py)."""
 
 import importlib.util
+import sys
 from pathlib import Path
 
 SCRIPT = Path(__file__).resolve().parents[1] / "scripts" / "import_graph.py"
 
 
 def _graph():
-    spec = importlib.util.spec_from_file_location("import_graph", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    if "import_graph" not in sys.modules:  # its dataclass looks its module up there
+        spec = importlib.util.spec_from_file_location("import_graph", SCRIPT)
+        sys.modules["import_graph"] = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(sys.modules["import_graph"])
+    return sys.modules["import_graph"]
 
 
-def test_imports_point_one_way_without_circles(capsys):
-    assert _graph().main() == 0, capsys.readouterr().out
+#: Circles inside ik and checking (imports for annotations counted) that are known and
+#: removed by the ik/checking restructure of issue 31: the list empties after that merge
+#: (then ``import_graph.main() == 0`` holds again).
+KNOWN_ROOM_CIRCLES = {
+    ("checking.judging.checker", "checking.judging.ik_check"),
+    ("ik.closed_form", "ik.compiler", "ik.general", "ik.results", "ik.steps"),
+}
+
+
+def test_imports_point_one_way_without_circles():
+    report = _graph().check()
+    assert report.against_order == []
+    assert report.circles == []
+
+
+def test_no_room_has_a_circle_inside():
+    report = _graph().check()
+    outside = {r: c for r, c in report.room_circles.items() if c and r not in ("ik", "checking")}
+    assert outside == {}, "circles at run time between the modules of one room"
+    inside = {tuple(c) for r in ("ik", "checking") for c in report.room_circles[r]}
+    assert inside - KNOWN_ROOM_CIRCLES == set(), "new circles in ik/checking (annotations count)"
 
 
 def test_the_check_finds_a_circle():
     graph = _graph()
     assert graph.cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
     assert graph.cycles({"a": {"b"}, "b": set()}) == []
+
+
+def test_the_check_finds_a_circle_inside_a_room_only():
+    graph = _graph()
+    modules = {"ik.a": {"ik.b", "model.x"}, "ik.b": {"ik.a"}, "model.x": {"ik.a"}, "ik": set()}
+    assert graph.room_circles(modules) == {"ik": [["ik.a", "ik.b"]], "model": []}
+
+
+def test_annotation_imports_count_only_when_asked(tmp_path):
+    graph = _graph()
+    source = tmp_path / "a.py"
+    source.write_text(
+        "from typing import TYPE_CHECKING\n"
+        "from dhsym.ik import steps, solve\n"
+        "if TYPE_CHECKING:\n"
+        "    from dhsym.ik.results import Solution\n"
+        "def f():\n"
+        "    from . import b\n"
+    )
+    known = frozenset({"ik", "ik.steps", "ik.results", "ik.b"})
+    run_time = graph.imports("ik.a", source, known=known)
+    assert run_time == {"ik.steps", "ik", "ik.b"}
+    assert graph.imports("ik.a", source, annotations=True, known=known) == run_time | {"ik.results"}
 
 
 # --- no code reads text by evaluating it ----------------------------------------------------
