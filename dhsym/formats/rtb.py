@@ -168,11 +168,11 @@ def to_rtb(robot: KinematicChain | DHTable) -> object:
         if qlim is not None:
             common["qlim"] = qlim
         if row.joint is JointType.PRISMATIC:
-            cls = rtb.PrismaticMDH if modified else rtb.PrismaticDH
-            links.append(cls(theta=to_float(row.theta), **common))
+            prismatic = rtb.PrismaticMDH if modified else rtb.PrismaticDH
+            links.append(prismatic(theta=to_float(row.theta), **common))
         else:
-            cls = rtb.RevoluteMDH if modified else rtb.RevoluteDH
-            links.append(cls(d=to_float(row.d), **common))
+            revolute = rtb.RevoluteMDH if modified else rtb.RevoluteDH
+            links.append(revolute(d=to_float(row.d), **common))
 
     def se3(word: tuple[Elementary, ...]) -> object:
         M = np.array(plain_product(word).evalf(30).tolist(), dtype=float)
