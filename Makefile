@@ -2,14 +2,18 @@
 #   make demo   set up .venv, derive the PUMA 560 and write its derivation to build/
 #   make test   set up .venv and run the whole test suite
 #   make notebooks [NB=notebooks/03_puma560.py]   rebuild notebooks from their .py sources
-#   make docs   build the documentation site into build/docs (warnings are errors)
+#   make docs   build the documentation site into build/docs (warnings are errors);
+#               make docs VENV=/path/to/venv builds it with that environment as it is
 # and, once set up:
 #   make lab    JupyterLab on the course notebooks, from .venv
 #   make shell  a shell with .venv activated (dhsym, jupyter, python on the PATH)
 PYTHON ?= python3
-VENV   ?= .venv
+DEFAULT_VENV := .venv
+VENV   ?= $(DEFAULT_VENV)
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-stamp
+# the set-up a target needs: none when VENV names another, already made, environment
+SETUP  := $(if $(filter $(DEFAULT_VENV),$(VENV)),$(STAMP))
 
 .PHONY: demo test lint bench notebooks docs setup clean lab shell
 
@@ -19,7 +23,7 @@ $(STAMP): pyproject.toml scripts/system-deps.sh
 	PYTHON="$(PYTHON)" bash scripts/system-deps.sh
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test,notebooks,dask,widgets,graders,docs]'
+	$(PY) -m pip install --quiet -e '.[test,notebooks,dask,widgets,graders,docs,peers]'
 	$(PY) -m ipykernel install --sys-prefix --name python3 >/dev/null
 	touch $(STAMP)
 
@@ -39,7 +43,7 @@ lint: $(STAMP)
 notebooks: $(STAMP)
 	$(VENV)/bin/dhsym notebooks build $(NB)
 
-docs: $(STAMP)
+docs: $(SETUP)
 	$(PY) scripts/build_docs.py build/docs
 
 bench: $(STAMP)
