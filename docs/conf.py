@@ -40,12 +40,19 @@ smartquotes = False  # "--format" and "..." in help texts and code-like prose st
 # MyST: $…$ and $$…$$ maths, ::: fences, anchors for ## headings (links like page.md#anchor).
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "deflist", "attrs_inline"]
 myst_heading_anchors = 3
+# $$…$$ inside a paragraph is display maths too: the derivations dhsym writes as Markdown
+# (the notebooks' outputs) put a display right after the sentence that introduces it.
+myst_dmath_double_inline = True
 
 # The notebooks are committed executed (the test suite runs every one and fails on any
 # error or warning, and checks each .ipynb against its jupytext source): render them as
 # they are, so the build stays fast and runs nothing.
 nb_execution_mode = "off"
 nb_merge_streams = True
+# dhsym's objects show themselves as Markdown with $…$ maths and pipe tables (their
+# _repr_markdown_): parse those outputs with MyST and this page's extensions (dollarmath,
+# tables), not as bare CommonMark, which leaves the maths and the tables as raw text.
+nb_render_markdown_format = "myst"
 nb_ipywidgets_js: dict[str, dict[str, str]] = {}  # no CDN: widgets show their static text
 
 # API: autodoc imports dhsym's modules (nothing else runs); numpydoc reads the docstrings.

@@ -14,7 +14,7 @@
 # ---
 
 # %% [markdown]
-# # Homework checking: an instructor's whole flow
+# # 6 · Homework checking: an instructor's whole flow
 #
 # A DH homework has many right answers and a few classic wrong ones. `dhsym.checking`
 # says right or wrong, says where and most likely why, accepts valid alternative frame

@@ -14,7 +14,7 @@
 # ---
 
 # %% [markdown]
-# # 10 · From a robot's URDF to its DH table, closed form and frames
+# # 12 · From a robot's URDF to its DH table, closed form and frames
 #
 # Robot makers describe their arms in URDF: links joined by joints, each joint with an origin
 # (a translation and roll–pitch–yaw angles) and an axis — not as a DH table. This notebook takes

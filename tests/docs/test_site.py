@@ -173,6 +173,52 @@ def test_every_notebook_is_a_tutorial_with_its_pictures(site):
             assert re.search(r'<img [^>]*src="\.\./\.\./_images/', _text(page)), nb.name
 
 
+@pytest.mark.slow
+def test_no_page_shows_markdown_or_latex_as_text(site):
+    # outside code and typeset maths, no `$…$`, no `|` table row, no stray backtick
+    assert site.raw_markup == ()
+
+
+@pytest.mark.slow
+def test_the_tutorials_typeset_their_outputs(site):
+    # dhsym's objects show themselves as Markdown (pipe tables, $…$ maths): MyST parses them
+    page = _text(site.outdir / "tutorials" / "notebooks" / "01_planar_2R.html")
+    outputs = "".join(re.findall(r'<div class="cell_output.*?(?=<div class="cell |\Z)', page, re.S))
+    assert "<table" in outputs and '<span class="math' in outputs
+    assert "\\(\\theta_i\\)" in outputs  # the table's header, typeset
+
+
+@pytest.mark.slow
+def test_every_tutorial_is_listed_by_its_title(site):
+    index = html.unescape(_text(site.outdir / "tutorials" / "index.html"))
+    for nb in sorted((ROOT / "notebooks").glob("*.ipynb")):
+        label = re.search(rf'href="notebooks/{nb.stem}\.html">([^<]*)<', index)
+        assert label and label.group(1).startswith(f"{int(nb.stem[:2])} · "), nb.stem
+        assert label.group(1) in _text(nb), nb.stem  # its title, the notebook's first heading
+
+
+@pytest.mark.slow
+def test_a_pipe_inside_a_table_cell_stays_in_its_cell(site):
+    page = html.unescape(_text(site.outdir / "guide" / "dynamics.html"))
+    cells = re.findall(r"<td><p>(.*?)</p></td>", page, re.S)
+    code = [
+        re.sub(r"<[^>]+>", "", c) for cell in cells for c in re.findall(r"<code.*?</code>", cell)
+    ]
+    assert "B·G²·q̇ + |G|·Tc" in code
+
+
+def test_the_check_finds_raw_markup():
+    check = _build_docs_module().raw_markup
+    shown = "<p>| $i$ | joint |</p><p>gains `B·G²·q̇ + </p>"
+    assert check(shown) == ["$i$", "| $i$ | joint |", "`B·G²·q̇ + "]
+    typeset = (
+        '<table><tr><td><span class="math">\\(\\theta_i\\)</span></td></tr></table>'
+        "<p><code>$x$ | y</code> the <code>--format markdown</code> ($...$ maths)</p>"
+        '<div class="highlight"><pre>print("$a$")\n| b</pre></div>'
+    )
+    assert check(typeset) == []
+
+
 # --------------------------------------------------------------------------- schemas
 
 
@@ -267,6 +313,8 @@ def test_pages_typeset_their_mathematics_offline(served, need_chromium, need_pla
     pages = {
         "index.html": "dhsym",
         "tutorials/notebooks/03_puma560.html": "PUMA 560",
+        # Markdown outputs: pipe tables, $…$ and $$…$$ inside a paragraph (MyST parses them)
+        "tutorials/notebooks/08_jacobian_singularities.html": "Jacobian",
         "api/dhsym.robot.html": "Robot",
     }
     outside: list[str] = []
