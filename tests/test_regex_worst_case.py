@@ -20,7 +20,7 @@ import re
 
 import pytest
 
-from dhsym.checking.grading._runner import JobFailure, Sandbox
+from dhsym.checking.grading.sandbox import JobFailure, Sandbox
 
 from .checking._jobs import regex_worst_case
 

@@ -621,7 +621,7 @@ def test_a_random_edit_that_changes_the_value_is_never_graded_right(case):
 
 
 def test_the_sandbox_child_never_imports_from_the_current_folder(tmp_path, monkeypatch):
-    from dhsym.checking.grading._runner import Sandbox
+    from dhsym.checking.grading.sandbox import Sandbox
 
     canary = tmp_path / "shadowed"
     (tmp_path / "json.py").write_text(f"open({str(canary)!r}, 'w').close()\n")
