@@ -33,7 +33,7 @@ except ImportError:  # pragma: no cover - Python 3.10
 
 MODULES = [
     "dhsym.checking.mistakes._ik_mistakes",
-    "dhsym.checking.judging._ik_values",
+    "dhsym.checking.comparing.ik_values",
     "dhsym.checking.mistakes._jacobian_mistakes",
     "dhsym.checking.grading.report",
     "dhsym.checking.grading.submissions",

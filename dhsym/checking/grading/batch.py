@@ -38,8 +38,9 @@ from typing import TypedDict
 from dhsym.errors import DHError
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
-from ..judging.checker import PreparedKeys, check_answer
-from ..judging.verdict import CheckResult, Verdict
+from ..comparing.verdict import CheckResult, Verdict
+from ..judging.checker import check_answer
+from ..judging.key import PreparedKeys
 from ..reading.limits import AnswerLimits, AnswerTimeout, check_seconds, time_limit
 from .assignment import Assignment, AssignmentQuestion
 from .backends import Progress, dask_address, run_dask, run_pool, run_serial
@@ -133,7 +134,7 @@ def grade_submission(
     """Grade one submission (runs in a worker): scores, verdicts, kinds and both feedback pages.
 
     ``keys`` are the worker's prepared keys (the runners give each worker one
-    :class:`~dhsym.checking.judging.checker.PreparedKeys`).  An answer that runs out of time gets
+    :class:`~dhsym.checking.judging.key.PreparedKeys`).  An answer that runs out of time gets
     the verdict ``timeout`` and the record the status ``timeout`` (never cached, so the
     next run checks it again).
     """

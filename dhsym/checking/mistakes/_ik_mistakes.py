@@ -26,8 +26,8 @@ import sympy as sp
 
 from dhsym.notation.printers import Notation
 
-from ..judging._ik_values import PoseSample, Rewrite, joint_distance, key_values, same_joints
-from ..judging.verdict import Diagnosis
+from ..comparing.ik_values import PoseSample, Rewrite, joint_distance, key_values, same_joints
+from ..comparing.verdict import Diagnosis
 from ._mistake_base import Mistake
 
 __all__ = [
@@ -225,7 +225,7 @@ class LostBranch(IKMistake):
         missing = [k for k in valid if k not in case.matched]
         if not missing:
             return None
-        from ..judging._ik_values import branch_signs
+        from ..comparing.ik_values import branch_signs
 
         signs = branch_signs(case.ik)
         parts = []

@@ -32,7 +32,7 @@ import sympy as sp
 from dhsym.ik.steps import pose_symbols
 from dhsym.model.table import JointType
 
-from ._sampled_frames import EvaluationError, evaluate, frames
+from .sampled_frames import EvaluationError, evaluate, frames
 from .tolerances import TOLERANCES
 
 __all__ = [
