@@ -13,10 +13,12 @@ platform: :mod:`~dhsym.checking.platforms.autograder`; LMS imports:
 :mod:`~dhsym.checking.platforms.gradebooks`.
 Student text is untrusted throughout: see :class:`AnswerLimits`.
 
-Inside, five sub-rooms: :mod:`~dhsym.checking.reading` (student text to sympy),
-:mod:`~dhsym.checking.judging` (against the key), :mod:`~dhsym.checking.mistakes` (what
-explains a wrong answer), :mod:`~dhsym.checking.grading` (a class, its report folder) and
-:mod:`~dhsym.checking.platforms` (autograders, LMS gradebooks, notebooks). Every name below
+Inside, six sub-rooms: :mod:`~dhsym.checking.reading` (student text to sympy),
+:mod:`~dhsym.checking.comparing` (equivalence, table matching, the verdict: what judges and
+mistakes share), :mod:`~dhsym.checking.mistakes` (what explains a wrong answer),
+:mod:`~dhsym.checking.judging` (against the key), :mod:`~dhsym.checking.grading` (a class,
+its report folder) and :mod:`~dhsym.checking.platforms` (autograders, LMS gradebooks,
+notebooks). Every name below
 is loaded from its sub-room on first use.
 """
 
