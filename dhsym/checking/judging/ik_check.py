@@ -19,7 +19,8 @@ when the answer keeps the lengths as symbols, random lengths) and compared, angl
 2π, with every branch of the key (:func:`dhsym.ik.families.inverse`, each choice
 of its signs σ); any branch is right, and the feedback names it. A wrong answer is
 explained by recomputing the key under each classic mistake
-(:data:`~dhsym.checking.mistakes.registry.IK_MISTAKES`).
+(:data:`~dhsym.checking.mistakes.registry.IK_MISTAKES`).  The key's closed form, its
+pose and its branches' names are prepared once (:mod:`~dhsym.checking.judging.ik_key`).
 
 Examples
 --------
