@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import sympy as sp
@@ -29,6 +29,9 @@ from dhsym.notation.printers import Notation
 from ..comparing.ik_values import PoseSample, Rewrite, joint_distance, key_values, same_joints
 from ..comparing.verdict import Diagnosis
 from ._mistake_base import Mistake
+
+if TYPE_CHECKING:
+    from dhsym.ik.closed_form import InverseKinematics
 
 __all__ = [
     "IK_MISTAKES",
@@ -54,7 +57,7 @@ class IKCase:
     branches the answer gives; ``every`` is True when the question asks for all of them.
     """
 
-    ik: Any
+    ik: InverseKinematics
     sample: PoseSample
     key: np.ndarray
     answers: np.ndarray
