@@ -43,8 +43,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from dhsym.checking import Key, check_answer  # noqa: E402
-from dhsym.checking.judging.checker import prepare  # noqa: E402
-from dhsym.checking.judging.verdict import Verdict  # noqa: E402
+from dhsym.checking.comparing.verdict import Verdict  # noqa: E402
+from dhsym.checking.judging.key import prepare  # noqa: E402
 from dhsym.kinematics.transforms import link_matrix  # noqa: E402
 from dhsym.model.library import builtin_names  # noqa: E402
 from dhsym.notation.printers import Notation  # noqa: E402
@@ -155,7 +155,7 @@ def _fingerprint(e: sp.Expr, symbols: list[sp.Symbol], points: np.ndarray) -> tu
 def matrix_mutants(robot: str, question: str) -> list[Mutant]:
     """Single-edit mutants (and correct rewritings) of every entry of one matrix question."""
     pk = prepare(Key.load(robot, question))
-    expected = sp.Matrix(pk.expected)
+    expected = sp.Matrix(pk.part.expected)
     joints, nota = _joints(pk.key.table)
     variables = [r.variable for r in pk.key.table.rows if r.variable is not None]
     symbols = sorted(expected.free_symbols | set(variables), key=sp.default_sort_key)

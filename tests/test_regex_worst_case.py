@@ -20,7 +20,7 @@ import re
 
 import pytest
 
-from dhsym.checking.grading._runner import JobFailure, Sandbox
+from dhsym.checking.grading.sandbox import JobFailure, Sandbox
 
 from .checking._jobs import regex_worst_case
 
@@ -33,7 +33,7 @@ except ImportError:  # pragma: no cover - Python 3.10
 
 MODULES = [
     "dhsym.checking.mistakes._ik_mistakes",
-    "dhsym.checking.judging._ik_values",
+    "dhsym.checking.comparing.ik_values",
     "dhsym.checking.mistakes._jacobian_mistakes",
     "dhsym.checking.grading.report",
     "dhsym.checking.grading.submissions",

@@ -13,10 +13,12 @@ platform: :mod:`~dhsym.checking.platforms.autograder`; LMS imports:
 :mod:`~dhsym.checking.platforms.gradebooks`.
 Student text is untrusted throughout: see :class:`AnswerLimits`.
 
-Inside, five sub-rooms: :mod:`~dhsym.checking.reading` (student text to sympy),
-:mod:`~dhsym.checking.judging` (against the key), :mod:`~dhsym.checking.mistakes` (what
-explains a wrong answer), :mod:`~dhsym.checking.grading` (a class, its report folder) and
-:mod:`~dhsym.checking.platforms` (autograders, LMS gradebooks, notebooks). Every name below
+Inside, six sub-rooms: :mod:`~dhsym.checking.reading` (student text to sympy),
+:mod:`~dhsym.checking.comparing` (equivalence, table matching, the verdict: what judges and
+mistakes share), :mod:`~dhsym.checking.mistakes` (what explains a wrong answer),
+:mod:`~dhsym.checking.judging` (against the key), :mod:`~dhsym.checking.grading` (a class,
+its report folder) and :mod:`~dhsym.checking.platforms` (autograders, LMS gradebooks,
+notebooks). Every name below
 is loaded from its sub-room on first use.
 """
 
@@ -35,10 +37,10 @@ __getattr__, __dir__ = lazy_exports(
         "read_expression": "reading.answers",
         "read_matrix": "reading.answers",
         "read_answer_table": "reading.answers",
-        "Key": "judging.checker",
+        "Key": "judging.key",
         "check_answer": "judging.checker",
-        "prepare": "judging.checker",
-        "PreparedKeys": "judging.checker",
+        "prepare": "judging.key",
+        "PreparedKeys": "judging.key",
         "render_check": "grading.feedback",
         "render_feedback": "grading.feedback",
         "Assignment": "grading.assignment",
@@ -52,12 +54,12 @@ __getattr__, __dir__ = lazy_exports(
         "Mistake": "mistakes.registry",
         "NameContext": "reading.answer_names",
         "Question": "reading.questions",
-        "TableMatch": "judging.table_match",
-        "compare_tables": "judging.table_match",
-        "CheckResult": "judging.verdict",
-        "Diagnosis": "judging.verdict",
-        "EntryResult": "judging.verdict",
-        "Verdict": "judging.verdict",
+        "TableMatch": "comparing.table_match",
+        "compare_tables": "comparing.table_match",
+        "CheckResult": "comparing.verdict",
+        "Diagnosis": "comparing.verdict",
+        "EntryResult": "comparing.verdict",
+        "Verdict": "comparing.verdict",
         "Rounding": "judging.rounding",
         "SelfCheck": "platforms.selfcheck",
         "assert_answer": "platforms.selfcheck",

@@ -45,9 +45,10 @@ def _read_answer(source: str, limit: int) -> bytes | str:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
+    from dhsym.checking.comparing.verdict import CheckResult, Verdict
     from dhsym.checking.grading.feedback import render_check
-    from dhsym.checking.judging.checker import Key, check_answer
-    from dhsym.checking.judging.verdict import CheckResult, Verdict
+    from dhsym.checking.judging.checker import check_answer
+    from dhsym.checking.judging.key import Key
     from dhsym.checking.reading.limits import (
         DEFAULT_ANSWER_LIMITS,
         AnswerLimits,

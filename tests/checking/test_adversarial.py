@@ -467,7 +467,7 @@ def test_the_first_ik_check_of_a_process_is_not_charged_for_the_solver():
 
 
 def test_a_proof_after_agreement_is_bounded_by_size_and_time():
-    from dhsym.checking.judging.equivalence import prove_entry
+    from dhsym.checking.comparing.equivalence import prove_entry
     from dhsym.checking.reading.limits import AnswerLimits, time_limit
 
     t1, t2 = sp.symbols("theta1 theta2", real=True)
@@ -518,10 +518,10 @@ def _text(matrix: sp.Matrix) -> str:
 
 @pytest.mark.parametrize("robot", ["planar2r", "scara"])
 def test_a_jacobian_in_omega_v_order_is_right_and_named(robot):
-    from dhsym.checking.judging.checker import prepare
+    from dhsym.checking.judging.key import prepare
 
     key = Key.load(robot, "J")
-    J = prepare(key).expected
+    J = prepare(key).part.expected
     result = check_answer(key, _text(sp.Matrix.vstack(J[3:, :], J[:3, :])))
     assert result.verdict.value == "correct"
     assert "[ω; v]" in result.message and not result.diagnoses
@@ -562,16 +562,18 @@ def _nodes(expr: sp.Expr, kind: type) -> list[sp.Expr]:
 
 @st.composite
 def _edits(draw: st.DrawFn) -> tuple[Key, tuple[int, int], sp.Expr, sp.Expr]:
-    from dhsym.checking.judging.checker import prepare
+    from dhsym.checking.judging.key import prepare
 
     robot, question = draw(st.sampled_from(_QUESTIONS))
     key = Key.load(robot, question)
-    expected = prepare(key).expected
+    expected = prepare(key).part.expected
     i = draw(st.integers(0, expected.rows - 1))
     j = draw(st.integers(0, expected.cols - 1))
     entry = expected[i, j]
     how = draw(st.sampled_from(["add", "scale", "swap_function", "rename", "tiny"]))
-    symbols = sorted(prepare(key).symbols & set(expected.free_symbols), key=sp.default_sort_key)
+    symbols = sorted(
+        prepare(key).part.symbols & set(expected.free_symbols), key=sp.default_sort_key
+    )
     if how == "add":
         edited = entry + draw(st.sampled_from([sp.Rational(1, 3), -2, sp.Rational(1, 1000)]))
     elif how == "scale":
@@ -612,16 +614,16 @@ def test_a_random_edit_that_changes_the_value_is_never_graded_right(case):
     key, (i, j), entry, edited = case
     if not _differs(entry, edited):
         return  # the edit kept the value (cos of a zero angle, a symbol renamed to itself)
-    from dhsym.checking.judging.checker import prepare
+    from dhsym.checking.judging.key import prepare
 
-    matrix = sp.Matrix(prepare(key).expected)
+    matrix = sp.Matrix(prepare(key).part.expected)
     matrix[i, j] = edited
     result = check_answer(key, answer_text(matrix.tolist()))
     assert result.verdict.value != "correct", (key.name, key.question.spec, (i, j), edited)
 
 
 def test_the_sandbox_child_never_imports_from_the_current_folder(tmp_path, monkeypatch):
-    from dhsym.checking.grading._runner import Sandbox
+    from dhsym.checking.grading.sandbox import Sandbox
 
     canary = tmp_path / "shadowed"
     (tmp_path / "json.py").write_text(f"open({str(canary)!r}, 'w').close()\n")

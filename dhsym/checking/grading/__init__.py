@@ -6,5 +6,7 @@
 - :mod:`~dhsym.checking.grading.records`: the record of one graded submission;
 - :mod:`~dhsym.checking.grading.feedback`: feedback pages (Markdown, HTML, text);
 - :mod:`~dhsym.checking.grading.report`: the gradebook and the summary page;
-- ``_runner``: killable worker processes, a Dask cluster, the progress bar.
+- :mod:`~dhsym.checking.grading.sandbox`: a killable child process per worker (its framing,
+  its deadline); :mod:`~dhsym.checking.grading.backends`: the serial run, the pool of
+  sandboxes, a Dask cluster, the progress bar.
 """

@@ -39,7 +39,7 @@ from pathlib import Path
 from dhsym.errors import DHError
 from dhsym.model.yamlsafe import FileRefused, YAMLInputError, load_yaml, read_limited
 
-from ..judging.checker import Key, PreparedKeys
+from ..judging.key import Key, PreparedKeys
 from ..reading.limits import check_seconds
 
 __all__ = ["Assignment", "AssignmentQuestion"]

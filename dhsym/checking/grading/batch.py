@@ -12,7 +12,7 @@ atomically) so that a rerun skips what is already graded.  Nothing is written
 outside it: student ids become safe file names.
 
 Every submission is isolated: it is read inside its own guard and graded in a
-process that is killed when it overruns (:mod:`dhsym.checking.grading._runner`).  Its
+process that is killed when it overruns (:mod:`dhsym.checking.grading.sandbox`).  Its
 outcome is its ``status``: ``graded``, ``timeout`` (an answer or the whole
 submission ran out of time) or ``error: …`` (with the reason); the gradebook and
 the summary are written whatever happens.  Only final verdicts are cached: a
@@ -38,15 +38,17 @@ from typing import TypedDict
 from dhsym.errors import DHError
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
-from ..judging.checker import PreparedKeys, check_answer
-from ..judging.verdict import CheckResult, Verdict
+from ..comparing.verdict import CheckResult, Verdict
+from ..judging.checker import check_answer
+from ..judging.key import PreparedKeys
 from ..reading.limits import AnswerLimits, AnswerTimeout, check_seconds, time_limit
-from ._runner import JobFailure, Progress, dask_address, run_dask, run_pool, run_serial
 from .assignment import Assignment, AssignmentQuestion
+from .backends import Progress, dask_address, run_dask, run_pool, run_serial
 from .feedback import QuestionFeedback, render_feedback
 from .records import GradeRecord
 from .report import write_gradebook, write_summary
 from .report_files import CACHE_NAME, inside, safe_name, write_atomic
+from .sandbox import JobFailure
 from .submissions import Submission, read_submissions
 
 __all__ = [
@@ -132,7 +134,7 @@ def grade_submission(
     """Grade one submission (runs in a worker): scores, verdicts, kinds and both feedback pages.
 
     ``keys`` are the worker's prepared keys (the runners give each worker one
-    :class:`~dhsym.checking.judging.checker.PreparedKeys`).  An answer that runs out of time gets
+    :class:`~dhsym.checking.judging.key.PreparedKeys`).  An answer that runs out of time gets
     the verdict ``timeout`` and the record the status ``timeout`` (never cached, so the
     next run checks it again).
     """

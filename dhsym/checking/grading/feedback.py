@@ -7,7 +7,7 @@ escapes every student-made string with the ``md`` filter (Markdown specials and
 
 Examples
 --------
->>> from dhsym.checking.judging.verdict import CheckResult, Verdict
+>>> from dhsym.checking.comparing.verdict import CheckResult, Verdict
 >>> r = CheckResult("T0_2", Verdict.UNREADABLE, "The answer could not be read: <b>",
 ...                 reason="<b>")
 >>> page = render_feedback({"id": "<script>x</script>", "name": "<script>x</script>"},
@@ -28,7 +28,7 @@ from dhsym.errors import DHError
 from dhsym.notation.escape import escape_markdown
 from dhsym.notation.templates import FEEDBACK, environment
 
-from ..judging.verdict import CheckResult
+from ..comparing.verdict import CheckResult
 
 if TYPE_CHECKING:  # jinja2 is imported when a page is rendered
     import jinja2
@@ -146,7 +146,7 @@ def check_text(result: CheckResult) -> str:
     A terminal message rather than a document, so it is built here and not from a
     template: ``dhsym check`` then starts without Jinja2.
 
-    >>> from dhsym.checking.judging.verdict import CheckResult, Diagnosis, EntryResult, Verdict
+    >>> from dhsym.checking.comparing.verdict import CheckResult, Diagnosis, EntryResult, Verdict
     >>> e = EntryResult(2, 4, False, "a1*S1 - a2*S12", "a1*S1 + a2*S12")
     >>> ok = EntryResult(1, 4, True, "a1*C1 + a2*C12", "a1*C1 + a2*C12")
     >>> d = Diagnosis("wrong_sign", "wrong sign", "a2*S12 has the wrong sign.", ((2, 4),))
@@ -214,7 +214,7 @@ def render_question_text(q: QuestionFeedback, *, show_key: bool = True) -> str:
     With ``show_key=False`` the key's entries and table are left out (for platforms
     where students resubmit after reading the output).
 
-    >>> from dhsym.checking.judging.verdict import CheckResult, EntryResult, Verdict
+    >>> from dhsym.checking.comparing.verdict import CheckResult, EntryResult, Verdict
     >>> r = CheckResult("A1", Verdict.INCORRECT, "1 of 16 entries is wrong.",
     ...                 (EntryResult(2, 4, False, "d1", "-d1"),))
     >>> print(render_question_text(QuestionFeedback("q1", "A1", 2, 0, r)))

@@ -55,7 +55,14 @@ from .report_files import CACHE_NAME, name_base
 if TYPE_CHECKING:
     from .assignment import Assignment
 
-__all__ = ["Submission", "identity", "read_submissions", "student_id"]
+__all__ = [
+    "Submission",
+    "identity",
+    "read_submission_file",
+    "read_submission_folder",
+    "read_submissions",
+    "student_id",
+]
 
 _MAX_SUBMISSION_FILE = 2_000_000
 _MAX_CSV = 500_000_000
@@ -128,7 +135,10 @@ def _answer_files(names: list[str], qid: str) -> list[str]:
     return sorted(n for n in names if n == qid or n.startswith(qid + "."))
 
 
-def _from_folder(folder: Path, qids: list[str], limits: AnswerLimits) -> Submission:
+def read_submission_folder(folder: Path, qids: list[str], limits: AnswerLimits) -> Submission:
+    """One student's folder: the answer file of each question in ``qids`` (the first in
+    alphabetical order when there are several, the others flagged), each read up to
+    ``limits``; a file that cannot be read is that question's read problem."""
     student = student_id(folder.name)
     answers, problems, flags = [], [], []
     names = sorted(os.listdir(folder))
@@ -156,7 +166,9 @@ def _from_folder(folder: Path, qids: list[str], limits: AnswerLimits) -> Submiss
     return Submission(student, name, tuple(answers), tuple(problems), f"{student}/", tuple(flags))
 
 
-def _from_file(path: Path, qids: list[str]) -> Submission:
+def read_submission_file(path: Path, qids: list[str]) -> Submission:
+    """One student's YAML file (``answers: {q1: …}``); a file that cannot be read, or is
+    not that shape, is a read problem of every question."""
     student = student_id(path.stem)
     source = student_id(path.name)
     try:
@@ -285,11 +297,13 @@ def read_submissions(
             elif entry.is_dir(follow_symlinks=False):
                 subs.append(
                     _guarded(
-                        partial(_from_folder, path, qids, limits), student_id(entry.name), shown
+                        partial(read_submission_folder, path, qids, limits),
+                        student_id(entry.name),
+                        shown,
                     )
                 )
             else:
-                subs.append(_guarded(partial(_from_file, path, qids), student, shown))
+                subs.append(_guarded(partial(read_submission_file, path, qids), student, shown))
     else:
         raise DHError(f"no submissions folder or CSV file at {src}")
     return sorted(_flag_duplicates(subs), key=lambda s: (s.student, s.source))

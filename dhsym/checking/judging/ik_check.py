@@ -19,7 +19,8 @@ when the answer keeps the lengths as symbols, random lengths) and compared, angl
 2π, with every branch of the key (:func:`dhsym.ik.families.inverse`, each choice
 of its signs σ); any branch is right, and the feedback names it. A wrong answer is
 explained by recomputing the key under each classic mistake
-(:data:`~dhsym.checking.mistakes.registry.IK_MISTAKES`).
+(:data:`~dhsym.checking.mistakes.registry.IK_MISTAKES`).  The key's closed form, its
+pose and its branches' names are prepared once (:mod:`~dhsym.checking.judging.ik_key`).
 
 Examples
 --------
@@ -44,74 +45,42 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import numpy as np
 import sympy as sp
 
-from dhsym.errors import DHError
-from dhsym.ik.results import IKSolution
 from dhsym.ik.steps import pose_symbols
 
-from ..mistakes._ik_mistakes import IKCase
-from ..mistakes.registry import IK_MISTAKES
-from ..reading.answer_value import IKAnswer, IKStatement
-from ..reading.limits import check_time
-from ._ik_values import (
+from ..comparing.ik_values import (
     ATOL,
     PoseSample,
     branch_signs,
     joint_distance,
     key_values,
     pose_sample,
-    same_joints,
 )
-from ._sampled_frames import EvaluationError, evaluate, frames
+from ..comparing.sampled_frames import EvaluationError, evaluate, frames
+from ..comparing.tolerances import TOLERANCES
+from ..comparing.verdict import CheckResult, Diagnosis, EntryResult, Verdict
+from ..mistakes.registry import IK_MISTAKES, IKCase
+from ..reading.answer_value import IKAnswer, IKStatement
+from ..reading.limits import check_time
+from .ik_key import IKPart
+from .key import PreparedKey
 from .rounding import value_tolerance
-from .tolerances import TOLERANCES
-from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
 if TYPE_CHECKING:
     from dhsym.ik.closed_form import InverseKinematics
     from dhsym.robot import Robot
 
-    from .checker import PreparedKey
-
-__all__ = ["check_ik", "prepare_ik"]
+__all__ = ["check_ik", "ik_part"]
 
 #: per row of the answer's values: (which solution, the choice of its signs ±)
 _Meta: TypeAlias = list[tuple[int, dict[sp.Symbol, Any]]]
 
 
-def prepare_ik(pk: PreparedKey) -> PreparedKey:
-    """Derive the key's inverse kinematics once (and the pose of a numeric question)."""
-    robot, q = pk.robot, pk.key.question
-    ik = robot.inverse()
-    if ik.most is not None:
-        raise DHError(
-            f"{robot.name or 'this arm'} is a general 6R: its inverse kinematics is an "
-            "eigenproblem, not closed-form steps to grade"
-        )
-    pk.ik = ik
-    table = pk.key.table
-    if q.pose is not None:
-        if len(q.pose) != len(robot.variables):
-            raise DHError(
-                f"question {q.spec!r}: {robot.name} has {len(robot.variables)} joints, "
-                f"got {len(q.pose)} values"
-            )
-        missing = [str(s) for s in table.constants if s not in table.value_map]
-        if missing:
-            raise DHError(
-                f"question {q.spec!r} needs numbers for {', '.join(missing)} (table values)"
-            )
-        pose = pose_sample(robot, q=np.array([q.pose]), values=table.value_map)
-        pk.ik_pose = pose
-        # the numeric solver and the key's branches at the pose are built here, once per
-        # worker, outside every student's time limit (the first build takes seconds)
-        at_pose = key_values(ik, pose.env, pose.size)
-        pk.ik_pose_names = tuple(_numeric_names(robot, ik, pose, at_pose))
-    else:  # the key's branches compiled once, before the first answer's clock starts
-        sample = pose_sample(robot, values=table.value_map or None)
-        key_values(ik, sample.env, sample.size)
-        pk.ik_names = _reference_names(robot, ik)
-    pk.symbols = frozenset(set(table.constants) | set(pose_symbols()[:3, :]))
-    return pk
+def ik_part(pk: PreparedKey) -> IKPart:
+    """The prepared part of an inverse-kinematics key (IK statements are read only for one)."""
+    part = pk.part
+    if not isinstance(part, IKPart):
+        raise TypeError(f"an inverse-kinematics answer to a key prepared as {type(part).__name__}")
+    return part
 
 
 def _tolerance(st: IKStatement) -> float:
@@ -214,53 +183,15 @@ def _reaches(robot: Robot, q: np.ndarray, sample: PoseSample, position: bool) ->
     return bool(np.allclose(got, goal, atol=TOLERANCES.reach_atol))
 
 
-def _reference_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
-    """Each key branch named as the IK results name it (``"elbow up"``, ``"right arm"``),
-    read at the examples' configuration
-    (:func:`~dhsym.explain.inverse_kinematics.default_configuration`) with the table's
-    lengths (1 where it gives none), for questions without a pose."""
-    from dhsym.explain.inverse_kinematics import default_configuration
-    from dhsym.robot import Robot
-
-    table = robot.table
-    values = {s: table.value_map.get(s, 1.0) for s in table.constants}
-    try:
-        named = Robot(table.with_values(values))
-        ref = pose_sample(named, q=np.array([default_configuration(named)]), values=values)
-        return tuple(_numeric_names(named, ik, ref, key_values(ik, ref.env, ref.size)))
-    except (DHError, ValueError, ArithmeticError):
-        return tuple(f"branch {k + 1}" for k in range(2 ** len(ik.branches)))
-
-
-def _numeric_names(
-    robot: Robot, ik: InverseKinematics, sample: PoseSample, key: np.ndarray
-) -> list[str]:
-    """Each key branch named as the numeric solver names it at the question's pose."""
-    T = frames(robot.table, sample.env, 1)[0, -1]
-    position_only = not ik.decoupling.wrist
-    sol = robot.ik(T[:3, 3] if position_only else T)
-    if not isinstance(sol, IKSolution):  # one pose gives one solution, not a batch
-        raise TypeError(f"robot.ik of one pose returned {type(sol).__name__}")
-    names = []
-    for k in range(len(key)):
-        found = [
-            name
-            for name, q in zip(sol.branches, sol.q, strict=True)
-            if same_joints(key[k], q[None, :], sample.revolute, TOLERANCES.reach_atol)
-        ]
-        names.append(found[0] if found else f"branch {k + 1}")
-    return names
-
-
 # --- the check --------------------------------------------------------------------------------
 
 
 def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
     """The question's pose; or random poses, with the table's lengths when the answer writes
     none of them as symbols (it used their numbers)."""
-    if pk.ik_pose is not None:
-        pose: PoseSample = pk.ik_pose
-        return pose
+    part = ik_part(pk)
+    if part.pose is not None:
+        return part.pose
     table = pk.key.table
     valued = set(table.constants) <= set(table.value_map) and not (
         ans.symbols & set(table.constants)
@@ -268,10 +199,7 @@ def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
     values = table.value_map if valued else None
     if fresh:
         return pose_sample(pk.robot, values=values)
-    if valued not in pk.ik_samples:
-        pk.ik_samples[valued] = pose_sample(pk.robot, values=values)
-    sample: PoseSample = pk.ik_samples[valued]
-    return sample
+    return part.diagnosis_poses[valued]  # drawn once, by prepare_ik
 
 
 def _entries(
@@ -326,12 +254,12 @@ def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
     """Check an inverse-kinematics answer, as read
     (:func:`~dhsym.checking.reading.answer_value.read_answer_value`), against the key (see
     the module text)."""
-    key, q = pk.key, pk.key.question
-    ik = pk.ik
+    key, q, part = pk.key, pk.key.question, ik_part(pk)
+    ik = part.ik
     robot = pk.robot
     nota = robot.notation
     variables = list(robot.variables)
-    known = set(pk.symbols) | set(variables) | {st.target for st in ans.helpers} | set(ans.signs)
+    known = set(part.symbols) | set(variables) | {st.target for st in ans.helpers} | set(ans.signs)
     unknown = sorted(ans.symbols - known, key=sp.default_sort_key)
     missing = sorted(
         {str(variables[j]) for sol in ans.solutions for j in range(len(variables)) if j not in sol}
@@ -349,7 +277,7 @@ def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
         kind = "unknown_symbol" if unknown else "missing_joint"
         d = Diagnosis(kind, "unknown symbols" if unknown else "joint missing", " ".join(parts))
         return CheckResult(q.spec, Verdict.INCORRECT, " ".join(parts), diagnoses=(d,), key=key.name)
-    circular = _circular(ans, set(pk.symbols) | set(ans.signs))
+    circular = _circular(ans, set(part.symbols) | set(ans.signs))
     if circular:
         text = (
             f"{', '.join(circular)} cannot be computed from the pose: each is defined through "
@@ -369,7 +297,7 @@ def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
     m = _match(key_d, answers, tols, dsample, robot, position)
     wrong = m.wrong
     valid_k = [k for k in range(len(key_d)) if not np.isnan(key_d[k]).any()]
-    names = pk.ik_pose_names if q.pose is not None else pk.ik_names
+    names = part.branch_names  # at the question's pose, or in general
     case = IKCase(
         ik,
         dsample,
@@ -511,10 +439,7 @@ def _correct(
     matched = m.branch
     q = pk.key.question
     ks = sorted({k for k in matched.values() if k is not None})
-    if q.pose is not None:
-        names = list(pk.ik_pose_names)  # set by prepare_ik
-    else:
-        names = list(pk.ik_names)  # set by prepare_ik
+    names = list(ik_part(pk).branch_names)  # set by prepare_ik
     if q.every:
         message = f"Right: every solution is given ({len(ks)} branches)."
     elif len(ks) == 1:

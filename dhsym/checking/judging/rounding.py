@@ -44,9 +44,9 @@ import sympy as sp
 
 from dhsym.errors import DHError
 
+from ..comparing.sampled_frames import EvaluationError, evaluate
+from ..comparing.tolerances import TOLERANCES
 from ..reading.literals import Literal, decimal_places
-from ._sampled_frames import EvaluationError, evaluate
-from .tolerances import TOLERANCES
 
 __all__ = [
     "DEFAULT_ROUNDING",

@@ -42,8 +42,8 @@ from dhsym.dynamics.lagrange_euler import (
 from dhsym.kinematics.jacobian import axis_frame
 from dhsym.model.table import Convention
 
-from ..judging._dynamics_values import part_matrix
-from ..judging.equivalence import values
+from ..comparing.dynamics_values import part_matrix
+from ..comparing.equivalence import values
 from ..reading.questions import Question
 from ._mistake_base import MatrixCase, Mistake
 
@@ -254,8 +254,7 @@ class DynamicsMistake(Mistake):
         return _TITLES[self.which]
 
     def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
-        variants = case.prepared.dynamics_variants if case.prepared is not None else ()
-        for kind, matrix, detail in variants:
+        for kind, matrix, detail in case.dynamics_variants:
             if kind == self.which:
                 k = ("dynamics variant", kind, detail, case.sample.origin)
                 if k not in case.cache:

@@ -29,9 +29,9 @@ from typing import TypeAlias, TypeVar, cast
 
 import sympy as sp
 
-from ..judging.equivalence import close, values
-from ..judging.table_match import Chain, same_cells
-from ..judging.verdict import Diagnosis
+from ..comparing.equivalence import close, values
+from ..comparing.table_match import Chain, same_cells
+from ..comparing.verdict import Diagnosis
 from ._mistake_base import MatrixCase, Mistake, TableCase, cell_text
 
 __all__ = [

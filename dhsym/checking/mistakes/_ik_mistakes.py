@@ -19,16 +19,19 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import sympy as sp
 
 from dhsym.notation.printers import Notation
 
-from ..judging._ik_values import PoseSample, Rewrite, joint_distance, key_values, same_joints
-from ..judging.verdict import Diagnosis
+from ..comparing.ik_values import PoseSample, Rewrite, joint_distance, key_values, same_joints
+from ..comparing.verdict import Diagnosis
 from ._mistake_base import Mistake
+
+if TYPE_CHECKING:
+    from dhsym.ik.closed_form import InverseKinematics
 
 __all__ = [
     "IK_MISTAKES",
@@ -54,7 +57,7 @@ class IKCase:
     branches the answer gives; ``every`` is True when the question asks for all of them.
     """
 
-    ik: Any
+    ik: InverseKinematics
     sample: PoseSample
     key: np.ndarray
     answers: np.ndarray
@@ -225,7 +228,7 @@ class LostBranch(IKMistake):
         missing = [k for k in valid if k not in case.matched]
         if not missing:
             return None
-        from ..judging._ik_values import branch_signs
+        from ..comparing.ik_values import branch_signs
 
         signs = branch_signs(case.ik)
         parts = []

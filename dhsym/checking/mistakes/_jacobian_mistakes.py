@@ -18,7 +18,7 @@ Matrix([[-a2*sin(theta1 + theta2), a2*cos(theta1 + theta2)]])
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -26,8 +26,12 @@ import sympy as sp
 from dhsym.kinematics.jacobian import axis_frame, geometric_jacobian, resolve_frame
 from dhsym.model.table import Convention, JointType
 
-from ..judging.equivalence import values
+from ..comparing.equivalence import values
 from ._mistake_base import MatrixCase, Mistake
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.singularities import Singularities
+    from dhsym.robot import Robot
 
 __all__ = [
     "DET_MISTAKES",
@@ -41,6 +45,13 @@ __all__ = [
 ]
 
 Matrix: TypeAlias = sp.ImmutableMatrix
+
+
+def _robot(case: MatrixCase) -> Robot:
+    """The key's robot, which a Jacobian or determinant case carries."""
+    if case.robot is None:
+        raise ValueError("a Jacobian or determinant case carries the key's robot")
+    return case.robot
 
 
 def _cached(case: MatrixCase, key: str, build: Any) -> np.ndarray:
@@ -90,7 +101,7 @@ class ToolFrame(Mistake):
     kind, title = "tool_frame", "Jacobian in the wrong frame"
 
     def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
-        robot = case.robot
+        robot = _robot(case)
         k, n = resolve_frame(robot, "base"), resolve_frame(robot, "tool")
         full = case.expected if case.entry is None else None  # the key itself, when whole
         J = _cached(case, "J", lambda: full if full is not None else robot.jacobian().matrix)
@@ -110,7 +121,7 @@ class NextAxis(Mistake):
     kind, title = "next_axis", "axis of the wrong frame"
 
     def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
-        robot = case.robot
+        robot = _robot(case)
         vals = _cached(case, "J next axis", lambda: next_axis_jacobian(robot))
         if robot.convention is Convention.STANDARD:
             detail = (
@@ -133,7 +144,7 @@ class PrismaticColumn(Mistake):
     kind, title = "prismatic_column", "wrong column for a prismatic joint"
 
     def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
-        robot = case.robot
+        robot = _robot(case)
         if all(c.joint is JointType.REVOLUTE for c in geometric_jacobian(robot).columns):
             return
         same = lambda row: axis_frame(robot, row)  # noqa: E731
@@ -154,12 +165,13 @@ class PrismaticColumn(Mistake):
             yield case.project(vals), detail
 
 
-def _singular(case: MatrixCase) -> Any:
-    if case.prepared is not None:
-        return case.prepared.singular()  # derived once per worker
+def _singular(case: MatrixCase) -> Singularities:
+    """The key's singularities: the prepared key's (derived once per worker), else derived."""
+    if case.singularities is not None:
+        return case.singularities
     from dhsym.kinematics.singularities import singularities
 
-    return singularities(case.robot)
+    return singularities(_robot(case))
 
 
 class MissingFactor(Mistake):

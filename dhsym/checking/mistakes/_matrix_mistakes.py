@@ -20,8 +20,8 @@ import numpy as np
 
 from dhsym.model.table import Convention, DHTable
 
-from ..judging.table_match import Chain, compare_tables
-from ..judging.verdict import Diagnosis
+from ..comparing.table_match import Chain, compare_tables
+from ..comparing.verdict import Diagnosis
 from ._mistake_base import MatrixCase, Mistake, TableCase
 
 __all__ = ["BlockTransposed", "OtherConvention", "ReverseOrder", "Transposed"]

@@ -18,7 +18,7 @@ from __future__ import annotations
 from abc import ABC
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 import sympy as sp
@@ -28,9 +28,13 @@ from dhsym.kinematics.transforms import inverse_word, link_word
 from dhsym.model.table import AngleUnit, Convention, DHRow, DHTable
 from dhsym.notation.printers import Notation, format_angle
 
-from ..judging.equivalence import Sample, close
-from ..judging.table_match import Chain, same_cells
-from ..judging.verdict import Diagnosis
+from ..comparing.equivalence import Sample, close
+from ..comparing.table_match import Chain, same_cells
+from ..comparing.verdict import Diagnosis
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.singularities import Singularities
+    from dhsym.robot import Robot
 
 __all__ = ["MatrixCase", "Mistake", "TableCase", "cell_text"]
 
@@ -42,7 +46,10 @@ class MatrixCase:
     ``expected``/``answer`` are 4×4 (or 1×1 for an entry question at ``entry``,
     0-based; 6×n for a Jacobian); ``wrong`` lists the 0-based positions that differ;
     ``cache`` keeps the variants of one key between answers (the prepared key's
-    ``variant_values``); ``robot`` is the key's robot, ``prepared`` its PreparedKey.
+    ``variant_values``); ``robot`` is the key's robot (Jacobian and determinant
+    variants); ``singularities`` a determinant key's, derived once per key;
+    ``dynamics_variants`` a dynamics key's part under each catalogued mistake,
+    ``(kind, matrix, detail)``.
     """
 
     rows: tuple[DHRow, ...]
@@ -58,8 +65,9 @@ class MatrixCase:
     wrong: tuple[tuple[int, int], ...]
     notation: Notation = field(default_factory=Notation)
     cache: dict[tuple[object, ...], Any] = field(default_factory=dict)
-    robot: Any = None  # the key's Robot (Jacobian and determinant variants)
-    prepared: Any = None  # the PreparedKey (its singularities, its dynamics variants)
+    robot: Robot | None = None
+    singularities: Singularities | None = None
+    dynamics_variants: tuple[tuple[str, sp.ImmutableMatrix, str], ...] = ()
 
     def chain_values(
         self, rows: tuple[DHRow, ...], convention: Convention, reverse: str = ""

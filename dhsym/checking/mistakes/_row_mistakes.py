@@ -22,8 +22,8 @@ import sympy as sp
 
 from dhsym.model.table import Convention, DHRow, JointType
 
-from ..judging.table_match import Chain, same_cells
-from ..judging.verdict import Diagnosis
+from ..comparing.table_match import Chain, same_cells
+from ..comparing.verdict import Diagnosis
 from ._mistake_base import MatrixCase, Mistake, TableCase, cell_text
 
 __all__ = ["DegreesAsRadians", "IndexShift", "OffsetMissing", "SingleWrongRow", "shifted"]

@@ -12,7 +12,7 @@ written.  When the student's wrong entries (or wrong table) equal a variant, the
 mistake is the diagnosis.  Matrix variants are numbers at the sample points
 (:func:`dhsym.kinematics.numeric.word_product` of the core's link words); table
 variants are tables compared cell by cell or as robots
-(:func:`dhsym.checking.judging.table_match.compare_tables`).
+(:func:`dhsym.checking.comparing.table_match.compare_tables`).
 
 Kinds: ``wrong_sign`` (at any depth), ``sin_cos_swapped``, ``dropped_term``,
 ``wrong_joint_index``, ``missing_length``, ``transposed`` (also one 3×3 block),
@@ -38,9 +38,9 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..judging.verdict import Diagnosis
+from ..comparing.verdict import Diagnosis
 from ..reading.limits import check_time
-from ._dynamics_mistakes import DynamicsMistake, dynamics_mistakes
+from ._dynamics_mistakes import DynamicsMistake, dynamics_mistakes, variant_matrices
 from ._entry_mistakes import (
     DroppedTerm,
     MissingLength,
@@ -98,6 +98,7 @@ __all__ = [
     "WrongSign",
     "diagnose_matrix",
     "diagnose_table",
+    "variant_matrices",
 ]
 
 MATRIX_MISTAKES: tuple[Mistake, ...] = (

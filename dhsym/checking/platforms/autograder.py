@@ -67,8 +67,8 @@ from ..grading.assignment import Assignment
 from ..grading.batch import check_submission
 from ..grading.feedback import QuestionFeedback, render_question_text
 from ..grading.report_files import write_atomic
-from ..grading.submissions import Submission, _from_file, _from_folder
-from ..judging.checker import PreparedKeys
+from ..grading.submissions import Submission, read_submission_file, read_submission_folder
+from ..judging.key import PreparedKeys
 from ..reading.limits import AnswerLimits
 
 __all__ = [
@@ -401,7 +401,7 @@ def read_submission(
     entries = [p for p in root.iterdir() if not p.name.startswith(".") and not p.is_symlink()]
     if len(entries) == 1 and entries[0].is_dir():
         root = entries[0]  # a zip of one folder
-    sub = _from_folder(root, qids, limits)
+    sub = read_submission_folder(root, qids, limits)
     files = sorted(
         p
         for p in root.iterdir()
@@ -412,7 +412,7 @@ def read_submission(
     flags = list(sub.flags)  # several files for one question: which one was graded
     graded = "the question files"
     if not sub.answers and not sub.problems and files:
-        sub, graded = _from_file(files[0], qids), files[0].name
+        sub, graded = read_submission_file(files[0], qids), files[0].name
         files = files[1:]
     if files:  # never ignored without a word
         flags.append(

@@ -43,9 +43,11 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.model.table import DHTable
 
+from ..comparing.verdict import CheckResult
 from ..grading.feedback import QuestionFeedback, render_question_text, render_template
-from ..judging.checker import Key, PreparedKeys, check_answer, table_cells
-from ..judging.verdict import CheckResult
+from ..judging.checker import check_answer
+from ..judging.key import Key, PreparedKeys
+from ..judging.table_judge import table_cells
 from ..reading.answer_value import IKAnswer, TableAnswer, read_answer_value
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
 

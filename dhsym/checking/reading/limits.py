@@ -6,7 +6,7 @@ work done on it — an *estimate* of the expansion size refuses hopeless
 expressions before sympy starts, and :func:`time_limit` sets a deadline that travels
 with the call (a context variable, checked between the checker's steps by
 :func:`check_time`; no signal or timer of the host process is touched).  Grading
-adds process isolation on top (:mod:`dhsym.checking.grading._runner`): a process that
+adds process isolation on top (:mod:`dhsym.checking.grading.sandbox`): a process that
 overruns its deadline is killed, whatever it was doing.
 
 Time limits come from users (``--timeout``, ``time_limit:``) and are checked by

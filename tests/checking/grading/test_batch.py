@@ -162,14 +162,14 @@ def test_every_submission_may_fail_and_the_gradebook_is_still_written(tmp_path, 
     from dhsym.checking.grading import batch as grading
     from dhsym.checking.grading import submissions as _submissions
 
-    real = _submissions._from_folder
+    real = _submissions.read_submission_folder
 
     def unreadable_carol(folder, qids, limits):
         if folder.name == "carol":
             raise RuntimeError("disk on fire")
         return real(folder, qids, limits)
 
-    monkeypatch.setattr(_submissions, "_from_folder", unreadable_carol)
+    monkeypatch.setattr(_submissions, "read_submission_folder", unreadable_carol)
     out = tmp_path / "out"
     grade(HW / "assignment.yaml", HW / "submissions", out, workers=0, progress=False)
     status = {r["student"]: r["status"] for r in _book(out)}
@@ -371,14 +371,14 @@ def test_hard_links_and_special_files_are_refused_like_symbolic_links(tmp_path):
 def test_a_dhsym_bug_while_checking_is_an_internal_error_of_that_submission(tmp_path, monkeypatch):
     from dhsym.checking.judging import checker
 
-    real = checker._check_matrix
+    real = checker.check_matrix
 
     def buggy(pk, answer, limits):
         if "d4*s23" in str(answer):  # some answers reach a (simulated) bug of dhsym
             raise TypeError("simulated bug")
         return real(pk, answer, limits)
 
-    monkeypatch.setattr(checker, "_check_matrix", buggy)
+    monkeypatch.setattr(checker, "check_matrix", buggy)
     out = tmp_path / "out"
     report = grade(HW / "assignment.yaml", HW / "submissions", out, workers=0, progress=False)
     status = {r["student"]: r["status"] for r in _book(out)}

@@ -6,7 +6,8 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from dhsym.checking.judging.checker import Key, check_answer
+from dhsym.checking.judging.checker import check_answer
+from dhsym.checking.judging.key import Key
 from dhsym.checking.reading.questions import Question
 from dhsym.dynamics.lagrange_euler import link_jacobians
 from dhsym.dynamics.model import dynamic_model

@@ -179,7 +179,7 @@ def test_unreadable_and_incomplete_answers():
 
 
 def test_reading_statements_and_helpers():
-    from dhsym.checking.judging.checker import prepare
+    from dhsym.checking.judging.key import prepare
     from dhsym.checking.reading.limits import DEFAULT_ANSWER_LIMITS
 
     pk = prepare(Key.load("planar2r", "ik"))

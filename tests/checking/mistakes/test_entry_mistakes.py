@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from dhsym.checking import Key, check_answer
-from dhsym.checking.judging.verdict import Verdict
+from dhsym.checking.comparing.verdict import Verdict
 
 PX = "T0_6[0,3]"  # p_x of the PUMA 560: C1*(a2*C2 + a3*C23 - d4*S23) + d3*S1
 
@@ -41,10 +41,10 @@ def test_a_single_slip_is_named(px, answer, kind, words):
 def test_the_transpose_of_one_jacobian_block_is_named():
     import sympy as sp
 
-    from dhsym.checking.judging.checker import prepare
+    from dhsym.checking.judging.key import prepare
 
     key = Key.load("puma560", "J")
-    J = sp.Matrix(prepare(key).expected)
+    J = sp.Matrix(prepare(key).part.expected)
     J[0:3, 0:3] = J[0:3, 0:3].T
     nota = key_notation(key)
     text = "[" + ", ".join("[" + ", ".join(nota.text(x) for x in row) + "]" for row in J.tolist())

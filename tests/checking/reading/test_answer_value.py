@@ -126,7 +126,7 @@ def test_the_values_read():
     assert m.cells[0].template is None and m.matrix[1, 3] == m.cells[7].value
 
     pk = prepare(Key.load("stanford", "J"))
-    n = pk.expected.cols
+    n = pk.part.expected.cols
     rows = ["; ".join(", ".join("0" for _ in range(n - 1)) for _ in range(6))]
     j = read_answer_value(pk.form(), rows[0])
     assert isinstance(j, MatrixAnswer) and j.shape == (6, n)

@@ -92,7 +92,7 @@ def _seed_table(seed: str, start: str, rows: int) -> str:
     ],
 )
 def test_the_lecture_tables_read_as_the_built_in_robots(robot, start, rows):
-    from dhsym.checking.judging.table_match import compare_tables
+    from dhsym.checking.comparing.table_match import compare_tables
 
     key = load_table(robot)
     text = _seed_table("001_7792e01642df3866.txt", start, rows)

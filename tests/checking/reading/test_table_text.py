@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from dhsym.checking import Key, check_answer
-from dhsym.checking.judging.verdict import Verdict
+from dhsym.checking.comparing.verdict import Verdict
 
 PUMA_ROWS = [
     "- {theta: theta1, d: 0, a: 0, alpha: 90}",

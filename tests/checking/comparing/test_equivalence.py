@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from dhsym.checking.judging.equivalence import Sample, close, prove_entry, values
+from dhsym.checking.comparing.equivalence import Sample, close, prove_entry, values
 
 x, y = sp.symbols("x y", real=True)
 
@@ -46,10 +46,10 @@ def test_sample_points_are_fresh_for_every_draw():
 
 def test_every_check_draws_its_own_points(monkeypatch):
     from dhsym.checking import Key, PreparedKeys, check_answer
-    from dhsym.checking.judging import checker
+    from dhsym.checking.comparing import equivalence
 
     drawn = []
-    real = checker.Sample.random
+    real = equivalence.Sample.random
 
     def spy(*args, **kwargs):
         drawn.append(real(*args, **kwargs))
@@ -57,7 +57,7 @@ def test_every_check_draws_its_own_points(monkeypatch):
 
     key, keys = Key.load("planar2r", "T0_2[0,3]"), PreparedKeys()
     check_answer(key, "a1 C1 + a2 C12", keys=keys)  # prepares the key (its diagnosis samples)
-    monkeypatch.setattr(checker.Sample, "random", spy)
+    monkeypatch.setattr(equivalence.Sample, "random", spy)
     assert check_answer(key, "a1 C1 + a2 C12", keys=keys).correct  # the worker's prepared key
     assert check_answer(key, "a1 C1 + a2 C12", keys=keys).correct
     assert len(drawn) == 2 and not np.allclose(drawn[0].table, drawn[1].table)

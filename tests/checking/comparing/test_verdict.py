@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 from dhsym.checking import Key, check_answer
-from dhsym.checking.judging.verdict import CheckResult, Verdict
+from dhsym.checking.comparing.verdict import CheckResult, Verdict
 
 
 def test_exit_codes():

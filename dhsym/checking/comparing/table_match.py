@@ -49,7 +49,7 @@ from dhsym.kinematics.numeric import elementary_stack, numeric_rigid_inverse
 from dhsym.model.table import Convention, DHRow, DHTable, JointType
 
 from ..reading.limits import check_time
-from ._sampled_frames import EvaluationError, evaluate, frames
+from .sampled_frames import EvaluationError, evaluate, frames
 from .tolerances import TOLERANCES
 
 __all__ = ["Chain", "TableMatch", "compare_tables", "same_cells", "symbolic_values"]

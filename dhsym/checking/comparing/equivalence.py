@@ -58,7 +58,7 @@ from ..reading.limits import (
     expansion_terms,
     time_left,
 )
-from ._sampled_frames import EvaluationError, evaluate, evaluate_many
+from .sampled_frames import EvaluationError, evaluate, evaluate_many
 from .tolerances import TOLERANCES
 
 __all__ = [

@@ -34,7 +34,7 @@ __all__ = ["EvaluationError", "evaluate", "evaluate_many", "frames", "word_produ
 
 class Rows(Protocol):
     """What :func:`frames` reads of a table: a :class:`~dhsym.model.table.DHTable`, or a
-    :class:`~dhsym.checking.judging.table_match.Chain` (rows that need not make a valid table)."""
+    :class:`~dhsym.checking.comparing.table_match.Chain` (rows that need not make a valid table)."""
 
     @property
     def rows(self) -> tuple[DHRow, ...]: ...

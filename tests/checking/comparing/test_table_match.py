@@ -8,7 +8,7 @@ import pytest
 import sympy as sp
 
 from dhsym import load_table
-from dhsym.checking.judging.table_match import Chain, compare_tables, same_cells
+from dhsym.checking.comparing.table_match import Chain, compare_tables, same_cells
 from dhsym.model.table import DHTable
 
 pi = sp.pi

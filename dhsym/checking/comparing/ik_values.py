@@ -24,7 +24,7 @@ import itertools
 import secrets
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 import sympy as sp
@@ -32,8 +32,12 @@ import sympy as sp
 from dhsym.ik.steps import pose_symbols
 from dhsym.model.table import JointType
 
-from ._sampled_frames import EvaluationError, evaluate, frames
+from .sampled_frames import EvaluationError, evaluate, frames
 from .tolerances import TOLERANCES
+
+if TYPE_CHECKING:
+    from dhsym.ik.closed_form import InverseKinematics
+    from dhsym.kinematics.chain import KinematicChain
 
 __all__ = [
     "PoseSample",
@@ -70,7 +74,7 @@ def _rng(seed: int | None) -> np.random.Generator:
 
 
 def pose_sample(
-    robot: Any,
+    robot: KinematicChain,
     size: int = 64,
     *,
     q: np.ndarray | None = None,
@@ -110,7 +114,7 @@ def pose_sample(
     return PoseSample(q, env, revolute, size, origin)
 
 
-def branch_signs(ik: Any) -> np.ndarray:
+def branch_signs(ik: InverseKinematics) -> np.ndarray:
     """Every choice of the signs ``σ`` (rows, in the solver's order: ``+1`` first)."""
     B = len(ik.branches)
     return np.array(list(itertools.product([1, -1], repeat=B)), dtype=float).reshape(2**B, B)
@@ -126,7 +130,10 @@ def _evaluate(
 
 
 def key_values(
-    ik: Any, env: Mapping[sp.Symbol, np.ndarray], size: int, rewrite: Rewrite | None = None
+    ik: InverseKinematics,
+    env: Mapping[sp.Symbol, np.ndarray],
+    size: int,
+    rewrite: Rewrite | None = None,
 ) -> np.ndarray:
     """The joint values of every branch, ``(K, size, n)`` (NaN where a step is not real).
 

@@ -1,0 +1,190 @@
+"""The key of a question, and the key prepared once for checking many answers.
+
+A :class:`Key` is a frozen value: a DH table and what is asked about it.
+:func:`prepare` derives what every answer to it is compared with: the robot, the names
+an answer may use and one prepared part per kind of question, built by that kind's own
+preparer (:data:`PREPARERS`): a matrix (:mod:`~dhsym.checking.judging.matrix_key`), the
+dynamics, inverse kinematics (:mod:`~dhsym.checking.judging.ik_key`) or a table (nothing
+to derive).  A worker keeps its prepared keys in :class:`PreparedKeys`.
+
+Examples
+--------
+>>> key = Key.load("planar2r", "T0_2")
+>>> pk = prepare(key)
+>>> type(pk.part).__name__, pk.part.expected.shape, pk.form().shape
+('MatrixPart', (4, 4), (4, 4))
+>>> type(prepare(Key.load("planar2r", "table")).part).__name__
+'TablePart'
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, TypeAlias
+
+from dhsym.errors import DHError
+from dhsym.model.library import load_table
+from dhsym.model.table import DHTable, JointType
+from dhsym.robot import Robot
+
+from ..reading.answer_names import NameContext
+from ..reading.answer_value import AnswerForm
+from ..reading.questions import Question
+from .ik_key import IKPart, prepare_ik
+from .matrix_key import MatrixPart, prepare_dynamics, prepare_matrix
+from .rounding import DEFAULT_ROUNDING, Rounding
+
+__all__ = [
+    "PREPARERS",
+    "Key",
+    "KeyPart",
+    "PreparedKey",
+    "PreparedKeys",
+    "Preparer",
+    "TablePart",
+    "prepare",
+]
+
+
+@dataclass(frozen=True)
+class Key:
+    """The key of one question: a DH table and what is asked about it.
+
+    ``tool_free`` accepts another tool frame (last frame) in a table answer;
+    ``rounding`` is how much rounding of decimals is accepted (:class:`Rounding`).
+    """
+
+    table: DHTable
+    question: Question
+    name: str = ""
+    tool_free: bool = False
+    rounding: Rounding = DEFAULT_ROUNDING
+
+    @classmethod
+    def load(
+        cls,
+        ref: str | Path | DHTable,
+        question: str | Question,
+        *,
+        tool_free: bool = False,
+        rounding: object = None,
+        keys: PreparedKeys | None = None,
+    ) -> Key:
+        """A key from a built-in robot name, a table file or a table.
+
+        ``rounding``: anything :meth:`Rounding.parse` reads (``"digits=4"``, ``"abs=1e-3"``,
+        ``{"rel": 0.001}``, ``"off"``); None is the default (3 significant digits).
+        The key is prepared once to check it (into ``keys`` when given, for later use).
+        """
+        if not isinstance(ref, (str, Path, DHTable)):
+            raise DHError(
+                "the key is a built-in robot's name, a table file or a DHTable, "
+                f"got {type(ref).__name__}"
+            )
+        table = ref if isinstance(ref, DHTable) else load_table(ref)
+        q = question if isinstance(question, Question) else Question.parse(question, table.n)
+        name = table.name or (Path(ref).stem if not isinstance(ref, DHTable) else "")
+        key = cls(table, q, name, tool_free, Rounding.parse(rounding))
+        # a key that cannot be checked against (too large, wrong values) stops here
+        keys.get(key) if keys is not None else prepare(key)
+        return key
+
+
+@dataclass(frozen=True)
+class TablePart:
+    """A table key's part: nothing to derive (the answer is compared with the key's table)."""
+
+
+#: the prepared part of a key, one type per kind of question
+KeyPart: TypeAlias = MatrixPart | IKPart | TablePart
+#: a kind's preparer: (table, question, robot, the table's names) → (the names an answer
+#: may use, the kind's part)
+Preparer: TypeAlias = Callable[[DHTable, Question, Robot, NameContext], tuple[NameContext, KeyPart]]
+
+
+def _prepare_table(
+    table: DHTable, question: Question, robot: Robot, names: NameContext
+) -> tuple[NameContext, KeyPart]:
+    """A table key: nothing to derive."""
+    return names, TablePart()
+
+
+#: each kind of question's preparer (the matrix kinds share one)
+PREPARERS: Mapping[str, Preparer] = {
+    "table": _prepare_table,
+    "ik": prepare_ik,
+    "dynamics": prepare_dynamics,
+    "matrix": prepare_matrix,
+    "entry": prepare_matrix,
+    "jacobian": prepare_matrix,
+    "det": prepare_matrix,
+}
+
+
+@dataclass(frozen=True, eq=False)
+class PreparedKey:
+    """What checking many answers to one key shares: the robot, names, the kind's part.
+
+    Built once per worker (:class:`PreparedKeys`) before any answer's clock starts, and
+    never changed after, but for ``variant_values``: the mistake catalogue's memo, a
+    mistake's values at a diagnosis sample by (mistake, sample origin, …), computed on the
+    first wrong answer that needs them.
+    """
+
+    key: Key
+    robot: Robot
+    names: NameContext
+    part: KeyPart
+    variant_values: dict[tuple[object, ...], Any] = field(default_factory=dict)
+
+    def form(self) -> AnswerForm:
+        """What reading an answer to this key needs: the question, the names, the key's
+        shape, the joints whose Jacobian column may be missing, the convention, the joint
+        variables and the lengths."""
+        table = self.key.table
+        joints = [r.joint for r in table.rows if r.variable is not None]
+        return AnswerForm(
+            self.key.question,
+            self.names,
+            self.part.expected.shape if isinstance(self.part, MatrixPart) else (4, 4),
+            tuple(k for k, j in enumerate(joints) if j is JointType.PRISMATIC),
+            table.convention,
+            tuple(self.robot.variables),
+            frozenset(table.constants),
+        )
+
+
+class PreparedKeys:
+    """A worker's prepared keys: each :class:`Key` (a frozen value) prepared once, on
+    first use, and kept as long as this map (a grading worker's life).
+
+    >>> keys = PreparedKeys()
+    >>> k = Key.load("planar2r", "T0_2")
+    >>> keys.get(k) is keys.get(Key.load("planar2r", "T0_2")), len(keys)
+    (True, 1)
+    """
+
+    def __init__(self) -> None:
+        self._prepared: dict[Key, PreparedKey] = {}
+
+    def __len__(self) -> int:
+        return len(self._prepared)
+
+    def get(self, key: Key) -> PreparedKey:
+        """``key`` prepared (:func:`prepare`), the first time only."""
+        pk = self._prepared.get(key)
+        if pk is None:
+            pk = self._prepared[key] = prepare(key)
+        return pk
+
+
+def prepare(key: Key) -> PreparedKey:
+    """Prepare a key: its robot, names and its kind's part (:data:`PREPARERS`).
+    Not memoised: a worker keeps its keys in :class:`PreparedKeys`."""
+    table = key.table
+    robot = Robot(table)
+    preparer = PREPARERS[key.question.kind]
+    names, part = preparer(table, key.question, robot, NameContext.from_table(table))
+    return PreparedKey(key, robot, names, part)

@@ -1,0 +1,306 @@
+r"""Judging a matrix answer: ``^iT_j`` or one entry, the Jacobian, ``det J``, the dynamics.
+
+Each entry is compared with the key's at fresh random points, then proven equal when
+the proof is affordable (:mod:`~dhsym.checking.comparing.equivalence`); decimals are
+right up to the key's :class:`~dhsym.checking.judging.rounding.Rounding`.  The usual
+alternatives are accepted (``-det J``, a Jacobian in the rows ``[ω; v]``), an ``α``/``a``
+index shifted by one row is named, and a wrong answer is explained by the mistakes room
+(:func:`~dhsym.checking.mistakes.registry.diagnose_matrix`) at the key's diagnosis
+samples (:class:`~dhsym.checking.judging.matrix_key.DiagnosisSample`).
+
+Examples
+--------
+>>> from dhsym.checking.judging.key import Key, prepare
+>>> from dhsym.checking.reading.answer_value import read_answer_value
+>>> from dhsym.checking.reading.limits import DEFAULT_ANSWER_LIMITS as LIMITS
+>>> pk = prepare(Key.load("planar2r", "T0_2[0,3]"))
+>>> r = check_matrix(pk, read_answer_value(pk.form(), "a1*C1 + a2*C12"), LIMITS)
+>>> r.verdict.value, r.entries[0].proof
+('correct', 'exact')
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from ..comparing.equivalence import (
+    EXACT_RTOL,
+    Sample,
+    agree_precisely,
+    cancellation,
+    close,
+    prove_entry,
+    values,
+)
+from ..comparing.verdict import CheckResult, Diagnosis, EntryResult, Verdict
+from ..mistakes.registry import (
+    DET_MISTAKES,
+    JACOBIAN_MISTAKES,
+    MATRIX_MISTAKES,
+    BlockTransposed,
+    MatrixCase,
+    Mistake,
+    diagnose_matrix,
+    dynamics_mistakes,
+)
+from ..reading.answer_names import NameContext
+from ..reading.answer_value import MatrixAnswer, ReadCell
+from ..reading.limits import AnswerLimits, check_time
+from ..reading.questions import Question
+from .key import PreparedKey
+from .matrix_key import DeterminantPart, DynamicsPart, MatrixPart, sample_for
+from .rounding import rounding_accepts
+
+__all__ = ["MISTAKES", "check_matrix", "matrix_part"]
+
+
+def matrix_part(pk: PreparedKey) -> MatrixPart:
+    """The prepared part of a matrix key (a matrix answer is read only for one)."""
+    part = pk.part
+    if not isinstance(part, MatrixPart):
+        raise TypeError(f"a matrix answer to a key prepared as {type(part).__name__}")
+    return part
+
+
+#: the mistakes tried on a wrong answer, by kind of question (the others: the matrix ones)
+MISTAKES: dict[str, tuple[Mistake, ...]] = {
+    "jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()),
+    "det": DET_MISTAKES,
+    "dynamics": dynamics_mistakes(),
+}
+
+
+def _shown(cell: str) -> str:
+    cell = " ".join(cell.split())
+    return cell if len(cell) <= 200 else cell[:199] + "…"
+
+
+def _compare(
+    pk: PreparedKey, ans: sp.ImmutableMatrix, cells: tuple[ReadCell, ...], limits: AnswerLimits
+) -> tuple[list[EntryResult], list[tuple[int, int]], list[sp.Basic]]:
+    """Entry results, wrong positions and the unknown symbols, at fresh random points.
+
+    Per entry: equal at every point → the exact proof if affordable (``exact``), else the
+    numbers stand (``numeric``); a proof that says "not equal" is checked once more with
+    60-digit numbers.  Not equal → right up to rounding if the key's :class:`Rounding`
+    accepts its decimals (``rounding``).
+    """
+    part = matrix_part(pk)
+    q, nota, expected, expected_valued = (
+        pk.key.question,
+        pk.robot.notation,
+        part.expected,
+        part.expected_valued,
+    )
+    unknown = sorted(ans.free_symbols - pk.names.symbols, key=sp.default_sort_key)
+    valued = sample_for(pk.key.table, ans) == "valued"
+    value_map = pk.key.table.value_map
+    sample = Sample.random(part.symbols | set(unknown), fixed=value_map if valued else None)
+    kv = values(expected, sample)
+    av = values(ans, sample)
+    near = np.asarray(close(av, kv, EXACT_RTOL, axis=0))
+    entries: list[EntryResult] = []
+    wrong: list[tuple[int, int]] = []
+    for i in range(expected.rows):
+        for j in range(expected.cols):
+            a, e = ans[i, j], expected[i, j]
+            k = i * expected.cols + j
+            proof, note = "", ""
+            check_time()  # the answer's deadline (see reading.limits.time_limit)
+            target = expected_valued[i, j] if valued else e
+            if near[i, j]:
+                exact = prove_entry(a, target, limits, agreed=True) if not unknown else None
+                if exact is None or (exact is False and agree_precisely(a, target)):
+                    proof = "numeric"
+                elif exact:
+                    proof = "exact"
+            elif not unknown and cancellation(a, sample, av[:, i, j] - kv[:, i, j]):
+                # the doubles cannot tell: their difference is the rounding error of the sums
+                # the answer cancels; 60-digit numbers or the exact proof decide
+                exact = prove_entry(a, target, limits)
+                if exact:
+                    proof = "exact"
+                elif agree_precisely(a, target):
+                    proof = "numeric"
+            if not proof and cells[k].template is not None:
+                note = _rounded(pk, cells[k], sample, kv[:, i, j])
+                proof = "rounding" if note else ""
+            if not proof:
+                wrong.append((i, j))
+            where = (q.entry[0] + 1, q.entry[1] + 1) if q.entry else (i + 1, j + 1)
+            e_text, e_latex = part.expected_text[k]
+            raw = cells[k].text
+            if proof or len(raw) > 160:  # right, or long: what the student wrote
+                a_text, a_latex = _shown(raw), ""
+            else:  # wrong: the student's entry in the key's notation
+                a_text, a_latex = nota.text(a), nota.latex(a)
+            entries.append(
+                EntryResult(*where, bool(proof), a_text, e_text, a_latex, e_latex, proof, note)
+            )
+    return entries, wrong, unknown
+
+
+def _rounded(pk: PreparedKey, cell: ReadCell, sample: Sample, key: np.ndarray) -> str:
+    """How the cell, written with decimals, is right up to rounding under the key's rule,
+    or ``""``."""
+    assert cell.template is not None
+    env = sample.extended(cell.template.free_symbols - set(sample.symbols)).env
+    how = rounding_accepts(pk.key.rounding, cell.template, cell.literals, env, sample.size, key)
+    return how or ""
+
+
+def _diagnosis_values(
+    pk: PreparedKey, ans: sp.ImmutableMatrix, unknown: list[sp.Basic]
+) -> tuple[Sample, np.ndarray, np.ndarray]:
+    """The key's diagnosis sample (fixed per key, so the mistakes' variants are cached),
+    extended with the unknown symbols, the key's and the answer's values there."""
+    d = matrix_part(pk).diagnosis(pk.key.table, ans)
+    sample = d.sample.extended(unknown)
+    return sample, d.key_values, values(ans, sample)
+
+
+def _index_renames(unknown: list[sp.Symbol], names: NameContext) -> dict[sp.Symbol, sp.Symbol]:
+    """``alpha_i`` → ``alpha_im1`` (and back) when only the other index is a key symbol."""
+    out = {}
+    for s in unknown:
+        for a, b in (("_i", "_im1"), ("_im1", "_i"), ("i", "im1")):
+            if s.name.endswith(a):
+                target = names.symbol(s.name[: -len(a)] + b)
+                if target is not None:
+                    out[s] = target
+                    break
+    return out
+
+
+def _shape_lead(pk: PreparedKey, answer: MatrixAnswer) -> tuple[Diagnosis, ...]:
+    """What the answer's shape tells: a Jacobian one column short left out the column of
+    a prismatic joint (the reader put zeros there)."""
+    k = answer.missing_column
+    if k is None:
+        return ()
+    n = answer.shape[1]
+    var = pk.robot.variables[k]
+    return (
+        Diagnosis(
+            "missing_column",
+            "column of a prismatic joint missing",
+            f"The answer has {n - 1} columns; J has one per joint, {n}: column {k + 1} belongs "
+            f"to the prismatic joint {var}, whose column is its axis over zero (no rotation).",
+            tuple((i + 1, k + 1) for i in range(6)),
+        ),
+    )
+
+
+def check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) -> CheckResult:
+    """Check a matrix answer (or one entry), as read, against the key (see the module text)."""
+    part = matrix_part(pk)
+    key, q, nota = pk.key, pk.key.question, pk.robot.notation
+    ans, cells, shape_lead = answer.matrix, answer.cells, _shape_lead(pk, answer)
+    entries, wrong, unknown = _compare(pk, ans, cells, limits)
+    total = len(entries)
+    lead: tuple[Diagnosis, ...] = ()
+    renames = _index_renames(unknown, pk.names)
+    if renames and len(renames) == len(unknown):
+        shown = ", ".join(f"{a} for {b}" for a, b in renames.items())
+        lead = (
+            Diagnosis(
+                "index_shift",
+                "α/a index shifted by one row",
+                (
+                    f"The answer uses {shown}: in the {key.table.convention.value} convention "
+                    "link i "
+                    "has the parameters of this table's row i."
+                ),
+            ),
+        )
+        ans = ans.xreplace(renames)
+        entries, wrong, unknown = _compare(pk, ans, cells, limits)
+        if not wrong:
+            return CheckResult(
+                q.spec,
+                Verdict.INCORRECT,
+                f"The answer is right except for the indices. {lead[0].detail}",
+                tuple(entries),
+                lead,
+                key=key.name,
+            )
+    if wrong and q.kind == "det":
+        flipped = _compare(pk, -ans, cells, limits)
+        if not flipped[1]:  # -det J: the rows of J in the other order ([ω; v]) or the joints
+            return CheckResult(
+                q.spec,
+                Verdict.CORRECT,
+                "The determinant is right up to its sign, which depends on the order of the "
+                "rows of J ([v; ω] or [ω; v]) and of its columns; the singular configurations "
+                "are the same.",
+                tuple(flipped[0]),
+                key=key.name,
+            )
+    if wrong and q.kind == "jacobian" and q.entry is None and ans.rows == 6:
+        cols = ans.cols  # [ω; v]: the same Jacobian with the angular rows first
+        swapped = sp.ImmutableMatrix.vstack(ans[3:, :], ans[:3, :])
+        order = [*range(3 * cols, 6 * cols), *range(3 * cols)]
+        other = _compare(pk, swapped, tuple(cells[k] for k in order), limits)
+        if not other[1]:
+            return CheckResult(
+                q.spec,
+                Verdict.CORRECT,
+                "The Jacobian is right, in the row order [ω; v] (angular velocity first); "
+                "the key writes [v; ω]. Both are used: say which one you write.",
+                tuple(other[0]),
+                alternative="rows [ω; v]",
+                key=key.name,
+            )
+    if not wrong and not shape_lead:
+        what = f"{_one(q)} is right" if total == 1 else f"All {total} entries are right"
+        rounded = [e for e in entries if e.proof == "rounding"]
+        if rounded:
+            how = "; ".join(sorted({e.rounding for e in rounded}))
+            some = " up to rounding" if total == 1 else f"; {len(rounded)} of them up to rounding"
+            what = f"{what}{some} ({how})"
+        return CheckResult(q.spec, Verdict.CORRECT, what + ".", tuple(entries), key=key.name)
+    sample, kv, av = _diagnosis_values(pk, ans, unknown)
+    case = MatrixCase(
+        tuple(key.table.rows),
+        key.table.convention,
+        q.frm,
+        q.to,
+        q.entry,
+        part.expected,
+        ans,
+        sample,
+        kv,
+        av,
+        tuple(wrong),
+        nota,
+        pk.variant_values,
+        pk.robot,
+        part.singularities if isinstance(part, DeterminantPart) else None,
+        part.variants if isinstance(part, DynamicsPart) else (),
+    )
+    diagnoses = shape_lead + lead + diagnose_matrix(case, MISTAKES.get(q.kind, MATRIX_MISTAKES))
+    if unknown:
+        names = ", ".join(str(s) for s in unknown)
+        known = ", ".join(str(s) for s in sorted(pk.names.symbols, key=sp.default_sort_key))
+        diagnoses = (
+            Diagnosis(
+                "unknown_symbol",
+                "unknown symbols",
+                (
+                    f"The answer uses {names}, which this robot does not have "
+                    f"(its symbols: {known})."
+                ),
+            ),
+        ) + diagnoses
+    what = f"{_one(q)} is wrong" if total == 1 else f"{len(wrong)} of {total} entries are wrong"
+    first = next(
+        (d for d in diagnoses if d.kind not in ("unexplained", "unknown_symbol")), diagnoses[0]
+    )
+    message = f"{what}. Most likely: {first.title}. {first.detail}"
+    return CheckResult(q.spec, Verdict.INCORRECT, message, tuple(entries), diagnoses, key=key.name)
+
+
+def _one(q: Question) -> str:
+    """How a one-cell answer is called: the determinant is an answer, not an entry."""
+    return "Your determinant" if q.kind == "det" else "The entry"

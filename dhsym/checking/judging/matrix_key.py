@@ -1,0 +1,198 @@
+"""The prepared part of a matrix key: ``^iT_j`` (or one entry), ``J``, ``det J``, dynamics.
+
+A matrix key is derived once per worker, before any answer's clock starts
+(:func:`prepare_matrix`, :func:`prepare_dynamics`): the expected matrix, the same with
+the table's numbers for its lengths, its text and LaTeX, and the two diagnosis samples
+(:class:`DiagnosisSample`) at which the mistakes of wrong answers are recomputed.  A
+determinant key also keeps its singularities (:class:`DeterminantPart`), a dynamics key
+its part under each catalogued mistake (:class:`DynamicsPart`).  Every part is a frozen
+value.
+
+Examples
+--------
+>>> from dhsym.checking.judging.key import Key, prepare
+>>> part = prepare(Key.load("planar2r", "T0_2[0,3]")).part
+>>> type(part).__name__, part.expected_text[0][0]
+('MatrixPart', 'a1*C1 + a2*C12')
+>>> type(prepare(Key.load("planar2r", "det J")).part).__name__
+'DeterminantPart'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+import sympy as sp
+
+from dhsym.errors import DHError
+from dhsym.model.table import DHTable
+
+from ..comparing.dynamics_values import dynamics_key, part_matrix, question_symbols, rate_aliases
+from ..comparing.equivalence import Sample, values
+from ..mistakes.registry import variant_matrices
+from ..reading.answer_names import NameContext
+from ..reading.questions import Question
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.singularities import Singularities
+    from dhsym.robot import Robot
+
+__all__ = [
+    "DeterminantPart",
+    "DiagnosisSample",
+    "DynamicsPart",
+    "MatrixPart",
+    "prepare_dynamics",
+    "prepare_matrix",
+    "sample_for",
+]
+
+
+@dataclass(frozen=True, eq=False)
+class DiagnosisSample:
+    """The points the mistakes of wrong answers are recomputed at (fixed per key, so the
+    mistakes' variants are computed once per worker) and the key's values there.
+
+    Only the diagnosis uses them: every verdict draws its own fresh points.
+    """
+
+    sample: Sample
+    key_values: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class MatrixPart:
+    """What checking answers to a matrix key shares.
+
+    ``expected`` is the key's matrix (1×1 for one entry), ``expected_valued`` the same
+    with the table's numbers for its lengths (the exact proofs of answers that use the
+    numbers), ``expected_text`` each entry as (text, LaTeX), ``symbols`` every symbol
+    the key may use.  ``symbolic``/``valued`` serve only the diagnosis of wrong answers
+    (:func:`sample_for` tells which one an answer gets).
+    """
+
+    expected: sp.ImmutableMatrix
+    expected_valued: sp.ImmutableMatrix
+    expected_text: tuple[tuple[str, str], ...]
+    symbols: frozenset[sp.Symbol]
+    symbolic: DiagnosisSample
+    valued: DiagnosisSample
+
+    def diagnosis(self, table: DHTable, answer: sp.Basic) -> DiagnosisSample:
+        """The diagnosis sample for ``answer`` (:func:`sample_for`)."""
+        return self.valued if sample_for(table, answer) == "valued" else self.symbolic
+
+
+@dataclass(frozen=True, eq=False)
+class DeterminantPart(MatrixPart):
+    """A ``det J`` key: also the key's singularities (their factors and blocks, which the
+    determinant's mistakes leave out)."""
+
+    singularities: Singularities
+
+
+@dataclass(frozen=True, eq=False)
+class DynamicsPart(MatrixPart):
+    """A dynamics key: also the key's part under each catalogued mistake,
+    ``(kind, matrix, detail)``, derived here, once."""
+
+    variants: tuple[tuple[str, sp.ImmutableMatrix, str], ...]
+
+
+def sample_for(table: DHTable, answer: sp.Basic) -> str:
+    """``valued`` (the table's numbers for its lengths) when the answer uses none of the
+    symbols that have numbers, else ``symbolic`` (random values for every symbol).
+
+    >>> from dhsym.model.library import load_table
+    >>> t = load_table("planar2r")
+    >>> a1 = sp.Symbol("a1", real=True)
+    >>> sample_for(t, sp.Integer(1)), sample_for(t.with_values({a1: 1}), a1)
+    ('valued', 'symbolic')
+    """
+    valued = set(table.value_map)
+    if valued and not (answer.free_symbols & valued):
+        return "valued"
+    return "symbolic"
+
+
+def _texts(robot: Robot, expected: sp.ImmutableMatrix) -> tuple[tuple[str, str], ...]:
+    nota = robot.notation
+    return tuple((nota.text(e), nota.latex(e)) for e in expected)
+
+
+def _samples(
+    table: DHTable, expected: sp.ImmutableMatrix, syms: set[sp.Symbol]
+) -> tuple[DiagnosisSample, DiagnosisSample, sp.ImmutableMatrix]:
+    """The symbolic and valued diagnosis samples, and ``expected`` with the table's numbers."""
+    out = []
+    for fixed in (None, table.value_map):
+        sample = Sample.random(syms, fixed=fixed)
+        out.append(DiagnosisSample(sample, values(expected, sample)))
+    value_map = table.value_map
+    valued = expected.subs(value_map) if value_map else expected
+    return out[0], out[1], valued
+
+
+def _expected(question: Question, robot: Robot) -> tuple[sp.ImmutableMatrix, Singularities | None]:
+    """The key's matrix: ``^iT_j``, the geometric Jacobian (base frame, tool point), or
+    ``[det J]`` factored (the measure of :func:`~dhsym.kinematics.singularities.singularities`),
+    with the singularities of a determinant."""
+    q = question
+    if q.kind == "jacobian":
+        J = robot.jacobian().matrix
+        if q.entry is not None and not q.entry[1] < J.cols:
+            raise DHError(f"question {q.spec!r}: the columns of J are 0 … {J.cols - 1}")
+        return sp.ImmutableMatrix(J), None
+    if q.kind == "det":
+        from dhsym.kinematics.singularities import singularities
+
+        s = singularities(robot)
+        return sp.ImmutableMatrix([[s.determinant]]), s
+    return robot.transform(q.frm, q.to).matrix, None
+
+
+def prepare_matrix(
+    table: DHTable, question: Question, robot: Robot, names: NameContext
+) -> tuple[NameContext, MatrixPart]:
+    """A matrix key (``T``, ``J``, ``det J``, one entry of them) prepared: its expected
+    matrix and the diagnosis samples; the names are the table's."""
+    full, sing = _expected(question, robot)
+    expected = sp.ImmutableMatrix([[full[question.entry]]]) if question.entry else full
+    syms = set(table.variables) | set(table.constants)
+    symbolic, valued, expected_valued = _samples(table, expected, syms)
+    common = (expected, expected_valued, _texts(robot, expected), frozenset(syms))
+    if sing is not None:
+        return names, DeterminantPart(*common, symbolic, valued, sing)
+    return names, MatrixPart(*common, symbolic, valued)
+
+
+def prepare_dynamics(
+    table: DHTable, question: Question, robot: Robot, names: NameContext
+) -> tuple[NameContext, MatrixPart]:
+    """A dynamics key: its part of the equations of motion (or ``Jᵀ F``) and, for the
+    diagnosis, the same part under each catalogued mistake, all derived here, once; the
+    names gain the inertial symbols, rates and accelerations."""
+    q = question
+    extra = question_symbols(robot, q)
+    names = names.extended([*((s.name, s) for s in extra), *rate_aliases(robot)])
+    variants: tuple[tuple[str, sp.ImmutableMatrix, str], ...] = ()
+    if q.part == "tau_static":
+        expected = dynamics_key(robot, q)
+    else:
+        eom = robot.dynamics()
+        expected = part_matrix(eom, q)
+        variants = tuple(variant_matrices(robot, eom, q))
+    syms = set(table.variables) | set(table.constants) | set(extra)
+    symbolic, valued, expected_valued = _samples(table, expected, syms)
+    part = DynamicsPart(
+        expected,
+        expected_valued,
+        _texts(robot, expected),
+        frozenset(syms),
+        symbolic,
+        valued,
+        variants,
+    )
+    return names, part

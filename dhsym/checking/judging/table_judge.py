@@ -1,0 +1,127 @@
+r"""Judging a DH-table answer: the same robot (maybe with other frame choices), or which row
+is wrong and why.
+
+The verdict is :func:`~dhsym.checking.comparing.table_match.compare_tables`' (two tables
+that give the same kinematics); a wrong table is explained by the mistakes room
+(:func:`~dhsym.checking.mistakes.registry.diagnose_table`).
+
+Examples
+--------
+>>> from dhsym.checking.judging.key import Key, prepare
+>>> from dhsym.checking.reading.answer_value import read_answer_value
+>>> pk = prepare(Key.load("planar2r", "table"))
+>>> right = "theta | d | a | alpha\ntheta1 | 0 | a1 | 0\ntheta2 | 0 | a2 | 0"
+>>> check_table(pk, read_answer_value(pk.form(), right)).verdict.value
+'correct'
+>>> table_cells(pk.key.table)[1]
+('1', 'theta1', '0', 'a1', '0', 'R')
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from dhsym.model.table import AngleUnit, Convention, DHTable
+from dhsym.notation.printers import format_angle
+
+from ..comparing.table_match import compare_tables, symbolic_values
+from ..comparing.verdict import CheckResult, Diagnosis, Verdict
+from ..mistakes.registry import TableCase, diagnose_table
+from ..reading.answer_value import TableAnswer
+from .key import PreparedKey
+
+__all__ = ["check_table", "table_cells"]
+
+
+def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
+    """A table as text cells, header first, in its own convention's column order."""
+    deg = table.angles is AngleUnit.DEG
+    if table.convention is Convention.MODIFIED:
+        head, order = (
+            ("i", "alpha_{i-1}", "a_{i-1}", "d_i", "theta_i", "joint"),
+            ("alpha", "a", "d", "theta"),
+        )
+    else:
+        head, order = (
+            ("i", "theta_i", "d_i", "a_i", "alpha_i", "joint"),
+            ("theta", "d", "a", "alpha"),
+        )
+    rows: list[tuple[str, ...]] = [head]
+    for i, row in enumerate(table.rows, 1):
+        cells = [str(i)]
+        for name in order:
+            v = getattr(row, name)
+            if name in ("theta", "alpha"):
+                cells.append(format_angle(v, deg, latex=False))
+            else:
+                cells.append(
+                    f"{float(v):.6g}" if v.is_Rational and not v.is_Integer else sp.sstr(v)
+                )
+        rows.append((*cells, row.joint.value))
+    return tuple(tuple(r) for r in rows)
+
+
+def check_table(pk: PreparedKey, answer: TableAnswer) -> CheckResult:
+    """Check a table answer, as read, against the key's table (see the module text)."""
+    key = pk.key
+    table = key.table
+    ans = answer.table
+    values_ = table.value_map  # for the diagnosis; the verdict is symbolic first
+    expected_table, answer_table = table_cells(table), table_cells(ans)
+    note = (
+        " (Your angles were read as degrees, from a value above 2π, a ° or deg mark"
+        " or the file's angles: deg.)"
+        if answer.degrees and table.angles is not AngleUnit.DEG
+        else ""
+    )
+    judged = symbolic_values(table, ans)
+    match = compare_tables(table, ans, tool_free=key.tool_free, values=judged)
+    if match.same_robot and ans.convention is table.convention:
+        if match.same_table:
+            return CheckResult(
+                "table",
+                Verdict.CORRECT,
+                "Your table is the key's table." + note,
+                key=key.name,
+                expected_table=expected_table,
+                answer_table=answer_table,
+            )
+        how = "; ".join(match.differences) or "other but equivalent entries"
+        return CheckResult(
+            "table",
+            Verdict.CORRECT,
+            f"Your table is a valid alternative: it describes the same robot "
+            f"with other frame choices ({how}).{note}",
+            alternative=how,
+            key=key.name,
+            expected_table=expected_table,
+            answer_table=answer_table,
+        )
+    diagnoses = diagnose_table(TableCase(table, ans, key.tool_free, values_))
+    if not diagnoses:
+        rows = ()
+        diagnoses = (
+            Diagnosis(
+                "geometry",
+                "different robot",
+                f"The table describes another robot: {match.reason}.",
+                rows=rows,
+            ),
+        )
+    where = (
+        f" The geometry first differs at joint {match.diverges_at}: {match.reason}."
+        if match.diverges_at and not match.same_robot
+        else ""
+    )
+    message = (
+        f"The table is wrong. Most likely: {diagnoses[0].title}. {diagnoses[0].detail}{where}{note}"
+    )
+    return CheckResult(
+        "table",
+        Verdict.INCORRECT,
+        message,
+        diagnoses=diagnoses,
+        key=key.name,
+        expected_table=expected_table,
+        answer_table=answer_table,
+    )
