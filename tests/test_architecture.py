@@ -19,7 +19,6 @@ def _graph():
 #: removed by the ik/checking restructure of issue 31: the list empties after that merge
 #: (then ``import_graph.main() == 0`` holds again).
 KNOWN_ROOM_CIRCLES = {
-    ("checking.judging.checker", "checking.judging.ik_check"),
     ("ik.closed_form", "ik.compiler", "ik.general", "ik.results", "ik.steps"),
 }
 
