@@ -37,6 +37,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.kinematics.numeric import compile_exprs, to_float
+from dhsym.model.parsing import REAL
 
 from .lagrange_euler import potential_energies
 from .model import DynamicModel, dynamic_model
@@ -106,7 +107,7 @@ class DynamicsFunctions:
         self.model = dm
         n = self.n = dm.n
         q, qd, qdd = dm.variables, dm.rates, dm.accelerations
-        gsym = sp.symbols("gx gy gz", real=True, cls=sp.Dummy)
+        gsym = sp.symbols("gx gy gz", cls=sp.Dummy, **REAL)
         tau = rne_expressions(dm, gravity=gsym)
         self._rne = _Compiled(tau, (*q, *qd, *qdd, *gsym), (n,))
         self._potential = _Compiled([sum(potential_energies(dm), sp.Integer(0))], q, (1,))

@@ -22,6 +22,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.kinematics.jacobian import compact, geometric_jacobian
+from dhsym.model.parsing import REAL
 from dhsym.notation.printers import Notation
 
 if TYPE_CHECKING:
@@ -32,7 +33,7 @@ __all__ = ["Statics", "WRENCH", "statics", "statics_numeric"]
 Matrix: TypeAlias = sp.ImmutableMatrix
 
 #: The symbols of a tip wrench in the base frame: force ``fx, fy, fz``, moment ``nx, ny, nz``.
-WRENCH = tuple(sp.Symbol(s, real=True) for s in ("fx", "fy", "fz", "nx", "ny", "nz"))
+WRENCH = tuple(sp.Symbol(s, **REAL) for s in ("fx", "fy", "fz", "nx", "ny", "nz"))
 
 
 @dataclass(frozen=True)
