@@ -2,7 +2,7 @@
 conveniences of the rooms above the kinematics.
 
 A :class:`Robot` is a :class:`~dhsym.kinematics.chain.KinematicChain` (table, notation, ``^iT_j``,
-``fk``, ``jacobian``, …) that also derives and solves its inverse kinematics
+``fk``, ``jacobian``, ``jacob0``, …) that also derives and solves its inverse kinematics
 (:mod:`dhsym.ik`), its dynamics (:mod:`dhsym.dynamics`), draws itself (:mod:`dhsym.plot`),
 writes itself in other tools' formats (:mod:`dhsym.formats`) and loads its exported C
 (:mod:`dhsym.export`). It is a room of its own, above all of these and below
@@ -25,7 +25,7 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, overload
 
 from dhsym.errors import DHError
 from dhsym.kinematics.chain import KinematicChain
@@ -220,6 +220,12 @@ class Robot(KinematicChain):
         """Fixed-step RK4 integration of the motion (a ``Trajectory``: ``t``, ``q``, ``qd``)."""
         return self.dynamics_functions(values).simulate(q0, qd0, duration, dt=dt, tau=tau)
 
+    @overload
+    def statics(self) -> Statics: ...
+    @overload
+    def statics(
+        self, q: object, wrench: object, *, values: Mapping[object, object] | None = None
+    ) -> np.ndarray: ...
     def statics(
         self,
         q: object = None,
@@ -227,13 +233,32 @@ class Robot(KinematicChain):
         *,
         values: Mapping[object, object] | None = None,
     ) -> Statics | np.ndarray:
-        """τ = Jᵀ F: exact (no ``q``), or the torques that balance a tip wrench ``[f; n]``
-        (base frame) at ``q``, batched like :meth:`jacobian`."""
-        from dhsym.dynamics.static_forces import statics, statics_numeric
+        """The exact τ = Jᵀ F (:func:`dhsym.dynamics.statics`).
 
-        if q is None:
-            return statics(self)
-        return statics_numeric(self, q, wrench, values=values)
+        ``robot.statics(q, wrench)`` is kept as an alias of the numbers,
+        :meth:`static_torques`: an array, not a ``Statics``.
+        """
+        if q is not None:
+            return self.static_torques(q, wrench, values=values)
+        if wrench is not None or values is not None:
+            raise DHError("statics() without q is exact: numbers are static_torques(q, wrench)")
+        from dhsym.dynamics.static_forces import statics
+
+        return statics(self)
+
+    def static_torques(
+        self, q: object, wrench: object, *, values: Mapping[object, object] | None = None
+    ) -> np.ndarray:
+        """The joint torques τ = J(q)ᵀ F that balance a tip wrench ``F = [f; n]`` (base frame)
+        at ``q``: one state ``(n,)`` → ``(n,)``, a batch ``(..., n)`` with wrenches
+        ``(..., 6)`` → ``(..., n)`` (:func:`dhsym.dynamics.static_forces.static_torques`).
+
+        >>> load("planar2r").static_torques([0.0, 0.0], [0, 1, 0, 0, 0, 0])
+        array([1.8, 0.8])
+        """
+        from dhsym.dynamics.static_forces import static_torques
+
+        return static_torques(self, q, wrench, values=values)
 
     # -- pictures (dhsym.plot) -----------------------------------------------------------
     def plot(self, q: object = None, **kw: Any) -> Figure:

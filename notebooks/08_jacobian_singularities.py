@@ -86,7 +86,7 @@ J.verify()
 q = np.array([0.4, 1.1])
 dq = np.array([1e-6, -2e-6])
 step = robot.fk(q + dq)[:3, 3] - robot.fk(q)[:3, 3]
-print("J_v dq      =", robot.jacobian(q)[:3] @ dq)
+print("J_v dq      =", robot.jacob0(q)[:3] @ dq)
 print("p(q+dq)-p(q)=", step)
 
 # %% [markdown]
@@ -106,7 +106,7 @@ display(Markdown(sing.to_markdown()))
 
 # %%
 for t2 in (1.2, 0.1, 0.0):
-    Jv = robot.jacobian([0.5, t2])[:2]
+    Jv = robot.jacob0([0.5, t2])[:2]
     det = round(float(np.linalg.det(Jv)), 4) + 0.0  # + 0.0: no "-0.0000"
     print(f"theta2 = {t2:3.1f}:  det J_v = {det:+.4f},  rank = {np.linalg.matrix_rank(Jv)}")
 
@@ -196,7 +196,7 @@ shoulder[1] = np.arctan2(-A, B)
 wrist = q0.copy()
 wrist[4] = 0.0
 for name, q in [("general", q0), ("elbow", elbow), ("shoulder", shoulder), ("wrist", wrist)]:
-    Jq = puma.jacobian(q)
+    Jq = puma.jacob0(q)
     print(f"{name:9s} det J = {np.linalg.det(Jq):+.2e}   smallest singular value = "
           f"{np.linalg.svd(Jq, compute_uv=False)[-1]:.2e}")
 

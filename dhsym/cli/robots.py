@@ -212,7 +212,7 @@ def _cmd_fk(args: argparse.Namespace) -> int:
     if args.manipulability:
         rows = [r for r in robot.table.rows if r.variable is not None]
         turns = [deg and r.variable_field == "theta" for r in rows]  # only angles convert
-        J = np.asarray(robot.jacobian(np.where(turns, np.radians(q), q)), dtype=float)
+        J = robot.jacob0(np.where(turns, np.radians(q), q))
         wide = J if J.shape[0] <= J.shape[1] else J.T  # det(J Jᵀ), or det(Jᵀ J) for a tall J
         extra["manipulability"] = float(np.sqrt(max(np.linalg.det(wide @ wide.T), 0.0)))
     if args.json:

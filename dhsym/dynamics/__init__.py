@@ -14,7 +14,7 @@ from .inertial_parameters import BaseParameters, Regressor, base_parameters, reg
 from .lagrange_euler import lagrange
 from .model import DynamicModel, dynamic_model, rate_symbols
 from .recursive_newton_euler import newton_euler
-from .static_forces import Statics, statics
+from .static_forces import Statics, static_torques, statics
 
 __all__ = [
     "BaseParameters",
@@ -23,6 +23,7 @@ __all__ = [
     "Statics",
     "base_parameters",
     "regressor",
+    "static_torques",
     "statics",
     "EquationsOfMotion",
     "NEStep",

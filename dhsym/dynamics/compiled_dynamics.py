@@ -36,7 +36,8 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.kinematics.numeric import compile_exprs, to_float
+from dhsym.kinematics.numeric import compile_exprs, evaluate_chunked, to_float
+from dhsym.model.parsing import REAL
 
 from .lagrange_euler import potential_energies
 from .model import DynamicModel, dynamic_model
@@ -46,8 +47,6 @@ if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["DynamicsFunctions", "Trajectory", "dynamics_functions", "numeric_model"]
-
-_CHUNK = 4096
 
 
 class _Compiled:
@@ -74,13 +73,7 @@ class _Compiled:
         if self._batch is None:
             self._batch = compile_exprs(self._exprs, self._args)
         flat = [p.reshape(-1, p.shape[-1]) for p in parts]
-        N = flat[0].shape[0]
-        out = np.empty((N, self.size))
-        for start in range(0, N, _CHUNK):
-            cols = [c for p in flat for c in p[start : start + _CHUNK].T]
-            size = min(_CHUNK, N - start)
-            for k, v in enumerate(self._batch(*cols)):
-                out[start : start + size, k] = v
+        out = evaluate_chunked(self._batch, *flat, out=np.empty((flat[0].shape[0], self.size)))
         return out.reshape(*lead, *self.shape)
 
 
@@ -106,7 +99,7 @@ class DynamicsFunctions:
         self.model = dm
         n = self.n = dm.n
         q, qd, qdd = dm.variables, dm.rates, dm.accelerations
-        gsym = sp.symbols("gx gy gz", real=True, cls=sp.Dummy)
+        gsym = sp.symbols("gx gy gz", cls=sp.Dummy, **REAL)
         tau = rne_expressions(dm, gravity=gsym)
         self._rne = _Compiled(tau, (*q, *qd, *qdd, *gsym), (n,))
         self._potential = _Compiled([sum(potential_energies(dm), sp.Integer(0))], q, (1,))

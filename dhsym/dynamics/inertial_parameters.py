@@ -33,6 +33,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.kinematics.numeric import compile_exprs
+from dhsym.model.parsing import REAL
 
 from .lagrange_euler import tidy
 from .model import DynamicModel, dynamic_model
@@ -96,7 +97,7 @@ class BaseParameters:
 
 
 def _link_symbols(i: int) -> tuple[sp.Symbol, ...]:
-    return tuple(sp.Symbol(f"{n}{i}", real=True) for n in STANDARD_NAMES)
+    return tuple(sp.Symbol(f"{n}{i}", **REAL) for n in STANDARD_NAMES)
 
 
 def regressor(robot: KinematicChain, model: DynamicModel | None = None) -> Regressor:

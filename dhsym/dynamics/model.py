@@ -26,6 +26,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.model.inertia import LinkInertia
+from dhsym.model.parsing import REAL
 from dhsym.model.table import JointType
 
 if TYPE_CHECKING:
@@ -52,7 +53,7 @@ def rate_symbols(variables: Sequence[sp.Symbol], order: int = 1) -> tuple[sp.Sym
     for v in variables:
         m = _NAME.match(v.name)
         name = f"{m.group(1)}{suffix}{m.group(2)}" if m else f"{v.name}{suffix}"
-        out.append(sp.Symbol(name, real=True))
+        out.append(sp.Symbol(name, **REAL))
     return tuple(out)
 
 

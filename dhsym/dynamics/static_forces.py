@@ -22,17 +22,18 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.kinematics.jacobian import compact, geometric_jacobian
+from dhsym.model.parsing import REAL
 from dhsym.notation.printers import Notation
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["Statics", "WRENCH", "statics", "statics_numeric"]
+__all__ = ["Statics", "WRENCH", "static_torques", "statics"]
 
 Matrix: TypeAlias = sp.ImmutableMatrix
 
 #: The symbols of a tip wrench in the base frame: force ``fx, fy, fz``, moment ``nx, ny, nz``.
-WRENCH = tuple(sp.Symbol(s, real=True) for s in ("fx", "fy", "fz", "nx", "ny", "nz"))
+WRENCH = tuple(sp.Symbol(s, **REAL) for s in ("fx", "fy", "fz", "nx", "ny", "nz"))
 
 
 @dataclass(frozen=True)
@@ -51,7 +52,8 @@ class Statics:
 
 
 def statics(robot: KinematicChain) -> Statics:
-    """The exact ``τ = Jᵀ F`` of ``robot`` (geometric Jacobian at the tool, base frame)."""
+    """The exact ``τ = Jᵀ F`` of ``robot`` (geometric Jacobian at the tool, base frame);
+    its numbers at a configuration are :func:`static_torques`."""
     J = geometric_jacobian(robot).matrix
     tau = (J.T * Matrix(WRENCH)).applyfunc(
         lambda e: sp.collect(sp.expand(e), WRENCH, evaluate=True, func=compact)
@@ -59,22 +61,24 @@ def statics(robot: KinematicChain) -> Statics:
     return Statics(Matrix(tau), WRENCH, Matrix(J), robot)
 
 
-def statics_numeric(
+def static_torques(
     robot: KinematicChain,
     q: object,
     wrench: object,
     *,
     values: Mapping[object, object] | None = None,
 ) -> np.ndarray:
-    """τ = J(q)ᵀ F for one state ``(n,)`` or a batch ``(..., n)``; ``wrench`` ``(..., 6)``.
+    """The numbers of :func:`statics`: τ = J(q)ᵀ F for one state ``(n,)`` or a batch
+    ``(..., n)``, ``wrench`` ``(..., 6)`` in the base frame (the Jacobian of
+    :meth:`~dhsym.kinematics.chain.KinematicChain.jacob0`).
 
     >>> import dhsym
-    >>> dhsym.load("planar2r").statics([0.0, 0.0], [0, 1, 0, 0, 0, 0])
+    >>> static_torques(dhsym.load("planar2r"), [0.0, 0.0], [0, 1, 0, 0, 0, 0])
     array([1.8, 0.8])
     """
     F = np.asarray(wrench, dtype=float)
     if F.shape[-1:] != (6,):
         raise DHError(f"a wrench has 6 entries [fx, fy, fz, nx, ny, nz], got shape {F.shape}")
-    J = np.asarray(robot.jacobian(np.asarray(q, dtype=float), values=values))
+    J = robot.jacob0(np.asarray(q, dtype=float), values=values)
     tau: np.ndarray = np.einsum("...ij,...i->...j", J, F)
     return tau

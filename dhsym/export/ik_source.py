@@ -55,8 +55,6 @@ if TYPE_CHECKING:
 
 __all__ = ["IKSource", "IKStep", "ik_source", "pose_input"]
 
-_REAL = {"real": True}
-
 
 def pose_input() -> sp.IndexedBase:
     """The input pose ``T`` (4×4, row-major in C): ``T[i, j]``."""

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.model.parsing import REAL as _REAL
 from dhsym.model.table import JointType
 
 from .identifiers import identifier
@@ -54,8 +55,6 @@ __all__ = [
     "jacobian_program",
     "rne_program",
 ]
-
-_REAL = {"real": True}
 
 
 @dataclass(frozen=True)

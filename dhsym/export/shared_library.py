@@ -165,7 +165,7 @@ def compiled(
     if cc is None:
         return CompiledRobot(
             lambda q: robot.fk(q),
-            lambda q: robot.jacobian(q),
+            lambda q: robot.jacob0(q),
             lambda T: np.asarray(solve(robot, T, cache=cache)),
             "numpy",
             None,

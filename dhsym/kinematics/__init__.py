@@ -30,7 +30,7 @@ __getattr__, __dir__ = lazy_exports(
         "geometric_jacobian": "jacobian",
         "prove_equal": "simplification",
         "rigid_inverse": "transforms",
-        "to_float": "numeric",
+        "to_float": "constants",
         "Rx": "transforms",
         "Ry": "transforms",
         "Rz": "transforms",

@@ -288,24 +288,22 @@ class KinematicChain:
             q = arr
         return f(q)
 
+    def analytic_jacobian(
+        self, euler: str = "zyz", *, frame: int | str = "base"
+    ) -> AnalyticJacobian:
+        """The exact analytic Jacobian ``J_A = diag(I, B⁻¹) J`` for the Euler set ``euler``
+        (``"zyz"`` or ``"rpy"``; :func:`~dhsym.kinematics.jacobian.analytic_jacobian`).
+
+        >>> from dhsym.model.library import load_table
+        >>> KinematicChain(load_table("planar2r")).analytic_jacobian("rpy").euler
+        'rpy'
+        """
+        from .jacobian import analytic_jacobian
+
+        return analytic_jacobian(self, euler, frame)
+
     @overload
-    def jacobian(
-        self,
-        q: None = None,
-        *,
-        frame: int | str = "base",
-        euler: None = None,
-        values: Mapping[Any, object] | None = None,
-    ) -> Jacobian: ...
-    @overload
-    def jacobian(
-        self,
-        q: None = None,
-        *,
-        frame: int | str = "base",
-        euler: str,
-        values: Mapping[Any, object] | None = None,
-    ) -> AnalyticJacobian: ...
+    def jacobian(self, q: None = None, *, frame: int | str = "base") -> Jacobian: ...
     @overload
     def jacobian(
         self,
@@ -322,20 +320,77 @@ class KinematicChain:
         frame: int | str = "base",
         euler: str | None = None,
         values: Mapping[Any, object] | None = None,
-    ) -> Jacobian | AnalyticJacobian | np.ndarray:
-        """The Jacobian (:mod:`dhsym.kinematics.jacobian`): symbolic without ``q``, else numeric.
+    ) -> Jacobian | np.ndarray:
+        """The exact 6×n geometric Jacobian (:func:`~dhsym.kinematics.jacobian.geometric_jacobian`).
 
-        ``robot.jacobian()`` is the exact 6×n geometric Jacobian (``frame="tool"`` for the
-        end-effector frame); ``robot.jacobian(q)`` evaluates it, ``(n,)`` → ``(6, n)`` and
-        ``(N, n)`` → ``(N, 6, n)``, in the base frame of ``fk``. With ``euler="zyz"`` or
-        ``"rpy"`` it is the analytic Jacobian.
+        ``frame`` is where its columns are written: ``"base"`` (the frame of ``fk``),
+        ``"tool"`` (the end-effector frame) or a frame number. The exact analytic Jacobian
+        is :meth:`analytic_jacobian`.
+
+        ``robot.jacobian(q)`` (with ``frame``, ``euler``, ``values``) is kept as an alias of
+        the numbers, :meth:`jacob0` (``frame="base"``) and :meth:`jacobe` (``frame="tool"``):
+        an array, not a :class:`~dhsym.kinematics.jacobian.Jacobian`.
+
+        >>> from dhsym.model.library import load_table
+        >>> r = KinematicChain(load_table("planar2r"))
+        >>> type(r.jacobian()).__name__, r.jacobian([0.0, 0.0]).shape
+        ('Jacobian', (6, 2))
         """
-        from . import jacobian as jac
+        if q is not None:
+            return self._jacobian_numbers(q, frame, euler, values)
+        if euler is not None or values is not None:
+            raise DHError(
+                "jacobian() without q is the exact geometric Jacobian: the exact analytic "
+                "Jacobian is analytic_jacobian(euler), numbers are jacob0(q, euler=..., "
+                "values=...)"
+            )
+        from .jacobian import geometric_jacobian
 
-        if q is None:
-            if euler is not None:
-                return jac.analytic_jacobian(self, euler, frame)
-            return jac.geometric_jacobian(self, frame)
+        return geometric_jacobian(self, frame)
+
+    def jacob0(
+        self,
+        q: ArrayLike,
+        *,
+        euler: str | None = None,
+        values: Mapping[Any, object] | None = None,
+    ) -> np.ndarray:
+        """The Jacobian at ``q`` in the base frame of ``fk`` (roboticstoolbox's ``jacob0``):
+        ``(n,)`` → ``(6, n)``, ``(N, n)`` → ``(N, 6, n)``, compiled once and cached.
+
+        The geometric Jacobian, or with ``euler="zyz"`` or ``"rpy"`` the analytic one
+        (angles read from ``fk``); ``values`` are numbers for the table's symbols.
+
+        >>> from dhsym.model.library import load_table
+        >>> KinematicChain(load_table("planar2r")).jacob0([0.0, 0.0])[:2]
+        array([[0. , 0. ],
+               [1.8, 0.8]])
+        """
+        return self._jacobian_numbers(q, "base", euler, values)
+
+    def jacobe(self, q: ArrayLike, *, values: Mapping[Any, object] | None = None) -> np.ndarray:
+        """The geometric Jacobian at ``q`` in the end-effector frame (roboticstoolbox's
+        ``jacobe``; the tool frame when the table has a tool transform), batched like
+        :meth:`jacob0`.
+
+        >>> import math
+        >>> from dhsym.model.library import load_table
+        >>> r = KinematicChain(load_table("planar2r"))
+        >>> r.jacobe([math.pi / 2, 0.0])[:2]  # the tip moves along the tool's y axis
+        array([[0. , 0. ],
+               [1.8, 0.8]])
+        """
+        return self._jacobian_numbers(q, "tool", None, values)
+
+    def _jacobian_numbers(
+        self,
+        q: ArrayLike,
+        frame: int | str,
+        euler: str | None,
+        values: Mapping[Any, object] | None,
+    ) -> np.ndarray:
+        """The compiled Jacobian of ``frame`` (analytic with ``euler``) at ``q``, cached."""
+        from . import jacobian as jac
         from .numeric import values_key
 
         key = JacobianKey(frame, euler, values_key(values))

@@ -49,6 +49,7 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.model.parsing import REAL
 from dhsym.model.table import Convention, JointType
 from dhsym.notation.printers import Notation
 
@@ -345,7 +346,7 @@ def euler_symbols(euler: str = "zyz") -> tuple[sp.Symbol, sp.Symbol, sp.Symbol]:
     (phi, theta, psi)
     """
     _euler_axes(euler)
-    angles: tuple[sp.Symbol, sp.Symbol, sp.Symbol] = sp.symbols("phi theta psi", real=True)
+    angles: tuple[sp.Symbol, sp.Symbol, sp.Symbol] = sp.symbols("phi theta psi", **REAL)
     return angles
 
 

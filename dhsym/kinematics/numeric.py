@@ -1,30 +1,33 @@
-"""The one numeric evaluator of exact expressions: constants folded to floats, code compiled once.
+"""Compiled numbers of exact expressions: code generated once, evaluated in cache-sized chunks.
 
-Every numeric path of dhsym (``fk``, compiled poses, :func:`numeric_equal
+Every numeric path of dhsym that evaluates an expression more than once (``fk``, the
+Jacobians, the dynamics, :func:`numeric_equal
 <dhsym.kinematics.simplification.numeric_equal>`, the checks of frame assignment
-and conversion) goes through this module:
+and conversion) goes through this module; constants are folded to floats first
+(:mod:`dhsym.kinematics.constants`), and one-off expressions are walked instead of
+compiled (:mod:`dhsym.kinematics.interpreter`):
 
-* :func:`to_float` evaluates an exact constant (huge integers, nested roots, π)
-  with arbitrary precision and returns a float, or raises :class:`~dhsym.errors.DHError`;
-* :func:`float_constants` replaces every constant subtree of an expression by its
-  float, at compile time, so generated code sees floats only (never a Python
-  integer beyond 2⁶³ under ``sqrt``);
 * :func:`compile_exprs` generates code once (common-subexpression elimination)
   for numpy arrays or for plain Python floats;
+* :func:`evaluate_chunked` runs such code over a batch of points in cache-sized
+  chunks (every compiled batch of dhsym: poses, Jacobians, dynamics);
 * :func:`compile_pose` builds a :class:`PoseFunction` for a 4×4 homogeneous
   matrix: a pure-float path for one configuration ``(n,)`` → ``(4, 4)`` and a
-  numpy path for a batch ``(N, n)`` → ``(N, 4, 4)``;
+  numpy path for a batch ``(N, n)`` → ``(N, 4, 4)``; :func:`compile_matrix` any
+  ``m × k`` matrix;
 * :func:`compile_word` multiplies a word of elementary transforms numerically
   (no symbolic product at all: the check of a 10-joint conversion takes
-  milliseconds whatever its twists);
-* :func:`evaluate` walks one expression at many points at once, without code
-  generation (the checker's one-off expressions: a student's answer at 64 random
-  points), its constants through :func:`to_float`; :func:`word_product` is the same
-  for a word of elementary transforms;
+  milliseconds whatever its twists); :func:`word_product` is the same for a one-off
+  word, its values from the tree walker;
 * :func:`elementary_stack` is the numeric twin of
   :func:`~dhsym.kinematics.transforms.elementary_matrix` (the word is shared: words
   come from :mod:`dhsym.kinematics.transforms`), and :func:`numeric_rigid_inverse`
   the twin of :func:`~dhsym.kinematics.transforms.rigid_inverse`.
+
+:func:`to_float`, :func:`float_constants`, :func:`as_basic` (from
+:mod:`~dhsym.kinematics.constants`) and :func:`evaluate`, :func:`evaluate_many`,
+:class:`EvaluationError` (from :mod:`~dhsym.kinematics.interpreter`) are importable
+from here too.
 
 Examples
 --------
@@ -37,16 +40,11 @@ Examples
 np.float64(2.0)
 >>> f(np.zeros((5, 1))).shape
 (5, 4, 4)
->>> huge = sp.sqrt(sp.Integer(10) ** 40 + 1) / 10**20
->>> to_float(huge), float_constants(huge * q1)
-(1.0, 1.0*q1)
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Mapping, Sequence
-from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -54,12 +52,16 @@ import sympy as sp
 
 from dhsym.errors import DHError
 
+from .constants import as_basic, float_constants, to_float
+from .interpreter import EvaluationError, evaluate, evaluate_many
+
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
     from dhsym.model.table import Elementary
 
 __all__ = [
+    "CHUNK",
     "EvaluationError",
     "as_basic",
     "PoseFunction",
@@ -69,6 +71,7 @@ __all__ = [
     "compile_word",
     "elementary_stack",
     "evaluate",
+    "evaluate_chunked",
     "evaluate_many",
     "float_constants",
     "numeric_rigid_inverse",
@@ -77,11 +80,10 @@ __all__ = [
     "word_product",
 ]
 
-FkFunction = Callable[[object], np.ndarray]
-_CHUNK = 4096
-_DIGITS = 30  # working precision of constant evaluation (decimal digits)
+#: Points per chunk of a compiled batch (:func:`evaluate_chunked`): the temporaries of one
+#: chunk stay in the L2 cache, about twice as fast as one pass over a large batch.
+CHUNK = 4096
 _FLOAT = np.dtype(float)
-_EXACT_INT = 2**53
 
 
 class _PlusZero(sp.Function):
@@ -89,132 +91,6 @@ class _PlusZero(sp.Function):
 
     def _pythoncode(self, printer: Any) -> str:  # a sympy code printer (untyped)
         return f"({printer._print(self.args[0])} + 0.0)"
-
-
-def to_float(expr: object) -> float:
-    """The value of an exact real constant as a float (evaluated at 30 digits first).
-
-    Safe for integers far beyond 2⁶³, nested roots and π; raises
-    :class:`~dhsym.errors.DHError` for symbols, non-real or non-finite values.
-
-    >>> to_float(sp.sqrt(2) / 2), to_float(sp.pi), to_float(sp.Integer(7) ** 400 / 7 ** 399)
-    (0.7071067811865476, 3.141592653589793, 7.0)
-    >>> to_float(sp.Integer(10) ** 400)
-    Traceback (most recent call last):
-    ...
-    dhsym.errors.DHError: the number 1000000000000...0000000000000 is too large for a float
-    >>> to_float(sp.zoo)
-    Traceback (most recent call last):
-    ...
-    dhsym.errors.DHError: zoo is not a real number
-    """
-    if isinstance(expr, float):
-        value = expr
-    else:
-        e = as_basic(expr)
-        if e.free_symbols:
-            raise DHError(f"no numeric value for {', '.join(sorted(map(str, e.free_symbols)))}")
-        if e.is_Rational:
-            value = _rational_float(e)
-        elif e.is_Float:
-            value = float(e)
-        elif (turn := _pi_multiple(e)) is not None:  # θ = π/2 in a table: no evalf
-            value = float(turn * _PI)
-        else:
-            v = sp.N(e, _DIGITS)
-            re, im = v.as_real_imag()
-            real = re.is_Number and im.is_Number and sp.nan not in (re, im)
-            if not real or abs(im) > abs(re) * 1e-20 + 1e-40:  # below the 30 digits: round-off
-                raise DHError(f"{_short(e)} is not a real number")
-            value = float(re) if re.is_finite else math.inf
-    if not math.isfinite(value):
-        raise DHError(f"the number {_short(expr)} is too large for a float")
-    return value
-
-
-#: π to 60 digits, exact as a fraction: ``float(r * _PI)`` is the rounded value of ``r·π``
-_PI = Fraction(314159265358979323846264338327950288419716939937510582097494, 10**59)
-
-
-def _pi_multiple(e: sp.Basic) -> Fraction | None:
-    """``r`` when ``e`` is ``π`` or ``r·π`` with a rational ``r`` (an angle of a table), else None.
-
-    >>> _pi_multiple(-sp.pi / 2), _pi_multiple(sp.pi), _pi_multiple(sp.sqrt(2))
-    (Fraction(-1, 2), Fraction(1, 1), None)
-    """
-    if e is sp.pi:
-        return Fraction(1)
-    if e.is_Mul and len(e.args) == 2 and e.args[1] is sp.pi and e.args[0].is_Rational:
-        r = e.args[0]
-        return Fraction(int(r.p), int(r.q))
-    return None
-
-
-def _rational_float(r: sp.Rational) -> float:
-    try:
-        return int(r.p) / int(r.q)  # exact rounding, even for huge integers
-    except OverflowError:
-        return math.inf
-
-
-def _short(expr: object) -> str:
-    s = str(expr)
-    return s if len(s) <= 60 else f"{s[:30]}...{s[-30:]}"
-
-
-def float_constants(expr: sp.Basic) -> sp.Basic:
-    """``expr`` with every constant subtree replaced by its float (integer exponents kept).
-
-    >>> x = sp.Symbol("x")
-    >>> float_constants(sp.sqrt(2) * sp.cos(x + sp.pi / 3) - x**2 / 4)
-    -0.25*x**2 + 1.4142135623730951*cos(x + 1.0471975511965979)
-    """
-    memo: dict[sp.Basic, sp.Basic] = {}
-
-    def walk(e: sp.Basic) -> sp.Basic:
-        hit = memo.get(e)
-        if hit is not None:
-            return hit
-        if not e.free_symbols:
-            small = e.is_Integer and abs(int(e)) <= _EXACT_INT  # ±1, 2: exact in floats too
-            out: sp.Basic = e if small or not isinstance(e, sp.Expr) else sp.Float(to_float(e), 17)
-        elif e.is_Atom:
-            out = e
-        elif e.is_Pow and e.exp.is_Integer:
-            out = sp.Pow(walk(e.base), e.exp)
-        elif e.is_Add or e.is_Mul:  # fold the constant part as one number
-            const, rest = e.as_independent(*e.free_symbols, as_Add=e.is_Add)
-            out = e.func(walk(const), *(walk(a) for a in e.func.make_args(rest)))
-        else:
-            out = e.func(*(walk(a) for a in e.args))
-        memo[e] = out
-        return out
-
-    return walk(as_basic(expr))
-
-
-def as_basic(value: object) -> sp.Basic:
-    """A sympy object for a sympy object or a Python/numpy number; text is refused.
-
-    Nothing here parses or evaluates a string (``sympy.sympify`` would): text goes
-    through :func:`dhsym.model.parsing.parse_expression` first.
-
-    >>> as_basic(3), as_basic(0.5), as_basic(sp.Symbol("t"))
-    (3, 0.500000000000000, t)
-    >>> as_basic("__import__('os')")
-    Traceback (most recent call last):
-    ...
-    TypeError: expected a sympy expression or a number, got str
-    """
-    if hasattr(value, "dtype") and hasattr(value, "item"):  # numpy scalar
-        value = value.item()
-    if isinstance(value, sp.Basic):
-        return value
-    if isinstance(value, int) and not isinstance(value, bool):
-        return sp.Integer(value)
-    if isinstance(value, float):
-        return sp.Float(value)
-    raise TypeError(f"expected a sympy expression or a number, got {type(value).__name__}")
 
 
 def compile_exprs(
@@ -247,6 +123,45 @@ def compile_exprs(
         list(variables), folded, modules=module, cse=True
     )
     return compiled
+
+
+def evaluate_chunked(
+    function: Callable[..., Sequence[object]],
+    *arrays: np.ndarray,
+    out: np.ndarray,
+    chunk: int = CHUNK,
+    plus_zero: bool = False,
+) -> np.ndarray:
+    """Fill ``out`` ``(N, m)`` with the ``m`` values of a compiled ``function`` at ``N`` points,
+    in chunks of ``chunk`` points; returns ``out``.
+
+    ``arrays`` are ``(N, k_i)``; ``function`` (from :func:`compile_exprs`) takes their
+    columns, in order, and returns its ``m`` values, each an array over the chunk's points
+    or a constant (broadcast to them). The temporaries of one chunk stay in the cache
+    (:data:`CHUNK`). ``out`` may be a view (the first 12 entries of ``(N, 16)`` poses).
+    With ``plus_zero`` every chunk gets ``+ 0.0``: ``-0.0`` becomes ``0.0``, so printed
+    results read cleanly.
+
+    >>> x, y = sp.symbols("x y")
+    >>> f = compile_exprs([x + y, -x * y, sp.Integer(2)], (x, y))
+    >>> evaluate_chunked(f, np.array([[1.0], [2.0], [3.0]]), np.array([[0.0], [1.0], [2.0]]),
+    ...                  out=np.empty((3, 3)), chunk=2, plus_zero=True)
+    array([[ 1.,  0.,  2.],
+           [ 3., -2.,  2.],
+           [ 5., -6.,  2.]])
+    """
+    N = out.shape[0]
+    for a in arrays:
+        if a.shape[0] != N:
+            raise ValueError(f"{N} points expected, got an array of shape {a.shape}")
+    for start in range(0, N, chunk):
+        block = out[start : start + chunk]
+        columns = [c for a in arrays for c in a[start : start + chunk].T]
+        for k, v in enumerate(function(*columns)):
+            block[:, k] = v
+        if plus_zero:
+            block += 0.0
+    return out
 
 
 class PoseFunction:
@@ -297,12 +212,8 @@ class PoseFunction:
         flat = out.reshape(N, 16)
         flat[:, 12:15] = 0.0
         flat[:, 15] = 1.0
-        # cache-sized chunks: the temporaries stay in L2 (about 2x faster for large N)
-        for start in range(0, N, _CHUNK):
-            block = flat[start : start + _CHUNK]
-            for k, v in enumerate(self._batch(*Q[start : start + _CHUNK].T)):
-                block[:, k] = v  # cells are the first 12 entries of the row-major 4x4
-            block[:, :12] += 0.0  # -0.0 -> 0.0, so printed poses read cleanly
+        # cells are the first 12 entries of the row-major 4x4
+        evaluate_chunked(self._batch, Q, out=flat[:, :12], plus_zero=True)
         return out[0] if single else out
 
 
@@ -403,12 +314,7 @@ def compile_matrix(
     def evaluate(q: object) -> np.ndarray:
         Q, single = _configurations(q, n)
         N = Q.shape[0]
-        flat = np.empty((N, rows * cols))
-        for start in range(0, N, _CHUNK):
-            block = flat[start : start + _CHUNK]
-            for k, v in enumerate(fn(*Q[start : start + _CHUNK].T)):
-                block[:, k] = v
-        flat += 0.0  # -0.0 -> 0.0
+        flat = evaluate_chunked(fn, Q, out=np.empty((N, rows * cols)), plus_zero=True)
         out = flat.reshape(N, rows, cols)
         return out[0] if single else out
 
@@ -484,8 +390,8 @@ def _multiply(
         if e.value.is_zero:  # an exact zero; no sympify per call
             out.append(out[-1])
             continue
-        v = np.asarray(v, dtype=float)
-        factor = elementary_stack(e.kind, e.axis, v if v.shape == (size,) else _points(v, size))
+        v = np.broadcast_to(np.asarray(v, dtype=float), (size,))  # a constant repeated
+        factor = elementary_stack(e.kind, e.axis, v)
         out.append(out[-1] @ factor)
     return np.stack(out, axis=1) if prefixes else np.array(out[-1])
 
@@ -533,152 +439,3 @@ def numeric_rigid_inverse(T: np.ndarray) -> np.ndarray:
     out[..., :3, 3] = -(R @ T[..., :3, 3, None])[..., 0]
     out[..., 3, 3] = 1.0
     return out
-
-
-# --- one-off expressions at many points ----------------------------------------------------
-
-
-class EvaluationError(DHError, ValueError):
-    """An expression that has no numeric value: an unknown function, a symbol without
-    values, a constant that is not a real float (``zoo``, ``10**400``)."""
-
-
-_UNARY = {sp.sin: np.sin, sp.cos: np.cos, sp.tan: np.tan}
-_UNARY |= {sp.atan: np.arctan, sp.asin: np.arcsin, sp.acos: np.arccos}
-_CONSTANT = object()  # the walker's mark of a subtree without symbols
-
-
-def evaluate(
-    expr: sp.Basic,
-    env: Mapping[sp.Basic, np.ndarray | float],
-    size: int,
-    memo: dict[object, np.ndarray] | None = None,
-) -> np.ndarray:
-    """Values of ``expr`` at ``size`` points (``(size,)``); ``env`` maps each symbol to its values.
-
-    A tree walker (no code generation, no ``lambdify``): each node is one numpy
-    operation over all points, shared subtrees are computed once, and every subtree
-    without symbols is one constant evaluated exactly by :func:`to_float` (huge
-    integers, nested roots). Non-finite results (division by zero, overflow at a
-    point) come out as ``nan``/``inf``; an expression without a value raises
-    :class:`EvaluationError`. ``memo`` (subtree → values) may be shared by calls with
-    the same ``env`` (the entries of one matrix).
-
-    >>> x = sp.Symbol("x")
-    >>> evaluate(sp.cos(x) ** 2 + sp.sin(x) ** 2, {x: np.array([0.3, 1.2])}, 2)
-    array([1., 1.])
-    >>> evaluate(x * sp.sqrt(sp.Integer(10) ** 40 + 1) / 10**20, {x: np.array([2.0])}, 1)
-    array([2.])
-    """
-    memo = {} if memo is None else memo
-    try:
-        with np.errstate(all="ignore"):
-            out = _walk(expr, env, memo)
-            if out is _CONSTANT:
-                out = _constant(expr, memo)
-    except (OverflowError, ZeroDivisionError) as err:  # e.g. x**(10**400)
-        raise EvaluationError(f"cannot evaluate numerically ({type(err).__name__})") from None
-    return _points(out, size)
-
-
-def evaluate_many(
-    exprs: Sequence[sp.Basic],
-    env: Mapping[sp.Basic, np.ndarray | float],
-    size: int,
-    memo: dict[object, np.ndarray] | None = None,
-) -> np.ndarray:
-    """Values of several expressions at ``size`` points: shape ``(len(exprs), size)``.
-
-    One walk over all of them (:func:`evaluate`'s rules), their shared subtrees computed
-    once: the entries of a matrix, the factors of a word.  The first expression without
-    a value raises :class:`EvaluationError`.
-
-    >>> x = sp.Symbol("x")
-    >>> evaluate_many([sp.cos(x), 2 * sp.cos(x), sp.pi / 2], {x: np.array([0.0, np.pi])}, 2)
-    array([[ 1.        , -1.        ],
-           [ 2.        , -2.        ],
-           [ 1.57079633,  1.57079633]])
-    """
-    memo = {} if memo is None else memo
-    out = np.empty((len(exprs), size))
-    try:
-        with np.errstate(all="ignore"):
-            for k, expr in enumerate(exprs):
-                val = _walk(expr, env, memo)
-                out[k] = _points(_constant(expr, memo) if val is _CONSTANT else val, size)
-    except (OverflowError, ZeroDivisionError) as err:  # e.g. x**(10**400)
-        raise EvaluationError(f"cannot evaluate numerically ({type(err).__name__})") from None
-    return out
-
-
-def _points(value: object, size: int) -> np.ndarray:
-    """A walker's result as a fresh float array of ``size`` points (a constant repeated)."""
-    points: np.ndarray = np.broadcast_to(np.asarray(value, dtype=float), (size,)).copy()
-    return points
-
-
-def _constant(e: sp.Basic, memo: dict[object, np.ndarray]) -> np.ndarray:
-    key = ("constant", e)
-    hit = memo.get(key)
-    if hit is None:
-        try:
-            hit = memo[key] = np.asarray(to_float(e))
-        except DHError as err:
-            raise EvaluationError(err.message) from None
-    return hit
-
-
-def _walk(
-    e: sp.Basic, env: Mapping[sp.Basic, np.ndarray | float], memo: dict[object, np.ndarray]
-) -> Any:
-    """Values of ``e`` at every point, or :data:`_CONSTANT` for a subtree without symbols.
-
-    (``Any``: an ``np.ndarray`` or the ``_CONSTANT`` mark, told apart by ``is``.)
-    """
-    hit = memo.get(e)
-    if hit is not None:
-        return hit
-    if e.is_Symbol:
-        if e not in env:
-            raise EvaluationError(f"no value for symbol {e}")
-        memo[e] = val = np.asarray(env[e], dtype=float)
-        return val
-    if not e.args:  # a number, pi, I, zoo, ...
-        return _CONSTANT
-    parts = [_walk(a, env, memo) for a in e.args]
-    if all(p is _CONSTANT for p in parts):
-        return _CONSTANT
-    if e.is_Pow and parts[1] is _CONSTANT and e.exp.is_Integer:
-        base, k = parts[0], int(e.exp)
-        val = base**k if k >= 0 else 1.0 / base ** (-k)
-    elif e.is_Pow and parts[1] is _CONSTANT and e.exp == sp.S.Half:
-        val = np.sqrt(parts[0])
-    else:
-        args = [_constant(a, memo) if p is _CONSTANT else p for a, p in zip(e.args, parts)]
-        val = _apply(e, args)
-    memo[e] = val
-    return val
-
-
-def _apply(e: sp.Basic, args: list[np.ndarray]) -> np.ndarray:
-    val: np.ndarray
-    if e.is_Add:
-        val = args[0]
-        for a in args[1:]:
-            val = val + a
-        return val
-    if e.is_Mul:
-        val = args[0]
-        for a in args[1:]:
-            val = val * a
-        return val
-    if e.is_Pow:
-        val = np.power(args[0], args[1])
-        return val
-    if type(e) in _UNARY:
-        val = _UNARY[type(e)](args[0])
-        return val
-    if isinstance(e, sp.atan2):
-        val = np.arctan2(args[0], args[1])
-        return val
-    raise EvaluationError(f"cannot evaluate {type(e).__name__} numerically")

@@ -126,7 +126,7 @@ class Pose(_Matrix):
         if isinstance(matrix, sp.MatrixBase):
             plain = _Matrix(matrix)
         else:  # rows of numbers or sympy objects; text is refused, never sympified
-            from .numeric import as_basic
+            from .constants import as_basic
 
             plain = _Matrix([[as_basic(x) for x in row] for row in matrix])
         if plain.shape != (4, 4):

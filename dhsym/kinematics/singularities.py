@@ -467,7 +467,7 @@ def singularities(robot: KinematicChain) -> Singularities:
     if n > 6:
         raise StructureError(
             f"{robot.name or 'this arm'} has {n} joints: a redundant arm's manipulability is "
-            "not factored here; evaluate sqrt(det(J Jᵀ)) from robot.jacobian(q) instead"
+            "not factored here; evaluate sqrt(det(J Jᵀ)) from robot.jacob0(q) instead"
         )
     dec, geo = _structure(robot)
     if dec is not None and len(dec.wrist) == 3:
@@ -510,7 +510,7 @@ def singularities(robot: KinematicChain) -> Singularities:
         raise StructureError(
             f"{robot.name or 'this arm'}: det(J Jᵀ) is a sum of {count} squared minors, more "
             f"than the {_MAX_MINORS} factored here; evaluate sqrt(det(J Jᵀ)) from "
-            "robot.jacobian(q) instead"
+            "robot.jacob0(q) instead"
         )
     minors = [
         factored_det(wide.extract(list(range(wide.rows)), list(cols)))

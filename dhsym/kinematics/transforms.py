@@ -32,7 +32,7 @@ import sympy as sp
 
 from dhsym.model.table import Convention, DHRow, DHTable, Elementary
 
-from .numeric import as_basic, to_float
+from .constants import as_basic, to_float
 
 __all__ = [
     "Rx",

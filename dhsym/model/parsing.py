@@ -23,7 +23,7 @@ from __future__ import annotations
 import keyword
 import math
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any, NamedTuple
@@ -34,6 +34,7 @@ from dhsym.errors import DHError, ParseError
 
 __all__ = [
     "DEFAULT_LIMITS",
+    "REAL",
     "ParseLimits",
     "check_count",
     "normalize_name",
@@ -137,6 +138,11 @@ def numeral_problem(text: str, limits: ParseLimits = DEFAULT_LIMITS) -> tuple[st
     return None
 
 
+#: The assumptions of every symbol dhsym makes (joint variables, lengths, the names of a
+#: derivation's steps and of generated code): real. ``sympy.Symbol(name, **REAL)``.
+REAL: Mapping[str, bool] = MappingProxyType({"real": True})
+
+
 def normalize_name(name: str) -> str:
     """Spell Greek letters in ``name`` as ASCII names; other characters are kept.
 
@@ -161,7 +167,7 @@ def symbol(name: str) -> sympy.Symbol:
     norm = normalize_name(name) if isinstance(name, str) else ""
     if problem := _name_problem(norm):
         raise ParseError(f"{problem[0]} {name!r}: {problem[1]}")
-    return sympy.Symbol(norm, real=True)
+    return sympy.Symbol(norm, **REAL)
 
 
 def _name_problem(name: str) -> tuple[str, str] | None:

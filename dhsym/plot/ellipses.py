@@ -62,7 +62,7 @@ def velocity_ellipse(
         dim = 2 if is_planar(robot, qv) else 3
     if dim not in (2, 3):
         raise DHError(f"the velocity ellipse is drawn in 2 or 3 dimensions, not {dim}")
-    J = np.asarray(robot.jacobian(qv), dtype=float)[:dim]
+    J = robot.jacob0(qv)[:dim]
     U, sv, _ = np.linalg.svd(J)
     axes = np.zeros(dim)
     axes[: len(sv)] = sv[:dim]

@@ -330,3 +330,14 @@ def test_shapes_follow_fk():
     assert robot.coriolis(np.zeros((4, 2)), np.ones((4, 2)), values=values).shape == (4, 2, 2)
     with pytest.raises(dhsym.DHError, match="no numeric value"):
         robot.rne([0, 0], [0, 0], [0, 0])
+
+
+def test_batches_longer_than_a_chunk_equal_their_states():
+    from dhsym.kinematics.numeric import CHUNK
+
+    robot = arm("standard")
+    rng = np.random.default_rng(6)
+    Q, V, A = (rng.uniform(-2, 2, (CHUNK + 3, 4)) for _ in range(3))
+    tau = robot.rne(Q, V, A)
+    for k in (0, CHUNK - 1, CHUNK, CHUNK + 2):
+        np.testing.assert_allclose(tau[k], robot.rne(Q[k], V[k], A[k]), rtol=1e-12, atol=1e-12)

@@ -85,7 +85,7 @@ def _compare(robot, q, poses, result, ik: bool) -> None:
     for row, F in zip(q, fks):
         assert np.abs(F - robot.fk(row)).max() <= 1e-12
     for row, J in zip(q, jacs):
-        assert np.abs(J - robot.jacobian(row)).max() <= 1e-12
+        assert np.abs(J - robot.jacob0(row)).max() <= 1e-12
     if ik:
         revolute = np.array([r.joint.value == "R" for r in robot.table.rows if r.variable])
         for T, Q in zip(poses, iks):

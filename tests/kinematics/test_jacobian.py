@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 import dhsym
 from dhsym.errors import DHError
 from dhsym.kinematics.jacobian import (
+    AnalyticJacobian,
     Jacobian,
     analytic_jacobian,
     analytic_jacobian_function,
@@ -137,8 +138,8 @@ def test_prismatic_column_is_the_axis() -> None:
 @given(st.lists(st.floats(-3.0, 3.0), min_size=6, max_size=6))
 def test_tool_frame_jacobian_is_the_base_one_rotated(q: list[float]) -> None:
     robot = _robot("puma560")
-    J0 = robot.jacobian(q)
-    Jt = robot.jacobian(q, frame="tool")
+    J0 = robot.jacob0(q)
+    Jt = robot.jacobe(q)
     R = robot.fk(q)[:3, :3]
     assert np.allclose(Jt[:3], R.T @ J0[:3], atol=1e-12)
     assert np.allclose(Jt[3:], R.T @ J0[3:], atol=1e-12)
@@ -147,11 +148,33 @@ def test_tool_frame_jacobian_is_the_base_one_rotated(q: list[float]) -> None:
 def test_batches_and_shapes() -> None:
     robot = _robot("puma560")
     qs = _random_q(robot, 7, seed=3)
-    batch = robot.jacobian(qs)
+    batch = robot.jacob0(qs)
     assert batch.shape == (7, 6, 6)
-    assert robot.jacobian(qs[2]).shape == (6, 6)
-    assert np.array_equal(batch[2], robot.jacobian(qs[2]))
+    assert robot.jacob0(qs[2]).shape == (6, 6)
+    assert np.array_equal(batch[2], robot.jacob0(qs[2]))
+    assert robot.jacobe(qs).shape == (7, 6, 6)
+
+
+def test_exact_and_numbers_have_their_own_names() -> None:
+    robot = _robot("puma560")
     assert isinstance(robot.jacobian(), Jacobian)
+    assert robot.jacobian(frame="tool").frame == 6
+    A = robot.analytic_jacobian("rpy", frame="tool")
+    assert isinstance(A, AnalyticJacobian) and A.euler == "rpy" and A.geometric.frame == 6
+    with pytest.raises(DHError, match="analytic_jacobian"):
+        robot.jacobian(euler="zyz")  # type: ignore[call-overload]  # the exact one has no euler
+
+
+def test_jacobian_of_q_is_an_alias_of_the_numbers() -> None:
+    robot = _robot("puma560")
+    qs = _random_q(robot, 4, seed=9)
+    assert np.array_equal(robot.jacobian(qs), robot.jacob0(qs))
+    assert np.array_equal(robot.jacobian(qs, frame="tool"), robot.jacobe(qs))
+    assert np.array_equal(robot.jacobian(qs, euler="rpy"), robot.jacob0(qs, euler="rpy"))
+    assert np.array_equal(robot.jacobian(qs, frame=3), jacobian_function(robot, 3)(qs))
+    values = {"a2": 0.5}
+    assert np.array_equal(robot.jacobian(qs, values=values), robot.jacob0(qs, values=values))
+    assert not np.allclose(robot.jacob0(qs, values=values), robot.jacob0(qs))
 
 
 def test_frames_are_checked() -> None:
@@ -197,7 +220,7 @@ def test_analytic_jacobian_is_the_derivative_of_the_euler_angles(euler: str) -> 
             a, b = euler_angles(fk(q + dq), euler), euler_angles(fk(q - dq), euler)
             num[:, i] = (np.remainder(a - b + np.pi, 2 * np.pi) - np.pi) / 2e-6
         assert np.allclose(JA(q)[3:], num, atol=1e-6)
-        assert np.allclose(JA(q)[:3], robot.jacobian(q)[:3])
+        assert np.allclose(JA(q)[:3], robot.jacob0(q)[:3])
 
 
 def test_analytic_jacobian_symbolic_form() -> None:
@@ -212,8 +235,10 @@ def test_analytic_jacobian_symbolic_form() -> None:
 def test_robot_jacobian_with_euler_is_the_analytic_one() -> None:
     robot = _robot("puma560")
     q = _random_q(robot, 3, seed=8)
-    assert np.allclose(robot.jacobian(q, euler="zyz"), analytic_jacobian_function(robot, "zyz")(q))
-    assert robot.jacobian(euler="rpy").euler == "rpy"
+    assert np.allclose(robot.jacob0(q, euler="zyz"), analytic_jacobian_function(robot, "zyz")(q))
+    assert robot.analytic_jacobian("rpy").euler == "rpy"
+    with pytest.raises(DHError, match="base frame"):
+        robot.jacobian(q, frame="tool", euler="zyz")
 
 
 def test_base_and_tool_transforms_are_part_of_the_jacobian() -> None:
@@ -226,7 +251,7 @@ def test_base_and_tool_transforms_are_part_of_the_jacobian() -> None:
     tool = (Elementary("T", "z", sp.Rational(1, 10)), Elementary("R", "y", sp.pi / 2))
     robot = dhsym.Robot(replace(table, base=base, tool=tool))
     qs = _random_q(robot, 10, seed=4)
-    J = robot.jacobian(qs)
+    J = robot.jacob0(qs)
     assert max(np.abs(_finite_difference(robot, q) - Jk).max() for q, Jk in zip(qs, J)) < 1e-7
     assert geometric_jacobian(robot).frame == "W"
     assert geometric_jacobian(robot).point == "tool"

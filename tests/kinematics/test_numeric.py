@@ -64,23 +64,7 @@ def test_constant_entries_broadcast_in_batches():
     np.testing.assert_array_equal(out, np.broadcast_to(np.eye(4), (3, 4, 4)))
 
 
-# --- the one evaluator: floats only, safe for huge integers -----------------------------------
-
-
-def test_to_float_is_safe_for_huge_integers_nested_roots_and_pi():
-    from dhsym.kinematics.numeric import to_float
-
-    big = sp.Integer(10) ** 30 + 7
-    assert to_float(sp.sqrt(big**2 + 1) / big) == 1.0
-    assert to_float(sp.sqrt(2 + sp.sqrt(3)) - (sp.sqrt(6) + sp.sqrt(2)) / 2) == pytest.approx(0)
-    assert to_float(sp.Rational(2**70 + 1, 2**70)) == 1.0
-    assert to_float(sp.pi / 2) == np.pi / 2
-    with pytest.raises(dhsym.DHError, match="too large"):
-        to_float(sp.Integer(10) ** 400)
-    with pytest.raises(dhsym.DHError, match="not a real number"):
-        to_float(sp.sqrt(-2))
-    with pytest.raises(dhsym.DHError, match="no numeric value for x"):
-        to_float(sp.Symbol("x") + 1)
+# --- compiled code: floats only, evaluated in chunks ---------------------------------------
 
 
 def test_compiled_code_sees_floats_only():
@@ -148,27 +132,43 @@ def test_compile_word_multiplies_elementaries_numerically():
     np.testing.assert_array_equal(prefixes[:, 0], np.broadcast_to(np.eye(4), (7, 4, 4)))
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(table=dh_tables(max_rows=3), data=st.data())
-def test_evaluate_many_agrees_with_evaluate_entry_by_entry(table, data):
-    """The matrix walk (one memo, all entries) gives each entry's own walk, to the bit."""
-    from dhsym.kinematics.numeric import evaluate, evaluate_many
+def test_chunked_evaluation_equals_one_pass_at_every_chunk_size():
+    from dhsym.kinematics.numeric import compile_exprs, evaluate_chunked
 
-    robot = dhsym.Robot(table)
-    M = robot.transform(0, table.n).matrix
-    syms = sorted(M.free_symbols, key=sp.default_sort_key)
-    size = data.draw(st.integers(1, 8))
-    env = {s: np.asarray(data.draw(arrays(float, size, elements=st.floats(-3, 3)))) for s in syms}
-    many = evaluate_many(list(M), env, size)
-    one = np.array([evaluate(e, env, size) for e in M])
-    assert many.shape == (16, size)
-    np.testing.assert_array_equal(many, one)
+    x, y = sp.symbols("x y", real=True)
+    f = compile_exprs([x * y, sp.cos(x) - y, sp.Integer(3)], (x, y))
+    rng = np.random.default_rng(2)
+    X, Y = rng.uniform(-2, 2, (11, 1)), rng.uniform(-2, 2, (11, 1))
+    whole = evaluate_chunked(f, X, Y, out=np.empty((11, 3)), chunk=11)
+    np.testing.assert_array_equal(whole[:, 2], 3.0)  # a constant is broadcast
+    np.testing.assert_allclose(whole[:, 0], (X * Y)[:, 0], rtol=0, atol=0)
+    for chunk in (1, 2, 4, 10, 12):
+        np.testing.assert_array_equal(
+            evaluate_chunked(f, X, Y, out=np.empty((11, 3)), chunk=chunk), whole
+        )
+    assert evaluate_chunked(f, X[:0], Y[:0], out=np.empty((0, 3))).shape == (0, 3)
+    with pytest.raises(ValueError, match="11 points expected"):
+        evaluate_chunked(f, X, Y[:5], out=np.empty((11, 3)))
 
 
-def test_rational_multiples_of_pi_round_as_the_30_digit_value():
-    from dhsym.kinematics.numeric import to_float
+def test_chunked_evaluation_fills_a_view_and_drops_negative_zeros():
+    from dhsym.kinematics.numeric import compile_exprs, evaluate_chunked
 
-    rng = np.random.default_rng(7)
-    for p, q in rng.integers(1, 721, size=(200, 2)):
-        e = sp.Rational(int(p) - 360, int(q)) * sp.pi
-        assert to_float(e) == float(sp.N(e, 30)), e
+    x = sp.Symbol("x", real=True)
+    f = compile_exprs([-x, 2 * x], (x,))
+    poses = np.full((5, 3), 7.0)
+    out = evaluate_chunked(f, np.zeros((5, 1)), out=poses[:, :2], chunk=2, plus_zero=True)
+    assert out.base is poses and not np.signbit(poses[:, :2]).any()
+    np.testing.assert_array_equal(poses[:, 2], 7.0)  # the rest of the rows untouched
+    assert np.signbit(evaluate_chunked(f, np.zeros((5, 1)), out=np.empty((5, 2)))[:, 0]).all()
+
+
+def test_batches_longer_than_a_chunk_equal_their_configurations():
+    from dhsym.kinematics.numeric import CHUNK
+
+    robot = dhsym.load("stanford")
+    Q = np.random.default_rng(4).uniform(-1, 1, (CHUNK + 3, robot.n))
+    poses, jacobians = robot.fk(Q), robot.jacob0(Q)
+    for k in (0, CHUNK - 1, CHUNK, CHUNK + 2):
+        np.testing.assert_allclose(poses[k], robot.fk(Q[k]), rtol=0, atol=1e-15)
+        np.testing.assert_array_equal(jacobians[k], robot.jacob0(Q[k]))
