@@ -89,9 +89,13 @@ class Pose(_Matrix):
         :class:`~dhsym.kinematics.chain.KinematicChain`): products and inverses are then
         rebuilt in the same compact form as ``robot.transform``.
 
+    Notes
+    -----
     ``rotation``, ``position`` and the n, s, a columns (normal, sliding, approach)
     read the matrix; ``matrix`` is the plain ``ImmutableMatrix``.
 
+    Examples
+    --------
     >>> import dhsym, sympy as sp
     >>> robot = dhsym.load("planar2r")
     >>> A1, A2 = robot.link_matrix(1), robot.link_matrix(2)
