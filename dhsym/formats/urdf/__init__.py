@@ -1,10 +1,10 @@
 """URDF in and out: a robot description's joint chain as a DH table, and a DH table as a URDF.
 
-One idea a module, imported one way (``model`` ← ``read`` ← ``to_dh``; ``write`` apart):
+One idea a module, imported one way (``description`` ← ``read`` ← ``to_dh``; ``write`` apart):
 
-- :mod:`.model`: the URDF as frozen values (:class:`UrdfModel`, :class:`UrdfJoint`,
-  :class:`Origin`, :class:`Inertial`), numbers exactly as written, and the tree's questions
-  (root, leaves, the chain from one link to another);
+- :mod:`.description`: the robot description as frozen values (:class:`UrdfModel`,
+  :class:`UrdfJoint`, :class:`Origin`, :class:`Inertial`), numbers exactly as written, and
+  the tree's questions (root, leaves, the chain from one link to another);
 - :mod:`.read`: :func:`read_urdf`, a file or text through the safe XML reader
   (:mod:`dhsym.formats.xmlsafe`: no DTD, no entities, meshes never opened) into the model;
 - :mod:`.to_dh`: :func:`import_urdf` and :func:`chain_from_urdf`, the chain's joint axes at
@@ -33,7 +33,7 @@ Examples
 True
 """
 
-from .model import Inertial, Origin, UrdfJoint, UrdfModel
+from .description import Inertial, Origin, UrdfJoint, UrdfModel
 from .read import MAX_LINKS, is_urdf_source, read_urdf
 from .to_dh import MAX_CHAIN, UrdfImport, chain_from_urdf, import_urdf, table_yaml
 from .write import write_urdf

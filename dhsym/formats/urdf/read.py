@@ -29,7 +29,16 @@ from dhsym.model.angles import AngleSnap, Snapped, snap_angle
 from dhsym.model.parsing import numeral_problem
 
 from ..xmlsafe import read_xml, read_xml_file
-from .model import JOINT_KINDS, MOVING_KINDS, Expr, Inertial, Origin, Triple, UrdfJoint, UrdfModel
+from .description import (
+    JOINT_KINDS,
+    MOVING_KINDS,
+    Expr,
+    Inertial,
+    Origin,
+    Triple,
+    UrdfJoint,
+    UrdfModel,
+)
 
 __all__ = ["MAX_LINKS", "is_urdf_source", "read_urdf"]
 

@@ -48,7 +48,7 @@ from dhsym.model.kinds import Convention
 from dhsym.model.table import DHTable
 from dhsym.model.tablefile import dump_table
 
-from .model import MOVING_KINDS, Expr, Inertial, UrdfJoint, UrdfModel
+from .description import MOVING_KINDS, Expr, Inertial, UrdfJoint, UrdfModel
 from .read import read_urdf
 
 if TYPE_CHECKING:

@@ -7,7 +7,7 @@ import pytest
 import sympy as sp
 
 from dhsym.errors import FormatError
-from dhsym.formats.urdf.model import Origin, UrdfJoint, UrdfModel
+from dhsym.formats.urdf.description import Origin, UrdfJoint, UrdfModel
 
 
 def _model(*joints: tuple[str, str, str, str]) -> UrdfModel:
