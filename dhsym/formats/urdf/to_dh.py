@@ -234,8 +234,10 @@ def _dh_inertias(
 
     Every link below ``start`` joins the body of its nearest moving ancestor on the chain:
     links hung on by ``fixed`` joints (a hand, a flange, a tool-centre link) merge into the
-    link they hang on (masses add, centres of mass combine, the parallel-axis theorem moves
-    each inertia to the common centre). Links before the first moving joint form the base,
+    link they hang on (:meth:`~dhsym.model.inertia.LinkInertia.combine`: masses add, centres
+    of mass combine, the parallel-axis theorem moves each inertia to the common centre; the
+    sums are then expanded, and read as exact numbers within 1e-12 where measured angles put
+    floats in them). Links before the first moving joint form the base,
     which has no row; links behind a moving joint off the chain (fingers) are not on the
     chain. Both are named in the returned notes. Rotations stay exact where the ``rpy``
     angles are (snapped or rational multiples of π); measured angles use
