@@ -36,7 +36,7 @@ sys.path.insert(0, str(ROOT))
 from dhsym.errors import FormatError  # noqa: E402
 from dhsym.formats.urdf import import_urdf, read_urdf  # noqa: E402
 from dhsym.formats.xmlsafe import read_xml  # noqa: E402
-from tests.formats.test_urdf import urdf_pose  # noqa: E402
+from tests.formats.urdf.support import urdf_pose  # noqa: E402
 
 PANDA = ROOT / "tests" / "data" / "urdf" / "panda.urdf"
 TIP = "panda_hand"

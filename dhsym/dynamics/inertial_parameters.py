@@ -126,7 +126,7 @@ def standard_values(model: DynamicModel) -> dict[sp.Symbol, sp.Expr]:
     out: dict[sp.Symbol, sp.Expr] = {}
     for i, L in enumerate(model.links, start=1):
         r = Matrix(L.r)
-        Lo = L.I + L.m * ((r.T * r)[0, 0] * sp.eye(3) - r * r.T)
+        Lo = L.inertia_about((0, 0, 0))  # the parallel-axis theorem, to the link origin
         values = (
             Lo[0, 0], Lo[0, 1], Lo[0, 2], Lo[1, 1], Lo[1, 2], Lo[2, 2],
             L.m * r[0], L.m * r[1], L.m * r[2], L.m,

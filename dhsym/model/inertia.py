@@ -212,6 +212,70 @@ class LinkInertia:
                 field="I",
             )
 
+    @classmethod
+    def combine(cls, parts: Sequence[LinkInertia]) -> LinkInertia:
+        """One rigid body of several parts given in the same frame.
+
+        The masses add, the centre of mass is the mass-weighted mean of the parts' centres,
+        and each part's inertia moves from its own centre of mass to the common one by the
+        parallel-axis theorem (:meth:`inertia_about`); the moved inertias add.
+
+        Parameters
+        ----------
+        parts
+            The parts, each with its mass, centre of mass and inertia about it, all in the
+            axes of one frame. A drive (``Jm``, ``B``, ``Tc``) belongs to a joint, not to a
+            body: parts with one are refused.
+
+        Returns
+        -------
+        LinkInertia
+            The whole body, in the same frame, with no drive. Entries are exact and not
+            simplified (expand them as needed); a massless whole has its centre of mass at
+            the origin.
+
+        Examples
+        --------
+        Two unit point masses one unit either side of the origin on the x axis: mass 2,
+        centre of mass at the origin, inertia ``m d² = 1`` from each about the y and z axes.
+
+        >>> point = sp.zeros(3)
+        >>> both = LinkInertia.combine(
+        ...     [LinkInertia(1, (1, 0, 0), point), LinkInertia(1, (-1, 0, 0), point)]
+        ... )
+        >>> both.m, both.r, both.I.diagonal()
+        (2, (0, 0, 0), Matrix([[0, 2, 2]]))
+        """
+        for k, part in enumerate(parts, start=1):
+            if part.has_drive:
+                raise TableError(
+                    f"part {k} has a drive (motor inertia or friction): a drive belongs to a "
+                    "joint, combine the bodies without it",
+                    field="inertia",
+                )
+        m = sum((part.m for part in parts), sp.Integer(0))
+        if m == 0:
+            c = sp.zeros(3, 1)
+        else:
+            c = sum((part.m * sp.Matrix(part.r) for part in parts), sp.zeros(3, 1)) / m
+        total = sp.zeros(3)
+        for part in parts:
+            total += part.inertia_about(c)
+        return cls(m, (c[0], c[1], c[2]), sp.ImmutableMatrix(total))
+
+    def inertia_about(self, point: Sequence[object] | sp.MatrixBase) -> sp.ImmutableMatrix:
+        """The inertia about ``point`` (in link frame *i*, its axes), by the parallel-axis
+        theorem ``I + m (dᵀd E − d dᵀ)`` with ``d = r − point``.
+
+        >>> LinkInertia(2, (1, 0, 0), sp.diag(1, 1, 1)).inertia_about((0, 0, 0))
+        Matrix([
+        [1, 0, 0],
+        [0, 3, 0],
+        [0, 0, 3]])
+        """
+        d = sp.Matrix(self.r) - sp.Matrix(point)
+        return sp.ImmutableMatrix(self.I + self.m * ((d.T * d)[0, 0] * sp.eye(3) - d * d.T))
+
     def parameters(self) -> tuple[Expr, ...]:
         """The standard 10 parameters as given here: ``m, r, I`` (about the centre of mass).
 

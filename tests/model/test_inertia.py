@@ -97,3 +97,52 @@ def test_textbook_set_and_substitution():
     assert L.m == sp.Symbol("m3", real=True) and L.I.is_symmetric()
     num = L.subs({s: 1 for s in L.free_symbols})
     assert num.m == 1 and num.I[0, 1] == 1
+
+
+# --- one body of several: the parallel-axis theorem ------------------------------------------
+
+
+def test_two_point_masses_combine_as_computed_by_hand():
+    """1 kg at (1, 0, 0) and 3 kg at (0, 2, 0): mass 4, centre (1/4, 3/2, 0); by hand, the
+    inertia about the origin, Σ m (|p|² E − p pᵀ) = diag(12, 1, 13), less the whole mass's
+    about the origin, 4 (|c|² E − c cᵀ), is [[3, 3/2, 0], [3/2, 3/4, 0], [0, 0, 15/4]]."""
+    zero = sp.zeros(3)
+    both = LinkInertia.combine([LinkInertia(1, (1, 0, 0), zero), LinkInertia(3, (0, 2, 0), zero)])
+    half = sp.Rational(1, 2)
+    assert both.m == 4
+    assert both.r == (sp.Rational(1, 4), 3 * half, 0)
+    assert both.I == sp.Matrix(
+        [[3, 3 * half, 0], [3 * half, sp.Rational(3, 4), 0], [0, 0, 15 * half / 2]]
+    )
+    assert both.I.is_symmetric() and not both.has_drive
+    both.check()  # a rigid body: positive semi-definite, the triangle inequality holds
+
+
+def test_own_inertias_add_and_symbols_stay_exact():
+    m, l = sp.symbols("m l", positive=True)  # noqa: E741 (a length)
+    rod = LinkInertia(m, (l, 0, 0), sp.diag(0, m * l**2 / 12, m * l**2 / 12))
+    hub = LinkInertia(m, (-l, 0, 0), sp.diag(1, 2, 3))
+    whole = LinkInertia.combine([rod, hub])
+    assert whole.m == 2 * m and whole.r == (0, 0, 0)
+    assert sp.expand(
+        whole.I - sp.diag(1, 2 + m * l**2 / 12 + 2 * m * l**2, 3 + m * l**2 / 12 + 2 * m * l**2)
+    ) == sp.zeros(3)
+
+
+def test_one_part_is_itself_and_massless_parts_sit_at_the_origin():
+    L = LinkInertia(2, (1, 2, 3), sp.diag(1, 2, 3))
+    assert LinkInertia.combine([L]) == L
+    empty = LinkInertia.combine([])
+    assert empty.m == 0 and empty.r == (0, 0, 0) and empty.I == sp.zeros(3)
+
+
+def test_inertia_about_the_origin_is_the_parallel_axis_theorem():
+    L = LinkInertia(2, (0, 0, 3), sp.diag(1, 1, 1))
+    assert L.inertia_about((0, 0, 0)) == sp.diag(19, 19, 1)  # 1 + 2·3² about x and y
+    assert L.inertia_about(L.r) == L.I
+
+
+def test_a_part_with_a_drive_is_refused():
+    motor = LinkInertia(1, (0, 0, 0), sp.zeros(3), Jm=sp.Rational(1, 1000))
+    with pytest.raises(TableError, match="part 2 has a drive"):
+        LinkInertia.combine([LinkInertia(1, (0, 0, 0), sp.zeros(3)), motor])

@@ -1,77 +1,20 @@
-"""URDF in and out: real robot descriptions against an independent chain product."""
+"""A URDF chain as a DH table: real robot descriptions against an independent chain product,
+inertials against pinocchio, and chains that a DH table cannot hold."""
 
 from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
-from pathlib import Path
 
 import numpy as np
 import pytest
 import sympy as sp
 
 import dhsym
-from dhsym.errors import FormatError
-from dhsym.formats.urdf import chain_from_urdf, import_urdf, write_urdf
+from dhsym.errors import FormatError, GeometryError
+from dhsym.formats.urdf.to_dh import chain_from_urdf, import_urdf
 
-DATA = Path(__file__).resolve().parents[1] / "data" / "urdf"
-
-# (file, tip, number of moving joints): a UR, a 7-joint arm, a 6-joint arm, an education arm
-ROBOTS = [
-    ("ur5_robot.urdf", "tool0", 6),
-    ("panda.urdf", "panda_hand", 7),
-    ("kinova.urdf", "j2s6s200_end_effector", 6),
-    ("so100.urdf", "gripper", 5),
-]
-
-
-# --- the independent reference: numpy, straight from the XML -------------------------------
-
-
-def _rot(axis: np.ndarray, angle: float) -> np.ndarray:
-    """Rodrigues' formula."""
-    u = axis / np.linalg.norm(axis)
-    K = np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
-    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
-
-
-def _origin(joint: ET.Element) -> np.ndarray:
-    el = joint.find("origin")
-    xyz = [0.0] * 3 if el is None else [float(v) for v in el.get("xyz", "0 0 0").split()]
-    r, p, y = [0.0] * 3 if el is None else [float(v) for v in el.get("rpy", "0 0 0").split()]
-    ex, ey, ez = np.eye(3)
-    T = np.eye(4)
-    T[:3, :3] = _rot(ez, y) @ _rot(ey, p) @ _rot(ex, r)
-    T[:3, 3] = xyz
-    return T
-
-
-def urdf_pose(path: Path, tip: str, q: np.ndarray) -> np.ndarray:
-    """Root link -> tip link at joint values q (moving joints in chain order)."""
-    root = ET.parse(path).getroot()
-    joints = {j.find("child").get("link"): j for j in root.findall("joint")}
-    chain = []
-    link = tip
-    while link in joints:
-        chain.append(joints[link])
-        link = joints[link].find("parent").get("link")
-    T = np.eye(4)
-    k = 0
-    for j in reversed(chain):
-        T = T @ _origin(j)
-        if j.get("type") in ("revolute", "continuous", "prismatic"):
-            axis_el = j.find("axis")
-            text = axis_el.get("xyz") if axis_el is not None else "1 0 0"
-            axis = np.array([float(v) for v in text.split()])
-            M = np.eye(4)
-            if j.get("type") == "prismatic":
-                M[:3, 3] = q[k] * axis / np.linalg.norm(axis)
-            else:
-                M[:3, :3] = _rot(axis, q[k])
-            T = T @ M
-            k += 1
-    return T
-
+from .support import DATA, ROBOTS, joint, long_chain, urdf, urdf_pose
 
 # --- real robots ------------------------------------------------------------------------------
 
@@ -84,15 +27,6 @@ def test_fk_equals_the_urdf_chain(file: str, tip: str, n: int, convention: str) 
     rng = np.random.default_rng(7)
     for q in [np.zeros(n), *rng.uniform(-math.pi, math.pi, (6, n))]:
         assert np.abs(robot.fk(q) - urdf_pose(DATA / file, tip, q)).max() < 1e-9
-
-
-@pytest.mark.parametrize(("file", "tip", "n"), ROBOTS)
-def test_round_trip_keeps_fk(file: str, tip: str, n: int) -> None:
-    robot = chain_from_urdf(DATA / file, tip=tip)
-    for convention in ("standard", "modified"):
-        again = chain_from_urdf(write_urdf(dhsym.convert(robot.table, convention)), tip="tool")
-        q = np.random.default_rng(3).uniform(-math.pi, math.pi, (5, n))
-        assert np.abs(again.fk(q) - robot.fk(q)).max() < 1e-9
 
 
 def test_ur5_is_the_ur_dh_table_with_exact_decimals() -> None:
@@ -149,50 +83,6 @@ def test_snap_angles_false_keeps_the_decimals() -> None:
     assert not any("angles" in w for w in imp.table.warnings)
     snapped = import_urdf(DATA / "ur5_robot.urdf", tip="tool0")
     assert any("angles" in w for w in snapped.table.warnings)
-
-
-def test_written_urdf_is_valid_for_yourdfpy() -> None:
-    import yourdfpy  # in the test extra: a missing validator is a failure, not a skip
-
-    robot = chain_from_urdf(DATA / "panda.urdf", tip="panda_hand")
-    for convention in ("standard", "modified"):
-        text = write_urdf(dhsym.convert(robot.table, convention))
-        import io
-
-        model = yourdfpy.URDF.load(io.StringIO(text), load_meshes=False, build_scene_graph=True)
-        assert model.validate()
-        q = np.random.default_rng(1).uniform(-1, 1, 7)
-        names = [f"joint{k}" for k in range(1, 8)]
-        model.update_cfg(dict(zip(names, q, strict=True)))
-        T = model.get_transform("tool", model.base_link)
-        assert np.abs(T - robot.fk(q)).max() < 1e-9
-        links = {link.name for link in model.robot.links}
-        assert {f"link{k}" for k in range(8)} <= links
-
-
-def test_robot_to_urdf_method_and_visuals() -> None:
-    r = dhsym.load("puma560")
-    out = dhsym.Robot(r.table.with_values({s: 0.3 for s in r.table.constants})).to_urdf()
-    assert out.count("<cylinder") == 6 and "<box" in out
-    with pytest.raises(dhsym.DHError, match="symbolic lengths a1, a2, a3"):
-        dhsym.Robot(dhsym.planar_chain(3)).to_urdf()
-
-
-def test_fixed_rows_and_flipped_joints_are_written() -> None:
-    from dhsym.model.table import DHRow, DHTable
-
-    rows = [
-        DHRow.revolute("pi/2 - q1", d=0.3, a=0.2, alpha="pi/2"),
-        DHRow.fixed(theta="pi/6", d=0.1),
-        DHRow.prismatic("0.1 - d3", a=0.1, alpha="-pi/2"),
-    ]
-    for convention in ("standard", "modified"):
-        robot = dhsym.Robot(DHTable.from_rows(rows, convention=convention, name="odd"))
-        text = robot.to_urdf()
-        assert '<axis xyz="0 0 -1"/>' in text and 'name="joint2" type="fixed"' in text
-        again = chain_from_urdf(text, tip="tool")
-        for q in ([0.3, 0.2], [-1.0, 0.6]):
-            assert np.abs(again.fk(q) - robot.fk(q)).max() < 1e-12
 
 
 # --- inertials: the DH table's dynamics against pinocchio on the URDF itself -------------------
@@ -255,28 +145,35 @@ def test_inertials_stay_exact_and_drops_are_named() -> None:
     assert any("panda_leftfinger" in w for w in panda.table.warnings)
 
 
-@pytest.mark.slow
-def test_written_inertials_come_back() -> None:
-    """Puma 560 with its published inertial parameters: the URDF holds m, r and I (not the
-    motor inertia, gearing or friction, which URDF has no place for)."""
-    from dataclasses import replace
+# --- chains a DH table cannot hold, or holds differently ------------------------------------
 
-    from dhsym.robot import Robot
 
-    table = dhsym.load("puma560").table.substituted()
-    rigid = replace(
-        table,
-        rows=tuple(
-            replace(row, inertia=replace(row.inertia, Jm=0, G=1, B=0, Tc=(0, 0)))
-            for row in table.rows
-        ),
-    )
-    text = write_urdf(rigid)
-    assert text.count("<inertial>") == 6 and '<mass value="17.4"/>' in text
-    again = dhsym.from_urdf(text, tip="tool")
-    assert again.table.rows[1].inertia.m == sp.Rational(87, 5)
-    robot = Robot(rigid)
-    rng = np.random.default_rng(3)
-    for _ in range(3):
-        q, qd, qdd = (rng.uniform(-1.5, 1.5, 6) for _ in range(3))
-        np.testing.assert_allclose(again.rne(q, qd, qdd), robot.rne(q, qd, qdd), atol=1e-9, rtol=0)
+def test_fixed_joint_axis_is_ignored() -> None:
+    text = urdf(joint("j", "a", "b") + joint("f", "b", "c", "fixed", '<axis xyz="0 0 0"/>'))
+    assert chain_from_urdf(text).table.n == 1
+
+
+@pytest.mark.parametrize("kind", ["floating", "planar"])
+def test_floating_and_planar_joints_are_refused(kind: str) -> None:
+    text = urdf(joint("free", "a", "b", kind) + joint("j", "b", "c"))
+    with pytest.raises(FormatError, match=f"<joint name='free'>: a {kind} joint"):
+        import_urdf(text)
+    assert import_urdf(text, base="b").table.n == 1  # below it, the chain is fine
+
+
+def test_coincident_revolute_axes_are_refused_with_the_file() -> None:
+    text = urdf(joint("j1", "a", "b") + joint("j2", "b", "c", body='<origin xyz="0 1 0"/>'))
+    same = urdf(joint("j1", "a", "b") + joint("j2", "b", "c"))
+    with pytest.raises(GeometryError, match="row 2: the axes of joints j1 and j2 coincide"):
+        import_urdf(same)
+    assert import_urdf(text).table.n == 2
+
+
+def test_no_moving_joint_is_refused() -> None:
+    with pytest.raises(FormatError, match="no revolute, continuous or prismatic joint"):
+        import_urdf(urdf(joint("j", "a", "b", "fixed"), "ab"))
+
+
+def test_long_chains_are_refused() -> None:
+    with pytest.raises(FormatError, match="has 1999 joints: at most 100"):
+        import_urdf(long_chain(2000))

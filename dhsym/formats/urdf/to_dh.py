@@ -1,0 +1,362 @@
+"""A URDF chain as a DH table: the joint axes at home through the lectures' frame assignment.
+
+:func:`import_urdf` follows the chain from the root link (or ``base``) to ``tip``, places
+each moving joint's axis at the home pose (every joint at zero) in the base link's
+coordinates, folds ``fixed`` joints into those placements, and runs the lectures'
+frame-assignment algorithm (:func:`~dhsym.geometry.frames.assign_frames`) on the axes,
+with the tip link's frame as the tool. The DH z axes point along the URDF axes and the
+variables are zero at the URDF zero, so q means the same in both: ``robot.fk(q)`` is the
+URDF chain's pose of the tip link in the base link for every q. ``revolute`` and
+``continuous`` joints become revolute rows, ``prismatic`` ones prismatic rows (``limit``
+becomes the row's limits); ``mimic``, ``floating`` and ``planar`` joints on the chain are
+refused. Each link's ``<inertial>`` becomes part of ``row.inertia`` of the DH link that
+moves it (links fixed below it merged by :meth:`~dhsym.model.inertia.LinkInertia.combine`),
+in DH frame k; the base's and off-chain links' inertials are left out with a warning.
+
+Angles in ``rpy`` that are no multiple of π/12 (``-1.8``) are measurements: their cosines
+are floats (as in the transform kernel), and positions that depend on them are read as
+the simplest exact number within 1e-12.
+
+Examples
+--------
+>>> imp = import_urdf('''<robot name="r"><link name="a"/><link name="b"/>
+...   <joint name="j" type="prismatic"><parent link="a"/><child link="b"/>
+...   <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/></joint></robot>''')
+>>> imp.table.rows[0], [j.name for j in imp.moving]
+(DHRow(P: theta=0, d=d1 + 1/10, a=0, alpha=0), ['j'])
+"""
+
+from __future__ import annotations
+
+import os
+import textwrap
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import sympy as sp
+
+from dhsym.errors import DHError, FormatError
+from dhsym.geometry.axes import JointAxis, Tool, exact_number
+from dhsym.geometry.frames import FrameAssignment, assign_frames
+from dhsym.kinematics.numeric import to_float
+from dhsym.kinematics.transforms import chain_word, plain_product, rigid_inverse
+from dhsym.model.angles import AngleSnap, snap_note
+from dhsym.model.inertia import LinkInertia
+from dhsym.model.kinds import Convention
+from dhsym.model.table import DHTable
+from dhsym.model.tablefile import dump_table
+
+from .description import MOVING_KINDS, Expr, Inertial, UrdfJoint, UrdfModel
+from .read import read_urdf
+
+if TYPE_CHECKING:
+    from dhsym.kinematics.chain import KinematicChain
+
+__all__ = ["MAX_CHAIN", "UrdfImport", "chain_from_urdf", "import_urdf", "table_yaml"]
+
+#: Most joints (fixed and moving) on the chain from base to tip; arms have 6 to 20.
+MAX_CHAIN = 100
+
+
+@dataclass(frozen=True)
+class UrdfImport:
+    """A URDF chain read as a DH table: the chain, the frame assignment, the table, inertials.
+
+    ``inertials`` are the links' ``<inertial>`` as written (in each URDF link's own
+    frame), from the base link to the tip link; the table's rows carry them converted
+    into the DH link frames (``row.inertia``, see :func:`import_urdf`).
+    """
+
+    model: UrdfModel
+    base: str
+    tip: str
+    joints: tuple[UrdfJoint, ...]
+    assignment: FrameAssignment
+    table: DHTable
+    inertials: tuple[tuple[str, Inertial], ...]
+
+    @property
+    def moving(self) -> tuple[UrdfJoint, ...]:
+        """The joints that became DH rows, in order."""
+        return tuple(j for j in self.joints if j.moving)
+
+    @property
+    def steps(self) -> list[str]:
+        """The frame-assignment sentences, one per choice."""
+        return self.assignment.step_texts
+
+    def chain(self, **kw: Any) -> KinematicChain:  # its keywords: compact, style
+        """A :class:`~dhsym.kinematics.chain.KinematicChain` of the table (``compact``,
+        ``style``)."""
+        from dhsym.kinematics.chain import KinematicChain
+
+        return KinematicChain(self.table, **kw)
+
+
+def import_urdf(
+    source: str | os.PathLike[str] | UrdfModel,
+    tip: str | None = None,
+    base: str | None = None,
+    convention: Convention | str = "standard",
+    *,
+    snap_angles: AngleSnap | bool | float | None = True,
+) -> UrdfImport:
+    """Read a URDF and derive the DH table of the chain from ``base`` (default: the root)
+    to ``tip`` (default: the one leaf link), with the frame-assignment sentences.
+
+    >>> imp = import_urdf('''<robot name="r"><link name="a"/><link name="b"/><link name="c"/>
+    ...   <joint name="j1" type="revolute"><parent link="a"/><child link="b"/>
+    ...     <axis xyz="0 0 -1"/></joint>
+    ...   <joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint></robot>''')
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.FormatError: field tip: the tree branches below link 'a': give the tip ... b ...
+    """
+    model = source if isinstance(source, UrdfModel) else read_urdf(source, snap_angles=snap_angles)
+    if not model.links:
+        raise FormatError("the robot has no links", file=model.file, field="<robot>")
+    start = base or model.root
+    if tip is None:
+        leaves = model.leaves(start)
+        if len(leaves) != 1:
+            below = model.below(start)
+            counts = [below[leaf] for leaf in leaves]
+            choices = ", ".join(
+                f"{leaf} ({c} moving joint{'s' if c != 1 else ''})"
+                for leaf, c in zip(leaves, counts, strict=True)
+            )
+            raise FormatError(
+                f"the tree branches below link {start!r}: give the tip link (tip=, --tip), one of "
+                f"{choices}",
+                file=model.file,
+                field="tip",
+            )
+        tip = leaves[0]
+    joints = model.chain(start, tip)
+    if len(joints) > MAX_CHAIN:
+        raise FormatError(
+            f"the chain from {start!r} to {tip!r} has {len(joints)} joints: at most {MAX_CHAIN} "
+            "are read (choose base= and tip= closer together)",
+            file=model.file,
+            field="tip",
+        )
+    moving = [j for j in joints if j.moving]
+    for j in joints:
+        if j.kind in ("floating", "planar"):
+            raise FormatError(
+                f"a {j.kind} joint has {'six' if j.kind == 'floating' else 'three'} degrees of "
+                "freedom and no single axis: a DH row describes one revolute or prismatic "
+                "joint; choose base= below it",
+                file=model.file,
+                field=j.where,
+            )
+        if j.mimic is not None and j.moving:
+            raise FormatError(
+                f"the joint mimics joint {j.mimic!r} (its value follows another joint's): a DH "
+                "table has one independent variable per joint; choose a tip above it",
+                file=model.file,
+                field=j.where,
+            )
+    if not moving:
+        raise FormatError(
+            f"no revolute, continuous or prismatic joint between {start!r} and {tip!r}",
+            file=model.file,
+            field="tip",
+        )
+    axes, tool = _geometry(joints, model.file)
+    try:
+        fa = assign_frames(axes, convention=convention, tool=tool, name=model.name)
+    except DHError as err:
+        raise err.located(file=model.file) from None
+    rows = tuple(
+        replace(row, limits=j.limits if j.kind != "continuous" else None)
+        for row, j in zip(fa.table.rows, moving, strict=True)
+    )
+    inertias, dropped = _dh_inertias(model, start, moving, replace(fa.table, rows=rows))
+    rows = tuple(
+        replace(row, inertia=inertia) if inertia is not None else row
+        for row, inertia in zip(rows, inertias, strict=True)
+    )
+    snapped = [s for j in joints for s in j.snapped]
+    note = snap_note(snapped, "snap_angles=False") if snapped else ""
+    notes = [note] if note else []
+    if dropped:
+        notes.append("inertials not in the DH table: " + "; ".join(dropped))
+    table = replace(
+        fa.table,
+        rows=rows,
+        name=model.name or (Path(model.file).stem if model.file else "URDF robot"),
+        source=f"URDF {Path(model.file).name if model.file else 'text'}, chain {start} -> {tip}",
+        notes=(
+            f"Read from {model.file or 'URDF text'}: links {start} to {tip}, joints "
+            + ", ".join(j.name for j in moving)
+            + "; DH z axes along the URDF axes, variables zero at the URDF zero."
+        ),
+        warnings=tuple(notes),
+    )
+    inertials = tuple(
+        (name, inertial)
+        for name, inertial in model.links
+        if inertial is not None and (name == start or any(j.child == name for j in joints))
+    )
+    return UrdfImport(model, start, tip, joints, fa, table, inertials)
+
+
+def chain_from_urdf(
+    source: str | os.PathLike[str],
+    tip: str | None = None,
+    base: str | None = None,
+    convention: Convention | str = "standard",
+    *,
+    snap_angles: AngleSnap | bool | float | None = True,
+    **kw: object,
+) -> KinematicChain:
+    """A :class:`~dhsym.kinematics.chain.KinematicChain` from a URDF file or text (see
+    :func:`import_urdf`).
+
+    >>> r = chain_from_urdf('''<robot name="slide"><link name="a"/><link name="b"/>
+    ...   <joint name="s" type="prismatic"><parent link="a"/><child link="b"/>
+    ...     <axis xyz="1 0 0"/><limit lower="0" upper="0.5" effort="1" velocity="1"/></joint>
+    ... </robot>''', convention="modified")
+    >>> r.table.rows[0], r.fk([0.2])[0, 3]
+    (DHRow(P: theta=0, d=d1, a=0, alpha=0), np.float64(0.2))
+    """
+    imp = import_urdf(source, tip, base, convention, snap_angles=snap_angles)
+    return imp.chain(**kw)
+
+
+def _dh_inertias(
+    model: UrdfModel, start: str, moving: Sequence[UrdfJoint], table: DHTable
+) -> tuple[list[LinkInertia | None], list[str]]:
+    """Each DH link's inertia (link k moves with row k) in DH frame k, and what was dropped.
+
+    Every link below ``start`` joins the body of its nearest moving ancestor on the chain:
+    links hung on by ``fixed`` joints (a hand, a flange, a tool-centre link) merge into the
+    link they hang on (:meth:`~dhsym.model.inertia.LinkInertia.combine`: masses add, centres
+    of mass combine, the parallel-axis theorem moves each inertia to the common centre; the
+    sums are then expanded, and read as exact numbers within 1e-12 where measured angles put
+    floats in them). Links before the first moving joint form the base,
+    which has no row; links behind a moving joint off the chain (fingers) are not on the
+    chain. Both are named in the returned notes. Rotations stay exact where the ``rpy``
+    angles are (snapped or rational multiples of π); measured angles use
+    :attr:`Origin.rational_matrix`.
+    """
+    rows = {j.name: k for k, j in enumerate(moving, start=1)}
+    children: dict[str, list[UrdfJoint]] = {}
+    for j in model.joints:
+        children.setdefault(j.parent, []).append(j)
+    inertial = dict(model.links)
+    bodies: list[list[tuple[sp.Matrix, Inertial]]] = [[] for _ in range(len(moving) + 1)]
+    base: list[str] = []
+    off: list[str] = []
+    stack: list[tuple[str, sp.Matrix, int]] = [(start, sp.eye(4), 0)]
+    while stack:
+        link, T, body = stack.pop()
+        found = inertial.get(link)
+        if found is not None and (found.mass != 0 or any(v != 0 for v in found.inertia)):
+            bodies[body].append((T * found.origin.rational_matrix, found))
+            if body == 0:
+                base.append(link)
+        for j in children.get(link, []):
+            if j.moving and j.name not in rows or j.kind in ("floating", "planar"):
+                off.extend(_subtree(children, j.child, inertial))
+                continue
+            stack.append((j.child, T * j.origin.rational_matrix, rows.get(j.name, body)))
+    zero = {v: 0 for v in table.variables}
+    out: list[LinkInertia | None] = []
+    for k in range(1, len(moving) + 1):
+        if not bodies[k]:
+            out.append(None)
+            continue
+        to_frame = rigid_inverse(plain_product(chain_word(table, -1, k)).subs(zero))
+        parts = []
+        for T, found in bodies[k]:
+            M = to_frame * T
+            xx, xy, xz, yy, yz, zz = found.inertia
+            Ic = sp.Matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+            R = M[:3, :3]
+            parts.append(LinkInertia(found.mass, (M[0, 3], M[1, 3], M[2, 3]), R * Ic * R.T))
+        whole = LinkInertia.combine(parts)
+        out.append(
+            LinkInertia(
+                _tidy(whole.m),
+                (_tidy(whole.r[0]), _tidy(whole.r[1]), _tidy(whole.r[2])),
+                sp.ImmutableMatrix(3, 3, [_tidy(v) for v in whole.I]),
+            )
+        )
+    dropped = []
+    if base:
+        dropped.append(", ".join(sorted(base)) + " (the base: it does not move and has no row)")
+    if off:
+        dropped.append(", ".join(off) + " (behind a moving joint that is not on the chain)")
+    return out, dropped
+
+
+def _subtree(
+    children: dict[str, list[UrdfJoint]], link: str, inertial: dict[str, Inertial | None]
+) -> list[str]:
+    """The links with mass in the subtree of ``link`` (``link`` included)."""
+    out, stack = [], [link]
+    while stack:
+        name = stack.pop()
+        found = inertial.get(name)
+        if found is not None and found.mass != 0:
+            out.append(name)
+        stack.extend(j.child for j in children.get(name, []))
+    return out
+
+
+def _tidy(value: Expr) -> Expr:
+    """An exact entry, expanded; sums with float cosines read as exact within 1e-12."""
+    value = sp.expand(value)
+    return exact_number(to_float(value)) if value.has(sp.Float) else value
+
+
+def _geometry(joints: Iterable[UrdfJoint], file: str | None) -> tuple[list[JointAxis], Tool]:
+    """The moving joints' axes at home and the tip frame as a tool, in the base link's frame."""
+    T = sp.eye(4)
+    axes = []
+    for j in joints:
+        T = T * j.origin.rational_matrix
+        if j.moving:
+            direction = T[:3, :3] * sp.Matrix(j.axis)
+            try:
+                axes.append(
+                    JointAxis(_exact(T[:3, 3]), _exact(direction), MOVING_KINDS[j.kind], j.name)
+                )
+            except DHError as err:
+                raise FormatError(err.message, file=file, field=j.where) from None
+    return axes, Tool(_exact(T[:3, 3]), _exact(T[:3, 2]), _exact(T[:3, 1]))
+
+
+def _exact(column: sp.MatrixBase) -> list[Expr]:
+    """Entries as exact numbers; sums with float cosines (measured angles) read within 1e-12."""
+    return [_tidy(v) for v in column]
+
+
+def table_yaml(imp: UrdfImport) -> str:
+    """The table as a YAML table file, headed by comments on where it came from and the
+    frame-assignment sentences.
+
+    >>> imp = import_urdf('''<robot name="r"><link name="a"/><link name="b"/>
+    ...   <joint name="j" type="continuous"><parent link="a"/><child link="b"/>
+    ...   <axis xyz="0 0 1"/></joint></robot>''')
+    >>> print(table_yaml(imp).splitlines()[0])
+    # DH table (standard convention) of the URDF chain a -> b in URDF text, joints: j. Derived
+    """
+    where = imp.model.file or "URDF text"
+    head = (
+        f"DH table ({imp.table.convention.value} convention) of the URDF chain {imp.base} -> "
+        f"{imp.tip} in {where}, joints: {', '.join(j.name for j in imp.moving)}. Derived by "
+        "dhsym from the joint axes at the URDF zero pose with the frame-assignment algorithm; "
+        "the variables keep the URDF's zero and direction, so fk(q) is the URDF pose of the "
+        "tip link in the base link for every q."
+    )
+    lines = textwrap.wrap(head, 88)
+    lines.append("Frame assignment:")
+    for k, text in enumerate(imp.steps, start=1):
+        lines += textwrap.wrap(f"{k}. {text}", 88, subsequent_indent="   ")
+    lines += [w for note in imp.table.warnings for w in textwrap.wrap(f"Note: {note}", 88)]
+    return "".join(f"# {line}\n" for line in lines) + dump_table(imp.table)
