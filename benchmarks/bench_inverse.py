@@ -41,6 +41,7 @@ import numpy as np
 
 import dhsym
 from dhsym.ik import inverse, numeric_ik
+from dhsym.ik.solver import ClosedFormSolver
 
 
 def best(fn: Callable[[], object], repeat: int) -> float:
@@ -102,7 +103,7 @@ def bench(
     ik = inverse(robot)
     t_derive = time.perf_counter() - t0
     t0 = time.perf_counter()
-    solver = ik.solver()
+    solver = ClosedFormSolver(ik, robot.table.value_map)
     T0 = robot.fk(random_q(robot, 2, rng))
     solver.solve(T0[0]), solver.solve(T0), solver.raw(T0)  # compile the three programs
     t_compile = time.perf_counter() - t0

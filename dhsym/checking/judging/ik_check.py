@@ -45,7 +45,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.ik.results import IKSolution
+from dhsym.ik.closed_form import ClosedForm
 from dhsym.ik.steps import pose_symbols
 
 from ..mistakes._ik_mistakes import IKCase
@@ -67,7 +67,7 @@ from .tolerances import TOLERANCES
 from .verdict import CheckResult, Diagnosis, EntryResult, Verdict
 
 if TYPE_CHECKING:
-    from dhsym.ik.closed_form import InverseKinematics
+    from dhsym.ik.closed_form import ClosedForm as InverseKinematics  # what a key grades
     from dhsym.robot import Robot
 
     from .checker import PreparedKey
@@ -82,7 +82,7 @@ def prepare_ik(pk: PreparedKey) -> PreparedKey:
     """Derive the key's inverse kinematics once (and the pose of a numeric question)."""
     robot, q = pk.robot, pk.key.question
     ik = robot.inverse()
-    if ik.most is not None:
+    if not isinstance(ik, ClosedForm):  # the general 6R: an Elimination
         raise DHError(
             f"{robot.name or 'this arm'} is a general 6R: its inverse kinematics is an "
             "eigenproblem, not closed-form steps to grade"
@@ -239,7 +239,7 @@ def _numeric_names(
     T = frames(robot.table, sample.env, 1)[0, -1]
     position_only = not ik.decoupling.wrist
     sol = robot.ik(T[:3, 3] if position_only else T)
-    if not isinstance(sol, IKSolution):  # one pose gives one solution, not a batch
+    if sol.batch:  # one pose gives one solution, not a batch
         raise TypeError(f"robot.ik of one pose returned {type(sol).__name__}")
     names = []
     for k in range(len(key)):
