@@ -41,7 +41,7 @@ import numpy as np
 
 import dhsym
 from dhsym.ik import inverse, numeric_ik
-from dhsym.ik.solver import ClosedFormSolver
+from dhsym.ik.closed_form_solver import ClosedFormSolver
 
 
 def best(fn: Callable[[], object], repeat: int) -> float:
@@ -89,8 +89,8 @@ def lm_all_branches(
     while len(found) < K and starts < budget:
         starts += 1
         sol = numeric_ik(robot, T, random_q(robot, 1, rng)[0])
-        if sol.converged and (not found or distance(robot, sol.q, np.array(found)).min() > 1e-6):
-            found.append(sol.q)
+        if sol.converged and (not found or distance(robot, sol.q[0], np.array(found)).min() > 1e-6):
+            found.append(sol.q[0])
     return found, starts
 
 

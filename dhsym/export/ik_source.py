@@ -8,8 +8,9 @@ numbers the solver uses (the ``fk`` tolerance, the rounding of a radicand, the
 wrist thresholds). :class:`IKSource` is that interface; :func:`ik_source` fills it
 from the ik room: the derivation (:mod:`dhsym.ik.families`, one module per family:
 spherical wrist and planar arms, three parallel axes, the chain read backwards), the
-numbers of its program rewriting (:mod:`dhsym.ik.program`) and the branch names of
-its solver (:mod:`dhsym.ik.solver`). When the derivation moves, only this module changes.
+numbers of its program rewriting (:mod:`dhsym.ik.rewriting`) and the branch names of
+its solver (:mod:`dhsym.ik.closed_form_solver`). When the derivation moves, only this
+module changes.
 
 Every family whose steps are closed forms is exported; the general 6R, solved by an
 eigenvalue problem per pose (:mod:`dhsym.ik.general6r`), is not: :func:`ik_source`
@@ -45,8 +46,8 @@ from dhsym.errors import DHError
 from dhsym.ik.choices import IKCache
 from dhsym.ik.closed_form import ClosedForm
 from dhsym.ik.closed_form import ClosedForm as InverseKinematics  # what is exported
-from dhsym.ik.program import ROUNDING, WRIST_NEAR, WRIST_ZERO, SafeSqrt, with_safe_sqrt
-from dhsym.ik.solver import ClosedFormSolver
+from dhsym.ik.closed_form_solver import ClosedFormSolver
+from dhsym.ik.rewriting import ROUNDING, WRIST_NEAR, WRIST_ZERO, SafeSqrt, with_safe_sqrt
 from dhsym.ik.structure import GENERAL_6R, classify
 from dhsym.kinematics.decoupling import StructureError
 from dhsym.model.table import JointType

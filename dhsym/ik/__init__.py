@@ -6,11 +6,12 @@ closed form as lecture steps (:mod:`.decoupled`: spherical wrist and planar arms
 :class:`~.closed_form.ClosedForm` made of the pieces of :mod:`.steps`; :mod:`.general6r`
 solves the general 6R by Raghavan–Roth elimination (an :class:`~.general6r.Elimination`);
 :mod:`.families` chooses. Both derivations follow :class:`~.protocols.InverseKinematics`;
-their solvers (:class:`~.solver.ClosedFormSolver`: the steps rewritten by :mod:`.program`
-and compiled; :class:`~.general6r.EliminationSolver`) follow :class:`~.protocols.IKSolver`
-and return the one :class:`~.solution.IKSolution`, as the numeric solver
-(:mod:`.levenberg_marquardt`) does; :mod:`.choices` applies joint limits, a given joint and
-the nearest solution, and keeps what was derived (:class:`~.choices.IKCache`).
+their solvers (:class:`~.closed_form_solver.ClosedFormSolver`: the steps rewritten by
+:mod:`.rewriting` and compiled; :class:`~.general6r.EliminationSolver`) follow
+:class:`~.protocols.IKSolver` and return the one :class:`~.solution.IKSolution`, as the
+numeric solver (:mod:`.levenberg_marquardt`) does; :mod:`.choices` applies joint limits, a
+given joint and the nearest solution, and keeps what was derived
+(:class:`~.choices.IKCache`).
 
 May import :mod:`dhsym.model`, :mod:`dhsym.notation` and :mod:`dhsym.kinematics`.
 """

@@ -30,11 +30,11 @@ from dhsym.kinematics.numeric import values_key
 from dhsym.model.table import DHRow, JointType
 
 from .closed_form import ClosedForm
+from .closed_form_solver import ClosedFormSolver
 from .families import inverse
 from .general6r import Elimination, EliminationSolver
 from .protocols import IKSolver
 from .solution import IKSolution
-from .solver import ClosedFormSolver
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
@@ -118,8 +118,8 @@ def nearest_first(robot: KinematicChain, sol: IKSolution, q0: object) -> IKSolut
 
 def build_solver(ik: ClosedForm | Elimination, values: Mapping[object, object] | None) -> IKSolver:
     """The solver of a derivation with ``values`` (by its type): the steps of a closed form
-    compiled (:class:`~dhsym.ik.solver.ClosedFormSolver`), or the general 6R's eigenproblem
-    (:class:`~dhsym.ik.general6r.EliminationSolver`).
+    compiled (:class:`~dhsym.ik.closed_form_solver.ClosedFormSolver`), or the general 6R's
+    eigenproblem (:class:`~dhsym.ik.general6r.EliminationSolver`).
 
     >>> import dhsym
     >>> type(build_solver(dhsym.load("planar2r").inverse(), None)).__name__

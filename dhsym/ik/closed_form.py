@@ -3,7 +3,7 @@
 Every family of :mod:`dhsym.ik` but the general 6R returns a :class:`ClosedForm`: the
 sentence that names the structure it found, the steps (each ``symbol = exact
 expression``), the branches (signs ``σ = ±1``) and the decoupling. The solver of
-:mod:`dhsym.ik.solver` compiles it into numbers.
+:mod:`dhsym.ik.closed_form_solver` compiles it into numbers.
 
 Examples
 --------

@@ -7,7 +7,7 @@ solutions). Callers that need more than the protocol tell the two apart by type
 (``isinstance(ik, ClosedForm)``), never by probing fields.
 
 An :class:`IKSolver` turns one derivation into numbers for one set of values: the
-compiled steps (:class:`~dhsym.ik.solver.ClosedFormSolver`) or the eigenproblem
+compiled steps (:class:`~dhsym.ik.closed_form_solver.ClosedFormSolver`) or the eigenproblem
 (:class:`~dhsym.ik.general6r.EliminationSolver`); both return the one
 :class:`~dhsym.ik.solution.IKSolution` and name its rows.
 

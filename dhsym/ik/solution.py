@@ -1,6 +1,6 @@
 """What every inverse-kinematics solver returns: one type, for one pose or a batch of poses.
 
-The closed forms (:mod:`dhsym.ik.solver`), the general 6R (:mod:`dhsym.ik.general6r`),
+The closed forms (:mod:`dhsym.ik.closed_form_solver`), the general 6R (:mod:`dhsym.ik.general6r`),
 the numeric solver (:mod:`dhsym.ik.levenberg_marquardt`) and the compiled C
 (``Robot.compiled().ik``) all return an :class:`IKSolution`: the joint values ``q``, which
 of them are ``valid``, the ``residual`` of each, the singularities each is near, the

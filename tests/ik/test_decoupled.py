@@ -367,8 +367,8 @@ def test_raw_branches_are_the_unchecked_solutions() -> None:
 
 
 def test_signs_come_out_of_sines_cosines_and_wraps_exactly() -> None:
-    from dhsym.ik.program import pull_signs as _pull_signs
-    from dhsym.ik.program import trig_signs as _trig_signs
+    from dhsym.ik.rewriting import pull_signs as _pull_signs
+    from dhsym.ik.rewriting import trig_signs as _trig_signs
 
     s, t = sp.symbols("sigma_1 sigma_2", real=True)
     x, y = sp.symbols("x y", real=True)

@@ -11,9 +11,9 @@ as a matrix eigenproblem (Manocha and Canny, "Efficient inverse kinematics for g
   ``P(θ3) m45 = Q m12``, exact (:func:`elimination_matrices`);
 * :mod:`.eigenproblem`: the same in numbers, one eigenproblem per pose, compiled and
   self-tested once per arm (:func:`general_6r`, :class:`General6R`);
-* :mod:`.derivation`: the method explained as steps, the :class:`Elimination` that
+* :mod:`.method`: the method explained as steps, the :class:`Elimination` that
   ``Robot.inverse()`` returns for such an arm (:func:`derive_general`);
-* :mod:`.solver`: the :class:`EliminationSolver` behind ``Robot.ik``.
+* :mod:`.elimination_solver`: the :class:`EliminationSolver` behind ``Robot.ik``.
 
 An arm for which the elimination degenerates (``Q`` loses rank or ``Σ`` is singular for
 every x3: the PUMA, UR arms, any arm with a spherical wrist or three parallel axes) is
@@ -28,7 +28,6 @@ Examples
 General6R('PUMA 560', eliminated joint 4, 16×16 pencil)
 """
 
-from .derivation import MOST, Elimination, derive_general
 from .eigenproblem import General6R, general_6r
 from .elimination import (
     EQUATIONS,
@@ -37,7 +36,8 @@ from .elimination import (
     elimination_matrices,
     standard_chain,
 )
-from .solver import EliminationSolver
+from .elimination_solver import EliminationSolver
+from .method import MOST, Elimination, derive_general
 
 __all__ = [
     "EQUATIONS",

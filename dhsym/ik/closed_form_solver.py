@@ -46,7 +46,8 @@ from dhsym.kinematics.jacobian import axis_frame
 from dhsym.model.table import JointType
 
 from .closed_form import ClosedForm
-from .program import (
+from .protocols import read_poses
+from .rewriting import (
     MATH,
     NUMPY,
     REMAINDER,
@@ -63,7 +64,6 @@ from .program import (
     with_safe_sqrt,
     wrap,
 )
-from .protocols import read_poses
 from .solution import IKSolution
 from .steps import REAL, Branch, branch_word
 

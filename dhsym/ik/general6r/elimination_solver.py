@@ -23,8 +23,8 @@ from dhsym.errors import DHError
 
 from ..protocols import read_poses
 from ..solution import IKSolution
-from .derivation import MOST, Elimination
 from .eigenproblem import General6R, general_6r
+from .method import MOST, Elimination
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain

@@ -5,7 +5,7 @@ import pytest
 
 import dhsym
 from dhsym.errors import DHError
-from dhsym.ik.solver import ClosedFormSolver
+from dhsym.ik.closed_form_solver import ClosedFormSolver
 
 
 def test_raw_takes_one_pose_as_a_batch_of_one():

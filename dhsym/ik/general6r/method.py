@@ -6,7 +6,7 @@ reduce to one polynomial of degree 16 in the half-angle tangent of one joint (Ra
 and Roth, 1993), solved as a matrix eigenproblem (Manocha and Canny, 1994).
 :func:`derive_general` writes that method as the steps of an :class:`Elimination`: no
 branch signs, up to 16 solutions, named ``solution 1`` … in the order of their joint
-values by :class:`~dhsym.ik.general6r.solver.EliminationSolver`.
+values by :class:`~dhsym.ik.general6r.elimination_solver.EliminationSolver`.
 
 Examples
 --------

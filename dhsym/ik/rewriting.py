@@ -1,6 +1,6 @@
 """The program rewriting of a closed form: its steps as one straight-line program for numbers.
 
-Shared by the solver of :mod:`dhsym.ik.solver` (which lambdifies the program for numpy
+Shared by the solver of :mod:`dhsym.ik.closed_form_solver` (which lambdifies the program for numpy
 and for plain floats) and by the exporters of :mod:`dhsym.export` (which print it as C,
 MATLAB, Rust …): the functions that only exist at compile time (:class:`SafeSqrt`,
 :class:`Wrap`, :class:`Residual`), the square roots read with rounding
