@@ -29,7 +29,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from dhsym.ik import general6r as g  # noqa: E402
+from dhsym.ik.general6r import eigenproblem as g  # noqa: E402
 from dhsym.model.library import builtin_table  # noqa: E402
 from dhsym.model.table import DHRow, DHTable  # noqa: E402
 from dhsym.model.tablefile import read_table  # noqa: E402

@@ -41,6 +41,7 @@ import numpy as np
 
 import dhsym
 from dhsym.ik import inverse, numeric_ik
+from dhsym.ik.closed_form_solver import ClosedFormSolver
 
 
 def best(fn: Callable[[], object], repeat: int) -> float:
@@ -88,8 +89,8 @@ def lm_all_branches(
     while len(found) < K and starts < budget:
         starts += 1
         sol = numeric_ik(robot, T, random_q(robot, 1, rng)[0])
-        if sol.converged and (not found or distance(robot, sol.q, np.array(found)).min() > 1e-6):
-            found.append(sol.q)
+        if sol.converged and (not found or distance(robot, sol.q[0], np.array(found)).min() > 1e-6):
+            found.append(sol.q[0])
     return found, starts
 
 
@@ -102,7 +103,7 @@ def bench(
     ik = inverse(robot)
     t_derive = time.perf_counter() - t0
     t0 = time.perf_counter()
-    solver = ik.solver()
+    solver = ClosedFormSolver(ik, robot.table.value_map)
     T0 = robot.fk(random_q(robot, 2, rng))
     solver.solve(T0[0]), solver.solve(T0), solver.raw(T0)  # compile the three programs
     t_compile = time.perf_counter() - t0

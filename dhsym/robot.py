@@ -43,8 +43,9 @@ if TYPE_CHECKING:
     from dhsym.dynamics.static_forces import Statics
     from dhsym.export.shared_library import CompiledRobot
     from dhsym.ik.choices import IKCache
-    from dhsym.ik.closed_form import InverseKinematics
-    from dhsym.ik.results import IKBatch, IKSolution
+    from dhsym.ik.closed_form import ClosedForm
+    from dhsym.ik.general6r import Elimination
+    from dhsym.ik.solution import IKSolution
     from dhsym.model.angles import AngleSnap
 
 __all__ = ["Robot", "from_rtb", "from_urdf", "inverse", "load"]
@@ -79,8 +80,9 @@ class Robot(KinematicChain):
             self._ik_cache = IKCache(self)
         return self._ik_cache
 
-    def inverse(self) -> InverseKinematics:
-        """The closed-form inverse kinematics derived step by step (:mod:`dhsym.ik`), cached."""
+    def inverse(self) -> ClosedForm | Elimination:
+        """The inverse kinematics derived step by step (:mod:`dhsym.ik`), cached: the closed
+        form, or for the general 6R the elimination."""
         return self.ik_cache().inverse()
 
     def ik(
@@ -94,15 +96,15 @@ class Robot(KinematicChain):
         free: Mapping[int, float] | None = None,
         limits: bool = False,
         near: object = None,
-    ) -> IKSolution | IKBatch:
-        """Every closed-form solution of a pose or a batch of poses (see :mod:`dhsym.ik`).
+    ) -> IKSolution:
+        """Every solution of a pose or a batch of poses (see :mod:`dhsym.ik`).
 
-        One pose ``(4, 4)`` gives an ``IKSolution`` (``.q`` is ``(k, n)``, with branch
-        names); a batch ``(N, 4, 4)`` gives an ``IKBatch`` (padded ``(N, K, n)`` with a
-        validity mask). ``free={7: 0.3}`` gives joint 7 (1-based) and solves the others;
-        ``limits=True`` keeps the solutions within the joint limits (angles shifted by
-        2π into range); ``near=q0`` orders them by distance to ``q0``
-        (:func:`dhsym.ik.choices.solve`).
+        One pose ``(4, 4)`` gives an ``IKSolution`` with ``.q`` ``(k, n)`` and branch
+        names; a batch ``(N, 4, 4)`` the same type over a leading axis (padded
+        ``(N, K, n)`` with a validity mask, ``solution(i)`` for pose ``i``).
+        ``free={7: 0.3}`` gives joint 7 (1-based) and solves the others; ``limits=True``
+        keeps the solutions within the joint limits (angles shifted by 2π into range);
+        ``near=q0`` orders them by distance to ``q0`` (:func:`dhsym.ik.choices.solve`).
         """
         from dhsym.ik.choices import solve
 
@@ -320,8 +322,8 @@ def from_rtb(robot: object, *, name: str | None = None) -> Robot:
     return Robot(table_from_rtb(robot, name=name))
 
 
-def inverse(robot: Robot | str | Path) -> InverseKinematics:
-    """The closed-form inverse kinematics of a robot or built-in name, derived step by step.
+def inverse(robot: Robot | str | Path) -> ClosedForm | Elimination:
+    """The inverse kinematics of a robot or built-in name, derived step by step.
 
     >>> ik = inverse("planar2r")
     >>> [b.role for b in ik.branches], ik.count

@@ -266,7 +266,7 @@ def _cmd_ik(args: argparse.Namespace) -> int:
     import numpy as np
 
     from dhsym.errors import DHError
-    from dhsym.ik.levenberg_marquardt import numeric_ik
+    from dhsym.ik.levenberg_marquardt import DESCRIPTION, numeric_ik
 
     robot = load_robot(args.robot, args.values, need_numbers=True)
     T = _pose(args, robot)
@@ -274,19 +274,20 @@ def _cmd_ik(args: argparse.Namespace) -> int:
     if args.numeric:
         q0 = None if args.q0 is None else _parse_q(args.q0, len(names))
         sol = numeric_ik(robot, T, q0)
+        error = float(sol.residual[0])
         result = {
-            "method": sol.method,
+            "method": DESCRIPTION,
             "converged": bool(sol.converged),
             "iterations": sol.iterations,
-            "error": sol.error,
+            "error": error,
         }
-        solution = dict(zip(names, np.round(sol.q, 12).tolist()))
+        solution = dict(zip(names, np.round(sol.q[0], 12).tolist()))
         result["q"] = solution
         if args.json:
             print(json.dumps(result))
         else:
             state = "converged" if sol.converged else "did NOT converge"
-            print(f"{sol.method}: {state} in {sol.iterations} steps, error {sol.error:.3g}")
+            print(f"{DESCRIPTION}: {state} in {sol.iterations} steps, error {error:.3g}")
             print("joint values (radians for revolute joints):")
             for n, v in solution.items():
                 print(f"  {n} = {v:.9g}")

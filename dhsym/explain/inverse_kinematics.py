@@ -30,8 +30,8 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.ik.results import IKSolution, branch_word
-from dhsym.ik.steps import Branch, Step
+from dhsym.ik.closed_form import ClosedForm
+from dhsym.ik.steps import Branch, Step, branch_word
 from dhsym.model.table import DHTable, JointType
 from dhsym.notation.escape import TeX
 from dhsym.notation.layout import (
@@ -138,9 +138,9 @@ def _check(robot: Robot, q: Sequence[float], nota: Notation) -> IKCheck:
         raise DHError(f"the numeric check needs {len(robot.variables)} joint values, got {len(q)}")
     ik = robot.inverse()
     T = robot.fk([float(x) for x in q])
-    position_only = not ik.decoupling.wrist  # a positioning arm reaches points, not poses
+    # a positioning arm reaches points, not poses (the general 6R has a wrist)
+    position_only = isinstance(ik, ClosedForm) and not ik.decoupling.wrist
     sol = robot.ik(T[:3, 3] if position_only else T)
-    assert isinstance(sol, IKSolution)  # one pose gives one solution set
     revolute = [r.joint is JointType.REVOLUTE for r in robot.table.rows if r.variable is not None]
 
     def num(x: float, rev: bool) -> Math:
@@ -149,7 +149,7 @@ def _check(robot: Robot, q: Sequence[float], nota: Notation) -> IKCheck:
         return Math(TeX(s), s)
 
     def name(words: str, signs: Sequence[int]) -> tuple[Run, ...]:
-        if not ik.branches:  # no signs (the general 6R): "solution k"
+        if not isinstance(ik, ClosedForm):  # no signs (the general 6R): "solution k"
             return (Run(words),)
         runs: list[Run] = []
         for k, (part, b, sign) in enumerate(zip(words.split(", "), ik.branches, signs)):
@@ -216,10 +216,10 @@ def derive_inverse(
     nota = robot.notation
     ik = robot.inverse()
     number = {r: i for i, r in enumerate(robot.table.joint_rows, start=1)}
-    joints = {
-        "position": [number[r] for r in ik.decoupling.arm],
-        "orientation": [number[r] for r in ik.decoupling.wrist],
-    }
+    joints: dict[str, list[int]] = {}
+    if isinstance(ik, ClosedForm):  # the general 6R has no decoupling
+        joints["position"] = [number[r] for r in ik.decoupling.arm]
+        joints["orientation"] = [number[r] for r in ik.decoupling.wrist]
     parts = []
     variables = {v: k for k, v in enumerate(robot.variables, start=1)}
     for part in dict.fromkeys(s.part for s in ik.steps):  # the parts in order of appearance

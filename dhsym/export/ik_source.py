@@ -8,8 +8,9 @@ numbers the solver uses (the ``fk`` tolerance, the rounding of a radicand, the
 wrist thresholds). :class:`IKSource` is that interface; :func:`ik_source` fills it
 from the ik room: the derivation (:mod:`dhsym.ik.families`, one module per family:
 spherical wrist and planar arms, three parallel axes, the chain read backwards), the
-numbers of its compiler (:mod:`dhsym.ik.compiler`) and the branch names of
-:mod:`dhsym.ik.results`. When the derivation moves, only this module changes.
+numbers of its program rewriting (:mod:`dhsym.ik.rewriting`) and the branch names of
+its solver (:mod:`dhsym.ik.closed_form_solver`). When the derivation moves, only this
+module changes.
 
 Every family whose steps are closed forms is exported; the general 6R, solved by an
 eigenvalue problem per pose (:mod:`dhsym.ik.general6r`), is not: :func:`ik_source`
@@ -42,10 +43,11 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.ik import compiler as numbers
 from dhsym.ik.choices import IKCache
-from dhsym.ik.closed_form import InverseKinematics
-from dhsym.ik.results import IKBatch, solver_branch_names
+from dhsym.ik.closed_form import ClosedForm
+from dhsym.ik.closed_form import ClosedForm as InverseKinematics  # what is exported
+from dhsym.ik.closed_form_solver import ClosedFormSolver
+from dhsym.ik.rewriting import ROUNDING, WRIST_NEAR, WRIST_ZERO, SafeSqrt, with_safe_sqrt
 from dhsym.ik.structure import GENERAL_6R, classify
 from dhsym.kinematics.decoupling import StructureError
 from dhsym.model.table import JointType
@@ -99,11 +101,11 @@ class IKSource:
 
     def has_sqrt(self, e: sp.Expr) -> bool:
         """Whether a prepared expression takes a square root."""
-        return bool(e.has(numbers.SafeSqrt))
+        return bool(e.has(SafeSqrt))
 
     def prepare(self, e: sp.Expr) -> sp.Expr:
         """``sqrt`` as the solver reads it: a radicand within rounding of 0 counts as 0."""
-        return numbers._with_safe_sqrt(e)
+        return with_safe_sqrt(e)
 
 
 def derivation(robot: KinematicChain, cache: IKCache | None = None) -> InverseKinematics:
@@ -132,7 +134,7 @@ def derivation(robot: KinematicChain, cache: IKCache | None = None) -> InverseKi
         if classify(robot).family == GENERAL_6R:
             raise general from None
         raise DHError(f"{name}: no closed-form IK to export: {err.message}") from None
-    if ik.family == GENERAL_6R:
+    if not isinstance(ik, ClosedForm):  # the general 6R: an Elimination
         raise general
     return ik
 
@@ -193,7 +195,7 @@ def ik_source(
     singular_steps = [s for s in ik.steps if s.singular is not None]
     # the solver's rule: the first singular step (θ4) takes its singular value at
     # |sin θ5| < _WRIST_ZERO, the second (θ6) at |sin θ5| < _WRIST_NEAR
-    limits = (numbers._WRIST_ZERO, numbers._WRIST_NEAR)
+    limits = (WRIST_ZERO, WRIST_NEAR)
     thresholds = {id(s): t for s, t in zip(singular_steps, limits)}
     steps = []
     for k, s in enumerate(ik.steps, start=1):
@@ -215,7 +217,7 @@ def ik_source(
         tuple(steps),
         tuple(b.symbol for b in ik.branches),
         _branch_names(robot, ik),
-        numbers._ROUNDING,
+        ROUNDING,
         1e-9,
     )
 
@@ -235,12 +237,11 @@ def _branch_names(robot: KinematicChain, ik: InverseKinematics) -> tuple[str, ..
             q[:, k] = rng.uniform(0.2, 0.8, 32)
     seen: list[list[set[str]]] = [[set() for _ in range(B)] for _ in combos]
     try:
-        batch = ik.solve(robot.fk(q), check="pose", tol=1e-9, singular_tol=1e-6)
-        assert isinstance(batch, IKBatch)  # N poses give a batch
-        solver = batch.solver
+        solver = ClosedFormSolver(ik, robot.table.value_map)
+        batch = solver.solve(robot.fk(q), check="pose", tol=1e-9, singular_tol=1e-6)
         for i in range(len(q)):
             if batch.valid[i].all():
-                names = solver_branch_names(solver, batch.q[i], batch.branch_signs)
+                names = batch.solution(i).branches
                 for k, name in enumerate(names):
                     parts = name.split(", ")
                     if len(parts) == B:

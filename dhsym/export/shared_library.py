@@ -54,6 +54,7 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
     from dhsym.ik.choices import IKCache
+    from dhsym.ik.solution import IKSolution
     from dhsym.kinematics.chain import KinematicChain
 
 __all__ = ["CompiledRobot", "cache_dir", "compiled"]
@@ -83,7 +84,7 @@ class CompiledRobot:
 
     fk: Callable[[ArrayLike], np.ndarray]
     jacobian: Callable[[ArrayLike], np.ndarray]
-    ik: Callable[[ArrayLike], np.ndarray]
+    ik: Callable[[ArrayLike], IKSolution]
     backend: str
     library: Path | None
     njoints: int
@@ -166,7 +167,7 @@ def compiled(
         return CompiledRobot(
             lambda q: robot.fk(q),
             lambda q: robot.jacob0(q),
-            lambda T: np.asarray(solve(robot, T, cache=cache)),
+            lambda T: solve(robot, T, cache=cache),
             "numpy",
             None,
             n,
@@ -195,7 +196,9 @@ def compiled(
         jac_c(_address(qa), _address(out))
         return out
 
-    def ik(T: object) -> np.ndarray:
+    def ik(T: object) -> IKSolution:
+        from dhsym.ik.solution import IKSolution
+
         if ik_c is None:
             raise DHError(f"{robot.name or 'this robot'} has no closed-form IK to compile")
         Ta = np.ascontiguousarray(T, dtype=float)
@@ -203,7 +206,29 @@ def compiled(
             raise DHError(f"ik expects one pose of shape (4, 4), got {Ta.shape}")
         out = np.empty((K, n))
         count = ik_c(_address(Ta), _address(out))
-        return out[:count]
+        q = out[:count]
+        residual = np.array([np.abs(fk(row)[:3] - Ta[:3]).max() for row in q])
+
+        def names(rows: np.ndarray, _signs: np.ndarray) -> tuple[str, ...]:
+            # the branch each row is: the nearest solution robot.ik finds (angles modulo 2π)
+            ref = solve(robot, Ta, cache=cache)
+            if not len(ref):
+                return tuple(f"solution {k}" for k in range(1, len(rows) + 1))
+            d = rows[:, None, :] - ref.q[None, :, :]
+            d = np.abs(np.remainder(d + np.pi, 2 * np.pi) - np.pi).max(axis=-1)
+            return tuple(ref.branches[int(j)] for j in d.argmin(axis=1))
+
+        return IKSolution(
+            q,
+            np.ones(count, dtype=bool),
+            residual.reshape(count),
+            np.zeros((count, 0), dtype=bool),
+            (),
+            np.zeros((count, 0), dtype=int),
+            "compiled",
+            None if count else "no branch of the exported closed form reproduces the pose",
+            namer=names,
+        )
 
     return CompiledRobot(fk, jacobian, ik, "c", lib_path, n, _rne_c(robot, cc, n))
 

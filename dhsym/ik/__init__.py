@@ -1,14 +1,17 @@
-"""The inverse kinematics room: closed forms derived family by family, their compiler, and
-a numeric solver apart.
+"""The inverse kinematics room: derivations family by family, their solvers, one solution type.
 
 :mod:`.structure` classifies an arm by its joint axes; one module per family derives its
 closed form as lecture steps (:mod:`.decoupled`: spherical wrist and planar arms;
-:mod:`.parallel`: three parallel axes; :mod:`.inverted`: the chain read backwards;
-:mod:`.general6r`: the general 6R by Raghavan–Roth elimination, :mod:`.general` its
-derivation and solver behind ``Robot.ik``);
-:mod:`.families` chooses; :mod:`.compiler` turns the steps into numbers and
-:mod:`.results` holds what it returns; :mod:`.choices` applies joint limits, a given
-joint and the nearest solution; :mod:`.levenberg_marquardt` is the numeric solver.
+:mod:`.parallel`: three parallel axes; :mod:`.inverted`: the chain read backwards), each a
+:class:`~.closed_form.ClosedForm` made of the pieces of :mod:`.steps`; :mod:`.general6r`
+solves the general 6R by Raghavan–Roth elimination (an :class:`~.general6r.Elimination`);
+:mod:`.families` chooses. Both derivations follow :class:`~.protocols.InverseKinematics`;
+their solvers (:class:`~.closed_form_solver.ClosedFormSolver`: the steps rewritten by
+:mod:`.rewriting` and compiled; :class:`~.general6r.EliminationSolver`) follow
+:class:`~.protocols.IKSolver` and return the one :class:`~.solution.IKSolution`, as the
+numeric solver (:mod:`.levenberg_marquardt`) does; :mod:`.choices` applies joint limits, a
+given joint and the nearest solution, and keeps what was derived
+(:class:`~.choices.IKCache`).
 
 May import :mod:`dhsym.model`, :mod:`dhsym.notation` and :mod:`dhsym.kinematics`.
 """
@@ -18,11 +21,12 @@ from dhsym._lazy import lazy_exports
 __getattr__, __dir__ = lazy_exports(
     __name__,
     {
-        "IKBatch": "results",
+        "ClosedForm": "closed_form",
+        "Elimination": "general6r",
         "IKCache": "choices",
-        "IKSolution": "results",
-        "InverseKinematics": "closed_form",
-        "NumericSolution": "levenberg_marquardt",
+        "IKSolution": "solution",
+        "IKSolver": "protocols",
+        "InverseKinematics": "protocols",
         "Structure": "structure",
         "StructureError": "dhsym.kinematics.decoupling",
         "classify": "structure",
@@ -36,11 +40,12 @@ __getattr__, __dir__ = lazy_exports(
 )
 
 __all__ = [
-    "IKBatch",
+    "ClosedForm",
+    "Elimination",
     "IKCache",
     "IKSolution",
+    "IKSolver",
     "InverseKinematics",
-    "NumericSolution",
     "Structure",
     "StructureError",
     "classify",

@@ -26,16 +26,28 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhsym.errors import DHError
+from dhsym.kinematics.numeric import values_key
 from dhsym.model.table import DHRow, JointType
 
-from .results import IKBatch, IKSolution
+from .closed_form import ClosedForm
+from .closed_form_solver import ClosedFormSolver
+from .families import inverse
+from .general6r import Elimination, EliminationSolver
+from .protocols import IKSolver
+from .solution import IKSolution
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
-    from .closed_form import InverseKinematics
-
-__all__ = ["GivenJoint", "IKCache", "solve", "sweep_free_joint", "within_limits", "nearest_first"]
+__all__ = [
+    "GivenJoint",
+    "IKCache",
+    "build_solver",
+    "nearest_first",
+    "solve",
+    "sweep_free_joint",
+    "within_limits",
+]
 
 _TWO_PI = 2 * np.pi
 
@@ -80,7 +92,10 @@ def within_limits(robot: KinematicChain, sol: IKSolution) -> IKSolution:
     shifted = q - _TWO_PI * np.round((q - mid) / _TWO_PI)
     q = np.where(rev, shifted, q)
     inside = ((q >= lo - 1e-12) & (q <= hi + 1e-12)).all(axis=1)
-    return sol.take(np.nonzero(inside)[0], q)
+    kept = sol.take(np.nonzero(inside)[0], q)
+    if len(sol) and not len(kept):
+        return replace(kept, reason="no solution lies within the joint limits")
+    return kept
 
 
 def nearest_first(robot: KinematicChain, sol: IKSolution, q0: object) -> IKSolution:
@@ -101,31 +116,57 @@ def nearest_first(robot: KinematicChain, sol: IKSolution, q0: object) -> IKSolut
     return sol.take(np.argsort(np.linalg.norm(d, axis=1), kind="stable"))
 
 
+def build_solver(ik: ClosedForm | Elimination, values: Mapping[object, object] | None) -> IKSolver:
+    """The solver of a derivation with ``values`` (by its type): the steps of a closed form
+    compiled (:class:`~dhsym.ik.closed_form_solver.ClosedFormSolver`), or the general 6R's
+    eigenproblem (:class:`~dhsym.ik.general6r.EliminationSolver`).
+
+    >>> import dhsym
+    >>> type(build_solver(dhsym.load("planar2r").inverse(), None)).__name__
+    'ClosedFormSolver'
+    """
+    if isinstance(ik, Elimination):
+        return EliminationSolver.build(ik, values)
+    numbers = ik.robot.table.with_values(values or {}).value_map
+    return ClosedFormSolver(ik, numbers)
+
+
 @dataclass(eq=False)
 class IKCache:
-    """The inverse kinematics of one chain, derived on first use and kept: the closed form
-    (:meth:`inverse`) and, for ``free={joint: value}``, the chains with that joint given
-    (:meth:`given`). :class:`dhsym.robot.Robot` keeps one; :func:`solve` makes a fresh one
-    when given none.
+    """The inverse kinematics of one chain, derived on first use and kept: the derivation
+    (:meth:`inverse`), its solvers by the values they were built with (:meth:`solver`) and,
+    for ``free={joint: value}``, the chains with that joint given (:meth:`given`).
+    :class:`dhsym.robot.Robot` keeps one; :func:`solve` makes a fresh one when given none.
 
     >>> from dhsym.kinematics.chain import KinematicChain
     >>> from dhsym.model.library import load_table
     >>> cache = IKCache(KinematicChain(load_table("planar2r")))
     >>> cache.inverse() is cache.inverse(), cache.inverse().count
     (True, 2)
+    >>> cache.solver() is cache.solver()
+    True
     """
 
     chain: KinematicChain
-    _inverse: InverseKinematics | None = field(default=None, init=False, repr=False)
+    _inverse: ClosedForm | Elimination | None = field(default=None, init=False, repr=False)
+    #: the solvers by the values they were built with (:func:`values_key`)
+    _solvers: dict[object, IKSolver] = field(default_factory=dict, init=False, repr=False)
     _given: dict[int, GivenJoint] = field(default_factory=dict, init=False, repr=False)
 
-    def inverse(self) -> InverseKinematics:
-        """The closed form derived step by step (:func:`dhsym.ik.families.inverse`), cached."""
-        from .families import inverse
-
+    def inverse(self) -> ClosedForm | Elimination:
+        """The derivation, step by step (:func:`dhsym.ik.families.inverse`), cached."""
         if self._inverse is None:
             self._inverse = inverse(self.chain)
         return self._inverse
+
+    def solver(self, values: Mapping[object, object] | None = None) -> IKSolver:
+        """The solver of :meth:`inverse` with ``values`` (:func:`build_solver`), built once
+        per set of values and kept."""
+        key = values_key(values)  # the values as given: converted only once
+        found = self._solvers.get(key)
+        if found is None:
+            found = self._solvers[key] = build_solver(self.inverse(), values)
+        return found
 
     def given(self, joint: int) -> GivenJoint:
         """The chain with joint ``joint`` (1-based) given, and its own cache."""
@@ -208,10 +249,9 @@ def _solve_free(
         inner = inner @ np.linalg.inv(robot.fk_function(robot.n - 1, robot.n, values)(q))
     else:
         extra[var] = value
-    part = given.cache.inverse().solve(
-        inner, check="pose", tol=tol, singular_tol=singular_tol, values=extra or None
+    part = given.cache.solver(extra or None).solve(
+        inner, check="pose", tol=tol, singular_tol=singular_tol
     )
-    assert isinstance(part, IKSolution)
     full = np.insert(part.q, joint - 1, value, axis=1)
     names = part.branches
     got = robot.fk_function(values=values)(full) if len(full) else np.zeros((0, 4, 4))
@@ -219,11 +259,14 @@ def _solve_free(
     ok = residual <= tol
     return IKSolution(
         full[ok],
+        part.valid[ok],
         residual[ok],
-        tuple(s for s, k in zip(part.singular, ok) if k),
+        part.near[ok],
+        part.factor_kinds,
         part.signs[ok],
-        part.solver,
-        tuple(s for s, k in zip(names, ok) if k),
+        part.method,
+        part.reason if len(part) else None,
+        names=tuple(s for s, k in zip(names, ok) if k),
     )
 
 
@@ -239,15 +282,17 @@ def solve(
     limits: bool = False,
     near: object = None,
     cache: IKCache | None = None,
-) -> IKSolution | IKBatch:
-    """Every closed-form solution of ``T``, with a joint given, within limits, nearest first.
+) -> IKSolution:
+    """Every solution of ``T``, with a joint given, within limits, nearest first.
 
     Parameters
     ----------
     T
         One pose ``(4, 4)`` or a batch ``(N, 4, 4)`` (positions for arms without a wrist).
-    check, tol, singular_tol, values
-        As :meth:`dhsym.ik.closed_form.InverseKinematics.solve`.
+    check, tol, singular_tol
+        As :meth:`dhsym.ik.protocols.IKSolver.solve`.
+    values
+        Numbers for the table's symbols (the solver is built once per set of values).
     free
         ``{joint: value}``: one joint (1-based) given; the others solved in closed form.
         One pose only.
@@ -269,14 +314,12 @@ def solve(
         if len(free) != 1:
             raise DHError(f"free: give exactly one joint, got {len(free)}")
         ((joint, value),) = free.items()
-        sol: IKSolution | IKBatch = _solve_free(
+        sol = _solve_free(
             cache, arr, int(joint), float(value), tol=tol, singular_tol=singular_tol, values=values
         )
     else:
-        sol = cache.inverse().solve(
-            arr, check=check, tol=tol, singular_tol=singular_tol, values=values
-        )
-    if isinstance(sol, IKSolution):
+        sol = cache.solver(values).solve(arr, check=check, tol=tol, singular_tol=singular_tol)
+    if not sol.batch:
         if limits:
             sol = within_limits(robot, sol)
         if near is not None:
@@ -313,7 +356,6 @@ def sweep_free_joint(
     out = []
     for v in np.linspace(a, b, num):
         sol = solve(robot, T, values=values, free={joint: float(v)}, limits=True, cache=cache)
-        assert isinstance(sol, IKSolution)
         if len(sol):
             out.append((float(v), sol))
     return out

@@ -21,14 +21,15 @@ Craig, *Introduction to Robotics*, §4.7):
    flip), ``θ4`` and ``θ6`` from its row and column by ``atan2``.
 
 Every step is a :class:`Step` — a sentence and exact sympy expressions; ``atan2`` and
-the signs ``σ = ±1`` of each branch are explicit. :meth:`InverseKinematics.solver`
+the signs ``σ = ±1`` of each branch are explicit. The solver of :mod:`dhsym.ik.closed_form_solver`
 compiles the steps once (``lambdify`` with the steps as the common subexpressions), with
 the ``fk`` check, into a numpy function over a batch of poses and all branches at once and
-into a function of plain floats for one pose (see :mod:`dhsym.ik.compiler`).
+into a function of plain floats for one pose (the rewriting: :mod:`dhsym.ik.rewriting`).
 
-Results. One pose ``(4, 4)`` gives an :class:`IKSolution`: ``q`` is ``(k, n)`` (k ≤ 8,
-only real, checked, distinct solutions) with a name per solution and the singularities
-each one is near. A batch ``(N, 4, 4)`` gives an :class:`IKBatch`: ``q`` is padded to
+Results. One pose ``(4, 4)`` gives an :class:`~dhsym.ik.solution.IKSolution`: ``q`` is
+``(k, n)`` (k ≤ 8, only real, checked, distinct solutions) with a name per solution and the
+singularities each one is near. A batch ``(N, 4, 4)`` gives the same type with a leading
+axis: ``q`` is padded to
 ``(N, K, n)`` with NaN, ``valid`` ``(N, K)`` is the mask, ``K = 2^(number of branches)``.
 By default a branch is kept only when its ``fk`` reproduces the whole pose to ``1e-9``
 (``check="pose"``). An arm with fewer than six joints cannot reach every pose, so a branch
@@ -81,9 +82,10 @@ from dhsym.kinematics.transforms import chain_word, plain_product
 from dhsym.model.table import Elementary
 from dhsym.notation.layout import sentence, word_expr
 
-from .closed_form import InverseKinematics
-from .results import BRANCH_NAMES
+from .closed_form import ClosedForm
 from .steps import (
+    BRANCH_NAMES,
+    REAL,
     Builder,
     Equation,
     pose_symbols,
@@ -91,6 +93,7 @@ from .steps import (
     rot_z,
     solve_equations,
     solve_joint_from_entry,
+    undo_prefix,
 )
 
 if TYPE_CHECKING:
@@ -99,7 +102,6 @@ if TYPE_CHECKING:
 __all__ = ["derive_decoupled"]
 
 Matrix: TypeAlias = sp.ImmutableMatrix
-_REAL = {"real": True}
 
 
 def _position(b: Builder, geo: ArmGeometry, target: Matrix) -> None:
@@ -107,21 +109,13 @@ def _position(b: Builder, geo: ArmGeometry, target: Matrix) -> None:
     robot, dec = b.robot, b.dec
     table = robot.table
     arm_vars = [table.rows[r - 1].variable for r in dec.arm]
-    P = geo.prefix_matrix
-    u = target
-    if P != sp.eye(4):
-        Rp, tp = P[:3, :3], P[:3, 3]
-        local = (Rp.T * (target - tp)).applyfunc(sp.expand)
-        names = [sp.Symbol(f"u_{c}", **_REAL) for c in "xyz"]
-        for name, value in zip(names, local):
-            b.add(
-                "position",
-                "The point in the frame before joint 1 (undo the constant "
-                "transform that precedes it).",
-                name,
-                value,
-            )
-        u = Matrix(names)
+    u = undo_prefix(
+        b,
+        "position",
+        "The point in the frame before joint 1 (undo the constant transform that precedes it).",
+        target,
+        geo.prefix_matrix,
+    )
     ux, uy, uz = u
     g = geo.point
     q1 = arm_vars[0]
@@ -133,7 +127,7 @@ def _position(b: Builder, geo: ArmGeometry, target: Matrix) -> None:
             e = geo.offset
             assert e is not None  # arm_geometry sets the offset with its axis
             radial_axis = 1 - geo.offset_axis
-            r = sp.Symbol("r", **_REAL)
+            r = sp.Symbol("r", **REAL)
             arm = b.branch(
                 "arm",
                 q1,
@@ -268,7 +262,7 @@ def _orientation(b: Builder, pose: Matrix) -> None:
 
     def m(i: int, j: int) -> sp.Symbol:
         if (i, j) not in names:
-            sym = sp.Symbol(f"m_{i + 1}{j + 1}", **_REAL)
+            sym = sp.Symbol(f"m_{i + 1}{j + 1}", **REAL)
             names[(i, j)] = sym
             b.add(
                 "orientation",
@@ -299,7 +293,7 @@ def _orientation(b: Builder, pose: Matrix) -> None:
     if s4 == 0 or s5 == 0:
         raise StructureError("two neighbouring wrist axes are parallel: not a spherical wrist")
     j5 = b.number[wvars[1]]
-    cx5 = sp.Symbol(f"c_{j5}", **_REAL)
+    cx5 = sp.Symbol(f"c_{j5}", **REAL)
     wrist_word = [Elementary("R", "z", xs[0]), Elementary("R", "x", a4)]
     wrist_word += [Elementary("R", "z", xs[1]), Elementary("R", "x", a5)]
     wrist_word += [Elementary("R", "z", xs[2])]
@@ -320,7 +314,7 @@ def _orientation(b: Builder, pose: Matrix) -> None:
         up=sp.Gt(sp.sin(wvars[1]), 0),
     )
     sg = br.symbol
-    sx5 = sp.Symbol(f"s_{j5}", **_REAL)
+    sx5 = sp.Symbol(f"s_{j5}", **REAL)
     v = sp.expand(-(c4 * s5 * cx5 + s4 * c5))
     qq = sp.expand(s4 * c5 * cx5 + c4 * s5)
     if v == 0:  # twists of ±90°: the third column is (±s cos θ4, ±s sin θ4, c)
@@ -420,7 +414,7 @@ def _structure_text(robot: KinematicChain, dec: Decoupling) -> str:
 def _wrist_centre(b: Builder, pose: Matrix) -> Matrix:
     v = b.dec.centre_in_last
     c = pose[:3, 3] + pose[:3, :3] * v
-    names = [sp.Symbol(f"c_{k}", **_REAL) for k in "xyz"]
+    names = [sp.Symbol(f"c_{k}", **REAL) for k in "xyz"]
     point = "wrist centre" if len(b.dec.wrist) == 3 else "point of the last joint's axis"
     cs, ps, rs = sp.symbols("c p R")
     if v == Matrix.zeros(3, 1):
@@ -441,7 +435,7 @@ def _wrist_centre(b: Builder, pose: Matrix) -> Matrix:
     return Matrix(names)
 
 
-def derive_decoupled(robot: KinematicChain) -> InverseKinematics:
+def derive_decoupled(robot: KinematicChain) -> ClosedForm:
     """The closed form by kinematic decoupling: spherical wrist, last joint revolute, or a
     positioning arm (tried in this order for the number of joints).
 
@@ -480,7 +474,7 @@ def derive_decoupled(robot: KinematicChain) -> InverseKinematics:
             reasons.append(f"{label}: {err.message}")
             continue
         family = "spherical wrist" if len(dec.wrist) == 3 else label
-        return InverseKinematics(
+        return ClosedForm(
             robot,
             _structure_text(robot, dec),
             dec,

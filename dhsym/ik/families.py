@@ -8,8 +8,8 @@ and derives the closed form with the family that fits:
 * :data:`~dhsym.ik.structure.PARALLEL` (axes 2, 3, 4 parallel): :mod:`dhsym.ik.parallel`;
 * :data:`~dhsym.ik.structure.INVERTED` (the first three axes meet, or axes 3, 4, 5 are
   parallel): the chain read backwards, :mod:`dhsym.ik.inverted`;
-* :data:`~dhsym.ik.structure.GENERAL_6R`: :func:`general_6r`, the Raghavan–Roth
-  elimination (:mod:`dhsym.ik.general`).
+* :data:`~dhsym.ik.structure.GENERAL_6R`: the Raghavan–Roth elimination
+  (:func:`dhsym.ik.general6r.derive_general`, an :class:`~dhsym.ik.general6r.Elimination`).
 
 Examples
 --------
@@ -25,8 +25,9 @@ from typing import TYPE_CHECKING
 
 from dhsym.kinematics.decoupling import StructureError
 
-from .closed_form import InverseKinematics
+from .closed_form import ClosedForm
 from .decoupled import derive_decoupled
+from .general6r import Elimination, derive_general
 from .inverted import derive_inverted
 from .parallel import derive_parallel
 from .structure import DECOUPLED, GENERAL_6R, INVERTED, PARALLEL, SPHERICAL_WRIST, classify
@@ -34,41 +35,34 @@ from .structure import DECOUPLED, GENERAL_6R, INVERTED, PARALLEL, SPHERICAL_WRIS
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["derivations", "general_6r", "inverse"]
+__all__ = ["derivations", "inverse"]
+
+#: A family's derivation: the closed form, or the general 6R's elimination.
+Derive = Callable[["KinematicChain"], ClosedForm | Elimination]
 
 
-def general_6r(robot: KinematicChain) -> InverseKinematics:
-    """The general 6R (no three consecutive axes parallel or meeting): every solution by the
-    Raghavan–Roth elimination (:func:`dhsym.ik.general.derive_general`).
-
-    >>> import dhsym
-    >>> ik = general_6r(dhsym.load("jaco"))
-    >>> ik.family, ik.count
-    ('general 6R', 16)
-    """
-    from .general import derive_general
-
-    return derive_general(robot)
-
-
-def derivations(family: str) -> tuple[Callable[[KinematicChain], InverseKinematics], ...]:
+def derivations(family: str) -> tuple[Derive, ...]:
     """The derivations to try, in order, for an arm of ``family``.
 
     >>> [f.__name__ for f in derivations("three parallel axes")]
     ['derive_parallel']
+    >>> [f.__name__ for f in derivations("general 6R")]
+    ['derive_decoupled', 'derive_general']
     """
-    table: dict[str, tuple[Callable[[KinematicChain], InverseKinematics], ...]] = {
+    table: dict[str, tuple[Derive, ...]] = {
         SPHERICAL_WRIST: (derive_decoupled,),
         DECOUPLED: (derive_decoupled,),
         PARALLEL: (derive_parallel,),
         INVERTED: (derive_inverted,),
-        GENERAL_6R: (derive_decoupled, general_6r),
+        GENERAL_6R: (derive_decoupled, derive_general),
     }
     return table[family]
 
 
-def inverse(robot: KinematicChain) -> InverseKinematics:
-    """Derive the closed-form inverse kinematics of ``robot`` from the structure of its table.
+def inverse(robot: KinematicChain) -> ClosedForm | Elimination:
+    """Derive the inverse kinematics of ``robot`` from the structure of its table: a
+    :class:`~dhsym.ik.closed_form.ClosedForm`, or for the general 6R an
+    :class:`~dhsym.ik.general6r.Elimination`.
 
     Raises
     ------

@@ -33,7 +33,7 @@ from dhsym.model.parsing import symbol
 from dhsym.model.table import DHRow, DHTable, JointType
 from dhsym.notation.layout import sentence
 
-from .closed_form import InverseKinematics
+from .closed_form import ClosedForm
 from .decoupled import derive_decoupled
 from .parallel import derive_parallel
 from .steps import Branch, Step, pose_symbols
@@ -83,7 +83,7 @@ def reversed_table(table: DHTable) -> DHTable:
     )
 
 
-def derive_inverted(robot: KinematicChain) -> InverseKinematics:
+def derive_inverted(robot: KinematicChain) -> ClosedForm:
     """The closed form of ``robot`` through its reversed chain.
 
     >>> import dhsym
@@ -162,9 +162,7 @@ def derive_inverted(robot: KinematicChain) -> InverseKinematics:
         f"{classify(robot)}: read backwards (tool to base) the chain is a {rev.family} — "
         f"{rev.structure} (joints of the reversed chain)"
     )
-    return InverseKinematics(
-        robot, structure, dec, pose, tuple(steps), tuple(branches), family=INVERTED
-    )
+    return ClosedForm(robot, structure, dec, pose, tuple(steps), tuple(branches), family=INVERTED)
 
 
 def _swap(eq: sp.Eq | None, primed: dict[sp.Symbol, sp.Symbol]) -> sp.Eq | None:

@@ -2,32 +2,42 @@
 
 Clearly not the closed form: it finds one solution near its start, or none. It is the
 reference the closed forms are tested against, and the fallback for arms no family
-solves.
+solves. It returns the :class:`~dhsym.ik.solution.IKSolution` of every solver: one row,
+valid when it converged, with ``method="numeric"`` and its ``iterations``.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .solution import IKSolution
+
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["NumericSolution", "numeric_ik"]
+__all__ = ["DESCRIPTION", "METHOD", "numeric_ik"]
+
+#: what an :class:`IKSolution` of this solver says it is, and that in a sentence
+METHOD = "numeric"
+DESCRIPTION = "numeric: Levenberg–Marquardt on the compiled fk (one local solution)"
 
 
-@dataclass(frozen=True, eq=False)
-class NumericSolution:
-    """One local solution from :func:`numeric_ik` — numeric, not closed form, no branches."""
-
-    q: np.ndarray
-    converged: bool
-    iterations: int
-    error: float
-    method: str = "numeric: Levenberg–Marquardt on the compiled fk (one local solution)"
+def _solution(q: np.ndarray, converged: bool, iterations: int, error: float) -> IKSolution:
+    """The one local solution as an :class:`IKSolution` (valid when it converged)."""
+    return IKSolution(
+        q[None, :],
+        np.array([converged]),
+        np.array([error]),
+        np.zeros((1, 0), dtype=bool),
+        (),
+        np.zeros((1, 0), dtype=int),
+        METHOD,
+        None if converged else f"did not converge in {iterations} iterations",
+        iterations,
+    )
 
 
 def _rotation_error(R: np.ndarray, goal: np.ndarray) -> np.ndarray:
@@ -54,7 +64,7 @@ def numeric_ik(
     tol: float = 1e-12,
     max_iter: int = 100,
     values: Mapping[object, object] | None = None,
-) -> NumericSolution:
+) -> IKSolution:
     """Levenberg–Marquardt on the compiled ``fk`` and Jacobian, from ``q0`` (default zeros).
 
     A numeric solver, clearly not the closed form: it finds one solution near its
@@ -66,8 +76,8 @@ def numeric_ik(
     >>> import dhsym
     >>> r = dhsym.load("planar2r")
     >>> sol = numeric_ik(r, r.fk([0.4, 0.9]), [0.3, 0.8])
-    >>> sol.converged, np.round(sol.q, 9).tolist()
-    (True, [0.4, 0.9])
+    >>> sol.method, sol.converged, np.round(sol.q, 9).tolist(), sol.branches
+    ('numeric', True, [[0.4, 0.9]], ('solution 1',))
     """
     fk = robot.fk_function(values=values)
     target = np.asarray(T, dtype=float)
@@ -85,7 +95,7 @@ def numeric_ik(
     it = 0
     for it in range(1, max_iter + 1):
         if e @ e < tol**2:
-            return NumericSolution(q, True, it - 1, float(np.sqrt(e @ e)))
+            return _solution(q, True, it - 1, float(np.sqrt(e @ e)))
         J = np.asarray(robot.jacobian(q, values=values))
         H = J.T @ J
         step = np.linalg.solve(H + lam * np.diag(np.diag(H) + 1e-12), J.T @ e)
@@ -96,4 +106,4 @@ def numeric_ik(
         else:
             lam = min(lam * 10, 1e12)
     err = float(np.sqrt(e @ e))
-    return NumericSolution(q, err < tol, it, err)
+    return _solution(q, err < tol, it, err)

@@ -47,8 +47,17 @@ from dhsym.kinematics.transforms import chain_word
 from dhsym.model.table import Elementary
 from dhsym.notation.layout import sentence
 
-from .closed_form import InverseKinematics
-from .steps import Builder, Equation, pose_symbols, rot_z, solve_equations, solve_joint_from_entry
+from .closed_form import ClosedForm
+from .steps import (
+    REAL,
+    Builder,
+    Equation,
+    pose_symbols,
+    rot_z,
+    solve_equations,
+    solve_joint_from_entry,
+    undo_prefix,
+)
 from .structure import PARALLEL
 
 if TYPE_CHECKING:
@@ -57,7 +66,6 @@ if TYPE_CHECKING:
 __all__ = ["derive_parallel"]
 
 Matrix: TypeAlias = sp.ImmutableMatrix
-_REAL = {"real": True}
 
 
 def _at(word: Sequence[Elementary], var: sp.Symbol) -> int:
@@ -70,7 +78,7 @@ def _constant(e: sp.Expr, zero: dict[sp.Symbol, int]) -> sp.Expr:
     return sp.nsimplify(sp.simplify(e.xreplace(zero)), rational=False)
 
 
-def derive_parallel(robot: KinematicChain) -> InverseKinematics:
+def derive_parallel(robot: KinematicChain) -> ClosedForm:
     """The closed form of a 6R arm whose axes 2, 3, 4 are parallel and axes 5, 6 meet.
 
     Raises
@@ -104,7 +112,7 @@ def derive_parallel(robot: KinematicChain) -> InverseKinematics:
 
     # 1. the wrist point
     v = meet.centre_in_last
-    names = [sp.Symbol(f"w_{k}", **_REAL) for k in "xyz"]
+    names = [sp.Symbol(f"w_{k}", **REAL) for k in "xyz"]
     ws, ps, rs = sp.symbols("w p R")
     text = sentence(
         "The axes of joints 5 and 6 meet in the wrist point {w}, at {v} in frame "
@@ -115,26 +123,21 @@ def derive_parallel(robot: KinematicChain) -> InverseKinematics:
     )
     for name, value in zip(names, p + R * v):
         b.add("wrist centre", text, name, sp.expand(value))
-    w = Matrix(names)
-    if prefix != sp.eye(4):
-        local = (prefix[:3, :3].T * (w - prefix[:3, 3])).applyfunc(sp.expand)
-        names = [sp.Symbol(f"u_{k}", **_REAL) for k in "xyz"]
-        for name, value in zip(names, local):
-            b.add(
-                "wrist centre",
-                "The wrist point in the frame before joint 1 (undo the constant transform "
-                "that precedes it).",
-                name,
-                value,
-            )
-        w = Matrix(names)
+    w = undo_prefix(
+        b,
+        "wrist centre",
+        "The wrist point in the frame before joint 1 (undo the constant transform "
+        "that precedes it).",
+        Matrix(names),
+        prefix,
+    )
 
     # 2. the shoulder: the height of W along u is a constant of the table
     to_centre = chain_word(table, 0, meet.centre)
     h = _constant((u.T * compose(to_centre[k1 + 1 :])[:3, 3])[0], zero)
     turn = rot_z(first.value)
     height = sp.expand((u.T * turn.T * w)[0])
-    hs = sp.Symbol("h", **_REAL)
+    hs = sp.Symbol("h", **REAL)
     b.add(
         "shoulder",
         sentence(
@@ -165,7 +168,7 @@ def derive_parallel(robot: KinematicChain) -> InverseKinematics:
     z6 = _constant(robot.transform(f6, robot.n).matrix[:3, :3].T[:, 2], {q[5]: 0})
     known_R = (turn.T * prefix[:3, :3].T * R).applyfunc(sp.expand)
     row = (u.T * known_R).applyfunc(sp.expand)
-    ks = sp.Symbol("k_6", **_REAL)
+    ks = sp.Symbol("k_6", **REAL)
     b.add(
         "wrist",
         sentence(
@@ -190,7 +193,7 @@ def derive_parallel(robot: KinematicChain) -> InverseKinematics:
         ],
         [q[4]],
     )
-    rsyms = [sp.Symbol(f"r_{j + 1}", **_REAL) for j in range(3)]
+    rsyms = [sp.Symbol(f"r_{j + 1}", **REAL) for j in range(3)]
     for j, sym in enumerate(rsyms):
         b.add(
             "wrist",
@@ -249,7 +252,7 @@ def derive_parallel(robot: KinematicChain) -> InverseKinematics:
         ],
         [q[1], q[2]],
     )
-    col = [sp.Symbol(f"n_{k}4", **_REAL) for k in "xyz"]
+    col = [sp.Symbol(f"n_{k}4", **REAL) for k in "xyz"]
     for sym, value in zip(col, Q[:3, 0]):
         b.add("planar arm", "The first column of that frame's rotation:", sym, value)
     left = (L[:3, :3].T * Matrix(col)).applyfunc(sp.expand)
@@ -267,6 +270,6 @@ def derive_parallel(robot: KinematicChain) -> InverseKinematics:
         f"{meet.centre}): joint 1 from the wrist point's height along the parallel axes, "
         "joints 5 and 6 from the tool's rotation, joints 2–4 as a planar arm"
     )
-    return InverseKinematics(
+    return ClosedForm(
         robot, structure, dec, pose, tuple(b.steps), tuple(b.branches), family=PARALLEL
     )

@@ -24,8 +24,9 @@ Matrix([
 from __future__ import annotations
 
 import itertools
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, TypeAlias
 
 import sympy as sp
@@ -33,29 +34,58 @@ import sympy as sp
 from dhsym.kinematics.decoupling import Decoupling, StructureError
 from dhsym.kinematics.jacobian import compact
 from dhsym.kinematics.simplification import trig_coefficients
+from dhsym.model.parsing import REAL
 from dhsym.model.table import JointType
 from dhsym.notation.layout import Sentence, sentence
-
-from .results import BRANCH_NAMES
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
 __all__ = [
+    "BRANCH_NAMES",
+    "REAL",
     "Branch",
     "Builder",
     "Equation",
     "Step",
+    "branch_word",
     "capital",
     "pose_symbols",
     "rot_x",
     "rot_z",
     "solve_equations",
     "solve_joint_from_entry",
+    "step_latex",
+    "step_text",
+    "undo_prefix",
 ]
 
 Matrix: TypeAlias = sp.ImmutableMatrix
-_REAL = {"real": True}
+
+#: The one list of branch names, by the role of the branch: (first, second). For
+#: ``"arm"`` and ``"wrist"`` the first is the sign +1; for ``"elbow"`` the first is the
+#: elbow above the shoulder-to-wrist line (found from the geometry, not from the sign).
+BRANCH_NAMES: Mapping[str, tuple[str, str]] = MappingProxyType(
+    {
+        "arm": ("right arm", "left arm"),
+        "elbow": ("elbow up", "elbow down"),
+        "wrist": ("wrist not flipped", "wrist flipped"),
+    }
+)
+
+
+def branch_word(role: str, first: bool, variable: object = "") -> str:
+    """The name of one branch: derivations, IK results, feedback and notebooks all use it.
+
+    ``first`` is the sign +1 for the arm and the wrist, the elbow up for the elbow; a branch
+    of another role (the sign of a square root) is named by that sign and its variable.
+
+    >>> branch_word("elbow", True), branch_word("arm", False), branch_word("reach", True, "d3")
+    ('elbow up', 'left arm', '+ root for d3')
+    """
+    if role in BRANCH_NAMES:
+        return BRANCH_NAMES[role][0 if first else 1]
+    return f"{'+' if first else '-'} root for {variable}".rstrip()
 
 
 def pose_symbols() -> Matrix:
@@ -66,7 +96,7 @@ def pose_symbols() -> Matrix:
     """
     cols = []
     for v in "nsap":
-        cols.append([sp.Symbol(f"{v}_{c}", **_REAL) for c in "xyz"])
+        cols.append([sp.Symbol(f"{v}_{c}", **REAL) for c in "xyz"])
     M = sp.Matrix(3, 4, lambda i, j: cols[j][i])
     return Matrix(M.col_join(sp.Matrix([[0, 0, 0, 1]])))
 
@@ -169,7 +199,7 @@ class Equation:
 
 
 #: what the two signs of a ``±√`` mean, by the role of the branch, in the words of
-#: :data:`~dhsym.ik.results.BRANCH_NAMES` (the names the IK results and the feedback use)
+#: :data:`BRANCH_NAMES` (the names the IK results and the feedback use)
 _BRANCH_WORDS = {
     role: f"{{plus}} and {{minus}}: the two {part} configurations ({first} and {second})"
     for role, part in (("elbow", "elbow"), ("arm", "shoulder"), ("wrist", "wrist"))
@@ -203,7 +233,7 @@ class Builder:
     def branch(self, role: str, var: sp.Symbol, template: str, **math: object) -> Branch:
         """A new sign σ_j; ``template`` may use ``{s}`` (σ_j), ``{plus}``, ``{minus}``."""
         j = self.number[var]
-        sigma = sp.Symbol(f"sigma_{j}", **_REAL)
+        sigma = sp.Symbol(f"sigma_{j}", **REAL)
         words = sentence(template, s=sigma, plus=sp.Eq(sigma, 1), minus=sp.Eq(sigma, -1), **math)
         b = Branch(sigma, role, j, words)
         self.branches.append(b)
@@ -211,6 +241,32 @@ class Builder:
 
     def tidy(self, e: sp.Expr) -> sp.Expr:
         return compact(sp.factor_terms(e))
+
+
+def undo_prefix(b: Builder, part: str, text: str, point: Matrix, prefix: sp.Matrix) -> Matrix:
+    """``point`` in the frame before joint 1: the constant transform ``prefix`` that precedes
+    joint 1 undone, ``u = Rᵀ (point − t)``, as three steps ``u_x, u_y, u_z`` of ``part``
+    explained by ``text`` (``point`` itself when there is no such transform).
+    """
+    if prefix == sp.eye(4):
+        return point
+    local = (prefix[:3, :3].T * (point - prefix[:3, 3])).applyfunc(sp.expand)
+    names = [sp.Symbol(f"u_{c}", **REAL) for c in "xyz"]
+    for name, value in zip(names, local):
+        b.add(part, text, name, value)
+    return Matrix(names)
+
+
+def step_text(robot: KinematicChain, step: Step) -> str:
+    """``lhs = rhs`` of one step in plain text, in the robot's notation."""
+    nota = robot.notation
+    return f"{nota.text(step.lhs)} = {nota.text(step.rhs)}"
+
+
+def step_latex(robot: KinematicChain, step: Step) -> str:
+    """``lhs = rhs`` of one step in LaTeX, in the robot's notation."""
+    nota = robot.notation
+    return f"{nota.latex(step.lhs)} = {nota.latex(step.rhs)}"
 
 
 def capital(words: str) -> str:
@@ -281,7 +337,7 @@ def _try_pair(
             elif sp.expand(A2 - B1) == 0 and sp.expand(B2 + A1) == 0:
                 value = sp.atan2(t(-R2), t(R1)) - sp.atan2(t(-A2), t(A1))
             else:
-                delta = sp.Symbol(f"Delta_{b.number[var]}", **_REAL)
+                delta = sp.Symbol(f"Delta_{b.number[var]}", **REAL)
                 b.add(
                     b.part,
                     sentence(
@@ -377,7 +433,7 @@ def _solve_single(b: Builder, eq: Equation, e: sp.Expr, var: sp.Symbol, two: boo
         else "{eq} leaves {v} alone: {name} with"
     )
     if B == 0 or A == 0:
-        D = sp.Symbol(f"D_{j}", **_REAL)
+        D = sp.Symbol(f"D_{j}", **REAL)
         trig = sp.cos(var) if B == 0 else sp.sin(var)
         b.add(
             b.part,
@@ -390,7 +446,7 @@ def _solve_single(b: Builder, eq: Equation, e: sp.Expr, var: sp.Symbol, two: boo
         value = sp.atan2(root, D) if B == 0 else sp.atan2(D, root)
         b.add(b.part, "Two solutions, one for each sign of the root:", var, value, branch=br)
         return True
-    Ks = sp.Symbol(f"K_{j}", **_REAL)
+    Ks = sp.Symbol(f"K_{j}", **REAL)
     b.add(
         b.part,
         sentence(text, eq=capital(eq.name), v=var, name=sp.Eq(_show(A, B, var), Ks)),

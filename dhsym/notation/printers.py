@@ -230,8 +230,8 @@ def _lead(terms: Iterable[Product]) -> Sum:
 class Token:
     """A piece of a printed formula.
 
-    ``kind`` is ``atom``, ``sign`` (a leading minus), ``op`` (``+`` or ``-``, with a space each side,
-    between terms: a line may break before it), ``open`` or ``close`` (a bracket
+    ``kind`` is ``atom``, ``sign`` (a leading minus), ``op`` (``+`` or ``-``, with a
+    space each side, between terms: a line may break before it), ``open`` or ``close`` (a bracket
     of ``level``, ``tall`` when it holds a fraction or root); ``depth`` counts the
     brackets around the piece.
     """

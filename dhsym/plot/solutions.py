@@ -1,7 +1,7 @@
 """Every inverse-kinematics solution of one pose, drawn side by side (matplotlib).
 
 :func:`plot_solutions` takes the solutions of :meth:`~dhsym.robot.Robot.ik`
-(an :class:`~dhsym.ik.results.IKSolution`, or a ``(k, n)`` array with names) and
+(an :class:`~dhsym.ik.solution.IKSolution`, or a ``(k, n)`` array with names) and
 draws the arm in each, one panel per solution titled with its branch (left/right arm,
 elbow up/down, wrist flipped or not), all with one view so that they compare, and the
 target pose's frame marked in every panel.

@@ -36,7 +36,7 @@ from .sampled_frames import EvaluationError, evaluate, frames
 from .tolerances import TOLERANCES
 
 if TYPE_CHECKING:
-    from dhsym.ik.closed_form import InverseKinematics
+    from dhsym.ik.closed_form import ClosedForm
     from dhsym.kinematics.chain import KinematicChain
 
 __all__ = [
@@ -114,7 +114,7 @@ def pose_sample(
     return PoseSample(q, env, revolute, size, origin)
 
 
-def branch_signs(ik: InverseKinematics) -> np.ndarray:
+def branch_signs(ik: ClosedForm) -> np.ndarray:
     """Every choice of the signs ``σ`` (rows, in the solver's order: ``+1`` first)."""
     B = len(ik.branches)
     return np.array(list(itertools.product([1, -1], repeat=B)), dtype=float).reshape(2**B, B)
@@ -130,7 +130,7 @@ def _evaluate(
 
 
 def key_values(
-    ik: InverseKinematics,
+    ik: ClosedForm,
     env: Mapping[sp.Symbol, np.ndarray],
     size: int,
     rewrite: Rewrite | None = None,

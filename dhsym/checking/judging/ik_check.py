@@ -66,7 +66,7 @@ from .key import PreparedKey
 from .rounding import value_tolerance
 
 if TYPE_CHECKING:
-    from dhsym.ik.closed_form import InverseKinematics
+    from dhsym.ik.closed_form import ClosedForm
     from dhsym.robot import Robot
 
 __all__ = ["check_ik", "ik_part"]
@@ -205,7 +205,7 @@ def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
 def _entries(
     pk: PreparedKey,
     ans: IKAnswer,
-    ik: InverseKinematics,
+    ik: ClosedForm,
     key: np.ndarray,
     answers: np.ndarray,
     tols: np.ndarray,
@@ -417,7 +417,7 @@ def _match(
 
 
 def _judge(
-    pk: PreparedKey, ans: IKAnswer, ik: InverseKinematics, sample: PoseSample, position: bool
+    pk: PreparedKey, ans: IKAnswer, ik: ClosedForm, sample: PoseSample, position: bool
 ) -> tuple[bool, _Match, _Meta]:
     variables = list(pk.robot.variables)
     key = key_values(ik, sample.env, sample.size)
@@ -430,7 +430,7 @@ def _judge(
 def _correct(
     pk: PreparedKey,
     ans: IKAnswer,
-    ik: InverseKinematics,
+    ik: ClosedForm,
     sample: PoseSample,
     result: tuple[bool, _Match, _Meta],
     position: bool,

@@ -25,7 +25,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.ik.results import IKSolution
+from dhsym.ik.closed_form import ClosedForm
 from dhsym.ik.steps import pose_symbols
 from dhsym.model.table import DHTable
 
@@ -36,7 +36,6 @@ from ..reading.answer_names import NameContext
 from ..reading.questions import Question
 
 if TYPE_CHECKING:
-    from dhsym.ik.closed_form import InverseKinematics
     from dhsym.robot import Robot
 
 __all__ = ["IKPart", "prepare_ik"]
@@ -53,7 +52,7 @@ class IKPart:
     the answer uses the table's numbers for the lengths (True) or their symbols (False).
     """
 
-    ik: InverseKinematics
+    ik: ClosedForm
     pose: PoseSample | None
     branch_names: tuple[str, ...]
     symbols: frozenset[sp.Symbol]
@@ -66,7 +65,7 @@ def prepare_ik(
     """Derive the key's inverse kinematics once (and the pose of a numeric question)."""
     q = question
     ik = robot.inverse()
-    if ik.most is not None:
+    if not isinstance(ik, ClosedForm):  # the general 6R: an Elimination
         raise DHError(
             f"{robot.name or 'this arm'} is a general 6R: its inverse kinematics is an "
             "eigenproblem, not closed-form steps to grade"
@@ -100,7 +99,7 @@ def prepare_ik(
     return names, IKPart(ik, pose, branch_names, symbols, poses)
 
 
-def _reference_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
+def _reference_names(robot: Robot, ik: ClosedForm) -> tuple[str, ...]:
     """Each key branch named as the IK results name it (``"elbow up"``, ``"right arm"``),
     read at the examples' configuration
     (:func:`~dhsym.explain.inverse_kinematics.default_configuration`) with the table's
@@ -118,14 +117,12 @@ def _reference_names(robot: Robot, ik: InverseKinematics) -> tuple[str, ...]:
         return tuple(f"branch {k + 1}" for k in range(2 ** len(ik.branches)))
 
 
-def _numeric_names(
-    robot: Robot, ik: InverseKinematics, sample: PoseSample, key: np.ndarray
-) -> list[str]:
+def _numeric_names(robot: Robot, ik: ClosedForm, sample: PoseSample, key: np.ndarray) -> list[str]:
     """Each key branch named as the numeric solver names it at the question's pose."""
     T = frames(robot.table, sample.env, 1)[0, -1]
     position_only = not ik.decoupling.wrist
     sol = robot.ik(T[:3, 3] if position_only else T)
-    if not isinstance(sol, IKSolution):  # one pose gives one solution, not a batch
+    if sol.batch:  # one pose gives one solution, not a batch
         raise TypeError(f"robot.ik of one pose returned {type(sol).__name__}")
     names = []
     for k in range(len(key)):

@@ -31,7 +31,7 @@ from ..comparing.verdict import Diagnosis
 from ._mistake_base import Mistake
 
 if TYPE_CHECKING:
-    from dhsym.ik.closed_form import InverseKinematics
+    from dhsym.ik.closed_form import ClosedForm
 
 __all__ = [
     "IK_MISTAKES",
@@ -57,7 +57,7 @@ class IKCase:
     branches the answer gives; ``every`` is True when the question asks for all of them.
     """
 
-    ik: InverseKinematics
+    ik: ClosedForm
     sample: PoseSample
     key: np.ndarray
     answers: np.ndarray

@@ -8,7 +8,7 @@ import pytest
 import dhsym
 from dhsym.checking import Key, check_answer
 from dhsym.checking.reading.answer_value import read_answer_value
-from dhsym.ik.results import BRANCH_NAMES
+from dhsym.ik.steps import BRANCH_NAMES
 
 D = "((p_x^2 + p_y^2 - a1^2 - a2^2)/(2*a1*a2))"
 THETA1 = "theta1 = atan2(p_y, p_x) - atan2(a2*S2, a1 + a2*C2)"

@@ -34,7 +34,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
@@ -42,348 +42,47 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.kinematics.decoupling import StructureError
+from dhsym.kinematics.jacobian import axis_frame
 from dhsym.model.table import JointType
 
-from .results import IKBatch, IKSolution
+from .closed_form import ClosedForm
+from .protocols import read_poses
+from .rewriting import (
+    MATH,
+    NUMPY,
+    REMAINDER,
+    TAU,
+    WRIST_NEAR,
+    WRIST_ZERO,
+    Residual,
+    Wrap,
+    lift_residuals,
+    per_branch,
+    pull_signs,
+    reuse_names,
+    schedule,
+    with_safe_sqrt,
+    wrap,
+)
+from .solution import IKSolution
+from .steps import REAL, Branch, branch_word
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
+    from dhsym.kinematics.chain import KinematicChain
     from dhsym.kinematics.singularities import Singularities
 
-    from .closed_form import InverseKinematics
+__all__ = ["ClosedFormSolver", "Layout"]
 
-__all__ = ["Solver"]
-
-_REAL = {"real": True}
-
-
-# --- numbers --------------------------------------------------------------------------------
-
-
-class SafeSqrt(sp.Function):
-    """``sqrt`` that reads a radicand within rounding of 0 as 0 (compile-time only)."""
-
-
-class Wrap(sp.Function):
-    """An angle wrapped to [−π, π] (compile-time only)."""
-
-
-class Residual(sp.Function):
-    """``max |d|`` over its arguments, NaN when one is NaN (compile-time only).
-
-    For numpy ``maximum(maximum(abs(d1), abs(d2)), …)``, one difference at a time (NaN
-    propagates); for floats ``max(0.0 * (d1 + d2 + …), abs(d1), abs(d2), …)``, whose
-    first term, NaN or ±0, is kept by ``max`` when it is NaN (also for an infinity).
-    """
-
-    def _numpycode(self, printer: Any) -> str:  # a sympy code printer (untyped)
-        maximum = printer._module_format("numpy.maximum")
-        args = [f"abs({printer._print(a)})" for a in self.args]
-        out = args[0]
-        for a in args[1:]:
-            out = f"{maximum}({out}, {a})"
-        return out
-
-    def _pythoncode(self, printer: Any) -> str:  # a sympy code printer (untyped)
-        args = [printer._print(a) for a in self.args]
-        return f"max(0.0 * ({' + '.join(args)}), {', '.join(f'abs({a})' for a in args)})"
-
-
-_ROUNDING = 1e-10
-_TWO_PI = 2 * np.pi
-_INV_TWO_PI = 1 / _TWO_PI
-
-
-def _safe_sqrt(x: np.ndarray) -> np.ndarray:
-    x = np.asarray(x, dtype=float)
-    return np.sqrt(np.where(x > -_ROUNDING, np.maximum(x, 0.0), x))  # NaN stays NaN
-
-
-def _wrap(x: np.ndarray) -> np.ndarray:
-    """Angles to [−π, π] (faster than ``np.remainder``)."""
-    return x - _TWO_PI * np.rint(x * _INV_TWO_PI)
-
-
-def _safe_sqrt_float(x: float) -> float:
-    """:func:`_safe_sqrt` of one float."""
-    if x >= 0.0:
-        return math.sqrt(x)
-    return 0.0 if x > -_ROUNDING else math.nan
-
-
-#: the wrap for floats, inline: ``math.remainder(x, 2π)`` is in [−π, π] and keeps NaN; it
-#: equals :func:`_wrap` except within rounding of ±π, where either end may come out
-_REMAINDER = sp.Function("remainder")
-_TAU = sp.Symbol("TWO_PI")
-_NUMPY = [{"SafeSqrt": _safe_sqrt, "Wrap": _wrap}, "numpy"]
-_MATH = [
-    {"SafeSqrt": _safe_sqrt_float, "TWO_PI": _TWO_PI},
-    "math",
-]
-
-
-def _with_safe_sqrt(e: sp.Expr) -> sp.Expr:
-    return e.replace(lambda t: t.is_Pow and t.exp == sp.S.Half, lambda t: SafeSqrt(t.base)).replace(
-        lambda t: t.is_Pow and t.exp == -sp.S.Half, lambda t: 1 / SafeSqrt(t.base)
-    )
-
-
+#: what an :class:`IKSolution` of a closed form says it is
+METHOD = "closed form"
 #: poses per block: large enough that numpy's cost per call is small against its work,
 #: small enough that a block's temporaries stay in the cache (measured: 1024-4096 alike)
 _CHUNK = 2048
 
-#: |sin θ5| below which θ6 comes from the whole wrist rotation, and below which θ4 = 0
-_WRIST_NEAR = 1e-5
-_WRIST_ZERO = 1e-12
 #: fraction of a singular factor's largest value below which branches may coincide
 _SUSPECT = 1e-4
-
-
-def _schedule(
-    steps: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
-) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
-    """The steps as one straight-line program for ``outputs``, subexpressions shared.
-
-    Steps no output needs are dropped; ``cse`` runs over all right-hand sides at once and
-    each shared subexpression is placed right after the last step it depends on.
-    """
-    needed = set().union(*(e.free_symbols for e in outputs)) if outputs else set()
-    kept = []
-    for lhs, rhs in reversed(steps):
-        if lhs in needed:
-            kept.append((lhs, rhs))
-            needed |= rhs.free_symbols
-    steps = kept[::-1]
-    exprs = [rhs for _, rhs in steps] + list(outputs)
-    repl, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("_w"), optimizations=None)
-    position = {lhs: i for i, (lhs, _) in enumerate(steps)}
-    level: dict[sp.Symbol, int] = {}
-    for sym, e in repl:
-        deps = [position[s] for s in e.free_symbols if s in position]
-        deps += [level[s] for s in e.free_symbols if s in level]
-        level[sym] = max(deps, default=-1)
-    program = [(sym, e) for sym, e in repl if level[sym] == -1]
-    for i, (lhs, _) in enumerate(steps):
-        program.append((lhs, reduced[i]))
-        program += [(sym, e) for sym, e in repl if level[sym] == i]
-    return program, list(reduced[len(steps) :])
-
-
-def _signed(e: sp.Expr, signs: set[sp.Symbol]) -> tuple[sp.Expr, sp.Expr]:
-    """``e = σ · rest`` with σ the product of the branch signs that are factors of ``e``."""
-    sigma = sp.Mul(*[f for f in sp.Mul.make_args(e) if f in signs])
-    return sigma, (e / sigma if sigma != 1 else e)
-
-
-def _shifted(e: sp.Expr, signs: set[sp.Symbol]) -> tuple[sp.Expr, sp.Expr]:
-    """``e = rest + shift`` with ``shift = d (σ − 1)`` for each sign σ that ``e`` depends on
-    only through a constant multiple of π/2 (e.g. ``π(1 − σ)/2``: the atan2 of −Y, −X)."""
-    shift = sp.S.Zero
-    for s in sorted(e.free_symbols & signs, key=str):
-        d = sp.diff(e, s)
-        if not d.free_symbols and (2 * d / sp.pi).is_Integer:
-            shift += d * (s - 1)
-            e = e.xreplace({s: 1})
-    return shift, e
-
-
-def _trig_signs(e: sp.Expr, signs: set[sp.Symbol]) -> sp.Expr:
-    """``sin`` and ``cos`` with the branch signs σ = ±1 taken out of their arguments.
-
-    An argument odd in σ: ``cos(σx) = cos x``, ``sin(σx) = σ sin x``; an argument that moves
-    by kπ between σ = +1 and σ = −1: ``cos(x + kπ(1 − σ)/2) = σᵏ cos x`` (the same for sin).
-    Both are identities for σ = ±1, so each sine and cosine is computed only over the
-    branches its argument really depends on.
-    """
-
-    def rule(t: sp.Expr) -> sp.Expr:
-        arg = t.args[0]
-        for s in sorted(arg.free_symbols & signs, key=str):
-            plus, minus = arg.xreplace({s: 1}), arg.xreplace({s: -1})
-            if sp.expand(plus + minus) == 0:
-                factor = s if isinstance(t, sp.sin) else sp.S.One
-                return factor * _trig_signs(t.func(plus), signs)
-            k = sp.expand((minus - plus) / sp.pi)
-            if k.is_Integer:
-                return s ** (int(k) % 2) * _trig_signs(t.func(plus), signs)
-        return t
-
-    return e.replace(
-        lambda t: isinstance(t, (sp.sin, sp.cos)) and bool(t.args[0].free_symbols & signs), rule
-    )
-
-
-def _pull_signs(
-    steps: Sequence[tuple[sp.Symbol, sp.Expr]],
-    outputs: Sequence[sp.Expr],
-    signs: Sequence[sp.Symbol],
-) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
-    """Move branch signs σ = ±1 out of square roots' neighbours, ``atan2``, sin and cos.
-
-    A step ``x = σ·E`` becomes ``x' = E`` with ``x = σ x'`` downstream, a step
-    ``x = E + π(1 − σ)/2`` becomes ``x' = E`` with ``x = x' + π(1 − σ)/2`` downstream, and
-    ``atan2(σa Y, σb X) ≡ σa σb atan2(Y, X) + π(1 − σb)/2`` (mod 2π), so that each
-    ``atan2`` (and each sine and cosine, :func:`_trig_signs`; ``|σx| = |x|``,
-    ``wrap(σx) = σ wrap(x)``) runs once for the branches it does not depend on. Only
-    used for numbers: the angles it changes are wrapped to [−π, π] afterwards.
-    """
-    sset = set(signs)
-
-    def square_free(e: sp.Expr) -> sp.Expr:
-        return e.replace(
-            lambda t: t.is_Pow and t.base in sset and t.exp.is_Integer,
-            lambda t: t.base ** (int(t.exp) % 2),
-        )
-
-    def pull(e: sp.Expr) -> sp.Expr:
-        def rewrite(t: sp.atan2) -> sp.Expr:
-            sy, Y = _signed(t.args[0], sset)
-            sx, X = _signed(t.args[1], sset)
-            if sy == 1 and sx == 1:
-                return t
-            return sx * sy * sp.atan2(Y, X) + sp.pi * (1 - sx) / 2
-
-        def odd(t: Wrap) -> sp.Expr:  # the wrap is odd (exactly, in floats too)
-            sigma, rest = _signed(t.args[0], sset)
-            return sigma * Wrap(rest)
-
-        e = e.replace(lambda t: isinstance(t, sp.atan2), rewrite)
-        e = square_free(_trig_signs(square_free(e), sset))
-
-        def unsigned(t: sp.Abs) -> sp.Expr:  # |σx| = |x|
-            return sp.Abs(_signed(t.args[0], sset)[1])
-
-        e = e.replace(lambda t: isinstance(t, sp.Abs), unsigned)
-        return e.replace(lambda t: isinstance(t, Wrap), odd)
-
-    sub: dict[sp.Symbol, sp.Expr] = {}
-    out = []
-    for lhs, rhs in steps:
-        e = pull(square_free(rhs.xreplace(sub)))
-        sigma, rest = _signed(e, sset)
-        shift = sp.S.Zero
-        if sigma == 1:
-            shift, rest = _shifted(e, sset)
-        if sigma != 1 or shift != 0:
-            bare = sp.Symbol(f"{lhs.name}_", **_REAL)
-            out.append((bare, rest))
-            sub[lhs] = sigma * bare + shift
-        else:
-            out.append((lhs, e))
-    return out, [pull(square_free(o.xreplace(sub))) for o in outputs]
-
-
-def _per_branch(
-    program: Sequence[tuple[sp.Symbol, sp.Expr]],
-    outputs: Sequence[sp.Expr],
-    signs: Sequence[sp.Symbol],
-) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[list[sp.Expr]]]:
-    """The program written out for every branch, for scalars: the signs become numbers.
-
-    A line that depends on the signs S (directly or through earlier lines) is repeated
-    once per combination of S; a line that does not is computed once. The outputs are
-    lines too (an angle that depends on one sign is wrapped twice, not once per branch)
-    and are returned as one list per branch, in the order of :attr:`Solver.branch_signs`.
-    """
-    sset = set(signs)
-    deps: dict[sp.Symbol, tuple[sp.Symbol, ...]] = {}
-    bound: dict[tuple[sp.Symbol, tuple[int, ...]], sp.Expr] = {}
-
-    def bind(e: sp.Expr, choice: Mapping[sp.Symbol, int]) -> sp.Expr:
-        rep: dict[sp.Symbol, sp.Expr] = {s: sp.Integer(choice[s]) for s in e.free_symbols & sset}
-        for x in e.free_symbols:
-            if x in deps:
-                rep[x] = bound[(x, tuple(choice[s] for s in deps[x]))]
-        return e.xreplace(rep)
-
-    names = [sp.Symbol(f"_out{i}") for i in range(len(outputs))]
-    lines = []
-    for sym, e in [*program, *zip(names, outputs)]:
-        used = set(e.free_symbols & sset).union(*(deps[x] for x in e.free_symbols if x in deps))
-        d = deps[sym] = tuple(s for s in signs if s in used)
-        for combo in itertools.product((1, -1), repeat=len(d)):
-            value = bind(e, dict(zip(d, combo)))
-            if value.is_Number or value.is_Symbol:
-                bound[(sym, combo)] = value
-                continue
-            name = sym
-            if d:
-                tag = "".join("p" if c > 0 else "m" for c in combo)
-                name = sp.Symbol(f"{sym.name}__{tag}", **sym.assumptions0)
-            lines.append((name, value))
-            bound[(sym, combo)] = name
-    outs = []
-    for combo in itertools.product((1, -1), repeat=len(signs)):
-        choice = dict(zip(signs, combo))
-        outs.append([bound[(o, tuple(choice[s] for s in deps[o]))] for o in names])
-    return lines, outs
-
-
-def _reuse_names(
-    program: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
-) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
-    """The program with a line's name bound again once its value is no longer needed.
-
-    For numpy: rebinding a name frees the array it held, so a block's temporaries are
-    few at any time and reused (fewer cache misses and page faults than when every
-    intermediate array lives until the function returns).
-    """
-    alias: dict[sp.Symbol, sp.Expr] = {}  # lines x = y: y itself (lambdify reads a line
-    lines = []  # x = argument as "x is that argument" everywhere, so x must not be reused)
-    for sym, e in program:
-        e = e.xreplace(alias)
-        if e.is_Symbol:
-            alias[sym] = e
-        else:
-            lines.append((sym, e))
-    program, outputs = lines, [o.xreplace(alias) for o in outputs]
-    last: dict[sp.Symbol, int] = {}
-    for i, (_, e) in enumerate(program):
-        for x in e.free_symbols:
-            last[x] = i
-    for o in outputs:
-        for x in o.free_symbols:
-            last[x] = len(program)
-    defined = {sym for sym, _ in program}
-    rename: dict[sp.Symbol, sp.Symbol] = {}
-    free: list[sp.Symbol] = []
-    out = []
-    for i, (sym, e) in enumerate(program):
-        free += [rename[x] for x in e.free_symbols if x in defined and last[x] == i]
-        name = free.pop() if free else sym
-        out.append((name, e.xreplace(rename)))
-        rename[sym] = name
-        if sym not in last:  # never used: its name is free again at once
-            free.append(name)
-    return out, [o.xreplace(rename) for o in outputs]
-
-
-def _lift_residuals(
-    program: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
-) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
-    """Each argument of a :class:`Residual` (a line or an output) becomes a line of the
-    program of its own (for floats it is printed twice: in the sum that catches NaN and
-    in its ``abs``)."""
-    names = sp.numbered_symbols("_d")
-    lines: list[tuple[sp.Symbol, sp.Expr]] = []
-
-    def lift(e: sp.Expr) -> sp.Expr:
-        if not isinstance(e, Residual):
-            return e
-        args = []
-        for a in e.args:
-            if not a.is_Symbol:
-                sym = next(names)
-                lines.append((sym, a))
-                a = sym
-            args.append(a)
-        return Residual(*args)
-
-    for sym, e in program:
-        e = lift(e)
-        lines.append((sym, e))
-    return lines, [lift(o) for o in outputs]
 
 
 @dataclass(frozen=True)
@@ -431,15 +130,15 @@ class Layout:
         )
 
 
-#: The programs a :class:`Solver` compiles (see :meth:`Solver._program`).
+#: The programs a :class:`ClosedFormSolver` compiles (see :meth:`ClosedFormSolver._program`).
 ProgramKind = Literal["raw", "checked", "scalar", "singular"]
 
 
 @dataclass
 class Programs:
-    """The lambdified programs of one :class:`Solver`, each built on first use: ``raw`` and
-    ``checked`` (numpy, all branches by broadcasting), ``scalar`` (floats, every branch
-    written out), ``singular`` (numpy: θ4 and θ6 at a singular wrist)."""
+    """The lambdified programs of one :class:`ClosedFormSolver`, each built on first use:
+    ``raw`` and ``checked`` (numpy, all branches by broadcasting), ``scalar`` (floats,
+    every branch written out), ``singular`` (numpy: θ4 and θ6 at a singular wrist)."""
 
     raw: Callable[..., list[Any]] | None = None
     checked: Callable[..., list[Any]] | None = None
@@ -447,11 +146,13 @@ class Programs:
     singular: Callable[..., list[Any]] | None = None
 
 
-class Solver:
-    """The steps of an :class:`InverseKinematics`, compiled for numbers.
+class ClosedFormSolver:
+    """The steps of a :class:`~dhsym.ik.closed_form.ClosedForm`, compiled for numbers (an
+    :class:`~dhsym.ik.protocols.IKSolver`).
 
-    :meth:`solve` takes one pose ``(4, 4)`` (an :class:`IKSolution`) or a batch
-    ``(N, 4, 4)`` (an :class:`IKBatch`: padded arrays with a validity mask). Poses are
+    :meth:`solve` takes one pose ``(4, 4)`` or a batch ``(N, 4, 4)`` and returns an
+    :class:`~dhsym.ik.solution.IKSolution` (for a batch: padded arrays with a validity
+    mask). Poses are
     world-to-tool, as ``fk`` gives them; base and tool transforms are undone first.
 
     The steps, the ``fk`` of the solutions and the singular factors at them are compiled
@@ -462,19 +163,19 @@ class Solver:
     written out once per branch and one pose costs a few microseconds.
     """
 
-    def __init__(self, ik: InverseKinematics, values: Mapping[sp.Symbol, sp.Expr]) -> None:
+    def __init__(self, ik: ClosedForm, values: Mapping[sp.Symbol, sp.Expr]) -> None:
         robot = ik.robot
         self.ik = ik
-        self.robot = robot
+        self.robot: KinematicChain = robot
         self.values = dict(values)
         self.n = len(robot.variables)
         self.revolute = np.array(
             [r.joint is JointType.REVOLUTE for r in robot.table.rows if r.variable is not None]
         )
         self.pose_args = [ik.pose[i, j] for j in range(4) for i in range(3)]
-        self.targets = [sp.Dummy(f"T{i + 1}{j + 1}", **_REAL) for j in range(4) for i in range(3)]
+        self.targets = [sp.Dummy(f"T{i + 1}{j + 1}", **REAL) for j in range(4) for i in range(3)]
         self.signs = [b.symbol for b in ik.branches]
-        self._steps = [(st.lhs, _with_safe_sqrt(st.rhs.xreplace(self.values))) for st in ik.steps]
+        self._steps = [(st.lhs, with_safe_sqrt(st.rhs.xreplace(self.values))) for st in ik.steps]
         self._singular = {st.lhs: st.singular for st in ik.steps if st.singular is not None}
         # the wrist sines watched for sin θ5 = 0: only a derivation that says what to do
         # there (the singular values of θ4 and θ6) has them
@@ -519,6 +220,56 @@ class Solver:
             self._frames[k] = fk(values=self.values) if k is None else fk(0, k, self.values)
         return self._frames[k]
 
+    def branch_names(self, q: np.ndarray, signs: np.ndarray) -> tuple[str, ...]:
+        """Each solution's branch in words (``"left arm, elbow up, wrist flipped"``), from its
+        joint values ``q`` ``(k, n)`` and branch signs ``(k, B)``. The export room names its
+        generated branches with the same words.
+
+        >>> import dhsym
+        >>> r = dhsym.load("planar2r")
+        >>> solver = r.ik_cache().solver()
+        >>> solver.branch_names(np.array([[0.4, 0.9]]), np.array([[-1]]))
+        ('elbow down',)
+        """
+        parts: list[list[str]] = [[] for _ in range(len(q))]
+        for b, col in zip(self.ik.branches, signs.T):
+            var = self.robot.variables[b.joint - 1]
+            if b.role == "elbow":
+                up = self._elbow_up(q, b) if len(q) else np.zeros(0, dtype=bool)
+                words = [branch_word("elbow", bool(u)) for u in up]
+            else:
+                words = [branch_word(b.role, bool(sgn > 0), var) for sgn in col]
+            for k, w in enumerate(words):
+                parts[k].append(w)
+        return tuple(", ".join(p) for p in parts)
+
+    def _elbow_up(self, q: np.ndarray, branch: Branch) -> np.ndarray:
+        """True where the elbow lies above the line from the shoulder to the wrist centre.
+
+        "Above" is the side of +z0 for an arm that moves in a vertical plane, and the left
+        of the shoulder-to-wrist line seen from above (+z0) for a planar arm. ``q`` is
+        ``(k, n)``.
+        """
+        robot = self.robot
+        rows = robot.table.joint_rows
+        elbow_row = rows[branch.joint - 1]
+        shoulder_row = rows[branch.joint - 2]
+        s = self.frame(axis_frame(robot, shoulder_row))(q)[:, :3, 3]
+        E = self.frame(axis_frame(robot, elbow_row))(q)
+        e, h = E[:, :3, 3] - s, E[:, :3, 2]
+        w = self.frame(self.ik.decoupling.centre)(q)[:, :3, 3] - s
+        up = h[:, 2]
+        planar = np.abs(up) > 0.5
+        h_up = h * np.where(up < 0, -1.0, 1.0)[:, None]
+        left = np.einsum("ij,ij->i", e, np.cross(h_up, w)) > 0
+        w_perp = w - np.einsum("ij,ij->i", w, h)[:, None] * h
+        e_perp = e - np.einsum("ij,ij->i", e, h)[:, None] * h
+        n = np.cross(h, w_perp)
+        n = n * np.where(n[:, 2] < 0, -1.0, 1.0)[:, None]
+        above = np.einsum("ij,ij->i", e_perp, n) > 0
+        elbow_up: np.ndarray = np.where(planar, left, above)
+        return elbow_up
+
     def _constant(self, i: int, j: int) -> np.ndarray:
         M = self.robot.transform(i, j).matrix.xreplace(self.values)
         return np.array(M.evalf(), dtype=float)
@@ -561,18 +312,18 @@ class Solver:
                 # ill-conditioned, their sum is not), and θ6 with θ4 = 0
                 (t4, zero4), (_, whole6) = list(self._singular.items())
                 alts = [t4, zero4, whole6, whole6.xreplace({t4: zero4})]
-                outputs = [_with_safe_sqrt(e.xreplace(self.values)) for e in alts]
+                outputs = [with_safe_sqrt(e.xreplace(self.values)) for e in alts]
             else:
                 outputs = self._outputs(kind)
-            program, reduced = _schedule(*_pull_signs(self._steps, outputs, self.signs))
+            program, reduced = schedule(*pull_signs(self._steps, outputs, self.signs))
             if kind == "scalar":
                 # the wrap inline: one C call, no Python function
-                program, reduced = _lift_residuals(program, reduced)
+                program, reduced = lift_residuals(program, reduced)
                 reduced = [
-                    e.replace(lambda t: isinstance(t, Wrap), lambda t: _REMAINDER(t.args[0], _TAU))
+                    e.replace(lambda t: isinstance(t, Wrap), lambda t: REMAINDER(t.args[0], TAU))
                     for e in reduced
                 ]
-                program, per_branch = _per_branch(program, reduced, self.signs)
+                program, written = per_branch(program, reduced, self.signs)
                 # grouped for _solve_one: residuals and wrist sines of all branches first,
                 # then the joint values branch by branch, then the factors branch by branch
                 n, w = self.n, len(self._wrist_s)
@@ -582,17 +333,17 @@ class Solver:
                     range(n),
                     range(len(reduced) - len(self._factor_exprs), len(reduced)),
                 ]
-                reduced = [o[i] for i in groups[0] for o in per_branch]
-                reduced += [o[i] for i in groups[1] for o in per_branch]
-                reduced += [o[i] for o in per_branch for i in groups[2]]
-                reduced += [o[i] for o in per_branch for i in groups[3]]
-                args, modules = self.pose_args + self.targets, _MATH
+                reduced = [o[i] for i in groups[0] for o in written]
+                reduced += [o[i] for i in groups[1] for o in written]
+                reduced += [o[i] for o in written for i in groups[2]]
+                reduced += [o[i] for o in written for i in groups[3]]
+                args, modules = self.pose_args + self.targets, MATH
             elif kind == "checked":
-                program, reduced = _reuse_names(program, reduced)
-                args, modules = self.pose_args + self.signs + self.targets, _NUMPY
+                program, reduced = reuse_names(program, reduced)
+                args, modules = self.pose_args + self.signs + self.targets, NUMPY
             else:
-                program, reduced = _reuse_names(program, reduced)
-                args, modules = self.pose_args + self.signs, _NUMPY
+                program, reduced = reuse_names(program, reduced)
+                args, modules = self.pose_args + self.signs, NUMPY
             built = sp.lambdify(args, reduced, modules=modules, cse=lambda exprs: (program, exprs))
             setattr(self._programs, kind, built)
         return built
@@ -605,7 +356,7 @@ class Solver:
         A single pose ``(4, 4)`` is a batch of one: ``(1, K, n)``.
 
         >>> import dhsym
-        >>> solver = dhsym.load("planar2r").inverse().solver()
+        >>> solver = dhsym.load("planar2r").ik_cache().solver()
         >>> solver.raw(np.eye(4)).shape
         (1, 2, 2)
         >>> solver.raw(np.eye(3))
@@ -658,7 +409,7 @@ class Solver:
                 for k in range(n):
                     qv[k, ..., sl] = joints[k]
                 if w:  # |sin θ5| near 0: θ4 and θ6 from the whole rotation, below
-                    small = np.asarray(sines[0] < _WRIST_NEAR)
+                    small = np.asarray(sines[0] < WRIST_NEAR)
                     hit = np.nonzero(small.reshape(-1, small.shape[-1]).any(axis=0))[0]
                     if hit.size:
                         s = np.broadcast_to(sines[0], (*self.shape, sl.stop - start))
@@ -693,12 +444,10 @@ class Solver:
                 for v in self._program("singular")(*_entries(inner), *self._sign_arrays)
             )
         i4, i6 = self.singular_vars
-        near, zero = wrist < _WRIST_NEAR, wrist < _WRIST_ZERO
+        near, zero = wrist < WRIST_NEAR, wrist < WRIST_ZERO
         q6, q4 = q[i6], q[i4]
-        q6[:, rows] = np.where(
-            zero, _wrap(whole6_zero4), np.where(near, _wrap(whole6), q6[:, rows])
-        )
-        q4[:, rows] = np.where(zero, _wrap(zero4), np.where(near, _wrap(own4), q4[:, rows]))
+        q6[:, rows] = np.where(zero, wrap(whole6_zero4), np.where(near, wrap(whole6), q6[:, rows]))
+        q4[:, rows] = np.where(zero, wrap(zero4), np.where(near, wrap(own4), q4[:, rows]))
 
     def _check(
         self, q: np.ndarray, target: np.ndarray, cells: Sequence[int]
@@ -727,7 +476,7 @@ class Solver:
         check: str | None = "pose",
         tol: float = 1e-9,
         singular_tol: float = 1e-6,
-    ) -> IKSolution | IKBatch:
+    ) -> IKSolution:
         """Every solution of one pose or a batch of poses.
 
         Parameters
@@ -746,25 +495,18 @@ class Solver:
         One pose is solved by the program for floats; the few it cannot finish (a
         singular wrist, a division by zero) and batches by the program for numpy.
         """
-        arr = np.asarray(T, dtype=float)
-        if arr.shape[-1] == 3 and arr.ndim in (1, 2):
-            if self.ik.decoupling.wrist:
-                raise DHError("this arm has a wrist: give a full 4×4 pose, not a position")
-            pose = np.zeros(arr.shape[:-1] + (4, 4))
-            pose[..., :3, :3] = np.eye(3)
-            pose[..., :3, 3] = arr
-            pose[..., 3, 3] = 1.0
-            arr, check = pose, ("position" if check is not None else None)
+        arr, check = read_poses(T, check, wrist=bool(self.ik.decoupling.wrist))
         single = arr.ndim == 2
-        if arr.shape[-2:] != (4, 4) or arr.ndim not in (2, 3):
-            raise DHError(f"expected poses of shape (4, 4) or (N, 4, 4), got {arr.shape}")
         cells = _POSITION if check == "position" else _ALL
         if single:
             one = self._solve_one(arr, check, cells, tol, singular_tol)
             if one is not None:
                 return one
         batch = self._solve_batch(arr.reshape(-1, 4, 4), check, cells, tol, singular_tol)
-        return batch.solution(0) if single else batch
+        if not single:
+            return batch
+        one = batch.solution(0)
+        return replace(one, reason=_empty(check, tol)) if not len(one) else one
 
     def _inner(self, poses: np.ndarray) -> np.ndarray:
         """Poses from frame 0 to frame n: base and tool undone."""
@@ -781,7 +523,7 @@ class Solver:
         cells: Sequence[int],
         tol: float,
         singular_tol: float,
-    ) -> IKBatch:
+    ) -> IKSolution:
         inner = self._inner(poses)
         q, residual, closeness = self._evaluate(inner, poses, cells)
         assert residual is not None and closeness is not None
@@ -800,14 +542,15 @@ class Solver:
         np.copyto(q, np.nan, where=~valid)
         near = (closeness < singular_tol) & valid
         names = tuple(f[0] for f in self._singular_factors())
-        return IKBatch(
+        return IKSolution(
             q.transpose(2, 1, 0),
             valid.T,
             residual.T,
             near.transpose(2, 1, 0),
             names,
             self.branch_signs,
-            self,
+            METHOD,
+            namer=self.branch_names,
         )
 
     def _solve_one(
@@ -831,7 +574,7 @@ class Solver:
         F = len(factors)
         at = Layout.scalar(n, w, F, K)
         residual = out[at.position if check == "position" else at.whole]
-        if w and _smallest(out[at.wrist]) < _WRIST_NEAR:
+        if w and _smallest(out[at.wrist]) < WRIST_NEAR:
             return None  # a singular wrist: θ4 and θ6 from the whole rotation (numpy)
         if check is None:
             kept = [k for k, r in enumerate(residual) if r - r == 0]
@@ -848,15 +591,20 @@ class Solver:
             values = [v for k in kept for v in values[k * n : k * n + n]]
             residual = [residual[k] for k in kept]
             signs = self.branch_signs[kept]
-        singular: tuple[tuple[str, ...], ...] = ((),) * len(kept)
+        near = np.zeros((len(kept), F), dtype=bool)
         if low < singular_tol:
-            kinds = [kind for kind, _, _ in factors]
-            singular = tuple(
-                tuple(kind for kind, c in zip(kinds, close[k * F : k * F + F]) if c < singular_tol)
-                for k in kept
-            )
+            for i, k in enumerate(kept):
+                near[i] = [c < singular_tol for c in close[k * F : k * F + F]]
         return IKSolution(
-            np.array(values).reshape(len(kept), n), np.array(residual), singular, signs, self
+            np.array(values).reshape(len(kept), n),
+            np.ones(len(kept), dtype=bool),
+            np.array(residual),
+            near,
+            tuple(kind for kind, _, _ in factors),
+            signs,
+            METHOD,
+            _empty(check, tol) if not kept else None,
+            namer=self.branch_names,
         )
 
     def _distinct(self, kept: list[int], values: Sequence[float]) -> list[int]:
@@ -898,6 +646,13 @@ class Solver:
             self._factor_exprs = tuple(f.expr.xreplace(self.values) for f in named)
             self._factors = tuple(found)
         return self._factors
+
+
+def _empty(check: str | None, tol: float) -> str:
+    """Why one pose has no closed-form solution, as far as the solver knows."""
+    if check is None:
+        return "no branch of the closed form is finite at this pose"
+    return f"no branch of the closed form reproduces the {check} within {tol:g}"
 
 
 def _entries(poses: np.ndarray) -> list[np.ndarray]:

@@ -1,10 +1,11 @@
-"""Branch names: one vocabulary for IK results, derivations and feedback (issue 24)."""
+"""Branch names: one vocabulary for IK results, derivations and feedback (issue 24); the
+constant transform before joint 1 undone by one function."""
 
 import numpy as np
 
 import dhsym
 from dhsym.explain.inverse_kinematics import derive_inverse
-from dhsym.ik.results import BRANCH_NAMES, branch_word
+from dhsym.ik.steps import BRANCH_NAMES, branch_word
 
 
 def test_every_branch_name_comes_from_the_one_list():
@@ -30,3 +31,20 @@ def test_the_derivation_names_the_branches_in_the_same_words():
 def test_a_branch_without_a_name_of_its_own_is_its_roots_sign():
     assert branch_word("reach", False, "d3") == "- root for d3"
     assert branch_word("wrist", True) == "wrist not flipped"
+
+
+def test_the_transform_before_joint_1_is_undone_by_one_function():
+    import sympy as sp
+
+    from dhsym.ik.steps import Builder, undo_prefix
+    from dhsym.kinematics.decoupling import decouple
+
+    robot = dhsym.load("puma560")
+    b = Builder(robot, decouple(robot, 3))
+    p = sp.Matrix(sp.symbols("x y z", real=True))
+    assert undo_prefix(b, "position", "none", p, sp.eye(4)) is p and not b.steps
+    shift = sp.eye(4)
+    shift[2, 3] = sp.Rational(1, 2)
+    u = undo_prefix(b, "position", "undo it", p, shift)
+    assert [str(s.lhs) for s in b.steps] == ["u_x", "u_y", "u_z"]
+    assert b.steps[2].rhs == p[2] - sp.Rational(1, 2) and u.shape == (3, 1)

@@ -28,9 +28,9 @@ from dhsym.model.table import DHRow, DHTable, Elementary
 from dhsym.model.tablefile import read_table
 from dhsym.robot import Robot
 
-from ._multistart import contains, multistart_lm, wrapped_distance
+from .._multistart import contains, multistart_lm, wrapped_distance
 
-DATA = Path(__file__).resolve().parents[1] / "data" / "general6r"
+DATA = Path(__file__).resolve().parents[2] / "data" / "general6r"
 
 
 @functools.cache
@@ -171,7 +171,7 @@ def test_eliminated_joint_at_a_half_turn_and_other_special_values(value):
 
 
 def test_solutions_are_independent_of_the_pencil_shift(monkeypatch):
-    from dhsym.ik import general6r as g
+    from dhsym.ik.general6r import eigenproblem as g
 
     solver = _random_solver(3, "modified")
     q = np.array([0.2, 1.1, -2.5, 0.7, 2.9, -1.3])
@@ -188,7 +188,7 @@ def test_solutions_are_independent_of_the_pencil_shift(monkeypatch):
 
 
 def test_qz_gives_the_same_roots_as_the_companion_matrix():
-    from dhsym.ik import general6r as g
+    from dhsym.ik.general6r import eigenproblem as g
 
     solver = _random_solver(1, "standard")
     Tp = solver.arrangement.target(solver.fk(np.array([0.3, -0.2, 1.0, 2.0, -1.0, 0.5])))
@@ -261,7 +261,7 @@ def test_bad_tables_are_refused():
 
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 def test_standard_chain_and_its_reverse_reproduce_the_table(convention):
-    from dhsym.ik.general6r import _standard
+    from dhsym.ik.general6r.elimination import _standard
 
     table = _random_table(5, convention)
     table = DHTable(
@@ -355,7 +355,7 @@ def test_lab_like_arms_are_solved_or_refused_never_silently_wrong(rows, conventi
 @pytest.mark.parametrize("scipy_missing", [False, True])
 def test_ill_conditioned_leading_matrix_goes_to_qz_or_the_best_shift(monkeypatch, scipy_missing):
     """When every shift leaves A nearly singular: QZ, or without scipy the best companion."""
-    from dhsym.ik import general6r as g
+    from dhsym.ik.general6r import eigenproblem as g
 
     solver = _random_solver(1, "standard")
     eigen = g._eigen

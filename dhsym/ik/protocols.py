@@ -1,0 +1,130 @@
+"""The two extension points of the ik room: a derivation and a solver.
+
+A family derives an :class:`InverseKinematics` (what ``Robot.inverse()`` returns): the
+closed form of :mod:`dhsym.ik.closed_form` (steps, branch signs, a decoupling) or the
+general 6R's elimination of :mod:`dhsym.ik.general6r` (its explanation, up to 16
+solutions). Callers that need more than the protocol tell the two apart by type
+(``isinstance(ik, ClosedForm)``), never by probing fields.
+
+An :class:`IKSolver` turns one derivation into numbers for one set of values: the
+compiled steps (:class:`~dhsym.ik.closed_form_solver.ClosedFormSolver`) or the eigenproblem
+(:class:`~dhsym.ik.general6r.EliminationSolver`); both return the one
+:class:`~dhsym.ik.solution.IKSolution` and name its rows.
+
+Examples
+--------
+>>> import dhsym
+>>> from dhsym.ik.closed_form import ClosedForm
+>>> r = dhsym.load("puma560")
+>>> isinstance(r.inverse(), InverseKinematics), isinstance(r.inverse(), ClosedForm)
+(True, True)
+>>> isinstance(r.ik_cache().solver(), IKSolver)
+True
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
+
+import numpy as np
+
+from dhsym.errors import DHError
+
+if TYPE_CHECKING:
+    import sympy as sp
+
+    from dhsym.kinematics.chain import KinematicChain
+
+    from .solution import IKSolution
+    from .steps import Branch, Step
+
+__all__ = ["IKSolver", "InverseKinematics", "read_poses"]
+
+
+@runtime_checkable
+class InverseKinematics(Protocol):
+    """A derived inverse kinematics: the arm, what was recognised, and the steps to show.
+
+    ``structure`` is the sentence naming what was found in the table, ``family`` the
+    family that solved it, ``pose`` the symbolic pose ``[n s a p; 0 0 0 1]``, ``steps`` the
+    derivation in order, ``branches`` its branch signs (none for the general 6R), ``count``
+    the most solutions a generic pose has.
+    """
+
+    @property
+    def robot(self) -> KinematicChain: ...
+
+    @property
+    def structure(self) -> str: ...
+
+    @property
+    def family(self) -> str: ...
+
+    @property
+    def pose(self) -> sp.ImmutableMatrix: ...
+
+    @property
+    def steps(self) -> tuple[Step, ...]: ...
+
+    @property
+    def branches(self) -> tuple[Branch, ...]: ...
+
+    @property
+    def count(self) -> int: ...
+
+    def text(self, step: Step) -> str: ...
+
+    def latex(self, step: Step) -> str: ...
+
+
+@runtime_checkable
+class IKSolver(Protocol):
+    """A derivation in numbers: solves poses and names the solutions it finds."""
+
+    @property
+    def robot(self) -> KinematicChain: ...
+
+    def solve(
+        self,
+        T: object,
+        *,
+        check: str | None = "pose",
+        tol: float = 1e-9,
+        singular_tol: float = 1e-6,
+    ) -> IKSolution:
+        """Every solution of one pose ``(4, 4)`` or of each pose of ``(N, 4, 4)``."""
+        ...
+
+    def branch_names(self, q: np.ndarray, signs: np.ndarray) -> tuple[str, ...]:
+        """The name of each solution ``q`` ``(k, n)`` with branch signs ``(k, B)``."""
+        ...
+
+
+def read_poses(T: object, check: str | None, *, wrist: bool) -> tuple[np.ndarray, str | None]:
+    """The poses every :class:`IKSolver` takes, checked once: ``(4, 4)`` or ``(N, 4, 4)``;
+    for an arm without a wrist also positions ``(3,)`` or ``(N, 3)``, read as poses with the
+    identity rotation and checked by position. Returns the poses and the check to apply.
+
+    >>> read_poses([0.1, 0.2, 0.3], "pose", wrist=False)[0][:3, 3].tolist(), "position"
+    ([0.1, 0.2, 0.3], 'position')
+    >>> read_poses(np.eye(3), "pose", wrist=True)
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: this arm has a wrist: give a full 4×4 pose, not a position
+    >>> read_poses(np.zeros((2, 4)), "pose", wrist=True)
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: expected poses of shape (4, 4) or (N, 4, 4), got (2, 4)
+    """
+    arr = np.asarray(T, dtype=float)
+    if arr.shape[-1] == 3 and arr.ndim in (1, 2):
+        if wrist:
+            raise DHError("this arm has a wrist: give a full 4×4 pose, not a position")
+        pose = np.zeros(arr.shape[:-1] + (4, 4))
+        pose[..., :3, :3] = np.eye(3)
+        pose[..., :3, 3] = arr
+        pose[..., 3, 3] = 1.0
+        arr, check = pose, ("position" if check is not None else None)
+    if arr.shape[-2:] != (4, 4) or arr.ndim not in (2, 3):
+        raise DHError(f"expected poses of shape (4, 4) or (N, 4, 4), got {arr.shape}")
+    return arr, check
