@@ -107,8 +107,12 @@ def export(
         parameters only) as a sequence or ``"fk,ik"``. The IK checks its solutions with
         the fk, so ``ik`` brings ``fk`` along.
     prefix
-        The name in front of every function (``<prefix>_fk``); by default the robot's
-        name. Either way it is made a safe identifier.
+        The name in front of every function and file (``<prefix>_fk``, ``<prefix>.h``):
+        an ASCII letter, then letters, digits and ``_``, never a path (anything else is a
+        :class:`~dhsym.errors.DHError`); by default the robot's name, made an identifier.
+        It is written in lower case, and a keyword or a standard name of ``lang`` (``log``
+        in C++, ``os`` in Python) gets a ``_`` at the end
+        (:func:`dhsym.export.identifiers.prefix`).
     symbolic_lengths
         Keep the table's lengths and offsets as run-time parameters ``p`` instead of
         baking in its values.
@@ -123,18 +127,25 @@ def export(
     >>> import dhsym
     >>> sorted(export(dhsym.load("puma560"), "matlab", prefix="puma"))  # doctest: +ELLIPSIS
     ['puma_fk.m', 'puma_ik.m', 'puma_jacobian.m', 'puma_max_ik_solutions.m', 'puma_njoints.m']
+    >>> sorted(export(dhsym.load("planar2r"), "python", prefix="os"))
+    ['os_.py']
+    >>> export(dhsym.load("planar2r"), "c", prefix="/tmp/arm")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: prefix '/tmp/arm' is not a name: it is a path. ...
     >>> export(dhsym.load("planar2r"), "c", what="dynamics")
     Traceback (most recent call last):
     ...
     dhsym.errors.DHError: Planar 2R: the dynamics export needs numeric inertial parameters; ...
     """
-    from .identifiers import comment_lines, identifier
+    from .identifiers import comment_lines
+    from .identifiers import prefix as prefix_for
     from .languages import Context, header_lines, render_files
     from .program import fk_program, ik_program, jacobian_program, rne_program
 
     parts = _parts(what)
     language = _language(lang)
-    name = identifier(prefix if prefix is not None else (robot.name or "robot"))
+    name = prefix_for(prefix, lang, default=robot.name or "robot")
     if command is None:
         command = f"dhsym.export(robot, {lang!r}, what={','.join(parts)!r}, prefix={name!r}" + (
             ", symbolic_lengths=True)" if symbolic_lengths else ")"
