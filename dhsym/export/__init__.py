@@ -50,7 +50,7 @@ if TYPE_CHECKING:
 
     from .languages import Language
 
-__all__ = ["DEFAULT_PARTS", "LANGUAGES", "PARTS", "export"]
+__all__ = ["DEFAULT_PARTS", "LANGUAGES", "PARTS", "export", "export_languages"]
 
 #: The languages and the modules that print them.
 LANGUAGES = ("c", "cpp", "matlab", "rust", "python")
@@ -138,18 +138,40 @@ def export(
     ...
     dhsym.errors.DHError: Planar 2R: the dynamics export needs numeric inertial parameters; ...
     """
+    return export_languages(
+        robot, (lang,), what, prefix, symbolic_lengths, command=command, cache=cache
+    )[lang]
+
+
+def export_languages(
+    robot: KinematicChain,
+    langs: Iterable[str],
+    what: str | Iterable[str] = DEFAULT_PARTS,
+    prefix: str | None = None,
+    symbolic_lengths: bool = False,
+    *,
+    command: str | None = None,
+    cache: IKCache | None = None,
+) -> dict[str, dict[str, str]]:
+    """The files of :func:`export` for several languages at once: language → (file name →
+    text), each the bytes :func:`export` gives, the programs (fk, Jacobian, IK, rne) built
+    once for all of them.
+
+    >>> import dhsym
+    >>> files = export_languages(dhsym.load("planar2r"), ("cpp", "python"), "fk", "log")
+    >>> {lang: sorted(f) for lang, f in files.items()}
+    {'cpp': ['log_.hpp'], 'python': ['log.py']}
+    """
     from .identifiers import comment_lines
     from .identifiers import prefix as prefix_for
     from .languages import Context, header_lines, render_files
     from .program import fk_program, ik_program, jacobian_program, rne_program
 
     parts = _parts(what)
-    language = _language(lang)
-    name = prefix_for(prefix, lang, default=robot.name or "robot")
-    if command is None:
-        command = f"dhsym.export(robot, {lang!r}, what={','.join(parts)!r}, prefix={name!r}" + (
-            ", symbolic_lengths=True)" if symbolic_lengths else ")"
-        )
+    languages = [(lang, _language(lang)) for lang in langs]
+    names = {
+        lang: prefix_for(prefix, lang, default=robot.name or "robot") for lang in dict(languages)
+    }
     rne = rne_program(robot, symbolic_lengths=symbolic_lengths) if "dynamics" in parts else None
     ik = (
         ik_program(robot, symbolic_lengths=symbolic_lengths, cache=cache) if "ik" in parts else None
@@ -158,22 +180,33 @@ def export(
     jac = (
         jacobian_program(robot, symbolic_lengths=symbolic_lengths) if "jacobian" in parts else None
     )
-    header = header_lines(robot, command)
-    if ik is not None:
-        header += comment_lines(f"Inverse kinematics: {ik.source.structure}")
-    ctx = Context(
-        prefix=name,
-        header=tuple(header),
-        njoints=len(robot.variables),
-        fk=fk,
-        jacobian=jac,
-        ik=ik,
-        rne=rne,
-        parameters=fk.parameters,
-        revolute=tuple(r.joint.value == "R" for r in robot.table.rows if r.variable is not None),
-    )
     effective = tuple(sorted(set(parts) | {"fk"}))
-    return render_files(language, ctx, effective)
+    out: dict[str, dict[str, str]] = {}
+    for lang, language in languages:
+        name = names[lang]
+        said = command
+        if said is None:
+            said = f"dhsym.export(robot, {lang!r}, what={','.join(parts)!r}, prefix={name!r}" + (
+                ", symbolic_lengths=True)" if symbolic_lengths else ")"
+            )
+        header = header_lines(robot, said)
+        if ik is not None:
+            header += comment_lines(f"Inverse kinematics: {ik.source.structure}")
+        ctx = Context(
+            prefix=name,
+            header=tuple(header),
+            njoints=len(robot.variables),
+            fk=fk,
+            jacobian=jac,
+            ik=ik,
+            rne=rne,
+            parameters=fk.parameters,
+            revolute=tuple(
+                r.joint.value == "R" for r in robot.table.rows if r.variable is not None
+            ),
+        )
+        out[lang] = render_files(language, ctx, effective)
+    return out
 
 
 class _CallableModule(types.ModuleType):
