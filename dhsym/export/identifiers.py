@@ -6,6 +6,12 @@ they become identifiers only through :func:`identifier` (ASCII letters, digits a
 through :func:`comment_lines` (printable ASCII, no sequence that ends or opens a
 comment in C, C++, Rust, MATLAB/Octave or Python).
 
+A prefix names functions and files, so :func:`prefix` takes it only when it is a name
+(:func:`checked_name` refuses a path, a leading digit, other characters), and suffixes a
+``_`` to one that is a keyword (:data:`KEYWORDS`) or a standard name of the target language
+(:data:`RESERVED`, :func:`reserved`: ``log`` in C++, ``os`` in Python): suffixed, never
+refused, as keywords always were. The lists of each language are kept here, and only here.
+
 Examples
 --------
 >>> identifier("PUMA 560")
