@@ -3,13 +3,23 @@
 ``--lang urdf`` writes one file with :func:`dhsym.formats.urdf.write_urdf` (links, joints,
 limits, simple visuals and the inertials of rows that have them): ``-o arm.urdf`` names the
 file itself; any other ``-o`` is a folder, which gets ``<prefix or robot name>.urdf``.
+
+``--prefix`` is a name, never a path (:func:`dhsym.export.identifiers.checked_name`). The
+``-o`` folder is made when missing (it may itself be a link to a folder: the user named
+it); inside it each file is written through the folder's descriptor without following a
+symbolic link (``O_NOFOLLOW``): a file name that is a link, or anything but a plain file
+with one name (a hard link, a pipe), is refused before anything is written, with the
+file named (exit code 2).
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import shlex
+import stat
 import sys
+from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -46,35 +56,96 @@ def _cmd_export(args: argparse.Namespace) -> int:
         symbolic_lengths=args.symbolic_lengths,
         command=command,
     )
-    folder = Path(args.output)
-    folder.mkdir(parents=True, exist_ok=True)
-    for name, text in files.items():
-        path = folder / name
-        path.write_text(text, encoding="utf-8")
+    for path in _write_files(Path(args.output), files):
         wrote(path)
     if not files:
         print("nothing written", file=sys.stderr)
     return 0
 
 
+def _refusal(path: Path, st: os.stat_result) -> str | None:
+    """Why the existing ``path`` (its ``lstat``) is not overwritten, or ``None``."""
+    if stat.S_ISLNK(st.st_mode):
+        return "is a symbolic link (links are never followed)"
+    if not stat.S_ISREG(st.st_mode):
+        return "is not a plain file"
+    if st.st_nlink > 1:
+        return "has other names (a hard link: writing it would change them too)"
+    return None
+
+
+def _write_files(folder: Path, files: Mapping[str, str]) -> list[Path]:
+    """Write ``files`` (name → text, UTF-8) into ``folder`` without following a link.
+
+    The folder is made when missing; every name is checked before any is written (a link,
+    a hard link or anything but a plain file: a :class:`~dhsym.errors.DHError` naming it),
+    and each file is opened relative to the folder's descriptor with ``O_NOFOLLOW``, so a
+    link planted between the check and the write is refused too.
+    """
+    from dhsym.errors import DHError
+
+    if folder.exists() and not folder.is_dir():
+        raise DHError(f"{folder} is not a folder: give a folder with -o")
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in files:
+        if name in (".", "..") or os.sep in name or (os.altsep and os.altsep in name):
+            raise DHError(f"{name!r} is not a file name")  # the names are prefixes: never
+    nofollow = getattr(os, "O_NOFOLLOW", 0)
+    flags = os.O_WRONLY | os.O_CREAT | nofollow | getattr(os, "O_NONBLOCK", 0)
+    flags |= getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_BINARY", 0)
+    relative = os.open in os.supports_dir_fd and os.stat in os.supports_dir_fd
+    dir_fd = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0)) if relative else None
+    written = []
+    try:
+        for name in files:
+            path = folder / name
+            try:
+                st = os.stat(name if relative else path, dir_fd=dir_fd, follow_symlinks=False)
+            except FileNotFoundError:
+                continue
+            why = _refusal(path, st)
+            if why:
+                raise DHError(f"{path} {why}: nothing written; remove it or choose another -o")
+        for name, text in files.items():
+            path = folder / name
+            try:
+                fd = os.open(name if relative else path, flags, 0o644, dir_fd=dir_fd)
+            except OSError as err:
+                raise DHError(f"{path} cannot be written safely ({err.strerror})") from None
+            try:
+                why = _refusal(path, os.fstat(fd))
+                if why:
+                    raise DHError(f"{path} {why}: not written")
+                os.ftruncate(fd, 0)
+                data = memoryview(text.encode("utf-8"))
+                while data:
+                    data = data[os.write(fd, data) :]
+            finally:
+                os.close(fd)
+            written.append(path)
+    finally:
+        if dir_fd is not None:
+            os.close(dir_fd)
+    return written
+
+
 def _write_urdf(robot: Robot, args: argparse.Namespace) -> int:
     """``--lang urdf``: one URDF file, ``-o`` itself when it ends in ``.urdf``."""
     from dhsym.errors import DHError
+    from dhsym.export.identifiers import checked_name
     from dhsym.formats.urdf import write_urdf
 
     if args.what != "fk,jacobian,ik":
         raise DHError("--what does not apply to --lang urdf (a URDF holds the whole robot)")
-    name = args.prefix or Path(args.robot).stem
+    name = checked_name(args.prefix) if args.prefix else Path(args.robot).stem
     text = write_urdf(robot, name=name)
     out = Path(args.output)
     if out.suffix.lower() == ".urdf":
-        out.parent.mkdir(parents=True, exist_ok=True)
-        path = out
+        folder, file = out.parent, out.name
     else:
-        out.mkdir(parents=True, exist_ok=True)
-        path = out / f"{name}.urdf"
-    path.write_text(text, encoding="utf-8")
-    wrote(path)
+        folder, file = out, f"{name}.urdf"
+    for path in _write_files(folder, {file: text}):
+        wrote(path)
     return 0
 
 
@@ -108,7 +179,11 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         help="comma-separated parts: fk, jacobian, ik, dynamics (or rne: numeric inertial "
         "parameters only)",
     )
-    c.add_argument("--prefix", help="name in front of every function (default: the robot's name)")
+    c.add_argument(
+        "--prefix",
+        help="name in front of every function and file: letters, digits and _, never a path "
+        "(default: the robot's name; a keyword or standard name such as log or os gets a _)",
+    )
     c.add_argument(
         "--symbolic-lengths",
         action="store_true",

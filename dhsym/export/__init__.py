@@ -50,7 +50,7 @@ if TYPE_CHECKING:
 
     from .languages import Language
 
-__all__ = ["DEFAULT_PARTS", "LANGUAGES", "PARTS", "export"]
+__all__ = ["DEFAULT_PARTS", "LANGUAGES", "PARTS", "export", "export_languages"]
 
 #: The languages and the modules that print them.
 LANGUAGES = ("c", "cpp", "matlab", "rust", "python")
@@ -107,8 +107,12 @@ def export(
         parameters only) as a sequence or ``"fk,ik"``. The IK checks its solutions with
         the fk, so ``ik`` brings ``fk`` along.
     prefix
-        The name in front of every function (``<prefix>_fk``); by default the robot's
-        name. Either way it is made a safe identifier.
+        The name in front of every function and file (``<prefix>_fk``, ``<prefix>.h``):
+        an ASCII letter, then letters, digits and ``_``, never a path (anything else is a
+        :class:`~dhsym.errors.DHError`); by default the robot's name, made an identifier.
+        It is written in lower case, and a keyword or a standard name of ``lang`` (``log``
+        in C++, ``os`` in Python) gets a ``_`` at the end
+        (:func:`dhsym.export.identifiers.prefix`).
     symbolic_lengths
         Keep the table's lengths and offsets as run-time parameters ``p`` instead of
         baking in its values.
@@ -123,22 +127,51 @@ def export(
     >>> import dhsym
     >>> sorted(export(dhsym.load("puma560"), "matlab", prefix="puma"))  # doctest: +ELLIPSIS
     ['puma_fk.m', 'puma_ik.m', 'puma_jacobian.m', 'puma_max_ik_solutions.m', 'puma_njoints.m']
+    >>> sorted(export(dhsym.load("planar2r"), "python", prefix="os"))
+    ['os_.py']
+    >>> export(dhsym.load("planar2r"), "c", prefix="/tmp/arm")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.DHError: prefix '/tmp/arm' is not a name: it is a path. ...
     >>> export(dhsym.load("planar2r"), "c", what="dynamics")
     Traceback (most recent call last):
     ...
     dhsym.errors.DHError: Planar 2R: the dynamics export needs numeric inertial parameters; ...
     """
-    from .identifiers import comment_lines, identifier
+    return export_languages(
+        robot, (lang,), what, prefix, symbolic_lengths, command=command, cache=cache
+    )[lang]
+
+
+def export_languages(
+    robot: KinematicChain,
+    langs: Iterable[str],
+    what: str | Iterable[str] = DEFAULT_PARTS,
+    prefix: str | None = None,
+    symbolic_lengths: bool = False,
+    *,
+    command: str | None = None,
+    cache: IKCache | None = None,
+) -> dict[str, dict[str, str]]:
+    """The files of :func:`export` for several languages at once: language → (file name →
+    text), each the bytes :func:`export` gives, the programs (fk, Jacobian, IK, rne) built
+    once for all of them.
+
+    >>> import dhsym
+    >>> files = export_languages(dhsym.load("planar2r"), ("cpp", "python"), "fk", "log")
+    >>> {lang: sorted(f) for lang, f in files.items()}
+    {'cpp': ['log_.hpp'], 'python': ['log.py']}
+    """
+    from .identifiers import comment_lines
+    from .identifiers import prefix as prefix_for
     from .languages import Context, header_lines, render_files
     from .program import fk_program, ik_program, jacobian_program, rne_program
 
     parts = _parts(what)
-    language = _language(lang)
-    name = identifier(prefix if prefix is not None else (robot.name or "robot"))
-    if command is None:
-        command = f"dhsym.export(robot, {lang!r}, what={','.join(parts)!r}, prefix={name!r}" + (
-            ", symbolic_lengths=True)" if symbolic_lengths else ")"
-        )
+    languages = [(lang, _language(lang)) for lang in langs]
+    names = {
+        lang: prefix_for(prefix, lang, default=robot.name or "robot") for lang in dict(languages)
+    }
     rne = rne_program(robot, symbolic_lengths=symbolic_lengths) if "dynamics" in parts else None
     ik = (
         ik_program(robot, symbolic_lengths=symbolic_lengths, cache=cache) if "ik" in parts else None
@@ -147,22 +180,33 @@ def export(
     jac = (
         jacobian_program(robot, symbolic_lengths=symbolic_lengths) if "jacobian" in parts else None
     )
-    header = header_lines(robot, command)
-    if ik is not None:
-        header += comment_lines(f"Inverse kinematics: {ik.source.structure}")
-    ctx = Context(
-        prefix=name,
-        header=tuple(header),
-        njoints=len(robot.variables),
-        fk=fk,
-        jacobian=jac,
-        ik=ik,
-        rne=rne,
-        parameters=fk.parameters,
-        revolute=tuple(r.joint.value == "R" for r in robot.table.rows if r.variable is not None),
-    )
     effective = tuple(sorted(set(parts) | {"fk"}))
-    return render_files(language, ctx, effective)
+    out: dict[str, dict[str, str]] = {}
+    for lang, language in languages:
+        name = names[lang]
+        said = command
+        if said is None:
+            said = f"dhsym.export(robot, {lang!r}, what={','.join(parts)!r}, prefix={name!r}" + (
+                ", symbolic_lengths=True)" if symbolic_lengths else ")"
+            )
+        header = header_lines(robot, said)
+        if ik is not None:
+            header += comment_lines(f"Inverse kinematics: {ik.source.structure}")
+        ctx = Context(
+            prefix=name,
+            header=tuple(header),
+            njoints=len(robot.variables),
+            fk=fk,
+            jacobian=jac,
+            ik=ik,
+            rne=rne,
+            parameters=fk.parameters,
+            revolute=tuple(
+                r.joint.value == "R" for r in robot.table.rows if r.variable is not None
+            ),
+        )
+        out[lang] = render_files(language, ctx, effective)
+    return out
 
 
 class _CallableModule(types.ModuleType):

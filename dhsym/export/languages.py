@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 import sympy as sp
 
@@ -133,15 +133,15 @@ def render_files(lang: Language, ctx: Context, what: Sequence[str]) -> dict[str,
     return out
 
 
-def _used(program: object, names: Sequence[str]) -> list[str]:
-    """The ``names`` that occur in ``program``'s expressions (unused locals warn in C)."""
-    exprs: list[sp.Expr] = []
-    for attr in ("body", "outputs", "pose"):
-        for item in getattr(program, attr, ()):
-            exprs.append(item.expr)
-            alt = getattr(item, "alt", None)
-            if alt is not None:
-                exprs.append(alt[2])
-                exprs.append(sp.Symbol(alt[0]))
+class _Evaluates(Protocol):
+    """A generated function: the expressions its body evaluates."""
+
+    def expressions(self) -> tuple[sp.Expr, ...]: ...
+
+
+def _used(program: _Evaluates, names: Sequence[str]) -> list[str]:
+    """The ``names`` that occur in what ``program`` evaluates: the locals and parameters a
+    template declares (every one it reads; none it does not, unused locals warn in C)."""
+    exprs = program.expressions()
     free = {s.name for e in exprs for s in e.free_symbols if isinstance(s, sp.Symbol)}
     return [n for n in names if n in free]

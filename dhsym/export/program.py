@@ -73,6 +73,13 @@ class Assign:
     comment: tuple[str, ...] = ()
     alt: tuple[str, float, sp.Expr] | None = None
 
+    def expressions(self) -> tuple[sp.Expr, ...]:
+        """What the generated code evaluates for it: ``expr``, and with ``alt`` its guard
+        and its singular value."""
+        if self.alt is None:
+            return (self.expr,)
+        return (self.expr, sp.Symbol(self.alt[0]), self.alt[2])
+
 
 @dataclass(frozen=True)
 class Output:
@@ -86,11 +93,13 @@ class Output:
 @dataclass(frozen=True)
 class Parameter:
     """A length or offset passed in at run time (``--symbolic-lengths``): its name in the
-    table, its identifier in the code and the table's value (``None``: none given)."""
+    table, its identifier in the code, the table's value (``None``: none given) and its
+    place in the parameter array ``p`` (0-based)."""
 
     table_name: str
     name: str
     value: float | None
+    index: int = 0
 
 
 @dataclass(frozen=True)
@@ -103,6 +112,11 @@ class Program:
     outputs: tuple[Output, ...]
     rows: int
     cols: int
+
+    def expressions(self) -> tuple[sp.Expr, ...]:
+        """Every expression the function evaluates (its locals and parameters are the
+        names these use)."""
+        return (*(e for a in self.body for e in a.expressions()), *(o.expr for o in self.outputs))
 
 
 @dataclass(frozen=True)
@@ -128,6 +142,14 @@ class IKProgram:
     sqrt_rounding: float
     tolerance: float
     check: tuple[sp.Expr, ...] = ()
+
+    def expressions(self) -> tuple[sp.Expr, ...]:
+        """Every expression the function evaluates: the pose, the steps and the fk check
+        (a parameter the check alone reads is a parameter of the function too)."""
+        return (
+            *(e for a in (*self.pose, *self.body) for e in a.expressions()),
+            *self.check,
+        )
 
     @property
     def safe_sqrt(self) -> bool:
@@ -159,12 +181,12 @@ def _constants(
         return {c: values[c] for c in consts}, ()
     mapping: dict[sp.Symbol, sp.Expr] = {}
     params = []
-    for c in consts:
+    for k, c in enumerate(consts):
         name = identifier(f"p_{c.name}", taken=taken)
         taken.add(name)
         mapping[c] = sp.Symbol(name, **_REAL)
         v = values.get(c)
-        params.append(Parameter(c.name, name, None if v is None else float(sp.N(v, 17))))
+        params.append(Parameter(c.name, name, None if v is None else float(sp.N(v, 17)), k))
     return mapping, tuple(params)
 
 
@@ -298,9 +320,13 @@ def ik_program(
     src = ik_source(robot, cache=cache)
     qs = _joint_symbols(robot)
     taken = {s.name for s in qs.values()} | {f"i{k}" for k in range(1, len(src.signs) + 1)}
-    pose_names = {s: sp.Symbol(identifier(s.name), **_REAL) for s in src.pose_symbols}
-    taken |= {s.name for s in pose_names.values()}
+    # the parameters first, named as fk_program names them (the functions share p); a pose
+    # symbol that meets one (a length called x: p_x) gives way
     consts, params = _constants(robot, symbolic_lengths, taken)
+    pose_names: dict[sp.Symbol, sp.Symbol] = {}
+    for s in src.pose_symbols:
+        pose_names[s] = sp.Symbol(identifier(s.name, taken=taken), **_REAL)
+        taken.add(pose_names[s].name)
     rename: dict[sp.Symbol, sp.Symbol] = {**qs, **pose_names}
     level: dict[sp.Symbol, int] = {s: 0 for s in pose_names.values()}
     signs = []
@@ -317,8 +343,12 @@ def ik_program(
             rename[step.lhs] = new
     index = {s: k for k, s in enumerate(qs.values(), start=1)}
 
+    # one simultaneous replacement: a parameter never meets a pose symbol of its name
+    # (a length x is p_x, the derivation's pose symbol p_x becomes p_x_2)
+    substitution = {**rename, **consts}
+
     def convert(e: sp.Expr) -> sp.Expr:
-        return src.prepare(e.xreplace(consts)).xreplace(rename)
+        return src.prepare(e.xreplace(substitution))
 
     body: list[Assign] = []
     defined_trig: set[sp.Symbol] = set()
@@ -418,6 +448,10 @@ class RNEProgram:
     friction: bool
     rows: int
     cols: int = 1
+
+    def expressions(self) -> tuple[sp.Expr, ...]:
+        """Every expression the function evaluates."""
+        return (*(e for a in self.body for e in a.expressions()), *(o.expr for o in self.outputs))
 
 
 _PASSES = (

@@ -32,12 +32,12 @@ def test_same_bytes_twice():
 
 @pytest.mark.parametrize("lang", ["c", "cpp", "matlab", "rust", "python"])
 def test_hostile_names_stay_in_comments(lang):
-    files = dhsym.export(_hostile_robot(), lang, prefix="int main(){ */")
+    files = dhsym.export(_hostile_robot(), lang)  # the prefix is the name made an identifier
     for name, text in files.items():
-        assert name.startswith("int_main")
+        assert name.startswith("include_stdlib_h_system_rm_rf")
         assert "??/" not in text and "*/ #" not in text and "%{" not in text
         for line in text.splitlines():
-            if "rm -rf" in line or "stdlib" in line:  # the name stays inside one comment line
+            if "rm -rf" in line or "<stdlib" in line:  # the name stays inside one comment line
                 assert line.lstrip().startswith(("* ", "// ", "% ", "# ", "/* "))
                 assert "*/" not in line or line.rstrip().endswith("*/")
 
@@ -45,9 +45,10 @@ def test_hostile_names_stay_in_comments(lang):
 def test_hostile_c_compiles_and_runs(tmp_path):
     _need("gcc", shutil.which("gcc") is not None, "apt-get install gcc")
     robot = _hostile_robot()
-    files = dhsym.export(robot, "c", prefix="*/ x")
+    files = dhsym.export(robot, "c")
     q = np.array([[0.3, 0.4]])
-    fks, jacs, iks = h.run_c(files, "x", q, robot.fk(q), 2, True, True, tmp_path)
+    name = "include_stdlib_h_system_rm_rf"
+    fks, jacs, iks = h.run_c(files, name, q, robot.fk(q), 2, True, True, tmp_path)
     assert np.abs(fks[0] - robot.fk(q[0])).max() <= 1e-12 and len(iks[0]) == 1
 
 
@@ -55,6 +56,14 @@ def test_python_module_runs_for_hostile_names(tmp_path):
     robot = _hostile_robot()
     mod = h.load_python(dhsym.export(robot, "python", prefix="class"), "class_", tmp_path)
     assert np.abs(mod.fk([0.1, 0.2]) - robot.fk([0.1, 0.2])).max() <= 1e-12
+
+
+@pytest.mark.parametrize(
+    "prefix", ["int main(){ */", "*/ x", "../../escaped", "/tmp/abs", "2r", ""]
+)
+def test_a_prefix_that_is_not_a_name_is_refused(prefix):
+    with pytest.raises(DHError, match="is not a name"):
+        dhsym.export(_hostile_robot(), "c", what="fk", prefix=prefix)
 
 
 def test_dynamics_needs_numeric_inertial_parameters():
