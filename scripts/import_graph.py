@@ -2,7 +2,7 @@
 
 Reads every module with ``ast`` (module-level and lazy imports inside functions alike)
 and prints the room-to-room edges. Exit status 1 when an edge points up the order
-model → notation → kinematics → ik/dynamics/geometry/plot/export → formats → robot (the
+model → cache → notation → kinematics → ik/dynamics/geometry/plot/export → formats → robot (the
 facade, ``dhsym.robot.Robot``) → explain → checking → cli, except the documented
 exceptions in ``ALLOWED``, or when any imports, counted all (module level and inside
 functions; only ``if TYPE_CHECKING:`` blocks are left out), form a circle.
@@ -21,7 +21,9 @@ ROOT = Path(__file__).resolve().parents[1] / "dhsym"
 ORDER = [
     "errors",
     "_lazy",
+    "_version",
     "model",
+    "cache",
     "notation",
     "kinematics",
     "ik",

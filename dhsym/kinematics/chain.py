@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, overload
 
 import sympy as sp
@@ -47,7 +47,14 @@ if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `im
 
     from .jacobian import AnalyticJacobian, Jacobian
 
-__all__ = ["MAX_CLOSED_FORM", "KinematicChain", "JacobianKey", "PoseKey", "frame_name"]
+__all__ = [
+    "MAX_CLOSED_FORM",
+    "ChainState",
+    "KinematicChain",
+    "JacobianKey",
+    "PoseKey",
+    "frame_name",
+]
 
 
 #: Largest estimated size (expression nodes, :func:`.simplification.closed_form_size`) of
@@ -78,6 +85,28 @@ class JacobianKey:
     values: object
 
 
+@dataclass(eq=False)
+class ChainState:
+    """What a chain derives, shared by every chain of an equal table and notation (the
+    process's memo, :mod:`dhsym.cache.memo`): ``^iT_j`` in closed form by frames, the
+    compiled fk functions (by :class:`PoseKey`; ``fk_default``: world to tool with the
+    table's values) and the numeric Jacobians (by :class:`JacobianKey`)."""
+
+    transforms: dict[tuple[int, int], Pose] = field(default_factory=dict)
+    fk_functions: dict[PoseKey, Callable[[ArrayLike], np.ndarray]] = field(default_factory=dict)
+    fk_default: Callable[[ArrayLike], np.ndarray] | None = None
+    jacobian_functions: dict[JacobianKey, Callable[[object], np.ndarray]] = field(
+        default_factory=dict
+    )
+    #: estimated expression nodes of the closed forms kept (the memo's bound)
+    nodes: int = 0
+
+    def memo_size(self) -> int:
+        """The estimated size (:class:`dhsym.cache.memo.Sized`): the closed forms' nodes and
+        a hundred per compiled function."""
+        return 1 + self.nodes + 100 * (len(self.fk_functions) + len(self.jacobian_functions))
+
+
 class KinematicChain:
     """Kinematics of one DH table: link matrices, ``^iT_j``, the arm matrix, ``fk``.
 
@@ -100,15 +129,15 @@ class KinematicChain:
             style=style,
             decimals=decimal_lengths([v for r in table.rows for v in (r.d, r.a)]),
         )
-        # ^iT_j in closed form, by frames
-        self._transforms: dict[tuple[int, int], Pose] = {}
-        # compiled fk: a PoseFunction, or a compile_word product for a chain too long to
-        # write out (both take one configuration or a batch)
-        self._fk_functions: dict[PoseKey, Callable[[ArrayLike], np.ndarray]] = {}
-        # world -> tool with the table's values
-        self._fk_default: Callable[[ArrayLike], np.ndarray] | None = None
-        # numeric Jacobians by frame, Euler angles and values
-        self._jacobian_functions: dict[JacobianKey, Callable[[object], np.ndarray]] = {}
+        from dhsym.cache.memo import MEMO, MemoKey
+
+        # what is derived, shared by every chain of an equal table and notation: ^iT_j in
+        # closed form, compiled fk (a PoseFunction, or a compile_word product for a chain
+        # too long to write out) and numeric Jacobians
+        self._state = MEMO.get(MemoKey(table, ChainState, self.notation), ChainState)
+        self._transforms = self._state.transforms
+        self._fk_functions = self._state.fk_functions
+        self._jacobian_functions = self._state.jacobian_functions
 
     # -- description -----------------------------------------------------------------
     @property
@@ -171,6 +200,7 @@ class KinematicChain:
         pose = self._transforms.get((i, j))
         if pose is None:
             pose = self._transforms[(i, j)] = self._compute_transform(i, j)
+            self._state.nodes += self.transform_size(i, j)
         return pose
 
     def transform_size(self, i: int, j: int) -> int:
@@ -272,11 +302,11 @@ class KinematicChain:
         With ``deg=True`` revolute joint values are in degrees. One configuration
         runs in pure Python floats (a few µs), a batch in numpy.
         """
-        f = self._fk_default if values is None else None
+        f = self._state.fk_default if values is None else None
         if f is None:
             f = self.fk_function(values=values)
             if values is None:
-                self._fk_default = f
+                self._state.fk_default = f
         if deg:
             import numpy as np
 
