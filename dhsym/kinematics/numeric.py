@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
@@ -63,7 +64,10 @@ __all__ = [
     "EvaluationError",
     "as_basic",
     "PoseFunction",
+    "Program",
     "compile_exprs",
+    "compile_program",
+    "stored_program",
     "compile_matrix",
     "compile_pose",
     "compile_word",
@@ -217,6 +221,84 @@ def as_basic(value: object) -> sp.Basic:
     raise TypeError(f"expected a sympy expression or a number, got {type(value).__name__}")
 
 
+@dataclass(frozen=True)
+class Program:
+    """What :func:`compile_exprs` turns into code: the expressions with their constants
+    folded to floats, their shared subexpressions named (``assignments``, in order) and
+    the ``outputs`` written with those names. Plain expressions: the disk cache keeps a
+    program (:mod:`dhsym.cache.codec`) and :func:`compile_program` compiles it again.
+
+    >>> x, y = sp.symbols("x y")
+    >>> p = Program.of([sp.sqrt(3) * sp.sin(x + y), sp.cos(x + y) * sp.sin(x + y)], (x, y))
+    >>> p.assignments, p.outputs
+    (((x0, x + y), (x1, sin(x0))), (1.7320508075688772*x1, x1*cos(x0)))
+    """
+
+    assignments: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    outputs: tuple[sp.Expr, ...]
+
+    @classmethod
+    def of(cls, exprs: Sequence[sp.Basic], variables: Sequence[sp.Symbol]) -> Program:
+        """Fold the constants of ``exprs`` (:func:`float_constants`) and name their shared
+        subexpressions (``sympy.cse``); symbols other than ``variables`` raise
+        :class:`~dhsym.errors.DHError`."""
+        folded = [float_constants(e) for e in exprs]
+        missing = set().union(*(e.free_symbols for e in folded)) - set(variables)
+        if missing:
+            names = ", ".join(sorted(str(s) for s in missing))
+            raise DHError(f"no numeric value for {names}: give values for these symbols")
+        assignments, outputs = sp.cse(folded, list=False)
+        return cls(tuple((s, e) for s, e in assignments), tuple(outputs))
+
+
+def compile_program(
+    program: Program, variables: Sequence[sp.Symbol], *, floats: bool = False
+) -> Callable[..., list[Any]]:
+    """Compile a :class:`Program` into ``f(*variables) -> list`` (numpy arrays, or plain
+    floats with ``floats=True``), as :func:`compile_exprs` does."""
+    # numpy's namespace as a module: modules="numpy" would run `from numpy import *`, which
+    # imports all of numpy's lazy submodules (as long as importing numpy itself)
+    module = "math" if floats else [np]
+    compiled: Callable[..., list[Any]] = sp.lambdify(
+        list(variables),
+        list(program.outputs),
+        modules=module,
+        cse=lambda exprs: (list(program.assignments), exprs),
+    )
+    return compiled
+
+
+def stored_program(
+    name: str | None,
+    exprs: Callable[[], Sequence[sp.Basic]],
+    variables: Sequence[sp.Symbol],
+) -> Program:
+    """The :class:`Program` of ``exprs()`` for ``variables``, kept in the disk cache as entry
+    ``name`` (:mod:`dhsym.cache`: verified when read; ``None`` or the cache turned off:
+    not kept). ``exprs`` is called only when the entry is absent or refused."""
+    from dhsym.cache.codec import CodecError, read_exprs, write_exprs
+    from dhsym.cache.store import default_store
+
+    store = default_store() if name is not None else None
+    data = store.read(name) if store is not None and name is not None else None
+    if data is not None:
+        try:
+            lhs, rhs, outputs = read_exprs(data)
+            return Program(tuple(zip(lhs.args, rhs.args)), tuple(outputs.args))
+        except (CodecError, ValueError, AttributeError):
+            pass  # not a program this version reads: derive it again
+    program = Program.of(exprs(), variables)
+    if store is not None and name is not None:
+        try:
+            lhs_rhs = [sp.Tuple(*(s for s, _ in program.assignments))]
+            lhs_rhs.append(sp.Tuple(*(e for _, e in program.assignments)))
+            text = write_exprs([*lhs_rhs, sp.Tuple(*program.outputs)])
+        except CodecError:
+            return program  # a class the codec does not write: kept in this process only
+        store.write(name, text.encode())
+    return program
+
+
 def compile_exprs(
     exprs: Sequence[sp.Basic], variables: Sequence[sp.Symbol], *, floats: bool = False
 ) -> Callable[..., list[Any]]:
@@ -225,7 +307,8 @@ def compile_exprs(
     Constants are folded to floats first (:func:`float_constants`); symbols
     other than ``variables`` raise :class:`~dhsym.errors.DHError`. With
     ``floats=True`` the code uses :mod:`math` and takes Python floats (fast for
-    one point); otherwise numpy, elementwise over arrays.
+    one point); otherwise numpy, elementwise over arrays. The steps are
+    :meth:`Program.of` and :func:`compile_program`.
 
     >>> x, y = sp.symbols("x y")
     >>> compile_exprs([sp.sqrt(3) * x, x + y], (x, y), floats=True)(2.0, 1.0)
@@ -235,18 +318,7 @@ def compile_exprs(
     ...
     dhsym.errors.DHError: no numeric value for y: give values for these symbols
     """
-    folded = [float_constants(e) for e in exprs]
-    missing = set().union(*(e.free_symbols for e in folded)) - set(variables)
-    if missing:
-        names = ", ".join(sorted(str(s) for s in missing))
-        raise DHError(f"no numeric value for {names}: give values for these symbols")
-    # numpy's namespace as a module: modules="numpy" would run `from numpy import *`, which
-    # imports all of numpy's lazy submodules (as long as importing numpy itself)
-    module = "math" if floats else [np]
-    compiled: Callable[..., list[Any]] = sp.lambdify(
-        list(variables), folded, modules=module, cse=True
-    )
-    return compiled
+    return compile_program(Program.of(exprs, variables), variables, floats=floats)
 
 
 class PoseFunction:
