@@ -109,8 +109,10 @@ class Robot(KinematicChain):
         return shared.ik_cache
 
     def inverse(self) -> InverseKinematics:
-        """The closed-form inverse kinematics derived step by step (:mod:`dhsym.ik`), cached."""
-        return self.ik_cache().inverse()
+        """The closed-form inverse kinematics derived step by step (:mod:`dhsym.ik`), cached
+        (threads asking at once derive it once)."""
+        with self._shared.lock:
+            return self.ik_cache().inverse()
 
     def ik(
         self,

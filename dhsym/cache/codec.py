@@ -163,9 +163,7 @@ def _node(e: sp.Basic, index: Mapping[sp.Basic, int], classes: Mapping[str, type
     if isinstance(e, sp.Symbol):
         if type(e) is not sp.Symbol:
             raise CodecError(f"{type(e).__name__} {e} is not a plain symbol")
-        assumptions = getattr(e, "_assumptions_orig", None)
-        if assumptions is None:
-            assumptions = e.assumptions0
+        assumptions = e._assumptions_orig  # as given to Symbol (sympy >= 1.12)
         return ["S", e.name, {k: bool(v) for k, v in sorted(assumptions.items())}]
     name, args = type(e).__name__, e.args
     if classes.get(name) is not type(e):

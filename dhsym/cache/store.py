@@ -225,7 +225,7 @@ def _check_name(name: str) -> None:
 def _read_private(path: Path, limit: int | None = None) -> bytes | None:
     """The bytes of a regular file owned by this user and private to them, else ``None``."""
     try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+        fd = os.open(path, os.O_RDONLY | (os.O_NOFOLLOW if hasattr(os, "O_NOFOLLOW") else 0))
     except OSError:
         return None
     try:
