@@ -277,7 +277,7 @@ class KinematicChain:
         >>> r.fk_function() is r.fk_function(), r.fk_function(0, 1)([0.5, 0.0])[0, 3]
         (True, np.float64(0.8775825618903728))
         """
-        from .numeric import compile_pose, compile_word, values_key
+        from .numeric import compile_word, stored_pose_function, values_key
 
         key = PoseKey(i, j, values_key(values))
         f = self._fk_functions.get(key)
@@ -288,11 +288,27 @@ class KinematicChain:
             i, j = (i or 0), (self.n if j is None else j)
             vals = self.table.with_values(values or {}).value_map
             if self.transform_size(i, j) <= MAX_CLOSED_FORM:
-                f = compile_pose(self.transform(i, j).matrix, self.variables, vals)
+                # its programs are kept in the disk cache (dhsym.cache) by table, frames, values
+                f = stored_pose_function(
+                    self._fk_entries(i, j, vals),
+                    lambda: self.transform(i, j).matrix,
+                    self.variables,
+                    vals,
+                )
             else:  # too long for a closed form: the elementary transforms, multiplied as numbers
                 f = compile_word(chain_word(self.table, i, j), self.variables, vals)
             self._fk_functions[key] = f
         return f
+
+    def _fk_entries(self, i: int, j: int, values: Mapping[sp.Symbol, object]) -> tuple[str, str]:
+        """The disk-cache entries of the compiled ``^iT_j`` with ``values`` (floats, numpy)."""
+        from dhsym.cache.keys import entry_name
+
+        given = sorted(f"{sp.srepr(k)}={sp.srepr(v)}" for k, v in values.items())
+        parts = (f"{i}-{j}", *given)
+        return entry_name(self.table, "fk_single", *parts), entry_name(
+            self.table, "fk_batch", *parts
+        )
 
     def fk(
         self, q: ArrayLike, *, deg: bool = False, values: Mapping[Any, object] | None = None

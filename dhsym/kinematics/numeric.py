@@ -67,6 +67,7 @@ __all__ = [
     "Program",
     "compile_exprs",
     "compile_program",
+    "stored_pose_function",
     "stored_program",
     "compile_matrix",
     "compile_pose",
@@ -272,10 +273,12 @@ def stored_program(
     name: str | None,
     exprs: Callable[[], Sequence[sp.Basic]],
     variables: Sequence[sp.Symbol],
+    extra: Mapping[str, type] | None = None,
 ) -> Program:
     """The :class:`Program` of ``exprs()`` for ``variables``, kept in the disk cache as entry
     ``name`` (:mod:`dhsym.cache`: verified when read; ``None`` or the cache turned off:
-    not kept). ``exprs`` is called only when the entry is absent or refused."""
+    not kept). ``exprs`` is called only when the entry is absent or refused; ``extra``
+    names dhsym's own functions the program may hold (:func:`dhsym.cache.codec.read_exprs`)."""
     from dhsym.cache.codec import CodecError, read_exprs, write_exprs
     from dhsym.cache.store import default_store
 
@@ -283,7 +286,7 @@ def stored_program(
     data = store.read(name) if store is not None and name is not None else None
     if data is not None:
         try:
-            lhs, rhs, outputs = read_exprs(data)
+            lhs, rhs, outputs = read_exprs(data, extra)
             return Program(tuple(zip(lhs.args, rhs.args)), tuple(outputs.args))
         except (CodecError, ValueError, AttributeError):
             pass  # not a program this version reads: derive it again
@@ -292,7 +295,7 @@ def stored_program(
         try:
             lhs_rhs = [sp.Tuple(*(s for s, _ in program.assignments))]
             lhs_rhs.append(sp.Tuple(*(e for _, e in program.assignments)))
-            text = write_exprs([*lhs_rhs, sp.Tuple(*program.outputs)])
+            text = write_exprs([*lhs_rhs, sp.Tuple(*program.outputs)], extra)
         except CodecError:
             return program  # a class the codec does not write: kept in this process only
         store.write(name, text.encode())
@@ -400,14 +403,55 @@ def compile_pose(
     DHError
         When a constant symbol has no value.
     """
+    single, batch = _pose_cells(matrix, values)
+    variables = tuple(variables)
+    return PoseFunction(
+        compile_exprs(single, variables, floats=True),
+        compile_exprs(batch, variables),
+        len(variables),
+    )
+
+
+def stored_pose_function(
+    names: tuple[str, str] | None,
+    matrix: Callable[[], sp.MatrixBase],
+    variables: Sequence[sp.Symbol],
+    values: Mapping[sp.Symbol, sp.Expr] | None = None,
+) -> PoseFunction:
+    """:func:`compile_pose` of ``matrix()``, its two programs (floats, numpy) kept in the disk
+    cache as entries ``names`` (:func:`stored_program`; ``None``: not kept); ``matrix`` is
+    called only when they are absent or refused."""
+    variables = tuple(variables)
+    cells: list[tuple[list[sp.Basic], list[sp.Basic]]] = []
+
+    def part(k: int) -> Callable[[], list[sp.Basic]]:
+        def exprs() -> list[sp.Basic]:
+            if not cells:
+                cells.append(_pose_cells(matrix(), values))
+            return cells[0][k]
+
+        return exprs
+
+    extra = {"_PlusZero": _PlusZero}
+    single = stored_program(names and names[0], part(0), variables, extra)
+    batch = stored_program(names and names[1], part(1), variables, extra)
+    return PoseFunction(
+        compile_program(single, variables, floats=True),
+        compile_program(batch, variables),
+        len(variables),
+    )
+
+
+def _pose_cells(
+    matrix: sp.MatrixBase, values: Mapping[sp.Symbol, sp.Expr] | None
+) -> tuple[list[sp.Basic], list[sp.Basic]]:
+    """What :func:`compile_pose` compiles: the 16 cells for floats (``-0.0`` read as
+    ``0.0``) and the 12 of the top rows for numpy, constants folded."""
     M = sp.Matrix(matrix).subs(dict(values or {}))
     folded = [float_constants(M[i, j]) for i in range(3) for j in range(4)]
     cells = [_PlusZero(c) if c.free_symbols else c for c in folded]
-    variables = tuple(variables)
     last_row = [sp.Float(0.0), sp.Float(0.0), sp.Float(0.0), sp.Float(1.0)]
-    single = compile_exprs([*cells, *last_row], variables, floats=True)
-    batch = compile_exprs(folded, variables)
-    return PoseFunction(single, batch, len(variables))
+    return [*cells, *last_row], folded
 
 
 def compile_word(
