@@ -235,9 +235,37 @@ class KinematicChain:
     def _compute_transform(self, i: int, j: int) -> Pose:
         self.check_transform_size(i, j)
         word = chain_word(self.table, i, j)
-        return Pose(
-            compose(word), frame_name(i, self.n), frame_name(j, self.n), self.notation, word=word
-        )
+        whole = i in (-1, 0) and j in (self.n, self.n + 1) and i < j
+        matrix = self._stored_transform(i, j, lambda: compose(word)) if whole else compose(word)
+        return Pose(matrix, frame_name(i, self.n), frame_name(j, self.n), self.notation, word=word)
+
+    def _stored_transform(
+        self, i: int, j: int, derive: Callable[[], sp.ImmutableMatrix]
+    ) -> sp.ImmutableMatrix:
+        """The closed form of the arm matrix or the tool pose ``^iT_j``, kept in the disk cache
+        (:mod:`dhsym.cache`: verified when read); ``derive()`` when absent or refused."""
+        from dhsym.cache.codec import CodecError, read_exprs, write_exprs
+        from dhsym.cache.keys import entry_name
+        from dhsym.cache.store import default_store
+
+        store = default_store()
+        if store is None:
+            return derive()
+        name = entry_name(self.table, "transform", f"{i}-{j}")
+        data = store.read(name)
+        if data is not None:
+            try:
+                (found,) = read_exprs(data)
+                if isinstance(found, sp.ImmutableMatrix) and found.shape == (4, 4):
+                    return found
+            except (CodecError, ValueError):
+                pass  # not what this version writes: derive it again
+        matrix = derive()
+        try:
+            store.write(name, write_exprs([matrix]).encode())
+        except CodecError:
+            pass  # an expression the codec does not write: kept in this process only
+        return matrix
 
     def plain_transform(self, i: int, j: int) -> sp.ImmutableMatrix:
         """``^iT_j`` as the plain product of the elementary matrices (the reference)."""

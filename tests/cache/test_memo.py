@@ -31,6 +31,7 @@ def test_equal_tables_share_one_state():
 def test_second_robot_derives_nothing(monkeypatch):
     import dhsym.kinematics.chain as chain
 
+    monkeypatch.setenv("DHSYM_NO_CACHE", "1")  # derived here, not read from the disk cache
     table = replace(load_table("planar2r"), name="memo test")  # an entry of its own
     calls = []
     compose = chain.compose
