@@ -133,13 +133,18 @@ def write_exprs(items: Sequence[Any], extra: Mapping[str, type] | None = None) -
             nodes.append(_node(e, index, classes))
         return index[root]
 
+    def basic(value: object) -> sp.Basic:
+        if not isinstance(value, sp.Basic):
+            raise CodecError(f"not a sympy object: {type(value).__name__}")
+        return value
+
     roots: list[Any] = []
     for item in items:
         if isinstance(item, sp.MatrixBase):
-            cells = [visit(sp.sympify(c)) for c in item]
+            cells = [visit(basic(c)) for c in item]
             roots.append({"matrix": [item.rows, item.cols, cells]})
         else:
-            roots.append(visit(sp.sympify(item)))
+            roots.append(visit(basic(item)))
     return json.dumps({"format": _FORMAT, "nodes": nodes, "roots": roots}, separators=(",", ":"))
 
 
