@@ -40,6 +40,7 @@ det J_v = a1*a2*S2
 from __future__ import annotations
 
 import itertools
+import json
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -476,9 +477,16 @@ def singularities(robot: KinematicChain) -> Singularities:
     if store is not None:
         data = store.read(name)
         found = stored_singularities(data, robot) if data is not None else None
+        if isinstance(found, StructureError):
+            raise found
         if found is not None:
             return found
-    result = _derive(robot)
+    try:
+        result = _derive(robot)
+    except StructureError as err:  # a refusal found after seconds of work is kept too
+        if store is not None:
+            store.write(name, json.dumps({"refused": err.message}).encode())
+        raise
     if store is not None:
         data = singularities_data(result)
         if data is not None:
@@ -489,8 +497,6 @@ def singularities(robot: KinematicChain) -> Singularities:
 def singularities_data(result: Singularities) -> bytes | None:
     """``result`` as the data the disk cache keeps (:mod:`dhsym.cache.codec`: text and
     expressions, no code); ``None`` when an expression cannot be written."""
-    import json
-
     from dhsym.cache.codec import CodecError, write_exprs
 
     items: list[Any] = [result.determinant]
@@ -513,15 +519,18 @@ def singularities_data(result: Singularities) -> bytes | None:
     return json.dumps({"singularities": meta, "exprs": exprs}).encode()
 
 
-def stored_singularities(data: bytes, robot: KinematicChain) -> Singularities | None:
+def stored_singularities(
+    data: bytes, robot: KinematicChain
+) -> Singularities | StructureError | None:
     """The :class:`Singularities` of :func:`singularities_data` for ``robot`` (printed in
-    its notation); ``None`` when the data is not what this version writes."""
-    import json
-
+    its notation), or the :class:`StructureError` kept for a table that has none; ``None``
+    when the data is not what this version writes."""
     from dhsym.cache.codec import CodecError, read_exprs
 
     try:
         doc = json.loads(data)
+        if isinstance(doc, dict) and isinstance(doc.get("refused"), str):
+            return StructureError(doc["refused"])
         meta = doc["singularities"]
         items = read_exprs(doc["exprs"])
         det, k = items[0], 1

@@ -63,3 +63,18 @@ joints:
     warm = dynamics_functions(arm)
     assert np.array_equal(cold.rne(x, x, x), warm.rne(x, x, x))
     assert np.array_equal(cold.inertia(x[0]), warm.inertia(x[0]))
+
+
+def test_a_refusal_is_kept(tmp_path, monkeypatch):
+    import pytest
+
+    from dhsym.kinematics.decoupling import StructureError
+
+    _cache(tmp_path, monkeypatch)
+    sub = dhsym.load("panda").ik_cache().given(7).cache.chain  # no spherical wrist left
+    with pytest.raises(StructureError) as first:
+        sing.singularities(sub)
+    monkeypatch.setattr(sing, "_derive", None)
+    with pytest.raises(StructureError) as again:
+        sing.singularities(sub)
+    assert again.value.message == first.value.message
