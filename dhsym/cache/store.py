@@ -3,7 +3,8 @@ when this user wrote them.
 
 The folder is ``$DHSYM_CACHE`` when set, else the user cache folder of
 :mod:`platformdirs` (``$XDG_CACHE_HOME/dhsym`` or ``~/.cache/dhsym`` on Linux);
-``DHSYM_NO_CACHE=1`` (the command line's ``--no-cache``) turns it off. Its rules:
+``DHSYM_NO_CACHE=1`` (the command line's ``--no-cache``) turns it off, and it is off where
+files have no POSIX owner and mode to check (Windows). Its rules:
 
 - folders are created ``0700``, files ``0600``, each written to a temporary file in
   the same folder and moved in place with :func:`os.replace` (atomic);
@@ -62,7 +63,10 @@ def cache_root() -> Path:
 
 
 def cache_enabled() -> bool:
-    """False when ``DHSYM_NO_CACHE`` is set to ``1``, ``true`` or ``yes``."""
+    """False when ``DHSYM_NO_CACHE`` is set to ``1``, ``true`` or ``yes``, and where files have
+    no POSIX owner and mode to check (Windows: the memo of a process still works)."""
+    if not hasattr(os, "getuid"):
+        return False
     return os.environ.get("DHSYM_NO_CACHE", "").strip().lower() not in ("1", "true", "yes")
 
 
@@ -96,6 +100,8 @@ class Store:
     def _folder(self, create: bool) -> Path | None:
         """The entries folder when it (and the root) are this user's and private; ``None``
         otherwise. ``create`` makes them ``0700`` (and makes an own folder private)."""
+        if not hasattr(os, "getuid"):  # no POSIX owner to check: nothing is trusted
+            return None
         for folder in (self.root, self.entries):
             try:
                 st = folder.lstat()
@@ -224,6 +230,8 @@ def _check_name(name: str) -> None:
 
 def _read_private(path: Path, limit: int | None = None) -> bytes | None:
     """The bytes of a regular file owned by this user and private to them, else ``None``."""
+    if not hasattr(os, "getuid"):
+        return None
     try:
         fd = os.open(path, os.O_RDONLY | (os.O_NOFOLLOW if hasattr(os, "O_NOFOLLOW") else 0))
     except OSError:
