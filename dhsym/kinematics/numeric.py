@@ -329,16 +329,23 @@ class PoseFunction:
 
     ``f(q)`` takes one configuration ``(n,)`` (pure Python floats: a few µs)
     or a batch ``(N, n)`` (numpy, in cache-sized chunks) and returns ``(4, 4)``
-    or ``(N, 4, 4)``; ``-0.0`` entries come out as ``0.0``.
+    or ``(N, 4, 4)``; ``-0.0`` entries come out as ``0.0``. ``batch`` may be a function
+    that compiles the numpy code on the first batch (:func:`stored_pose_function`).
     """
 
-    __slots__ = ("_batch", "_single", "n")
+    __slots__ = ("_batch", "_make_batch", "_single", "n")
 
     def __init__(
-        self, single: Callable[..., list[Any]], batch: Callable[..., list[Any]], n: int
+        self,
+        single: Callable[..., list[Any]],
+        batch: Callable[..., list[Any]] | None,
+        n: int,
+        *,
+        make_batch: Callable[[], Callable[..., list[Any]]] | None = None,
     ) -> None:
         self._single = single
         self._batch = batch
+        self._make_batch = make_batch
         self.n = n
 
     def __call__(self, q: ArrayLike) -> np.ndarray:
@@ -364,6 +371,12 @@ class PoseFunction:
         out.shape = (4, 4)
         return out
 
+    def _numpy(self) -> Callable[..., list[Any]]:
+        if self._batch is None:
+            assert self._make_batch is not None, "a PoseFunction has a batch program or a maker"
+            self._batch = self._make_batch()
+        return self._batch
+
     def batch(self, q: ArrayLike) -> np.ndarray:
         """A batch ``(N, n)`` → ``(N, 4, 4)`` (one configuration ``(n,)`` → ``(4, 4)``)."""
         Q, single = _configurations(q, self.n)
@@ -375,7 +388,7 @@ class PoseFunction:
         # cache-sized chunks: the temporaries stay in L2 (about 2x faster for large N)
         for start in range(0, N, _CHUNK):
             block = flat[start : start + _CHUNK]
-            for k, v in enumerate(self._batch(*Q[start : start + _CHUNK].T)):
+            for k, v in enumerate(self._numpy()(*Q[start : start + _CHUNK].T)):
                 block[:, k] = v  # cells are the first 12 entries of the row-major 4x4
             block[:, :12] += 0.0  # -0.0 -> 0.0, so printed poses read cleanly
         return out[0] if single else out
@@ -420,7 +433,7 @@ def stored_pose_function(
 ) -> PoseFunction:
     """:func:`compile_pose` of ``matrix()``, its two programs (floats, numpy) kept in the disk
     cache as entries ``names`` (:func:`stored_program`; ``None``: not kept); ``matrix`` is
-    called only when they are absent or refused."""
+    called only when they are absent or refused, the numpy code compiled on the first batch."""
     variables = tuple(variables)
     cells: list[tuple[list[sp.Basic], list[sp.Basic]]] = []
 
@@ -434,11 +447,13 @@ def stored_pose_function(
 
     extra = {"_PlusZero": _PlusZero}
     single = stored_program(names and names[0], part(0), variables, extra)
-    batch = stored_program(names and names[1], part(1), variables, extra)
+
+    def make_batch() -> Callable[..., list[Any]]:  # on the first batch only
+        batch = stored_program(names and names[1], part(1), variables, extra)
+        return compile_program(batch, variables)
+
     return PoseFunction(
-        compile_program(single, variables, floats=True),
-        compile_program(batch, variables),
-        len(variables),
+        compile_program(single, variables, floats=True), None, len(variables), make_batch=make_batch
     )
 
 

@@ -20,7 +20,7 @@ def test_singularities_read_back_without_deriving(tmp_path, monkeypatch):
     store = _cache(tmp_path, monkeypatch)
     r = dhsym.load("stanford")
     first = sing.singularities(r)
-    assert store.info().entries == 1
+    assert len(list(_entries(store, "singularities"))) == 1
     monkeypatch.setattr(sing, "_derive", None)  # a second call must not derive
     again = sing.singularities(r)
     assert again == first and again.text() == first.text()
@@ -31,7 +31,7 @@ def test_changed_singularities_are_derived_again(tmp_path, monkeypatch):
     store = _cache(tmp_path, monkeypatch)
     r = dhsym.load("stanford")
     first = sing.singularities(r)
-    (entry,) = [p for p in store.entries.iterdir() if not p.name.endswith(".hmac")]
+    (entry,) = list(_entries(store, "singularities"))
     entry.write_bytes(entry.read_bytes().replace(b'"shoulder"', b'"elbow"'))
     calls = []
     derive = sing._derive
@@ -78,3 +78,8 @@ def test_a_refusal_is_kept(tmp_path, monkeypatch):
     with pytest.raises(StructureError) as again:
         sing.singularities(sub)
     assert again.value.message == first.value.message
+
+
+def _entries(store, kind):
+    """The entries of one kind (their HMAC files left out)."""
+    return [p for p in store.entries.glob(f"{kind}-*") if not p.name.endswith(".hmac")]

@@ -11,6 +11,7 @@ from dhsym.cache.store import Store
 def test_arm_matrix_read_back_and_refused_when_changed(tmp_path, monkeypatch):
     monkeypatch.setenv("DHSYM_CACHE", str(tmp_path / "c"))
     monkeypatch.delenv("DHSYM_NO_CACHE", raising=False)
+    MEMO.clear()  # derived in this test, whatever the tests before derived
     first = dhsym.load("stanford").arm_matrix()
     store = Store(tmp_path / "c")
     (entry,) = [p for p in store.entries.glob("transform-*") if not p.name.endswith(".hmac")]

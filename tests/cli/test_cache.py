@@ -54,7 +54,7 @@ def test_dynamics_kept_and_read_back(tmp_path, monkeypatch):
     arm = dhsym.Robot(read_table_text(PENDULUM))
     x = np.array([0.3])
     first = dynamics_functions(arm).rne(x, x, x)
-    assert Store(tmp_path / "c").info().entries == 1
+    assert len(list(_entries(Store(tmp_path / "c"), "rne"))) == 1
     import dhsym.dynamics.compiled_dynamics as cd
 
     monkeypatch.setattr(cd, "rne_expressions", None)  # read back, not derived again
@@ -64,3 +64,8 @@ def test_dynamics_kept_and_read_back(tmp_path, monkeypatch):
 PENDULUM = """
 joints: [{type: R, theta: q1, d: 0, a: 1, alpha: 0, m: 2, r: [-0.5, 0, 0], I: [0, 0.1, 0.1]}]
 """
+
+
+def _entries(store, kind):
+    """The entries of one kind (their HMAC files left out)."""
+    return [p for p in store.entries.glob(f"{kind}-*") if not p.name.endswith(".hmac")]
