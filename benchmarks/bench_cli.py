@@ -1,4 +1,5 @@
-"""Start-up time of the command line, as a ratio to ``python -c "import sympy"`` in the same run.
+"""Start-up time of the command line, and the first answers of the heavier questions cold and
+warm, as ratios to ``python -c "import sympy"`` in the same run.
 
 Each command runs as a fresh process, as a student's shell runs it. The runs are
 interleaved (one of each command per round, the reference included), so a machine
@@ -7,7 +8,14 @@ wall time and the median CPU time (user + system of the process: less disturbed 
 work on a shared machine), each also as a ratio to the reference's, and the load average
 before and after.
 
-    python benchmarks/bench_cli.py [--runs 9] [--python PATH]
+The first answers (``dhsym check … ik@…`` on the PUMA 560, ``puma.ik(T)``,
+``puma.rne(q, qd, qdd)``, the Panda's IK with joint 7 given) run twice each way: *cold*
+with ``DHSYM_CACHE`` an empty temporary folder of its own (everything derived, compiled and
+written to the disk cache), *warm* with a folder a cold run filled (dhsym.cache: read back
+and verified). The startup table runs with an empty cache folder of its own (a command
+that reads nothing from it measures the same either way).
+
+    python benchmarks/bench_cli.py [--runs 9] [--cold-runs 1] [--no-first] [--python PATH]
 
 ``--python`` takes the interpreter of another environment (for instance a fresh venv
 with only the wheel installed: there is no editable-install finder to import).
@@ -51,18 +59,55 @@ def commands(answer: Path) -> dict[str, list[str]]:
     }
 
 
+Q = "0.3,-0.5,0.4,0.2,0.7,-1.1"
+_PUMA = f"import dhsym, numpy as np; r = dhsym.load('puma560'); q = np.array([{Q}]); "
+_PANDA = "import dhsym, numpy as np; r = dhsym.load('panda'); "
+_PANDA += "q = np.array([0.3, -0.5, 0.4, -1.9, 0.7, 1.6, 0.6]); "
+
+
+def first_answers(answer: Path) -> dict[str, list[str]]:
+    """The first answers timed cold and warm (arguments after ``python``)."""
+    return {
+        'python -c "import sympy"': ["-c", "import sympy"],
+        "dhsym check puma560 ik@q": [
+            "-m",
+            "dhsym",
+            "check",
+            "--key",
+            "puma560",
+            "--question",
+            f"ik@{Q}",
+            "--answer",
+            str(answer),
+        ],
+        "puma.ik(T)": ["-c", _PUMA + "assert len(r.ik(r.fk(q)).q) == 8"],
+        "puma.rne(q, qd, qdd)": ["-c", _PUMA + "assert r.rne(q, q, q).shape == (6,)"],
+        "panda.ik(T, free={7: q7})": [
+            "-c",
+            _PANDA + "assert len(r.ik(r.fk(q), free={7: 0.6}).q) >= 1",
+        ],
+    }
+
+
 # Bytecode is written and read as after a normal install (pip compiles at install time).
-_ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+_ENV = {
+    k: v for k, v in os.environ.items() if k not in ("PYTHONDONTWRITEBYTECODE", "DHSYM_NO_CACHE")
+}
 
 
-def run_timed(python: str, args: list[str], cwd: str) -> tuple[float, float]:
-    """Wall and CPU seconds (user + system) of ``python args`` (output discarded; must succeed)."""
+def run_timed(
+    python: str, args: list[str], cwd: str, cache: str | None = None
+) -> tuple[float, float]:
+    """Wall and CPU seconds (user + system) of ``python args`` (output discarded; must
+    succeed), with ``DHSYM_CACHE=cache`` (default: an empty folder of its own in ``cwd``)."""
+    if cache is None:
+        cache = tempfile.mkdtemp(dir=cwd, prefix="cache-")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     subprocess.run(
         [python, *args],
         cwd=cwd,
-        env=_ENV,
+        env={**_ENV, "DHSYM_CACHE": cache},
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
         check=True,
@@ -73,9 +118,52 @@ def run_timed(python: str, args: list[str], cwd: str) -> tuple[float, float]:
     return wall, cpu
 
 
+def report(
+    title: str, names: list[str], wall: dict[str, list[float]], cpu: dict[str, list[float]]
+) -> None:
+    """One table: median wall and CPU seconds of each command and their ratios to the first."""
+    ref = names[0]
+    ref_wall, ref_cpu = statistics.median(wall[ref]), statistics.median(cpu[ref])
+    print(f"{title:40s} {'wall':>8s} {'ratio':>6s} {'cpu':>8s} {'ratio':>6s}")
+    for name in names:
+        w, c = statistics.median(wall[name]), statistics.median(cpu[name])
+        print(f"{name:40s} {w:7.3f}s {w / ref_wall:6.2f} {c:7.3f}s {c / ref_cpu:6.2f}")
+    print(f"ratio = median / median of {ref} (same run)")
+
+
+def first_answer_rounds(
+    python: str, cmds: dict[str, list[str]], cwd: str, runs: int, cold_runs: int
+) -> tuple[dict[str, list[float]], dict[str, list[float]]]:
+    """Cold (an empty cache folder per run) and warm (the folder a cold run filled) times,
+    keyed ``"name, cold"`` and ``"name, warm"``; the reference runs in both rounds."""
+    ref, *rest = cmds
+    wall: dict[str, list[float]] = {}
+    cpu: dict[str, list[float]] = {}
+
+    def record(key: str, w: float, c: float) -> None:
+        wall.setdefault(key, []).append(w)
+        cpu.setdefault(key, []).append(c)
+
+    filled = {name: tempfile.mkdtemp(dir=cwd, prefix="warm-") for name in rest}
+    for k in range(cold_runs):
+        record(ref, *run_timed(python, cmds[ref], cwd))
+        for name in rest:  # the first cold run fills the warm folder
+            cache = filled[name] if k == 0 else None
+            record(f"{name}, cold", *run_timed(python, cmds[name], cwd, cache))
+    for _ in range(runs):
+        record(ref, *run_timed(python, cmds[ref], cwd))
+        for name in rest:
+            record(f"{name}, warm", *run_timed(python, cmds[name], cwd, filled[name]))
+    return wall, cpu
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=9, help="rounds (median of these)")
+    parser.add_argument(
+        "--cold-runs", type=int, default=1, help="cold rounds of the first answers (slow)"
+    )
+    parser.add_argument("--no-first", action="store_true", help="the startup table only")
     parser.add_argument("--python", default=sys.executable, help="interpreter to run")
     args = parser.parse_args()
 
@@ -93,20 +181,31 @@ def main() -> None:
                 w, c = run_timed(args.python, argv, cwd)
                 wall[name].append(w)
                 cpu[name].append(c)
+        if not args.no_first:
+            joints = Path(cwd) / "joints.txt"
+            joints.write_text(Q.replace(",", ", "))
+            first = first_answers(joints)
+            first_wall, first_cpu = first_answer_rounds(
+                args.python, first, cwd, args.runs, args.cold_runs
+            )
         load_after = os.getloadavg()
 
-    ref_name = next(iter(cmds))
-    ref_wall, ref_cpu = statistics.median(wall[ref_name]), statistics.median(cpu[ref_name])
     print(f"python: {args.python}")
     print(
         f"cores: {os.cpu_count()}, load average (1 min) before {load_before[0]:.2f}, "
         f"after {load_after[0]:.2f}; medians of {args.runs} interleaved runs"
     )
-    print(f"{'command':40s} {'wall':>8s} {'ratio':>6s} {'cpu':>8s} {'ratio':>6s}")
-    for name in cmds:
-        w, c = statistics.median(wall[name]), statistics.median(cpu[name])
-        print(f"{name:40s} {w:7.3f}s {w / ref_wall:6.2f} {c:7.3f}s {c / ref_cpu:6.2f}")
-    print(f"ratio = median / median of {ref_name} (same run)")
+    report("command", list(cmds), wall, cpu)
+    if not args.no_first:
+        ref, *rest = first
+        names = [ref] + [f"{n}, cold" for n in rest] + [f"{n}, warm" for n in rest]
+        print()
+        print(
+            f"first answers in a fresh process: cold = an empty DHSYM_CACHE "
+            f"(median of {args.cold_runs}), warm = the folder a cold run filled "
+            f"(median of {args.runs})"
+        )
+        report("first answer", names, first_wall, first_cpu)
 
 
 if __name__ == "__main__":

@@ -7,7 +7,9 @@ A :class:`Robot` is a :class:`~dhsym.kinematics.chain.KinematicChain` (table, no
 writes itself in other tools' formats (:mod:`dhsym.formats`) and loads its exported C
 (:mod:`dhsym.export`). It is a room of its own, above all of these and below
 :mod:`dhsym.explain`; each room it reaches is imported on first use. What it computes is
-cached in typed fields, one per kind of result.
+cached in typed fields, one per kind of result, shared by every robot of an equal table
+(the process's memo, :mod:`dhsym.cache.memo`): a second ``load("puma560")`` derives nothing
+again.
 
 Examples
 --------
@@ -23,7 +25,9 @@ Robot('Planar 2R', RR, standard)
 from __future__ import annotations
 
 import os
+import threading
 from collections.abc import Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, overload
 
@@ -48,7 +52,32 @@ if TYPE_CHECKING:
     from dhsym.ik.solution import IKSolution
     from dhsym.model.angles import AngleSnap
 
-__all__ = ["Robot", "from_rtb", "from_urdf", "inverse", "load"]
+__all__ = ["Robot", "RobotState", "from_rtb", "from_urdf", "inverse", "load"]
+
+
+@dataclass(eq=False)
+class RobotState:
+    """What a robot derives above its kinematics, shared by every robot of an equal table
+    and notation (:mod:`dhsym.cache.memo`): the inverse kinematics and its sub-chains
+    (``ik_cache``), the equations of motion (one field per method) and the compiled
+    dynamics by the values given (:func:`dhsym.kinematics.numeric.values_key`). ``lock``
+    makes threads that ask for the same result derive it once."""
+
+    ik_cache: IKCache | None = None
+    lagrange: EquationsOfMotion | None = None
+    newton_euler: EquationsOfMotion | None = None
+    dynamics_functions: dict[object, DynamicsFunctions] = field(default_factory=dict)
+    lock: threading.RLock = field(default_factory=threading.RLock, repr=False)
+
+    def memo_size(self) -> int:
+        """The estimated size (:class:`dhsym.cache.memo.Sized`, expression nodes): a rough
+        figure per derived result."""
+        return (
+            1
+            + 50_000 * (self.ik_cache is not None)
+            + 200_000 * ((self.lagrange is not None) + (self.newton_euler is not None))
+            + 50_000 * len(self.dynamics_functions)
+        )
 
 
 class Robot(KinematicChain):
@@ -62,13 +91,10 @@ class Robot(KinematicChain):
         self, table: DHTable, *, compact: bool = True, style: TrigStyle | str = TrigStyle.UPPER
     ) -> None:
         super().__init__(table, compact=compact, style=style)
-        # the derived inverse kinematics and the sub-chains of ``ik(free=...)``
-        self._ik_cache: IKCache | None = None
-        # the equations of motion, one field per method
-        self._lagrange: EquationsOfMotion | None = None
-        self._newton_euler: EquationsOfMotion | None = None
-        # the compiled dynamics by the values given (dhsym.kinematics.numeric.values_key)
-        self._dynamics_functions: dict[object, DynamicsFunctions] = {}
+        from dhsym.cache.memo import MEMO, MemoKey
+
+        # the inverse kinematics, equations of motion and compiled dynamics, shared
+        self._shared = MEMO.get(MemoKey(table, RobotState, self.notation), RobotState)
 
     # -- inverse kinematics (dhsym.ik) -------------------------------------------------
     def ik_cache(self) -> IKCache:
@@ -76,14 +102,18 @@ class Robot(KinematicChain):
         given (:class:`dhsym.ik.choices.IKCache`), made on first use."""
         from dhsym.ik.choices import IKCache
 
-        if self._ik_cache is None:
-            self._ik_cache = IKCache(self)
-        return self._ik_cache
+        shared = self._shared
+        if shared.ik_cache is None:
+            with shared.lock:
+                if shared.ik_cache is None:
+                    shared.ik_cache = IKCache(self)
+        return shared.ik_cache
 
     def inverse(self) -> ClosedForm | Elimination:
         """The inverse kinematics derived step by step (:mod:`dhsym.ik`), cached: the closed
-        form, or for the general 6R the elimination."""
-        return self.ik_cache().inverse()
+        form, or for the general 6R the elimination (threads asking at once derive it once)."""
+        with self._shared.lock:
+            return self.ik_cache().inverse()
 
     def ik(
         self,
@@ -158,14 +188,17 @@ class Robot(KinematicChain):
         from dhsym.dynamics import lagrange, newton_euler
 
         key = str(method).strip().lower().replace("_", "-")
+        shared = self._shared
         if key == "lagrange":
-            if self._lagrange is None:
-                self._lagrange = lagrange(self)
-            return self._lagrange
+            with shared.lock:
+                if shared.lagrange is None:
+                    shared.lagrange = lagrange(self)
+                return shared.lagrange
         if key in ("newton-euler", "ne"):
-            if self._newton_euler is None:
-                self._newton_euler = newton_euler(self)
-            return self._newton_euler
+            with shared.lock:
+                if shared.newton_euler is None:
+                    shared.newton_euler = newton_euler(self)
+                return shared.newton_euler
         raise DHError(f"unknown dynamics method {method!r}: expected lagrange or newton-euler")
 
     def dynamics_functions(self, values: Mapping[Any, object] | None = None) -> DynamicsFunctions:
@@ -175,9 +208,13 @@ class Robot(KinematicChain):
         from dhsym.kinematics.numeric import values_key
 
         key = values_key(values)
-        f = self._dynamics_functions.get(key)
+        found = self._shared.dynamics_functions
+        f = found.get(key)
         if f is None:
-            f = self._dynamics_functions[key] = dynamics_functions(self, values)
+            with self._shared.lock:
+                f = found.get(key)
+                if f is None:
+                    f = found[key] = dynamics_functions(self, values)
         return f
 
     def rne(

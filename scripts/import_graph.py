@@ -3,7 +3,7 @@
 Reads every module with ``ast`` (module-level and lazy imports inside functions alike)
 and prints the room-to-room edges. Exit status 1 when
 
-- an edge points up the order model → notation → kinematics → ik/dynamics/geometry/plot/
+- an edge points up the order model → cache → notation → kinematics → ik/dynamics/geometry/plot/
   export → formats → robot (the facade, ``dhsym.robot.Robot``) → explain → checking → cli,
   except the documented exceptions in ``ALLOWED``;
 - any imports, counted all (module level and inside functions; only ``if TYPE_CHECKING:``
@@ -30,7 +30,9 @@ ROOT = Path(__file__).resolve().parents[1] / "dhsym"
 ORDER = [
     "errors",
     "_lazy",
+    "_version",
     "model",
+    "cache",
     "notation",
     "kinematics",
     "ik",

@@ -9,23 +9,24 @@ starts without sympy. Bad input exits with status 2 and one line
 Examples
 --------
 >>> sorted(build_parser()._subparsers._group_actions[0].choices)  # doctest: +NORMALIZE_WHITESPACE
-['autograder', 'check', 'convert', 'derive', 'export', 'fk', 'grade', 'handout', 'ik',
- 'list', 'new-assignment', 'notebooks', 'plot', 'show']
+['autograder', 'cache', 'check', 'convert', 'derive', 'export', 'fk', 'grade', 'handout',
+ 'ik', 'list', 'new-assignment', 'notebooks', 'plot', 'show']
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Sequence
 
-from . import checking, export, geometry, handouts, plots, robots
+from . import cache, checking, export, geometry, handouts, plots, robots
 from .common import HelpFormatter, run_quietly
 
 __all__ = ["COMMAND_GROUPS", "build_parser", "main"]
 
 #: The command groups, in the order ``dhsym --help`` lists them.
-COMMAND_GROUPS = (robots, handouts, plots, geometry, checking, export)
+COMMAND_GROUPS = (robots, handouts, plots, geometry, checking, export, cache)
 
 _DESCRIPTION = """\
 Denavit-Hartenberg tables to closed-form kinematics in lecture notation
@@ -61,6 +62,11 @@ def build_parser() -> argparse.ArgumentParser:
         prog="dhsym", description=_DESCRIPTION, epilog=_EPILOG, formatter_class=HelpFormatter
     )
     p.add_argument("--version", action=_VersionAction)
+    p.add_argument(
+        "--no-cache",
+        action="store_true",
+        help="neither read nor write the disk cache of derived results (as DHSYM_NO_CACHE=1)",
+    )
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for group in COMMAND_GROUPS:
         group.register(sub)
@@ -121,11 +127,24 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     parser = build_parser()
     argv = _glue_negative_values(list(sys.argv[1:] if argv is None else argv))
+    before = os.environ.get("DHSYM_NO_CACHE")
     try:
-        return run_quietly(lambda: _run(parser.parse_args(argv)))
+        return run_quietly(lambda: _run(_cache_switch(parser.parse_args(argv))))
     except KeyboardInterrupt:
         print(file=sys.stderr)
         return 130
+    finally:  # main() may run inside another program (the tests): leave its switch as found
+        if before is None:
+            os.environ.pop("DHSYM_NO_CACHE", None)
+        else:
+            os.environ["DHSYM_NO_CACHE"] = before
+
+
+def _cache_switch(args: argparse.Namespace) -> argparse.Namespace:
+    """``--no-cache``: the library reads ``DHSYM_NO_CACHE`` (:mod:`dhsym.cache.store`)."""
+    if args.no_cache:
+        os.environ["DHSYM_NO_CACHE"] = "1"
+    return args
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -36,7 +36,13 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.kinematics.numeric import compile_exprs, evaluate_chunked, to_float
+from dhsym.kinematics.numeric import (
+    Program,
+    compile_program,
+    evaluate_chunked,
+    stored_program,
+    to_float,
+)
 from dhsym.model.parsing import REAL
 
 from .lagrange_euler import potential_energies
@@ -50,28 +56,41 @@ __all__ = ["DynamicsFunctions", "Trajectory", "dynamics_functions", "numeric_mod
 
 
 class _Compiled:
-    """``f(*arrays)`` of compiled expressions into an array ``(..., *shape)``; code is
-    generated on first use (numpy for batches, plain floats for one state)."""
+    """``f(*arrays)`` of compiled expressions into an array ``(..., *shape)``; the
+    expressions (``exprs()``) are written out and code generated on first use (numpy for
+    batches, plain floats for one state); their program is kept in the disk cache as
+    ``entry`` when given (:func:`~dhsym.kinematics.numeric.stored_program`)."""
 
     def __init__(
-        self, exprs: Sequence[sp.Expr], args: Sequence[sp.Symbol], shape: tuple[int, ...]
+        self,
+        exprs: Callable[[], Sequence[sp.Expr]],
+        args: Sequence[sp.Symbol],
+        shape: tuple[int, ...],
+        entry: str | None = None,
     ) -> None:
         self.shape = shape
         self.size = int(np.prod(shape)) if shape else 1
-        self._exprs = list(exprs)
+        self._exprs = exprs
         self._args = list(args)
+        self._entry = entry
+        self._program: Program | None = None
         self._batch: Callable[..., list[Any]] | None = None
         self._single: Callable[..., list[Any]] | None = None
+
+    def _compile(self, floats: bool) -> Callable[..., list[Any]]:
+        if self._program is None:
+            self._program = stored_program(self._entry, self._exprs, self._args)
+        return compile_program(self._program, self._args, floats=floats)
 
     def __call__(self, *parts: np.ndarray) -> np.ndarray:
         lead = parts[0].shape[:-1]
         if not lead:  # one state: plain Python floats
             if self._single is None:
-                self._single = compile_exprs(self._exprs, self._args, floats=True)
+                self._single = self._compile(floats=True)
             values = self._single(*[x for p in parts for x in p.tolist()])
             return np.array(values, dtype=float).reshape(self.shape)
         if self._batch is None:
-            self._batch = compile_exprs(self._exprs, self._args)
+            self._batch = self._compile(floats=False)
         flat = [p.reshape(-1, p.shape[-1]) for p in parts]
         out = evaluate_chunked(self._batch, *flat, out=np.empty((flat[0].shape[0], self.size)))
         return out.reshape(*lead, *self.shape)
@@ -95,14 +114,22 @@ class DynamicsFunctions:
     ``c_jj = τ(q, e_j, 0, 0)``, ``c_jk = (τ(q, e_j + e_k, 0, 0) − c_jj − c_kk) / 2``.
     """
 
-    def __init__(self, dm: DynamicModel) -> None:
+    def __init__(self, dm: DynamicModel, *, entry: str | None = None) -> None:
         self.model = dm
         n = self.n = dm.n
         q, qd, qdd = dm.variables, dm.rates, dm.accelerations
-        gsym = sp.symbols("gx gy gz", cls=sp.Dummy, **REAL)
-        tau = rne_expressions(dm, gravity=gsym)
-        self._rne = _Compiled(tau, (*q, *qd, *qdd, *gsym), (n,))
-        self._potential = _Compiled([sum(potential_energies(dm), sp.Integer(0))], q, (1,))
+        # the gravity arguments: names no table can give a symbol (the parser's are words)
+        gsym = sp.symbols("gravity·x gravity·y gravity·z", **REAL)
+
+        def tau() -> list[sp.Expr]:
+            return list(rne_expressions(dm, gravity=gsym))
+
+        def potential() -> list[sp.Expr]:
+            return [sum(potential_energies(dm), sp.Integer(0))]
+
+        # τ(q, q̇, q̈, g) is written out on the first call, or read from the disk cache
+        self._rne = _Compiled(tau, (*q, *qd, *qdd, *gsym), (n,), entry)
+        self._potential = _Compiled(potential, q, (1,))
         self.gravity = np.array([to_float(g) for g in dm.gravity])
         links = [dm.links[r - 1] for r in dm.joints]
         try:
@@ -239,8 +266,14 @@ def dynamics_functions(
     """Compile the dynamics of ``robot`` with the table's values and ``values`` (numbers
     for lengths and inertial symbols), substituted before the recursion is written out
     (zero products vanish there), so the compiled code is as short as the numbers allow
-    (the model: :func:`numeric_model`)."""
-    return DynamicsFunctions(numeric_model(robot, values, textbook=textbook))
+    (the model: :func:`numeric_model`). The compiled program is kept in the disk cache
+    (:mod:`dhsym.cache`), named by the table, ``values`` and ``textbook``."""
+    from dhsym.cache.keys import entry_name
+    from dhsym.model.table import symbol_values
+
+    given = sorted(f"{sp.srepr(k)}={sp.srepr(v)}" for k, v in symbol_values(values).items())
+    entry = entry_name(robot.table, "rne", f"textbook={textbook}", *given)
+    return DynamicsFunctions(numeric_model(robot, values, textbook=textbook), entry=entry)
 
 
 def numeric_model(

@@ -1,10 +1,15 @@
 """The fast path back into Python: the exported C, built once into a cache, called by ctypes.
 
-:func:`compiled` writes the C of :func:`dhsym.export.export` into the user's cache folder
-under a name made of the SHA-256 of the source (and the compiler flags), builds a shared
-library there with ``cc`` once, and loads it with :mod:`ctypes`. Nothing is kept in the
-process beyond the file cache: each call loads the library again (cheap: the OS shares
-it). Without a C compiler it returns the same interface on dhsym's NumPy path
+:func:`compiled` builds the C of :func:`dhsym.export.export` with ``cc`` in a private
+temporary folder, keeps the library in dhsym's disk cache (:mod:`dhsym.cache.store`:
+folders ``0700``, files ``0600``, each entry verified against an HMAC under a key only
+this user can read) under a name made of the SHA-256 of the source and the compiler
+flags, and loads it with :mod:`ctypes`. A library is loaded only after it passed the
+store's checks: one planted or changed under the predictable name fails its HMAC, is
+deleted and built again, and its code never runs. With the cache turned off
+(``DHSYM_NO_CACHE=1``, ``--no-cache``) the library is built and loaded from the
+temporary folder. Each call loads the library again (cheap: the OS shares it).
+Without a C compiler it returns the same interface on dhsym's NumPy path
 (``robot.fk``, ``robot.jacobian``, ``robot.ik``), with ``backend == "numpy"``.
 
 Examples
@@ -35,7 +40,6 @@ True
 from __future__ import annotations
 
 import ctypes
-import hashlib
 import os
 import shutil
 import subprocess
@@ -57,19 +61,18 @@ if TYPE_CHECKING:
     from dhsym.ik.solution import IKSolution
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["CompiledRobot", "cache_dir", "compiled"]
+__all__ = ["CompiledRobot", "cache_dir", "compiled", "library_name"]
 
 _FLAGS = ("-O2", "-shared", "-fPIC", "-std=c99")
 _PREFIX = "dhsym_arm"
 
 
 def cache_dir() -> Path:
-    """``$DHSYM_CACHE``, else ``$XDG_CACHE_HOME/dhsym``, else ``~/.cache/dhsym`` (``compiled/``)."""
-    root = os.environ.get("DHSYM_CACHE")
-    if root:
-        return Path(root) / "compiled"
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "dhsym" / "compiled"
+    """Where the libraries are kept: the entries of dhsym's disk cache
+    (:func:`dhsym.cache.store.cache_root`: ``$DHSYM_CACHE``, else the user cache folder)."""
+    from dhsym.cache.store import Store, cache_root
+
+    return Store(cache_root()).entries
 
 
 @dataclass(frozen=True, eq=False)
@@ -95,19 +98,31 @@ def _compiler() -> str | None:
     return os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc")
 
 
-def _build(source: dict[str, str], cc: str) -> Path:
+def library_name(source: dict[str, str], cc: str) -> str:
+    """The cache entry of the library built from ``source`` by ``cc``: ``lib-<sha256>.so``
+    (``.dylib`` on macOS) of the source files, the flags and the compiler."""
+    from dhsym.cache.keys import source_name
+
     text = "\n".join(f"{k}\n{source[k]}" for k in sorted(source))
-    digest = hashlib.sha256((text + " ".join(_FLAGS) + cc).encode()).hexdigest()[:24]
-    folder = cache_dir()
     suffix = ".dylib" if sys.platform == "darwin" else ".so"
-    lib = folder / f"{digest}{suffix}"
-    if lib.is_file():
-        return lib
-    folder.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(dir=folder) as tmp:
-        for name, body in source.items():
-            (Path(tmp) / name).write_text(body)
-        out = Path(tmp) / f"lib{suffix}"
+    return source_name("lib", text + " ".join(_FLAGS) + cc) + suffix
+
+
+def _load(source: dict[str, str], cc: str) -> tuple[ctypes.CDLL, Path | None]:
+    """The library of ``source``: from the disk cache when it passes the store's checks,
+    else built (and kept when the cache is on); loaded with ctypes, and its path in the
+    cache (``None`` when the cache is off)."""
+    from dhsym.cache.store import default_store
+
+    name = library_name(source, cc)
+    store = default_store()
+    found = store.verified_file(name) if store is not None else None
+    if found is not None:
+        return ctypes.CDLL(str(found)), found
+    with tempfile.TemporaryDirectory(prefix="dhsym-build-") as tmp:  # 0700, this user's
+        for file, body in source.items():
+            (Path(tmp) / file).write_text(body)
+        out = Path(tmp) / name
         done = subprocess.run(
             [cc, *_FLAGS, f"{_PREFIX}.c", "-o", str(out), "-lm"],
             cwd=tmp,
@@ -117,8 +132,9 @@ def _build(source: dict[str, str], cc: str) -> Path:
         )
         if done.returncode != 0:
             raise DHError(f"building the exported C failed: {done.stderr.strip()[:2000]}")
-        os.replace(out, lib)  # atomic: a concurrent build of the same source is harmless
-    return lib
+        kept = store.put_file(name, out) if store is not None else None
+        # loaded from the private build folder: what was just built, whatever the cache holds
+        return ctypes.CDLL(str(out)), kept
 
 
 def _vector(q: object, n: int) -> np.ndarray:
@@ -173,8 +189,7 @@ def compiled(
             n,
             rne if rne is not None else _rne_numpy(robot),
         )
-    lib_path = _build(export(robot, "c", what=what, prefix=_PREFIX, cache=cache), cc)
-    lib = ctypes.CDLL(str(lib_path))
+    lib, lib_path = _load(export(robot, "c", what=what, prefix=_PREFIX, cache=cache), cc)
     ptr = ctypes.c_void_p
     for name in ("fk", "jacobian") + (("ik",) if "ik" in what else ()):
         fn = getattr(lib, f"{_PREFIX}_{name}")
@@ -259,7 +274,7 @@ def _rne_c(
     def rne(q: object, qd: object, qdd: object) -> np.ndarray:
         if not loaded:
             source = export(robot, "c", what=("dynamics",), prefix=_PREFIX)
-            fn = ctypes.CDLL(str(_build(source, cc))).dhsym_arm_rne
+            fn = _load(source, cc)[0].dhsym_arm_rne
             fn.argtypes = [ctypes.c_void_p] * 4
             fn.restype = None
             loaded.append(fn)

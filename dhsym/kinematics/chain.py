@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, overload
 
 import sympy as sp
@@ -47,7 +47,14 @@ if TYPE_CHECKING:  # numpy is imported lazily: `import dhsym` stays close to `im
 
     from .jacobian import AnalyticJacobian, Jacobian
 
-__all__ = ["MAX_CLOSED_FORM", "KinematicChain", "JacobianKey", "PoseKey", "frame_name"]
+__all__ = [
+    "MAX_CLOSED_FORM",
+    "ChainState",
+    "KinematicChain",
+    "JacobianKey",
+    "PoseKey",
+    "frame_name",
+]
 
 
 #: Largest estimated size (expression nodes, :func:`.simplification.closed_form_size`) of
@@ -78,6 +85,28 @@ class JacobianKey:
     values: object
 
 
+@dataclass(eq=False)
+class ChainState:
+    """What a chain derives, shared by every chain of an equal table and notation (the
+    process's memo, :mod:`dhsym.cache.memo`): ``^iT_j`` in closed form by frames, the
+    compiled fk functions (by :class:`PoseKey`; ``fk_default``: world to tool with the
+    table's values) and the numeric Jacobians (by :class:`JacobianKey`)."""
+
+    transforms: dict[tuple[int, int], Pose] = field(default_factory=dict)
+    fk_functions: dict[PoseKey, Callable[[ArrayLike], np.ndarray]] = field(default_factory=dict)
+    fk_default: Callable[[ArrayLike], np.ndarray] | None = None
+    jacobian_functions: dict[JacobianKey, Callable[[object], np.ndarray]] = field(
+        default_factory=dict
+    )
+    #: estimated expression nodes of the closed forms kept (the memo's bound)
+    nodes: int = 0
+
+    def memo_size(self) -> int:
+        """The estimated size (:class:`dhsym.cache.memo.Sized`): the closed forms' nodes and
+        a hundred per compiled function."""
+        return 1 + self.nodes + 100 * (len(self.fk_functions) + len(self.jacobian_functions))
+
+
 class KinematicChain:
     """Kinematics of one DH table: link matrices, ``^iT_j``, the arm matrix, ``fk``.
 
@@ -100,15 +129,15 @@ class KinematicChain:
             style=style,
             decimals=decimal_lengths([v for r in table.rows for v in (r.d, r.a)]),
         )
-        # ^iT_j in closed form, by frames
-        self._transforms: dict[tuple[int, int], Pose] = {}
-        # compiled fk: a PoseFunction, or a compile_word product for a chain too long to
-        # write out (both take one configuration or a batch)
-        self._fk_functions: dict[PoseKey, Callable[[ArrayLike], np.ndarray]] = {}
-        # world -> tool with the table's values
-        self._fk_default: Callable[[ArrayLike], np.ndarray] | None = None
-        # numeric Jacobians by frame, Euler angles and values
-        self._jacobian_functions: dict[JacobianKey, Callable[[object], np.ndarray]] = {}
+        from dhsym.cache.memo import MEMO, MemoKey
+
+        # what is derived, shared by every chain of an equal table and notation: ^iT_j in
+        # closed form, compiled fk (a PoseFunction, or a compile_word product for a chain
+        # too long to write out) and numeric Jacobians
+        self._state = MEMO.get(MemoKey(table, ChainState, self.notation), ChainState)
+        self._transforms = self._state.transforms
+        self._fk_functions = self._state.fk_functions
+        self._jacobian_functions = self._state.jacobian_functions
 
     # -- description -----------------------------------------------------------------
     @property
@@ -171,6 +200,7 @@ class KinematicChain:
         pose = self._transforms.get((i, j))
         if pose is None:
             pose = self._transforms[(i, j)] = self._compute_transform(i, j)
+            self._state.nodes += self.transform_size(i, j)
         return pose
 
     def transform_size(self, i: int, j: int) -> int:
@@ -205,9 +235,37 @@ class KinematicChain:
     def _compute_transform(self, i: int, j: int) -> Pose:
         self.check_transform_size(i, j)
         word = chain_word(self.table, i, j)
-        return Pose(
-            compose(word), frame_name(i, self.n), frame_name(j, self.n), self.notation, word=word
-        )
+        whole = i in (-1, 0) and j in (self.n, self.n + 1) and i < j
+        matrix = self._stored_transform(i, j, lambda: compose(word)) if whole else compose(word)
+        return Pose(matrix, frame_name(i, self.n), frame_name(j, self.n), self.notation, word=word)
+
+    def _stored_transform(
+        self, i: int, j: int, derive: Callable[[], sp.ImmutableMatrix]
+    ) -> sp.ImmutableMatrix:
+        """The closed form of the arm matrix or the tool pose ``^iT_j``, kept in the disk cache
+        (:mod:`dhsym.cache`: verified when read); ``derive()`` when absent or refused."""
+        from dhsym.cache.codec import CodecError, read_exprs, write_exprs
+        from dhsym.cache.keys import entry_name
+        from dhsym.cache.store import default_store
+
+        store = default_store()
+        if store is None:
+            return derive()
+        name = entry_name(self.table, "transform", f"{i}-{j}")
+        data = store.read(name)
+        if data is not None:
+            try:
+                (found,) = read_exprs(data)
+                if isinstance(found, sp.ImmutableMatrix) and found.shape == (4, 4):
+                    return found
+            except (CodecError, ValueError):
+                pass  # not what this version writes: derive it again
+        matrix = derive()
+        try:
+            store.write(name, write_exprs([matrix]).encode())
+        except CodecError:
+            pass  # an expression the codec does not write: kept in this process only
+        return matrix
 
     def plain_transform(self, i: int, j: int) -> sp.ImmutableMatrix:
         """``^iT_j`` as the plain product of the elementary matrices (the reference)."""
@@ -247,7 +305,7 @@ class KinematicChain:
         >>> r.fk_function() is r.fk_function(), r.fk_function(0, 1)([0.5, 0.0])[0, 3]
         (True, np.float64(0.8775825618903728))
         """
-        from .numeric import compile_pose, compile_word, values_key
+        from .numeric import compile_word, stored_pose_function, values_key
 
         key = PoseKey(i, j, values_key(values))
         f = self._fk_functions.get(key)
@@ -258,11 +316,27 @@ class KinematicChain:
             i, j = (i or 0), (self.n if j is None else j)
             vals = self.table.with_values(values or {}).value_map
             if self.transform_size(i, j) <= MAX_CLOSED_FORM:
-                f = compile_pose(self.transform(i, j).matrix, self.variables, vals)
+                # its programs are kept in the disk cache (dhsym.cache) by table, frames, values
+                f = stored_pose_function(
+                    self._fk_entries(i, j, vals),
+                    lambda: self.transform(i, j).matrix,
+                    self.variables,
+                    vals,
+                )
             else:  # too long for a closed form: the elementary transforms, multiplied as numbers
                 f = compile_word(chain_word(self.table, i, j), self.variables, vals)
             self._fk_functions[key] = f
         return f
+
+    def _fk_entries(self, i: int, j: int, values: Mapping[sp.Symbol, object]) -> tuple[str, str]:
+        """The disk-cache entries of the compiled ``^iT_j`` with ``values`` (floats, numpy)."""
+        from dhsym.cache.keys import entry_name
+
+        given = sorted(f"{sp.srepr(k)}={sp.srepr(v)}" for k, v in values.items())
+        parts = (f"{i}-{j}", *given)
+        return entry_name(self.table, "fk_single", *parts), entry_name(
+            self.table, "fk_batch", *parts
+        )
 
     def fk(
         self, q: ArrayLike, *, deg: bool = False, values: Mapping[Any, object] | None = None
@@ -272,11 +346,11 @@ class KinematicChain:
         With ``deg=True`` revolute joint values are in degrees. One configuration
         runs in pure Python floats (a few µs), a batch in numpy.
         """
-        f = self._fk_default if values is None else None
+        f = self._state.fk_default if values is None else None
         if f is None:
             f = self.fk_function(values=values)
             if values is None:
-                self._fk_default = f
+                self._state.fk_default = f
         if deg:
             import numpy as np
 

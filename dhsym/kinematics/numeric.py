@@ -45,6 +45,7 @@ np.float64(2.0)
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -65,7 +66,11 @@ __all__ = [
     "EvaluationError",
     "as_basic",
     "PoseFunction",
+    "Program",
     "compile_exprs",
+    "compile_program",
+    "stored_pose_function",
+    "stored_program",
     "compile_matrix",
     "compile_pose",
     "compile_word",
@@ -93,6 +98,86 @@ class _PlusZero(sp.Function):
         return f"({printer._print(self.args[0])} + 0.0)"
 
 
+@dataclass(frozen=True)
+class Program:
+    """What :func:`compile_exprs` turns into code: the expressions with their constants
+    folded to floats, their shared subexpressions named (``assignments``, in order) and
+    the ``outputs`` written with those names. Plain expressions: the disk cache keeps a
+    program (:mod:`dhsym.cache.codec`) and :func:`compile_program` compiles it again.
+
+    >>> x, y = sp.symbols("x y")
+    >>> p = Program.of([sp.sqrt(3) * sp.sin(x + y), sp.cos(x + y) * sp.sin(x + y)], (x, y))
+    >>> p.assignments, p.outputs
+    (((x0, x + y), (x1, sin(x0))), (1.7320508075688772*x1, x1*cos(x0)))
+    """
+
+    assignments: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    outputs: tuple[sp.Expr, ...]
+
+    @classmethod
+    def of(cls, exprs: Sequence[sp.Basic], variables: Sequence[sp.Symbol]) -> Program:
+        """Fold the constants of ``exprs`` (:func:`float_constants`) and name their shared
+        subexpressions (``sympy.cse``); symbols other than ``variables`` raise
+        :class:`~dhsym.errors.DHError`."""
+        folded = [float_constants(e) for e in exprs]
+        missing = set().union(*(e.free_symbols for e in folded)) - set(variables)
+        if missing:
+            names = ", ".join(sorted(str(s) for s in missing))
+            raise DHError(f"no numeric value for {names}: give values for these symbols")
+        assignments, outputs = sp.cse(folded, list=False)
+        return cls(tuple((s, e) for s, e in assignments), tuple(outputs))
+
+
+def compile_program(
+    program: Program, variables: Sequence[sp.Symbol], *, floats: bool = False
+) -> Callable[..., list[Any]]:
+    """Compile a :class:`Program` into ``f(*variables) -> list`` (numpy arrays, or plain
+    floats with ``floats=True``), as :func:`compile_exprs` does."""
+    # numpy's namespace as a module: modules="numpy" would run `from numpy import *`, which
+    # imports all of numpy's lazy submodules (as long as importing numpy itself)
+    module = "math" if floats else [np]
+    compiled: Callable[..., list[Any]] = sp.lambdify(
+        list(variables),
+        list(program.outputs),
+        modules=module,
+        cse=lambda exprs: (list(program.assignments), exprs),
+    )
+    return compiled
+
+
+def stored_program(
+    name: str | None,
+    exprs: Callable[[], Sequence[sp.Basic]],
+    variables: Sequence[sp.Symbol],
+    extra: Mapping[str, type] | None = None,
+) -> Program:
+    """The :class:`Program` of ``exprs()`` for ``variables``, kept in the disk cache as entry
+    ``name`` (:mod:`dhsym.cache`: verified when read; ``None`` or the cache turned off:
+    not kept). ``exprs`` is called only when the entry is absent or refused; ``extra``
+    names dhsym's own functions the program may hold (:func:`dhsym.cache.codec.read_exprs`)."""
+    from dhsym.cache.codec import CodecError, read_exprs, write_exprs
+    from dhsym.cache.store import default_store
+
+    store = default_store() if name is not None else None
+    data = store.read(name) if store is not None and name is not None else None
+    if data is not None:
+        try:
+            lhs, rhs, outputs = read_exprs(data, extra)
+            return Program(tuple(zip(lhs.args, rhs.args)), tuple(outputs.args))
+        except (CodecError, ValueError, AttributeError):
+            pass  # not a program this version reads: derive it again
+    program = Program.of(exprs(), variables)
+    if store is not None and name is not None:
+        try:
+            lhs_rhs = [sp.Tuple(*(s for s, _ in program.assignments))]
+            lhs_rhs.append(sp.Tuple(*(e for _, e in program.assignments)))
+            text = write_exprs([*lhs_rhs, sp.Tuple(*program.outputs)], extra)
+        except CodecError:
+            return program  # a class the codec does not write: kept in this process only
+        store.write(name, text.encode())
+    return program
+
+
 def compile_exprs(
     exprs: Sequence[sp.Basic], variables: Sequence[sp.Symbol], *, floats: bool = False
 ) -> Callable[..., list[Any]]:
@@ -101,7 +186,8 @@ def compile_exprs(
     Constants are folded to floats first (:func:`float_constants`); symbols
     other than ``variables`` raise :class:`~dhsym.errors.DHError`. With
     ``floats=True`` the code uses :mod:`math` and takes Python floats (fast for
-    one point); otherwise numpy, elementwise over arrays.
+    one point); otherwise numpy, elementwise over arrays. The steps are
+    :meth:`Program.of` and :func:`compile_program`.
 
     >>> x, y = sp.symbols("x y")
     >>> compile_exprs([sp.sqrt(3) * x, x + y], (x, y), floats=True)(2.0, 1.0)
@@ -111,18 +197,7 @@ def compile_exprs(
     ...
     dhsym.errors.DHError: no numeric value for y: give values for these symbols
     """
-    folded = [float_constants(e) for e in exprs]
-    missing = set().union(*(e.free_symbols for e in folded)) - set(variables)
-    if missing:
-        names = ", ".join(sorted(str(s) for s in missing))
-        raise DHError(f"no numeric value for {names}: give values for these symbols")
-    # numpy's namespace as a module: modules="numpy" would run `from numpy import *`, which
-    # imports all of numpy's lazy submodules (as long as importing numpy itself)
-    module = "math" if floats else [np]
-    compiled: Callable[..., list[Any]] = sp.lambdify(
-        list(variables), folded, modules=module, cse=True
-    )
-    return compiled
+    return compile_program(Program.of(exprs, variables), variables, floats=floats)
 
 
 def evaluate_chunked(
@@ -169,16 +244,23 @@ class PoseFunction:
 
     ``f(q)`` takes one configuration ``(n,)`` (pure Python floats: a few µs)
     or a batch ``(N, n)`` (numpy, in cache-sized chunks) and returns ``(4, 4)``
-    or ``(N, 4, 4)``; ``-0.0`` entries come out as ``0.0``.
+    or ``(N, 4, 4)``; ``-0.0`` entries come out as ``0.0``. ``batch`` may be a function
+    that compiles the numpy code on the first batch (:func:`stored_pose_function`).
     """
 
-    __slots__ = ("_batch", "_single", "n")
+    __slots__ = ("_batch", "_make_batch", "_single", "n")
 
     def __init__(
-        self, single: Callable[..., list[Any]], batch: Callable[..., list[Any]], n: int
+        self,
+        single: Callable[..., list[Any]],
+        batch: Callable[..., list[Any]] | None,
+        n: int,
+        *,
+        make_batch: Callable[[], Callable[..., list[Any]]] | None = None,
     ) -> None:
         self._single = single
         self._batch = batch
+        self._make_batch = make_batch
         self.n = n
 
     def __call__(self, q: ArrayLike) -> np.ndarray:
@@ -204,6 +286,12 @@ class PoseFunction:
         out.shape = (4, 4)
         return out
 
+    def _numpy(self) -> Callable[..., list[Any]]:
+        if self._batch is None:
+            assert self._make_batch is not None, "a PoseFunction has a batch program or a maker"
+            self._batch = self._make_batch()
+        return self._batch
+
     def batch(self, q: ArrayLike) -> np.ndarray:
         """A batch ``(N, n)`` → ``(N, 4, 4)`` (one configuration ``(n,)`` → ``(4, 4)``)."""
         Q, single = _configurations(q, self.n)
@@ -213,7 +301,7 @@ class PoseFunction:
         flat[:, 12:15] = 0.0
         flat[:, 15] = 1.0
         # cells are the first 12 entries of the row-major 4x4
-        evaluate_chunked(self._batch, Q, out=flat[:, :12], plus_zero=True)
+        evaluate_chunked(self._numpy(), Q, out=flat[:, :12], plus_zero=True)
         return out[0] if single else out
 
 
@@ -239,14 +327,57 @@ def compile_pose(
     DHError
         When a constant symbol has no value.
     """
+    single, batch = _pose_cells(matrix, values)
+    variables = tuple(variables)
+    return PoseFunction(
+        compile_exprs(single, variables, floats=True),
+        compile_exprs(batch, variables),
+        len(variables),
+    )
+
+
+def stored_pose_function(
+    names: tuple[str, str] | None,
+    matrix: Callable[[], sp.MatrixBase],
+    variables: Sequence[sp.Symbol],
+    values: Mapping[sp.Symbol, sp.Expr] | None = None,
+) -> PoseFunction:
+    """:func:`compile_pose` of ``matrix()``, its two programs (floats, numpy) kept in the disk
+    cache as entries ``names`` (:func:`stored_program`; ``None``: not kept); ``matrix`` is
+    called only when they are absent or refused, the numpy code compiled on the first batch."""
+    variables = tuple(variables)
+    cells: list[tuple[list[sp.Basic], list[sp.Basic]]] = []
+
+    def part(k: int) -> Callable[[], list[sp.Basic]]:
+        def exprs() -> list[sp.Basic]:
+            if not cells:
+                cells.append(_pose_cells(matrix(), values))
+            return cells[0][k]
+
+        return exprs
+
+    extra = {"_PlusZero": _PlusZero}
+    single = stored_program(names and names[0], part(0), variables, extra)
+
+    def make_batch() -> Callable[..., list[Any]]:  # on the first batch only
+        batch = stored_program(names and names[1], part(1), variables, extra)
+        return compile_program(batch, variables)
+
+    return PoseFunction(
+        compile_program(single, variables, floats=True), None, len(variables), make_batch=make_batch
+    )
+
+
+def _pose_cells(
+    matrix: sp.MatrixBase, values: Mapping[sp.Symbol, sp.Expr] | None
+) -> tuple[list[sp.Basic], list[sp.Basic]]:
+    """What :func:`compile_pose` compiles: the 16 cells for floats (``-0.0`` read as
+    ``0.0``) and the 12 of the top rows for numpy, constants folded."""
     M = sp.Matrix(matrix).subs(dict(values or {}))
     folded = [float_constants(M[i, j]) for i in range(3) for j in range(4)]
     cells = [_PlusZero(c) if c.free_symbols else c for c in folded]
-    variables = tuple(variables)
     last_row = [sp.Float(0.0), sp.Float(0.0), sp.Float(0.0), sp.Float(1.0)]
-    single = compile_exprs([*cells, *last_row], variables, floats=True)
-    batch = compile_exprs(folded, variables)
-    return PoseFunction(single, batch, len(variables))
+    return [*cells, *last_row], folded
 
 
 def compile_word(

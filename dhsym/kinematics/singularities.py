@@ -40,6 +40,7 @@ det J_v = a1*a2*S2
 from __future__ import annotations
 
 import itertools
+import json
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -68,6 +69,8 @@ __all__ = [
     "SingularityKind",
     "factored_det",
     "singularities",
+    "singularities_data",
+    "stored_singularities",
 ]
 
 Matrix: TypeAlias = sp.ImmutableMatrix
@@ -455,6 +458,9 @@ def _tool_geometry(robot: KinematicChain, fallback: ArmGeometry | None) -> ArmGe
 def singularities(robot: KinematicChain) -> Singularities:
     """The factored Jacobian determinant of ``robot`` and its named singular factors.
 
+    Derived once per table: kept in the disk cache (:mod:`dhsym.cache`; verified when read,
+    :func:`stored_singularities`).
+
     >>> import dhsym
     >>> print(singularities(dhsym.load("stanford")).text())
     det J = d3**2*S2*S5
@@ -463,6 +469,109 @@ def singularities(robot: KinematicChain) -> Singularities:
     >>> print(singularities(dhsym.load("planar4r")).measure)
     det(J J^T)
     """
+    from dhsym.cache.keys import entry_name
+    from dhsym.cache.store import default_store
+
+    store = default_store()
+    name = entry_name(robot.table, "singularities")
+    if store is not None:
+        data = store.read(name)
+        found = stored_singularities(data, robot) if data is not None else None
+        if isinstance(found, StructureError):
+            raise found
+        if found is not None:
+            return found
+    try:
+        result = _derive(robot)
+    except StructureError as err:  # a refusal found after seconds of work is kept too
+        if store is not None:
+            store.write(name, json.dumps({"refused": err.message}).encode())
+        raise
+    if store is not None:
+        data = singularities_data(result)
+        if data is not None:
+            store.write(name, data)
+    return result
+
+
+def singularities_data(result: Singularities) -> bytes | None:
+    """``result`` as the data the disk cache keeps (:mod:`dhsym.cache.codec`: text and
+    expressions, no code); ``None`` when an expression cannot be written."""
+    from dhsym.cache.codec import CodecError, write_exprs
+
+    items: list[Any] = [result.determinant]
+    for f in result.factors:
+        items += [f.expr, sp.Tuple(*f.variables)]
+        items += [sp.Tuple(*(v for v, _ in f.solutions)), sp.Tuple(*(z for _, z in f.solutions))]
+    for b in result.blocks:
+        items += [b.matrix, b.determinant]
+    try:
+        exprs = write_exprs(items)
+    except CodecError:
+        return None
+    meta = {
+        "measure": result.measure,
+        "rows": list(result.rows),
+        "method": result.method,
+        "factors": [[f.power, f.kind, f.name, f.description] for f in result.factors],
+        "blocks": [[b.name, b.frame] for b in result.blocks],
+    }
+    return json.dumps({"singularities": meta, "exprs": exprs}).encode()
+
+
+def stored_singularities(
+    data: bytes, robot: KinematicChain
+) -> Singularities | StructureError | None:
+    """The :class:`Singularities` of :func:`singularities_data` for ``robot`` (printed in
+    its notation), or the :class:`StructureError` kept for a table that has none; ``None``
+    when the data is not what this version writes."""
+    from dhsym.cache.codec import CodecError, read_exprs
+
+    try:
+        doc = json.loads(data)
+        if isinstance(doc, dict) and isinstance(doc.get("refused"), str):
+            return StructureError(doc["refused"])
+        meta = doc["singularities"]
+        items = read_exprs(doc["exprs"])
+        det, k = items[0], 1
+        factors = []
+        for power, kind, name, description in meta["factors"]:
+            expr, vs, sv, sz = items[k : k + 4]
+            k += 4
+            solutions = tuple(zip(sv.args, sz.args))
+            factors.append(
+                SingularFactor(
+                    expr,
+                    int(power),
+                    str(kind),
+                    str(name),
+                    str(description),
+                    tuple(vs.args),
+                    solutions,
+                    robot.notation,
+                )
+            )
+        blocks = []
+        for name, frame in meta["blocks"]:
+            blocks.append(Block(str(name), items[k], frame, items[k + 1]))
+            k += 2
+        if k != len(items):
+            return None
+        rows = tuple(int(r) for r in meta["rows"])
+        return Singularities(
+            str(meta["measure"]),
+            det,
+            tuple(factors),
+            tuple(blocks),
+            rows,
+            str(meta["method"]),
+            robot,
+        )
+    except (CodecError, ValueError, KeyError, TypeError, IndexError, AttributeError):
+        return None
+
+
+def _derive(robot: KinematicChain) -> Singularities:
     n = len(robot.variables)
     if n > 6:
         raise StructureError(

@@ -45,6 +45,7 @@ __all__ = [
     "Elementary",
     "JointType",
     "as_expr",
+    "canonical_text",
     "symbol_values",
     "to_radians",
 ]
@@ -458,3 +459,51 @@ def symbol_values(values: Mapping[Any, object] | None) -> dict[sp.Symbol, Expr]:
         (symbol(k) if isinstance(k, str) else k): as_expr(v, field="values")
         for k, v in (values or {}).items()
     }
+
+
+def canonical_text(table: DHTable) -> str:
+    """A deterministic text of everything a derivation reads from ``table``: the rows
+    (joints, entries, variables, limits, labels, inertial parameters), the convention,
+    base and tool, the values, the angle unit, gravity; not its name, file or comments.
+
+    Equal tables give equal texts (values in name order), and the text names every
+    expression by ``sympy.srepr`` (symbols with their assumptions), so two tables that
+    derive differently never share it. The disk cache (:mod:`dhsym.cache.keys`) hashes it.
+
+    >>> from dhsym.model.library import load_table
+    >>> text = canonical_text(load_table("planar2r"))
+    >>> text.splitlines()[:2]
+    ['dhsym-table 1', 'convention standard']
+    >>> canonical_text(replace(load_table("planar2r"), name="other")) == text
+    True
+    """
+
+    def ex(e: object) -> str:
+        return str(sp.srepr(e))
+
+    lines = [
+        "dhsym-table 1",
+        f"convention {table.convention.value}",
+        f"angles {table.angles.value}",
+        f"physical {table.physical}",
+        "gravity " + " ".join(ex(g) for g in table.gravity),
+    ]
+    for k, r in enumerate(table.rows, 1):
+        lines.append(
+            f"row {k} {r.joint.value} theta={ex(r.theta)} d={ex(r.d)} a={ex(r.a)} "
+            f"alpha={ex(r.alpha)} variable={ex(r.variable)} "
+            f"limits={'' if r.limits is None else ' '.join(ex(v) for v in r.limits)} "
+            f"label={r.label!r}"
+        )
+        if r.inertia is not None:
+            i = r.inertia
+            lines.append(
+                f"inertia {k} m={ex(i.m)} r={ex(i.r)} I={ex(i.I)} Jm={ex(i.Jm)} G={ex(i.G)} "
+                f"B={ex(i.B)} Tc={ex(i.Tc)}"
+            )
+    for where, word in (("base", table.base), ("tool", table.tool)):
+        for e in word:
+            lines.append(f"{where} {e.kind} {e.axis} {ex(e.value)}")
+    for sym, value in sorted(table.values, key=lambda sv: (sv[0].name, ex(sv[0]))):
+        lines.append(f"value {ex(sym)} {ex(value)}")
+    return "\n".join(lines) + "\n"

@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import os
 import shutil
+import stat
+import subprocess
 
 import numpy as np
 
 import dhsym
+from dhsym.export import shared_library as shared_library
 from dhsym.export.shared_library import compiled
 from dhsym.ik.choices import IKCache
 from dhsym.kinematics.chain import KinematicChain
@@ -64,3 +68,79 @@ def test_compiled_ik_at_a_singular_wrist(tmp_path, monkeypatch):
         got, want = fast.ik(T).q, r.ik(T)
         assert got.shape == want.q.shape
         assert np.abs(np.angle(np.exp(1j * (got - want.q)))).max() <= 1e-9
+
+
+_PLANTED = r"""
+#include <stdio.h>
+#include <string.h>
+__attribute__((constructor)) static void planted(void) {
+    FILE *f = fopen("%(marker)s", "w");
+    if (f) { fputs("ran", f); fclose(f); }
+}
+void dhsym_arm_fk(const double *q, double *out) { for (int i = 0; i < 16; i++) out[i] = 42; }
+void dhsym_arm_jacobian(const double *q, double *out) { out[0] = 42; }
+int dhsym_arm_ik(const double *T, double *out) { return 0; }
+"""
+
+
+def _plant(tmp_path, target):
+    """The campaign's library: a constructor that leaves a marker file, fk that returns 42s,
+    built with gcc to ``target`` (mode 0600, owned by this user: only the HMAC stops it)."""
+    cc = shutil.which("gcc") or shutil.which("cc")
+    marker = tmp_path / "constructor-ran"
+    src = tmp_path / "planted.c"
+    src.write_text(_PLANTED % {"marker": marker})
+    target.parent.mkdir(parents=True, exist_ok=True)
+    subprocess.run([cc, "-shared", "-fPIC", "-o", str(target), str(src)], check=True)
+    os.chmod(target, 0o600)
+    return marker
+
+
+def test_planted_library_is_refused_and_rebuilt(tmp_path, monkeypatch):
+    _need("a C compiler", shutil.which("cc") or shutil.which("gcc"), "apt-get install gcc")
+    cache = tmp_path / "cache"
+    monkeypatch.setenv("DHSYM_CACHE", str(cache))
+    r = dhsym.load("planar2r")
+    from dhsym.export import export
+
+    source = export(r, "c", what=("fk", "jacobian", "ik"), prefix="dhsym_arm", cache=r.ik_cache())
+    cc = shared_library._compiler()
+    name = shared_library.library_name(source, cc)
+    # planted at the predictable name, with an HMAC file of its own (it cannot know the key)
+    marker = _plant(tmp_path, cache / "entries" / name)
+    (cache / "entries" / f"{name}.hmac").write_text("0" * 64)
+    # and where the old cache kept its libraries (never read now)
+    _plant(tmp_path, cache / "compiled" / "planted.so")
+    os.chmod(cache, 0o700)
+    fast = compiled(r)
+    q = np.array([0.4, 0.9])
+    assert not marker.exists()  # its constructor never ran
+    assert np.abs(fast.fk(q) - r.fk(q)).max() <= 1e-12  # rebuilt: the right numbers
+    assert fast.library == cache / "entries" / name
+    assert b"planted" not in fast.library.read_bytes()
+
+
+def test_modified_library_is_refused_and_rebuilt(tmp_path, monkeypatch):
+    _need("a C compiler", shutil.which("cc") or shutil.which("gcc"), "apt-get install gcc")
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path / "cache"))
+    r = dhsym.load("planar2r")
+    first = compiled(r)
+    assert first.library is not None and stat.S_IMODE(first.library.stat().st_mode) == 0o600
+    assert stat.S_IMODE(first.library.parent.stat().st_mode) == 0o700
+    marker = _plant(tmp_path, first.library)  # replaced in place; its HMAC file kept
+    again = compiled(r)
+    q = np.array([0.4, 0.9])
+    assert not marker.exists()
+    assert np.abs(again.fk(q) - r.fk(q)).max() <= 1e-12
+    assert again.library == first.library
+
+
+def test_without_the_cache_nothing_is_kept(tmp_path, monkeypatch):
+    _need("a C compiler", shutil.which("cc") or shutil.which("gcc"), "apt-get install gcc")
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setenv("DHSYM_NO_CACHE", "1")
+    r = dhsym.load("planar2r")
+    fast = compiled(r)
+    q = np.array([0.4, 0.9])
+    assert fast.library is None and np.abs(fast.fk(q) - r.fk(q)).max() <= 1e-12
+    assert not (tmp_path / "cache").exists()

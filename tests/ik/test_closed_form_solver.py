@@ -27,9 +27,12 @@ def test_raw_names_the_shape_it_expects():
 
 
 def test_the_programs_are_built_on_first_use_and_kept():
+    from dataclasses import replace
+
     import dhsym
 
-    r = dhsym.load("planar2r")
+    # a table of its own: equal tables share what they derived (dhsym.cache.memo)
+    r = dhsym.Robot(replace(dhsym.load("planar2r").table, name="first use"))
     solver = ClosedFormSolver(r.inverse(), r.table.value_map)
     assert solver._programs.checked is None and solver._programs.raw is None
     solver.solve(r.fk([[0.4, 0.9], [0.1, -0.3]]), check="position")
