@@ -236,7 +236,18 @@ def _guarded(read: Callable[[], Submission], student: str, source: str) -> Submi
 
 
 def _flag_duplicates(subs: list[Submission]) -> list[Submission]:
-    """Give every submission of a shared id (up to case and file-name characters) a flag."""
+    """Give every submission of a shared id (after NFC, case folding and file-name
+    characters: :func:`identity`) its own ``uid`` and a flag naming the others.
+
+    The uid is ``id [source]``; when that too is shared (``josé/`` in NFC and in NFD, a
+    byte that is not UTF-8 and its escape typed out as a name) the second and later, in
+    the order of ``subs``, get `` #2``, `` #3`` …: every submission keeps its own row and
+    feedback page.
+
+    >>> a, b = Submission("ann", "A", source="ann/"), Submission("ANN", "A", source="ANN/")
+    >>> [s.uid for s in _flag_duplicates([a, b, a])]
+    ['ann [ann/]', 'ANN [ANN/]', 'ann [ann/] #2']
+    """
     groups: dict[str, list[int]] = defaultdict(list)
     for k, s in enumerate(subs):
         groups[identity(s.student)].append(k)
@@ -244,14 +255,16 @@ def _flag_duplicates(subs: list[Submission]) -> list[Submission]:
     for members in groups.values():
         if len(members) < 2:
             continue
-        shown = ", ".join(f"{subs[k].student} ({subs[k].source})" for k in members)
+        uids: dict[int, str] = {}
+        seen: dict[str, int] = defaultdict(int)
         for k in members:
-            s = subs[k]
-            out[k] = replace(
-                s,
-                uid=f"{s.student} [{s.source}]",
-                flags=(f"duplicate id: {len(members)} submissions: {shown}", *s.flags),
-            )
+            base = f"{subs[k].student} [{subs[k].source}]"
+            seen[base] += 1
+            uids[k] = base if seen[base] == 1 else f"{base} #{seen[base]}"
+        shown = ", ".join(uids[k] for k in members)
+        note = f"duplicate id: {len(members)} submissions: {shown} (each graded on its own)"
+        for k in members:
+            out[k] = replace(subs[k], uid=uids[k], flags=(note, *subs[k].flags))
     return out
 
 
@@ -306,7 +319,7 @@ def read_submissions(
                 subs.append(_guarded(partial(read_submission_file, path, qids), student, shown))
     else:
         raise DHError(f"no submissions folder or CSV file at {src}")
-    return sorted(_flag_duplicates(subs), key=lambda s: (s.student, s.source))
+    return sorted(_flag_duplicates(subs), key=lambda s: (s.student, s.source, s.uid))
 
 
 def _refusal(entry: os.DirEntry[str], path: Path, reports: set[Path]) -> str:
