@@ -49,6 +49,7 @@ from typing import TYPE_CHECKING
 from dhsym.errors import DHError
 from dhsym.model.yamlsafe import FileRefused, YAMLLimits, load_yaml, read_limited
 
+from ..reading.answers import answer_text
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
 from .report_files import CACHE_NAME, name_base
 
@@ -167,26 +168,52 @@ def read_submission_folder(folder: Path, qids: list[str], limits: AnswerLimits) 
 
 
 def read_submission_file(path: Path, qids: list[str]) -> Submission:
-    """One student's YAML file (``answers: {q1: …}``); a file that cannot be read, or is
-    not that shape, is a read problem of every question."""
+    """One student's YAML file: ``q1: …`` per question (or the same under ``answers:``),
+    with an optional ``name:``.  An answer may be text, a number, a table as a list of rows
+    (``- {theta: theta1, d: 0, a: 0, alpha: 90}``) or a matrix as a list of rows
+    (:func:`~dhsym.checking.reading.answers.answer_text`); an answer present in another
+    form is that question's read problem, with the reason.  A file that cannot be read,
+    or holds no question of the assignment, is a read problem of every question.
+    """
     student = student_id(path.stem)
     source = student_id(path.name)
     try:
         raw = _read_answer(path, _MAX_SUBMISSION_FILE)
         data = load_yaml(raw, limits=_SUBMISSION_YAML)
-        if not isinstance(data, Mapping) or not isinstance(data.get("answers"), Mapping):
-            raise UnreadableAnswer("expected 'answers: {q1: …}' in the submission file")
+        if not isinstance(data, Mapping):
+            raise UnreadableAnswer(_FILE_FORM)
+        given = data.get("answers", data)
+        if not isinstance(given, Mapping):
+            raise UnreadableAnswer(f"'answers' is not a mapping; {_FILE_FORM}")
+        by_id = {str(k): v for k, v in given.items()}
+        if not set(by_id) & set(qids):
+            raise UnreadableAnswer(f"no question of the assignment was found; {_FILE_FORM}")
     except DHError as err:  # unreadable, refused, or YAML over a limit
         reason = err.message if isinstance(err, FileRefused) else str(err)
         return Submission(student, student, (), tuple((q, reason) for q in qids), source)
-    answers = []
+    answers, problems = [], []
     for qid in qids:
-        value = data["answers"].get(qid)
-        if isinstance(value, (str, int, float)) and not isinstance(value, bool):
-            answers.append((qid, str(value)))
+        if qid not in by_id:
+            continue
+        try:
+            text = answer_text("" if by_id[qid] is None else by_id[qid])
+        except UnreadableAnswer as err:
+            problems.append((qid, err.message))
+            continue
+        answers.append((qid, text))
+    flags = []
+    extra = sorted(set(by_id) - set(qids) - ({"name"} if given is data else set()))
+    if extra:
+        shown = ", ".join(student_id(k) for k in extra[:10])[:300]
+        flags.append(f"not questions of the assignment, not graded: {shown}")
     name = data.get("name")
     shown = " ".join(str(name).split())[:200] if isinstance(name, (str, int)) else ""
-    return Submission(student, shown or student, tuple(answers), (), source)
+    return Submission(
+        student, shown or student, tuple(answers), tuple(problems), source, tuple(flags)
+    )
+
+
+_FILE_FORM = "expected 'q1: …' per question (or 'answers: {q1: …}') in the submission file"
 
 
 def _from_csv(path: Path, qids: list[str]) -> Iterator[Submission]:
