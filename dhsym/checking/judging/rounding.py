@@ -48,6 +48,7 @@ from dhsym.errors import DHError
 
 from ..comparing.sampled_frames import EvaluationError, evaluate
 from ..comparing.tolerances import TOLERANCES
+from ..reading.limits import echoed
 from ..reading.literals import Literal, decimal_places
 
 __all__ = [
@@ -101,13 +102,17 @@ class Rounding:
             spec = f"{mode}={value}"
         m = _SPEC.fullmatch(spec.strip()[:100]) if isinstance(spec, str) else None
         if m is None:
-            raise DHError(f"unknown rounding {spec!r}: expected digits=N, abs=T, rel=T or off")
+            raise DHError(
+                f"unknown rounding {echoed(spec)}: expected digits=N, abs=T, rel=T or off"
+            )
         try:
             if m[3] is not None or m[1] == "digits":
                 return cls("digits", int(m[3] or m[2]))
             return cls(m[1], tolerance=float(m[2]))
         except ValueError:
-            raise DHError(f"unknown rounding {spec!r}: N is a whole number, T a number") from None
+            raise DHError(
+                f"unknown rounding {echoed(spec)}: N is a whole number, T a number"
+            ) from None
 
     def allowed(self, literal: Literal) -> tuple[float, float]:
         """How far the true value may lie from a decimal as written: (below, above).

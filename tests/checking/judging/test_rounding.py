@@ -193,3 +193,10 @@ def test_key_times_a_varying_factor_is_never_right(factor, size, decimals, where
         answer = f"(m2*{scale}*lc2**2 + I2*{scale})*(1 + {f})"
     r = check_answer(M22, answer)
     assert not r.correct, (answer, r.message)
+
+
+def test_a_long_rounding_rule_is_not_echoed_in_full():
+    """Issue 34, item 8: user input echoed in an error is cut short."""
+    with pytest.raises(DHError) as err:
+        Rounding.parse("roughly " * 12_500)
+    assert len(str(err.value)) < 300 and "roughly" in str(err.value)
