@@ -12,7 +12,8 @@ from hypothesis import strategies as st
 from dhsym.checking import Assignment, Key, check_answer
 from dhsym.checking.judging.rounding import DEFAULT_ROUNDING, Rounding
 from dhsym.errors import DHError
-from dhsym.model.tablefile import read_table_text
+
+from .test_dynamics_questions import TABLE as SPONG
 
 CORPUS = Path(__file__).resolve().parents[2] / "data" / "answers"
 TWIST45 = CORPUS / "tables" / "twist45.yaml"  # entry T0_1[2,1] is sqrt(2)/2 = 0.70710678…
@@ -129,16 +130,6 @@ def test_rounding_in_the_assignment_and_per_question(tmp_path):
 
 # Spong's two-link planar elbow arm (Robot Modeling and Control): M[1,1] = m2 lc2² + I2 and
 # the tip's x = l1 C1 + l2 C12.
-SPONG = read_table_text(
-    """
-name: Two-link planar elbow arm (Spong)
-convention: standard
-gravity: [0, -g, 0]
-joints:
-  - {type: R, theta: q1, d: 0, a: l1, alpha: 0, m: m1, r: [lc1 - l1, 0, 0], I: [Ix1, Iy1, I1]}
-  - {type: R, theta: q2, d: 0, a: l2, alpha: 0, m: m2, r: [lc2 - l2, 0, 0], I: [Ix2, Iy2, I2]}
-"""
-)
 M22 = Key.load(SPONG, "M[1,1]")
 PX = Key.load(SPONG, "T0_2[0,3]")
 
