@@ -45,8 +45,6 @@ class Tolerances:
         Where the table check's geometry degenerates: a line along ``z``
         (``|u_z² − 1|``), a length that is zero, a direction too close to ``x`` to
         build a frame from it.
-    rounding_margin
-        Extra room for a rounded answer, as a fraction of the interval its decimals allow.
     symbol_range, revolute_range, prismatic_range, length_range
         Sample ranges: the symbols of an answer, revolute and prismatic joint values,
         the lengths of a table (positive, so that square roots of the key stay real).
@@ -60,7 +58,6 @@ class Tolerances:
     vertical_eps: float = 1e-9
     short_length: float = 1e-7
     pick_axis_eps: float = 1e-6
-    rounding_margin: float = 1e-3
     symbol_range: tuple[float, float] = (-2.5, 2.5)
     revolute_range: tuple[float, float] = (-math.pi, math.pi)
     prismatic_range: tuple[float, float] = (0.2, 1.5)

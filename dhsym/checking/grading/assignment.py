@@ -10,7 +10,9 @@ The assignment (YAML) names the key and the questions::
       - {id: q1, ask: table, points: 4, tool: free}   # tool: free accepts another tool frame
       - {id: q2, ask: T0_2, points: 2}
       - {id: q3, ask: A1, points: 1, key: generic_modified_link.yaml}
+      - {id: q4, ask: J, points: 2, credit: entries, deduct: {wrong_sign: 25%}}
 
+Partial credit is :mod:`~dhsym.checking.grading.credit`'s (all or nothing by default).
 Every key is described in the assignment-file reference of the documentation.
 
 Examples
@@ -41,6 +43,7 @@ from dhsym.model.yamlsafe import FileRefused, YAMLInputError, load_yaml, read_li
 
 from ..judging.key import Key, PreparedKeys
 from ..reading.limits import check_seconds
+from .credit import Credit
 
 __all__ = ["Assignment", "AssignmentQuestion"]
 
@@ -51,12 +54,15 @@ _MAX_POINTS = 1e6
 
 @dataclass(frozen=True)
 class AssignmentQuestion:
-    """One question: its id, what is asked, points, the key and whether the tool frame is free."""
+    """One question: its id, what is asked, points, the key (with whether the tool frame is
+    free and the rounding) and its partial credit (:class:`~.credit.Credit`: all or nothing
+    unless the question says otherwise)."""
 
     id: str
     ask: str
     points: float
     key: Key
+    credit: Credit = Credit()
 
 
 @dataclass(frozen=True)
@@ -129,8 +135,12 @@ class Assignment:
                 key = Key.load(where, str(ask), tool_free=tool, rounding=rounding, keys=keys)
             except DHError as err:
                 raise DHError(err.message, file=str(p), row=k, field=err.field or "ask") from None
-            digest.append(repr(key))
-            questions.append(AssignmentQuestion(qid, str(ask), points, key))
+            try:
+                credit = Credit.parse(q)
+            except DHError as err:
+                raise DHError(err.message, file=str(p), row=k, field="credit") from None
+            digest.append(repr(key) + (repr(credit) if credit != Credit() else ""))
+            questions.append(AssignmentQuestion(qid, str(ask), points, key, credit))
         fp = hashlib.sha256("\n".join(digest).encode()).hexdigest()[:16]
         title = data.get("title")
         return cls(

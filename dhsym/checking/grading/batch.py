@@ -111,7 +111,9 @@ def check_submission(
             )
         else:
             result = None
-        score = q.points if result is not None and result.correct else 0.0
+        score, why = q.credit.award(q.points, result)
+        if why and result is not None:  # the feedback says where partial points come from
+            result = replace(result, message=f"{result.message} {why[0].upper()}{why[1:]}.")
         out.append(QuestionFeedback(q.id, q.ask, q.points, score, result))
     return tuple(out)
 

@@ -195,8 +195,8 @@ def write_summary(
             "title": a.title,
             "students": len(records),
             "max_score": a.max_score,
-            "mean": statistics.fmean(scores) if scores else 0.0,
-            "median": statistics.median(scores) if scores else 0.0,
+            "mean": round(statistics.fmean(scores), 2) if scores else 0.0,  # 4.67, not 4.66667
+            "median": round(statistics.median(scores), 2) if scores else 0.0,
             "problems": sum(r.status != "graded" for r in records),
             "flagged": sum(bool(r.flags) for r in records),
             "chart": chart.name,

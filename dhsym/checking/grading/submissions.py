@@ -49,6 +49,7 @@ from typing import TYPE_CHECKING
 from dhsym.errors import DHError
 from dhsym.model.yamlsafe import FileRefused, YAMLLimits, load_yaml, read_limited
 
+from ..reading.answers import answer_text
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
 from .report_files import CACHE_NAME, name_base
 
@@ -167,26 +168,52 @@ def read_submission_folder(folder: Path, qids: list[str], limits: AnswerLimits) 
 
 
 def read_submission_file(path: Path, qids: list[str]) -> Submission:
-    """One student's YAML file (``answers: {q1: …}``); a file that cannot be read, or is
-    not that shape, is a read problem of every question."""
+    """One student's YAML file: ``q1: …`` per question (or the same under ``answers:``),
+    with an optional ``name:``.  An answer may be text, a number, a table as a list of rows
+    (``- {theta: theta1, d: 0, a: 0, alpha: 90}``) or a matrix as a list of rows
+    (:func:`~dhsym.checking.reading.answers.answer_text`); an answer present in another
+    form is that question's read problem, with the reason.  A file that cannot be read,
+    or holds no question of the assignment, is a read problem of every question.
+    """
     student = student_id(path.stem)
     source = student_id(path.name)
     try:
         raw = _read_answer(path, _MAX_SUBMISSION_FILE)
         data = load_yaml(raw, limits=_SUBMISSION_YAML)
-        if not isinstance(data, Mapping) or not isinstance(data.get("answers"), Mapping):
-            raise UnreadableAnswer("expected 'answers: {q1: …}' in the submission file")
+        if not isinstance(data, Mapping):
+            raise UnreadableAnswer(_FILE_FORM)
+        given = data.get("answers", data)
+        if not isinstance(given, Mapping):
+            raise UnreadableAnswer(f"'answers' is not a mapping; {_FILE_FORM}")
+        by_id = {str(k): v for k, v in given.items()}
+        if not set(by_id) & set(qids):
+            raise UnreadableAnswer(f"no question of the assignment was found; {_FILE_FORM}")
     except DHError as err:  # unreadable, refused, or YAML over a limit
         reason = err.message if isinstance(err, FileRefused) else str(err)
         return Submission(student, student, (), tuple((q, reason) for q in qids), source)
-    answers = []
+    answers, problems = [], []
     for qid in qids:
-        value = data["answers"].get(qid)
-        if isinstance(value, (str, int, float)) and not isinstance(value, bool):
-            answers.append((qid, str(value)))
+        if qid not in by_id:
+            continue
+        try:
+            text = answer_text("" if by_id[qid] is None else by_id[qid])
+        except UnreadableAnswer as err:
+            problems.append((qid, err.message))
+            continue
+        answers.append((qid, text))
+    flags = []
+    extra = sorted(set(by_id) - set(qids) - ({"name"} if given is data else set()))
+    if extra:
+        shown = ", ".join(student_id(k) for k in extra[:10])[:300]
+        flags.append(f"not questions of the assignment, not graded: {shown}")
     name = data.get("name")
     shown = " ".join(str(name).split())[:200] if isinstance(name, (str, int)) else ""
-    return Submission(student, shown or student, tuple(answers), (), source)
+    return Submission(
+        student, shown or student, tuple(answers), tuple(problems), source, tuple(flags)
+    )
+
+
+_FILE_FORM = "expected 'q1: …' per question (or 'answers: {q1: …}') in the submission file"
 
 
 def _from_csv(path: Path, qids: list[str]) -> Iterator[Submission]:
@@ -236,7 +263,18 @@ def _guarded(read: Callable[[], Submission], student: str, source: str) -> Submi
 
 
 def _flag_duplicates(subs: list[Submission]) -> list[Submission]:
-    """Give every submission of a shared id (up to case and file-name characters) a flag."""
+    """Give every submission of a shared id (after NFC, case folding and file-name
+    characters: :func:`identity`) its own ``uid`` and a flag naming the others.
+
+    The uid is ``id [source]``; when that too is shared (``josé/`` in NFC and in NFD, a
+    byte that is not UTF-8 and its escape typed out as a name) the second and later, in
+    the order of ``subs``, get `` #2``, `` #3`` …: every submission keeps its own row and
+    feedback page.
+
+    >>> a, b = Submission("ann", "A", source="ann/"), Submission("ANN", "A", source="ANN/")
+    >>> [s.uid for s in _flag_duplicates([a, b, a])]
+    ['ann [ann/]', 'ANN [ANN/]', 'ann [ann/] #2']
+    """
     groups: dict[str, list[int]] = defaultdict(list)
     for k, s in enumerate(subs):
         groups[identity(s.student)].append(k)
@@ -244,14 +282,16 @@ def _flag_duplicates(subs: list[Submission]) -> list[Submission]:
     for members in groups.values():
         if len(members) < 2:
             continue
-        shown = ", ".join(f"{subs[k].student} ({subs[k].source})" for k in members)
+        uids: dict[int, str] = {}
+        seen: dict[str, int] = defaultdict(int)
         for k in members:
-            s = subs[k]
-            out[k] = replace(
-                s,
-                uid=f"{s.student} [{s.source}]",
-                flags=(f"duplicate id: {len(members)} submissions: {shown}", *s.flags),
-            )
+            base = f"{subs[k].student} [{subs[k].source}]"
+            seen[base] += 1
+            uids[k] = base if seen[base] == 1 else f"{base} #{seen[base]}"
+        shown = ", ".join(uids[k] for k in members)
+        note = f"duplicate id: {len(members)} submissions: {shown} (each graded on its own)"
+        for k in members:
+            out[k] = replace(subs[k], uid=uids[k], flags=(note, *subs[k].flags))
     return out
 
 
@@ -306,7 +346,7 @@ def read_submissions(
                 subs.append(_guarded(partial(read_submission_file, path, qids), student, shown))
     else:
         raise DHError(f"no submissions folder or CSV file at {src}")
-    return sorted(_flag_duplicates(subs), key=lambda s: (s.student, s.source))
+    return sorted(_flag_duplicates(subs), key=lambda s: (s.student, s.source, s.uid))
 
 
 def _refusal(entry: os.DirEntry[str], path: Path, reports: set[Path]) -> str:

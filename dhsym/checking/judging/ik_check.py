@@ -339,7 +339,8 @@ def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
     what = (
         "Not every solution is given"
         if not wrong
-        else f"{len(wrong)} of {len(answers)} answers (solutions and choices of ±) are wrong"
+        else f"{len(wrong)} of {len(answers)} answers (solutions and choices of ±) "
+        f"{'is' if len(wrong) == 1 else 'are'} wrong"
         if len(answers) > 1
         else "The answer is not a solution"
     )

@@ -293,7 +293,8 @@ def check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) ->
                 ),
             ),
         ) + diagnoses
-    what = f"{_one(q)} is wrong" if total == 1 else f"{len(wrong)} of {total} entries are wrong"
+    verb = "is" if len(wrong) == 1 else "are"
+    what = f"{_one(q)} is wrong" if total == 1 else f"{len(wrong)} of {total} entries {verb} wrong"
     first = next(
         (d for d in diagnoses if d.kind not in ("unexplained", "unknown_symbol")), diagnoses[0]
     )

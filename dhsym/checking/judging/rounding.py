@@ -19,10 +19,12 @@ removed by a zero factor (``0*100.0``) or cancelled by another (``100.1 - 100.0`
 stands for ``0.1``, one significant digit) gives no rounding room.
 
 The test (:func:`rounding_accepts`) works on the answer as written: each decimal literal
-is a placeholder (:func:`dhsym.model.parsing.parse_expression` with ``literal=``), and at every
-sample point the difference from the key must be what moving each decimal within its
-allowed interval can make (each decimal moved alone through its interval, the change
-modelled by the parabola through its ends and its written value; the changes added).
+is a placeholder (:func:`dhsym.model.parsing.parse_expression` with ``literal=``) and stands
+for *one* value within its allowed interval, the same at every sample point.  The answer
+is right up to rounding when such values exist: they are solved for (one unknown per
+decimal, all sample points at once) and the answer with them must equal the key at every
+point to double precision.  An error that varies with the joint values cannot be absorbed,
+however many decimals are written: ``1.00*k*(1 + S2/300)`` is not ``k`` up to rounding.
 
 Examples
 --------
@@ -36,7 +38,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -46,6 +48,7 @@ from dhsym.errors import DHError
 
 from ..comparing.sampled_frames import EvaluationError, evaluate
 from ..comparing.tolerances import TOLERANCES
+from ..reading.limits import echoed
 from ..reading.literals import Literal, decimal_places
 
 __all__ = [
@@ -99,13 +102,17 @@ class Rounding:
             spec = f"{mode}={value}"
         m = _SPEC.fullmatch(spec.strip()[:100]) if isinstance(spec, str) else None
         if m is None:
-            raise DHError(f"unknown rounding {spec!r}: expected digits=N, abs=T, rel=T or off")
+            raise DHError(
+                f"unknown rounding {echoed(spec)}: expected digits=N, abs=T, rel=T or off"
+            )
         try:
             if m[3] is not None or m[1] == "digits":
                 return cls("digits", int(m[3] or m[2]))
             return cls(m[1], tolerance=float(m[2]))
         except ValueError:
-            raise DHError(f"unknown rounding {spec!r}: N is a whole number, T a number") from None
+            raise DHError(
+                f"unknown rounding {echoed(spec)}: N is a whole number, T a number"
+            ) from None
 
     def allowed(self, literal: Literal) -> tuple[float, float]:
         """How far the true value may lie from a decimal as written: (below, above).
@@ -227,28 +234,67 @@ def _at(
         return np.full(size, np.nan)
 
 
-def _quadratic_range(
-    below: float, above: float, y_below: np.ndarray, y_above: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Range over ``[below, above]`` of the parabola through ``(below, y_below)``, ``(0, 0)``
-    and ``(above, y_above)``: the change of an entry as one decimal moves in its interval
-    (a maximum inside the interval counts, as for ``sin 1.57``).
+def _solve(
+    residual: Callable[[np.ndarray], np.ndarray],
+    lower: np.ndarray,
+    upper: np.ndarray,
+    tol: np.ndarray,
+) -> np.ndarray | None:
+    """A point ``t`` of the box ``lower ≤ t ≤ upper`` where ``|residual(t)| ≤ tol`` at every
+    sample point, or None: Levenberg–Marquardt, each step kept inside the box.
 
-    >>> lo, hi = _quadratic_range(-1.0, 1.0, np.array([1.0]), np.array([1.0]))
-    >>> float(lo[0]), float(hi[0])
-    (0.0, 1.0)
+    One unknown per decimal (its move, in units of its last digit), the same at every
+    point: an error that varies with the point cannot be absorbed.
+
+    >>> x = np.linspace(-1, 1, 5)
+    >>> t = _solve(lambda t: (1 + 0.01 * t[0]) * x - 1.003 * x, np.array([-0.5]),
+    ...            np.array([1.0]), np.full(5, 1e-12))
+    >>> round(float(t[0]), 9)
+    0.3
+    >>> _solve(lambda t: (1 + 0.01 * t[0]) * x - 1.003 * x**2, np.array([-0.5]),
+    ...        np.array([1.0]), np.full(5, 1e-12)) is None
+    True
     """
-    # y = b t + c t²: two equations, one for each end
-    det = below * above * (above - below)
-    b = (y_below * above**2 - y_above * below**2) / det
-    c = (y_above * below - y_below * above) / det
-    with np.errstate(all="ignore"):
-        vertex = np.where(c != 0, -b / (2 * c), 0.0)
-    inside = (vertex > below) & (vertex < above)
-    y_vertex = np.where(inside, b * vertex + c * vertex**2, 0.0)
-    lo = np.minimum(np.minimum(y_below, y_above), np.minimum(y_vertex, 0.0))
-    hi = np.maximum(np.maximum(y_below, y_above), np.maximum(y_vertex, 0.0))
-    return lo, hi
+    t = np.zeros(lower.shape)
+    r = residual(t)
+    damping = 1e-9
+    for _ in range(_STEPS):
+        if not np.isfinite(r).all():
+            return None
+        if (np.abs(r) <= tol).all():
+            return t
+        columns = []
+        for i in range(t.size):  # forward differences, stepping into the box
+            h = _STEP if t[i] + _STEP <= upper[i] else -_STEP
+            moved = t.copy()
+            moved[i] += h
+            columns.append((residual(moved) - r) / h)
+        jac = np.stack(columns, axis=1)
+        if not np.isfinite(jac).all():
+            return None
+        grad = jac.T @ r
+        free = ~(((t <= lower) & (grad > 0)) | ((t >= upper) & (grad < 0)))
+        if not free.any():
+            return None
+        jf = jac[:, free]
+        normal = jf.T @ jf
+        scale = np.diag(normal).copy() + 1e-300
+        while damping < 1e12:
+            step = np.zeros(t.size)
+            step[free] = np.linalg.solve(normal + damping * np.diag(scale), -grad[free])
+            trial = np.clip(t + step, lower, upper)
+            r_trial = residual(trial)
+            if np.isfinite(r_trial).all() and r_trial @ r_trial < r @ r:
+                t, r, damping = trial, r_trial, max(damping / 10, 1e-12)
+                break
+            damping *= 10
+        else:
+            return None
+    return t if np.isfinite(r).all() and (np.abs(r) <= tol).all() else None
+
+
+#: Levenberg–Marquardt steps, and the finite-difference step (in units of a last digit).
+_STEPS, _STEP = 60, 1e-6
 
 
 def rounding_accepts(
@@ -262,7 +308,10 @@ def rounding_accepts(
     """How the answer is right up to rounding (``to 4 significant digits`` …), or None.
 
     ``template`` is the answer with its literals as placeholders, ``env`` the sample
-    (symbol → values at ``size`` points) and ``key`` the key's values there.
+    (symbol → values at ``size`` points) and ``key`` the key's values there.  Under a
+    ``digits`` rule each decimal stands for one value within its interval, the same at
+    every point: the answer is right when such values exist (:func:`_solve` finds them),
+    so that ``1.00*k*(1 + S2/300)`` is not ``k`` up to rounding.
     """
     template, literals = standing(template, literals)
     decimals = [lit for lit in literals if decimal_places(lit.text)[1] > 0]
@@ -281,24 +330,23 @@ def rounding_accepts(
         if rounding.mode == "rel":
             ok = np.abs(diff) <= rounding.tolerance * float(np.abs(key).max()) * room
             return rounding.describe(0) if ok.all() else None
-        low = high = np.zeros(size)
-        used: list[int] = []
-        for lit in decimals:
-            below, above = rounding.allowed(lit)
-            if below == above == 0:
-                continue
-            ends = [
-                _at(template, env, size, {**written, lit.symbol: float(lit.value) + d}) - answer
-                for d in (below, above)
-            ]
-            if not all(np.isfinite(e).all() for e in ends):
-                return None
-            lo, hi = _quadratic_range(below, above, *ends)
-            low, high = low + lo, high + hi
-            if (hi - lo).max() > 0:
-                used.append(lit.digits)
-        slack = TOLERANCES.agree_rtol * (1 + np.abs(key)) + TOLERANCES.rounding_margin * (
-            high - low
-        )
-        ok = (diff >= low - slack) & (diff <= high + slack)
-    return rounding.describe(min(used)) if used and ok.all() else None
+        moving = [lit for lit in decimals if rounding.allowed(lit) != (0.0, 0.0)]
+        if not moving:
+            return None
+        units = np.array([lit.unit for lit in moving])
+        lower = np.array([rounding.allowed(lit)[0] for lit in moving]) / units
+        upper = np.array([rounding.allowed(lit)[1] for lit in moving]) / units
+
+        def residual(t: np.ndarray) -> np.ndarray:
+            subs = {
+                lit.symbol: float(lit.value) + float(u * x) for lit, u, x in zip(moving, units, t)
+            }
+            out: np.ndarray = _at(template, env, size, {**written, **subs}) - key
+            return out
+
+        tol = TOLERANCES.agree_rtol * (1 + np.abs(key))
+        t = _solve(residual, lower, upper, tol)
+    if t is None:
+        return None
+    used = [lit.digits for lit, x in zip(moving, t) if x != 0] or [lit.digits for lit in moving]
+    return rounding.describe(min(used))

@@ -25,7 +25,7 @@ from dhsym.model.yamlsafe import YAMLInputError, YAMLLimits, load_yaml
 
 from .answer_names import NameContext
 from .latex_input import flatten_subscripts, is_latex, latex_to_text
-from .limits import AnswerLimits, UnreadableAnswer
+from .limits import AnswerLimits, UnreadableAnswer, echoed
 
 __all__ = ["TABLE_FORM", "grid_table", "yaml_table"]
 
@@ -305,7 +305,9 @@ def _yaml_cell(value: object, row: int, field: str) -> str:
     if value is None:
         return ""
     if isinstance(value, bool) or not isinstance(value, (str, int, float)):
-        raise TableError(f"expected a number or an expression, got {value!r}", row=row, field=field)
+        raise TableError(
+            f"expected a number or an expression, got {echoed(value)}", row=row, field=field
+        )
     return str(value)
 
 

@@ -27,10 +27,11 @@ DHRow(R: theta=theta2, d=0, a=a2, alpha=0)
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
 
 import sympy as sp
+import yaml
 
 from dhsym.errors import DHError, ParseError, TableError
 from dhsym.model.parsing import parse_expression
@@ -79,49 +80,95 @@ _YAML_TABLE = re.compile(r"^[ \t]*(?:joints[ \t]*:|-[ \t]+(?:\{|\w+[ \t]*:))", r
 
 
 def answer_text(value: object) -> str | bytes:
-    r"""An answer given as a Python value, as the text it stands for.
+    r"""An answer given as a Python value (or read from a student's YAML file), as the text
+    it stands for.
 
     Text and bytes are kept; a number or a sympy expression is printed by sympy's
     printer (and read back by the whitelist parser, never evaluated); a sympy matrix,
-    a numpy array or a list of rows is written ``[[…], […]]``; a list of texts is one
-    statement per line.  Anything else is :class:`UnreadableAnswer`.
+    a numpy array or a list of rows is written ``[[…], […]]`` (cells that are text are
+    kept as written); a list of texts is one statement per line; a table as a list of
+    rows ``{theta: …, d: …}`` (or a mapping with a ``joints`` list) is written as the YAML
+    table it is.  Anything else is :class:`UnreadableAnswer`, saying what was found.
 
     >>> import sympy as sp
     >>> answer_text(5), answer_text(sp.cos(sp.Symbol("theta1")) / 2)
     ('5', 'cos(theta1)/2')
     >>> answer_text([[1, 0], [0, sp.Symbol("c")]]), answer_text(["theta1 = 0", "theta2 = 1"])
     ('[[1, 0], [0, c]]', 'theta1 = 0\ntheta2 = 1')
+    >>> answer_text([["C1", -1], ["S1", 0.5]])
+    '[[C1, -1], [S1, 0.5]]'
+    >>> print(answer_text([{"theta": "theta1", "d": 0, "a": "a1", "alpha": 90}]), end="")
+    - {theta: theta1, d: 0, a: a1, alpha: 90}
     >>> answer_text({1: 2})  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    dhsym.checking.reading.limits.UnreadableAnswer: expected the answer as text ... got dict
+    dhsym.checking.reading.limits.UnreadableAnswer: expected the answer as text ... a mapping ...
     """
     if isinstance(value, (str, bytes)):
         return value
     shape = getattr(value, "shape", None)
     if isinstance(value, sp.MatrixBase) or (isinstance(shape, tuple) and len(shape) in (1, 2)):
         value = value.tolist()  # type: ignore[attr-defined]  # a sympy matrix or numpy array
+    if isinstance(value, Mapping):
+        if isinstance(value.get("joints"), list):
+            return _yaml_text(value)
+        keys = ", ".join(str(k) for k in list(value)[:6])
+        raise UnreadableAnswer(f"{_EXPECTED}, got a mapping with the keys {keys}"[:300])
     if isinstance(value, (list, tuple)) and value:
+        if all(isinstance(v, Mapping) for v in value):
+            return _yaml_text(list(value))  # a table: a list of rows
         if all(isinstance(v, str) for v in value):
             return "\n".join(value)
         if all(isinstance(v, (list, tuple)) for v in value):
             return (
-                "["
-                + ", ".join("[" + ", ".join(_number_text(c) for c in row) + "]" for row in value)
-                + "]"
+                "[" + ", ".join("[" + ", ".join(_cell(c) for c in row) + "]" for row in value) + "]"
             )
-        return ", ".join(_number_text(v) for v in value)
+        if any(isinstance(v, (list, tuple, Mapping)) for v in value):
+            raise UnreadableAnswer(
+                "a list that mixes rows and values: write a table as a list of rows "
+                "{theta: …, d: …, a: …, alpha: …}, a matrix as a list of lists (its rows)"
+            )
+        return ", ".join(_cell(v) for v in value)
+    return _number_text(value)
+
+
+_EXPECTED = (
+    "expected the answer as text (a string), a number, a sympy expression, a matrix "
+    "(a list of rows) or a table (a list of rows {theta: …, d: …})"
+)
+
+
+def _yaml_text(data: object) -> str:
+    """A table given as data, as YAML text for the table reader (one flow mapping a row)."""
+    try:
+        return yaml.safe_dump(
+            data, default_flow_style=None, sort_keys=False, allow_unicode=True, width=1_000_000
+        )
+    except yaml.YAMLError:  # a value YAML cannot write (an object): not a table of values
+        raise UnreadableAnswer(
+            f"{_EXPECTED}; a row holds a value that is not text or a number"
+        ) from None
+
+
+def _cell(value: object) -> str:
+    """A cell of a matrix given as a list of rows: text as written, a number printed."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, (list, tuple, Mapping)):
+        raise UnreadableAnswer(
+            "a list or mapping inside a cell of a matrix: a matrix is a list of rows, "
+            "each a list of entries"
+        )
     return _number_text(value)
 
 
 def _number_text(value: object) -> str:
-    if isinstance(value, bool) or not isinstance(value, (int, float, complex, sp.Basic)):
+    if isinstance(value, bool):
+        raise UnreadableAnswer(f"{_EXPECTED}, got the truth value {str(value).lower()}")
+    if not isinstance(value, (int, float, complex, sp.Basic)):
         if type(value).__module__ == "numpy" and hasattr(value, "item"):
             return _number_text(value.item())  # a numpy scalar
-        raise UnreadableAnswer(
-            "expected the answer as text (a string), a number, a sympy expression or a "
-            f"matrix, got {type(value).__name__}"
-        )
+        raise UnreadableAnswer(f"{_EXPECTED}, got {type(value).__name__}")
     if isinstance(value, float):
         return repr(float(value))  # also numpy's float64, a float
     return str(sp.sstr(value))

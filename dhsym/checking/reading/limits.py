@@ -51,6 +51,7 @@ __all__ = [
     "UnreadableAnswer",
     "check_seconds",
     "check_time",
+    "echoed",
     "expansion_terms",
     "time_left",
     "time_limit",
@@ -76,6 +77,20 @@ class AnswerTimeout(BaseException):  # noqa: N818 - an interruption, like Keyboa
     """
 
 
+def echoed(value: object, limit: int = 60) -> str:
+    """``repr(value)`` for an error message, cut to about ``limit`` characters: user input
+    is echoed so the user can find it, never in full (a 100 kB option is not echoed as such).
+
+    >>> echoed("digits=4"), echoed("x" * 1000, 10)
+    ("'digits=4'", "'xxxxxxxx… (1000 characters)")
+    """
+    text = repr(value)
+    if len(text) <= limit:
+        return text
+    size = len(value) if isinstance(value, (str, bytes)) else len(text)
+    return f"{text[: limit - 1]}… ({size} characters)"
+
+
 def check_seconds(value: object, what: str, *, file: str | None = None) -> float:
     """``value`` as a time limit in seconds: finite, above 0, at most :data:`MAX_SECONDS`.
 
@@ -88,7 +103,7 @@ def check_seconds(value: object, what: str, *, file: str | None = None) -> float
         except (ValueError, OverflowError):
             number = None
     if number is None or not (0 < number <= MAX_SECONDS):  # also refuses nan and inf
-        shown = value if isinstance(value, (int, float)) else repr(value)
+        shown = value if isinstance(value, (int, float)) else echoed(value)
         problem = (
             f"expected a time limit in seconds above 0 and at most {MAX_SECONDS:g}, got {shown}"
         )

@@ -387,3 +387,35 @@ def test_a_dhsym_bug_while_checking_is_an_internal_error_of_that_submission(tmp_
     assert report.failed == len(hit) and (out / "summary.html").is_file()
     for student in set(status) - hit:
         assert _totals(out)[student] == EXPECTED.get(student, _totals(out)[student])
+
+
+@pytest.mark.parametrize(
+    "names",
+    [
+        ("jos\u00e9".encode(), "jose\u0301".encode()),  # NFC and NFD: the same on screen
+        (b"eve\xff", b"eve\\xff"),  # a byte that is not UTF-8, and its escape typed out
+    ],
+)
+def test_colliding_ids_are_every_student_exactly_once(tmp_path, names):
+    """Issue 34, item 6: both graded, each under its own id and feedback page."""
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    right, wrong = (os.path.join(os.fsencode(subs), n) for n in names)
+    shutil.copytree(HW / "submissions" / "alice", os.fsdecode(right))
+    os.mkdir(wrong)
+    Path(os.fsdecode(wrong), "q5.txt").write_text("0\n")
+    out = tmp_path / "out"
+    report = grade(HW / "assignment.yaml", subs, out, workers=0, progress=False)
+    assert len({r.uid for r in report.records}) == 2
+    rows = _book(out)
+    assert len(rows) == 2 and len({r["feedback"] for r in rows}) == 2
+    assert sorted(float(r["total"]) for r in rows) == [0.0, 10.0]
+    for r in rows:
+        page = (out / r["feedback"]).read_text(encoding="utf-8")
+        assert f"{float(r['total']):g}" in page
+        assert "duplicate id" in r["flags"]
+    summary = (out / "summary.html").read_text(encoding="utf-8")
+    assert summary.count("duplicate id") >= 2
+    again = tmp_path / "again"
+    grade(HW / "assignment.yaml", subs, again, workers=0, progress=False)
+    assert (again / "gradebook.csv").read_text() == (out / "gradebook.csv").read_text()

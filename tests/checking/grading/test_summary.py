@@ -68,3 +68,27 @@ def test_wrong_examples_are_escaped(tmp_path):
     page = write_summary(tmp_path, a, [rec], {"<img src=x>": "img_src_x"}).read_text()
     assert "<script>alert" not in page and "&lt;script&gt;alert(1)&lt;/script&gt;" in page
     assert "<img src=x>" not in page
+
+
+def test_the_mean_score_is_rounded_sensibly(tmp_path):
+    """Issue 34, item 8: 14/3 is shown as 4.67, not 4.66667."""
+    a = Assignment.load(HW / "assignment.yaml")
+
+    def rec(student: str, score: float) -> GradeRecord:
+        return GradeRecord(
+            uid=student,
+            student=student,
+            name=student,
+            source=f"{student}/",
+            flags=(),
+            status="graded",
+            scores={"q1": score},
+            verdicts={q.id: "correct" for q in a.questions},
+            kinds=(),
+            score=score,
+            max_score=a.max_score,
+        )
+
+    records = [rec("ann", 4.0), rec("bo", 4.0), rec("cy", 6.0)]
+    page = write_summary(tmp_path, a, records, {r.uid: r.uid for r in records}).read_text()
+    assert "mean score 4.67 / 10" in page and "4.66667" not in page

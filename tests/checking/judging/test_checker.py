@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import dhsym
 from dhsym.checking import Key, check_answer
+
+ROOT = Path(__file__).resolve().parents[3]
 
 KEY = Key.load("planar2r", "T0_2")
 RIGHT = "[[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0, 0, 1, 0]]"
@@ -73,3 +77,25 @@ def test_a_key_that_cannot_be_checked_against_is_refused_not_blamed_on_answers()
 
     with pytest.raises(DHError, match="2 joints, got 3 values"):
         Key.load("planar2r", "ik@1,2,3")
+
+
+def test_one_wrong_entry_of_several_is_singular():
+    """Issue 34, item 8: "1 of 4 entries is wrong", "2 of 4 entries are wrong"."""
+    key = Key.load("planar2r", "T0_2")
+    one = check_answer(
+        key, "[[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 - a2*S12], [0, 0, 1, 0]]"
+    )
+    assert one.message.startswith("1 of 16 entries is wrong."), one.message
+    two = check_answer(
+        key, "[[C12, -S12, 0, a1*C1 - a2*C12], [S12, C12, 0, a1*S1 - a2*S12], [0, 0, 1, 0]]"
+    )
+    assert two.message.startswith("2 of 16 entries are wrong."), two.message
+
+
+def test_the_guides_example_answers_are_right():
+    """Issue 34, item 8: each example answer of the guide's table of question kinds is
+    graded right against the example assignment's key (the PUMA 560 for T0_6[0,3])."""
+    guide = (ROOT / "docs" / "guide" / "assignments.md").read_text(encoding="utf-8")
+    row = next(line for line in guide.splitlines() if line.startswith("| `T0_6[0,3]`"))
+    answer = row.rsplit("|", 2)[-2].strip().strip("`")
+    assert check_answer(Key.load("puma560", "T0_6[0,3]"), answer).correct, answer

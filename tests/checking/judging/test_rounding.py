@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
+from fractions import Fraction
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from dhsym.checking import Assignment, Key, check_answer
 from dhsym.checking.judging.rounding import DEFAULT_ROUNDING, Rounding
 from dhsym.errors import DHError
+
+from .test_dynamics_questions import TABLE as SPONG
 
 CORPUS = Path(__file__).resolve().parents[2] / "data" / "answers"
 TWIST45 = CORPUS / "tables" / "twist45.yaml"  # entry T0_1[2,1] is sqrt(2)/2 = 0.70710678…
@@ -121,3 +126,68 @@ def test_rounding_in_the_assignment_and_per_question(tmp_path):
     )
     with pytest.raises(DHError, match="bad.yaml.*unknown rounding 'roughly'"):
         Assignment.load(tmp_path / "bad.yaml")
+
+
+# Spong's two-link planar elbow arm (Robot Modeling and Control): M[1,1] = m2 lc2² + I2 and
+# the tip's x = l1 C1 + l2 C12.
+M22 = Key.load(SPONG, "M[1,1]")
+PX = Key.load(SPONG, "T0_2[0,3]")
+
+
+@pytest.mark.parametrize(
+    ("key", "answer"),
+    [
+        (M22, "1.00*(m2*lc2**2 + I2)*(1 + S2/300)"),
+        (M22, "1.00**64*1.00**64*1.00**64*(m2*lc2**2 + I2)*(2 + S2)"),
+        (PX, "1.00*(l1*C1 + l2*C12)*(1 + S1/300)"),
+        (PX, "1.00**64*1.00**64*1.00**64*(l1*C1 + l2*C12)*(1 + S1/3)"),
+        (PX, "1.000*l1*C1 + 1.00*l2*C12*(1 + S2/400)"),
+    ],
+)
+def test_decimals_cannot_absorb_an_error_that_varies_with_q(key, answer):
+    """Issue 34, item 4: each decimal stands for one value, the same at every point."""
+    assert check_answer(key, answer).verdict.value == "incorrect"
+
+
+@pytest.mark.parametrize(
+    ("key", "answer"),
+    [
+        (M22, "1.00*(m2*lc2**2 + I2)"),
+        (M22, "1.00**64*1.000**8*(m2*lc2**2 + I2)"),
+        (PX, "l1*cos(q1 + 0.000) + l2*cos(q1 + q2)"),
+        (PX, "l1*sin(q1 + 1.5708) + l2*0.7071**2*2*C12"),
+    ],
+)
+def test_honestly_rounded_decimals_stay_right(key, answer):
+    r = check_answer(key, answer)
+    assert r.correct, r.message
+
+
+FACTORS = st.sampled_from(["S2", "C2", "S1", "C12", "q2", "S2**2", "lc2", "m1"])
+DECIMALS = st.sampled_from(["1.00", "1.000", "0.999", "1.001", "1.00**64", "1.000**16", "1.01"])
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    factor=FACTORS,
+    size=st.fractions(min_value=Fraction(1, 2000), max_value=Fraction(2)),
+    decimals=st.lists(DECIMALS, min_size=1, max_size=4),
+    where=st.sampled_from(["outside", "inside"]),
+)
+def test_key_times_a_varying_factor_is_never_right(factor, size, decimals, where):
+    """key × (1 + f(q)), f not constant, whatever decimals are added: never correct."""
+    scale = "*".join(decimals)
+    f = f"({size.numerator}/{size.denominator})*{factor}"
+    if where == "outside":
+        answer = f"{scale}*(m2*lc2**2 + I2)*(1 + {f})"
+    else:
+        answer = f"(m2*{scale}*lc2**2 + I2*{scale})*(1 + {f})"
+    r = check_answer(M22, answer)
+    assert not r.correct, (answer, r.message)
+
+
+def test_a_long_rounding_rule_is_not_echoed_in_full():
+    """Issue 34, item 8: user input echoed in an error is cut short."""
+    with pytest.raises(DHError) as err:
+        Rounding.parse("roughly " * 12_500)
+    assert len(str(err.value)) < 300 and "roughly" in str(err.value)

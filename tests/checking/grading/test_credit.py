@@ -1,0 +1,56 @@
+"""Partial credit per question: credit: entries, deduct per named mistake, floor."""
+
+from __future__ import annotations
+
+import csv
+
+import pytest
+
+from dhsym.checking import Assignment, grade
+from dhsym.errors import DHError
+
+ASSIGNMENT = """key: planar2r
+questions:
+  - {id: q1, ask: T0_2, points: 2, credit: entries}
+  - {id: q2, ask: "T0_2[0,3]", points: 1, deduct: {sign: 25%}}
+  - {id: q3, ask: T0_2, points: 2}
+  - {id: q4, ask: "T0_2[0,3]", points: 1, deduct: {sign: 90%}, floor: 20%}
+"""
+ONE_WRONG = "[[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 - a2*S12], [0, 0, 1, 0]]"
+
+
+def test_partial_credit_per_question(tmp_path):
+    """Issue 34, item 1: the points per part and why; the default stays all or nothing."""
+    (tmp_path / "hw.yaml").write_text(ASSIGNMENT, encoding="utf-8")
+    ann = tmp_path / "subs" / "ann"
+    ann.mkdir(parents=True)
+    for qid, text in (("q1", ONE_WRONG), ("q2", "a1*C1 - a2*C12"), ("q3", ONE_WRONG)):
+        (ann / f"{qid}.txt").write_text(text, encoding="utf-8")
+    (ann / "q4.txt").write_text("a1*C1 - a2*C12", encoding="utf-8")
+    out = tmp_path / "out"
+    grade(tmp_path / "hw.yaml", tmp_path / "subs", out, workers=0, progress=False)
+    (row,) = csv.DictReader((out / "gradebook.csv").open(encoding="utf-8"))
+    assert (row["q1"], row["q2"], row["q3"], row["q4"]) == ("1.875", "0.75", "0", "0.2")
+    assert row["total"] == "2.825"
+    page = (out / row["feedback"]).read_text(encoding="utf-8")
+    assert "(1.875 / 2 points)" in page
+    assert "Partial credit: 15 of 16 entries right, 1.875 of 2 points." in page
+    assert "Partial credit: wrong sign (25% deducted), 0.75 of 1 points." in page
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        ("credit: some", "credit: expected 'all' or 'entries'"),
+        ("deduct: {sine: 10%}", "deduct: unknown mistake 'sine'"),
+        ("deduct: {wrong_sign: 125%}", "expected a share like 25%"),
+        ("deduct: [wrong_sign]", "deduct: expected a mapping"),
+    ],
+)
+def test_bad_credit_rules_are_refused_naming_the_question(tmp_path, extra, message):
+    (tmp_path / "hw.yaml").write_text(
+        f"key: planar2r\nquestions:\n  - {{id: q1, ask: T0_2, {extra}}}\n", encoding="utf-8"
+    )
+    with pytest.raises(DHError, match=message) as err:
+        Assignment.load(tmp_path / "hw.yaml")
+    assert err.value.row == 1
