@@ -32,8 +32,11 @@ demo: $(STAMP)
 	$(VENV)/bin/dhsym derive puma560 --format markdown -o build/puma560.md
 	$(VENV)/bin/dhsym handout puma560 -o build/puma560.tex --pdf
 
+# the whole suite in two steps: the quick tests, then the few marked slow (compiling every
+# export, the general 6R, the class through Dask, ...) on their own
 test: $(STAMP)
-	$(PY) -m pytest -q -n auto
+	$(PY) -m pytest -q -n auto -m "not slow"
+	$(PY) -m pytest -q -n auto -m slow
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check dhsym tests benchmarks
