@@ -6,9 +6,12 @@ import argparse
 import re
 import sys
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from .common import STDOUT, add_command, add_notation_options, emit, wrote
+from .common import STDOUT, add_command, add_notation_options, emit, parse_values, wrote
+
+if TYPE_CHECKING:
+    from dhsym.robot import Robot
 
 __all__ = ["register"]
 
@@ -23,13 +26,58 @@ def _parse_check(text: str | None) -> object:
     return parse_number_list(text, "--check")
 
 
+def _symbols(robot: Robot) -> set[str]:
+    """The names a ``--values`` may set on ``robot``: lengths, offsets, inertials, gravity."""
+    table = robot.table
+    syms = set(table.constants)
+    for row in table.rows:
+        syms |= row.inertia.free_symbols if row.inertia is not None else set()
+    syms |= set().union(*(g.free_symbols for g in table.gravity))
+    return {s.name for s in syms}
+
+
+def _with_values(robots: list[Robot], text: str | None, figure: bool, **style: Any) -> list[Robot]:
+    """Each robot with the ``--values`` its table knows; with ``figure``, every length needs
+    a number (from ``--values`` or the table's ``values:``), and the error names the missing.
+    """
+    from dhsym.errors import DHError
+    from dhsym.robot import Robot
+
+    given = parse_values(text) if text else {}
+    unused = set(given) - set().union(*(_symbols(r) for r in robots))
+    if unused:
+        raise DHError(
+            f"--values: no robot of this handout has a symbol {', '.join(sorted(unused))}"
+        )
+    out = []
+    for robot in robots:
+        own = {k: v for k, v in given.items() if k in _symbols(robot)}
+        if own:
+            robot = Robot(robot.table.with_values(own), **style)
+        if figure:
+            missing = sorted(
+                str(s) for s in set(robot.table.constants) - set(robot.table.value_map)
+            )
+            if missing:
+                example = ",".join(f"{m}=…" for m in missing)
+                raise DHError(
+                    f"--figure draws {robot.name or 'the robot'} with numbers, and it has none "
+                    f"for {', '.join(missing)}: give them with --values {example} (or in the "
+                    "table file's values:)"
+                )
+        out.append(robot)
+    return out
+
+
 def _cmd_handout(args: argparse.Namespace) -> int:
     from dhsym.errors import DHError
     from dhsym.explain.documents import render_handout, write_handout
     from dhsym.explain.latex import run_latex
     from dhsym.robot import load
 
-    robots = [load(name, compact=not args.full, style=args.notation) for name in args.robots]
+    style = dict(compact=not args.full, style=args.notation)
+    robots = [load(name, **style) for name in args.robots]
+    robots = _with_values(robots, args.values, args.figure, **style)
     options = dict(
         title=args.title,
         course=args.course or "",
@@ -115,7 +163,13 @@ def _register_handout(subparsers: argparse._SubParsersAction[argparse.ArgumentPa
     h.add_argument(
         "--figure",
         action="store_true",
-        help="include a picture of each robot at its home configuration",
+        help="include a picture of each robot at its home configuration (its lengths need "
+        "numbers: the table's values: or --values)",
+    )
+    h.add_argument(
+        "--values",
+        metavar="NAME=NUMBER,...",
+        help="numbers for symbolic lengths, e.g. a1=1,a2=0.8 (for --figure and --numeric)",
     )
     h.add_argument(
         "--check",

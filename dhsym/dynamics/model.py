@@ -17,8 +17,6 @@ Examples
 
 from __future__ import annotations
 
-import re
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, TypeAlias
 
@@ -26,7 +24,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.model.inertia import LinkInertia
-from dhsym.model.parsing import REAL
+from dhsym.model.parsing import rate_symbols
 from dhsym.model.table import JointType
 
 if TYPE_CHECKING:
@@ -36,25 +34,6 @@ __all__ = ["DynamicModel", "dynamic_model", "rate_symbols"]
 
 Matrix: TypeAlias = sp.ImmutableMatrix
 _ZERO_LINK = LinkInertia(0, (0, 0, 0), sp.zeros(3, 3))
-_NAME = re.compile(r"^(.*?)_?(\d+)$")
-
-
-def rate_symbols(variables: Sequence[sp.Symbol], order: int = 1) -> tuple[sp.Symbol, ...]:
-    """The symbols of the joint rates (``order=1``) or accelerations (``order=2``).
-
-    ``theta1`` gives ``thetadot1`` and ``thetaddot1``, which sympy prints as
-    :math:`\\dot\\theta_1`, :math:`\\ddot\\theta_1`.
-
-    >>> rate_symbols(sp.symbols("theta1 d3")), rate_symbols(sp.symbols("q2,"), 2)
-    ((thetadot1, ddot3), (qddot2,))
-    """
-    suffix = {1: "dot", 2: "ddot"}[order]
-    out = []
-    for v in variables:
-        m = _NAME.match(v.name)
-        name = f"{m.group(1)}{suffix}{m.group(2)}" if m else f"{v.name}{suffix}"
-        out.append(sp.Symbol(name, **REAL))
-    return tuple(out)
 
 
 @dataclass(frozen=True)

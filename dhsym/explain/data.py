@@ -47,6 +47,7 @@ __all__ = [
     "Identity",
     "JacobianColumnData",
     "JacobianDerivation",
+    "LinkData",
     "NEStepData",
     "NumericCheck",
     "SingularityDerivation",
@@ -402,6 +403,17 @@ class EnergyData:
 
 
 @dataclass(frozen=True)
+class LinkData:
+    """Link ``index``'s mass ``m_i``, centre of mass ``r_ci`` (in frame *i*) and inertia
+    ``I_i`` about its centre of mass (axes of frame *i*)."""
+
+    index: int
+    mass: Equation
+    centre: MatrixBlock
+    inertia: MatrixBlock
+
+
+@dataclass(frozen=True)
 class NEStepData:
     """One line of the Newton–Euler table: vector ``name`` of link ``link`` in its frame.
 
@@ -421,8 +433,9 @@ class DynamicsDerivation(Document):
     """The equations of motion of a robot as the lecture derives them.
 
     The energies of each link, the entries ``M_ij`` (``i ≤ j``; M is symmetric), the
-    nonzero Christoffel symbols ``c_ijk`` (``i ≤ j``; ``c_jik = c_ijk``), ``g_k`` and
-    ``τ_k``; then the Newton–Euler table, outward then inward.
+    nonzero Christoffel symbols ``c_ijk`` (``i ≤ j``; ``c_jik = c_ijk``), the matrix
+    ``C(q, q̇)``, ``g_k`` and ``τ_k``; then the Newton–Euler table, outward then inward.
+    ``links`` holds each link's mass, centre of mass and inertia, printed first.
     """
 
     kind = "dynamics"
@@ -441,3 +454,5 @@ class DynamicsDerivation(Document):
     inward: tuple[NEStepData, ...]
     legend: tuple[LegendLine, ...]
     width: float = LATEX_WIDTH
+    links: tuple[LinkData, ...] = ()
+    coriolis: MatrixBlock | None = None  # C(q, q̇), after the Christoffel symbols

@@ -3,9 +3,11 @@ r"""The equations of motion as plain data, in the order the dynamics lecture der
 :func:`derive_dynamics` arranges what :mod:`dhsym.dynamics` computes for the templates,
 following Spong, Hutchinson and Vidyasagar, *Robot Modeling and Control*, chapter 7
 (Lagrange–Euler) and Craig, *Introduction to Robotics*, chapter 6 (recursive
-Newton–Euler): the kinetic energy ``K_i`` and potential energy ``P_i`` of each link, the
-inertia matrix entries ``M_ij`` (Spong's ``d_ij``), the nonzero Christoffel symbols
-``c_ijk = ½(∂M_kj/∂q_i + ∂M_ki/∂q_j − ∂M_ij/∂q_k)``, the gravity vector ``g_k = ∂P/∂q_k``
+Newton–Euler): the table of each link's mass, centre of mass and inertia, the kinetic
+energy ``K_i`` and potential energy ``P_i`` of each link, the inertia matrix entries
+``M_ij`` (Spong's ``d_ij``), the nonzero Christoffel symbols
+``c_ijk = ½(∂M_kj/∂q_i + ∂M_ki/∂q_j − ∂M_ij/∂q_k)`` and the matrix ``C(q, q̇)`` they make,
+the gravity vector ``g_k = ∂P/∂q_k``
 and the joint torques ``τ_k``; then the Newton–Euler table, velocities and accelerations
 outward from the base, forces and torques inward from the tip. Every formula is printed
 by the robot's :class:`~dhsym.notation.printers.Notation` (compact C/S) and split into
@@ -27,6 +29,7 @@ from pathlib import Path
 import sympy as sp
 
 from dhsym.dynamics.equations import EquationsOfMotion, NEStep
+from dhsym.model.inertia import LinkInertia
 from dhsym.model.table import DHTable
 from dhsym.notation.escape import TeX
 from dhsym.notation.layout import (
@@ -36,13 +39,14 @@ from dhsym.notation.layout import (
     as_math,
     component_names,
     equation,
+    indexed_names,
     legend_lines,
     matrix_block,
 )
 from dhsym.notation.printers import Notation, TrigStyle
 from dhsym.robot import Robot
 
-from .data import DynamicsDerivation, EnergyData, NEStepData
+from .data import DynamicsDerivation, EnergyData, LinkData, NEStepData
 from .velocity_kinematics import label_key, styled
 
 __all__ = ["derive_dynamics"]
@@ -75,6 +79,16 @@ def _step(s: NEStep, nota: Notation, width: float) -> NEStepData:
     value = s.value if s.value.cols == 1 else s.value.T
     block = matrix_block(label, value, nota, width=width, names=component_names(label))
     return NEStepData(s.sweep, s.name, s.link, s.equation, block)
+
+
+def _link(i: int, L: LinkInertia, nota: Notation, width: float) -> LinkData:
+    r = sp.Matrix(L.r)
+    return LinkData(
+        i,
+        _eq(_name(f"m_{{{i}}}", f"m_{i}"), L.m, nota, width),
+        matrix_block(_name(f"r_{{c{i}}}", f"r_c{i}"), r, nota, width=width),
+        matrix_block(_name(f"I_{{{i}}}", f"I_{i}"), L.I, nota, width=width),
+    )
 
 
 def derive_dynamics(
@@ -133,11 +147,14 @@ def derive_dynamics(
         for k in range(n)
         if lag.christoffel[i][j][k] != 0
     )
+    coriolis = matrix_block(
+        _name(r"C(q, \dot{q})", "C(q, qdot)"), lag.C, nota, width=width, names=indexed_names("C")
+    )
     gvec = tuple(_eq(_name(f"g_{{{k + 1}}}", f"g{k + 1}"), lag.g[k], nota, width) for k in range(n))
     tau = tuple(
         _eq(_name(rf"\tau_{{{k + 1}}}", f"tau{k + 1}"), lag.tau[k], nota, width) for k in range(n)
     )
-    shown += [*lag.M, *lag.g]
+    shown += [*lag.M, *lag.C, *lag.g]
     steps = tuple(_step(s, nota, width) for s in ne.steps)
     name = robot.name or "robot"
     return DynamicsDerivation(
@@ -155,4 +172,6 @@ def derive_dynamics(
         inward=tuple(s for s in steps if s.sweep == "inward"),
         legend=legend_lines(shown, nota),
         width=width,
+        links=tuple(_link(i, L, nota, width) for i, L in enumerate(lag.model.links, start=1)),
+        coriolis=coriolis,
     )

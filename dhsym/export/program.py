@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.model.entries import check_real
 from dhsym.model.parsing import REAL as _REAL
 from dhsym.model.table import JointType
 
@@ -251,6 +252,9 @@ def _numbers(e: sp.Expr, exponent: bool = False) -> sp.Expr:
 def _straight_line(
     exprs: Sequence[sp.Expr], joints: Mapping[sp.Symbol, int], taken: set[str]
 ) -> tuple[list[Assign], list[sp.Expr]]:
+    for e in exprs:  # a value can make an entry complex: exported code computes reals
+        for part in (e, *(a for a in e.atoms(sp.Function, sp.Pow) if a.is_number)):
+            check_real(part, field="values", text=False)
     named, trig = _name_trig(exprs, joints, taken)
     names = (f"w{k}" for k in range(10**6))
     fresh = (sp.Symbol(n, **_REAL) for n in names if n not in taken)

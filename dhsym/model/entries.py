@@ -15,7 +15,7 @@ from dhsym.errors import TableError
 from .kinds import AngleUnit
 from .parsing import DEFAULT_LIMITS, numeral_problem, parse_expression
 
-__all__ = ["as_expr", "check_radians", "exact_decimal", "to_radians"]
+__all__ = ["as_expr", "check_radians", "check_real", "exact_decimal", "to_radians"]
 
 Expr: TypeAlias = sp.Expr
 
@@ -58,7 +58,49 @@ def as_expr(value: object, *, field: str | None = None, row: int | None = None) 
         )
     if expr.has(sp.oo, -sp.oo, sp.zoo, sp.nan):
         raise TableError("non-finite number", row=row, field=field)
+    check_real(expr, row=row, field=field, text=isinstance(value, str))
     return expr
+
+
+#: The largest magnitude a double holds: beyond it a value is ``inf`` in any exported code.
+_FLOAT_MAX = sp.Float(1.7976931348623157e308)
+
+
+def check_real(
+    expr: Expr, *, row: int | None = None, field: str | None = None, text: bool = True
+) -> None:
+    """Refuse a complex value (``sqrt(-1)``, ``acos(2)``) and a number beyond a double's range.
+
+    Every entry of a table is a real quantity (a length, an angle, a mass): an
+    imaginary part would reach exported C or Rust (which do not compile it) or be
+    dropped by NumPy. ``text=False`` (a sympy object from Python) skips the
+    assumptions query on symbolic expressions, which can be slow on large ones.
+
+    >>> check_real(sp.sqrt(-4), row=2, field="I")
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.TableError: row 2, field I: 2*I is complex: every entry is a real number ...
+    >>> check_real(sp.Integer(10) ** 309, field="m")
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.TableError: field m: 1.0E+309 is beyond the range of floating-point ...
+    """
+    complex_ = expr.has(sp.I) or ((text or expr.is_number) and expr.is_extended_real is False)
+    if complex_:
+        raise TableError(
+            f"{expr} is complex: every entry is a real number (a length, an angle, a mass)",
+            row=row,
+            field=field,
+        )
+    if expr.is_number:
+        value = expr.evalf(20)
+        if value.is_Float and abs(value) > _FLOAT_MAX:
+            raise TableError(
+                f"{sp.Float(value, 2)} is beyond the range of floating-point numbers "
+                f"(about 1.8e308): exported code and written tables would read it as inf",
+                row=row,
+                field=field,
+            )
 
 
 def to_radians(expr: Expr, unit: AngleUnit | str) -> Expr:

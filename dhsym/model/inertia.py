@@ -32,7 +32,7 @@ import sympy as sp
 from dhsym.errors import TableError
 
 from .entries import as_expr
-from .parsing import symbol
+from .parsing import reserved_symbols, symbol
 
 __all__ = ["INERTIA_KEYS", "LinkInertia"]
 
@@ -164,11 +164,13 @@ class LinkInertia:
         return cls(symbol(f"m{i}"), tuple(symbol(f"{c}{i}") for c in ("rx", "ry", "rz")), inertia)
 
     def __post_init__(self) -> None:
+        # every entry through as_expr: exact, real and finite (complex values are refused)
         for name in ("m", "Jm", "G", "B"):
             object.__setattr__(self, name, as_expr(getattr(self, name), field=name))
         object.__setattr__(self, "r", tuple(as_expr(v, field="r") for v in self.r))
         object.__setattr__(self, "Tc", tuple(as_expr(v, field="Tc") for v in self.Tc))
-        object.__setattr__(self, "I", sp.ImmutableMatrix(self.I))
+        inertia = sp.ImmutableMatrix(self.I)
+        object.__setattr__(self, "I", inertia.applyfunc(lambda v: as_expr(v, field="I")))
         if len(self.r) != 3 or self.I.shape != (3, 3) or len(self.Tc) != 2:
             raise TableError("r has 3 entries, I is 3x3 and Tc has 2 entries", field="inertia")
 
@@ -284,6 +286,49 @@ class LinkInertia:
         """
         I = self.I  # noqa: E741
         return (self.m, *self.r, I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[1, 2], I[0, 2])
+
+    def entries(self) -> dict[str, tuple[Expr, ...]]:
+        """The parameters by their key in a table file (:data:`INERTIA_KEYS`).
+
+        >>> LinkInertia(2, (1, 0, 0), sp.zeros(3)).entries()["r"]
+        (1, 0, 0)
+        """
+        return {
+            "m": (self.m,),
+            "r": self.r,
+            "I": tuple(self.I),
+            "Jm": (self.Jm,),
+            "G": (self.G,),
+            "B": (self.B,),
+            "Tc": self.Tc,
+        }
+
+    def check_constant(self, variables: Sequence[sp.Symbol], *, row: int | None = None) -> None:
+        """Refuse a joint variable, rate or acceleration in any parameter (they are constants).
+
+        A mass ``2 + sin(q2)`` would make the inertia matrix depend on a joint it does
+        not belong to, and Lagrange–Euler and Newton–Euler would disagree; a parameter
+        named ``thetadot1`` would be read as a rate. The error names the field and the
+        symbol.
+
+        >>> LinkInertia("2 + sin(q2)", (0, 0, 0), sp.zeros(3)).check_constant(
+        ...     sp.symbols("q1 q2", real=True), row=1)
+        Traceback (most recent call last):
+        ...
+        dhsym.errors.TableError: row 1, field m: uses q2, the joint variable q2: inertial ...
+        """
+        reserved = reserved_symbols(variables)
+        for key, values in self.entries().items():
+            used = set().union(*(v.free_symbols for v in values)) & set(reserved)
+            if used:
+                s = min(used, key=str)
+                raise TableError(
+                    f"uses {s}, {reserved[s]}: inertial parameters are constants of the link "
+                    "(a mass, a centre of mass, an inertia), free of joint variables, rates "
+                    "and accelerations",
+                    row=row,
+                    field=key,
+                )
 
     @property
     def free_symbols(self) -> set[sp.Symbol]:

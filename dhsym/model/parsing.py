@@ -23,7 +23,7 @@ from __future__ import annotations
 import keyword
 import math
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any, NamedTuple
@@ -41,6 +41,8 @@ __all__ = [
     "numeral_problem",
     "parse_expression",
     "parse_number_list",
+    "rate_symbols",
+    "reserved_symbols",
     "symbol",
 ]
 
@@ -168,6 +170,52 @@ def symbol(name: str) -> sympy.Symbol:
     if problem := _name_problem(norm):
         raise ParseError(f"{problem[0]} {name!r}: {problem[1]}")
     return sympy.Symbol(norm, **REAL)
+
+
+_INDEXED_NAME = re.compile(r"^(.*?)_?(\d+)$")
+
+
+def rate_symbols(variables: Sequence[sympy.Symbol], order: int = 1) -> tuple[sympy.Symbol, ...]:
+    """The symbols of the joint rates (``order=1``) or accelerations (``order=2``).
+
+    ``theta1`` gives ``thetadot1`` and ``thetaddot1``, which sympy prints as
+    :math:`\\dot\\theta_1`, :math:`\\ddot\\theta_1`. A table reserves these names: no
+    length, offset or inertial parameter may be called so (:class:`~dhsym.model.table.DHTable`).
+
+    Examples
+    --------
+    >>> rate_symbols(sympy.symbols("theta1 d3")), rate_symbols(sympy.symbols("q2,"), 2)
+    ((thetadot1, ddot3), (qddot2,))
+    """
+    suffix = {1: "dot", 2: "ddot"}[order]
+    out = []
+    for v in variables:
+        m = _INDEXED_NAME.match(v.name)
+        name = f"{m.group(1)}{suffix}{m.group(2)}" if m else f"{v.name}{suffix}"
+        out.append(sympy.Symbol(name, **REAL))
+    return tuple(out)
+
+
+def reserved_symbols(variables: Sequence[sympy.Symbol]) -> dict[sympy.Symbol, str]:
+    """The joint variables with their rates and accelerations, each with what it is.
+
+    A table's constants (lengths, offsets, inertial parameters, gravity) may not use
+    these names: ``a: thetaddot2`` would be read as the acceleration of joint 2.
+
+    Examples
+    --------
+    >>> for name, what in reserved_symbols(sympy.symbols("theta1,")).items():
+    ...     print(name, "is", what)
+    theta1 is the joint variable theta1
+    thetadot1 is the rate of the joint variable theta1
+    thetaddot1 is the acceleration of the joint variable theta1
+    """
+    out: dict[sympy.Symbol, str] = {}
+    for v, rate, acc in zip(variables, rate_symbols(variables), rate_symbols(variables, 2)):
+        out[v] = f"the joint variable {v}"
+        out[rate] = f"the rate of the joint variable {v}"
+        out[acc] = f"the acceleration of the joint variable {v}"
+    return out
 
 
 def _name_problem(name: str) -> tuple[str, str] | None:

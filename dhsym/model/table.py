@@ -35,7 +35,7 @@ from .angles import AngleSnap, Snapped, snap_entry, snap_note
 from .entries import as_expr, check_radians, to_radians
 from .inertia import LinkInertia
 from .kinds import AngleUnit, Convention, JointType
-from .parsing import symbol
+from .parsing import reserved_symbols, symbol
 
 __all__ = [
     "AngleUnit",
@@ -212,6 +212,20 @@ def _infer_variable(row: DHRow, index: int) -> sp.Symbol | None:
     )
 
 
+def _refuse_reserved(
+    entry: Expr, reserved: Mapping[sp.Symbol, str], *, row: int | None, field: str
+) -> None:
+    """A constant entry may not use the name of a joint's rate or acceleration."""
+    used = entry.free_symbols & set(reserved)
+    if used:
+        s = min(used, key=str)
+        raise TableError(
+            f"{s} is reserved, {reserved[s]} (a constant entry cannot use it): rename this symbol",
+            row=row,
+            field=field,
+        )
+
+
 @dataclass(frozen=True)
 class DHTable:
     """An ordered, validated DH table.
@@ -354,6 +368,8 @@ class DHTable:
                     )
                 seen[var] = i
             fixed_rows.append(row if row.variable == var else replace(row, variable=var))
+        variables = tuple(seen)
+        derivatives = {k: v for k, v in reserved_symbols(variables).items() if k not in seen}
         for i, row in enumerate(fixed_rows, start=1):
             for name, entry in row.params().items():
                 stray = (entry.free_symbols & set(seen)) - {row.variable}
@@ -364,6 +380,9 @@ class DHTable:
                         row=i,
                         field=name,
                     )
+                _refuse_reserved(entry, derivatives, row=i, field=name)
+            if row.inertia is not None:
+                row.inertia.check_constant(variables, row=i)
         object.__setattr__(self, "rows", tuple(fixed_rows))
         object.__setattr__(self, "base", tuple(self.base))
         object.__setattr__(self, "tool", tuple(self.tool))
@@ -371,6 +390,9 @@ class DHTable:
         if len(gravity) != 3:
             raise TableError("gravity must be 3 values [gx, gy, gz]", field="gravity")
         object.__setattr__(self, "gravity", gravity)
+        constants = {**derivatives, **{v: f"the joint variable {v}" for v in variables}}
+        for e in gravity:
+            _refuse_reserved(e, constants, row=None, field="gravity")
         known = set().union(*(e.free_symbols for r in fixed_rows for e in r.params().values()))
         known |= set().union(*(r.inertia.free_symbols for r in fixed_rows if r.inertia))
         known |= set().union(*(e.free_symbols for e in gravity))

@@ -684,6 +684,10 @@ class _LayoutMixin(_PrinterBase):
         return render(self.tokens(self._nota.arrange(expr)), self._latex)
 
 
+#: ``lc1``, ``lc_2``: the distance to a link's centre of mass (Spong's ℓ_{ci})
+_CENTRE_LENGTH = re.compile(r"^lc_?(\d+)$")
+
+
 class _OrderedLatexPrinter(_LayoutMixin, LatexPrinter):
     """sympy's LaTeX in the policy's order (cos and sin in full)."""
 
@@ -692,6 +696,14 @@ class _OrderedLatexPrinter(_LayoutMixin, LatexPrinter):
     def __init__(self, notation: Notation) -> None:
         super().__init__({"mat_str": "bmatrix", "mat_delim": ""})
         self._nota = notation
+
+    def _print_Symbol(self, expr: sp.Symbol, style: str = "plain") -> str:
+        """``lc1`` (a centre-of-mass length, Spong's ℓ_{c1}) as ``l_{c1}``, not ``lc_{1}``,
+        which reads as ``l·c₁`` beside the C/S notation; other names as sympy prints them."""
+        m = _CENTRE_LENGTH.match(expr.name)
+        if m:
+            expr = sp.Symbol(f"l_c{m.group(1)}", **expr.assumptions0)
+        return str(super()._print_Symbol(expr, style))
 
     def _print_atan2(self, expr: sp.atan2, exp: str | None = None) -> str:
         y, x = (self._print(a) for a in expr.args)

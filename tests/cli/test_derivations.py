@@ -129,3 +129,41 @@ def test_handout_figure_says_which_pictures_it_wrote(tmp_path, capsys):
     assert main(["handout", "planar2r", "-o", str(out), "--figure"]) == 0
     said = capsys.readouterr().err  # "wrote …" lines go to standard error
     assert "h-planar-2r-home.pdf" in said and (tmp_path / "h-planar-2r-home.pdf").is_file()
+
+
+SYMBOLIC_2R = """name: Symbolic 2R
+joints:
+  - {type: R, theta: theta1, d: 0, a: l1, alpha: 0, m: m1}
+  - {type: R, theta: theta2, d: 0, a: l2, alpha: 0, m: m2}
+"""
+
+
+def test_handout_figure_of_a_symbolic_table_names_the_symbols_it_needs(tmp_path, capsys):
+    table = tmp_path / "arm.yaml"
+    table.write_text(SYMBOLIC_2R, encoding="utf-8")
+    out = tmp_path / "h.tex"
+    assert main(["handout", str(table), "-o", str(out), "--figure"]) == 2
+    err = capsys.readouterr().err
+    assert "has none for l1, l2: give them with --values l1=…,l2=…" in err
+    assert "internal error" not in err and not out.exists()
+
+
+def test_handout_values_give_the_figure_its_numbers_and_keep_the_derivation_symbolic(
+    tmp_path, capsys
+):
+    table = tmp_path / "arm.yaml"
+    table.write_text(SYMBOLIC_2R, encoding="utf-8")
+    out = tmp_path / "h.tex"
+    argv = ["handout", str(table), "-o", str(out), "--figure", "--values", "l1=1,l2=0.8,m1=2"]
+    assert main(argv) == 0
+    assert (tmp_path / "h-symbolic-2r-home.pdf").is_file()
+    assert "l_{1} C_{1} + l_{2} C_{12}" in out.read_text()  # the lengths stay symbols
+    capsys.readouterr()
+    assert main(["handout", str(table), "-o", str(out), "--values", "l3=1"]) == 2
+    assert "--values: no robot of this handout has a symbol l3" in capsys.readouterr().err
+
+
+def test_handout_figure_uses_the_table_values_when_it_has_them(tmp_path, capsys):
+    out = tmp_path / "h.tex"
+    assert main(["handout", "spong2r", "-o", str(out), "--figure"]) == 0
+    assert (tmp_path / "h-spong-two-link-arm-home.pdf").is_file()

@@ -74,6 +74,22 @@ def test_spong_two_link_arm_exactly(convention):
                 assert sp.expand(eom.c(i, j, k) - expected.get((i, j, k), 0)) == 0, (i, j, k)
 
 
+def test_the_built_in_spong2r_is_spongs_arm_with_gravity():
+    eom = lagrange(dhsym.load("spong2r"))  # joint angles theta1, theta2 (Spong's q1, q2)
+    q = {R("q1"): R("theta1"), R("q2"): R("theta2")}
+    D, phi = (x.xreplace(q) for x in spong_D_and_g())
+    assert sp.expand(eom.M - D) == sp.zeros(2, 2)
+    assert sp.expand(eom.g - phi) == sp.zeros(2, 1) and eom.g != sp.zeros(2, 1)
+    assert eom.model.gravity == (0, -R("g"), 0)
+    h = -R("m2") * R("l1") * R("lc2") * sp.sin(R("theta2"))  # Spong's h; c_112 = -h
+    expected = {(1, 2, 1): h, (2, 1, 1): h, (2, 2, 1): h, (1, 1, 2): -h}
+    for i, j, k in ((i, j, k) for i in (1, 2) for j in (1, 2) for k in (1, 2)):
+        assert sp.expand(eom.c(i, j, k) - expected.get((i, j, k), 0)) == 0, (i, j, k)
+    qd1, qd2 = eom.rates  # C(q, q̇) of Spong: [[h q̇2, h q̇2 + h q̇1], [-h q̇1, 0]]
+    C = sp.Matrix([[h * qd2, h * qd2 + h * qd1], [-h * qd1, 0]])
+    assert sp.expand(eom.C - C) == sp.zeros(2, 2)
+
+
 def test_spong_arm_prints_in_lecture_form():
     eom = lagrange(spong_arm())
     text = eom.notation.text(eom.M[0, 1])

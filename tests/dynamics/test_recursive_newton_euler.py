@@ -37,7 +37,9 @@ def _proven_equal(robot: Robot) -> bool:
     return prove_equal(lag.tau, raw)
 
 
-@pytest.mark.parametrize("name", ["planar2r", "example1_rrp", "cylindrical", "cartesian"])
+@pytest.mark.parametrize(
+    "name", ["planar2r", "spong2r", "example1_rrp", "cylindrical", "cartesian"]
+)
 def test_lagrange_equals_newton_euler_on_built_in_robots(name):
     assert _proven_equal(dhsym.load(name))
 

@@ -112,8 +112,9 @@ def test_spong_arm_reproduces_his_d_and_g_in_every_format(spong):
     assert "     c112 = l1*lc2*m2*S2" in text
     md, tex = spong.to_markdown(), spong.to_latex()
     for out in (md, tex):
-        assert r"g_{2} &= g lc_{2} m_{2} C_{12}" in out
-        assert r"M_{12} &= I_{2} + m_{2}(l_{1} lc_{2} C_{2} + lc_{2}^{2})" in out
+        assert r"g_{2} &= g l_{c2} m_{2} C_{12}" in out
+        assert r"M_{12} &= I_{2} + m_{2}(l_{1} l_{c2} C_{2} + l_{c2}^{2})" in out
+        assert "lc_{" not in out  # Spong's l_{c2}, never lc_2 (l times c_2 beside c_1)
     assert "with gravity g = (0, -g, 0) in the base frame" in " ".join(text.split())
 
 
@@ -195,7 +196,7 @@ def test_handout_dynamics_section_compiles_without_overfull_boxes(tmp_path, need
     ).stdout
     if mode == "answers":
         assert "The Christoffel symbols" in text and "Inward pass" in text
-        assert r"g_{2} &= g lc_{2} m_{2} C_{12}" in source
+        assert r"g_{2} &= g l_{c2} m_{2} C_{12}" in source
     else:
         assert "Christoffel symbols" in text and "Newton" in text
 
@@ -206,3 +207,43 @@ def test_cli_handout_accepts_the_dynamics_section(tmp_path, capsys):
     source = out.read_text()
     assert r"\subsection{Equations of motion}" in source
     assert "Robot Modeling and" in source and "Newton--Euler" in source
+
+
+def test_spong2r_prints_its_links_and_C_and_never_lc_beside_c1(capsys):
+    d = derive_dynamics("spong2r")
+    assert [L.mass.text_lines[0] for L in d.links] == ["m1", "m2"]
+    C = dhsym.load("spong2r").dynamics().C
+    assert d.coriolis is not None and len(d.coriolis.rows) == 2
+    nota = dhsym.load("spong2r").notation
+    assert [[x.text for x in row] for row in d.coriolis.rows] == [
+        [nota.text(C[r, c]) for c in range(2)] for r in range(2)
+    ]
+    text = d.to_text()
+    for line in (
+        "1. The links: masses, centres of mass and inertias",
+        "   Link 1: m_1 = m1",
+        "   r_c1 = [lc1 - l1; 0; 0]",
+        "   I_2 = [ 0   0   0 ]",
+        "   C(q, qdot) = [ -l1*lc2*m2*thetadot2*S2  "
+        "-m2*(l1*thetadot1*lc2*S2 + l1*lc2*thetadot2*S2) ]",
+        "                [  l1*thetadot1*lc2*m2*S2  " + " " * 46 + "0 ]",
+        "     g1 = g*lc1*m1*C1 + m2*(g*l1*C1 + g*lc2*C12)",
+    ):
+        assert line in text.splitlines(), line
+    assert text.index("c221 = ") < text.index("C(q, qdot) = ") < text.index("g1 = ")
+    assert (
+        main(["derive", "spong2r", "--what", "dynamics", "--format", "latex", "--notation", "c1"])
+        == 0
+    )
+    tex = capsys.readouterr().out
+    assert r"g_{1} &= g l_{c1} m_{1} c_{1} + m_{2}(g l_{1} c_{1} + g l_{c2} c_{12})" in tex
+    assert "lc_{" not in tex and r"\ell" not in tex
+    flat = " ".join(tex.split())
+    assert (
+        r"\text{Link 1:} \quad m_{1} = m_{1}, \qquad "
+        r"r_{c1} = \begin{bmatrix} l_{c1} - l_{1} \\ 0 \\ 0 \end{bmatrix}" in flat
+    )
+    assert r"C(q, \dot{q}) = \begin{bmatrix} -l_{1} l_{c2} m_{2} \dot{\theta}_{2} s_{2} &" in flat
+    assert r"\subsection*{The links: masses, centres of mass and inertias}" in tex
+    md = d.to_markdown()
+    assert "### The links: masses, centres of mass and inertias" in md and r"C(q, \dot{q})" in md

@@ -146,3 +146,127 @@ def test_a_part_with_a_drive_is_refused():
     motor = LinkInertia(1, (0, 0, 0), sp.zeros(3), Jm=sp.Rational(1, 1000))
     with pytest.raises(TableError, match="part 2 has a drive"):
         LinkInertia.combine([LinkInertia(1, (0, 0, 0), sp.zeros(3)), motor])
+
+
+# A hostile campaign (issue 33, item 6): every input is refused by the reader with the
+# file, the row, the field and the offending symbol or value in the message.
+CAMPAIGN = [
+    # complex values, in every inertial field
+    ("d: 0, a: l2, I: [0, sqrt(-4), 0.1]", 2, "I", "2*I"),
+    ("d: 0, a: l2, m: sqrt(-1)", 2, "m", "I is complex"),
+    ("d: 0, a: l2, m: 1 + sqrt(-1)*l1", 2, "m", "I*l1"),
+    ("d: 0, a: l2, m: acos(2)", 2, "m", "acos(2)"),
+    ("d: 0, a: l2, m: asin(3)", 2, "m", "asin(3)"),
+    ("d: 0, a: l2, m: (-1)**(1/3)", 2, "m", "(-1)**(1/3)"),
+    ("d: 0, a: l2, r: [0, sqrt(-1), 0]", 2, "r", "I is complex"),
+    ("d: 0, a: l2, I: [[1, sqrt(-1), 0], [sqrt(-1), 1, 0], [0, 0, 1]]", 2, "I", "I is complex"),
+    ("d: 0, a: l2, G: sqrt(-1)", 2, "G", "I is complex"),
+    ("d: 0, a: l2, B: sqrt(-2)", 2, "B", "sqrt(2)*I"),
+    ("d: 0, a: l2, Tc: sqrt(-1)", 2, "Tc", "I is complex"),
+    ("d: 0, a: l2, Tc: [0.1, sqrt(-1)]", 2, "Tc", "I is complex"),
+    ("d: 0, a: l2, Jm: sqrt(-3)", 2, "Jm", "sqrt(3)*I"),
+    # joint variables in inertial parameters
+    ("d: 0, a: l2, m: 2 + sin(theta2)", 2, "m", "theta2"),
+    ("d: 0, a: l2, m: 2 + sin(theta1)", 2, "m", "theta1"),
+    ("d: 0, a: l2, r: [theta1 - 1, 0, 0]", 2, "r", "theta1"),
+    ("d: 0, a: l2, I: [theta2, 1, 1]", 2, "I", "theta2"),
+    ("d: 0, a: l2, G: theta2", 2, "G", "theta2"),
+    ("d: 0, a: l2, B: cos(theta1)", 2, "B", "theta1"),
+    ("d: 0, a: l2, Tc: theta1", 2, "Tc", "theta1"),
+    ("d: 0, a: l2, Jm: theta2**2", 2, "Jm", "theta2"),
+    # names of rates and accelerations
+    ("d: 0, a: l2, m: thetadot1", 2, "m", "thetadot1"),
+    ("d: 0, a: l2, m: thetaddot2", 2, "m", "thetaddot2"),
+    ("d: 0, a: l2, r: [thetadot2, 0, 0]", 2, "r", "thetadot2"),
+    ("d: 0, a: l2, I: [1, 1, thetaddot1]", 2, "I", "thetaddot1"),
+    ("d: 0, a: thetaddot2", 2, "a", "thetaddot2"),
+    ("d: thetadot1, a: l2", 2, "d", "thetadot1"),
+    ("theta: theta2 + thetadot1, d: 0, a: l2", 2, "theta", "thetadot1"),
+    # beyond the range of a double (written back as .inf, which the reader refuses)
+    ("d: 0, a: l2, m: 1e308*10", 2, "m", "1.0E+309"),
+    ("d: 0, a: l2, r: [-1e308*10, 0, 0]", 2, "r", "-1.0E+309"),
+    ("d: 0, a: l2, G: 1e308*10", 2, "G", "1.0E+309"),
+    ("d: 1e308*10, a: l2", 2, "d", "1.0E+309"),
+    # complex DH entries
+    ("d: 0, a: sqrt(-1)", 2, "a", "I is complex"),
+    ("d: acos(2), a: l2", 2, "d", "acos(2)"),
+]
+
+
+def _campaign_text(row2: str, top: str = "") -> str:
+    row1 = "{type: R, theta: theta1, d: 0, a: l1, alpha: 0, m: m1}"
+    head = "type: R, alpha: 0" if "theta:" in row2 else "type: R, theta: theta2, alpha: 0"
+    row2 = f"{{{head}, {row2}}}"
+    return f"{top}\njoints:\n  - {row1}\n  - {row2}\n"
+
+
+@pytest.mark.parametrize(("row2", "row", "field", "shown"), CAMPAIGN)
+def test_campaign_inputs_are_refused_with_file_row_field_and_symbol(row2, row, field, shown):
+    with pytest.raises(TableError) as err:
+        read_table_text(_campaign_text(row2), file="bad.yaml")
+    e = err.value
+    assert (e.file, e.row, e.field) == ("bad.yaml", row, field)
+    assert shown in str(e) and str(e).startswith(f"bad.yaml: row {row}, field {field}: ")
+
+
+@pytest.mark.parametrize(
+    ("top", "shown"),
+    [("gravity: [0, -thetaddot1, 0]", "thetaddot1"), ("gravity: [0, sqrt(-96), 0]", "I")],
+)
+def test_gravity_is_real_and_free_of_rates(top, shown):
+    with pytest.raises(TableError) as err:
+        read_table_text(_campaign_text("d: 0, a: l2", top), file="bad.yaml")
+    assert err.value.field == "gravity" and shown in str(err.value)
+
+
+@pytest.mark.parametrize("row2", [c[0] for c in CAMPAIGN[::6]])
+def test_the_command_line_exits_2_not_70(row2, tmp_path, capsys):
+    from dhsym.cli.main import main
+
+    path = tmp_path / "bad.yaml"
+    path.write_text(_campaign_text(row2), encoding="utf-8")
+    assert main(["show", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "bad.yaml: row 2, field" in err and "internal error" not in err
+
+
+def test_python_inertials_are_checked_as_the_file_reader_checks_them():
+    with pytest.raises(TableError, match="field m: I is complex"):
+        LinkInertia(sp.sqrt(-1), (0, 0, 0), sp.zeros(3))
+    with pytest.raises(TableError, match="field I: 2\\*I is complex"):
+        LinkInertia(1, (0, 0, 0), sp.diag(1, 2 * sp.I, 1))
+    with pytest.raises(TableError, match="field Tc: .*beyond the range"):
+        LinkInertia(1, (0, 0, 0), sp.zeros(3), Tc=(sp.Integer(10) ** 309, 0))
+    from dhsym.model.table import DHRow, DHTable
+
+    q1, q1dot = sp.symbols("q1 qdot1", real=True)
+    bad = LinkInertia(2 + sp.sin(q1), (0, 0, 0), sp.zeros(3))
+    with pytest.raises(TableError, match="row 1, field m: uses q1, the joint variable q1"):
+        DHTable.from_rows([DHRow.revolute(q1, a=1, inertia=bad)])
+    rate = LinkInertia(q1dot, (0, 0, 0), sp.zeros(3))
+    with pytest.raises(TableError, match="field m: uses qdot1, the rate of the joint variable"):
+        DHTable.from_rows([DHRow.revolute(q1, a=1, inertia=rate)])
+
+
+def test_a_substituted_value_that_makes_a_parameter_complex_is_refused():
+    t = table("m: sqrt(k - 1)", "values: {k: 0.5}")
+    with pytest.raises(TableError, match="complex"):
+        t.substituted()
+
+
+@pytest.mark.parametrize("k", [0.5, 2])
+def test_exporters_refuse_a_value_that_makes_an_entry_complex(k):
+    import dhsym
+    from dhsym.export.program import fk_program, rne_program
+
+    t = read_table_text(
+        "joints:\n"
+        "  - {type: R, theta: q1, d: 0, a: sqrt(k - 1), alpha: 0, m: 1, I: [0, 0.1, 0.1]}\n"
+        "  - {type: R, theta: q2, d: 0, a: acos(k), alpha: 0, m: 1, I: [0, 0.1, 0.1]}\n"
+        "values: {k: 1}\n"
+    )
+    assert fk_program(dhsym.Robot(t)).outputs  # k = 1: real
+    with pytest.raises(TableError, match="complex"):
+        fk_program(dhsym.Robot(t.with_values({"k": k})))
+    with pytest.raises(TableError, match="complex"):
+        rne_program(dhsym.Robot(t), values={"k": k})

@@ -12,6 +12,7 @@ def test_builtin_names_cover_the_lectures():
     assert {
         "planar2r",
         "planar4r",
+        "spong2r",
         "example1_rrp",
         "example4_6dof",
         "puma260",

@@ -24,8 +24,9 @@ from xml.etree.ElementTree import Element
 
 import sympy as sp
 
-from dhsym.errors import FormatError
+from dhsym.errors import FormatError, TableError
 from dhsym.model.angles import AngleSnap, Snapped, snap_angle
+from dhsym.model.entries import as_expr
 from dhsym.model.parsing import numeral_problem
 
 from ..xmlsafe import read_xml, read_xml_file
@@ -215,7 +216,10 @@ def _numbers(
             )
         if problem := numeral_problem(part):
             raise FormatError(f"{problem[0]}: {problem[1]}", file=file, field=where)
-        out.append(sp.Rational(part))
+        try:  # the tables' check: within a double's range (1e309 would be inf in code)
+            out.append(as_expr(sp.Rational(part)))
+        except TableError as err:
+            raise FormatError(err.message, file=file, field=where) from None
     return tuple(out)
 
 

@@ -20,6 +20,7 @@ from .support import joint, long_chain, urdf
         ("nan 0 0", "'nan' is not a finite decimal number"),
         ("inf 0 0", "'inf' is not a finite decimal number"),
         ("1e99999 0 0", "exponent"),
+        ("1e309 0 0", "1.0E+309 is beyond the range of floating-point numbers"),
         ("0.1 two 0", "'two' is not a finite decimal number"),
         ("${d1} 0 0", "xacro expressions must be expanded first"),
         ("0 0", "expected 3 numbers"),
@@ -109,3 +110,14 @@ def test_urdf_sources_by_suffix_or_text(tmp_path: Path) -> None:
     assert is_urdf_source(tmp_path / "arm.URDF") and is_urdf_source("arm.urdf.xacro")
     assert is_urdf_source("  <robot name='r'/>") and not is_urdf_source("puma560")
     assert not is_urdf_source(tmp_path / "arm.yaml") and not is_urdf_source(3)
+
+
+def test_an_inertial_beyond_a_double_is_refused_with_its_element() -> None:
+    body = '<inertial><mass value="1e309"/><inertia ixx="1" iyy="1" izz="1"/></inertial>'
+    text = urdf(joint("j1", "a", "b"), "a").replace(
+        "</robot>", f'<link name="b">{body}</link></robot>'
+    )
+    with pytest.raises(FormatError) as err:
+        read_urdf(text)
+    assert "<link name='b'> <inertial> <mass>" in str(err.value)
+    assert "beyond the range" in str(err.value)
