@@ -43,6 +43,7 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.kinematics.decoupling import StructureError
 from dhsym.kinematics.jacobian import axis_frame
+from dhsym.kinematics.numeric import evaluate_chunked
 from dhsym.model.table import JointType
 
 from .closed_form import ClosedForm
@@ -77,10 +78,6 @@ __all__ = ["ClosedFormSolver", "Layout"]
 
 #: what an :class:`IKSolution` of a closed form says it is
 METHOD = "closed form"
-#: poses per block: large enough that numpy's cost per call is small against its work,
-#: small enough that a block's temporaries stay in the cache (measured: 1024-4096 alike)
-_CHUNK = 2048
-
 #: fraction of a singular factor's largest value below which branches may coincide
 _SUSPECT = 1e-4
 
@@ -380,54 +377,54 @@ class ClosedFormSolver:
     ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
         """Every branch of every pose: ``q`` ``(n, K, N)``; with a ``target`` (the poses
         before base and tool were undone) also the residual ``(K, N)`` over ``cells`` (of
-        the 12, column by column) and each singular factor's closeness ``(F, K, N)``."""
+        the 12, column by column) and each singular factor's closeness ``(F, K, N)``.
+
+        The program's values (each ``(*branches, chunk)``) are kept branch by branch, so
+        :func:`~dhsym.kinematics.numeric.evaluate_chunked` fills ``(N, outputs × K)`` (a
+        view of ``(outputs, K, N)``)."""
         N, K, n = inner.shape[0], self.K, self.n
         checked = target is not None
         fn = self._program("checked" if checked else "raw")
-        full = (*self.shape, N)
-        q = np.empty((n, K, N))
-        qv = q.reshape(n, *full)
-        if checked:
-            assert target is not None and cells is not None
-            residual = np.empty((K, N))
-            rv = residual.reshape(full)
-            F = len(self._factor_exprs)
-            closeness = np.empty((F, K, N))
-            cv = closeness.reshape(F, *full)
         w = len(self._wrist_s)
-        at = Layout.numpy(n, w, len(self._factor_exprs) if checked else 0)
-        rows, wrists = [], []
+        F = len(self._factor_exprs) if checked else 0
+        at = Layout.numpy(n, w, F)
+        keep = list(range(n + w))  # the joint values and the wrist sines
+        if checked:
+            assert cells is not None
+            keep.append((at.position if tuple(cells) == _POSITION else at.whole).start)
+            keep += range(at.factors.start, at.factors.stop)
+        signs, full = self._sign_arrays, self.shape
+        # inputs and outputs laid out column by column (each column contiguous over the
+        # poses, as numpy's loops like best), passed to evaluate_chunked as (N, k) views
+        arrays = [_entries(inner).T]
+        if target is not None and target is not inner:
+            arrays.append(_entries(target).T)
+        both = len(arrays) == 2
+
+        def program(*columns: np.ndarray) -> list[np.ndarray]:
+            pose = list(columns[:12])
+            target_args = (list(columns[12:]) if both else pose) if checked else []
+            res = fn(*pose, *signs, *target_args)
+            size = len(columns[0])
+            values = (np.broadcast_to(np.asarray(res[i], dtype=float), (*full, size)) for i in keep)
+            return [row for v in values for row in v.reshape(K, size)]
+
+        table = np.empty((len(keep), K, N))
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            for start in range(0, N, _CHUNK):
-                sl = slice(start, min(start + _CHUNK, N))
-                # the 12 entries column by column, each contiguous over the poses
-                args = [*_entries(inner[sl]), *self._sign_arrays]
-                if target is not None:  # checked
-                    args += args[:12] if target is inner else _entries(target[sl])
-                res = fn(*args)
-                joints, sines = res[at.joints], res[at.wrist]
-                for k in range(n):
-                    qv[k, ..., sl] = joints[k]
-                if w:  # |sin θ5| near 0: θ4 and θ6 from the whole rotation, below
-                    small = np.asarray(sines[0] < WRIST_NEAR)
-                    hit = np.nonzero(small.reshape(-1, small.shape[-1]).any(axis=0))[0]
-                    if hit.size:
-                        s = np.broadcast_to(sines[0], (*self.shape, sl.stop - start))
-                        rows.append(hit + start)
-                        wrists.append(s.reshape(K, -1)[:, hit])
-                if target is not None and cells is not None:  # checked
-                    (rv[..., sl],) = res[at.position if tuple(cells) == _POSITION else at.whole]
-                    for f, value in enumerate(res[at.factors]):
-                        cv[f, ..., sl] = value
-        if rows:
-            hits = np.concatenate(rows)
-            self._singular_wrist(inner[hits], q, hits, np.concatenate(wrists, axis=1))
-            if checked:
-                assert target is not None and cells is not None
-                qs = q[:, :, hits].transpose(2, 1, 0)
-                residual[:, hits], closeness[:, :, hits] = self._check(qs, target[hits], cells)
-        if not checked:
-            return q, None, None
+            evaluate_chunked(program, *arrays, out=table.reshape(len(keep) * K, N).T)
+        q, residual, closeness = table[:n], None, None
+        if checked:
+            residual, closeness = table[n + w], table[n + w + 1 :]
+        if w:  # |sin θ5| near 0: θ4 and θ6 from the whole rotation, below
+            sines = table[n]
+            hits = np.nonzero((sines < WRIST_NEAR).any(axis=0))[0]
+            if hits.size:
+                self._singular_wrist(inner[hits], q, hits, sines[:, hits])
+                if checked:
+                    assert target is not None and cells is not None
+                    assert residual is not None and closeness is not None
+                    qs = q[:, :, hits].transpose(2, 1, 0)
+                    residual[:, hits], closeness[:, :, hits] = self._check(qs, target[hits], cells)
         return q, residual, closeness
 
     def _singular_wrist(
@@ -655,10 +652,10 @@ def _empty(check: str | None, tol: float) -> str:
     return f"no branch of the closed form reproduces the {check} within {tol:g}"
 
 
-def _entries(poses: np.ndarray) -> list[np.ndarray]:
-    """The 12 entries of poses ``(m, 4, 4)`` column by column, each a contiguous ``(m,)``."""
-    block = np.ascontiguousarray(poses[:, :3].transpose(2, 1, 0))
-    return list(block.reshape(12, -1))
+def _entries(poses: np.ndarray) -> np.ndarray:
+    """The 12 entries of poses ``(m, 4, 4)`` column by column, each a contiguous ``(m,)``:
+    ``(12, m)``."""
+    return np.ascontiguousarray(poses[:, :3].transpose(2, 1, 0)).reshape(12, len(poses))
 
 
 def _smallest(values: Sequence[float]) -> float:

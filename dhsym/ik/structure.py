@@ -31,7 +31,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhsym.kinematics.jacobian import axis_frame
-from dhsym.model.table import JointType
+from dhsym.kinematics.numeric import word_product
+from dhsym.kinematics.transforms import chain_word
+from dhsym.model.table import Elementary, JointType
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
@@ -86,16 +88,27 @@ class Structure:
 
 
 def _axes(robot: KinematicChain, values: object = None) -> tuple[np.ndarray, np.ndarray]:
-    """Points ``(n, 3)`` and unit directions ``(n, 3)`` of the joint axes at a random pose."""
+    """Points ``(n, 3)`` and unit directions ``(n, 3)`` of the joint axes at a random pose.
+
+    The frames are numeric products of the chain's elementary transforms
+    (:func:`~dhsym.kinematics.numeric.word_product`): nothing is compiled for one point.
+    """
     rng = np.random.default_rng(7)
     table = robot.table
     known = table.value_map
     generic = {s: float(rng.uniform(0.3, 1.3)) for s in table.constants if s not in known}
     given = dict(values) if isinstance(values, dict) else {}
     q = rng.uniform(-np.pi, np.pi, len(robot.variables))
+    vals = table.with_values({**generic, **given}).value_map
+    env = {v: np.array([x]) for v, x in zip(robot.variables, q)}
+    memo: dict[object, np.ndarray] = {}
     points, dirs = [], []
     for row in table.joint_rows:
-        M = robot.fk_function(0, axis_frame(robot, row), {**generic, **given})(q)
+        word = [
+            Elementary(e.kind, e.axis, e.value.xreplace(vals))
+            for e in chain_word(table, 0, axis_frame(robot, row))
+        ]
+        M = word_product(word, env, 1, memo=memo)[0]
         points.append(M[:3, 3])
         dirs.append(M[:3, 2])
     return np.array(points), np.array(dirs)

@@ -73,6 +73,7 @@ __all__ = [
     "euler_angles",
     "geometric_jacobian",
     "jacobian_function",
+    "numeric_jacobian",
     "rate_matrix",
     "resolve_frame",
 ]
@@ -429,6 +430,63 @@ def jacobian_function(
 
     J = geometric_jacobian(robot, frame, point)
     return compile_matrix(J.matrix, robot.variables, _values(robot, values))
+
+
+def numeric_jacobian(
+    robot: KinematicChain, q: object, values: Mapping[Any, object] | None = None
+) -> np.ndarray:
+    """The geometric Jacobian at ``q`` from numeric frames, nothing compiled:
+    ``(n,)`` → ``(6, n)``, ``(N, n)`` → ``(N, 6, n)``.
+
+    The frames ``^bT_i`` (``b`` the base of ``fk``) are the partial products of the
+    chain's elementary transforms, multiplied as numbers
+    (:func:`~dhsym.kinematics.numeric.word_product`); with ``z`` and ``p`` the axis and
+    origin of the joint's axis frame and ``p_e`` the tool's origin, a revolute column is
+    ``[z × (p_e − p); z]`` and a prismatic one ``[z; 0]`` (times the joint's rate, as in
+    :func:`geometric_jacobian`). The same numbers as :meth:`~dhsym.kinematics.chain.
+    KinematicChain.jacob0` without compiling the Jacobian: for a few one-off evaluations
+    (the compiled one pays for itself over many).
+
+    >>> import dhsym, numpy as np
+    >>> r = dhsym.load("stanford")
+    >>> q = [0.3, -0.5, 0.4, 0.2, 0.7, -1.1]
+    >>> numeric_jacobian(r, q).shape, np.allclose(numeric_jacobian(r, q), r.jacob0(q))
+    ((6, 6), True)
+    >>> numeric_jacobian(dhsym.load("planar2r"), [[0.0, 0.0]])[:, :2]
+    array([[[0. , 0. ],
+            [1.8, 0.8]]])
+    """
+    import numpy as np
+
+    from dhsym.model.table import Elementary
+
+    from .numeric import word_product
+    from .transforms import chain_word
+
+    Q = np.asarray(q, dtype=float)
+    single = Q.ndim == 1
+    Q = Q.reshape(-1, robot.n)
+    N = Q.shape[0]
+    vals = _values(robot, values)
+    base, tool = resolve_frame(robot, "base"), resolve_frame(robot, "tool")
+    word = [
+        Elementary(e.kind, e.axis, e.value.xreplace(vals))
+        for e in chain_word(robot.table, base, tool)
+    ]
+    env = {v: Q[:, i] for i, v in enumerate(robot.variables)}
+    frames = word_product(word, env, N, prefixes=True)  # (N, len(word) + 1, 4, 4)
+    end = frames[:, -1, :3, 3]
+    J = np.zeros((N, 6, robot.n))
+    for col, (row, _, joint, rate) in enumerate(_joint_rows(robot)):
+        # frame a's product is a prefix of the word from the base to the tool
+        F = frames[:, len(chain_word(robot.table, base, axis_frame(robot, row)))]
+        z, p = F[:, :3, 2], F[:, :3, 3]
+        if joint is JointType.REVOLUTE:
+            J[:, :3, col], J[:, 3:, col] = np.cross(z, end - p), z
+        else:
+            J[:, :3, col] = z
+        J[:, :, col] *= float(rate)
+    return J[0] if single else J
 
 
 def euler_angles(R: object, euler: str = "zyz") -> np.ndarray:

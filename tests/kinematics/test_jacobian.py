@@ -20,6 +20,7 @@ from dhsym.kinematics.jacobian import (
     euler_angles,
     geometric_jacobian,
     jacobian_function,
+    numeric_jacobian,
     rate_matrix,
 )
 from dhsym.kinematics.simplification import prove_equal
@@ -255,3 +256,31 @@ def test_base_and_tool_transforms_are_part_of_the_jacobian() -> None:
     assert max(np.abs(_finite_difference(robot, q) - Jk).max() for q, Jk in zip(qs, J)) < 1e-7
     assert geometric_jacobian(robot).frame == "W"
     assert geometric_jacobian(robot).point == "tool"
+
+
+def _with_base_and_tool(name: str) -> dhsym.Robot:
+    from dataclasses import replace
+
+    from dhsym.model.table import Elementary
+
+    table = dhsym.load(name).table
+    base = (Elementary("T", "z", sp.Rational(1, 2)), Elementary("R", "x", sp.pi / 3))
+    tool = (Elementary("T", "z", sp.Rational(1, 10)), Elementary("R", "y", sp.pi / 2))
+    return dhsym.Robot(replace(table, base=base, tool=tool))
+
+
+@pytest.mark.parametrize("name", ["planar3r", "stanford", "puma560_modified", "base_and_tool"])
+def test_jacobian_from_numeric_frames_is_jacob0(name: str) -> None:
+    robot = _with_base_and_tool("stanford") if name == "base_and_tool" else _robot(name)
+    qs = _random_q(robot, 5, seed=8)
+    J = numeric_jacobian(robot, qs)
+    assert J.shape == (5, 6, robot.n)
+    assert np.abs(J - robot.jacob0(qs)).max() < 1e-12
+    assert np.abs(numeric_jacobian(robot, qs[0]) - J[0]).max() == 0.0
+
+
+def test_jacobian_from_numeric_frames_takes_values() -> None:
+    robot = dhsym.load("planar3r")
+    values = {"a1": 1.0, "a2": 0.8, "a3": 0.5}
+    q = [0.3, -0.7, 1.1]
+    assert np.abs(numeric_jacobian(robot, q, values) - robot.jacob0(q, values=values)).max() < 1e-12

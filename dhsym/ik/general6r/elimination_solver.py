@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhsym.errors import DHError
+from dhsym.kinematics.jacobian import numeric_jacobian
 
 from ..protocols import read_poses
 from ..solution import IKSolution
@@ -164,11 +165,12 @@ class EliminationSolver:
         return q, residual, self._near_singular(q, singular_tol), reason
 
     def _near_singular(self, q: np.ndarray, singular_tol: float) -> np.ndarray:
-        """``(k,)`` True where the robot's geometric Jacobian at ``q`` (base frame, the
-        chain's own compiled Jacobian) has ``σ_min < singular_tol · σ_max``."""
+        """``(k,)`` True where the robot's geometric Jacobian at ``q`` (base frame, from the
+        chain's numeric frames: a few points, not worth compiling) has
+        ``σ_min < singular_tol · σ_max``."""
         if not len(q):
             return np.zeros(0, dtype=bool)
-        J = np.asarray(self.robot.jacobian(q, values=self.values))
+        J = numeric_jacobian(self.robot, q, self.values)
         s = np.linalg.svd(J, compute_uv=False)
         near: np.ndarray = s[:, -1] < singular_tol * s[:, 0]
         return near
