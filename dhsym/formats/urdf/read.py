@@ -24,8 +24,9 @@ from xml.etree.ElementTree import Element
 
 import sympy as sp
 
-from dhsym.errors import FormatError
+from dhsym.errors import DHError, FormatError
 from dhsym.model.angles import AngleSnap, Snapped, snap_angle
+from dhsym.model.inertia import LinkInertia
 from dhsym.model.parsing import numeral_problem
 
 from ..xmlsafe import read_xml, read_xml_file
@@ -62,9 +63,17 @@ def is_urdf_source(source: object) -> bool:
 
 
 def read_urdf(
-    source: str | os.PathLike[str], *, snap_angles: AngleSnap | bool | float | None = True
+    source: str | os.PathLike[str],
+    *,
+    snap_angles: AngleSnap | bool | float | None = True,
+    physical: bool = True,
 ) -> UrdfModel:
     """Read a URDF file (a path) or URDF text (starting with ``<``) into a :class:`UrdfModel`.
+
+    Each ``<inertial>`` is checked as the table reader checks a link's inertia
+    (:meth:`~dhsym.model.inertia.LinkInertia.check`: no negative mass, an inertia that is
+    symmetric positive semi-definite and, unless ``physical=False``, keeps the triangle
+    inequality).
 
     >>> m = read_urdf('''<robot name="r"><link name="a"/><link name="b"/>
     ...   <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
@@ -75,6 +84,11 @@ def read_urdf(
     Traceback (most recent call last):
     ...
     dhsym.errors.FormatError: field <link name='a'>: a second link with this name
+    >>> read_urdf('''<robot name="r"><link name="a"><inertial><mass value="-1"/>
+    ...   <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link></robot>''')
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.FormatError: field <link name='a'> <inertial>: a mass cannot be negative (got -1)
     """
     rule = AngleSnap.parse(snap_angles)
     if isinstance(source, str) and source.lstrip().startswith("<"):
@@ -90,10 +104,10 @@ def read_urdf(
                 file=str(source),
             )
         root, file = read_xml_file(source)
-    return _model(root, file, rule)
+    return _model(root, file, rule, physical)
 
 
-def _model(root: Element, file: str | None, rule: AngleSnap) -> UrdfModel:
+def _model(root: Element, file: str | None, rule: AngleSnap, physical: bool) -> UrdfModel:
     if root.tag != "robot":
         raise FormatError(
             f"the root element is <{root.tag}>, expected <robot>", file=file, field=f"<{root.tag}>"
@@ -116,7 +130,12 @@ def _model(root: Element, file: str | None, rule: AngleSnap) -> UrdfModel:
         names.add(name)
         inertial = el.find("inertial")
         links.append(
-            (name, None if inertial is None else _inertial(inertial, el, file, rule, snapped))
+            (
+                name,
+                None
+                if inertial is None
+                else _inertial(inertial, el, file, rule, snapped, physical),
+            )
         )
     joints: list[UrdfJoint] = []
     joint_names: set[str] = set()
@@ -235,7 +254,12 @@ def _origin(parent: Element, file: str | None, rule: AngleSnap, snapped: list[Sn
 
 
 def _inertial(
-    el: Element, link: Element, file: str | None, rule: AngleSnap, snapped: list[Snapped]
+    el: Element,
+    link: Element,
+    file: str | None,
+    rule: AngleSnap,
+    snapped: list[Snapped],
+    physical: bool,
 ) -> Inertial:
     mass_el = el.find("mass")
     where = _where(link, "inertial")
@@ -247,6 +271,13 @@ def _inertial(
     if inertia_el is None:
         raise FormatError("missing <inertia>", file=file, field=where)
     inertia = tuple(_numbers(inertia_el.get(k), 1, f"{where} <inertia> {k}", file)[0] for k in keys)
+    xx, xy, xz, yy, yz, zz = inertia
+    body = LinkInertia(mass, (0, 0, 0), sp.Matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]))
+    try:  # the table reader's checks: mass, symmetry, semi-definiteness, triangle inequality
+        body.check(physical=physical)
+    except DHError as err:
+        hint = " (or read with physical=False)" if "physical: false" in err.message else ""
+        raise FormatError(err.message + hint, file=file, field=where) from None
     return Inertial(mass, _origin(el, file, rule, snapped), inertia)
 
 
