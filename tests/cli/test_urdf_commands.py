@@ -70,3 +70,21 @@ def test_export_lang_urdf_writes_one_file(tmp_path: Path) -> None:
     argv = ["export", "puma560", "--lang", "urdf", "--prefix", "puma", "-o", str(tmp_path)]
     assert main(argv) == 0 and (tmp_path / "puma.urdf").is_file()
     assert main(["export", "puma560", "--lang", "urdf", "--what", "fk", "-o", str(tmp_path)]) == 2
+
+
+_HOSTILE_NAMES = """<robot name="&lt;script&gt;alert(1)&lt;/script&gt;&#10;# Injected *title*">
+<link name="base&#10;## x"/><link name="&lt;img src=x onerror=alert(1)&gt;"/>
+<joint name="j" type="revolute"><parent link="base&#10;## x"/>
+<child link="&lt;img src=x onerror=alert(1)&gt;"/><axis xyz="0 0 1"/></joint></robot>"""
+
+
+def test_show_escapes_names_from_the_file(tmp_path: Path, capsys) -> None:
+    path = tmp_path / "names.urdf"
+    path.write_text(_HOSTILE_NAMES)
+    assert main(["show", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "<script>" not in out and "<img" not in out
+    assert out.startswith("# &lt;script&gt;alert(1)&lt;/script&gt; \\# Injected \\*title\\*\n")
+    assert "\n## x" not in out  # a newline in a link name starts no heading
+    assert main(["show", str(path), "--format", "yaml"]) == 0  # YAML quotes them
+    assert 'name: "<script>alert(1)</script>\\n# Injected *title*"' in capsys.readouterr().out
