@@ -270,7 +270,7 @@ def _cmd_ik(args: argparse.Namespace) -> int:
     from dhsym.errors import DHError
     from dhsym.ik.levenberg_marquardt import numeric_ik
 
-    robot = load_robot(args.robot, args.values, need_numbers=True)
+    robot = load_robot(args.robot, args.values, need_numbers=True, tip=args.tip, base=args.base)
     T = _pose(args, robot)
     names = [str(v) for v in robot.variables]
     if args.numeric:
@@ -389,4 +389,5 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     add_angle_options(k)
     k.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
     k.add_argument("--json", action="store_true", help="JSON output")
+    add_urdf_options(k)
     k.set_defaults(func=_cmd_ik)

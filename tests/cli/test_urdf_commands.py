@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import dhsym
 from dhsym.cli.main import main
@@ -88,3 +89,40 @@ def test_show_escapes_names_from_the_file(tmp_path: Path, capsys) -> None:
     assert "\n## x" not in out  # a newline in a link name starts no heading
     assert main(["show", str(path), "--format", "yaml"]) == 0  # YAML quotes them
     assert 'name: "<script>alert(1)</script>\\n# Injected *title*"' in capsys.readouterr().out
+
+
+# --- round trips: convert, then every command on the written file -----------------------------
+
+_DATA = Path(UR5).parent
+_TIPS = {
+    "ur5_robot.urdf": "tool0",
+    "panda.urdf": "panda_hand_tcp",
+    "kinova.urdf": "j2s6s200_end_effector",
+    "so100.urdf": "gripper",
+}
+_CASES = [
+    pytest.param(
+        file, to, marks=() if (file, to) == ("ur5_robot.urdf", "standard") else pytest.mark.slow
+    )
+    for file in _TIPS
+    for to in ("standard", "modified", "urdf")
+]
+
+
+@pytest.mark.parametrize(("file", "to"), _CASES)
+def test_converted_files_are_read_by_every_command(file: str, to: str, tmp_path: Path) -> None:
+    source = _DATA / file
+    out = tmp_path / f"arm.{'urdf' if to == 'urdf' else 'yaml'}"
+    assert main(["convert", str(source), "--tip", _TIPS[file], "--to", to, "-o", str(out)]) == 0
+    if to != "urdf":  # limits: numbers in the file's unit (once -565486677/(500000*pi))
+        assert "pi" not in "".join(ln for ln in out.read_text().splitlines() if "limits" in ln)
+    tip = ["--tip", "tool"] if to == "urdf" else []
+    table = chain_from_urdf(source, tip=_TIPS[file]).table
+    q = ",".join(["0.1"] * table.n)
+    assert main(["show", str(out), *tip]) == 0
+    assert main(["derive", str(out), *tip, "--format", "text"]) == 0
+    assert main(["fk", str(out), *tip, "--q", q, "--rad"]) == 0
+    assert main(["ik", str(out), *tip, "--pose-of", q, "--rad", "--numeric"]) == 0
+    written = dhsym.Robot(read_table(out)) if to != "urdf" else chain_from_urdf(out, tip="tool")
+    qs = np.full(table.n, 0.1)
+    assert np.abs(written.fk(qs) - chain_from_urdf(source, tip=_TIPS[file]).fk(qs)).max() < 1e-9
