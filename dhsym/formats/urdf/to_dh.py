@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import os
 import textwrap
+import unicodedata
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -47,6 +48,7 @@ from dhsym.model.inertia import LinkInertia
 from dhsym.model.kinds import Convention
 from dhsym.model.table import DHTable
 from dhsym.model.tablefile import dump_table
+from dhsym.notation.escape import clean_text
 
 from .description import MOVING_KINDS, Expr, Inertial, UrdfJoint, UrdfModel
 from .read import read_urdf
@@ -371,4 +373,17 @@ def table_yaml(imp: UrdfImport) -> str:
     for k, text in enumerate(imp.steps, start=1):
         lines += textwrap.wrap(f"{k}. {text}", 88, subsequent_indent="   ")
     lines += [w for note in imp.table.warnings for w in textwrap.wrap(f"Note: {note}", 88)]
-    return "".join(f"# {line}\n" for line in lines) + dump_table(imp.table)
+    return "".join(f"# {_comment(line)}\n" for line in lines) + dump_table(imp.table)
+
+
+def _comment(text: str) -> str:
+    """One comment line: names from the file lose control characters, and the line breaks
+    YAML knows beyond newline (U+0085, U+2028, U+2029) become spaces, so no name ends the
+    comment and writes a key.
+
+    >>> _comment("link b\u2028physical: false")
+    'link b physical: false'
+    """
+    return "".join(
+        " " if unicodedata.category(ch) in ("Zl", "Zp") else ch for ch in clean_text(text)
+    )

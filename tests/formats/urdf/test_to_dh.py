@@ -286,3 +286,14 @@ def test_physical_false_accepts_a_broken_triangle_and_says_so() -> None:
     imp = import_urdf(text, physical=False)
     assert imp.table.physical is False
     assert "physical: false" in dhsym.formats.urdf.table_yaml(imp)
+
+
+def test_names_cannot_write_keys_into_the_table_file() -> None:
+    # YAML ends a comment at U+2028 too: a link name must not turn into a key
+    from dhsym.formats.urdf import table_yaml
+    from dhsym.model.tablefile import read_table_text
+
+    evil = "b\u2028physical: false\u2028#"
+    text = urdf(joint("j", "a", evil, "continuous", '<axis xyz="0 0 1"/>'), ["a", evil])
+    written = table_yaml(import_urdf(text))
+    assert read_table_text(written).physical is True
