@@ -73,7 +73,8 @@ def read_urdf(
     Each ``<inertial>`` is checked as the table reader checks a link's inertia
     (:meth:`~dhsym.model.inertia.LinkInertia.check`: no negative mass, an inertia that is
     symmetric positive semi-definite and, unless ``physical=False``, keeps the triangle
-    inequality).
+    inequality; ``<robot physical="false">``, as :func:`~dhsym.formats.urdf.write.write_urdf`
+    writes a table marked ``physical: false``, does the same).
 
     >>> m = read_urdf('''<robot name="r"><link name="a"/><link name="b"/>
     ...   <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
@@ -120,6 +121,12 @@ def _model(root: Element, file: str | None, rule: AngleSnap, physical: bool) -> 
                 file=file,
                 field=f"<{tag}>",
             )
+    declared = root.get("physical", "true").strip().lower()
+    if declared not in ("true", "false"):
+        raise FormatError(
+            f"physical must be true or false, got {declared[:20]!r}", file=file, field="<robot>"
+        )
+    physical = physical and declared == "true"
     snapped: list[Snapped] = []
     links: list[tuple[str, Inertial | None]] = []
     names: set[str] = set()
@@ -164,7 +171,9 @@ def _model(root: Element, file: str | None, rule: AngleSnap, physical: bool) -> 
             )
         joints.append(joint)
         parent_of[joint.child] = joint
-    model = UrdfModel(root.get("name", ""), tuple(links), tuple(joints), file, tuple(snapped))
+    model = UrdfModel(
+        root.get("name", ""), tuple(links), tuple(joints), file, tuple(snapped), physical
+    )
     if links:
         _check_acyclic(model)
     return model

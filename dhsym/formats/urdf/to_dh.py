@@ -206,7 +206,7 @@ def import_urdf(
             + "; DH z axes along the URDF axes, variables zero at the URDF zero."
         ),
         warnings=tuple(notes),
-        physical=physical,
+        physical=physical and model.physical,
     )
     inertials = tuple(
         (name, inertial)
