@@ -47,10 +47,10 @@ _VAR_PREFIXES = ("theta", "th", "q", "d")
 _FUNCTION_HEAD = re.compile(r"^(sin|cos|tan)(?P<rest>[A-Za-z][A-Za-z0-9_]*)$")  # cosθ1
 _TRIG_OF = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan}
 #: An angle difference as dhsym prints it in text: ``C[12-4]`` is cos(θ1 + θ2 − θ4), with
-#: ``,`` between labels longer than one character (``S[10,11-12]``).
+#: ``,`` between labels longer than one character (``S[10,11-12]``); joint numbers only, so
+#: ``S[1-x]`` stays a product.
 ANGLE_DIFFERENCE = re.compile(
-    r"(?<![A-Za-z0-9_])(?P<f>[CcSs])\[(?P<pos>[A-Za-z0-9]+(?:,[A-Za-z0-9]+)*)"
-    r"(?P<neg>(?:-[A-Za-z0-9]+)+)\]"
+    r"(?<![A-Za-z0-9_])(?P<f>[CcSs])\[(?P<pos>[0-9]+(?:,[0-9]+)*)(?P<neg>(?:-[0-9]+)+)\]"
 )
 _DIFFERENCE_NAME = re.compile(
     r"^(?P<f>[CcSs])_angle_(?P<pos>[A-Za-z0-9_]+?)(?P<neg>(?:_minus_[A-Za-z0-9]+)+)$"
