@@ -11,7 +11,12 @@ Run ``python benchmarks/bench_urdf.py``. In one process it times, as the median 
 * ``table``: the whole import, standard and modified (``import_urdf``: chain, exact home
   geometry, the frame assignment with its sentences and its check at 6 configurations);
 * ``fk``: the robot's first ``fk`` (compiling the closed form), then one call;
-* ``hostile``: refusing an entity bomb, a 1,000,000-deep document and 60,000 elements.
+* ``hostile``: refusing an entity bomb, a 1,000,000-deep document and 60,000 elements;
+* ``chain``: plain chains of 30 and 100 revolute joints (``MAX_CHAIN`` is 100), axes
+  alternating z and y, every third origin turned by π/2, each imported once (process
+  time, after the warm-up import of a 3-joint chain, in the same process);
+* ``axis``: two-joint URDFs whose second axis is a measured direction that once ran for
+  minutes in sympy's ``factorint`` (``3 1e-40 7``, ``1e300 1e-300 1``, ``0.3 1e-17 0.95``).
 
 It prints each time and its ratio to ``xml``, and the largest difference between ``fk``
 and an independent numpy product of the URDF's origins and axes at 100 random q.
@@ -36,7 +41,8 @@ sys.path.insert(0, str(ROOT))
 from dhsym.errors import FormatError  # noqa: E402
 from dhsym.formats.urdf import import_urdf, read_urdf  # noqa: E402
 from dhsym.formats.xmlsafe import read_xml  # noqa: E402
-from tests.formats.urdf.support import urdf_pose  # noqa: E402
+from tests.formats.urdf.support import joint, urdf, urdf_pose  # noqa: E402
+from tests.formats.urdf.test_to_dh import plain_chain  # noqa: E402
 
 PANDA = ROOT / "tests" / "data" / "urdf" / "panda.urdf"
 TIP = "panda_hand"
@@ -100,6 +106,19 @@ def main() -> int:
         for q in rng.uniform(-math.pi, math.pi, (100, 7))
     )
     print(f"  fk vs numpy product of the URDF at 100 random q: max difference {worst:.1e}")
+    import_urdf(plain_chain(3), tip="l3")  # warm-up
+    for n in (30, 100):
+        t0 = time.process_time()
+        import_urdf(plain_chain(n), tip=f"l{n}")
+        print(f"  {f'chain of {n} joints':20s} {time.process_time() - t0:9.2f} s (process time)")
+    for axis in ("3 1e-40 7", "1e300 1e-300 1", "0.3 1e-17 0.95"):
+        text = urdf(
+            joint("j1", "a", "b", body='<origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>')
+            + joint("j2", "b", "c", body=f'<origin xyz="0.2 0 0.1"/><axis xyz="{axis}"/>')
+        )
+        t0 = time.process_time()
+        import_urdf(text, tip="c")
+        print(f"  {f'axis {axis}':20s} {time.process_time() - t0:9.2f} s (process time)")
     return 0
 
 

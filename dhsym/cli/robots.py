@@ -49,6 +49,7 @@ def _cmd_list(args: argparse.Namespace) -> int:
 def _cmd_show(args: argparse.Namespace) -> int:
     from dhsym.model.entries import exact_decimal
     from dhsym.model.tablefile import dump_table
+    from dhsym.notation.escape import escape_markdown
     from dhsym.notation.tables import table_markdown
     from dhsym.robot import Robot
 
@@ -58,7 +59,8 @@ def _cmd_show(args: argparse.Namespace) -> int:
     if args.format == "yaml":
         print(dump_table(t), end="")
     else:
-        print(f"# {t.name}\n\n{t.convention.value} DH convention; source: {t.source}\n")
+        name, source = escape_markdown(t.name), escape_markdown(t.source)  # from files: text
+        print(f"# {name}\n\n{t.convention.value} DH convention; source: {source}\n")
         print(table_markdown(t))
         if t.values:
             print("\nvalues: " + ", ".join(f"{k} = {exact_decimal(v) or v}" for k, v in t.values))
@@ -268,7 +270,7 @@ def _cmd_ik(args: argparse.Namespace) -> int:
     from dhsym.errors import DHError
     from dhsym.ik.levenberg_marquardt import DESCRIPTION, numeric_ik
 
-    robot = load_robot(args.robot, args.values, need_numbers=True)
+    robot = load_robot(args.robot, args.values, need_numbers=True, tip=args.tip, base=args.base)
     T = _pose(args, robot)
     names = [str(v) for v in robot.variables]
     if args.numeric:
@@ -388,4 +390,5 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     add_angle_options(k)
     k.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
     k.add_argument("--json", action="store_true", help="JSON output")
+    add_urdf_options(k)
     k.set_defaults(func=_cmd_ik)

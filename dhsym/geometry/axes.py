@@ -57,6 +57,7 @@ __all__ = [
     "sign_of",
     "simplify_vector",
     "unit",
+    "unit_direction",
     "vector",
 ]
 
@@ -136,6 +137,8 @@ def sign_of(expr: sp.Expr, values: Values | None = None, *, what: str = "a lengt
     >>> sign_of(sp.sqrt(2) - 1), sign_of(a2 - 1, {a2: sp.Rational(1, 2)}), sign_of(a2**2 + 1)
     (1, -1, 1)
     """
+    if expr.is_Rational:
+        return int(sp.sign(expr))
     expr = sp.radsimp(sp.expand(expr)) if not expr.free_symbols else sp.expand(expr)
     for test, result in ((expr.is_zero, 0), (expr.is_positive, 1), (expr.is_negative, -1)):
         if test:
@@ -186,7 +189,68 @@ def unit(v: Vector, values: Values | None = None) -> Vector:
     Matrix([[sqrt(2)/2, 0, sqrt(2)/2]])
     """
     n = norm(v, values)
-    return Vector([sp.radsimp(sp.simplify(c / n)) for c in v])
+    return Vector([c / n if (c / n).is_Rational else sp.radsimp(sp.simplify(c / n)) for c in v])
+
+
+#: Largest component of the primitive integer vector of a direction normalised exactly
+#: (``(1, 1, 0)`` → ``sqrt(2)/2``); larger ones, and sums of roots of integers above
+#: :data:`_SMALL_NUMBER`, are normalised in floating point (:func:`unit_direction`).
+_SMALL_DIRECTION = 100
+_SMALL_NUMBER = 10**12
+
+
+def unit_direction(d: Vector) -> Vector:
+    """The unit vector along a direction of numbers, exact where that stays cheap.
+
+    A direction that is already exactly unit is kept; a small-integer direction (the
+    components in the ratio of integers up to 100: ``(0.6, 0, 0.8)``, ``(1, 1, 0)``) and
+    one of small radicals (``(sqrt(3)/2, 1/2, 0)``) is normalised exactly. Any other (a
+    measured direction such as ``(0.3, 1e-17, 0.95)``) is normalised in floating point
+    and read as the nearest *rational* unit vector (stereographic coordinates within
+    1e-12), so it is exactly unit, its arithmetic stays rational, and no huge number is
+    ever factorised.
+
+    >>> unit_direction(vector([0.6, 0, 0.8])).T, unit_direction(vector([1, 1, 0])).T
+    (Matrix([[3/5, 0, 4/5]]), Matrix([[sqrt(2)/2, sqrt(2)/2, 0]]))
+    >>> u = unit_direction(vector([3, sp.Rational("1e-40"), 7]))
+    >>> u.dot(u), [round(float(c), 12) for c in u]
+    (1, [0.393919298579, 0.0, 0.919145030018])
+    """
+    n2 = sp.expand(d.dot(d))
+    if n2 == 1:
+        return Vector(d)
+    if all(c.is_Rational for c in d):
+        scale = sp.ilcm(*(c.q for c in d))
+        ints = [int(c * scale) for c in d]
+        g = sp.igcd(*ints)
+        primitive = [i // g for i in ints]
+        if max(abs(i) for i in primitive) <= _SMALL_DIRECTION:
+            return unit(Vector(primitive))
+        return _rational_unit(d)
+    atoms = [a for a in (*d.atoms(sp.Rational), *n2.atoms(sp.Rational))]
+    if all(abs(a.p) <= _SMALL_NUMBER and a.q <= _SMALL_NUMBER for a in atoms):
+        return unit(d)
+    return _rational_unit(d)
+
+
+def _rational_unit(d: Vector) -> Vector:
+    """The rational unit vector nearest (within about 1e-12) the float normalisation of ``d``:
+    inverse stereographic projection ``(2s, 2t, 1 − s² − t²)/(1 + s² + t²)`` of rational
+    ``s, t`` (from the pole opposite the largest component, so nothing divides by ~0)."""
+    big = max(abs(to_float(c)) for c in d)
+    f = np.array([to_float(c) / big for c in d])  # scaled first: 1e300 would overflow
+    f = f / np.linalg.norm(f)
+    k = int(np.argmax(np.abs(f)))
+    sign = 1 if f[k] > 0 else -1
+    i, j = [m for m in range(3) if m != k]
+    s, t = (
+        sp.Rational(Fraction(f[m] / (1 + sign * f[k])).limit_denominator(_SMALL_NUMBER))
+        for m in (i, j)
+    )
+    r = 1 + s**2 + t**2
+    out = [sp.Integer(0)] * 3
+    out[i], out[j], out[k] = 2 * s / r, 2 * t / r, sign * (1 - s**2 - t**2) / r
+    return Vector(out)
 
 
 def simplify_vector(v: sp.MatrixBase) -> Vector:
@@ -195,7 +259,7 @@ def simplify_vector(v: sp.MatrixBase) -> Vector:
     >>> simplify_vector(sp.Matrix([1 / sp.sqrt(2), sp.sin(1) ** 2 + sp.cos(1) ** 2, 0])).T
     Matrix([[sqrt(2)/2, 1, 0]])
     """
-    return Vector([sp.radsimp(sp.simplify(c)) for c in v])
+    return Vector([c if c.is_Rational else sp.radsimp(sp.simplify(c)) for c in v])
 
 
 @dataclass(frozen=True)
@@ -235,7 +299,7 @@ class JointAxis:
         if is_zero_vector(d):
             raise GeometryError(f"{label}: the direction of the axis has zero length")
         object.__setattr__(self, "point", point)
-        object.__setattr__(self, "direction", unit(d))
+        object.__setattr__(self, "direction", unit_direction(d))
 
     @property
     def label(self) -> str:

@@ -294,8 +294,14 @@ def _base(base: object, axis: JointAxis, vals: dict[Any, Any]) -> Frame:
     return Frame(0, f.origin, f.x, f.z)
 
 
+def _simplify(value: sp.Expr) -> sp.Expr:
+    """``simplify``, skipped where it has nothing to do (a rational, a rational times π)."""
+    return value if value.is_Rational or (value / sp.pi).is_Rational else sp.simplify(value)
+
+
 def _atan2(y: sp.Expr, x: sp.Expr) -> sp.Expr:
-    return sp.simplify(sp.atan2(sp.radsimp(sp.simplify(y)), sp.radsimp(sp.simplify(x))))
+    y, x = (v if v.is_Rational else sp.radsimp(sp.simplify(v)) for v in (y, x))
+    return _simplify(sp.atan2(y, x))
 
 
 def _rows(
@@ -311,11 +317,11 @@ def _rows(
         F, G = frames[k - 1], frames[k]
         dp = simplify_vector(G.origin - F.origin)
         if conv is Convention.STANDARD:  # about z_{k-1}, then along x_k
-            theta, d = _atan2(F.x.cross(G.x).dot(F.z), F.x.dot(G.x)), sp.simplify(dp.dot(F.z))
-            a, alpha = sp.simplify(dp.dot(G.x)), _atan2(F.z.cross(G.z).dot(G.x), F.z.dot(G.z))
+            theta, d = _atan2(F.x.cross(G.x).dot(F.z), F.x.dot(G.x)), _simplify(dp.dot(F.z))
+            a, alpha = _simplify(dp.dot(G.x)), _atan2(F.z.cross(G.z).dot(G.x), F.z.dot(G.z))
         else:  # along x_{i-1}, then about z_i
-            alpha, a = _atan2(F.z.cross(G.z).dot(F.x), F.z.dot(G.z)), sp.simplify(dp.dot(F.x))
-            d, theta = sp.simplify(dp.dot(G.z)), _atan2(F.x.cross(G.x).dot(G.z), F.x.dot(G.x))
+            alpha, a = _atan2(F.z.cross(G.z).dot(F.x), F.z.dot(G.z)), _simplify(dp.dot(F.x))
+            d, theta = _simplify(dp.dot(G.z)), _atan2(F.x.cross(G.x).dot(G.z), F.x.dot(G.x))
         var = symbol(f"{'theta' if ax.joint == 'R' else 'd'}{k}")
         var = symbol(f"q{k}") if var in consts else var
         home = theta if ax.joint == "R" else d
@@ -362,19 +368,38 @@ def _check_home_exact(fa: FrameAssignment) -> None:
     """
     zero = {m.variable: m.offset for m in fa.variable_map}  # the home pose
     frames = [*fa.frames, fa.tool.frame if fa.tool else fa.frames[-1]]
+    table, n = fa.table, fa.table.n
+    # world -> frame k is a prefix of world -> tool: one pass, each factor multiplied once
+    full = [
+        Elementary(e.kind, e.axis, e.value.xreplace(zero)) for e in chain_word(table, -1, n + 1)
+    ]
+    cut = _prefix_lengths(table)
+    numeric = not any(f.matrix.free_symbols for f in frames) and not any(
+        e.value.free_symbols for e in full
+    )
+    if numeric:
+        full = [Elementary(e.kind, e.axis, sp.N(e.value, _DIGITS)) for e in full]
+    product, done = sp.eye(4), 0
     for k, f in enumerate(frames):
-        w = [Elementary(e.kind, e.axis, e.value.subs(zero)) for e in chain_word(fa.table, -1, k)]
-        if not (f.matrix.free_symbols or any(e.value.free_symbols for e in w)):
-            w = [Elementary(e.kind, e.axis, sp.N(e.value, _DIGITS)) for e in w]
-            diff = plain_product(w) - f.matrix.evalf(_DIGITS)
+        product = product * plain_product(full[done : cut[k]])
+        done = cut[k]
+        if numeric:
+            diff = product - f.matrix.evalf(_DIGITS)
             ok = all(abs(x) < sp.Float(10.0**-_AGREE, _DIGITS) for x in diff)
         else:
-            ok = is_zero_vector(simplify_vector(plain_product(w) - f.matrix))
+            ok = is_zero_vector(simplify_vector(product - f.matrix))
         if not ok:
             raise GeometryError(
                 f"internal check failed: frame {k} of the table differs from the "
                 "assigned frame at home (please report this)"
             )
+
+
+def _prefix_lengths(table: DHTable) -> list[int]:
+    """The length of the word world -> frame k, k = 0 … n + 1 (base, four factors a row, tool)."""
+    return [len(table.base) + 4 * k for k in range(table.n + 1)] + [
+        len(table.base) + 4 * table.n + len(table.tool)
+    ]
 
 
 def _verify(fa: FrameAssignment, samples: int, seed: int, tol: float) -> float:
@@ -386,7 +411,7 @@ def _verify(fa: FrameAssignment, samples: int, seed: int, tol: float) -> float:
 
     full = chain_word(table, -1, n + 1)  # world -> frame k is a prefix of world -> tool
     prefixes = compile_word(full, table.variables, vals, prefixes=True)
-    cut = [len(chain_word(table, -1, k)) for k in range(n + 2)]
+    cut = _prefix_lengths(table)
     homes = [
         np.array([[to_float(x) for x in row] for row in f.matrix.subs(vals).tolist()])
         for f in [*fa.frames, fa.tool.frame if fa.tool else fa.frames[-1]]

@@ -388,6 +388,16 @@ def dump_table(table: DHTable, *, angles: str | None = None) -> str:
     - {type: R, theta: q1 + 90, d: 0, a: 1, alpha: -90}
     >>> read_table_text(dump_table(t)) == t
     True
+
+    An angle that is no rational number of degrees (a measured limit of -2.8973 rad) is
+    written as its degrees to 12 significant digits, which the reader takes:
+
+    >>> from dataclasses import replace
+    >>> limited = replace(t, rows=(replace(t.rows[0], limits=(sp.Rational("-2.8973"), 1)),))
+    >>> dump_table(limited).splitlines()[-1]
+    '- {type: R, theta: q1 + 90, d: 0, a: 1, alpha: -90, limits: [-166.003061983, 57.2957795131]}'
+    >>> read_table_text(dump_table(limited)).rows[0].limits[0].evalf(8)
+    -2.8973000
     """
     unit = AngleUnit.parse(angles or table.angles)
 
@@ -396,6 +406,8 @@ def dump_table(table: DHTable, *, angles: str | None = None) -> str:
             return _plain(v)
         sym = sp.Add(*[t for t in sp.Add.make_args(v) if t.free_symbols])
         const = sp.nsimplify(sp.expand((v - sym) * 180 / sp.pi))
+        if not const.is_Rational:  # a measured angle (a URDF limit): degrees, 12 digits
+            const = sp.Rational(f"{float(const):.12g}")
         if sym == 0:
             return _plain(const)
         return _text(sym) if const == 0 else f"{_text(sym)} + {const}".replace("+ -", "- ")

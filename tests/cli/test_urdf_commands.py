@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import dhsym
 from dhsym.cli.main import main
@@ -70,3 +72,59 @@ def test_export_lang_urdf_writes_one_file(tmp_path: Path) -> None:
     argv = ["export", "puma560", "--lang", "urdf", "--prefix", "puma", "-o", str(tmp_path)]
     assert main(argv) == 0 and (tmp_path / "puma.urdf").is_file()
     assert main(["export", "puma560", "--lang", "urdf", "--what", "fk", "-o", str(tmp_path)]) == 2
+
+
+_HOSTILE_NAMES = """<robot name="&lt;script&gt;alert(1)&lt;/script&gt;&#10;# Injected *title*">
+<link name="base&#10;## x"/><link name="&lt;img src=x onerror=alert(1)&gt;"/>
+<joint name="j" type="revolute"><parent link="base&#10;## x"/>
+<child link="&lt;img src=x onerror=alert(1)&gt;"/><axis xyz="0 0 1"/></joint></robot>"""
+
+
+def test_show_escapes_names_from_the_file(tmp_path: Path, capsys) -> None:
+    path = tmp_path / "names.urdf"
+    path.write_text(_HOSTILE_NAMES)
+    assert main(["show", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "<script>" not in out and "<img" not in out
+    assert out.startswith("# &lt;script&gt;alert(1)&lt;/script&gt; \\# Injected \\*title\\*\n")
+    assert "\n## x" not in out  # a newline in a link name starts no heading
+    assert main(["show", str(path), "--format", "yaml"]) == 0  # YAML quotes them
+    assert 'name: "<script>alert(1)</script>\\n# Injected *title*"' in capsys.readouterr().out
+
+
+# --- round trips: convert, then every command on the written file -----------------------------
+
+_DATA = Path(UR5).parent
+_TIPS = {
+    "ur5_robot.urdf": "tool0",
+    "panda.urdf": "panda_hand_tcp",
+    "kinova.urdf": "j2s6s200_end_effector",
+    "so100.urdf": "gripper",
+}
+_CASES = [
+    pytest.param(
+        file, to, marks=() if (file, to) == ("ur5_robot.urdf", "standard") else pytest.mark.slow
+    )
+    for file in _TIPS
+    for to in ("standard", "modified", "urdf")
+]
+
+
+@pytest.mark.parametrize(("file", "to"), _CASES)
+def test_converted_files_are_read_by_every_command(file: str, to: str, tmp_path: Path) -> None:
+    source = _DATA / file
+    out = tmp_path / f"arm.{'urdf' if to == 'urdf' else 'yaml'}"
+    assert main(["convert", str(source), "--tip", _TIPS[file], "--to", to, "-o", str(out)]) == 0
+    if to != "urdf":  # limits: numbers in the file's unit (once -565486677/(500000*pi))
+        limits = re.findall(r"limits: \[([^\]]*)\]", out.read_text())
+        assert limits and not any("pi" in pair for pair in limits)
+    tip = ["--tip", "tool"] if to == "urdf" else []
+    table = chain_from_urdf(source, tip=_TIPS[file]).table
+    q = ",".join(["0.1"] * table.n)
+    assert main(["show", str(out), *tip]) == 0
+    assert main(["derive", str(out), *tip, "--format", "text"]) == 0
+    assert main(["fk", str(out), *tip, "--q", q, "--rad"]) == 0
+    assert main(["ik", str(out), *tip, "--pose-of", q, "--rad", "--numeric"]) == 0
+    written = dhsym.Robot(read_table(out)) if to != "urdf" else chain_from_urdf(out, tip="tool")
+    qs = np.full(table.n, 0.1)
+    assert np.abs(written.fk(qs) - chain_from_urdf(source, tip=_TIPS[file]).fk(qs)).max() < 1e-9

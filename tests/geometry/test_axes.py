@@ -17,6 +17,7 @@ from dhsym.geometry.axes import (
     exact_number,
     norm,
     sign_of,
+    unit_direction,
     vector,
 )
 
@@ -128,3 +129,41 @@ def test_frames_and_tools_are_validated():
         Tool((0, 0, 0), (0, 0, 0), (0, 1, 0))
     with pytest.raises(GeometryError, match="must be orthogonal; got a·s = sqrt\\(2\\)/2"):
         Tool((0, 0, 0), (0, 0, 1), (0, 1, 1))
+
+
+# --- directions: exact where cheap, rational unit vectors otherwise ---------------------------
+
+
+@pytest.mark.parametrize(
+    ("given", "expected"),
+    [
+        ((0.6, 0, 0.8), (sp.Rational(3, 5), 0, sp.Rational(4, 5))),
+        ((2, 2, 0), (sp.sqrt(2) / 2, sp.sqrt(2) / 2, 0)),
+        ((0, 0, -7), (0, 0, -1)),
+        ((sp.sqrt(3) / 2, sp.Rational(1, 2), 0), (sp.sqrt(3) / 2, sp.Rational(1, 2), 0)),
+    ],
+)
+def test_small_integer_directions_stay_exact(given: tuple, expected: tuple) -> None:
+    assert tuple(unit_direction(vector(given))) == expected
+
+
+@pytest.mark.parametrize(
+    "given",
+    [
+        ("3", "1e-40", "7"),
+        ("1e300", "1e-300", "1"),
+        ("0.3", "1e-17", "0.95"),
+        ("-0.101", "0.2", "-0.97"),
+        ("0.123", "0.4567", "0.89"),
+        ("0.123456789", "0.987654321", "-0.5"),
+    ],
+)
+def test_measured_directions_are_rational_unit_vectors_near_the_float_one(given: tuple) -> None:
+    # once: minutes in sympy's factorint; now floats, then the nearest rational unit vector
+    exact = [sp.Rational(v) for v in given]
+    u = unit_direction(vector(exact))
+    assert all(c.is_Rational for c in u) and u.dot(u) == 1
+    big = max(abs(v) for v in exact)
+    f = np.array([float(v / big) for v in exact])
+    assert np.abs(np.array([float(c) for c in u]) - f / np.linalg.norm(f)).max() < 1e-11
+    assert JointAxis((0, 0, 0), exact).direction == u

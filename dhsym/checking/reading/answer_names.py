@@ -34,7 +34,7 @@ from dhsym.errors import ParseError
 from dhsym.model.parsing import normalize_name, symbol
 from dhsym.model.table import DHTable, JointType
 
-__all__ = ["NameContext"]
+__all__ = ["ANGLE_DIFFERENCE", "NameContext", "angle_difference_name"]
 
 _ABBREV = re.compile(r"^(?P<f>[CcSs])_?(?P<rest>[A-Za-z0-9_]+)$")
 _GLUED = re.compile(r"^(?:[CcSs][0-9]+){2,}$")
@@ -46,8 +46,29 @@ _GREEK_HEAD = re.compile(
 _VAR_PREFIXES = ("theta", "th", "q", "d")
 _FUNCTION_HEAD = re.compile(r"^(sin|cos|tan)(?P<rest>[A-Za-z][A-Za-z0-9_]*)$")  # cosθ1
 _TRIG_OF = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan}
+#: An angle difference as dhsym prints it in text: ``C[12-4]`` is cos(θ1 + θ2 − θ4), with
+#: ``,`` between labels longer than one character (``S[10,11-12]``); joint numbers only, so
+#: ``S[1-x]`` stays a product.
+ANGLE_DIFFERENCE = re.compile(
+    r"(?<![A-Za-z0-9_])(?P<f>[CcSs])\[(?P<pos>[0-9]+(?:,[0-9]+)*)(?P<neg>(?:-[0-9]+)+)\]"
+)
+_DIFFERENCE_NAME = re.compile(
+    r"^(?P<f>[CcSs])_angle_(?P<pos>[A-Za-z0-9_]+?)(?P<neg>(?:_minus_[A-Za-z0-9]+)+)$"
+)
 _SPLIT_LONGEST = 48  # longest glued name that is split into factors
 _PIECE_LONGEST = 20  # longest factor in it
+
+
+def angle_difference_name(match: re.Match[str]) -> str:
+    """The one name that stands for a printed angle difference (:data:`ANGLE_DIFFERENCE`),
+    which :meth:`NameContext.resolve` reads back: ``C[12-4]`` → ``C_angle_12_minus_4``.
+
+    >>> ANGLE_DIFFERENCE.sub(angle_difference_name, "a1*C[12-4] + S[10,11-12]")
+    'a1*C_angle_12_minus_4 + S_angle_10_and_11_minus_12'
+    """
+    pos = match["pos"].replace(",", "_and_")
+    negs = "".join(f"_minus_{label}" for label in match["neg"][1:].split("-"))
+    return f"{match['f']}_angle_{pos}{negs}"
 
 
 def _canon(name: str) -> str:
@@ -191,6 +212,9 @@ class NameContext:
             if all(p is not None for p in parts):
                 return sp.Mul(*parts)
             return None
+        d = _DIFFERENCE_NAME.match(name)
+        if d is not None:
+            return self._difference(d)
         f = _FUNCTION_HEAD.match(name)
         if f is not None and self.symbol(f["rest"]) is not None:  # cosθ1: cos of a key symbol
             return _TRIG_OF[f[1]](self.symbol(f["rest"]))
@@ -210,6 +234,19 @@ class NameContext:
             except ParseError:
                 return None
         return trig(target) if target is not None else None
+
+    def _difference(self, d: re.Match[str]) -> sp.Expr | None:
+        """cos/sin of the labels before ``_minus_`` less those after (None: unknown label)."""
+        pos = d["pos"]
+        if pos in self._labels:
+            first = [pos]
+        else:
+            first = pos.split("_and_") if "_and_" in pos else list(pos)
+        rest = d["neg"].split("_minus_")[1:]
+        if any(label not in self._labels for label in (*first, *rest)):
+            return None
+        arg = sp.Add(*(self._labels[k] for k in first)) - sp.Add(*(self._labels[k] for k in rest))
+        return (sp.cos if d["f"] in "Cc" else sp.sin)(arg)
 
     def table_resolve(self, name: str) -> sp.Expr | None:
         """Resolve for table cells: only symbol aliases (no ``C12`` abbreviations)."""

@@ -39,7 +39,7 @@ from dhsym.model.table import Convention, DHTable
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
 from ._table_text import TABLE_FORM, grid_table, yaml_table
-from .answer_names import NameContext
+from .answer_names import ANGLE_DIFFERENCE, NameContext, angle_difference_name
 from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
 from .limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer, check_time
 from .literals import Literal
@@ -234,7 +234,7 @@ def _cell_text(cell: str) -> str:
     cell = cell.strip()
     if is_latex(cell):
         return latex_to_text(cell)
-    cell = cell.replace("**", "^")
+    cell = ANGLE_DIFFERENCE.sub(angle_difference_name, cell.replace("**", "^"))  # C[12-4]
     if "=" in cell:
         cell = cell.rsplit("=", 1)[1]
     cell = _DEGREE_O.sub(r"\1°", flatten_subscripts(cell))

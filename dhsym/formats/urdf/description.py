@@ -145,6 +145,7 @@ class UrdfModel:
     joints: tuple[UrdfJoint, ...]
     file: str | None = None
     snapped: tuple[Snapped, ...] = ()
+    physical: bool = True  # False: inertias accepted without the triangle inequality
 
     @property
     def link_names(self) -> tuple[str, ...]:

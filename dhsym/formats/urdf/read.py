@@ -24,9 +24,10 @@ from xml.etree.ElementTree import Element
 
 import sympy as sp
 
-from dhsym.errors import FormatError, TableError
+from dhsym.errors import DHError, FormatError, TableError
 from dhsym.model.angles import AngleSnap, Snapped, snap_angle
 from dhsym.model.entries import as_expr
+from dhsym.model.inertia import LinkInertia
 from dhsym.model.parsing import numeral_problem
 
 from ..xmlsafe import read_xml, read_xml_file
@@ -63,9 +64,18 @@ def is_urdf_source(source: object) -> bool:
 
 
 def read_urdf(
-    source: str | os.PathLike[str], *, snap_angles: AngleSnap | bool | float | None = True
+    source: str | os.PathLike[str],
+    *,
+    snap_angles: AngleSnap | bool | float | None = True,
+    physical: bool = True,
 ) -> UrdfModel:
     """Read a URDF file (a path) or URDF text (starting with ``<``) into a :class:`UrdfModel`.
+
+    Each ``<inertial>`` is checked as the table reader checks a link's inertia
+    (:meth:`~dhsym.model.inertia.LinkInertia.check`: no negative mass, an inertia that is
+    symmetric positive semi-definite and, unless ``physical=False``, keeps the triangle
+    inequality; ``<robot physical="false">``, as :func:`~dhsym.formats.urdf.write.write_urdf`
+    writes a table marked ``physical: false``, does the same).
 
     >>> m = read_urdf('''<robot name="r"><link name="a"/><link name="b"/>
     ...   <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
@@ -76,6 +86,11 @@ def read_urdf(
     Traceback (most recent call last):
     ...
     dhsym.errors.FormatError: field <link name='a'>: a second link with this name
+    >>> read_urdf('''<robot name="r"><link name="a"><inertial><mass value="-1"/>
+    ...   <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link></robot>''')
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.FormatError: field <link name='a'> <inertial>: a mass cannot be negative (got -1)
     """
     rule = AngleSnap.parse(snap_angles)
     if isinstance(source, str) and source.lstrip().startswith("<"):
@@ -91,10 +106,10 @@ def read_urdf(
                 file=str(source),
             )
         root, file = read_xml_file(source)
-    return _model(root, file, rule)
+    return _model(root, file, rule, physical)
 
 
-def _model(root: Element, file: str | None, rule: AngleSnap) -> UrdfModel:
+def _model(root: Element, file: str | None, rule: AngleSnap, physical: bool) -> UrdfModel:
     if root.tag != "robot":
         raise FormatError(
             f"the root element is <{root.tag}>, expected <robot>", file=file, field=f"<{root.tag}>"
@@ -107,6 +122,12 @@ def _model(root: Element, file: str | None, rule: AngleSnap) -> UrdfModel:
                 file=file,
                 field=f"<{tag}>",
             )
+    declared = root.get("physical", "true").strip().lower()
+    if declared not in ("true", "false"):
+        raise FormatError(
+            f"physical must be true or false, got {declared[:20]!r}", file=file, field="<robot>"
+        )
+    physical = physical and declared == "true"
     snapped: list[Snapped] = []
     links: list[tuple[str, Inertial | None]] = []
     names: set[str] = set()
@@ -117,7 +138,12 @@ def _model(root: Element, file: str | None, rule: AngleSnap) -> UrdfModel:
         names.add(name)
         inertial = el.find("inertial")
         links.append(
-            (name, None if inertial is None else _inertial(inertial, el, file, rule, snapped))
+            (
+                name,
+                None
+                if inertial is None
+                else _inertial(inertial, el, file, rule, snapped, physical),
+            )
         )
     joints: list[UrdfJoint] = []
     joint_names: set[str] = set()
@@ -146,7 +172,9 @@ def _model(root: Element, file: str | None, rule: AngleSnap) -> UrdfModel:
             )
         joints.append(joint)
         parent_of[joint.child] = joint
-    model = UrdfModel(root.get("name", ""), tuple(links), tuple(joints), file, tuple(snapped))
+    model = UrdfModel(
+        root.get("name", ""), tuple(links), tuple(joints), file, tuple(snapped), physical
+    )
     if links:
         _check_acyclic(model)
     return model
@@ -239,7 +267,12 @@ def _origin(parent: Element, file: str | None, rule: AngleSnap, snapped: list[Sn
 
 
 def _inertial(
-    el: Element, link: Element, file: str | None, rule: AngleSnap, snapped: list[Snapped]
+    el: Element,
+    link: Element,
+    file: str | None,
+    rule: AngleSnap,
+    snapped: list[Snapped],
+    physical: bool,
 ) -> Inertial:
     mass_el = el.find("mass")
     where = _where(link, "inertial")
@@ -251,6 +284,13 @@ def _inertial(
     if inertia_el is None:
         raise FormatError("missing <inertia>", file=file, field=where)
     inertia = tuple(_numbers(inertia_el.get(k), 1, f"{where} <inertia> {k}", file)[0] for k in keys)
+    xx, xy, xz, yy, yz, zz = inertia
+    body = LinkInertia(mass, (0, 0, 0), sp.Matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]))
+    try:  # the table reader's checks: mass, symmetry, semi-definiteness, triangle inequality
+        body.check(physical=physical)
+    except DHError as err:
+        hint = " (or read with physical=False)" if "physical: false" in err.message else ""
+        raise FormatError(err.message + hint, file=file, field=where) from None
     return Inertial(mass, _origin(el, file, rule, snapped), inertia)
 
 

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import os
 import textwrap
+import unicodedata
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -47,6 +48,7 @@ from dhsym.model.inertia import LinkInertia
 from dhsym.model.kinds import Convention
 from dhsym.model.table import DHTable
 from dhsym.model.tablefile import dump_table
+from dhsym.notation.escape import clean_text
 
 from .description import MOVING_KINDS, Expr, Inertial, UrdfJoint, UrdfModel
 from .read import read_urdf
@@ -102,9 +104,14 @@ def import_urdf(
     convention: Convention | str = "standard",
     *,
     snap_angles: AngleSnap | bool | float | None = True,
+    physical: bool = True,
 ) -> UrdfImport:
     """Read a URDF and derive the DH table of the chain from ``base`` (default: the root)
     to ``tip`` (default: the one leaf link), with the frame-assignment sentences.
+
+    The inertials are checked as the table reader checks inertias; ``physical=False``
+    accepts inertias that break the triangle inequality (published data that does), and
+    the table says so (``physical: false``).
 
     >>> imp = import_urdf('''<robot name="r"><link name="a"/><link name="b"/><link name="c"/>
     ...   <joint name="j1" type="revolute"><parent link="a"/><child link="b"/>
@@ -114,7 +121,11 @@ def import_urdf(
     ...
     dhsym.errors.FormatError: field tip: the tree branches below link 'a': give the tip ... b ...
     """
-    model = source if isinstance(source, UrdfModel) else read_urdf(source, snap_angles=snap_angles)
+    model = (
+        source
+        if isinstance(source, UrdfModel)
+        else read_urdf(source, snap_angles=snap_angles, physical=physical)
+    )
     if not model.links:
         raise FormatError("the robot has no links", file=model.file, field="<robot>")
     start = base or model.root
@@ -195,6 +206,7 @@ def import_urdf(
             + "; DH z axes along the URDF axes, variables zero at the URDF zero."
         ),
         warnings=tuple(notes),
+        physical=physical and model.physical,
     )
     inertials = tuple(
         (name, inertial)
@@ -211,6 +223,7 @@ def chain_from_urdf(
     convention: Convention | str = "standard",
     *,
     snap_angles: AngleSnap | bool | float | None = True,
+    physical: bool = True,
     **kw: object,
 ) -> KinematicChain:
     """A :class:`~dhsym.kinematics.chain.KinematicChain` from a URDF file or text (see
@@ -223,7 +236,7 @@ def chain_from_urdf(
     >>> r.table.rows[0], r.fk([0.2])[0, 3]
     (DHRow(P: theta=0, d=d1, a=0, alpha=0), np.float64(0.2))
     """
-    imp = import_urdf(source, tip, base, convention, snap_angles=snap_angles)
+    imp = import_urdf(source, tip, base, convention, snap_angles=snap_angles, physical=physical)
     return imp.chain(**kw)
 
 
@@ -239,9 +252,10 @@ def _dh_inertias(
     sums are then expanded, and read as exact numbers within 1e-12 where measured angles put
     floats in them). Links before the first moving joint form the base,
     which has no row; links behind a moving joint off the chain (fingers) are not on the
-    chain. Both are named in the returned notes. Rotations stay exact where the ``rpy``
-    angles are (snapped or rational multiples of π); measured angles use
-    :attr:`Origin.rational_matrix`.
+    chain. Both are named in the returned notes. An ``<inertial>`` given as all zeros is a
+    massless part (a row of only such parts is massless), not an unknown one. Rotations
+    stay exact where the ``rpy`` angles are (snapped or rational multiples of π); measured
+    angles use :attr:`Origin.rational_matrix`.
     """
     rows = {j.name: k for k, j in enumerate(moving, start=1)}
     children: dict[str, list[UrdfJoint]] = {}
@@ -255,9 +269,9 @@ def _dh_inertias(
     while stack:
         link, T, body = stack.pop()
         found = inertial.get(link)
-        if found is not None and (found.mass != 0 or any(v != 0 for v in found.inertia)):
+        if found is not None:  # given, even all zero: a massless link, not unknown symbols
             bodies[body].append((T * found.origin.rational_matrix, found))
-            if body == 0:
+            if body == 0 and (found.mass != 0 or any(v != 0 for v in found.inertia)):
                 base.append(link)
         for j in children.get(link, []):
             if j.moving and j.name not in rows or j.kind in ("floating", "planar"):
@@ -359,4 +373,17 @@ def table_yaml(imp: UrdfImport) -> str:
     for k, text in enumerate(imp.steps, start=1):
         lines += textwrap.wrap(f"{k}. {text}", 88, subsequent_indent="   ")
     lines += [w for note in imp.table.warnings for w in textwrap.wrap(f"Note: {note}", 88)]
-    return "".join(f"# {line}\n" for line in lines) + dump_table(imp.table)
+    return "".join(f"# {_comment(line)}\n" for line in lines) + dump_table(imp.table)
+
+
+def _comment(text: str) -> str:
+    """One comment line: names from the file lose control characters, and the line breaks
+    YAML knows beyond newline (U+0085, U+2028, U+2029) become spaces, so no name ends the
+    comment and writes a key.
+
+    >>> _comment("link b\u2028physical: false")
+    'link b physical: false'
+    """
+    return "".join(
+        " " if unicodedata.category(ch) in ("Zl", "Zp") else ch for ch in clean_text(text)
+    )

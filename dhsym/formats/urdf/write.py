@@ -186,6 +186,8 @@ def _robot(name: str, links: list[str], joints: list[_Joint], table: DHTable) ->
     moved = {j.child: j.kind for j in joints if j.kind != "fixed"}
     inertias = {f"link{k}": row.inertia for k, row in enumerate(table.rows, start=1)}
     robot = ET.Element("robot", name=name)
+    if not table.physical:  # read back with the triangle inequality off, as the table says
+        robot.set("physical", "false")
     for material, rgba in _MATERIALS:
         ET.SubElement(ET.SubElement(robot, "material", name=material), "color", rgba=rgba)
     for link in links:

@@ -67,3 +67,36 @@ def test_whole_name_first_and_ambiguous_splits_refused():
     assert ctx.resolve("lC1") == S("l") * sp.cos(t1)
     with pytest.raises(ParseError, match="ambiguous name 'lc1C12'.*'l c1 C12'.*'lc1 C12'"):
         ctx.resolve("lc1C12")
+
+
+# --- what `derive --format text` prints, `check` reads ------------------------------------
+
+
+def test_printed_angle_differences_read_back() -> None:
+    ctx = NameContext.from_table(load_table("scara"))
+    t1, t2, t4 = (sp.Symbol(f"theta{k}", real=True) for k in (1, 2, 4))
+    assert ctx.resolve("C_angle_12_minus_4") == sp.cos(t1 + t2 - t4)
+    assert ctx.resolve("s_angle_2_minus_1_minus_4") == sp.sin(t2 - t1 - t4)
+    assert ctx.resolve("C_angle_12_minus_9") is None  # no joint 9: not an abbreviation
+
+
+ARMS = ["scara", "planar2r", "planar4r", "puma560", "puma560_modified", "ur5", "stanford"]
+ARMS += ["cartesian", "cylindrical", "example1_rrp", "example4_6dof"]
+
+
+@pytest.mark.parametrize("robot", ARMS)
+def test_every_printed_entry_of_the_arm_matrix_is_correct(robot: str) -> None:
+    # each entry of ^0T_n as `dhsym derive --format text` prints it (C[12-4] included),
+    # fed to check as the answer to its own question
+    import dhsym
+
+    chain = dhsym.Robot(load_table(robot))
+    n = chain.n
+    T = chain.transform(0, n).matrix
+    printed_all = [chain.notation.text(T[r, c]) for r in range(3) for c in range(4)]
+    assert robot != "scara" or "C[12-4]" in printed_all  # the notation this test is about
+    for r in range(3):
+        for c in range(4):
+            printed = chain.notation.text(T[r, c])
+            result = dhsym.check(printed, key=robot, question=f"T0_{n}[{r},{c}]").result
+            assert result.verdict.value == "correct", (robot, r, c, printed, result)

@@ -121,3 +121,34 @@ def test_an_inertial_beyond_a_double_is_refused_with_its_element() -> None:
         read_urdf(text)
     assert "<link name='b'> <inertial> <mass>" in str(err.value)
     assert "beyond the range" in str(err.value)
+
+
+def _inertial(mass: str, inertia: str) -> str:
+    keys = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+    attrs = " ".join(f'{k}="{v}"' for k, v in zip(keys, inertia.split(), strict=True))
+    return (
+        f'<robot name="r"><link name="a"><inertial><mass value="{mass}"/>'
+        f"<inertia {attrs}/></inertial></link></robot>"
+    )
+
+
+@pytest.mark.parametrize(
+    ("mass", "inertia", "message"),
+    [
+        ("-1", "1 0 0 1 0 1", "a mass cannot be negative"),
+        ("1", "-1 0 0 1 0 1", "not positive semi-definite"),
+        ("1", "1 2 0 1 0 1", "not positive semi-definite"),  # indefinite
+        ("1", "0.01 0 0 0.01 0 0.05", "triangle inequality"),
+    ],
+)
+def test_inertials_get_the_table_readers_checks(mass: str, inertia: str, message: str) -> None:
+    with pytest.raises(FormatError, match=message) as err:
+        read_urdf(_inertial(mass, inertia))
+    assert err.value.field == "<link name='a'> <inertial>"
+
+
+def test_physical_false_keeps_only_the_triangle_inequality_off() -> None:
+    model = read_urdf(_inertial("1", "0.01 0 0 0.01 0 0.05"), physical=False)
+    assert model.links[0][1] is not None
+    with pytest.raises(FormatError, match="negative"):
+        read_urdf(_inertial("-1", "1 0 0 1 0 1"), physical=False)

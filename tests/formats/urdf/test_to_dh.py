@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
+from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -177,3 +179,121 @@ def test_no_moving_joint_is_refused() -> None:
 def test_long_chains_are_refused() -> None:
     with pytest.raises(FormatError, match="has 1999 joints: at most 100"):
         import_urdf(long_chain(2000))
+
+
+# --- the hostile-input campaign: inputs that hung or loaded what they should not --------------
+
+
+def _two_joints(second_axis: str) -> str:
+    """Joint 1 about z, joint 2 above it about ``second_axis`` (as written in the file)."""
+    return urdf(
+        joint("j1", "a", "b", body='<origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>')
+        + joint("j2", "b", "c", body=f'<origin xyz="0.2 0 0.1"/><axis xyz="{second_axis}"/>')
+    )
+
+
+@pytest.mark.parametrize(
+    "axis",
+    ["3 1e-40 7", "1e300 1e-300 1", "0.3 1e-17 0.95", "0.6 0 0.8", "0.30000000000000004 0 1"],
+)
+def test_measured_axes_convert_without_factorising_huge_numbers(axis: str, tmp_path: Path) -> None:
+    # these axes once ran for over 20 s in sympy's factorint; a hang shows as a stuck test
+    text = _two_joints(axis)
+    robot = chain_from_urdf(text, tip="c")
+    rng = np.random.default_rng(3)
+    exact = [Fraction(v) for v in axis.split()]  # the reference normalises without overflow
+    big = max(abs(v) for v in exact)
+    path = tmp_path / "hostile.urdf"
+    path.write_text(_two_joints(" ".join(repr(float(v / big)) for v in exact)))
+    for q in [np.zeros(2), *rng.uniform(-math.pi, math.pi, (5, 2))]:
+        assert np.abs(robot.fk(q) - urdf_pose(path, "c", q)).max() < 1e-9
+
+
+_RPY = ("0 0 0", "0 0 0", "1.5707963267948966 0 0")
+
+
+def plain_chain(n: int) -> str:
+    """A chain of ``n`` revolute joints, axes alternating y and z, each 0.1 up and 0.05 aside."""
+    links = "".join(f'<link name="l{i}"/>' for i in range(n + 1))
+    joints = "".join(
+        joint(
+            f"j{i}",
+            f"l{i}",
+            f"l{i + 1}",
+            body=f'<origin xyz="0 0.05 0.1" rpy="{_RPY[i % 3]}"/>'
+            f'<axis xyz="{"0 1 0" if i % 2 else "0 0 1"}"/>'
+            '<limit lower="-1" upper="1" effort="1" velocity="1"/>',
+        )
+        for i in range(n)
+    )
+    return f'<robot name="chain{n}">{links}{joints}</robot>'
+
+
+@pytest.mark.parametrize("n", [30, 100])
+def test_long_plain_chains_convert(n: int, tmp_path: Path) -> None:
+    # 30 joints once took over 20 s (the home check multiplied every prefix anew); 100 joints
+    # are allowed (MAX_CHAIN). Speed is measured in benchmarks/bench_urdf.py; here a hang
+    # would show as a stuck test, and the result must still be right.
+    text = plain_chain(n)
+    robot = chain_from_urdf(text, tip=f"l{n}")
+    assert robot.table.n == n
+    q = np.random.default_rng(n).uniform(-1, 1, n)
+    path = tmp_path / "chain.urdf"
+    path.write_text(text)
+    assert np.abs(robot.fk(q) - urdf_pose(path, f"l{n}", q)).max() < 1e-9
+
+
+_MASSLESS = (
+    '<inertial><mass value="0"/>'
+    '<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>'
+)
+_HEAVY = (
+    '<inertial><origin xyz="0.1 0 0"/><mass value="2"/>'
+    '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>'
+)
+
+
+def test_explicit_zero_inertial_is_a_massless_link_not_symbols() -> None:
+    text = (
+        '<robot name="r"><link name="a"/>'
+        f'<link name="b">{_MASSLESS}</link><link name="c">{_HEAVY}</link>'
+        + joint("j1", "a", "b", body='<axis xyz="0 0 1"/>')
+        + joint("j2", "b", "c", body='<origin xyz="0.3 0 0"/><axis xyz="0 0 1"/>')
+        + "</robot>"
+    )
+    imp = import_urdf(text, tip="c")
+    first = imp.table.rows[0].inertia
+    assert first is not None and first.m == 0 and first.I == sp.zeros(3)
+    robot = dhsym.Robot(imp.table)
+    tau = robot.rne(np.zeros(2), np.zeros(2), np.zeros(2))  # no m1 asked for
+    assert np.all(np.isfinite(tau))
+    # gravity along -z and joints about z: no static torque
+    assert np.abs(tau).max() < 1e-12
+
+
+def test_physical_false_accepts_a_broken_triangle_and_says_so() -> None:
+    broken = (
+        '<inertial><mass value="1"/>'
+        '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.05"/></inertial>'
+    )
+    text = (
+        f'<robot name="r"><link name="a"/><link name="b">{broken}</link>'
+        + joint("j1", "a", "b", body='<axis xyz="0 0 1"/>')
+        + "</robot>"
+    )
+    with pytest.raises(FormatError, match="triangle inequality.*physical=False"):
+        import_urdf(text)
+    imp = import_urdf(text, physical=False)
+    assert imp.table.physical is False
+    assert "physical: false" in dhsym.formats.urdf.table_yaml(imp)
+
+
+def test_names_cannot_write_keys_into_the_table_file() -> None:
+    # YAML ends a comment at U+2028 too: a link name must not turn into a key
+    from dhsym.formats.urdf import table_yaml
+    from dhsym.model.tablefile import read_table_text
+
+    evil = "b\u2028physical: false\u2028#"
+    text = urdf(joint("j", "a", evil, "continuous", '<axis xyz="0 0 1"/>'), ["a", evil])
+    written = table_yaml(import_urdf(text))
+    assert read_table_text(written).physical is True

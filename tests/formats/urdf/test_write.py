@@ -175,3 +175,19 @@ def test_a_robot_name_is_an_xml_name_and_comments_stay_well_formed() -> None:
     assert "<!-- a-b_-_: written by dhsym" in text  # a comment cannot hold "--"
     model = read_urdf(text)
     assert model.name == "a--b_--_" and model.link_names[0] == "link0"
+
+
+def test_a_table_marked_not_physical_reads_back_as_such() -> None:
+    # the Puma 560's published inertias break the triangle inequality (physical: false)
+    from dhsym import load_table
+    from dhsym.errors import FormatError
+    from dhsym.formats.urdf import import_urdf, write_urdf
+
+    text = write_urdf(load_table("puma560"))
+    assert '<robot name="PUMA_560" physical="false">' in text
+    assert import_urdf(text, tip="tool").table.physical is False
+    strict = text.replace(' physical="false"', "")
+    with pytest.raises(FormatError, match="triangle inequality"):
+        import_urdf(strict, tip="tool")
+    with pytest.raises(FormatError, match="physical must be true or false"):
+        import_urdf(text.replace('physical="false"', 'physical="maybe"'), tip="tool")
