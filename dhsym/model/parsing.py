@@ -172,7 +172,16 @@ def symbol(name: str) -> sympy.Symbol:
     return sympy.Symbol(norm, **REAL)
 
 
-_INDEXED_NAME = re.compile(r"^(.*?)_?(\d+)$")
+def _indexed(name: str) -> tuple[str, str] | None:
+    """``(stem, index)`` of a name ending in digits (``theta_12`` → ``("theta", "12")``),
+    else None; one pass from the end (a pattern with a lazy stem is quadratic on long names)."""
+    end = len(name)
+    while end and name[end - 1].isdecimal():
+        end -= 1
+    if end == len(name):
+        return None
+    stem = name[:end]
+    return (stem[:-1] if stem.endswith("_") else stem), name[end:]
 
 
 def rate_symbols(variables: Sequence[sympy.Symbol], order: int = 1) -> tuple[sympy.Symbol, ...]:
@@ -190,8 +199,8 @@ def rate_symbols(variables: Sequence[sympy.Symbol], order: int = 1) -> tuple[sym
     suffix = {1: "dot", 2: "ddot"}[order]
     out = []
     for v in variables:
-        m = _INDEXED_NAME.match(v.name)
-        name = f"{m.group(1)}{suffix}{m.group(2)}" if m else f"{v.name}{suffix}"
+        m = _indexed(v.name)
+        name = f"{m[0]}{suffix}{m[1]}" if m else f"{v.name}{suffix}"
         out.append(sympy.Symbol(name, **REAL))
     return tuple(out)
 
