@@ -100,10 +100,12 @@ def nearest_rigid(T: np.ndarray) -> np.ndarray:
     (True, True)
     """
     out = np.array(T, dtype=float)
-    U, _, Vt = np.linalg.svd(out[..., :3, :3])
+    R = out[..., :3, :3]
+    finite = np.isfinite(R).all(axis=(-2, -1))[..., None, None]  # NaN, inf: kept as they are
+    U, _, Vt = np.linalg.svd(np.where(finite, R, np.eye(3)))
     d = np.sign(np.linalg.det(U @ Vt))
     U[..., :, 2] *= d[..., None]
-    out[..., :3, :3] = U @ Vt
+    out[..., :3, :3] = np.where(finite, U @ Vt, R)
     return out
 
 

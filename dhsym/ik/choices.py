@@ -328,7 +328,7 @@ def solve(
         if off.any():  # only the poses that are off: an exact pose is solved as given
             arr, brought = np.where(off[..., None, None], rigid, arr), True
     inner_tol = FLOOR if tol is None else tol
-    if tols is not None:
+    if tols is not None and tols.size:
         inner_tol = max(inner_tol, float(np.max(tols)))
     if free:
         if len(free) != 1:
