@@ -123,8 +123,8 @@ def clamped_sqrt(x: np.ndarray) -> np.ndarray:
     >>> clamped_sqrt(np.array([4.0, -1e-4, np.nan])).tolist()
     [2.0, 0.0, nan]
     """
-    x = np.asarray(x, dtype=float)
-    return np.sqrt(np.maximum(x, 0.0))  # np.maximum keeps NaN
+    root: np.ndarray = np.sqrt(np.maximum(np.asarray(x, dtype=float), 0.0))  # keeps NaN
+    return root
 
 
 #: the wrap for floats, inline: ``math.remainder(x, 2π)`` is in [−π, π] and keeps NaN; it
