@@ -512,12 +512,41 @@ class ClosedFormSolver:
         if single and not stretch:
             one = self._solve_one(arr, check, cells, tol, singular_tol)
             if one is not None:
-                return one
+                return one if len(one) else replace(one, reason=self._why(arr, check, tol))
         batch = self._solve_batch(arr.reshape(-1, 4, 4), check, cells, tol, singular_tol, stretch)
         if not single:
             return batch
         one = batch.solution(0)
-        return replace(one, reason=_empty(check, tol)) if not len(one) else one
+        return replace(one, reason=self._why(arr, check, tol)) if not len(one) else one
+
+    def _why(self, pose: np.ndarray, check: str | None, tol: float) -> str:
+        """Why one pose has no solution: the first step (in the order of the derivation)
+        with no real value on any branch, when there is one; else that none reproduces
+        the pose.
+
+        >>> import dhsym
+        >>> r = dhsym.load("puma560")
+        >>> T = r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
+        >>> T[:3, 3] *= 10
+        >>> for part in r.ik(T).reason.split(": "):
+        ...     print(part)
+        no real value of theta3 on any branch (a cosine beyond ±1 or a negative radicand
+        the pose is out of reach)
+        no branch of the closed form reproduces the pose within 1e-09
+        """
+        said = _empty(check, tol)
+        q = self.raw(self._inner(pose))[0]  # (K, n)
+        if q.size == 0 or np.isfinite(q).any(axis=0).all():
+            return said
+        for lhs, _ in self._steps:
+            if lhs in self.robot.variables:
+                j = self.robot.variables.index(lhs)
+                if not np.isfinite(q[:, j]).any():
+                    return (
+                        f"no real value of {lhs} on any branch (a cosine beyond ±1 or a "
+                        f"negative radicand: the pose is out of reach): {said}"
+                    )
+        return said
 
     def _inner(self, poses: np.ndarray) -> np.ndarray:
         """Poses from frame 0 to frame n: base and tool undone."""
