@@ -120,7 +120,7 @@ class Robot(KinematicChain):
         T: object,
         *,
         check: str | None = "pose",
-        tol: float = 1e-9,
+        tol: float | None = None,
         singular_tol: float = 1e-6,
         values: Mapping[object, object] | None = None,
         free: Mapping[int, float] | None = None,
@@ -135,6 +135,24 @@ class Robot(KinematicChain):
         ``free={7: 0.3}`` gives joint 7 (1-based) and solves the others; ``limits=True``
         keeps the solutions within the joint limits (angles shifted by 2π into range);
         ``near=q0`` orders them by distance to ``q0`` (:func:`dhsym.ik.choices.solve`).
+
+        Poses as they come (measured, rounded, typed from a teach pendant): a rotation that
+        is not exactly a rotation is brought to the nearest one (polar decomposition, the
+        position kept) and the branches computed there; each solution's ``residual`` is
+        the largest entry error of its ``fk`` against the pose *as given* (position
+        entries in length units; rotation entries, which for small errors bound the
+        orientation error in radians). A solution is kept when its residual is within
+        ``tol``: by default 1e-9 for an exact pose, else ``max(1e-9, 2·max(off,
+        min(h, 3·off)))``, ``off`` the rotation's largest entry distance from the nearest
+        rotation and ``h`` half a unit of the last decimal the entries were written with
+        (:mod:`dhsym.ik.accuracy`); ``tol=`` overrides. ``np.round(T, 6)`` of a UR5 pose
+        gives its 8 solutions:
+
+        >>> import dhsym, numpy as np
+        >>> r = dhsym.load("ur5")
+        >>> T = r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
+        >>> len(r.ik(T)), len(r.ik(np.round(T, 6))), len(r.ik(np.round(T, 3)))
+        (8, 8, 8)
         """
         from dhsym.ik.choices import solve
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
@@ -249,7 +250,8 @@ def _pose(args: argparse.Namespace, robot: Robot) -> object:
         raise DHError("give the goal as --pose (12 or 16 numbers, T row by row) or --pose-of Q")
     if args.pose_of is not None:
         deg, unit = q_in_degrees(args, robot.table)
-        print(f"pose of --pose-of: {unit}")
+        # a note: on stderr with --json (stdout holds the JSON alone)
+        print(f"pose of --pose-of: {unit}", file=sys.stderr if args.json else sys.stdout)
         return robot.fk(_parse_q(args.pose_of, len(robot.variables)), deg=deg)
     values = parse_number_list(args.pose, "--pose")
     if len(values) not in (12, 16):
@@ -295,18 +297,24 @@ def _cmd_ik(args: argparse.Namespace) -> int:
                 print(f"  {n} = {v:.9g}")
         return 0 if sol.converged else 1
     try:
-        sols = robot.ik(T)
+        sols = robot.ik(T, tol=args.tol)
     except DHError as err:
         raise type(err)(
             f"{err.message}. A numeric solution: {_numeric_command(args.robot)}"
         ) from None
     rows = np.asarray(sols.q).tolist()
     if args.json:
-        print(json.dumps({"variables": names, "q": rows}))
+        out: dict[str, object] = {"variables": names, "q": rows}
+        out["residual"] = np.asarray(sols.residual, dtype=float).tolist()
+        if sols.reason is not None:
+            out["reason"] = sols.reason
+        print(json.dumps(out))
     else:
         print(f"{len(rows)} closed-form solution(s), one per line (radians): {', '.join(names)}")
         for row in rows:
             print("  " + ", ".join(f"{v:.9g}" for v in row))
+        if sols.reason is not None:
+            print(f"no solution: {sols.reason}", file=sys.stderr)
     return 0
 
 
@@ -389,6 +397,16 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     k.add_argument("--q0", help="start of the numeric solver (default: all zero)")
     add_angle_options(k)
     k.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
-    k.add_argument("--json", action="store_true", help="JSON output")
+    k.add_argument(
+        "--tol",
+        type=float,
+        default=None,
+        help="largest entry error of fk against the pose for a solution to be kept "
+        "(default: from the pose's own accuracy, 1e-9 for an exact pose; see the guide, "
+        "inverse kinematics, 'Poses as they come')",
+    )
+    k.add_argument(
+        "--json", action="store_true", help="JSON output on stdout alone (notes on stderr)"
+    )
     add_urdf_options(k)
     k.set_defaults(func=_cmd_ik)

@@ -29,6 +29,8 @@ from dhsym.errors import DHError
 from dhsym.kinematics.numeric import values_key
 from dhsym.model.table import DHRow, JointType
 
+from .accuracy import EXACT as _EXACT
+from .accuracy import FLOOR, nearest_rigid, pose_accuracy
 from .closed_form import ClosedForm
 from .closed_form_solver import ClosedFormSolver
 from .families import inverse
@@ -275,7 +277,7 @@ def solve(
     T: object,
     *,
     check: str | None = "pose",
-    tol: float = 1e-9,
+    tol: float | None = None,
     singular_tol: float = 1e-6,
     values: Mapping[object, object] | None = None,
     free: Mapping[int, float] | None = None,
@@ -289,8 +291,16 @@ def solve(
     ----------
     T
         One pose ``(4, 4)`` or a batch ``(N, 4, 4)`` (positions for arms without a wrist).
-    check, tol, singular_tol
+    check, singular_tol
         As :meth:`dhsym.ik.protocols.IKSolver.solve`.
+    tol
+        The largest entry error of ``fk`` against the pose as given for a solution to be
+        kept. By default it follows the pose's own accuracy
+        (:func:`dhsym.ik.accuracy.pose_accuracy`): 1e-9 for an exact pose, about twice
+        its rotation's distance from the rotations for a rounded or measured one. With
+        ``check="pose"``, a pose whose rotation is not a rotation (by more than
+        :data:`dhsym.ik.accuracy.EXACT`) is solved at its nearest rigid pose and each
+        solution's ``residual`` measured against the pose as given.
     values
         Numbers for the table's symbols (the solver is built once per set of values).
     free
@@ -310,21 +320,108 @@ def solve(
     single = arr.ndim in (1, 2) and not (arr.ndim == 2 and arr.shape[-1] == 3)
     if (free or limits or near is not None) and not single:
         raise DHError("free, limits and near apply to one pose: solve the poses one by one")
+    given, tols = arr, _tolerances(arr, check, tol)
+    brought = False
+    if tols is not None:
+        rigid = nearest_rigid(arr)
+        off = np.abs(rigid[..., :3, :3] - arr[..., :3, :3]).max(axis=(-2, -1)) > _EXACT
+        if off.any():  # only the poses that are off: an exact pose is solved as given
+            arr, brought = np.where(off[..., None, None], rigid, arr), True
+    inner_tol = FLOOR if tol is None else tol
+    if tols is not None and tols.size:
+        inner_tol = max(inner_tol, float(np.max(tols)))
     if free:
         if len(free) != 1:
             raise DHError(f"free: give exactly one joint, got {len(free)}")
         ((joint, value),) = free.items()
         sol = _solve_free(
-            cache, arr, int(joint), float(value), tol=tol, singular_tol=singular_tol, values=values
+            cache,
+            arr,
+            int(joint),
+            float(value),
+            tol=inner_tol,
+            singular_tol=singular_tol,
+            values=values,
         )
     else:
-        sol = cache.solver(values).solve(arr, check=check, tol=tol, singular_tol=singular_tol)
+        solver = cache.solver(values)
+        if brought and isinstance(solver, ClosedFormSolver):
+            # a pose that is not exact may lie a little outside the workspace: the arm
+            # stretched (every negative radicand read as 0), kept if it reproduces the pose
+            sol = solver.solve(
+                arr, check=check, tol=inner_tol, singular_tol=singular_tol, stretch=True
+            )
+        else:
+            sol = solver.solve(arr, check=check, tol=inner_tol, singular_tol=singular_tol)
+    if brought and tols is not None:
+        sol = _against_given(robot, sol, given, tols, values)
     if not sol.batch:
         if limits:
             sol = within_limits(robot, sol)
         if near is not None:
             sol = nearest_first(robot, sol, near)
     return sol
+
+
+def _tolerances(arr: np.ndarray, check: str | None, tol: float | None) -> np.ndarray | None:
+    """The tolerance of each pose of ``arr`` (``()`` or ``(N,)``): ``tol`` when given, else
+    the pose's own (:func:`~dhsym.ik.accuracy.pose_accuracy`); None when ``check`` is not
+    ``"pose"`` or ``arr`` holds positions (nothing to bring to a rigid pose)."""
+    if check != "pose" or arr.shape[-2:] != (4, 4) or arr.ndim not in (2, 3):
+        return None
+    if tol is not None:
+        return np.full(arr.shape[:-2], float(tol))
+    if arr.ndim == 2:
+        return np.array(pose_accuracy(arr).tol)
+    return np.array([pose_accuracy(T).tol for T in arr])
+
+
+def _against_given(
+    robot: KinematicChain,
+    sol: IKSolution,
+    given: np.ndarray,
+    tols: np.ndarray,
+    values: Mapping[object, object] | None,
+) -> IKSolution:
+    """``sol`` (solutions of the nearest rigid poses) with each residual measured against
+    the poses as ``given`` (largest entry error of ``fk``), the solutions within ``tols``
+    kept."""
+    fk = robot.fk_function(values=values)
+    if not sol.batch:
+        if not len(sol):
+            return replace(sol, reason=_reason(sol.reason, given, float(tols)))
+        res = _entry_error(fk(sol.q), given[None])
+        keep = np.nonzero(res <= float(tols))[0]
+        kept = replace(sol.take(keep), residual=res[keep])
+        if not len(kept):
+            return replace(kept, reason=_reason(sol.reason, given, float(tols)))
+        return kept
+    valid = sol.valid.copy()
+    residual = np.array(sol.residual, dtype=float)
+    q = sol.q.copy()
+    i, k = np.nonzero(valid)
+    if i.size:
+        res = _entry_error(fk(q[i, k]), given[i])
+        residual[i, k] = res
+        valid[i, k] = res <= tols[i]
+    q[~valid] = np.nan
+    return replace(sol, q=q, valid=valid, residual=residual)
+
+
+def _entry_error(got: np.ndarray, want: np.ndarray) -> np.ndarray:
+    """The largest entry error of the top three rows of poses ``got`` against ``want``."""
+    err: np.ndarray = np.abs(got[..., :3, :] - want[..., :3, :]).reshape(len(got), -1).max(axis=1)
+    return err
+
+
+def _reason(reason: str | None, given: np.ndarray, tol: float) -> str:
+    """Why a pose brought to its nearest rigid pose has no solution."""
+    acc = pose_accuracy(given)
+    said = reason or "no solution"
+    return (
+        f"{said} (the pose as given is {acc.off:.1g} from a rigid pose: solved at the "
+        f"nearest one, solutions kept within {tol:.1g} of the pose as given)"
+    )
 
 
 def sweep_free_joint(

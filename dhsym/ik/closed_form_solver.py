@@ -52,6 +52,7 @@ from .rewriting import (
     MATH,
     NUMPY,
     REMAINDER,
+    STRETCHED,
     TAU,
     WRIST_NEAR,
     WRIST_ZERO,
@@ -128,7 +129,7 @@ class Layout:
 
 
 #: The programs a :class:`ClosedFormSolver` compiles (see :meth:`ClosedFormSolver._program`).
-ProgramKind = Literal["raw", "checked", "scalar", "singular"]
+ProgramKind = Literal["raw", "checked", "stretched", "scalar", "singular"]
 
 
 @dataclass
@@ -139,6 +140,7 @@ class Programs:
 
     raw: Callable[..., list[Any]] | None = None
     checked: Callable[..., list[Any]] | None = None
+    stretched: Callable[..., list[Any]] | None = None
     scalar: Callable[..., list[Any]] | None = None
     singular: Callable[..., list[Any]] | None = None
 
@@ -335,9 +337,10 @@ class ClosedFormSolver:
                 reduced += [o[i] for o in written for i in groups[2]]
                 reduced += [o[i] for o in written for i in groups[3]]
                 args, modules = self.pose_args + self.targets, MATH
-            elif kind == "checked":
+            elif kind in ("checked", "stretched"):
                 program, reduced = reuse_names(program, reduced)
-                args, modules = self.pose_args + self.signs + self.targets, NUMPY
+                args = self.pose_args + self.signs + self.targets
+                modules = NUMPY if kind == "checked" else STRETCHED
             else:
                 program, reduced = reuse_names(program, reduced)
                 args, modules = self.pose_args + self.signs, NUMPY
@@ -373,7 +376,11 @@ class ClosedFormSolver:
         return angles
 
     def _evaluate(
-        self, inner: np.ndarray, target: np.ndarray | None, cells: Sequence[int] | None
+        self,
+        inner: np.ndarray,
+        target: np.ndarray | None,
+        cells: Sequence[int] | None,
+        stretch: bool = False,
     ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
         """Every branch of every pose: ``q`` ``(n, K, N)``; with a ``target`` (the poses
         before base and tool were undone) also the residual ``(K, N)`` over ``cells`` (of
@@ -381,10 +388,11 @@ class ClosedFormSolver:
 
         The program's values (each ``(*branches, chunk)``) are kept branch by branch, so
         :func:`~dhsym.kinematics.numeric.evaluate_chunked` fills ``(N, outputs × K)`` (a
-        view of ``(outputs, K, N)``)."""
+        view of ``(outputs, K, N)``). ``stretch``: every negative radicand read as 0 (the
+        program ``"stretched"``)."""
         N, K, n = inner.shape[0], self.K, self.n
         checked = target is not None
-        fn = self._program("checked" if checked else "raw")
+        fn = self._program(("stretched" if stretch else "checked") if checked else "raw")
         w = len(self._wrist_s)
         F = len(self._factor_exprs) if checked else 0
         at = Layout.numpy(n, w, F)
@@ -473,6 +481,7 @@ class ClosedFormSolver:
         check: str | None = "pose",
         tol: float = 1e-9,
         singular_tol: float = 1e-6,
+        stretch: bool = False,
     ) -> IKSolution:
         """Every solution of one pose or a batch of poses.
 
@@ -488,6 +497,11 @@ class ClosedFormSolver:
         singular_tol
             A solution is flagged near a singularity when a factor of the Jacobian
             determinant is below this fraction of its largest value.
+        stretch
+            Read every negative radicand as 0 (not only those within rounding of 0): a
+            pose a little outside the workspace, rounded or measured, gives the arm
+            stretched towards it, kept when it reproduces the pose within ``tol``
+            (``Robot.ik`` asks for it for poses that are not exact).
 
         One pose is solved by the program for floats; the few it cannot finish (a
         singular wrist, a division by zero) and batches by the program for numpy.
@@ -495,15 +509,41 @@ class ClosedFormSolver:
         arr, check = read_poses(T, check, wrist=bool(self.ik.decoupling.wrist))
         single = arr.ndim == 2
         cells = _POSITION if check == "position" else _ALL
-        if single:
+        if single and not stretch:
             one = self._solve_one(arr, check, cells, tol, singular_tol)
             if one is not None:
-                return one
-        batch = self._solve_batch(arr.reshape(-1, 4, 4), check, cells, tol, singular_tol)
+                return one if len(one) else replace(one, reason=self._why(arr, check, tol))
+        batch = self._solve_batch(arr.reshape(-1, 4, 4), check, cells, tol, singular_tol, stretch)
         if not single:
             return batch
         one = batch.solution(0)
-        return replace(one, reason=_empty(check, tol)) if not len(one) else one
+        return replace(one, reason=self._why(arr, check, tol)) if not len(one) else one
+
+    def _why(self, pose: np.ndarray, check: str | None, tol: float) -> str:
+        """Why one pose has no solution: the first step (in the order of the derivation)
+        with no real value on any branch, when there is one; else that none reproduces
+        the pose.
+
+        >>> import dhsym
+        >>> r = dhsym.load("puma560")
+        >>> T = r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
+        >>> T[:3, 3] *= 10
+        >>> r.ik(T).reason.split(": ")[1].split(" (")[0]
+        'no real value of theta3 on any branch'
+        """
+        said = _empty(check, tol)
+        q = self.raw(self._inner(pose))[0]  # (K, n)
+        if q.size == 0 or np.isfinite(q).any(axis=0).all():
+            return said
+        for lhs, _ in self._steps:
+            if lhs in self.robot.variables:
+                j = self.robot.variables.index(lhs)
+                if not np.isfinite(q[:, j]).any():
+                    return (
+                        f"{said}: no real value of {lhs} on any branch (a cosine beyond ±1 "
+                        "or a negative radicand, the pose is out of reach)"
+                    )
+        return said
 
     def _inner(self, poses: np.ndarray) -> np.ndarray:
         """Poses from frame 0 to frame n: base and tool undone."""
@@ -520,9 +560,10 @@ class ClosedFormSolver:
         cells: Sequence[int],
         tol: float,
         singular_tol: float,
+        stretch: bool = False,
     ) -> IKSolution:
         inner = self._inner(poses)
-        q, residual, closeness = self._evaluate(inner, poses, cells)
+        q, residual, closeness = self._evaluate(inner, poses, cells, stretch)
         assert residual is not None and closeness is not None
         valid = np.isfinite(residual) if check is None else residual <= tol
         # two branches coincide only where a radicand vanishes, i.e. at a singularity: look

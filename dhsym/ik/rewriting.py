@@ -32,12 +32,14 @@ __all__ = [
     "NUMPY",
     "REMAINDER",
     "ROUNDING",
+    "STRETCHED",
     "TAU",
     "Residual",
     "SafeSqrt",
     "WRIST_NEAR",
     "WRIST_ZERO",
     "Wrap",
+    "clamped_sqrt",
     "lift_residuals",
     "per_branch",
     "pull_signs",
@@ -112,12 +114,30 @@ def safe_sqrt_float(x: float) -> float:
     return 0.0 if x > -ROUNDING else math.nan
 
 
+def clamped_sqrt(x: np.ndarray) -> np.ndarray:
+    """``sqrt`` that reads every negative radicand as 0 (NaN stays NaN): the arm stretched
+    to the boundary of its workspace. For poses that are not exact (rounded, measured):
+    the solutions it gives are kept only when their ``fk`` reproduces the pose within its
+    tolerance (:mod:`dhsym.ik.accuracy`).
+
+    >>> clamped_sqrt(np.array([4.0, -1e-4, np.nan])).tolist()
+    [2.0, 0.0, nan]
+    """
+    root: np.ndarray = np.sqrt(np.maximum(np.asarray(x, dtype=float), 0.0))  # keeps NaN
+    return root
+
+
 #: the wrap for floats, inline: ``math.remainder(x, 2π)`` is in [−π, π] and keeps NaN; it
 #: equals :func:`wrap` except within rounding of ±π, where either end may come out
 REMAINDER = sp.Function("remainder")
 TAU = sp.Symbol("TWO_PI")
 #: the modules ``lambdify`` prints a program with: numpy (a batch) and math (one pose)
 NUMPY: tuple[Mapping[str, object], str] = ({"SafeSqrt": safe_sqrt, "Wrap": wrap}, "numpy")
+#: numpy with every negative radicand read as 0 (:func:`clamped_sqrt`: the arm stretched)
+STRETCHED: tuple[Mapping[str, object], str] = (
+    {"SafeSqrt": clamped_sqrt, "Wrap": wrap},
+    "numpy",
+)
 MATH: tuple[Mapping[str, object], str] = (
     {"SafeSqrt": safe_sqrt_float, "TWO_PI": _TWO_PI},
     "math",

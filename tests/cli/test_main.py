@@ -234,3 +234,25 @@ def test_ik_closed_form_at_a_pose(capsys):
     assert [math.radians(30), math.radians(45)] in [
         pytest.approx(row, abs=1e-9) for row in out["q"]
     ]
+
+
+def test_ik_json_is_alone_on_stdout_and_takes_a_rounded_pose(capsys):
+    import json
+
+    import numpy as np
+
+    import dhsym
+
+    r = dhsym.load("ur5")
+    T = np.round(r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1]), 6)
+    pose = ",".join(repr(float(x)) for x in T[:3].ravel())
+    assert main(["ik", "ur5", "--pose", pose, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)  # the whole of stdout is the JSON
+    assert len(out["q"]) == 8 and max(out["residual"]) <= 1e-6
+    assert main(["ik", "ur5", "--pose", pose, "--json", "--tol", "1e-9"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["q"] == [] and "rigid pose" in out["reason"]
+    q = "0.3,-0.5,0.4,0.2,0.7,-1.1"
+    assert main(["ik", "ur5", "--pose-of", q, "--json"]) == 0
+    captured = capsys.readouterr()
+    assert len(json.loads(captured.out)["q"]) == 8 and "pose of --pose-of" in captured.err

@@ -1,0 +1,123 @@
+"""Poses as they come: how accurate a measured, rounded or typed pose is, its nearest rigid
+pose, and the tolerance its inverse kinematics is checked with.
+
+A pose typed from a teach pendant or rounded to a few decimals is not exactly a rigid
+motion: its rotation ``R`` is a little off the rotations (``RᵀR ≠ I``), and no joint
+values reproduce it to 1e-9. :func:`pose_accuracy` measures it and says what to do:
+
+* ``off``: the distance of ``R`` from the nearest rotation ``R̂`` (polar decomposition,
+  by SVD: ``R = U S Vᵀ``, ``R̂ = U diag(1, 1, det U Vᵀ) Vᵀ``), as the largest entry of
+  ``R − R̂``;
+* ``decimals``: the decimals the pose was written with, when its 12 entries look rounded
+  (the smallest ``k ≤ 12`` with every entry equal to its rounding to ``k`` decimals),
+  and ``half_unit`` = half a unit of the last decimal, ``0.5·10⁻ᵏ`` (0 when none);
+* ``tol``: the tolerance the solutions are checked with against the pose *as given*
+  (largest entry error of ``fk``, as ``Robot.ik``'s residual), ``max(1e-9, 2·max(off,
+  min(half_unit, 3·off)))`` when the rotation is off by more than :data:`EXACT`, else
+  1e-9 (an exact float pose is solved exactly as before).
+
+Why this rule: the branches are computed from the nearest rigid pose ``(R̂, p)`` (same
+position). A true solution of it reproduces ``R̂`` and ``p`` to rounding, so against the
+pose as given its largest entry error is ``off`` (the rotation entries) and about 1e-15
+(the position). ``off`` is below about three half-units of the last decimal of a
+rounded rotation; twice the larger of the two leaves room and stays far below the error
+of a wrong branch (whole radians). The half-unit counts only up to ``3·off``: a pose
+written with few decimals whose rotation is nearly exact (``np.eye(4)``, 0 decimals) is
+not loosened by them. The position's own rounding needs no room: the position is
+reproduced as given.
+
+Examples
+--------
+>>> import dhsym
+>>> r = dhsym.load("ur5")
+>>> T = r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
+>>> exact = pose_accuracy(T)
+>>> exact.decimals, exact.tol, bool(exact.off < EXACT)
+(None, 1e-09, True)
+>>> typed = pose_accuracy(np.round(T, 6))
+>>> typed.decimals, typed.half_unit, typed.tol
+(6, 5e-07, 1e-06)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["EXACT", "FLOOR", "PoseAccuracy", "nearest_rigid", "pose_accuracy", "written_decimals"]
+
+#: a rotation off the rotations by at most this (largest entry) is exact: solved as given
+EXACT = 1e-12
+#: the tolerance of an exact pose, and the least tolerance of any
+FLOOR = 1e-9
+#: the most decimals looked for in a pose's entries
+_MOST_DECIMALS = 12
+
+
+@dataclass(frozen=True)
+class PoseAccuracy:
+    """How accurate one pose is (see the module): ``off`` from the rotations, the
+    ``decimals`` it was written with (None: not rounded), ``half_unit`` of its last
+    decimal, and the ``tol`` its solutions are checked with."""
+
+    off: float
+    decimals: int | None
+    half_unit: float
+    tol: float
+
+    @property
+    def exact(self) -> bool:
+        """Whether the rotation is a rotation to :data:`EXACT` (the pose is solved as given)."""
+        return self.off <= EXACT
+
+
+def written_decimals(T: np.ndarray) -> int | None:
+    """The decimals the 12 entries of ``T`` ``(4, 4)`` were written with: the smallest
+    ``k ≤ 12`` with every entry equal to its rounding to ``k`` decimals (None when none).
+
+    >>> written_decimals(np.round(np.array([[0.123456789, 0, 0, 1.5]] * 4), 4))
+    4
+    >>> written_decimals(np.eye(4)), written_decimals(np.full((4, 4), np.pi))
+    (0, None)
+    """
+    entries = np.asarray(T, dtype=float)[:3].ravel()
+    for k in range(_MOST_DECIMALS + 1):
+        if np.array_equal(np.round(entries, k), entries):
+            return k
+    return None
+
+
+def nearest_rigid(T: np.ndarray) -> np.ndarray:
+    """``T`` ``(4, 4)`` or ``(N, 4, 4)`` with each rotation replaced by the nearest rotation
+    (polar decomposition by SVD), the position kept.
+
+    >>> R = np.round(np.array([[0.6, -0.8, 0], [0.8, 0.6, 0], [0, 0, 1]]) + 1e-4, 4)
+    >>> T = np.eye(4)
+    >>> T[:3, :3] = R
+    >>> Q = nearest_rigid(T)[:3, :3]
+    >>> bool(np.allclose(Q.T @ Q, np.eye(3), atol=1e-15)), bool(np.linalg.det(Q) > 0)
+    (True, True)
+    """
+    out = np.array(T, dtype=float)
+    R = out[..., :3, :3]
+    finite = np.isfinite(R).all(axis=(-2, -1))[..., None, None]  # NaN, inf: kept as they are
+    U, _, Vt = np.linalg.svd(np.where(finite, R, np.eye(3)))
+    d = np.sign(np.linalg.det(U @ Vt))
+    U[..., :, 2] *= d[..., None]
+    out[..., :3, :3] = np.where(finite, U @ Vt, R)
+    return out
+
+
+def pose_accuracy(T: np.ndarray) -> PoseAccuracy:
+    """How accurate the pose ``T`` ``(4, 4)`` is, and its tolerance (the rule: see the
+    module)."""
+    arr = np.asarray(T, dtype=float)
+    off = float(np.abs(nearest_rigid(arr)[:3, :3] - arr[:3, :3]).max())
+    if not np.isfinite(off):
+        return PoseAccuracy(off, None, 0.0, FLOOR)
+    k = written_decimals(arr)
+    half = 0.0 if k is None else 0.5 * 10.0**-k
+    if off <= EXACT:
+        return PoseAccuracy(off, k, half, FLOOR)
+    return PoseAccuracy(off, k, half, max(FLOOR, 2 * max(off, min(half, 3 * off))))
