@@ -15,7 +15,8 @@ written to the disk cache), *warm* with a folder a cold run filled (dhsym.cache:
 and verified). The startup table runs with an empty cache folder of its own (a command
 that reads nothing from it measures the same either way).
 
-    python benchmarks/bench_cli.py [--runs 9] [--cold-runs 1] [--no-first] [--python PATH]
+    python benchmarks/bench_cli.py [--runs 9] [--cold-runs 1] [--no-first | --first-only]
+                                   [--python PATH]
 
 ``--python`` takes the interpreter of another environment (for instance a fresh venv
 with only the wheel installed: there is no editable-install finder to import).
@@ -164,6 +165,9 @@ def main() -> None:
         "--cold-runs", type=int, default=1, help="cold rounds of the first answers (slow)"
     )
     parser.add_argument("--no-first", action="store_true", help="the startup table only")
+    parser.add_argument(
+        "--first-only", action="store_true", help="the first answers only (no startup table)"
+    )
     parser.add_argument("--python", default=sys.executable, help="interpreter to run")
     args = parser.parse_args()
 
@@ -171,6 +175,8 @@ def main() -> None:
         answer = Path(cwd) / "answer.txt"
         answer.write_text(RIGHT)
         cmds = commands(answer)
+        if args.first_only:  # the reference only: the first answers give their own ratios
+            cmds = dict(list(cmds.items())[:1])
         for argv in cmds.values():  # warm the file cache and __pycache__
             run_timed(args.python, argv, cwd)
         load_before = os.getloadavg()

@@ -47,6 +47,7 @@ from dhsym.kinematics.numeric import evaluate_chunked
 from dhsym.model.table import JointType
 
 from .closed_form import ClosedForm
+from .kept_programs import derivation_text, kept_program
 from .protocols import read_poses
 from .rewriting import (
     MATH,
@@ -305,48 +306,68 @@ class ClosedFormSolver:
         """
         built: Callable[..., list[Any]] | None = getattr(self._programs, kind)
         if built is None:
-            if kind == "singular":
-                # θ4 as this program computes it, θ4 at sin θ5 = 0, θ6 from the whole rotation
-                # with that θ4 (the pair stays consistent: near sin θ5 = 0 each alone is
-                # ill-conditioned, their sum is not), and θ6 with θ4 = 0
-                (t4, zero4), (_, whole6) = list(self._singular.items())
-                alts = [t4, zero4, whole6, whole6.xreplace({t4: zero4})]
-                outputs = [with_safe_sqrt(e.xreplace(self.values)) for e in alts]
-            else:
-                outputs = self._outputs(kind)
-            program, reduced = schedule(*pull_signs(self._steps, outputs, self.signs))
-            if kind == "scalar":
-                # the wrap inline: one C call, no Python function
-                program, reduced = lift_residuals(program, reduced)
-                reduced = [
-                    e.replace(lambda t: isinstance(t, Wrap), lambda t: REMAINDER(t.args[0], TAU))
-                    for e in reduced
-                ]
-                program, written = per_branch(program, reduced, self.signs)
-                # grouped for _solve_one: residuals and wrist sines of all branches first,
-                # then the joint values branch by branch, then the factors branch by branch
-                n, w = self.n, len(self._wrist_s)
-                groups = [range(n + w, len(reduced) - len(self._factor_exprs))]
-                groups += [
-                    range(n, n + w),
-                    range(n),
-                    range(len(reduced) - len(self._factor_exprs), len(reduced)),
-                ]
-                reduced = [o[i] for i in groups[0] for o in written]
-                reduced += [o[i] for i in groups[1] for o in written]
-                reduced += [o[i] for o in written for i in groups[2]]
-                reduced += [o[i] for o in written for i in groups[3]]
-                args, modules = self.pose_args + self.targets, MATH
-            elif kind in ("checked", "stretched"):
-                program, reduced = reuse_names(program, reduced)
-                args = self.pose_args + self.signs + self.targets
-                modules = NUMPY if kind == "checked" else STRETCHED
-            else:
-                program, reduced = reuse_names(program, reduced)
-                args, modules = self.pose_args + self.signs, NUMPY
-            built = sp.lambdify(args, reduced, modules=modules, cse=lambda exprs: (program, exprs))
+            # kept on disk: a warm process reads the rewritten program and only compiles it
+            args, program, reduced = kept_program(
+                lambda: self._entry(kind), lambda: self._rewritten(kind)
+            )
+            modules = {"scalar": MATH, "stretched": STRETCHED}.get(kind, NUMPY)
+            built = sp.lambdify(
+                list(args), list(reduced), modules=modules, cse=lambda exprs: (list(program), exprs)
+            )
             setattr(self._programs, kind, built)
         return built
+
+    def _entry(self, kind: ProgramKind) -> str:
+        """The disk-cache entry of a program: the table, the versions, ``kind`` and the text
+        of the steps with their values (:mod:`dhsym.ik.kept_programs`)."""
+        from dhsym.cache.keys import entry_name
+
+        values = sorted((sp.srepr(k), sp.srepr(v)) for k, v in self.values.items())
+        parts = (self._steps, values, self.signs, self.pose_args, self._wrist_s, self._singular)
+        return entry_name(self.robot.table, "ik_program", kind, derivation_text(*parts))
+
+    def _rewritten(self, kind: ProgramKind) -> tuple[list[sp.Symbol], list[Any], list[Any]]:
+        """The arguments, steps and outputs of the program of one ``kind`` (as
+        :meth:`_program` compiles them)."""
+        if kind == "singular":
+            # θ4 as this program computes it, θ4 at sin θ5 = 0, θ6 from the whole rotation
+            # with that θ4 (the pair stays consistent: near sin θ5 = 0 each alone is
+            # ill-conditioned, their sum is not), and θ6 with θ4 = 0
+            (t4, zero4), (_, whole6) = list(self._singular.items())
+            alts = [t4, zero4, whole6, whole6.xreplace({t4: zero4})]
+            outputs = [with_safe_sqrt(e.xreplace(self.values)) for e in alts]
+        else:
+            outputs = self._outputs(kind)
+        program, reduced = schedule(*pull_signs(self._steps, outputs, self.signs))
+        if kind == "scalar":
+            # the wrap inline: one C call, no Python function
+            program, reduced = lift_residuals(program, reduced)
+            reduced = [
+                e.replace(lambda t: isinstance(t, Wrap), lambda t: REMAINDER(t.args[0], TAU))
+                for e in reduced
+            ]
+            program, written = per_branch(program, reduced, self.signs)
+            # grouped for _solve_one: residuals and wrist sines of all branches first,
+            # then the joint values branch by branch, then the factors branch by branch
+            n, w = self.n, len(self._wrist_s)
+            groups = [range(n + w, len(reduced) - len(self._factor_exprs))]
+            groups += [
+                range(n, n + w),
+                range(n),
+                range(len(reduced) - len(self._factor_exprs), len(reduced)),
+            ]
+            reduced = [o[i] for i in groups[0] for o in written]
+            reduced += [o[i] for i in groups[1] for o in written]
+            reduced += [o[i] for o in written for i in groups[2]]
+            reduced += [o[i] for o in written for i in groups[3]]
+            args = self.pose_args + self.targets
+        elif kind in ("checked", "stretched"):
+            program, reduced = reuse_names(program, reduced)
+            args = self.pose_args + self.signs + self.targets
+        else:
+            program, reduced = reuse_names(program, reduced)
+            args = self.pose_args + self.signs
+        return args, program, reduced
 
     # -- raw closed form ----------------------------------------------------------------------
     def raw(self, T: np.ndarray) -> np.ndarray:
