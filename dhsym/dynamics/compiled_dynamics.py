@@ -37,7 +37,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.kinematics.numeric import (
-    Program,
+    NumericProgram,
     compile_program,
     evaluate_chunked,
     stored_program,
@@ -73,7 +73,7 @@ class _Compiled:
         self._exprs = exprs
         self._args = list(args)
         self._entry = entry
-        self._program: Program | None = None
+        self._program: NumericProgram | None = None
         self._batch: Callable[..., list[Any]] | None = None
         self._single: Callable[..., list[Any]] | None = None
 

@@ -113,7 +113,8 @@ def pose_accuracy(T: np.ndarray) -> PoseAccuracy:
     """How accurate the pose ``T`` ``(4, 4)`` is, and its tolerance (the rule: see the
     module)."""
     arr = np.asarray(T, dtype=float)
-    off = float(np.abs(nearest_rigid(arr)[:3, :3] - arr[:3, :3]).max())
+    with np.errstate(invalid="ignore"):  # a pose of NaNs: no solution, said by its step
+        off = float(np.abs(nearest_rigid(arr)[:3, :3] - arr[:3, :3]).max())
     if not np.isfinite(off):
         return PoseAccuracy(off, None, 0.0, FLOOR)
     k = written_decimals(arr)

@@ -324,7 +324,8 @@ def solve(
     brought = False
     if tols is not None:
         rigid = nearest_rigid(arr)
-        off = np.abs(rigid[..., :3, :3] - arr[..., :3, :3]).max(axis=(-2, -1)) > _EXACT
+        with np.errstate(invalid="ignore"):  # a pose of NaNs is refused later, by its step
+            off = np.abs(rigid[..., :3, :3] - arr[..., :3, :3]).max(axis=(-2, -1)) > _EXACT
         if off.any():  # only the poses that are off: an exact pose is solved as given
             arr, brought = np.where(off[..., None, None], rigid, arr), True
     inner_tol = FLOOR if tol is None else tol

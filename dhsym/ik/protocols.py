@@ -30,13 +30,15 @@ import numpy as np
 
 from dhsym.errors import DHError
 
+# at run time, so that the documentation resolves the annotations (three rooms have a Step)
+from .steps import Branch, Step
+
 if TYPE_CHECKING:
     import sympy as sp
 
     from dhsym.kinematics.chain import KinematicChain
 
     from .solution import IKSolution
-    from .steps import Branch, Step
 
 __all__ = ["IKSolver", "InverseKinematics", "read_poses"]
 

@@ -84,7 +84,7 @@ class Residual(sp.Function):
 
 #: a radicand within this of 0 reads as 0 (:class:`SafeSqrt`)
 ROUNDING = 1e-10
-#: |sin θ5| below which θ6 comes from the whole wrist rotation, and below which θ4 = 0
+#: ``|sin θ5|`` below which θ6 comes from the whole wrist rotation, and below which θ4 = 0
 #: (the solver and the exported code both switch there)
 WRIST_NEAR = 1e-5
 WRIST_ZERO = 1e-12

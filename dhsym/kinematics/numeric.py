@@ -66,7 +66,7 @@ __all__ = [
     "EvaluationError",
     "as_basic",
     "PoseFunction",
-    "Program",
+    "NumericProgram",
     "compile_exprs",
     "compile_program",
     "stored_pose_function",
@@ -99,14 +99,14 @@ class _PlusZero(sp.Function):
 
 
 @dataclass(frozen=True)
-class Program:
+class NumericProgram:
     """What :func:`compile_exprs` turns into code: the expressions with their constants
     folded to floats, their shared subexpressions named (``assignments``, in order) and
     the ``outputs`` written with those names. Plain expressions: the disk cache keeps a
     program (:mod:`dhsym.cache.codec`) and :func:`compile_program` compiles it again.
 
     >>> x, y = sp.symbols("x y")
-    >>> p = Program.of([sp.sqrt(3) * sp.sin(x + y), sp.cos(x + y) * sp.sin(x + y)], (x, y))
+    >>> p = NumericProgram.of([sp.sqrt(3) * sp.sin(x + y), sp.cos(x + y) * sp.sin(x + y)], (x, y))
     >>> p.assignments, p.outputs
     (((x0, x + y), (x1, sin(x0))), (1.7320508075688772*x1, x1*cos(x0)))
     """
@@ -115,7 +115,7 @@ class Program:
     outputs: tuple[sp.Expr, ...]
 
     @classmethod
-    def of(cls, exprs: Sequence[sp.Basic], variables: Sequence[sp.Symbol]) -> Program:
+    def of(cls, exprs: Sequence[sp.Basic], variables: Sequence[sp.Symbol]) -> NumericProgram:
         """Fold the constants of ``exprs`` (:func:`float_constants`) and name their shared
         subexpressions (``sympy.cse``); symbols other than ``variables`` raise
         :class:`~dhsym.errors.DHError`."""
@@ -129,9 +129,9 @@ class Program:
 
 
 def compile_program(
-    program: Program, variables: Sequence[sp.Symbol], *, floats: bool = False
+    program: NumericProgram, variables: Sequence[sp.Symbol], *, floats: bool = False
 ) -> Callable[..., list[Any]]:
-    """Compile a :class:`Program` into ``f(*variables) -> list`` (numpy arrays, or plain
+    """Compile a :class:`NumericProgram` into ``f(*variables) -> list`` (numpy arrays, or plain
     floats with ``floats=True``), as :func:`compile_exprs` does."""
     # numpy's namespace as a module: modules="numpy" would run `from numpy import *`, which
     # imports all of numpy's lazy submodules (as long as importing numpy itself)
@@ -150,8 +150,8 @@ def stored_program(
     exprs: Callable[[], Sequence[sp.Basic]],
     variables: Sequence[sp.Symbol],
     extra: Mapping[str, type] | None = None,
-) -> Program:
-    """The :class:`Program` of ``exprs()`` for ``variables``, kept in the disk cache as entry
+) -> NumericProgram:
+    """The :class:`NumericProgram` of ``exprs()`` for ``variables``, kept in the disk cache as entry
     ``name`` (:mod:`dhsym.cache`: verified when read; ``None`` or the cache turned off:
     not kept). ``exprs`` is called only when the entry is absent or refused; ``extra``
     names dhsym's own functions the program may hold (:func:`dhsym.cache.codec.read_exprs`)."""
@@ -163,10 +163,10 @@ def stored_program(
     if data is not None:
         try:
             lhs, rhs, outputs = read_exprs(data, extra)
-            return Program(tuple(zip(lhs.args, rhs.args)), tuple(outputs.args))
+            return NumericProgram(tuple(zip(lhs.args, rhs.args)), tuple(outputs.args))
         except (CodecError, ValueError, AttributeError):
             pass  # not a program this version reads: derive it again
-    program = Program.of(exprs(), variables)
+    program = NumericProgram.of(exprs(), variables)
     if store is not None and name is not None:
         try:
             lhs_rhs = [sp.Tuple(*(s for s, _ in program.assignments))]
@@ -187,7 +187,7 @@ def compile_exprs(
     other than ``variables`` raise :class:`~dhsym.errors.DHError`. With
     ``floats=True`` the code uses :mod:`math` and takes Python floats (fast for
     one point); otherwise numpy, elementwise over arrays. The steps are
-    :meth:`Program.of` and :func:`compile_program`.
+    :meth:`NumericProgram.of` and :func:`compile_program`.
 
     >>> x, y = sp.symbols("x y")
     >>> compile_exprs([sp.sqrt(3) * x, x + y], (x, y), floats=True)(2.0, 1.0)
@@ -197,7 +197,7 @@ def compile_exprs(
     ...
     dhsym.errors.DHError: no numeric value for y: give values for these symbols
     """
-    return compile_program(Program.of(exprs, variables), variables, floats=floats)
+    return compile_program(NumericProgram.of(exprs, variables), variables, floats=floats)
 
 
 def evaluate_chunked(

@@ -14,7 +14,7 @@ import sympy as sp
 import dhsym
 from dhsym.cache import codec
 from dhsym.cache.codec import CodecError, read_array, read_exprs, write_array, write_exprs
-from dhsym.kinematics.numeric import Program
+from dhsym.kinematics.numeric import NumericProgram
 
 
 def test_round_trip_of_a_closed_form():
@@ -51,7 +51,7 @@ def test_shared_subexpressions_written_once():
 def test_a_program_round_trip():
     r = dhsym.load("planar2r")
     M = r.arm_matrix().matrix.subs({sp.Symbol("a1", real=True): 1, sp.Symbol("a2", real=True): 2})
-    p = Program.of(list(M), r.variables)
+    p = NumericProgram.of(list(M), r.variables)
     lhs = sp.Tuple(*(s for s, _ in p.assignments))
     rhs = sp.Tuple(*(e for _, e in p.assignments))
     a, b, c = read_exprs(write_exprs([lhs, rhs, sp.Tuple(*p.outputs)]))
