@@ -21,8 +21,8 @@ Craig, *Introduction to Robotics*, §4.7):
    flip), ``θ4`` and ``θ6`` from its row and column by ``atan2``.
 
 Every step is a :class:`~dhsym.ik.steps.Step` — a sentence and exact sympy expressions;
-``atan2`` and the signs ``σ = ±1`` of each branch are explicit. The solver of :mod:`dhsym.ik.closed_form_solver`
-compiles the steps once (``lambdify`` with the steps as the common subexpressions), with
+``atan2`` and the signs ``σ = ±1`` of each branch are explicit. The solver of
+:mod:`dhsym.ik.closed_form_solver` compiles the steps once (``lambdify`` with the steps as the common subexpressions), with
 the ``fk`` check, into a numpy function over a batch of poses and all branches at once and
 into a function of plain floats for one pose (the rewriting: :mod:`dhsym.ik.rewriting`).
 
