@@ -22,9 +22,10 @@ Craig, *Introduction to Robotics*, §4.7):
 
 Every step is a :class:`~dhsym.ik.steps.Step` — a sentence and exact sympy expressions;
 ``atan2`` and the signs ``σ = ±1`` of each branch are explicit. The solver of
-:mod:`dhsym.ik.closed_form_solver` compiles the steps once (``lambdify`` with the steps as the common subexpressions), with
-the ``fk`` check, into a numpy function over a batch of poses and all branches at once and
-into a function of plain floats for one pose (the rewriting: :mod:`dhsym.ik.rewriting`).
+:mod:`dhsym.ik.closed_form_solver` compiles the steps once (``lambdify`` with the steps as
+the common subexpressions), with the ``fk`` check, into a numpy function over a batch of
+poses and all branches at once and into a function of plain floats for one pose (the
+rewriting: :mod:`dhsym.ik.rewriting`).
 
 Results. One pose ``(4, 4)`` gives an :class:`~dhsym.ik.solution.IKSolution`: ``q`` is
 ``(k, n)`` (k ≤ 8, only real, checked, distinct solutions) with a name per solution and the
