@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import os
 import threading
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, overload
@@ -327,6 +327,22 @@ class Robot(KinematicChain):
         from dhsym.plot.figures import plot_robot
 
         return plot_robot(self, q, **kw)
+
+    def view(
+        self, q: Sequence[float] | None = None, *, deg: bool = False, workspace: int = 4000
+    ) -> Any:
+        """A 3D view of the arm in Jupyter: a slider per joint (in the table's units, within its
+        limits), its DH frames, the arm matrix read out live (:mod:`dhsym.view`).
+
+        ``view.q`` is shared both ways with the sliders. Needs anywidget (the ``widgets``
+        extra); ``dhsym view NAME -o arm.html`` writes the same view as a page that needs
+        nothing. Where widgets do not run, it shows a picture of the arm at ``q``.
+        """
+        from dhsym.plot.figures import joint_values
+        from dhsym.view.widget import arm_view
+
+        start = None if q is None else list(joint_values(self, q, deg=deg))
+        return arm_view(self, start, workspace=workspace)
 
 
 def load(name_or_path: str | Path, **kw: Any) -> Robot:

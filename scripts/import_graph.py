@@ -41,6 +41,7 @@ ORDER = [
     "plot",
     "formats",
     "export",
+    "view",
     "robot",
     "explain",
     "checking",

@@ -61,6 +61,25 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_view(args: argparse.Namespace) -> int:
+    from dhsym.model.parsing import check_count, parse_number_list
+    from dhsym.plot.figures import joint_values
+    from dhsym.view.page import view_page
+
+    check_count(args.workspace, "--workspace", 0, 100_000)
+    robot = load_robot(args.robot, args.values, need_numbers=True, tip=args.tip, base=args.base)
+    q = None
+    if args.q is not None:
+        values = parse_number_list(args.q, "--q")
+        deg, unit = q_in_degrees(args, robot.table)
+        if unit:
+            print(f"dhsym: note: {unit}", file=sys.stderr)
+        q = list(joint_values(robot, values, deg=deg))
+    page = view_page(robot, q, workspace=args.workspace)
+    emit_bytes(page.encode("utf-8"), args.output, "an HTML page")
+    return 0
+
+
 def register(subparsers: Any) -> None:
     """Add ``dhsym plot NAME|FILE [--q …] [--deg] [--view 2d|3d] [--workspace] -o FILE``."""
     p = add_command(subparsers, "plot", "draw the arm with its DH frames (PNG, PDF or SVG)")
@@ -93,3 +112,35 @@ def register(subparsers: Any) -> None:
         help="picture format (default: from the file name; svg for -o -)",
     )
     p.set_defaults(func=_cmd_plot)
+
+    p = add_command(
+        subparsers,
+        "view",
+        "a 3D view of the arm in one HTML page: a slider per joint, its frames, ^0T_n live",
+    )
+    p.add_argument(
+        "robot", help="built-in robot name (dhsym list), table file, or URDF file (with --tip)"
+    )
+    add_urdf_options(p)
+    p.add_argument("--q", help="joint values to start at, comma separated (default: all zero)")
+    add_angle_options(p)
+    p.add_argument(
+        "--values",
+        metavar="NAME=NUMBER,...",
+        help="numbers for the table's symbolic lengths, e.g. a1=1,a2=0.8",
+    )
+    p.add_argument(
+        "--workspace",
+        type=int,
+        default=4000,
+        metavar="N",
+        help="points of the workspace cloud the page can show (0: none; default 4000)",
+    )
+    p.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        metavar="FILE",
+        help="the page (.html); it opens offline, from a file; - writes to standard output",
+    )
+    p.set_defaults(func=_cmd_view)

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.kinematics.transforms import plain_product
 from dhsym.model.entries import check_real
 from dhsym.model.parsing import REAL as _REAL
 from dhsym.model.table import JointType
@@ -54,6 +55,7 @@ __all__ = [
     "fk_program",
     "ik_program",
     "jacobian_program",
+    "links_program",
     "rne_program",
 ]
 
@@ -286,6 +288,28 @@ def _program(robot: KinematicChain, matrix: sp.Matrix, symbolic_lengths: bool) -
 def fk_program(robot: KinematicChain, *, symbolic_lengths: bool = False) -> Program:
     """World to tool (``robot.fk``) as a :class:`Program` with a 4×4 result."""
     return _program(robot, robot.tool_pose().matrix, symbolic_lengths)
+
+
+def links_program(robot: KinematicChain) -> Program:
+    """Each link matrix ``^{i-1}T_i`` and the point between its row's two halves, for
+    drawing the arm: ``4n × 4``, link ``i`` in rows ``4(i-1) … 4i-1`` (its top three rows,
+    then the translation of its first two elementary transforms and a 0).
+
+    The point is where a lecture's picture bends: along ``z_{i-1}`` by ``d_i`` (standard),
+    or along ``x_{i-1}`` by ``a_{i-1}`` (modified).
+
+    >>> import dhsym
+    >>> prog = links_program(dhsym.load("planar2r"))
+    >>> (prog.rows, prog.cols), [str(o.expr) for o in prog.outputs[:4]]
+    ((8, 4), ['c1', '-s1', '0', 'c1'])
+    """
+    rows: list[list[sp.Expr]] = []
+    for i in range(1, robot.n + 1):
+        A = robot.link_matrix(i).matrix
+        half = plain_product(robot.link_word(i)[:2])
+        rows += [list(A.row(r)) for r in range(3)]
+        rows.append([half[0, 3], half[1, 3], half[2, 3], sp.Integer(0)])
+    return _program(robot, sp.Matrix(rows), False)
 
 
 def jacobian_program(robot: KinematicChain, *, symbolic_lengths: bool = False) -> Program:

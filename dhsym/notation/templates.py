@@ -56,6 +56,7 @@ __all__ = [
     "CODE",
     "DOCUMENT",
     "FEEDBACK",
+    "PAGE",
     "FORMATS",
     "Family",
     "builtin_dir",
@@ -98,6 +99,9 @@ class Family:
 DOCUMENT = Family("document", trim=True, escape=True)
 #: Feedback pages and class summaries (:mod:`dhsym.checking`).
 FEEDBACK = Family("feedback", trim=False, escape=False)
+#: Pages of their own (the 3D view, :mod:`dhsym.view`): HTML autoescaped, scripts passed in
+#: as trusted markup built by dhsym.
+PAGE = Family("page", trim=False, escape=False)
 #: Generated source code (:mod:`dhsym.export`), in ``templates/export``.
 CODE = Family("code", trim=True, escape=False, folder="export")
 
