@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import base64
 import io
-from collections.abc import Sequence
-from functools import cache
+from collections.abc import Callable, Sequence
+from functools import cache, partial
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -48,6 +48,37 @@ def _png(robot: KinematicChain, q: Sequence[float] | np.ndarray) -> str:
     return base64.b64encode(buffer.getvalue()).decode("ascii")
 
 
+def solve_target(robot: KinematicChain, target: np.ndarray) -> tuple[list[dict[str, Any]], str]:
+    """The branches of ``robot.ik`` for ``target`` (16 numbers, or 4×4) as the view shows
+    them, and the reason when there is none.
+
+    >>> import dhsym, numpy as np
+    >>> arm = dhsym.load("puma560")
+    >>> found, why = solve_target(arm, arm.fk([0.1, -0.5, 0.3, 0.2, 0.4, 0.1]))
+    >>> len(found), found[0]["branch"], why
+    (8, 'right arm, elbow down, wrist not flipped', '')
+    >>> far = np.eye(4)
+    >>> far[0, 3] = 5.0
+    >>> solve_target(arm, far)[1][:44]
+    'no branch of the closed form reproduces the '
+    """
+    T = np.asarray(target, dtype=float).reshape(4, 4)
+    if T.shape != (4, 4) or not np.all(np.isfinite(T)):
+        return [], "the target must be 16 finite numbers"
+    ik = getattr(robot, "ik", None)
+    if ik is None:
+        return [], "this chain has no inverse kinematics (load it as a robot: dhsym.load)"
+    try:
+        found = ik(T)
+    except DHError as exc:
+        return [], str(exc)
+    rows = [
+        {"branch": branch, "q": [float(x) for x in q]}
+        for branch, q in zip(found.branches, np.asarray(found.q))
+    ]
+    return rows, "" if rows else (found.reason or "no solution")
+
+
 @cache
 def _widget_class() -> type:
     """The widget class, made once (anywidget is imported only when a view is shown)."""
@@ -66,10 +97,25 @@ def _widget_class() -> type:
         _esm = traitlets.Unicode().tag(sync=True)
         scene = traitlets.Dict().tag(sync=True)
         q = traitlets.List(traitlets.Float()).tag(sync=True)
+        #: the pose the student asks for (16 numbers row by row), set by the page
+        target = traitlets.List(traitlets.Float()).tag(sync=True)
+        #: what the IK gave for it: ``{"branch": name, "q": [...]}`` each, and why none
+        solutions = traitlets.List(traitlets.Dict()).tag(sync=True)
+        reason = traitlets.Unicode("").tag(sync=True)
+        #: counts the answers, so that the page hears each one (even a repeated one)
+        solved = traitlets.Int(0).tag(sync=True)
 
-        def __init__(self, *, static: tuple[str, str], **kw: Any) -> None:
+        def __init__(
+            self, *, static: tuple[str, str], solve: Callable[[np.ndarray], Any], **kw: Any
+        ) -> None:
             super().__init__(**kw)
             self._static = static
+            self._solve = solve
+
+        @traitlets.observe("target")
+        def _target_moved(self, change: dict[str, Any]) -> None:
+            self.solutions, self.reason = self._solve(np.array(change["new"], dtype=float))
+            self.solved += 1
 
         def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict[str, Any], dict[str, Any]]:
             bundle = super()._repr_mimebundle_(**kwargs)
@@ -100,6 +146,7 @@ def arm_view(
     )
     text = f"{shown.name}: a 3D view with a slider per joint (q = {[float(x) for x in shown.q]})"
     return _widget_class()(
+        solve=partial(solve_target, chain),
         _esm=esm,
         scene=shown.data(),
         q=[float(x) for x in shown.q],

@@ -110,7 +110,7 @@ function frameAxes(size, r) {
 
 // The view: builds the DOM and the scene, and redraws for a configuration.
 class View {
-  constructor(root, scene, robot, onChange) {
+  constructor(root, scene, robot, onChange, ik = null) {
     this.scene = scene;
     this.robot = robot;
     this.onChange = onChange;
@@ -123,7 +123,96 @@ class View {
     root.appendChild(el("style", {}, STYLE));
     this.buildStage(root);
     this.buildSide(root);
+    if (ik) this.buildIK(root.querySelector(".side"), ik);
     this.update();
+  }
+
+  // Inverse kinematics (the widget: dhsym solves in Python). The target starts at the tool;
+  // the student types its position and turns it about the world axes; the branches come
+  // back with their names, or the reason there is none.
+  buildIK(side, ik) {
+    const box = el("fieldset", { class: "ik" });
+    box.appendChild(el("legend", {}, "inverse kinematics: move the target"));
+    const fields = {};
+    for (const [key, label] of [
+      ["x", "x"],
+      ["y", "y"],
+      ["z", "z"],
+      ["rx", "turn about x (°)"],
+      ["ry", "turn about y (°)"],
+      ["rz", "turn about z (°)"],
+    ]) {
+      const row = el("label", { class: "slider" });
+      row.appendChild(el("span", {}, label));
+      const input = el("input", { type: "number", step: "any", "data-target": key });
+      input.value = "0";
+      row.appendChild(input);
+      box.appendChild(row);
+      fields[key] = input;
+    }
+    const solve = el("button", { type: "button", "data-name": "solve" }, "solve");
+    const reset = el("button", { type: "button" }, "target at the tool");
+    const chooser = el("select", { "data-name": "branches", hidden: "" });
+    const reason = el("p", { class: "note", "data-name": "reason" });
+    box.append(solve, reset, chooser, reason);
+    side.appendChild(box);
+    this.target = frameAxes(6 * this.scene.radius, 0.4 * this.scene.radius);
+    this.target.matrixAutoUpdate = false;
+    this.target.visible = false;
+    this.arm.add(this.target);
+    const atTool = () => {
+      const T = this.robot.fk(this.q);
+      fields.x.value = fmt(T[3], 6);
+      fields.y.value = fmt(T[7], 6);
+      fields.z.value = fmt(T[11], 6);
+      for (const k of ["rx", "ry", "rz"]) fields[k].value = "0";
+      this.toolAtReset = T;
+    };
+    atTool();
+    reset.addEventListener("click", atTool);
+    solve.addEventListener("click", () => {
+      const deg = Math.PI / 180;
+      const turn = new Matrix4()
+        .makeRotationZ(Number(fields.rz.value) * deg)
+        .multiply(new Matrix4().makeRotationY(Number(fields.ry.value) * deg))
+        .multiply(new Matrix4().makeRotationX(Number(fields.rx.value) * deg));
+      const T = turn.multiply(mat4(this.toolAtReset));
+      const e = T.clone().transpose().elements; // row by row
+      e[3] = Number(fields.x.value);
+      e[7] = Number(fields.y.value);
+      e[11] = Number(fields.z.value);
+      const target = Array.from(e);
+      this.target.matrix.copy(mat4(target));
+      this.target.visible = true;
+      reason.textContent = "solving …";
+      ik.solve(target);
+      this.draw();
+    });
+    chooser.addEventListener("change", () => {
+      const k = Number(chooser.value);
+      if (this.solutions && this.solutions[k]) {
+        this.setQ(this.solutions[k].q);
+        if (this.onChange) this.onChange(this.q.slice());
+      }
+    });
+    ik.onSolutions((solutions, why) => {
+      this.solutions = solutions;
+      chooser.replaceChildren(
+        ...solutions.map((sol, k) => {
+          const o = el("option", { value: String(k) }, sol.branch);
+          return o;
+        })
+      );
+      chooser.hidden = solutions.length === 0;
+      reason.textContent = solutions.length
+        ? `${solutions.length} solution(s): choose a branch`
+        : why || "no solution";
+      if (solutions.length) {
+        chooser.value = "0";
+        this.setQ(solutions[0].q);
+        if (this.onChange) this.onChange(this.q.slice());
+      }
+    });
   }
 
   buildStage(root) {
@@ -410,10 +499,32 @@ export function widget(robot) {
       if (q0 && q0.length === scene.joints.length) {
         scene.joints.forEach((j, i) => (j.value = q0[i] / j.scale));
       }
-      const view = new View(element, scene, robot, (q) => {
-        model.set("q", q);
-        model.save_changes();
-      });
+      let answer = null;
+      const ik = {
+        solve(target) {
+          const last = model.get("target") || [];
+          if (answer && last.length === 16 && target.every((v, k) => v === last[k])) {
+            answer(); // the same target: the answer the kernel gave stands
+            return;
+          }
+          model.set("target", target);
+          model.save_changes();
+        },
+        onSolutions(callback) {
+          answer = () => callback(model.get("solutions"), model.get("reason"));
+          model.on("change:solved", answer);
+        },
+      };
+      const view = new View(
+        element,
+        scene,
+        robot,
+        (q) => {
+          model.set("q", q);
+          model.save_changes();
+        },
+        ik
+      );
       const onQ = () => {
         const q = model.get("q");
         if (q.some((v, i) => v !== view.q[i])) view.setQ(q);
