@@ -34,6 +34,7 @@ import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 import { CSS2DObject, CSS2DRenderer } from "three/addons/renderers/CSS2DRenderer.js";
 
 const UP = new Vector3(0, 1, 0);
+const TRACE = 5000; // points of the tool's path kept
 const STYLE = `
 .dhsym-view { font: 13px system-ui, sans-serif; display: flex; flex-wrap: wrap; gap: 12px; color: #222; }
 .dhsym-view .stage { position: relative; width: 560px; height: 440px; border: 1px solid #ccc; background: #fafafa; }
@@ -117,7 +118,6 @@ class View {
     this.n = scene.rows; // DH rows (frames 1 … n); scene.joints: the moving ones
     this.q = scene.joints.map((j) => j.value * j.scale);
     this.active = -1;
-    this.trace = [];
     this.redraws = 0;
     root.classList.add("dhsym-view");
     root.appendChild(el("style", {}, STYLE));
@@ -279,7 +279,11 @@ class View {
       this.cloud.visible = false;
       this.arm.add(this.cloud);
     }
-    this.traceLine = new Line(new BufferGeometry(), new LineBasicMaterial({ color: 0xcc2255 }));
+    const path = new BufferGeometry();
+    path.setAttribute("position", new Float32BufferAttribute(new Float32Array(3 * TRACE), 3));
+    this.traced = 0;
+    this.traceLine = new Line(path, new LineBasicMaterial({ color: 0xcc2255 }));
+    this.traceLine.frustumCulled = false;
     this.traceLine.visible = false;
     this.arm.add(this.traceLine);
   }
@@ -454,10 +458,22 @@ class View {
       box.classList.toggle("active", this.active >= 0 && i === s.joints[this.active].row);
     });
     if (!this.framed) this.frame(origin);
-    this.trace.push(T[3], T[7], T[11]);
-    if (this.trace.length > 3 * 5000) this.trace.splice(0, 3);
-    this.traceLine.geometry.setAttribute("position", new Float32BufferAttribute(this.trace, 3));
+    this.record(T);
     this.draw();
+  }
+
+  // the tool's path: the last TRACE positions, in a buffer made once
+  record(T) {
+    const pos = this.traceLine.geometry.getAttribute("position");
+    if (this.traced < TRACE) {
+      pos.setXYZ(this.traced, T[3], T[7], T[11]);
+      this.traced += 1;
+    } else {
+      pos.array.copyWithin(0, 3); // drop the oldest point, keep the line in time order
+      pos.setXYZ(TRACE - 1, T[3], T[7], T[11]);
+    }
+    this.traceLine.geometry.setDrawRange(0, this.traced);
+    pos.needsUpdate = true;
   }
 
   // aim the camera at the arm as it first stands, far enough to see it whole
@@ -480,6 +496,7 @@ class View {
     this.renderer.render(this.world, this.camera);
     this.labels.render(this.world, this.camera);
     this.redraws += 1;
+    if (this.redraws === 1) this.firstFrame = performance.now(); // ms since the page started
   }
 }
 

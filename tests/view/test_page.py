@@ -156,3 +156,33 @@ def test_cli_writes_the_page(tmp_path: Path, capsys: pytest.CaptureFixture[str])
     assert main(["view", "puma560", "--q", "1,2", "-o", str(tmp_path / "p.html")]) == 2
     assert "6" in capsys.readouterr().err
     assert not (tmp_path / "p.html").exists()
+
+
+def test_the_tool_path_and_the_workspace(guarded: Any, tmp_path: Path) -> None:
+    robot = dhsym.load("ur5")
+    path = tmp_path / "ur5.html"
+    path.write_text(view_page(robot, workspace=300), encoding="utf-8")
+    page = _open(guarded, path)
+    page.get_by_role("button", name="tool path").click()
+    page.get_by_role("button", name="workspace").click()
+    qs = [page.evaluate(MOVE, [1, v]) for v in (0.2, 0.4, 0.6)]
+    traced = page.evaluate(
+        """() => { const v = window.dhsymView, g = v.traceLine.geometry;
+                   const a = g.getAttribute("position").array;
+                   return { n: g.drawRange.count, last: Array.from(a.slice(3 * (g.drawRange.count - 3), 3 * g.drawRange.count)),
+                            shown: v.traceLine.visible, cloud: v.cloud.visible,
+                            points: v.cloud.geometry.getAttribute("position").count }; }"""
+    )
+    assert traced["shown"] and traced["cloud"] and traced["points"] == 300
+    assert traced["n"] == 4  # the first pose, then three moves
+    want = np.array([robot.fk(q)[:3, 3] for q in qs]).ravel()
+    np.testing.assert_allclose(traced["last"], want, atol=1e-6)  # float32 in the buffer
+    cloud = view_page(robot, workspace=300).split('"cloud": [')[1].split("]")[0]
+    sampled = np.array(cloud.split(","), dtype=float).reshape(-1, 3)
+    reach = np.linalg.norm(sampled, axis=1)
+    lengths = sum(
+        abs(float(x))
+        for r in robot.table.rows
+        for x in (r.a.xreplace(robot.table.value_map), r.d.xreplace(robot.table.value_map))
+    )
+    assert 0.5 < reach.max() <= lengths  # within the summed DH lengths (1.19 m)
