@@ -54,6 +54,10 @@ nb_merge_streams = True
 # tables), not as bare CommonMark, which leaves the maths and the tables as raw text.
 nb_render_markdown_format = "myst"
 nb_ipywidgets_js: dict[str, dict[str, str]] = {}  # no CDN: widgets show their static text
+# ... and their picture: a widget stored without its state (dhsym's notebooks keep none)
+# shows its static fallback (robot.view()'s PNG), not an empty placeholder. The live 3D
+# views are the pages of _static/views/ (dhsym_docs writes them).
+nb_mime_priority_overrides = [("html", "application/vnd.jupyter.widget-view+json", None)]
 
 # API: autodoc imports dhsym's modules (nothing else runs); numpydoc reads the docstrings.
 autosummary_generate = False

@@ -191,24 +191,21 @@ assert np.allclose(T_num[:2, 3], [px, py])
 # %% [markdown]
 # ## 7. Move the joints yourself
 #
-# With `ipywidgets` installed, the next cell shows two sliders; move them and watch the frames
-# follow. (In a static copy of this notebook, on GitHub or in HTML, you only see a text
-# stand-in for the sliders.)
+# `robot.view()` shows the arm in 3D with one slider per joint, its DH frames and the arm
+# matrix read out as you move: drag a slider and watch ${}^0T_2$ change; turn on *closed
+# form* to see the entries above, and *link matrices* to see which ${}^{i-1}T_i$ a slider
+# changes. `view.q` is the configuration you set (in radians). It needs `anywidget`
+# (`pip install 'dhsym[widgets]'`); in a static copy of this notebook you see a picture of
+# the arm instead. `dhsym view planar2r -o arm.html` writes the same view as a page that
+# opens anywhere, offline.
 
 # %%
 try:
-    import ipywidgets
-except ImportError:
-    ipywidgets = None
-
-def show(theta1=30, theta2=45):
-    return robot.plot([theta1, theta2], deg=True, view="2d")
-
-if ipywidgets is None:
-    display(Markdown('> **Note:** `ipywidgets` is not installed, so there are no sliders here. Install it (`pip install ipywidgets`) and run this cell again; the picture below shows one fixed configuration instead.'))
-    display(show())
-else:
-    ipywidgets.interact(show, theta1=(-180, 180, 5), theta2=(-150, 150, 5))
+    view = robot.view([30, 45], deg=True)
+except dhsym.DHError as missing:  # anywidget is not installed
+    print(missing)
+    view = robot.plot([30, 45], deg=True, view="2d")
+view
 
 # %% [markdown]
 # ## 8. Animate a path

@@ -176,6 +176,17 @@ print(np.round(craig.fk(np.zeros(6)), 5))
 craig.plot()
 
 # %% [markdown]
+# ## Move the PUMA yourself
+#
+# One slider per joint, in the table's unit (radians) and within the PUMA's joint limits;
+# the frames carry their numbers (the wrist's frames 4, 5 and 6 share one origin, so one
+# label). Turn on *link matrices* and move $\theta_3$: only ${}^2T_3$ changes. (Needs
+# `anywidget`; a static copy shows a picture.)
+
+# %%
+puma.view([0, -0.6, 0.4, 0, 0.8, 0])
+
+# %% [markdown]
 # Notebook 5 compares the two conventions on one table and shows how the tool poses are
 # related.
 #

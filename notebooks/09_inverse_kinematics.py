@@ -166,6 +166,14 @@ for name, qs in zip(sol.branches, sol.q):
 dhsym.plot_solutions(ur5, sol)
 
 # %% [markdown]
+# In the 3D view, type a target under *inverse kinematics* (a position, and turns about the
+# world axes), press *solve*, and choose among the branches by name: the arm jumps to each
+# solution of the same pose. A target out of reach says which step has no real solution.
+
+# %%
+ur5.view(q_ur)
+
+# %% [markdown]
 # ## 4. At a wrist singularity
 #
 # With $\theta_5 = 0$ axes 4 and 6 line up: only $\theta_4 + \theta_6$ is determined. The

@@ -126,6 +126,9 @@ def execute_notebook(
         timeout=timeout,
         kernel_name=kernel_name,
         record_timing=False,
+        # a widget's state is the page's to rebuild when it runs: stored, the 3D view would
+        # carry its whole bundled JavaScript into the notebook file
+        store_widget_state=False,
         resources={"metadata": {"path": str(path.parent.resolve())}},
     )
     try:

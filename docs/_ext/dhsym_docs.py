@@ -10,7 +10,9 @@
 - the directive ``dhsym-mistakes``: the mistake catalogue, read from the registry
   :mod:`dhsym.checking.mistakes.registry`;
 - ``build-finished``: copies Debian's MathJax 2 (``libjs-mathjax``) into ``_static/``, so
-  the site typesets mathematics without the network.
+  the site typesets mathematics without the network, and writes the 3D view of each
+  tutorial robot (:data:`VIEWS`, ``dhsym view NAME``) into ``_static/views/``, where the
+  guide's page on the view and the tutorials embed them.
 
 Nothing here runs user input: the API pages only import dhsym's modules (``__main__`` is
 skipped) and autodoc reads their docstrings.
@@ -43,6 +45,9 @@ MATHJAX_PARTS = (
     "fonts/HTML-CSS/TeX/woff",
 )
 MATHJAX_PATH = "mathjax/MathJax.js?config=TeX-AMS_CHTML-full"
+
+#: The tutorial robots whose 3D views the site shows (``_static/views/NAME.html``).
+VIEWS = ("planar2r", "puma560", "ur5", "panda", "stanford")
 
 PACKAGE = "dhsym"
 SKIP_MODULES = {"dhsym.__main__"}
@@ -236,6 +241,18 @@ def _on_build_finished(app: Sphinx, exc: BaseException | None) -> None:
             shutil.copytree(s, d, dirs_exist_ok=True)
         else:
             shutil.copy2(s, d)
+    _write_views(Path(app.outdir) / "_static" / "views")
+
+
+def _write_views(folder: Path) -> None:
+    """The page of ``dhsym view NAME`` for each robot of :data:`VIEWS`."""
+    import dhsym
+    from dhsym.view import view_page
+
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in VIEWS:
+        page = view_page(dhsym.load(name), footer=f"dhsym view {name} -o {name}.html")
+        (folder / f"{name}.html").write_text(page, encoding="utf-8")
 
 
 # --------------------------------------------------------------------------- CLI
