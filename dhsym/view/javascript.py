@@ -3,7 +3,8 @@ programs (:func:`dhsym.export.program.links_program`, :func:`~dhsym.export.progr
 with sympy's JavaScript printer, as the C and Rust are printed from them.
 
 :func:`robot_script` is one expression statement, ``const DHSYM_ROBOT = (() => {…})();``,
-whose value has ``n``, ``fk(q)`` (world to tool, 16 numbers row by row: ``robot.fk``) and
+whose value has ``n``, ``fk(q)`` (world to tool, 16 numbers row by row: ``robot.fk``),
+``jacobian(q)`` (the geometric Jacobian of ``robot.jacobian(q)``, 6 × n row by row) and
 ``links(q)`` (for each link its matrix ``^{i-1}T_i``, 12 numbers, and the bend point of its
 row, 3 numbers). Only the name ``DHSYM_ROBOT`` is declared at the top level, so it can follow
 the bundled view in one script.
@@ -25,7 +26,7 @@ from typing import TYPE_CHECKING
 import sympy as sp
 from sympy.printing.jscode import JavascriptCodePrinter
 
-from dhsym.export.program import Program, fk_program, links_program
+from dhsym.export.program import Program, fk_program, jacobian_program, links_program
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
@@ -59,6 +60,7 @@ def robot_script(robot: KinematicChain) -> str:
     links = links_program(robot)
     lines = ["const DHSYM_ROBOT = (() => {", '  "use strict";']
     lines += _function("fk", fk_program(robot), printer, "return [{values}];")
+    lines += _function("jacobian", jacobian_program(robot), printer, "return [{values}];")
     lines += _function("links", links, printer, "const v = [{values}];")[:-1]
     lines += [
         "    const out = [];",
@@ -67,7 +69,7 @@ def robot_script(robot: KinematicChain) -> str:
         "    }",
         "    return out;",
         "  }",
-        f"  return {{ n: {robot.n}, fk, links }};",
+        f"  return {{ n: {robot.n}, fk, jacobian, links }};",
         "})();",
     ]
     return "\n".join(lines) + "\n"

@@ -27,6 +27,7 @@ import {
   PointsMaterial,
   Quaternion,
   Scene,
+  SphereGeometry,
   Vector3,
   WebGLRenderer,
 } from "three";
@@ -35,6 +36,7 @@ import { CSS2DObject, CSS2DRenderer } from "three/addons/renderers/CSS2DRenderer
 
 const UP = new Vector3(0, 1, 0);
 const TRACE = 5000; // points of the tool's path kept
+const ELLIPSOID = 0.3; // the manipulability ellipsoid: length units drawn per unit of speed
 const STYLE = `
 .dhsym-view { font: 13px system-ui, sans-serif; display: flex; flex-wrap: wrap; gap: 12px; color: #222; }
 .dhsym-view .stage { position: relative; width: 560px; height: 440px; border: 1px solid #ccc; background: #fafafa; }
@@ -85,6 +87,51 @@ function segment(material, r, box) {
     mesh.scale.set(1, len, 1);
   };
   return mesh;
+}
+
+// The eigenvalues and unit eigenvectors (columns of V, row by row) of a symmetric 3×3, by
+// Jacobi rotations.
+export function symmetricEigen(A) {
+  const a = [A[0].slice(), A[1].slice(), A[2].slice()];
+  const V = [
+    [1, 0, 0],
+    [0, 1, 0],
+    [0, 0, 1],
+  ];
+  for (let sweep = 0; sweep < 50; sweep++) {
+    const off = a[0][1] ** 2 + a[0][2] ** 2 + a[1][2] ** 2;
+    if (off < 1e-30) break;
+    for (const [p, q] of [
+      [0, 1],
+      [0, 2],
+      [1, 2],
+    ]) {
+      if (Math.abs(a[p][q]) < 1e-300) continue;
+      const theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
+      const t = Math.sign(theta || 1) / (Math.abs(theta) + Math.sqrt(theta * theta + 1));
+      const c = 1 / Math.sqrt(t * t + 1);
+      const s = t * c;
+      for (let k = 0; k < 3; k++) {
+        const akp = a[k][p];
+        const akq = a[k][q];
+        a[k][p] = c * akp - s * akq;
+        a[k][q] = s * akp + c * akq;
+      }
+      for (let k = 0; k < 3; k++) {
+        const apk = a[p][k];
+        const aqk = a[q][k];
+        a[p][k] = c * apk - s * aqk;
+        a[q][k] = s * apk + c * aqk;
+      }
+      for (let k = 0; k < 3; k++) {
+        const vkp = V[k][p];
+        const vkq = V[k][q];
+        V[k][p] = c * vkp - s * vkq;
+        V[k][q] = s * vkp + c * vkq;
+      }
+    }
+  }
+  return { values: [a[0][0], a[1][1], a[2][2]], vectors: V };
 }
 
 function axisArrow(color, length, r) {
@@ -279,6 +326,13 @@ class View {
       this.cloud.visible = false;
       this.arm.add(this.cloud);
     }
+    this.ellipsoid = new Mesh(
+      new SphereGeometry(1, 32, 16),
+      new MeshStandardMaterial({ color: 0x3b7dd8, transparent: true, opacity: 0.35 })
+    );
+    this.ellipsoid.matrixAutoUpdate = false;
+    this.ellipsoid.visible = false;
+    this.arm.add(this.ellipsoid);
     const path = new BufferGeometry();
     path.setAttribute("position", new Float32BufferAttribute(new Float32Array(3 * TRACE), 3));
     this.traced = 0;
@@ -342,6 +396,10 @@ class View {
     toggle("link matrices", false, (on) => {
       this.linksBox.hidden = !on;
     });
+    toggle("manipulability", false, (on) => {
+      this.ellipsoid.visible = on;
+      this.manipulability.hidden = !on;
+    });
     toggle("tool path", false, (on) => {
       this.traceLine.visible = on;
     });
@@ -362,6 +420,8 @@ class View {
     side.appendChild(this.matrix);
     this.position = el("div", { class: "position", "data-name": "position" });
     side.appendChild(this.position);
+    this.manipulability = el("div", { "data-name": "manipulability", hidden: "" });
+    side.appendChild(this.manipulability);
 
     const closed = el("table", { class: "matrix" });
     for (const row of s.entries) {
@@ -458,8 +518,43 @@ class View {
       box.classList.toggle("active", this.active >= 0 && i === s.joints[this.active].row);
     });
     if (!this.framed) this.frame(origin);
+    this.showEllipsoid(T);
     this.record(T);
     this.draw();
+  }
+
+  // The manipulability ellipsoid of the tool point: the velocities of joint rates of unit
+  // norm, J_v J_vᵀ's eigenvectors scaled by the square roots of its eigenvalues (drawn at
+  // ELLIPSOID length units per unit of speed).
+  showEllipsoid(T) {
+    const n = this.q.length;
+    const J = this.robot.jacobian(this.q);
+    const A = [0, 1, 2].map((i) =>
+      [0, 1, 2].map((k) => {
+        let sum = 0;
+        for (let j = 0; j < n; j++) sum += J[i * n + j] * J[k * n + j];
+        return sum;
+      })
+    );
+    const { values, vectors: V } = symmetricEigen(A);
+    const axes = values.map((v) => Math.sqrt(Math.max(v, 0)));
+    this.axes = axes;
+    this.axisVectors = V;
+    const k = ELLIPSOID;
+    const m = new Matrix4();
+    m.set(
+      V[0][0] * axes[0] * k, V[0][1] * axes[1] * k, V[0][2] * axes[2] * k, T[3],
+      V[1][0] * axes[0] * k, V[1][1] * axes[1] * k, V[1][2] * axes[2] * k, T[7],
+      V[2][0] * axes[0] * k, V[2][1] * axes[1] * k, V[2][2] * axes[2] * k, T[11],
+      0, 0, 0, 1
+    );
+    this.ellipsoid.matrix.copy(m);
+    this.ellipsoid.matrixWorldNeedsUpdate = true;
+    const w = axes[0] * axes[1] * axes[2];
+    this.manipulability.dataset.value = String(w);
+    this.manipulability.textContent =
+      `manipulability of the tool point √det(J_v J_vᵀ) = ${fmt(w, 5)}; ` +
+      `semi-axes ${axes.map((x) => fmt(x, 3)).join(", ")} (per unit joint rate)`;
   }
 
   // the tool's path: the last TRACE positions, in a buffer made once

@@ -169,7 +169,8 @@ def test_the_tool_path_and_the_workspace(guarded: Any, tmp_path: Path) -> None:
     traced = page.evaluate(
         """() => { const v = window.dhsymView, g = v.traceLine.geometry;
                    const a = g.getAttribute("position").array;
-                   return { n: g.drawRange.count, last: Array.from(a.slice(3 * (g.drawRange.count - 3), 3 * g.drawRange.count)),
+                   const n = g.drawRange.count;
+                   return { n, last: Array.from(a.slice(3 * (n - 3), 3 * n)),
                             shown: v.traceLine.visible, cloud: v.cloud.visible,
                             points: v.cloud.geometry.getAttribute("position").count }; }"""
     )
@@ -186,3 +187,23 @@ def test_the_tool_path_and_the_workspace(guarded: Any, tmp_path: Path) -> None:
         for x in (r.a.xreplace(robot.table.value_map), r.d.xreplace(robot.table.value_map))
     )
     assert 0.5 < reach.max() <= lengths  # within the summed DH lengths (1.19 m)
+
+
+@pytest.mark.parametrize("name", ["puma560", "panda"])
+def test_the_manipulability_ellipsoid_is_the_jacobians(
+    name: str, guarded: Any, tmp_path: Path
+) -> None:
+    robot = dhsym.load(name)
+    path = tmp_path / f"{name}.html"
+    path.write_text(view_page(robot, workspace=0), encoding="utf-8")
+    page = _open(guarded, path)
+    page.get_by_role("button", name="manipulability").click()
+    q = [page.evaluate(MOVE, [k, 0.3 + 0.1 * k]) for k in (1, 2, 4)][-1]
+    Jv = robot.jacob0(np.array(q))[:3]
+    want = np.sqrt(np.sort(np.linalg.eigvalsh(Jv @ Jv.T)))
+    got = page.evaluate("() => window.dhsymView.axes")
+    np.testing.assert_allclose(np.sort(got), want, atol=1e-9)
+    shown = float(page.get_attribute("[data-name=manipulability]", "data-value"))
+    assert shown == pytest.approx(np.sqrt(np.linalg.det(Jv @ Jv.T)), abs=1e-12)
+    assert page.locator("[data-name=manipulability]").is_visible()
+    assert guarded.errors == []
