@@ -180,7 +180,8 @@ def test_the_wheel_ships_code_robots_templates_and_py_typed(dists):
     robots = {f"dhsym/model/robots/{p.name}" for p in (ROOT / "dhsym/model/robots").glob("*.yaml")}
     modules = {str(p.relative_to(ROOT)) for p in (ROOT / "dhsym").rglob("*.py")}
     assert len(templates) >= 10 and len(robots) >= 10
-    missing = (templates | robots | modules | {"dhsym/py.typed"}) - names
+    view = {"dhsym/view/static/viewer.js"}  # three.js and the view, bundled from js/
+    missing = (templates | robots | modules | view | {"dhsym/py.typed"}) - names
     assert missing == set(), f"not in the wheel: {sorted(missing)}"
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     assert not any(n.startswith(("tests/", "notebooks/", "examples/")) for n in names)
@@ -242,6 +243,16 @@ def test_check_a_right_and_a_wrong_answer(installed):
     assert wrong.returncode == 1 and "wrong sign" in wrong.stdout, wrong.stderr
     md = installed.run(*args, "--format", "markdown", stdin=WRONG)
     assert md.returncode == 1 and md.stdout.startswith("# Feedback"), md.stderr
+
+
+def test_view_writes_a_page_that_needs_nothing(installed):
+    """The README's ``dhsym view``: one page, three.js inlined, no address to fetch."""
+    out = installed.run("dhsym", "view", "puma560", "-o", "arm.html")
+    assert out.returncode == 0, out.stderr
+    html = (installed.work / "arm.html").read_text(encoding="utf-8")
+    (installed.work / "arm.html").unlink()
+    assert "DhsymViewer.mountPage" in html and "three.js" in html.lower()
+    assert "https://" not in html.split("<script>")[0] and len(html.encode()) < 1_000_000
 
 
 def test_grade_the_homework_example(installed):
