@@ -8,10 +8,15 @@ May import model, notation, kinematics and ik (``docs/architecture.md``).
 from __future__ import annotations
 
 from .blends import lspb, minimum_time, trapezoidal
+from .paths import CartesianPath, JointPath, ctraj, jtraj
 from .profiles import Derivation, Profile, Segment, cubic, quintic
 from .via import mstraj, spline
 
 __all__ = [
+    "CartesianPath",
+    "JointPath",
+    "ctraj",
+    "jtraj",
     "Derivation",
     "Profile",
     "Segment",

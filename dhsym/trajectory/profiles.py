@@ -334,17 +334,19 @@ class Profile:
         if ts.size and (ts.min() < -slack or ts.max() > tf + slack or not np.isfinite(ts).all()):
             bad = ts[(ts < -slack) | (ts > tf + slack) | ~np.isfinite(ts)][0]
             raise DHError(f"sample: times outside [0, {tf}] ({bad})")
-        out = np.empty((3, ts.size, self.n))
+        # joints first, times last: every pass over the samples is contiguous
+        out = np.empty((3, self.n, ts.size))
         shared = _shared_breaks(nums)
         if shared is not None:  # every joint has the same segments: one product per segment
             _evaluate(ts, shared, np.stack(nums.coefficients, axis=-1), nums.ends.max(), out)
         else:
             for j in range(self.n):
                 ends = min(float(nums.ends[j]), tf)
-                _evaluate(ts, nums.starts[j], nums.coefficients[j][..., None], ends, out[..., j:])
+                coeffs = nums.coefficients[j][..., None]
+                _evaluate(ts, nums.starts[j], coeffs, ends, out[:, j : j + 1, :])
         if self.scalar:
-            return out[0, :, 0], out[1, :, 0], out[2, :, 0]
-        return out[0], out[1], out[2]
+            return out[0, 0], out[1, 0], out[2, 0]
+        return out[0].T, out[1].T, out[2].T
 
 
 def _shared_breaks(nums: _Numbers) -> np.ndarray | None:
@@ -356,28 +358,37 @@ def _shared_breaks(nums: _Numbers) -> np.ndarray | None:
 def _evaluate(
     ts: np.ndarray, starts: np.ndarray, C: np.ndarray, end: float, out: np.ndarray
 ) -> None:
-    """Fill ``out`` ``(3, N, n)`` with q, q̇, q̈ of segments ``starts`` ``(S,)`` with
-    coefficients ``C`` ``(S, K, n)``; after ``end`` each joint rests at its end value."""
-    K = C.shape[1]
+    """Fill ``out`` ``(3, n, N)`` with q, q̇, q̈ of segments ``starts`` ``(S,)`` with
+    coefficients ``C`` ``(S, K, n)``; after ``end`` each joint rests at its end value.
+
+    One product per segment: the stacked coefficients of q, q̇ and q̈ ``(3n, K)`` times
+    the powers ``τ^k`` ``(K, N)``."""
+    S, K, n = C.shape
     k = np.arange(K, dtype=float)
-    D1 = C[:, 1:, :] * k[1:, None]  # q̇ coefficients (S, K-1, n)
-    D2 = D1[:, 1:, :] * k[1:-1, None] if K > 2 else np.zeros((C.shape[0], 0, C.shape[2]))
+    W = np.zeros((S, 3, n, K))
+    W[:, 0] = np.swapaxes(C, 1, 2)
+    W[:, 1, :, : K - 1] = np.swapaxes(C[:, 1:, :] * k[1:, None], 1, 2)
+    if K > 2:
+        W[:, 2, :, : K - 2] = np.swapaxes(C[:, 2:, :] * (k[2:] * k[1:-1])[:, None], 1, 2)
+    W = W.reshape(S, 3 * n, K)
     late = ts > end
-    tt = np.where(late, end, ts)
-    seg = np.clip(np.searchsorted(starts, tt, side="left") - 1, 0, len(starts) - 1)
-    for s in range(len(starts)):
-        idx = slice(None) if len(starts) == 1 else np.nonzero(seg == s)[0]
-        tau = tt[idx] - starts[s]
-        V = np.empty((tau.size, K))
-        V[:, 0] = 1.0
+    tt = np.where(late, end, ts) if late.any() else ts
+    seg = np.clip(np.searchsorted(starts, tt, side="left") - 1, 0, S - 1) if S > 1 else None
+    flat = out.reshape(3 * n, -1) if out.flags.c_contiguous else None
+    for s in range(S):
+        idx = slice(None) if seg is None else np.nonzero(seg == s)[0]
+        tau = tt[idx] - starts[s] if starts[s] else tt[idx]
+        P = np.empty((K, tau.size))
+        P[0] = 1.0
         for p in range(1, K):
-            V[:, p] = V[:, p - 1] * tau
-        out[0, idx, :] = V @ C[s]
-        out[1, idx, :] = V[:, : K - 1] @ D1[s]
-        out[2, idx, :] = V[:, : max(K - 2, 0)] @ D2[s] if K > 2 else 0.0
+            np.multiply(P[p - 1], tau, out=P[p])
+        values = W[s] @ P
+        if flat is not None:
+            flat[:, idx] = values
+        else:
+            out[:, :, idx] = values.reshape(3, n, -1)
     if late.any():
-        out[1, late, :] = 0.0
-        out[2, late, :] = 0.0
+        out[1:, :, late] = 0.0
 
 
 def _segment_at(segs: Sequence[Segment], t: sp.Expr) -> Segment:
