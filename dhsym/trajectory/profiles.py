@@ -370,7 +370,7 @@ def _evaluate(
     W[:, 1, :, : K - 1] = np.swapaxes(C[:, 1:, :] * k[1:, None], 1, 2)
     if K > 2:
         W[:, 2, :, : K - 2] = np.swapaxes(C[:, 2:, :] * (k[2:] * k[1:-1])[:, None], 1, 2)
-    W = W.reshape(S, 3 * n, K)
+    stacked = W.reshape(S, 3 * n, K)
     late = ts > end
     tt = np.where(late, end, ts) if late.any() else ts
     seg = np.clip(np.searchsorted(starts, tt, side="left") - 1, 0, S - 1) if S > 1 else None
@@ -382,7 +382,7 @@ def _evaluate(
         P[0] = 1.0
         for p in range(1, K):
             np.multiply(P[p - 1], tau, out=P[p])
-        values = W[s] @ P
+        values = stacked[s] @ P
         if flat is not None:
             flat[:, idx] = values
         else:
