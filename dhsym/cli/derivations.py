@@ -28,6 +28,7 @@ import sympy as sp
 from dhsym import __version__
 from dhsym.kinematics.jacobian import geometric_jacobian
 from dhsym.kinematics.singularities import singularities
+from dhsym.notation.layout import Math
 from dhsym.notation.printers import Notation
 from dhsym.robot import Robot
 
@@ -38,6 +39,7 @@ __all__ = [
     "ik_json",
     "jacobian_json",
     "singularities_json",
+    "trajectory_json",
 ]
 
 JSON_SCHEMA_VERSION = 1
@@ -229,12 +231,43 @@ def dynamics_json(robot: Robot) -> dict[str, object]:
     }
 
 
+def trajectory_json(robot: Robot) -> dict[str, object]:
+    """The profiles of a joint derived (:func:`dhsym.explain.trajectories.derive_trajectory`):
+    per profile its conditions, linear system, assumptions, solution and ``q(t)``, each
+    formula as text and LaTeX."""
+    from dhsym.explain.trajectories import derive_trajectory
+
+    d = derive_trajectory(robot)
+
+    def both(m: Math) -> dict[str, str]:
+        return {"text": m.text, "latex": str(m.latex)}
+
+    return {
+        **_head(robot, "trajectory"),
+        "profiles": [
+            {
+                "key": s.key,
+                "title": s.title,
+                "source": s.source,
+                "conditions": [both(c) for c in s.conditions],
+                "system": None if s.system is None else both(s.system),
+                "assumptions": [both(a) for a in s.assumptions],
+                "solution": [both(x) for x in s.solution],
+                "position": both(s.position),
+            }
+            for s in d.sections
+        ],
+    }
+
+
 def derivation_json(robot: Robot, what: str) -> dict[str, object]:
-    """The JSON of ``what`` (``jacobian``, ``singularities``, ``ik`` or ``dynamics``)."""
+    """The JSON of ``what`` (``jacobian``, ``singularities``, ``ik``, ``dynamics`` or
+    ``trajectory``)."""
     build = {
         "jacobian": jacobian_json,
         "singularities": singularities_json,
         "ik": ik_json,
         "dynamics": dynamics_json,
+        "trajectory": trajectory_json,
     }
     return build[what](robot)

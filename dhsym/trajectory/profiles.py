@@ -393,7 +393,10 @@ def _evaluate(
 
 def _segment_at(segs: Sequence[Segment], t: sp.Expr) -> Segment:
     for s in segs:
-        if bool(sp.simplify(t - s.end) <= 0):
+        after = sp.simplify(t - s.end) <= 0
+        if after not in (sp.true, sp.false):
+            raise DHError(f"at: cannot tell whether t = {t} is before {s.end}: give numbers")
+        if after is sp.true:
             return s
     return segs[-1]
 
