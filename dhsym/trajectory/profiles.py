@@ -99,7 +99,7 @@ class Segment:
         return sp.expand(sum((a * tau**k for k, a in enumerate(self.coefficients)), sp.Integer(0)))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Derivation:
     r"""How a profile's unknowns follow from its conditions: the ``equations`` (each
     with its ``labels``, e.g. ``q(t_f) = q_f``), as the linear system ``matrix ·
@@ -145,6 +145,9 @@ class Derivation:
 
     def __str__(self) -> str:
         return str(sp.sstr(self))
+
+    def __repr__(self) -> str:
+        return str(self)
 
     @property
     def pairs(self) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
