@@ -38,6 +38,7 @@ __all__ = [
     "dynamics_json",
     "ik_json",
     "jacobian_json",
+    "control_json",
     "singularities_json",
     "trajectory_json",
 ]
@@ -260,6 +261,19 @@ def trajectory_json(robot: Robot) -> dict[str, object]:
     }
 
 
+def control_json(robot: Robot) -> dict[str, object]:
+    """The computed-torque closed loop derived (:func:`dhsym.explain.trajectories.derive_control`):
+    its steps and the gains, each formula as text and LaTeX."""
+    from dhsym.explain.trajectories import derive_control
+
+    d = derive_control(robot)
+    return {
+        **_head(robot, "control"),
+        "steps": [{"label": label, "text": m.text, "latex": str(m.latex)} for label, m in d.steps],
+        "gains": [{"text": m.text, "latex": str(m.latex)} for m in d.gains],
+    }
+
+
 def derivation_json(robot: Robot, what: str) -> dict[str, object]:
     """The JSON of ``what`` (``jacobian``, ``singularities``, ``ik``, ``dynamics`` or
     ``trajectory``)."""
@@ -269,5 +283,6 @@ def derivation_json(robot: Robot, what: str) -> dict[str, object]:
         "ik": ik_json,
         "dynamics": dynamics_json,
         "trajectory": trajectory_json,
+        "control": control_json,
     }
     return build[what](robot)

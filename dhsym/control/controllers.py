@@ -107,8 +107,8 @@ def error_equation() -> ErrorEquation:
     tau = M * (qd.diff(t, 2) + Kd * e.diff(t) + Kp * e) + h
     arm = sp.Eq(M * q.diff(t, 2) + h, tau, evaluate=False)
     E = sp.Function("e")(t)
-    closed = sp.Eq(sp.factor(arm.rhs - arm.lhs).subs(qd - q, E).doit(), 0, evaluate=False)
     error = sp.Eq(E.diff(t, 2) + Kd * E.diff(t) + Kp * E, 0)
+    closed = sp.Eq(M * error.lhs, 0, evaluate=False)
     poly = sp.Poly(s**2 + Kd * s + Kp - (s**2 + 2 * z * w * s + w**2), s)
     match = [sp.Eq(c, 0, evaluate=False) for c in poly.all_coeffs() if c != 0]
     solution = sp.solve([m.lhs for m in match], [Kp, Kd], dict=True)[0]
@@ -125,8 +125,8 @@ def error_equation() -> ErrorEquation:
     return ErrorEquation(
         (
             ("the arm under the computed torque", arm),
-            ("M (ë + K_d ė + K_p e) = 0", closed),
-            ("M invertible: the error equation", error),
+            ("h cancels and M factors out", closed),
+            ("M is invertible: the error equation", error),
         ),
         gains,
     )

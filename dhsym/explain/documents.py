@@ -40,7 +40,7 @@ from .equations_of_motion import derive_dynamics
 from .inverse_kinematics import derive_inverse
 from .latex import compile_pdf
 from .rendering import environment, render, render_template
-from .trajectories import derive_trajectory
+from .trajectories import derive_control, derive_trajectory
 from .velocity_kinematics import derive_jacobian, derive_singularities
 
 __all__ = [
@@ -54,7 +54,7 @@ __all__ = [
 
 #: What can be derived: forward kinematics, the Jacobian, its singularities, the inverse,
 #: the equations of motion.
-WHAT = ("fk", "jacobian", "singularities", "ik", "dynamics", "trajectory")
+WHAT = ("fk", "jacobian", "singularities", "ik", "dynamics", "trajectory", "control")
 
 #: Headings of the handout sections.
 SECTION_TITLES = MappingProxyType(
@@ -65,6 +65,7 @@ SECTION_TITLES = MappingProxyType(
         "ik": "Inverse kinematics",
         "dynamics": "Equations of motion",
         "trajectory": "Trajectories",
+        "control": "Control",
     }
 )
 
@@ -77,6 +78,7 @@ _OPTIONS = MappingProxyType(
         "ik": ("compact", "notation", "width", "check", "numeric"),
         "dynamics": ("compact", "notation", "width", "numeric"),
         "trajectory": (),
+        "control": (),
     }
 )
 
@@ -124,6 +126,8 @@ def document(
         return derive_dynamics(r, **opts)
     if what == "trajectory":
         return derive_trajectory(r)
+    if what == "control":
+        return derive_control(r)
     return derive_inverse(r, **opts)
 
 

@@ -1,7 +1,9 @@
 r"""The trajectory lecture as a document: the cubic, the quintic and the linear segment
 with parabolic blends of one joint, each derived from its boundary conditions
 (:mod:`dhsym.trajectory`), as plain data for the templates ``trajectory.*.j2``
-(``dhsym derive NAME --what trajectory``, the handout's ``trajectory`` section).
+(``dhsym derive NAME --what trajectory``, the handout's ``trajectory`` section); and the
+control lecture's closed loop (:func:`dhsym.control.error_equation`) for ``control.*.j2``
+(``--what control``).
 
 Examples
 --------
@@ -31,7 +33,13 @@ from dhsym.trajectory.profiles import TIME
 from .data import Document
 from .derivation import as_robot
 
-__all__ = ["ProfileSection", "TrajectoryDerivation", "derive_trajectory"]
+__all__ = [
+    "ControlDerivation",
+    "ProfileSection",
+    "TrajectoryDerivation",
+    "derive_control",
+    "derive_trajectory",
+]
 
 
 @dataclass(frozen=True)
@@ -151,4 +159,54 @@ def derive_trajectory(robot: Robot | str | Path | DHTable) -> TrajectoryDerivati
         convention=r.convention.value,
         joints=tuple(_math(v) for v in r.variables),
         sections=sections,
+    )
+
+
+@dataclass(frozen=True)
+class ControlDerivation(Document):
+    """The closed loop of computed torque on ``name``: the ``steps`` from the arm's
+    equation to the error equation, and the ``gains`` for a natural frequency and
+    damping."""
+
+    kind = "control"
+
+    name: str
+    convention: str
+    steps: tuple[tuple[str, Math], ...]
+    gains: tuple[Math, ...]
+    legend: tuple[LegendLine, ...] = ()
+    width: float = LATEX_WIDTH
+
+
+def _dotted(eq: sp.Eq) -> tuple[sp.Expr, sp.Expr]:
+    """Both sides of ``eq`` with the derivatives of q(t), q_d(t), e(t) written with dots
+    (``\\dot q``, ``\\ddot q_d``) as the lecture writes them."""
+    t = sp.Symbol("t", real=True)
+    names = {
+        "q": ("q", "qdot", "qddot"),
+        "q_d": ("q_d", "qdot_d", "qddot_d"),
+        "e": ("e", "edot", "eddot"),
+    }
+    pairs: list[tuple[sp.Basic, sp.Basic]] = []
+    for fn, (zero, one, two) in names.items():
+        f = sp.Function(fn)(t)
+        pairs += [(f.diff(t, 2), sp.Symbol(two)), (f.diff(t), sp.Symbol(one)), (f, sp.Symbol(zero))]
+    return eq.lhs.subs(pairs), eq.rhs.subs(pairs)
+
+
+def derive_control(robot: Robot | str | Path | DHTable) -> ControlDerivation:
+    """The computed-torque closed loop of ``robot`` derived (M, h = C q̇ + g its own).
+
+    >>> [label for label, _ in derive_control("planar2r").steps][-1]
+    'M is invertible: the error equation'
+    """
+    from dhsym.control import error_equation
+
+    r = as_robot(robot)
+    e = error_equation()
+    return ControlDerivation(
+        name=r.name or "robot",
+        convention=r.convention.value,
+        steps=tuple((label, _equation(*_dotted(eq))) for label, eq in e.steps),
+        gains=tuple(_equation(u, v) for u, v in e.gains.pairs),
     )

@@ -80,3 +80,29 @@ def test_handout_trajectory_section_compiles_without_overfull_boxes(tmp_path, ne
     run = run_latex(tex)
     assert run.pdf.exists()
     assert list(run.issues) == [], [str(i) for i in run.issues]
+
+
+def test_control_document_in_every_format(capsys: pytest.CaptureFixture[str]) -> None:
+    from dhsym.explain.trajectories import derive_control
+
+    d = derive_control("puma560")
+    assert [m.text for _, m in d.steps][-1] == "K_d*edot + K_p*e + eddot = 0"
+    assert [g.latex for g in d.gains] == [r"K_{p} = \omega^{2}", r"K_{d} = 2 \omega \zeta"]
+    out = render_derivation("puma560", fmt="latex", what="control")
+    assert r"M \left(K_{d} \dot{e} + K_{p} e + \ddot{e}\right) = 0" in out
+    assert main(["derive", "planar2r", "--what", "control", "--format", "json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["gains"][1]["text"] == "K_d = 2*omega*zeta"
+
+
+@pytest.mark.tex
+@pytest.mark.slow
+def test_handout_control_section_compiles_without_overfull_boxes(tmp_path, need_tex) -> None:  # type: ignore[no-untyped-def]
+    from dhsym.explain.documents import write_handout
+    from dhsym.explain.latex import run_latex
+
+    tex = write_handout(["planar2r"], tmp_path / "ctl.tex", sections="fk,trajectory,control")
+    assert r"\subsection{Control}" in tex.read_text()
+    run = run_latex(tex)
+    assert run.pdf.exists()
+    assert list(run.issues) == [], [str(i) for i in run.issues]
