@@ -10,7 +10,7 @@ from __future__ import annotations
 from .blends import lspb, minimum_time, trapezoidal
 from .paths import CartesianPath, JointPath, ctraj, jtraj
 from .profiles import Derivation, Profile, Segment, cubic, quintic
-from .via import mstraj, spline
+from .via import mstraj, spline, via_blends
 
 __all__ = [
     "CartesianPath",
@@ -27,4 +27,5 @@ __all__ = [
     "quintic",
     "spline",
     "trapezoidal",
+    "via_blends",
 ]

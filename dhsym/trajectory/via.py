@@ -7,6 +7,12 @@ given), rounded up to the sample time; the segments are joined by blends of dura
 ``tacc`` (half of it at the start and at the end) that are quintics with the two lines'
 velocities at their ends, so the path passes near, not through, the via points.
 
+:func:`via_blends` is Craig's rule (*Introduction to Robotics*, ch. 7, linear function
+with parabolic blends for a path with via points): given each segment's duration and the
+size of each blend's acceleration, the lines run through the via points at their times
+(the first and last through the point next to the end) and parabolic blends of the
+given acceleration join them, their durations computed.
+
 :func:`spline` passes through every via point at the given times: one cubic per interval
 (:func:`~dhsym.trajectory.profiles.cubic`'s conditions, positions and velocities at both
 ends), the unknown velocities at the inner via points chosen so that the acceleration is
@@ -33,7 +39,7 @@ from dhsym.errors import DHError
 
 from .profiles import Derivation, Profile, Segment, exact_value, polynomial_segment
 
-__all__ = ["mstraj", "spline"]
+__all__ = ["mstraj", "spline", "via_blends"]
 
 
 def _rows(via: object, name: str) -> tuple[list[list[sp.Expr]], bool]:
@@ -225,3 +231,116 @@ def spline(via: object, times: Sequence[object], v0: object = 0, vf: object = 0)
             derivations.append(Derivation((), (), (), ()))
         joints.append(tuple(segs))
     return Profile("spline", tuple(joints), tuple(derivations), scalar)
+
+
+def _sgn(x: sp.Expr) -> sp.Expr:
+    sign = sp.sign(x)
+    if not sign.is_number:
+        raise DHError(f"via_blends: cannot tell the direction of {x}: give numbers")
+    return sp.Integer(1) if sign == 0 else sign
+
+
+def _craig_joint(
+    theta: Sequence[sp.Expr], td: Sequence[sp.Expr], acc: Sequence[sp.Expr], joint: int
+) -> tuple[tuple[Segment, ...], Derivation]:
+    """Craig's equations for one joint: the blend accelerations and durations, the line
+    velocities and durations, then the segments (blend, line, blend, …, blend)."""
+    n = len(theta)
+    T = [sp.Integer(0)]
+    for d in td:
+        T.append(T[-1] + d)
+    vel: list[sp.Expr] = [sp.Integer(0)] * (n - 1)
+    acc_s: list[sp.Expr] = [sp.Integer(0)] * n
+    tb: list[sp.Expr] = [sp.Integer(0)] * n
+    where = f"joint {joint}: " if joint else ""
+    acc_s[0] = _sgn(theta[1] - theta[0]) * sp.Abs(acc[0])
+    disc = td[0] ** 2 - 2 * (theta[1] - theta[0]) / acc_s[0]
+    if bool(disc < 0):
+        raise DHError(f"via_blends: {where}the first blend's acceleration is too small")
+    tb[0] = sp.simplify(td[0] - sp.sqrt(disc))
+    vel[0] = sp.simplify((theta[1] - theta[0]) / (td[0] - tb[0] / 2))
+    acc_s[-1] = _sgn(theta[-2] - theta[-1]) * sp.Abs(acc[-1])
+    disc = td[-1] ** 2 + 2 * (theta[-1] - theta[-2]) / acc_s[-1]
+    if bool(disc < 0):
+        raise DHError(f"via_blends: {where}the last blend's acceleration is too small")
+    tb[-1] = sp.simplify(td[-1] - sp.sqrt(disc))
+    vel[-1] = sp.simplify((theta[-1] - theta[-2]) / (td[-1] - tb[-1] / 2))
+    for k in range(1, n - 2):
+        vel[k] = (theta[k + 1] - theta[k]) / td[k]
+    for k in range(1, n - 1):
+        dv = vel[k] - vel[k - 1]
+        acc_s[k] = _sgn(dv) * sp.Abs(acc[k])
+        tb[k] = sp.simplify(dv / acc_s[k])
+    segs: list[Segment] = []
+    # the lines: through via point k at T_k (the first: through via point 2 at T_2)
+    for k in range(n - 1):
+        anchor = k + 1 if k == 0 else k
+        start = T[0] + tb[0] if k == 0 else T[k] + tb[k] / 2
+        end = T[-1] - tb[-1] if k == n - 2 else T[k + 1] - tb[k + 1] / 2
+        if bool(end < start):
+            raise DHError(
+                f"via_blends: {where}the blends around segment {k + 1} overlap: "
+                "give larger accelerations or longer durations"
+            )
+        b_start = sp.Integer(0) if k == 0 else T[k] - tb[k] / 2
+        # the blend starts on the line before it, which runs through via point k at T_k
+        b_value = theta[0] if k == 0 else theta[k] + vel[k - 1] * (b_start - T[k])
+        b_vel = sp.Integer(0) if k == 0 else vel[k - 1]
+        segs.append(Segment(b_start, start, (b_value, b_vel, acc_s[k] / 2)))
+        line_value = theta[anchor] + vel[k] * (start - T[anchor])
+        segs.append(Segment(start, end, (sp.simplify(line_value), vel[k])))
+    last_start = T[-1] - tb[-1]
+    last_value = theta[-2] + vel[-1] * (last_start - T[-2])
+    segs.append(Segment(last_start, T[-1], (sp.simplify(last_value), vel[-1], acc_s[-1] / 2)))
+    segs = [sg for sg in segs if sp.simplify(sg.end - sg.start) != 0]
+    names = [sp.Symbol(f"t_{k + 1}", real=True) for k in range(n)]
+    names += [sp.Symbol(f"v_{k + 1}{k + 2}", real=True) for k in range(n - 1)]
+    values = [*tb, *vel]
+    eqs = tuple(sp.Eq(x, v, evaluate=False) for x, v in zip(names, values))
+    labels = tuple(f"blend {k + 1}" for k in range(n)) + tuple(
+        f"line {k + 1}{k + 2}" for k in range(n - 1)
+    )
+    return tuple(segs), Derivation(labels, eqs, tuple(names), tuple(values))
+
+
+def via_blends(via: object, durations: Sequence[object], acc: object) -> Profile:
+    r"""Craig's linear segments with parabolic blends through via points: ``via`` ``(m,)``
+    or ``(m, n)``, the ``durations`` of the ``m − 1`` segments between them, and the size
+    of each blend's acceleration (one, one per via point, or ``(m, n)``). The blend
+    durations ``t_k`` and the line velocities ``v_jk`` are the derivation's solution.
+
+    >>> p = via_blends([0, 1, 3], [1, 1], 8)
+    >>> p.derivation().pairs[:3]
+    ((t_1, 1 - sqrt(3)/2), (t_2, -sqrt(2)/2 + sqrt(3)/2), (t_3, 1 - sqrt(2)/2))
+    """
+    rows, scalar = _rows(via, "via")
+    m, n = len(rows), len(rows[0])
+    if m < 3:
+        raise DHError("via_blends: at least three via points (for two, use lspb)")
+    td = [exact_value(d, f"durations[{k}]") for k, d in enumerate(durations)]
+    if len(td) != m - 1:
+        raise DHError(f"via_blends: {m} via points need {m - 1} durations, got {len(td)}")
+    for k, d in enumerate(td):
+        if not bool(d > 0):
+            raise DHError(f"via_blends: durations[{k}] must be positive, got {d}")
+    arr = np.asarray(acc, dtype=object)
+    if arr.ndim == 0:
+        accs = [[exact_value(acc, "acc")] * n for _ in range(m)]
+    elif arr.ndim == 1 and arr.size == m:
+        accs = [[exact_value(a, f"acc[{k}]")] * n for k, a in enumerate(arr)]
+    elif arr.shape == (m, n):
+        accs = [
+            [exact_value(a, f"acc[{k}][{j}]") for j, a in enumerate(r)] for k, r in enumerate(arr)
+        ]
+    else:
+        raise DHError(
+            f"via_blends: acc must be one value, {m} values or ({m}, {n}), got {arr.shape}"
+        )
+    joints, derivations = [], []
+    for j in range(n):
+        segs, d = _craig_joint(
+            [r[j] for r in rows], td, [a[j] for a in accs], 0 if n == 1 else j + 1
+        )
+        joints.append(segs)
+        derivations.append(d)
+    return Profile("via blends", tuple(joints), tuple(derivations), scalar)

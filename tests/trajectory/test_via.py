@@ -87,3 +87,32 @@ def test_spline_arguments() -> None:
         spline([0, 1, 2], [0, 2, 1])
     with pytest.raises(DHError, match="3 via points but 2 times"):
         spline([0, 1, 2], [0, 1])
+
+
+def test_craig_via_blends() -> None:
+    from dhsym.trajectory import via_blends
+
+    via, durations, acc = [0, 1, 3, 2], [1, 1, 1.5], 8
+    p = via_blends(via, durations, acc)
+    segs = p.joints[0]
+    assert len(segs) == 7  # four blends, three lines
+    times = [0, 1, 2, sp.Rational(7, 2)]
+    lines = segs[1::2]
+    for k, line in enumerate(lines):  # each line runs through its via point at its time
+        anchor = 1 if k == 0 else k
+        x = sp.Symbol("t", nonnegative=True)
+        assert sp.simplify(line.position(x).subs(x, times[anchor]) - via[anchor]) == 0
+    for seg in segs[0::2]:  # blends of the given acceleration, lines of none
+        assert abs(seg.coefficients[2]) == sp.Rational(acc, 2)
+    for seg in segs[1:]:  # position and velocity continuous at every joint of pieces
+        t0 = float(seg.start)
+        before, after = p.sample([t0 - 1e-10]), p.sample([t0 + 1e-10])
+        assert abs(before[0] - after[0]).max() < 1e-8 and abs(before[1] - after[1]).max() < 1e-8
+    q, qd, _ = p.sample([0.0, 3.5])
+    np.testing.assert_allclose(q, [0, 2], atol=1e-12)
+    np.testing.assert_allclose(qd, [0, 0], atol=1e-12)
+    assert p.derivation().check()
+    with pytest.raises(DHError, match="acceleration is too small"):
+        via_blends(via, durations, 0.5)
+    with pytest.raises(DHError, match="at least three via points"):
+        via_blends([0, 1], [1], 8)
