@@ -51,6 +51,7 @@ if TYPE_CHECKING:
     from dhsym.ik.general6r import Elimination
     from dhsym.ik.solution import IKSolution
     from dhsym.model.angles import AngleSnap
+    from dhsym.trajectory.paths import CartesianPath, JointPath
 
 __all__ = ["Robot", "RobotState", "from_rtb", "from_urdf", "inverse", "load"]
 
@@ -316,6 +317,54 @@ class Robot(KinematicChain):
         from dhsym.dynamics.static_forces import static_torques
 
         return static_torques(self, q, wrench, values=values)
+
+    # -- paths (dhsym.trajectory) --------------------------------------------------------
+    def jtraj(
+        self, q0: object, qf: object, t: object, qd0: object = None, qd1: object = None
+    ) -> JointPath:
+        """A joint-space motion from ``q0`` to ``qf``: a quintic per joint, all ending at
+        ``max(t)`` (see :func:`dhsym.trajectory.jtraj`).
+
+        >>> load("planar2r").jtraj([0, 0], [1, 2], [0.0, 1.0, 2.0]).q[1]
+        array([0.5, 1. ])
+        """
+        from dhsym.trajectory.paths import jtraj
+
+        return jtraj(q0, qf, t, qd0, qd1, joints=len(self.table.joint_rows))
+
+    def ctraj(
+        self,
+        T0: object,
+        T1: object,
+        t: object,
+        *,
+        near: object = None,
+        max_step: float = 0.5,
+        singular: bool = True,
+        check: str = "pose",
+    ) -> CartesianPath:
+        """The straight line from pose ``T0`` to ``T1`` solved by this robot's inverse
+        kinematics per sample, branch by branch (see :func:`dhsym.trajectory.ctraj`).
+
+        >>> r = load("planar2r")
+        >>> path = r.ctraj(r.fk([0.3, 1.2]), r.fk([0.6, 0.9]), 5, near=[0.3, 1.2],
+        ...                check="position")
+        >>> path.complete, path.q.shape
+        (True, (5, 2))
+        """
+        from dhsym.trajectory.paths import ctraj
+
+        return ctraj(
+            self,
+            T0,
+            T1,
+            t,
+            near=near,
+            cache=self.ik_cache(),
+            max_step=max_step,
+            singular=singular,
+            check=check,
+        )
 
     # -- pictures (dhsym.plot) -----------------------------------------------------------
     def plot(self, q: object = None, **kw: Any) -> Figure:

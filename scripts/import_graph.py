@@ -4,7 +4,8 @@ Reads every module with ``ast`` (module-level and lazy imports inside functions 
 and prints the room-to-room edges. Exit status 1 when
 
 - an edge points up the order model → cache → notation → kinematics → ik/dynamics/geometry/plot/
-  export → formats → robot (the facade, ``dhsym.robot.Robot``) → explain → checking → cli,
+  export → formats → trajectory → control → robot (the facade, ``dhsym.robot.Robot``) →
+  explain → checking → cli,
   except the documented exceptions in ``ALLOWED``;
 - any imports, counted all (module level and inside functions; only ``if TYPE_CHECKING:``
   blocks are left out), form a circle anywhere in the package;
@@ -42,6 +43,8 @@ ORDER = [
     "formats",
     "export",
     "view",
+    "trajectory",
+    "control",
     "robot",
     "explain",
     "checking",

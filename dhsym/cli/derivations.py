@@ -28,6 +28,7 @@ import sympy as sp
 from dhsym import __version__
 from dhsym.kinematics.jacobian import geometric_jacobian
 from dhsym.kinematics.singularities import singularities
+from dhsym.notation.layout import Math
 from dhsym.notation.printers import Notation
 from dhsym.robot import Robot
 
@@ -37,7 +38,9 @@ __all__ = [
     "dynamics_json",
     "ik_json",
     "jacobian_json",
+    "control_json",
     "singularities_json",
+    "trajectory_json",
 ]
 
 JSON_SCHEMA_VERSION = 1
@@ -229,12 +232,57 @@ def dynamics_json(robot: Robot) -> dict[str, object]:
     }
 
 
+def trajectory_json(robot: Robot) -> dict[str, object]:
+    """The profiles of a joint derived (:func:`dhsym.explain.trajectories.derive_trajectory`):
+    per profile its conditions, linear system, assumptions, solution and ``q(t)``, each
+    formula as text and LaTeX."""
+    from dhsym.explain.trajectories import derive_trajectory
+
+    d = derive_trajectory(robot)
+
+    def both(m: Math) -> dict[str, str]:
+        return {"text": m.text, "latex": str(m.latex)}
+
+    return {
+        **_head(robot, "trajectory"),
+        "profiles": [
+            {
+                "key": s.key,
+                "title": s.title,
+                "source": s.source,
+                "conditions": [both(c) for c in s.conditions],
+                "system": None if s.system is None else both(s.system),
+                "assumptions": [both(a) for a in s.assumptions],
+                "solution": [both(x) for x in s.solution],
+                "position": both(s.position),
+            }
+            for s in d.sections
+        ],
+    }
+
+
+def control_json(robot: Robot) -> dict[str, object]:
+    """The computed-torque closed loop derived (:func:`dhsym.explain.trajectories.derive_control`):
+    its steps and the gains, each formula as text and LaTeX."""
+    from dhsym.explain.trajectories import derive_control
+
+    d = derive_control(robot)
+    return {
+        **_head(robot, "control"),
+        "steps": [{"label": label, "text": m.text, "latex": str(m.latex)} for label, m in d.steps],
+        "gains": [{"text": m.text, "latex": str(m.latex)} for m in d.gains],
+    }
+
+
 def derivation_json(robot: Robot, what: str) -> dict[str, object]:
-    """The JSON of ``what`` (``jacobian``, ``singularities``, ``ik`` or ``dynamics``)."""
+    """The JSON of ``what`` (``jacobian``, ``singularities``, ``ik``, ``dynamics`` or
+    ``trajectory``)."""
     build = {
         "jacobian": jacobian_json,
         "singularities": singularities_json,
         "ik": ik_json,
         "dynamics": dynamics_json,
+        "trajectory": trajectory_json,
+        "control": control_json,
     }
     return build[what](robot)

@@ -356,11 +356,13 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     )
     d.add_argument(
         "--what",
-        choices=["fk", "jacobian", "singularities", "ik", "dynamics"],
+        choices=["fk", "jacobian", "singularities", "ik", "dynamics", "trajectory", "control"],
         default="fk",
         help="fk: forward kinematics (default); jacobian: column by column; singularities: "
         "det J factored and named; ik: closed-form inverse kinematics, every branch; "
-        "dynamics: energies, M, Christoffel symbols, g, tau and the Newton-Euler passes",
+        "dynamics: energies, M, Christoffel symbols, g, tau and the Newton-Euler passes; "
+        "trajectory: the cubic, quintic and LSPB of a joint from their boundary conditions; "
+        "control: the computed-torque error equation and its gains",
     )
     add_urdf_options(d)
     d.set_defaults(func=_cmd_derive)

@@ -40,6 +40,7 @@ from .equations_of_motion import derive_dynamics
 from .inverse_kinematics import derive_inverse
 from .latex import compile_pdf
 from .rendering import environment, render, render_template
+from .trajectories import derive_control, derive_trajectory
 from .velocity_kinematics import derive_jacobian, derive_singularities
 
 __all__ = [
@@ -53,7 +54,7 @@ __all__ = [
 
 #: What can be derived: forward kinematics, the Jacobian, its singularities, the inverse,
 #: the equations of motion.
-WHAT = ("fk", "jacobian", "singularities", "ik", "dynamics")
+WHAT = ("fk", "jacobian", "singularities", "ik", "dynamics", "trajectory", "control")
 
 #: Headings of the handout sections.
 SECTION_TITLES = MappingProxyType(
@@ -63,6 +64,8 @@ SECTION_TITLES = MappingProxyType(
         "singularities": "Singular configurations",
         "ik": "Inverse kinematics",
         "dynamics": "Equations of motion",
+        "trajectory": "Trajectories",
+        "control": "Control",
     }
 )
 
@@ -74,6 +77,8 @@ _OPTIONS = MappingProxyType(
         "singularities": ("compact", "notation", "width", "numeric"),
         "ik": ("compact", "notation", "width", "check", "numeric"),
         "dynamics": ("compact", "notation", "width", "numeric"),
+        "trajectory": (),
+        "control": (),
     }
 )
 
@@ -119,6 +124,10 @@ def document(
         return derive_singularities(r, **opts)
     if what == "dynamics":
         return derive_dynamics(r, **opts)
+    if what == "trajectory":
+        return derive_trajectory(r)
+    if what == "control":
+        return derive_control(r)
     return derive_inverse(r, **opts)
 
 

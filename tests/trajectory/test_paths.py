@@ -1,0 +1,90 @@
+"""Paths of an arm: ``jtraj`` against roboticstoolbox 1.5.0's recorded numbers, the
+shortest rotation, and a straight line for the PUMA 560 solved by its closed-form IK."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import dhsym
+from dhsym.errors import DHError
+from dhsym.trajectory.paths import interpolate_poses, jtraj, rotation_exp, rotation_log
+
+# roboticstoolbox.jtraj([0, 1, -0.5], [1, -1, 0.5], linspace(0, 3, 5))
+RTB_JTRAJ = (
+    [[0.0, 1.0, -0.5], [0.103515625, 0.79296875, -0.396484375], [0.5, 0.0, 0.0],
+     [0.896484375, -0.79296875, 0.396484375], [1.0, -1.0, 0.5]],
+    [[0.0, 0.0, 0.0], [0.3515625, -0.703125, 0.3515625], [0.625, -1.25, 0.625],
+     [0.3515625, -0.703125, 0.3515625], [0.0, 0.0, 0.0]],
+    [[0.0, 0.0, 0.0], [0.625, -1.25, 0.625], [0.0, 0.0, 0.0], [-0.625, 1.25, -0.625],
+     [0.0, 0.0, 0.0]],
+)  # fmt: skip
+
+
+def test_jtraj_equals_roboticstoolbox() -> None:
+    path = jtraj([0, 1, -0.5], [1, -1, 0.5], np.linspace(0, 3, 5))
+    for got, want in zip((path.q, path.qd, path.qdd), RTB_JTRAJ):
+        np.testing.assert_allclose(got, want, atol=1e-12)
+    with pytest.raises(DHError, match="q0 has 2 values for 6 joints"):
+        dhsym.load("puma560").jtraj([0, 0], [1, 1], 3)
+
+
+def test_rotation_log_and_exp_are_inverse() -> None:
+    rng = np.random.default_rng(3)
+    axes = rng.normal(size=(200, 3))
+    axes /= np.linalg.norm(axes, axis=1, keepdims=True)
+    angles = rng.uniform(0, np.pi, 200)
+    angles[:3] = [0.0, 1e-9, np.pi]  # the two delicate ends
+    w = axes * angles[:, None]
+    R = rotation_exp(w)
+    np.testing.assert_allclose(rotation_exp(rotation_log(R)), R, atol=1e-12)
+    np.testing.assert_allclose(rotation_log(R)[3:], w[3:], atol=1e-9)
+
+
+def test_interpolated_rotation_is_the_shortest_turn() -> None:
+    R1 = rotation_exp(np.array([0.0, 0.0, 2.0]))
+    T1 = np.eye(4)
+    T1[:3, :3] = R1
+    mid = interpolate_poses(np.eye(4), T1, np.array([0.5]))[0, :3, :3]
+    np.testing.assert_allclose(rotation_log(mid), [0, 0, 1.0], atol=1e-15)
+
+
+@pytest.mark.slow
+def test_puma_straight_line_stays_on_the_line() -> None:
+    r = dhsym.load("puma560")
+    qa = np.array([0.2, -0.6, 0.4, 0.3, 0.7, -0.2])
+    qb = np.array([0.5, -0.3, 0.1, 0.1, 0.9, 0.3])
+    A, B = r.fk(qa), r.fk(qb)
+    path = r.ctraj(A, B, np.linspace(0, 2, 101), near=qa)
+    assert path.complete, path.reason
+    np.testing.assert_allclose(path.q[0], qa, atol=1e-9)
+    np.testing.assert_allclose(path.q[-1], qb, atol=1e-9)
+    T = r.fk(path.q)
+    p, a, b = T[:, :3, 3], A[:3, 3], B[:3, 3]
+    u = (b - a) / np.linalg.norm(b - a)
+    off = (p - a) - ((p - a) @ u)[:, None] * u  # distance from the line
+    assert np.abs(off).max() < 1e-9
+    along = (p - a) @ u / np.linalg.norm(b - a)
+    np.testing.assert_allclose(along, path.s, atol=1e-9)
+    np.testing.assert_allclose(T[:, :3, :3], path.T[:, :3, :3], atol=1e-9)
+    assert np.abs(np.diff(path.q, axis=0)).max() < 0.1  # one branch, no jumps
+
+
+@pytest.mark.slow
+def test_puma_line_out_of_reach_stops_with_the_sample() -> None:
+    r = dhsym.load("puma560")
+    q = np.array([0.2, -0.6, 0.4, 0.3, 0.7, -0.2])
+    A = r.fk(q)
+    B = A.copy()
+    B[:3, 3] = A[:3, 3] + 3 * A[:3, 3] / np.linalg.norm(A[:3, 3])  # far out of reach
+    path = r.ctraj(A, B, 201, near=q)
+    assert not path.complete and 0 < path.stopped < 201
+    assert path.reason.startswith(f"sample {path.stopped} (t = ")
+    assert len(path.q) == path.stopped
+    with pytest.raises(DHError, match="ctraj stopped: sample"):
+        path.require()
+    # without the jump and singularity stops: the first sample out of reach
+    free = r.ctraj(A, B, 201, near=q, max_step=np.inf, singular=False)
+    assert free.stopped >= path.stopped and "no solution" in free.reason
+    reach = np.linalg.norm(free.T[:, :3, 3], axis=1)
+    assert reach[free.stopped] > reach[free.stopped - 1]  # moving outwards, the last reachable
