@@ -18,6 +18,8 @@ import pytest
 import dhsym
 from dhsym.view.widget import arm_view
 
+from .test_page import ROBOTS
+
 pytest.importorskip("anywidget")
 
 HARNESS = """<!DOCTYPE html><html><body><div id="w"></div>
@@ -58,23 +60,37 @@ def _open(guarded: Any, view: Any, tmp_path: Path) -> Any:
     return page
 
 
-def test_sliders_set_q_and_q_moves_the_sliders(guarded: Any, tmp_path: Path) -> None:
-    robot = dhsym.load("ur5")
-    view = robot.view([0.1, -0.4, 0.8, 0.0, 0.5, 0.2], workspace=0)
+@pytest.mark.parametrize("name", sorted(ROBOTS))
+def test_sliders_set_q_and_q_moves_the_sliders(name: str, guarded: Any, tmp_path: Path) -> None:
+    robot = ROBOTS[name]()
+    n = len(robot.variables)
+    start = [0.1 * (k % 3) for k in range(n)]  # within every robot's limits
+    view = robot.view(start, workspace=0)
+    start = list(view.q)  # clipped into the limits (the Panda's joint 4 stays below 0)
     page = _open(guarded, view, tmp_path)
-    assert page.input_value("input[data-joint='2']") == str(-0.4)
+    sliders = page.locator("input[type=range]")
+    assert sliders.count() == n
+    hi = float(sliders.nth(1).get_attribute("max"))
+    lo = float(sliders.nth(1).get_attribute("min"))
+    value = lo + 0.3 * (hi - lo)
     page.evaluate(
-        """() => { const s = document.querySelector("input[data-joint='3']");
-                   s.value = "1.1"; s.dispatchEvent(new Event("input")); }"""
+        """(v) => { const s = document.querySelector("input[data-joint='2']");
+                   s.value = String(v); s.dispatchEvent(new Event("input")); }""",
+        value,
     )
     q = page.evaluate("() => window.model.state.q")
-    assert q == pytest.approx([0.1, -0.4, 1.1, 0.0, 0.5, 0.2])
+    scale = view.scene["joints"][1]["scale"]
+    assert q == pytest.approx([*start[:1], value * scale, *start[2:]])
     assert page.evaluate("() => window.model.saves") == 1
     # the kernel moves the arm: the sliders and the readout follow
-    page.evaluate("() => window.model.kernel('q', [0, 0, 0, 0, 0, 0.3])")
-    assert page.input_value("input[data-joint='6']") == "0.3"
+    moved = [*start[:-1], start[-1] + 0.05 * scale]
+    page.evaluate("(q) => window.model.kernel('q', q)", moved)
+    last = view.scene["joints"][-1]
+    assert float(page.input_value(f"input[data-joint='{n}']")) == pytest.approx(
+        moved[-1] / last["scale"]
+    )
     shown = json.loads(page.get_attribute("[data-name=position]", "data-xyz"))
-    np.testing.assert_allclose(shown, robot.fk([0, 0, 0, 0, 0, 0.3])[:3, 3], atol=1e-12)
+    np.testing.assert_allclose(shown, robot.fk(moved)[:3, 3], atol=1e-12)
     assert guarded.errors == [] and guarded.outside == []
 
 
