@@ -27,7 +27,7 @@ from .languages import Language
 if TYPE_CHECKING:
     import sympy as sp
 
-__all__ = ["LANGUAGE", "CPrinter"]
+__all__ = ["LANGUAGE", "CPrinter", "NativePrinter"]
 
 
 class CPrinter(C99CodePrinter):
@@ -39,6 +39,35 @@ class CPrinter(C99CodePrinter):
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)
         return f"({v} > 0.0 ? {up} : ({v} < 0.0 ? {down} : 0.0))"
+
+
+class NativePrinter(CPrinter):
+    """The C printer of the solver's program for one pose
+    (:func:`dhsym.export.shared_library.native_source`): ``SafeSqrt`` with the file's
+    ``stretch``, ``remainder`` of C99, and a ``Residual`` as nested ``nan_max`` of its
+    magnitudes (NaN when any difference is).
+
+    >>> import sympy as sp
+    >>> from dhsym.ik.rewriting import Residual
+    >>> x, y = sp.symbols("x y", real=True)
+    >>> NativePrinter().doprint(Residual(x, y - 1))
+    'nan_max(fabs(x), fabs(y - 1))'
+    """
+
+    def _print_SafeSqrt(self, expr: sp.Expr) -> str:
+        return f"safe_sqrt({self._print(expr.args[0])}, stretch)"
+
+    def _print_remainder(self, expr: sp.Expr) -> str:
+        x, y = (self._print(a) for a in expr.args)
+        return f"remainder({x}, {y})"
+
+    _print_Remainder = _print_remainder
+
+    def _print_Residual(self, expr: sp.Expr) -> str:
+        out = f"fabs({self._print(expr.args[0])})"
+        for a in expr.args[1:]:
+            out = f"nan_max({out}, fabs({self._print(a)}))"
+        return out
 
 
 LANGUAGE = Language(

@@ -40,6 +40,7 @@ True
 from __future__ import annotations
 
 import ctypes
+import functools
 import os
 import shutil
 import subprocess
@@ -55,13 +56,25 @@ import numpy as np
 from dhsym.errors import DHError
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    import sympy as sp
     from numpy.typing import ArrayLike
 
     from dhsym.ik.choices import IKCache
+    from dhsym.ik.protocols import NativeProgram
     from dhsym.ik.solution import IKSolution
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["CompiledRobot", "cache_dir", "compiled", "library_name"]
+__all__ = [
+    "CompiledRobot",
+    "cache_dir",
+    "compiled",
+    "library_name",
+    "native_compiler",
+    "native_program",
+    "native_source",
+]
 
 _FLAGS = ("-O2", "-shared", "-fPIC", "-std=c99")
 _PREFIX = "dhsym_arm"
@@ -96,6 +109,16 @@ class CompiledRobot:
 
 def _compiler() -> str | None:
     return os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc")
+
+
+@functools.cache
+def native_compiler() -> str | None:
+    """The C compiler ``robot.ik`` and ``robot.fk`` build their native code with, chosen
+    once per process: ``None`` (dhsym's NumPy path) when ``DHSYM_NO_COMPILE`` is ``1``,
+    ``true`` or ``yes`` or no compiler is found (``$CC``, ``cc``, ``gcc``)."""
+    if os.environ.get("DHSYM_NO_COMPILE", "").strip().lower() in ("1", "true", "yes"):
+        return None
+    return _compiler()
 
 
 def library_name(source: dict[str, str], cc: str) -> str:
@@ -284,3 +307,120 @@ def _rne_c(
         return out
 
     return rne
+
+
+# -- the closed-form solver's program for one pose, in C ------------------------------------
+_NATIVE = "dhsym_arm_program"
+
+
+def native_source(
+    args: Sequence[sp.Symbol],
+    program: Sequence[tuple[sp.Symbol, sp.Expr]],
+    outputs: Sequence[sp.Expr],
+) -> str:
+    """The C of a closed-form solver's program for one pose
+    (:class:`dhsym.ik.protocols.NativeCompiler`): one function
+    ``void dhsym_arm_program(const double A[16], const double B[16], int stretch,
+    double out[])`` with the 24 arguments read from the two row-major poses (12 each,
+    column by column), one ``const double`` per line of the program and one entry of
+    ``out`` per output, as the solver's program for floats computes them (``remainder``
+    of C99 as ``math.remainder``, ``safe_sqrt`` as :func:`dhsym.ik.rewriting.safe_sqrt_float`,
+    every negative radicand read as 0 with ``stretch``, a residual ``NaN`` when any of its
+    differences is).
+
+    >>> import sympy as sp
+    >>> a = sp.symbols("a:24", real=True)
+    >>> src = native_source(a, [(sp.Symbol("t"), sp.atan2(a[1], a[0]))], [sp.Symbol("t")])
+    >>> [line.strip() for line in src.splitlines() if "t0" in line]
+    ['const double t0 = atan2(a1, a0);', 'out[0] = t0;']
+    """
+    import sympy as sp
+
+    from dhsym.ik.rewriting import ROUNDING, TAU
+
+    from .c import NativePrinter
+
+    names: dict[sp.Symbol, sp.Symbol] = {s: sp.Symbol(f"a{k}") for k, s in enumerate(args)}
+    names[TAU] = sp.Float(2 * np.pi, 17)
+    # math.h of strict C99 has no M_PI: the constants as doubles (as math.pi, math.e)
+    names[sp.pi] = sp.Float(np.pi, 17)
+    names[sp.E] = sp.Float(np.e, 17)
+    lines = []
+    for k, (sym, e) in enumerate(program):
+        value = e.xreplace(names)
+        names[sym] = sp.Symbol(f"t{k}")
+        lines.append((names[sym], value))
+    printer = NativePrinter()
+    body = [
+        f"    const double a{k} = {'AB'[k // 12]}[{4 * (k % 3) + (k % 12) // 3}];"
+        for k in range(len(args))
+    ]
+    body += [f"    const double {lhs} = {printer.doprint(rhs)};" for lhs, rhs in lines]
+    body += [
+        f"    out[{k}] = {printer.doprint(sp.sympify(o).xreplace(names))};"
+        for k, o in enumerate(outputs)
+    ]
+    return "\n".join(
+        [
+            "/* dhsym: the closed-form solver's program for one pose (every branch, its fk",
+            " * residuals, wrist sines and singular factors), built by robot.ik. */",
+            "#include <math.h>",
+            "",
+            "/* sqrt reading a radicand within rounding of 0 (with stretch: any) as 0 */",
+            "static double safe_sqrt(double x, int stretch)",
+            "{",
+            "    if (x >= 0.0) {",
+            "        return sqrt(x);",
+            "    }",
+            "    if (x != x) {",
+            "        return x;",
+            "    }",
+            f"    return (stretch || x > -{ROUNDING!r}) ? 0.0 : NAN;",
+            "}",
+            "",
+            "/* the larger of two magnitudes, NaN when either is */",
+            "static double nan_max(double x, double y)",
+            "{",
+            "    return (x != x || x > y) ? x : y;",
+            "}",
+            "",
+            f"void {_NATIVE}(const double A[16], const double B[16], int stretch, double out[])",
+            "{",
+            "    (void)stretch;",
+            *body,
+            "}",
+            "",
+        ]
+    )
+
+
+def native_program(
+    args: Sequence[sp.Symbol],
+    program: Sequence[tuple[sp.Symbol, sp.Expr]],
+    outputs: Sequence[sp.Expr],
+) -> NativeProgram | None:
+    """The :class:`dhsym.ik.protocols.NativeCompiler` of the facade: the program's C
+    (:func:`native_source`) built by :func:`native_compiler` into the disk cache (as
+    :func:`compiled`: verified before it is loaded) and called by ctypes; ``None``
+    without a compiler, or when the build fails."""
+    cc = native_compiler()
+    if cc is None:
+        return None
+    try:
+        lib = _load({f"{_PREFIX}.c": native_source(args, program, outputs)}, cc)[0]
+    except (DHError, OSError):
+        return None
+    fn = getattr(lib, _NATIVE)
+    fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int, ctypes.c_void_p]
+    fn.restype = None
+    size = len(outputs)
+
+    def run(inner: np.ndarray, pose: np.ndarray, stretch: bool) -> list[float]:
+        out = np.empty(size)
+        at = _address(inner)
+        fn(at, at if pose is inner else _address(pose), stretch, _address(out))
+        values: list[float] = out.tolist()
+        return values
+
+    run.library = lib  # type: ignore[attr-defined]  # kept alive with the function
+    return run
