@@ -31,10 +31,11 @@ __all__ = ["LANGUAGE", "CPrinter", "NativePrinter"]
 
 
 class CPrinter(C99CodePrinter):
-    """sympy's C99 printer, with the solver's ``SafeSqrt`` as a helper of the file."""
+    """sympy's C99 printer, with the solver's ``SafeSqrt`` as a helper of the file (its
+    ``stretch``: a local of the IK function, set for a pose that is not exact)."""
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
-        return f"safe_sqrt({self._print(expr.args[0])})"
+        return f"safe_sqrt({self._print(expr.args[0])}, stretch)"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)
@@ -43,9 +44,9 @@ class CPrinter(C99CodePrinter):
 
 class NativePrinter(CPrinter):
     """The C printer of the solver's program for one pose
-    (:func:`dhsym.export.shared_library.native_source`): ``SafeSqrt`` with the file's
-    ``stretch``, ``remainder`` of C99, and a ``Residual`` as nested ``nan_max`` of its
-    magnitudes (NaN when any difference is).
+    (:func:`dhsym.export.shared_library.native_source`): ``SafeSqrt`` with the
+    function's ``stretch`` (as :class:`CPrinter`), ``remainder`` of C99, and a
+    ``Residual`` as nested ``nan_max`` of its magnitudes (NaN when any difference is).
 
     >>> import sympy as sp
     >>> from dhsym.ik.rewriting import Residual
@@ -53,9 +54,6 @@ class NativePrinter(CPrinter):
     >>> NativePrinter().doprint(Residual(x, y - 1))
     'nan_max(fabs(x), fabs(y - 1))'
     """
-
-    def _print_SafeSqrt(self, expr: sp.Expr) -> str:
-        return f"safe_sqrt({self._print(expr.args[0])}, stretch)"
 
     def _print_remainder(self, expr: sp.Expr) -> str:
         x, y = (self._print(a) for a in expr.args)

@@ -90,7 +90,9 @@ def cache_dir() -> Path:
 
 @dataclass(frozen=True, eq=False)
 class CompiledRobot:
-    """``fk(q)`` → (4, 4), ``jacobian(q)`` → (6, n), ``ik(T)`` → (k, n) for one point each;
+    """``fk(q)`` → (4, 4), ``jacobian(q)`` → (6, n), ``ik(T, tol=None)`` → (k, n) for one
+    point each (the exported IK's tolerance: ``tol``, else dhsym's rule for poses as they
+    come, :mod:`dhsym.ik.accuracy`);
     ``rne(q, qd, qdd)`` → (n,) (built on its first call; a robot without numeric inertial
     parameters raises then).
 
@@ -100,7 +102,7 @@ class CompiledRobot:
 
     fk: Callable[[ArrayLike], np.ndarray]
     jacobian: Callable[[ArrayLike], np.ndarray]
-    ik: Callable[[ArrayLike], IKSolution]
+    ik: Callable[..., IKSolution]
     backend: str
     library: Path | None
     njoints: int
@@ -206,7 +208,7 @@ def compiled(
         return CompiledRobot(
             lambda q: robot.fk(q),
             lambda q: robot.jacob0(q),
-            lambda T: solve(robot, T, cache=cache),
+            lambda T, tol=None: solve(robot, T, tol=tol, cache=cache),
             "numpy",
             None,
             n,
@@ -216,7 +218,7 @@ def compiled(
     ptr = ctypes.c_void_p
     for name in ("fk", "jacobian") + (("ik",) if "ik" in what else ()):
         fn = getattr(lib, f"{_PREFIX}_{name}")
-        fn.argtypes = [ptr, ptr]
+        fn.argtypes = [ptr, ctypes.c_double, ptr, ptr] if name == "ik" else [ptr, ptr]
         fn.restype = ctypes.c_int if name == "ik" else None
     fk_c, jac_c = lib.dhsym_arm_fk, lib.dhsym_arm_jacobian
     ik_c = lib.dhsym_arm_ik if "ik" in what else None
@@ -234,7 +236,7 @@ def compiled(
         jac_c(_address(qa), _address(out))
         return out
 
-    def ik(T: object) -> IKSolution:
+    def ik(T: object, tol: float | None = None) -> IKSolution:
         from dhsym.ik.solution import IKSolution
 
         if ik_c is None:
@@ -243,9 +245,9 @@ def compiled(
         if Ta.shape != (4, 4):
             raise DHError(f"ik expects one pose of shape (4, 4), got {Ta.shape}")
         out = np.empty((K, n))
-        count = ik_c(_address(Ta), _address(out))
+        residual = np.empty(K)
+        count = ik_c(_address(Ta), 0.0 if tol is None else tol, _address(out), _address(residual))
         q = out[:count]
-        residual = np.array([np.abs(fk(row)[:3] - Ta[:3]).max() for row in q])
 
         def names(rows: np.ndarray, _signs: np.ndarray) -> tuple[str, ...]:
             # the branch each row is: the nearest solution robot.ik finds (angles modulo 2π)
@@ -259,7 +261,7 @@ def compiled(
         return IKSolution(
             q,
             np.ones(count, dtype=bool),
-            residual.reshape(count),
+            residual[:count],
             np.zeros((count, 0), dtype=bool),
             (),
             np.zeros((count, 0), dtype=int),
