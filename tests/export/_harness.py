@@ -175,7 +175,8 @@ def run_rust(files, prefix, q, poses, n, jac, ik, folder: Path, params=None):
         ),
         ik=(
             f"let mut s = [[0.0; {prefix}::NJOINTS]; {prefix}::MAX_IK_SOLUTIONS]; "
-            f'let c = {prefix}::ik(&t, &mut s{pa}); println!("{{}}", c); '
+            f"let mut r = [0.0; {prefix}::MAX_IK_SOLUTIONS]; "
+            f'let c = {prefix}::ik(&t, None, &mut s, &mut r{pa}); println!("{{}}", c); '
             'for r in s[..c].iter() { for x in r.iter() { println!("{:e}", x); } }'
             if ik
             else "let _ = t;"
