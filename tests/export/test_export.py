@@ -191,3 +191,55 @@ def test_exported_ik_takes_rounded_poses(name, lang, tmp_path):
             continue
         rows = rows.reshape(c, n + 1)
         _same_solutions(robot, rows[:, :n], rows[:, n], robot.ik(T))
+
+
+def _rounded_poses(robot):
+    rng = np.random.default_rng(5)
+    poses = []
+    for q in rng.uniform(-3.0, 3.0, (6, len(robot.variables))):
+        T = robot.fk(q)
+        poses += [np.round(T, 6), np.round(T, 3)]
+    return poses
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5"])
+def test_exported_python_ik_takes_rounded_poses(name, tmp_path):
+    robot = dhsym.load(name)
+    mod = h.load_python(
+        dhsym.export(robot, "python", what=("fk", "ik"), prefix="arm"), "arm", tmp_path
+    )
+    for T in _rounded_poses(robot):
+        q, residual = mod.ik_with_residual(T)
+        _same_solutions(robot, q, residual, robot.ik(T))
+        assert np.array_equal(mod.ik(T), q)
+    assert len(mod.ik(np.diag([1.0, 1.0, -1.0, 1.0]))) == 0  # no rotation: none
+
+
+def test_exported_octave_ik_takes_rounded_poses(tmp_path):
+    _need("octave", shutil.which("octave"), "apt-get install octave")
+    robot = dhsym.load("ur5")
+    for file, text in dhsym.export(robot, "matlab", what=("fk", "ik"), prefix="arm").items():
+        (tmp_path / file).write_text(text)
+    poses = _rounded_poses(robot)
+    np.savetxt(tmp_path / "t.txt", np.array(poses).reshape(len(poses), 16), fmt="%.17g")
+    script = (
+        "Ts = dlmread('t.txt');\n"
+        "for i = 1:size(Ts, 1)\n"
+        "  [Q, c, r] = arm_ik(reshape(Ts(i, :), 4, 4).');\n"
+        "  fprintf('%d\\n', c); fprintf('%.17g\\n', [Q, r].');\n"
+        "end\n"
+    )
+    (tmp_path / "drive.m").write_text(script)
+    out = subprocess.run(
+        ["octave", "--no-gui", "--quiet", "--no-window-system", "drive.m"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout.split()
+    n, at = len(robot.variables), 0
+    for T in poses:
+        c = int(out[at])
+        rows = np.array([float(x) for x in out[at + 1 : at + 1 + c * (n + 1)]]).reshape(c, n + 1)
+        at += 1 + c * (n + 1)
+        _same_solutions(robot, rows[:, :n], rows[:, n], robot.ik(T))
