@@ -31,6 +31,7 @@ from dhsym.ik.choices import IKCache, solve
 
 _MAIN = r"""
 #include <stdio.h>
+#include <math.h>
 #include <time.h>
 #include "arm.h"
 static double now(void)
@@ -164,6 +165,7 @@ def eaik_call(robot: dhsym.Robot):
 
 _RNE_MAIN = r"""
 #include <stdio.h>
+#include <math.h>
 #include <time.h>
 #include "arm.h"
 static double now(void)
