@@ -27,9 +27,11 @@ import numpy as np
 
 import dhsym
 from dhsym.export.shared_library import compiled
+from dhsym.ik.choices import IKCache, solve
 
 _MAIN = r"""
 #include <stdio.h>
+#include <math.h>
 #include <time.h>
 #include "arm.h"
 static double now(void)
@@ -41,7 +43,7 @@ static double now(void)
 int main(void)
 {
     double q[6] = {0.3, -0.5, 0.4, 0.2, 0.7, -1.1}, T[16], sink = 0.0, t0;
-    double S[ARM_MAX_IK_SOLUTIONS][6];
+    double S[ARM_MAX_IK_SOLUTIONS][6], R[ARM_MAX_IK_SOLUTIONS], Tr[16];
     long i, n = 1000000, m = 200000;
     int c = 0;
     t0 = now();
@@ -55,10 +57,22 @@ int main(void)
     t0 = now();
     for (i = 0; i < m; ++i) {
         T[3] += 1e-12;
-        c += arm_ik(T, S);
+        c += arm_ik(T, 0.0, S, R);
         sink += S[0][0];
     }
-    printf("ik_ns %.2f\nsolutions %.2f\nsink %g\n", (now() - t0) / m * 1e9, (double)c / m, sink);
+    printf("ik_ns %.2f\nsolutions %.2f\n", (now() - t0) / m * 1e9, (double)c / m);
+    for (i = 0; i < 16; ++i) {
+        Tr[i] = rint(T[i] * 1e6) / 1e6; /* the pose typed with 6 decimals */
+    }
+    c = 0;
+    t0 = now();
+    for (i = 0; i < m; ++i) {
+        Tr[3] += 1e-6;
+        c += arm_ik(Tr, 0.0, S, R);
+        sink += S[0][0];
+    }
+    printf("ik_rounded_ns %.2f\nrounded_solutions %.2f\nsink %g\n", (now() - t0) / m * 1e9,
+           (double)c / m, sink);
     return 0;
 }
 """
@@ -90,6 +104,11 @@ def bench(name: str) -> None:
     c = in_c(robot)
     fast = compiled(robot)
     assert len(fast.ik(T)) == len(robot.ik(T))
+    numpy_cache = IKCache(robot)  # no native compiler: robot.ik as without one
+
+    def numpy_path(pose: np.ndarray) -> object:
+        return solve(robot, pose, cache=numpy_cache)
+
     rows = [
         ("fk, C loop", c["fk_ns"]),
         ("fk, ctypes (compiled)", per_call(fast.fk, q, 20000)),
@@ -97,6 +116,9 @@ def bench(name: str) -> None:
         ("ik all branches, C loop", c["ik_ns"]),
         ("ik, ctypes (compiled)", per_call(fast.ik, T, 20000)),
         ("ik, dhsym robot.ik", per_call(robot.ik, T, 2000)),
+        ("ik 6 decimals, C loop", c["ik_rounded_ns"]),
+        ("ik 6 decimals, robot.ik", per_call(robot.ik, np.round(T, 6), 2000)),
+        ("ik, robot.ik NumPy path", per_call(numpy_path, T, 2000)),
     ]
     eaik = eaik_call(robot)
     if eaik is not None:
@@ -111,7 +133,7 @@ def bench(name: str) -> None:
         kind = label.split(",")[0].split()[0]
         print(f"  {label:28s} {ns:12.1f} ns   dhsym/this = {ref[kind] / ns:8.1f}x")
     if eaik is not None:
-        ratio = rows[4][1] / rows[6][1]
+        ratio = rows[4][1] / rows[-1][1]
         print(f"  ik time, ctypes (compiled) / EAIK: {ratio:.2f} (above 1: EAIK is faster)")
 
 
@@ -143,6 +165,7 @@ def eaik_call(robot: dhsym.Robot):
 
 _RNE_MAIN = r"""
 #include <stdio.h>
+#include <math.h>
 #include <time.h>
 #include "arm.h"
 static double now(void)

@@ -49,6 +49,7 @@ if TYPE_CHECKING:
     from dhsym.ik.choices import IKCache
     from dhsym.ik.closed_form import ClosedForm
     from dhsym.ik.general6r import Elimination
+    from dhsym.ik.protocols import NativeCompiler
     from dhsym.ik.solution import IKSolution
     from dhsym.model.angles import AngleSnap
     from dhsym.trajectory.paths import CartesianPath, JointPath
@@ -107,7 +108,7 @@ class Robot(KinematicChain):
         if shared.ik_cache is None:
             with shared.lock:
                 if shared.ik_cache is None:
-                    shared.ik_cache = IKCache(self)
+                    shared.ik_cache = IKCache(self, _native_compiler())
         return shared.ik_cache
 
     def inverse(self) -> ClosedForm | Elimination:
@@ -392,6 +393,17 @@ class Robot(KinematicChain):
 
         start = None if q is None else list(joint_values(self, q, deg=deg))
         return arm_view(self, start, workspace=workspace)
+
+
+def _native_compiler() -> NativeCompiler | None:
+    """What compiles the closed form's program for one pose into C for ``robot.ik``
+    (:func:`dhsym.export.shared_library.native_program`), or ``None`` when the process
+    has no C compiler or ``DHSYM_NO_COMPILE=1`` (chosen once per process:
+    :func:`~dhsym.export.shared_library.native_compiler`): then one pose is solved by the
+    NumPy path's program for floats. The results are the same either way."""
+    from dhsym.export.shared_library import native_compiler, native_program
+
+    return native_program if native_compiler() is not None else None
 
 
 def load(name_or_path: str | Path, **kw: Any) -> Robot:

@@ -4,7 +4,8 @@
 
     void <prefix>_fk(const double q[N], double T[16]);
     void <prefix>_jacobian(const double q[N], double J[6*N]);
-    int  <prefix>_ik(const double T[16], double q[][N]);   /* count; every branch */
+    int  <prefix>_ik(const double T[16], double tol, double q[][N], double residual[]);
+    /* count; every branch within tol (<= 0: dhsym's rule for poses as they come) */
 
 With symbolic lengths each function takes ``const double p[<PREFIX>_NPARAMS]`` last.
 
@@ -27,18 +28,45 @@ from .languages import Language
 if TYPE_CHECKING:
     import sympy as sp
 
-__all__ = ["LANGUAGE", "CPrinter"]
+__all__ = ["LANGUAGE", "CPrinter", "NativePrinter"]
 
 
 class CPrinter(C99CodePrinter):
-    """sympy's C99 printer, with the solver's ``SafeSqrt`` as a helper of the file."""
+    """sympy's C99 printer, with the solver's ``SafeSqrt`` as a helper of the file (its
+    ``stretch``: a local of the IK function, set for a pose that is not exact)."""
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
-        return f"safe_sqrt({self._print(expr.args[0])})"
+        return f"safe_sqrt({self._print(expr.args[0])}, stretch)"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)
         return f"({v} > 0.0 ? {up} : ({v} < 0.0 ? {down} : 0.0))"
+
+
+class NativePrinter(CPrinter):
+    """The C printer of the solver's program for one pose
+    (:func:`dhsym.export.shared_library.native_source`): ``SafeSqrt`` with the
+    function's ``stretch`` (as :class:`CPrinter`), ``remainder`` of C99, and a
+    ``Residual`` as nested ``nan_max`` of its magnitudes (NaN when any difference is).
+
+    >>> import sympy as sp
+    >>> from dhsym.ik.rewriting import Residual
+    >>> x, y = sp.symbols("x y", real=True)
+    >>> NativePrinter().doprint(Residual(x, y - 1))
+    'nan_max(fabs(x), fabs(y - 1))'
+    """
+
+    def _print_remainder(self, expr: sp.Expr) -> str:
+        x, y = (self._print(a) for a in expr.args)
+        return f"remainder({x}, {y})"
+
+    _print_Remainder = _print_remainder
+
+    def _print_Residual(self, expr: sp.Expr) -> str:
+        out = f"fabs({self._print(expr.args[0])})"
+        for a in expr.args[1:]:
+            out = f"nan_max({out}, fabs({self._print(a)}))"
+        return out
 
 
 LANGUAGE = Language(

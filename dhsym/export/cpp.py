@@ -29,7 +29,7 @@ class CppPrinter(CXX17CodePrinter):
     """sympy's C++17 printer, with the solver's ``SafeSqrt`` as a helper of the header."""
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
-        return f"detail::safe_sqrt({self._print(expr.args[0])})"
+        return f"detail::safe_sqrt({self._print(expr.args[0])}, stretch)"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)

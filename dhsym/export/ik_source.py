@@ -43,6 +43,7 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.ik.accuracy import EXACT, FLOOR, MOST_DECIMALS
 from dhsym.ik.choices import IKCache
 from dhsym.ik.closed_form import ClosedForm
 from dhsym.ik.closed_form import ClosedForm as InverseKinematics  # what is exported
@@ -87,7 +88,12 @@ class IKSource:
     signs: tuple[sp.Symbol, ...]
     branch_names: tuple[str, ...]
     sqrt_rounding: float
+    #: the tolerance of an exact pose (the least of any), and the rule's other numbers
+    #: (:mod:`dhsym.ik.accuracy`): a rotation off the rotations by at most ``exact`` is
+    #: exact; the most decimals looked for in a pose's entries
     tolerance: float
+    exact: float = EXACT
+    most_decimals: int = MOST_DECIMALS
 
     @property
     def count(self) -> int:
@@ -218,7 +224,7 @@ def ik_source(
         tuple(b.symbol for b in ik.branches),
         _branch_names(robot, ik),
         ROUNDING,
-        1e-9,
+        FLOOR,
     )
 
 

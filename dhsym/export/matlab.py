@@ -1,7 +1,8 @@
 """MATLAB/Octave function files: ``<prefix>_fk.m``, ``<prefix>_jacobian.m``, ``<prefix>_ik.m``.
 
 ``T = <prefix>_fk(q)`` (4×4), ``J = <prefix>_jacobian(q)`` (6×n),
-``[Q, count] = <prefix>_ik(T)`` (``count``×n, one solution per row), and
+``[Q, count, residual] = <prefix>_ik(T, tol)`` (``count``×n, one solution per row;
+``tol`` optional), and
 ``<prefix>_njoints()``, ``<prefix>_max_ik_solutions()`` for the constants.
 
 Examples
@@ -31,7 +32,7 @@ class MatlabPrinter(OctaveCodePrinter):
         return f"{expr.base.label}({i + 1}, {j + 1})"
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
-        return f"safe_sqrt({self._print(expr.args[0])})"
+        return f"safe_sqrt({self._print(expr.args[0])}, stretch)"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)

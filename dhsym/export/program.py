@@ -155,6 +155,21 @@ class IKProgram:
         )
 
     @property
+    def floor(self) -> float:
+        """The tolerance of an exact pose, the least of any (:mod:`dhsym.ik.accuracy`)."""
+        return self.tolerance
+
+    @property
+    def exact(self) -> float:
+        """A rotation off the rotations by at most this is exact (solved as given)."""
+        return self.source.exact
+
+    @property
+    def most_decimals(self) -> int:
+        """The most decimals looked for in a pose's entries (its half unit)."""
+        return self.source.most_decimals
+
+    @property
     def safe_sqrt(self) -> bool:
         """Whether a step takes a square root (the helper is written only then)."""
         exprs = [a.expr for a in self.body] + [a.alt[2] for a in self.body if a.alt]

@@ -30,7 +30,7 @@ class PythonPrinter(NumPyPrinter):
     """sympy's NumPy printer; ``SafeSqrt`` is a helper of the module, ``T[i, j]`` indexes."""
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
-        return f"_safe_sqrt({self._print(expr.args[0])})"
+        return f"_safe_sqrt({self._print(expr.args[0])}, stretch)"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)

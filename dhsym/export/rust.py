@@ -55,7 +55,7 @@ class RustPrinter(RustCodePrinter):
         return f"t[{4 * i + j}]"
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
-        return f"safe_sqrt({self._print(expr.args[0])})"
+        return f"safe_sqrt({self._print(expr.args[0])}, stretch)"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)

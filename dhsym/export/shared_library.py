@@ -40,6 +40,7 @@ True
 from __future__ import annotations
 
 import ctypes
+import functools
 import os
 import shutil
 import subprocess
@@ -55,13 +56,25 @@ import numpy as np
 from dhsym.errors import DHError
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    import sympy as sp
     from numpy.typing import ArrayLike
 
     from dhsym.ik.choices import IKCache
+    from dhsym.ik.protocols import NativeProgram
     from dhsym.ik.solution import IKSolution
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["CompiledRobot", "cache_dir", "compiled", "library_name"]
+__all__ = [
+    "CompiledRobot",
+    "cache_dir",
+    "compiled",
+    "library_name",
+    "native_compiler",
+    "native_program",
+    "native_source",
+]
 
 _FLAGS = ("-O2", "-shared", "-fPIC", "-std=c99")
 _PREFIX = "dhsym_arm"
@@ -77,7 +90,9 @@ def cache_dir() -> Path:
 
 @dataclass(frozen=True, eq=False)
 class CompiledRobot:
-    """``fk(q)`` → (4, 4), ``jacobian(q)`` → (6, n), ``ik(T)`` → (k, n) for one point each;
+    """``fk(q)`` → (4, 4), ``jacobian(q)`` → (6, n), ``ik(T, tol=None)`` → (k, n) for one
+    point each (the exported IK's tolerance: ``tol``, else dhsym's rule for poses as they
+    come, :mod:`dhsym.ik.accuracy`);
     ``rne(q, qd, qdd)`` → (n,) (built on its first call; a robot without numeric inertial
     parameters raises then).
 
@@ -87,7 +102,7 @@ class CompiledRobot:
 
     fk: Callable[[ArrayLike], np.ndarray]
     jacobian: Callable[[ArrayLike], np.ndarray]
-    ik: Callable[[ArrayLike], IKSolution]
+    ik: Callable[..., IKSolution]
     backend: str
     library: Path | None
     njoints: int
@@ -96,6 +111,16 @@ class CompiledRobot:
 
 def _compiler() -> str | None:
     return os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc")
+
+
+@functools.cache
+def native_compiler() -> str | None:
+    """The C compiler ``robot.ik`` and ``robot.fk`` build their native code with, chosen
+    once per process: ``None`` (dhsym's NumPy path) when ``DHSYM_NO_COMPILE`` is ``1``,
+    ``true`` or ``yes`` or no compiler is found (``$CC``, ``cc``, ``gcc``)."""
+    if os.environ.get("DHSYM_NO_COMPILE", "").strip().lower() in ("1", "true", "yes"):
+        return None
+    return _compiler()
 
 
 def library_name(source: dict[str, str], cc: str) -> str:
@@ -183,7 +208,7 @@ def compiled(
         return CompiledRobot(
             lambda q: robot.fk(q),
             lambda q: robot.jacob0(q),
-            lambda T: solve(robot, T, cache=cache),
+            lambda T, tol=None: solve(robot, T, tol=tol, cache=cache),
             "numpy",
             None,
             n,
@@ -193,7 +218,7 @@ def compiled(
     ptr = ctypes.c_void_p
     for name in ("fk", "jacobian") + (("ik",) if "ik" in what else ()):
         fn = getattr(lib, f"{_PREFIX}_{name}")
-        fn.argtypes = [ptr, ptr]
+        fn.argtypes = [ptr, ctypes.c_double, ptr, ptr] if name == "ik" else [ptr, ptr]
         fn.restype = ctypes.c_int if name == "ik" else None
     fk_c, jac_c = lib.dhsym_arm_fk, lib.dhsym_arm_jacobian
     ik_c = lib.dhsym_arm_ik if "ik" in what else None
@@ -211,7 +236,7 @@ def compiled(
         jac_c(_address(qa), _address(out))
         return out
 
-    def ik(T: object) -> IKSolution:
+    def ik(T: object, tol: float | None = None) -> IKSolution:
         from dhsym.ik.solution import IKSolution
 
         if ik_c is None:
@@ -220,9 +245,9 @@ def compiled(
         if Ta.shape != (4, 4):
             raise DHError(f"ik expects one pose of shape (4, 4), got {Ta.shape}")
         out = np.empty((K, n))
-        count = ik_c(_address(Ta), _address(out))
+        residual = np.empty(K)
+        count = ik_c(_address(Ta), 0.0 if tol is None else tol, _address(out), _address(residual))
         q = out[:count]
-        residual = np.array([np.abs(fk(row)[:3] - Ta[:3]).max() for row in q])
 
         def names(rows: np.ndarray, _signs: np.ndarray) -> tuple[str, ...]:
             # the branch each row is: the nearest solution robot.ik finds (angles modulo 2π)
@@ -236,7 +261,7 @@ def compiled(
         return IKSolution(
             q,
             np.ones(count, dtype=bool),
-            residual.reshape(count),
+            residual[:count],
             np.zeros((count, 0), dtype=bool),
             (),
             np.zeros((count, 0), dtype=int),
@@ -284,3 +309,120 @@ def _rne_c(
         return out
 
     return rne
+
+
+# -- the closed-form solver's program for one pose, in C ------------------------------------
+_NATIVE = "dhsym_arm_program"
+
+
+def native_source(
+    args: Sequence[sp.Symbol],
+    program: Sequence[tuple[sp.Symbol, sp.Expr]],
+    outputs: Sequence[sp.Expr],
+) -> str:
+    """The C of a closed-form solver's program for one pose
+    (:class:`dhsym.ik.protocols.NativeCompiler`): one function
+    ``void dhsym_arm_program(const double A[16], const double B[16], int stretch,
+    double out[])`` with the 24 arguments read from the two row-major poses (12 each,
+    column by column), one ``const double`` per line of the program and one entry of
+    ``out`` per output, as the solver's program for floats computes them (``remainder``
+    of C99 as ``math.remainder``, ``safe_sqrt`` as :func:`dhsym.ik.rewriting.safe_sqrt_float`,
+    every negative radicand read as 0 with ``stretch``, a residual ``NaN`` when any of its
+    differences is).
+
+    >>> import sympy as sp
+    >>> a = sp.symbols("a:24", real=True)
+    >>> src = native_source(a, [(sp.Symbol("t"), sp.atan2(a[1], a[0]))], [sp.Symbol("t")])
+    >>> [line.strip() for line in src.splitlines() if "t0" in line]
+    ['const double t0 = atan2(a1, a0);', 'out[0] = t0;']
+    """
+    import sympy as sp
+
+    from dhsym.ik.rewriting import ROUNDING, TAU
+
+    from .c import NativePrinter
+
+    names: dict[sp.Symbol, sp.Symbol] = {s: sp.Symbol(f"a{k}") for k, s in enumerate(args)}
+    names[TAU] = sp.Float(2 * np.pi, 17)
+    # math.h of strict C99 has no M_PI: the constants as doubles (as math.pi, math.e)
+    names[sp.pi] = sp.Float(np.pi, 17)
+    names[sp.E] = sp.Float(np.e, 17)
+    lines = []
+    for k, (sym, e) in enumerate(program):
+        value = e.xreplace(names)
+        names[sym] = sp.Symbol(f"t{k}")
+        lines.append((names[sym], value))
+    printer = NativePrinter()
+    body = [
+        f"    const double a{k} = {'AB'[k // 12]}[{4 * (k % 3) + (k % 12) // 3}];"
+        for k in range(len(args))
+    ]
+    body += [f"    const double {lhs} = {printer.doprint(rhs)};" for lhs, rhs in lines]
+    body += [
+        f"    out[{k}] = {printer.doprint(sp.sympify(o).xreplace(names))};"
+        for k, o in enumerate(outputs)
+    ]
+    return "\n".join(
+        [
+            "/* dhsym: the closed-form solver's program for one pose (every branch, its fk",
+            " * residuals, wrist sines and singular factors), built by robot.ik. */",
+            "#include <math.h>",
+            "",
+            "/* sqrt reading a radicand within rounding of 0 (with stretch: any) as 0 */",
+            "static double safe_sqrt(double x, int stretch)",
+            "{",
+            "    if (x >= 0.0) {",
+            "        return sqrt(x);",
+            "    }",
+            "    if (x != x) {",
+            "        return x;",
+            "    }",
+            f"    return (stretch || x > -{ROUNDING!r}) ? 0.0 : NAN;",
+            "}",
+            "",
+            "/* the larger of two magnitudes, NaN when either is */",
+            "static double nan_max(double x, double y)",
+            "{",
+            "    return (x != x || x > y) ? x : y;",
+            "}",
+            "",
+            f"void {_NATIVE}(const double A[16], const double B[16], int stretch, double out[])",
+            "{",
+            "    (void)stretch;",
+            *body,
+            "}",
+            "",
+        ]
+    )
+
+
+def native_program(
+    args: Sequence[sp.Symbol],
+    program: Sequence[tuple[sp.Symbol, sp.Expr]],
+    outputs: Sequence[sp.Expr],
+) -> NativeProgram | None:
+    """The :class:`dhsym.ik.protocols.NativeCompiler` of the facade: the program's C
+    (:func:`native_source`) built by :func:`native_compiler` into the disk cache (as
+    :func:`compiled`: verified before it is loaded) and called by ctypes; ``None``
+    without a compiler, or when the build fails."""
+    cc = native_compiler()
+    if cc is None:
+        return None
+    try:
+        lib = _load({f"{_PREFIX}.c": native_source(args, program, outputs)}, cc)[0]
+    except (DHError, OSError):
+        return None
+    fn = getattr(lib, _NATIVE)
+    fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int, ctypes.c_void_p]
+    fn.restype = None
+    size = len(outputs)
+
+    def run(inner: np.ndarray, pose: np.ndarray, stretch: bool) -> list[float]:
+        out = np.empty(size)
+        at = _address(inner)
+        fn(at, at if pose is inner else _address(pose), stretch, _address(out))
+        values: list[float] = out.tolist()
+        return values
+
+    run.library = lib  # type: ignore[attr-defined]  # kept alive with the function
+    return run

@@ -45,14 +45,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["EXACT", "FLOOR", "PoseAccuracy", "nearest_rigid", "pose_accuracy", "written_decimals"]
+__all__ = [
+    "EXACT",
+    "FLOOR",
+    "MOST_DECIMALS",
+    "PoseAccuracy",
+    "nearest_rigid",
+    "pose_accuracy",
+    "written_decimals",
+]
 
 #: a rotation off the rotations by at most this (largest entry) is exact: solved as given
 EXACT = 1e-12
 #: the tolerance of an exact pose, and the least tolerance of any
 FLOOR = 1e-9
 #: the most decimals looked for in a pose's entries
-_MOST_DECIMALS = 12
+MOST_DECIMALS = 12
 
 
 @dataclass(frozen=True)
@@ -82,7 +90,7 @@ def written_decimals(T: np.ndarray) -> int | None:
     (0, None)
     """
     entries = np.asarray(T, dtype=float)[:3].ravel()
-    for k in range(_MOST_DECIMALS + 1):
+    for k in range(MOST_DECIMALS + 1):
         if np.array_equal(np.round(entries, k), entries):
             return k
     return None

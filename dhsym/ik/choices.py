@@ -35,7 +35,7 @@ from .closed_form import ClosedForm
 from .closed_form_solver import ClosedFormSolver
 from .families import inverse
 from .general6r import Elimination, EliminationSolver
-from .protocols import IKSolver
+from .protocols import IKSolver, NativeCompiler
 from .solution import IKSolution
 
 if TYPE_CHECKING:
@@ -90,7 +90,8 @@ def within_limits(robot: KinematicChain, sol: IKSolution) -> IKSolution:
     lo, hi = _limits(robot)
     rev = _revolute(robot)
     q = sol.q.copy()
-    mid = np.where(np.isfinite(lo + hi), (lo + hi) / 2, 0.0)
+    with np.errstate(invalid="ignore"):  # no limits: -inf + inf, the middle read as 0
+        mid = np.where(np.isfinite(lo + hi), (lo + hi) / 2, 0.0)
     shifted = q - _TWO_PI * np.round((q - mid) / _TWO_PI)
     q = np.where(rev, shifted, q)
     inside = ((q >= lo - 1e-12) & (q <= hi + 1e-12)).all(axis=1)
@@ -118,10 +119,15 @@ def nearest_first(robot: KinematicChain, sol: IKSolution, q0: object) -> IKSolut
     return sol.take(np.argsort(np.linalg.norm(d, axis=1), kind="stable"))
 
 
-def build_solver(ik: ClosedForm | Elimination, values: Mapping[object, object] | None) -> IKSolver:
+def build_solver(
+    ik: ClosedForm | Elimination,
+    values: Mapping[object, object] | None,
+    native: NativeCompiler | None = None,
+) -> IKSolver:
     """The solver of a derivation with ``values`` (by its type): the steps of a closed form
-    compiled (:class:`~dhsym.ik.closed_form_solver.ClosedFormSolver`), or the general 6R's
-    eigenproblem (:class:`~dhsym.ik.general6r.EliminationSolver`).
+    compiled (:class:`~dhsym.ik.closed_form_solver.ClosedFormSolver`, its program for one
+    pose in native code when ``native`` builds it), or the general 6R's eigenproblem
+    (:class:`~dhsym.ik.general6r.EliminationSolver`).
 
     >>> import dhsym
     >>> type(build_solver(dhsym.load("planar2r").inverse(), None)).__name__
@@ -130,7 +136,7 @@ def build_solver(ik: ClosedForm | Elimination, values: Mapping[object, object] |
     if isinstance(ik, Elimination):
         return EliminationSolver.build(ik, values)
     numbers = ik.robot.table.with_values(values or {}).value_map
-    return ClosedFormSolver(ik, numbers)
+    return ClosedFormSolver(ik, numbers, native)
 
 
 @dataclass(eq=False)
@@ -139,6 +145,9 @@ class IKCache:
     (:meth:`inverse`), its solvers by the values they were built with (:meth:`solver`) and,
     for ``free={joint: value}``, the chains with that joint given (:meth:`given`).
     :class:`dhsym.robot.Robot` keeps one; :func:`solve` makes a fresh one when given none.
+    ``native`` compiles the closed form's program for one pose into native code (the
+    facade passes the export room's C when a compiler is there; ``None``: the solvers'
+    own programs only); the chains with a joint given share it.
 
     >>> from dhsym.kinematics.chain import KinematicChain
     >>> from dhsym.model.library import load_table
@@ -150,6 +159,7 @@ class IKCache:
     """
 
     chain: KinematicChain
+    native: NativeCompiler | None = None
     _inverse: ClosedForm | Elimination | None = field(default=None, init=False, repr=False)
     #: the solvers by the values they were built with (:func:`values_key`)
     _solvers: dict[object, IKSolver] = field(default_factory=dict, init=False, repr=False)
@@ -167,7 +177,7 @@ class IKCache:
         key = values_key(values)  # the values as given: converted only once
         found = self._solvers.get(key)
         if found is None:
-            found = self._solvers[key] = build_solver(self.inverse(), values)
+            found = self._solvers[key] = build_solver(self.inverse(), values, self.native)
         return found
 
     def given(self, joint: int) -> GivenJoint:
@@ -175,7 +185,7 @@ class IKCache:
         found = self._given.get(joint)
         if found is None:
             sub, row = _sub_chain(self.chain, joint)
-            found = self._given[joint] = GivenJoint(IKCache(sub), row)
+            found = self._given[joint] = GivenJoint(IKCache(sub, self.native), row)
         return found
 
 
@@ -320,8 +330,14 @@ def solve(
     single = arr.ndim in (1, 2) and not (arr.ndim == 2 and arr.shape[-1] == 3)
     if (free or limits or near is not None) and not single:
         raise DHError("free, limits and near apply to one pose: solve the poses one by one")
-    given, tols = arr, _tolerances(arr, check, tol)
-    brought = False
+    if check == "pose" and arr.shape == (4, 4) and not free and _surely_exact(arr):
+        # one pose whose rotation is a rotation (told without an SVD): solved as given,
+        # as below, with the tolerance of an exact pose
+        sol = cache.solver(values).solve(
+            arr, check=check, tol=FLOOR if tol is None else tol, singular_tol=singular_tol
+        )
+        return _chosen(robot, sol, limits, near)
+    given, brought, tols = arr, False, _tolerances(arr, check, tol)
     if tols is not None:
         rigid = nearest_rigid(arr)
         with np.errstate(invalid="ignore"):  # a pose of NaNs is refused later, by its step
@@ -356,12 +372,40 @@ def solve(
             sol = solver.solve(arr, check=check, tol=inner_tol, singular_tol=singular_tol)
     if brought and tols is not None:
         sol = _against_given(robot, sol, given, tols, values)
+    return _chosen(robot, sol, limits, near)
+
+
+def _chosen(robot: KinematicChain, sol: IKSolution, limits: bool, near: object) -> IKSolution:
+    """The solutions of one pose within the joint limits (``limits``), nearest to ``near``
+    first (a batch as it is)."""
     if not sol.batch:
         if limits:
             sol = within_limits(robot, sol)
         if near is not None:
             sol = nearest_first(robot, sol, near)
     return sol
+
+
+def _surely_exact(T: np.ndarray) -> bool:
+    """Whether the rotation of one pose ``(4, 4)`` is surely within
+    :data:`~dhsym.ik.accuracy.EXACT` of the rotations, told without an SVD: ``RᵀR`` within
+    1e-13 of ``I`` (then the distance from the nearest rotation is below 2e-13) and
+    ``det R > 0``. False says nothing (NaN, a rounded pose): :func:`pose_accuracy` decides.
+
+    >>> _surely_exact(np.eye(4)), _surely_exact(np.round(np.diag([0.6, 0.6, 1, 1]), 3))
+    (True, False)
+    """
+    (a, b, c, _), (d, e, f, _), (g, h, i, _) = T[:3].tolist()
+    gram = (
+        a * a + d * d + g * g - 1.0,
+        b * b + e * e + h * h - 1.0,
+        c * c + f * f + i * i - 1.0,
+        a * b + d * e + g * h,
+        a * c + d * f + g * i,
+        b * c + e * f + h * i,
+    )
+    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    return det > 0.0 and max(abs(x) for x in gram) <= 1e-13 and all(x == x for x in gram)
 
 
 def _tolerances(arr: np.ndarray, check: str | None, tol: float | None) -> np.ndarray | None:

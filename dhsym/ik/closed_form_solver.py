@@ -48,7 +48,7 @@ from dhsym.model.table import JointType
 
 from .closed_form import ClosedForm
 from .kept_programs import derivation_text, kept_program
-from .protocols import read_poses
+from .protocols import NativeCompiler, NativeProgram, read_poses
 from .rewriting import (
     MATH,
     NUMPY,
@@ -82,6 +82,9 @@ __all__ = ["ClosedFormSolver", "Layout"]
 METHOD = "closed form"
 #: fraction of a singular factor's largest value below which branches may coincide
 _SUSPECT = 1e-4
+#: the single poses a solver answers with its program for floats before it builds the
+#: native one (a first answer does not wait for a C compiler; a solver in use gets it)
+NATIVE_AFTER = 16
 
 
 @dataclass(frozen=True)
@@ -163,7 +166,12 @@ class ClosedFormSolver:
     written out once per branch and one pose costs a few microseconds.
     """
 
-    def __init__(self, ik: ClosedForm, values: Mapping[sp.Symbol, sp.Expr]) -> None:
+    def __init__(
+        self,
+        ik: ClosedForm,
+        values: Mapping[sp.Symbol, sp.Expr],
+        native: NativeCompiler | None = None,
+    ) -> None:
         robot = ik.robot
         self.ik = ik
         self.robot: KinematicChain = robot
@@ -212,6 +220,12 @@ class ClosedFormSolver:
         self._frames: dict[int | None, Callable[[ArrayLike], np.ndarray]] = {}
         # lambdified programs: lists of floats (scalar) or of arrays (numpy)
         self._programs = Programs()
+        # the program for one pose in native code (:meth:`native`): its compiler, the
+        # single poses answered so far without it, and the program once built
+        self._native = native
+        self._singles = 0
+        self._native_program: NativeProgram | None = None
+        self._layout: tuple[Layout, tuple[str, ...]] | None = None
 
     def frame(self, k: int | None = None) -> Callable[[ArrayLike], np.ndarray]:
         """The compiled ``^0T_k`` (``None``: the whole ``fk``, world to tool), cached."""
@@ -296,6 +310,32 @@ class ClosedFormSolver:
         position = Residual(*[diffs[c] for c in _POSITION])  # one line, shared (cse)
         whole = Residual(*[diffs[c] for c in _ALL if c not in _POSITION], position)
         return joints + [whole, position] + closeness
+
+    def native(self, *, now: bool = False) -> NativeProgram | None:
+        """The program for one pose in native code (the ``"scalar"`` program compiled by the
+        :class:`~dhsym.ik.protocols.NativeCompiler` this solver was given), or ``None``
+        (no compiler given, or it could not build it). It is built on the
+        :data:`NATIVE_AFTER`-th call (``now=True``: on this one), so a first answer never
+        waits for it; until then one pose is solved by the program for floats.
+
+        >>> import dhsym
+        >>> r = dhsym.load("planar2r")
+        >>> ClosedFormSolver(r.inverse(), r.table.value_map).native(now=True) is None  # none given
+        True
+        """
+        if self._native_program is not None or self._native is None:
+            return self._native_program
+        self._singles += 1
+        if not now and self._singles < NATIVE_AFTER:
+            return None
+        args, program, reduced = kept_program(
+            lambda: self._entry("scalar"), lambda: self._rewritten("scalar")
+        )
+        built = self._native(list(args), list(program), list(reduced))
+        if built is None:
+            self._native = None  # not again
+        self._native_program = built
+        return built
 
     def _program(self, kind: ProgramKind) -> Callable[..., list[Any]]:
         """The compiled program of one ``kind``, built on first use.
@@ -530,8 +570,8 @@ class ClosedFormSolver:
         arr, check = read_poses(T, check, wrist=bool(self.ik.decoupling.wrist))
         single = arr.ndim == 2
         cells = _POSITION if check == "position" else _ALL
-        if single and not stretch:
-            one = self._solve_one(arr, check, cells, tol, singular_tol)
+        if single:
+            one = self._solve_one(arr, check, cells, tol, singular_tol, stretch)
             if one is not None:
                 return one if len(one) else replace(one, reason=self._why(arr, check, tol))
         batch = self._solve_batch(arr.reshape(-1, 4, 4), check, cells, tol, singular_tol, stretch)
@@ -619,19 +659,30 @@ class ClosedFormSolver:
         cells: Sequence[int],
         tol: float,
         singular_tol: float,
+        stretch: bool = False,
     ) -> IKSolution | None:
-        """One pose with the program for floats; ``None`` when it cannot finish it."""
+        """One pose with the program for floats (native when built, :meth:`native`);
+        ``None`` when it cannot finish it (the program for floats does not stretch)."""
         inner = self._inner(pose)
-        args = inner[:3].T.ravel().tolist()
-        args += args if inner is pose else pose[:3].T.ravel().tolist()
-        try:
-            out = self._program("scalar")(*args)
-        except (ArithmeticError, ValueError):  # a division by zero, sin(inf): numpy decides
+        fast = self.native()
+        if fast is not None:
+            out = fast(
+                np.ascontiguousarray(inner, dtype=float),
+                np.ascontiguousarray(pose, dtype=float),
+                stretch,
+            )
+        elif stretch:
             return None
+        else:
+            args = inner[:3].T.ravel().tolist()
+            args += args if inner is pose else pose[:3].T.ravel().tolist()
+            try:
+                out = self._program("scalar")(*args)
+            except (ArithmeticError, ValueError):  # a division by zero, sin(inf): numpy decides
+                return None
         n, w, K = self.n, len(self._wrist_s), self.K
-        factors = self._singular_factors()
-        F = len(factors)
-        at = Layout.scalar(n, w, F, K)
+        at, kinds = self._scalar_layout()
+        F = len(kinds)
         residual = out[at.position if check == "position" else at.whole]
         if w and _smallest(out[at.wrist]) < WRIST_NEAR:
             return None  # a singular wrist: θ4 and θ6 from the whole rotation (numpy)
@@ -659,12 +710,20 @@ class ClosedFormSolver:
             np.ones(len(kept), dtype=bool),
             np.array(residual),
             near,
-            tuple(kind for kind, _, _ in factors),
+            kinds,
             signs,
             METHOD,
             _empty(check, tol) if not kept else None,
             namer=self.branch_names,
         )
+
+    def _scalar_layout(self) -> tuple[Layout, tuple[str, ...]]:
+        """The layout of the program for floats and the kinds of the singular factors."""
+        if self._layout is None:
+            kinds = tuple(kind for kind, _, _ in self._singular_factors())
+            at = Layout.scalar(self.n, len(self._wrist_s), len(kinds), self.K)
+            self._layout = (at, kinds)
+        return self._layout
 
     def _distinct(self, kept: list[int], values: Sequence[float]) -> list[int]:
         """The branches of ``kept`` whose joint values (angles by cos and sin) differ from

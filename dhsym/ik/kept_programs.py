@@ -93,39 +93,20 @@ def kept_program(
     name: Callable[[], str | None],
     build: Callable[[], tuple[Sequence[sp.Symbol], Sequence[Any], Sequence[Any]]],
 ) -> tuple[tuple[sp.Symbol, ...], Steps, tuple[Any, ...]]:
-    """The program ``(args, steps, outputs)`` that ``build()`` makes, kept in the disk cache
-    as entry ``name()`` (``None``, or the cache off: built, not kept). A kept entry is read
-    back (verified) instead of calling ``build``; one this version cannot read is built
-    again and rewritten."""
-    from dhsym.cache.codec import CodecError, read_exprs, write_exprs
-    from dhsym.cache.store import default_store
+    """The program ``(args, steps, outputs)`` that ``build()`` makes (its Dummies given
+    stable names), kept in the disk cache as entry ``name()`` through the one reader and
+    writer of programs, :func:`dhsym.kinematics.numeric.kept_tuples` (``None``, or the
+    cache off: built, not kept). A kept entry is read back (verified) instead of calling
+    ``build``; one this version cannot read is built again and rewritten."""
+    from dhsym.kinematics.numeric import kept_tuples
 
-    store = default_store()
-    entry = name() if store is not None else None
-    data = store.read(entry) if store is not None and entry is not None else None
-    if data is not None:
-        try:
-            args, lhs, rhs, outputs = read_exprs(data, EXTRA)
-            return tuple(args.args), tuple(zip(lhs.args, rhs.args)), tuple(outputs.args)
-        except (CodecError, ValueError, AttributeError, TypeError):
-            pass  # not a program this version reads: build it again
-    raw_args, raw_steps, raw_outputs = build()
-    args, steps, outputs = stable_names(raw_args, raw_steps, raw_outputs)
-    if store is not None and entry is not None:
-        try:
-            text = write_exprs(
-                [
-                    sp.Tuple(*args),
-                    sp.Tuple(*(s for s, _ in steps)),
-                    sp.Tuple(*(e for _, e in steps)),
-                    sp.Tuple(*outputs),
-                ],
-                EXTRA,
-            )
-        except CodecError:
-            return args, steps, outputs  # a class the codec does not write: not kept
-        store.write(entry, text.encode())
-    return args, steps, outputs
+    def ready() -> list[sp.Tuple]:
+        args, steps, outputs = stable_names(*build())
+        lhs = sp.Tuple(*(s for s, _ in steps))
+        return [sp.Tuple(*args), lhs, sp.Tuple(*(e for _, e in steps)), sp.Tuple(*outputs)]
+
+    args, lhs, rhs, outputs = kept_tuples(name, ready, 4, EXTRA)
+    return tuple(args.args), tuple(zip(lhs.args, rhs.args)), tuple(outputs.args)
 
 
 def derivation_text(*parts: object) -> str:

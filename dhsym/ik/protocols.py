@@ -24,6 +24,7 @@ True
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
 import numpy as np
@@ -40,7 +41,13 @@ if TYPE_CHECKING:
 
     from .solution import IKSolution
 
-__all__ = ["IKSolver", "InverseKinematics", "read_poses"]
+__all__ = ["IKSolver", "InverseKinematics", "NativeCompiler", "NativeProgram", "read_poses"]
+
+#: a closed form's program for one pose in native code: ``f(inner, pose, stretch)`` of the
+#: pose from frame 0 to frame n and the pose as given (contiguous row-major ``(4, 4)``
+#: float arrays) gives the program's outputs as floats; ``stretch`` reads every negative
+#: radicand as 0 (the ``"stretched"`` program of :mod:`dhsym.ik.closed_form_solver`)
+NativeProgram = Callable[[np.ndarray, np.ndarray, bool], list[float]]
 
 
 @runtime_checkable
@@ -100,6 +107,25 @@ class IKSolver(Protocol):
     def branch_names(self, q: np.ndarray, signs: np.ndarray) -> tuple[str, ...]:
         """The name of each solution ``q`` ``(k, n)`` with branch signs ``(k, B)``."""
         ...
+
+
+class NativeCompiler(Protocol):
+    """A compiler of the closed-form solver's program for one pose into native code: the
+    facade passes the export room's C (:func:`dhsym.export.shared_library.native_program`)
+    when a C compiler is there; the ik room never imports it.
+
+    Called with the program's arguments (the 12 entries of the pose from frame 0 to
+    frame n, then the 12 of the pose as given, each column by column), its lines in
+    order and its outputs; returns a :data:`NativeProgram` with the same outputs, or
+    ``None`` when it cannot build one (the solver keeps its own program for floats).
+    """
+
+    def __call__(
+        self,
+        args: Sequence[sp.Symbol],
+        program: Sequence[tuple[sp.Symbol, sp.Expr]],
+        outputs: Sequence[sp.Expr],
+    ) -> NativeProgram | None: ...
 
 
 def read_poses(T: object, check: str | None, *, wrist: bool) -> tuple[np.ndarray, str | None]:

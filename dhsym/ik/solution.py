@@ -144,7 +144,15 @@ class IKSolution:
         ('elbow up', 'elbow down')
         """
         keep = np.asarray(keep, dtype=int)
-        names = self.branches
+        rows = keep.tolist()
+        if self.names is None and "branches" not in self.__dict__:
+            # named when asked, as this solution's rows would be (naming looks at the arm)
+            def namer(_q: np.ndarray, _signs: np.ndarray) -> tuple[str, ...]:
+                return tuple(self.branches[k] for k in rows)
+
+            known, later = None, namer
+        else:
+            known, later = tuple(self.branches[k] for k in rows), None
         return IKSolution(
             (self.q if q is None else q)[keep],
             self.valid[keep],
@@ -155,7 +163,8 @@ class IKSolution:
             self.method,
             self.reason,
             self.iterations,
-            tuple(names[k] for k in keep),
+            known,
+            later,
         )
 
     def __len__(self) -> int:

@@ -69,6 +69,7 @@ __all__ = [
     "NumericProgram",
     "compile_exprs",
     "compile_program",
+    "kept_tuples",
     "stored_pose_function",
     "stored_program",
     "compile_matrix",
@@ -155,27 +156,55 @@ def stored_program(
     ``name`` (:mod:`dhsym.cache`: verified when read; ``None`` or the cache turned off:
     not kept). ``exprs`` is called only when the entry is absent or refused; ``extra``
     names dhsym's own functions the program may hold (:func:`dhsym.cache.codec.read_exprs`)."""
+
+    def build() -> list[sp.Tuple]:
+        program = NumericProgram.of(exprs(), variables)
+        lhs = sp.Tuple(*(s for s, _ in program.assignments))
+        return [lhs, sp.Tuple(*(e for _, e in program.assignments)), sp.Tuple(*program.outputs)]
+
+    lhs, rhs, outputs = kept_tuples(lambda: name, build, 3, extra)
+    return NumericProgram(tuple(zip(lhs.args, rhs.args)), tuple(outputs.args))
+
+
+def kept_tuples(
+    name: Callable[[], str | None],
+    build: Callable[[], Sequence[sp.Tuple]],
+    size: int,
+    extra: Mapping[str, type] | None = None,
+) -> tuple[sp.Tuple, ...]:
+    """The tuples of expressions ``build()`` makes (a ready program: its steps, outputs,
+    arguments), kept in the disk cache as entry ``name()`` (:mod:`dhsym.cache`: verified
+    when read, read by :func:`dhsym.cache.codec.read_exprs` without running code;
+    ``name()`` is asked only when the cache is on, and ``None`` keeps nothing). An entry
+    that is not ``size`` tuples is built again and rewritten; ``extra``
+    names dhsym's own functions they may hold. The one reader and writer of programs:
+    :func:`stored_program` and :func:`dhsym.ik.kept_programs.kept_program` take it.
+
+    >>> x = sp.Symbol("x")
+    >>> kept_tuples(lambda: None, lambda: [sp.Tuple(x, 2 * x)], 1)
+    ((x, 2*x),)
+    """
     from dhsym.cache.codec import CodecError, read_exprs, write_exprs
     from dhsym.cache.store import default_store
 
-    store = default_store() if name is not None else None
-    data = store.read(name) if store is not None and name is not None else None
+    store = default_store()
+    entry = name() if store is not None else None
+    data = store.read(entry) if store is not None and entry is not None else None
     if data is not None:
         try:
-            lhs, rhs, outputs = read_exprs(data, extra)
-            return NumericProgram(tuple(zip(lhs.args, rhs.args)), tuple(outputs.args))
-        except (CodecError, ValueError, AttributeError):
-            pass  # not a program this version reads: derive it again
-    program = NumericProgram.of(exprs(), variables)
-    if store is not None and name is not None:
+            found = tuple(read_exprs(data, extra))
+        except (CodecError, ValueError, AttributeError, TypeError):
+            found = ()  # not a program this version reads: built again
+        if len(found) == size and all(isinstance(t, sp.Tuple) for t in found):
+            return found
+    made = build()
+    if store is not None and entry is not None:
         try:
-            lhs_rhs = [sp.Tuple(*(s for s, _ in program.assignments))]
-            lhs_rhs.append(sp.Tuple(*(e for _, e in program.assignments)))
-            text = write_exprs([*lhs_rhs, sp.Tuple(*program.outputs)], extra)
+            text = write_exprs(list(made), extra)
         except CodecError:
-            return program  # a class the codec does not write: kept in this process only
-        store.write(name, text.encode())
-    return program
+            return tuple(made)  # a class the codec does not write: kept in this process only
+        store.write(entry, text.encode())
+    return tuple(made)
 
 
 def compile_exprs(

@@ -101,14 +101,18 @@ def run_c(files, prefix, q, poses, n, jac, ik, folder: Path, cpp: bool = False, 
         N=N,
         p=prefix,
         pa=pa,
-        ikdecl=(f"double S[{cN}MAX_IK_SOLUTIONS][{cN}NJOINTS];" if ik else "") + pdecl,
+        ikdecl=(
+            f"double S[{cN}MAX_IK_SOLUTIONS][{cN}NJOINTS], R[{cN}MAX_IK_SOLUTIONS];" if ik else ""
+        )
+        + pdecl,
         jac=(
             f'{ns}jacobian(q, J{pa}); for (j = 0; j < 6 * {cN}NJOINTS; ++j) printf("%.17g\\n", J[j]);'
             if jac
             else ""
         ),
         ik=(
-            f'c = {ns}ik(T, S{pa}); printf("%d\\n", c); '
+            (f"c = {ns}ik(T, S, R{pa}); " if cpp else f"c = {ns}ik(T, 0.0, S, R{pa}); ")
+            + 'printf("%d\\n", c); '
             f'for (j = 0; j < c * {cN}NJOINTS; ++j) printf("%.17g\\n", S[j / {cN}NJOINTS][j % {cN}NJOINTS]);'
             if ik
             else ""
@@ -171,7 +175,8 @@ def run_rust(files, prefix, q, poses, n, jac, ik, folder: Path, params=None):
         ),
         ik=(
             f"let mut s = [[0.0; {prefix}::NJOINTS]; {prefix}::MAX_IK_SOLUTIONS]; "
-            f'let c = {prefix}::ik(&t, &mut s{pa}); println!("{{}}", c); '
+            f"let mut r = [0.0; {prefix}::MAX_IK_SOLUTIONS]; "
+            f'let c = {prefix}::ik(&t, None, &mut s, &mut r{pa}); println!("{{}}", c); '
             'for r in s[..c].iter() { for x in r.iter() { println!("{:e}", x); } }'
             if ik
             else "let _ = t;"

@@ -112,3 +112,134 @@ def test_gcc_is_warning_free_for_puma(tmp_path):
     flags = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-c", "puma.c"]
     done = subprocess.run(["gcc", *flags], cwd=tmp_path, capture_output=True, text=True)
     assert done.returncode == 0 and done.stderr == ""
+
+
+_ROUNDED_MAIN = """
+#include <stdio.h>
+#include "arm.{h}"
+int main(void)
+{
+    double T[16], S[ARM_MAX][ARM_N], R[ARM_MAX];
+    int i, j, c;
+    while (1) {
+        for (j = 0; j < 16; ++j) if (scanf("%lf", &T[j]) != 1) return 0;
+        c = CALL;
+        printf("%d\\n", c);
+        for (i = 0; i < c; ++i) {
+            for (j = 0; j < ARM_N; ++j) printf("%.17g ", S[i][j]);
+            printf("%.17g\\n", R[i]);
+        }
+    }
+}
+"""
+
+
+def _same_solutions(robot, got, residual, want):
+    """The exported solutions are robot.ik's (angles modulo 2π, residuals to rounding);
+    robot.ik may list one solution twice where the stretched arm makes two branches meet."""
+    assert len(got) <= len(want) and (len(got) == 0) == (len(want) == 0)
+    for row, res in zip(got, residual):
+        d = row - want.q
+        d = np.abs(np.remainder(d + np.pi, 2 * np.pi) - np.pi).max(axis=1)
+        k = int(d.argmin())
+        assert d[k] <= 1e-8 and abs(res - want.residual[k]) <= 1e-12
+    for row in want.q:
+        d = row - got
+        assert np.abs(np.remainder(d + np.pi, 2 * np.pi) - np.pi).max(axis=1).min() <= 1e-8
+
+
+@pytest.mark.parametrize("lang", ["c", "cpp"])
+@pytest.mark.parametrize("name", ["puma560", "ur5", "stanford"])
+def test_exported_ik_takes_rounded_poses(name, lang, tmp_path):
+    """The exported IK keeps robot.ik's tolerance rule (dhsym.ik.accuracy): on poses rounded
+    to 6 and 3 decimals it finds robot.ik's solutions, with their residuals; a pose that
+    is no rotation has none."""
+    cc = "g++" if lang == "cpp" else "gcc"
+    _need(cc, shutil.which(cc), f"apt-get install {cc}")
+    robot = dhsym.load(name)
+    files = dhsym.export(robot, lang, what=("fk", "ik"), prefix="arm")
+    for file, text in files.items():
+        (tmp_path / file).write_text(text)
+    if lang == "c":
+        call, head, defs = "arm_ik(T, 0.0, S, R)", "h", "-DARM_MAX=ARM_MAX_IK_SOLUTIONS"
+        defs2, build = "-DARM_N=ARM_NJOINTS", ["gcc", "-std=c99", "main.c", "arm.c", "-lm"]
+    else:
+        call, head, defs = "arm::ik(T, S, R)", "hpp", "-DARM_MAX=arm::MAX_IK_SOLUTIONS"
+        defs2, build = "-DARM_N=arm::NJOINTS", ["g++", "-std=c++17", "main.c"]
+    (tmp_path / "main.c").write_text(_ROUNDED_MAIN.replace("CALL", call).replace("{h}", head))
+    flags = ["-Wall", "-Wextra", "-Werror", "-O2", defs, defs2, "-o", "prog"]
+    subprocess.run([*build[:2], *flags, *build[2:]], cwd=tmp_path, check=True)
+    rng = np.random.default_rng(11)
+    poses = []
+    for q in rng.uniform(-3.0, 3.0, (8, len(robot.variables))):
+        T = robot.fk(q)
+        poses += [T, np.round(T, 6), np.round(T, 3)]
+    mirrored = np.diag([1.0, 1.0, -1.0, 1.0])  # det -1: no rotation, no solution
+    poses.append(mirrored)
+    text = "\n".join(" ".join(repr(float(v)) for v in T.ravel()) for T in poses) + "\n"
+    out = subprocess.run(
+        [str(tmp_path / "prog")], input=text, capture_output=True, text=True, check=True
+    ).stdout.split("\n")
+    n = len(robot.variables)
+    at = 0
+    for T in poses:
+        c = int(out[at])
+        rows = np.array([[float(x) for x in line.split()] for line in out[at + 1 : at + 1 + c]])
+        at += 1 + c
+        if T is mirrored:
+            assert c == 0
+            continue
+        rows = rows.reshape(c, n + 1)
+        _same_solutions(robot, rows[:, :n], rows[:, n], robot.ik(T))
+
+
+def _rounded_poses(robot):
+    rng = np.random.default_rng(5)
+    poses = []
+    for q in rng.uniform(-3.0, 3.0, (6, len(robot.variables))):
+        T = robot.fk(q)
+        poses += [np.round(T, 6), np.round(T, 3)]
+    return poses
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5"])
+def test_exported_python_ik_takes_rounded_poses(name, tmp_path):
+    robot = dhsym.load(name)
+    mod = h.load_python(
+        dhsym.export(robot, "python", what=("fk", "ik"), prefix="arm"), "arm", tmp_path
+    )
+    for T in _rounded_poses(robot):
+        q, residual = mod.ik_with_residual(T)
+        _same_solutions(robot, q, residual, robot.ik(T))
+        assert np.array_equal(mod.ik(T), q)
+    assert len(mod.ik(np.diag([1.0, 1.0, -1.0, 1.0]))) == 0  # no rotation: none
+
+
+def test_exported_octave_ik_takes_rounded_poses(tmp_path):
+    _need("octave", shutil.which("octave"), "apt-get install octave")
+    robot = dhsym.load("ur5")
+    for file, text in dhsym.export(robot, "matlab", what=("fk", "ik"), prefix="arm").items():
+        (tmp_path / file).write_text(text)
+    poses = _rounded_poses(robot)
+    np.savetxt(tmp_path / "t.txt", np.array(poses).reshape(len(poses), 16), fmt="%.17g")
+    script = (
+        "Ts = dlmread('t.txt');\n"
+        "for i = 1:size(Ts, 1)\n"
+        "  [Q, c, r] = arm_ik(reshape(Ts(i, :), 4, 4).');\n"
+        "  fprintf('%d\\n', c); fprintf('%.17g\\n', [Q, r].');\n"
+        "end\n"
+    )
+    (tmp_path / "drive.m").write_text(script)
+    out = subprocess.run(
+        ["octave", "--no-gui", "--quiet", "--no-window-system", "drive.m"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout.split()
+    n, at = len(robot.variables), 0
+    for T in poses:
+        c = int(out[at])
+        rows = np.array([float(x) for x in out[at + 1 : at + 1 + c * (n + 1)]]).reshape(c, n + 1)
+        at += 1 + c * (n + 1)
+        _same_solutions(robot, rows[:, :n], rows[:, n], robot.ik(T))

@@ -6,13 +6,15 @@ import os
 import shutil
 import stat
 import subprocess
+import sys
 
 import numpy as np
+import pytest
 
 import dhsym
 from dhsym.export import shared_library as shared_library
 from dhsym.export.shared_library import compiled
-from dhsym.ik.choices import IKCache
+from dhsym.ik.choices import IKCache, solve
 from dhsym.kinematics.chain import KinematicChain
 
 from ..conftest import _need
@@ -144,3 +146,77 @@ def test_without_the_cache_nothing_is_kept(tmp_path, monkeypatch):
     q = np.array([0.4, 0.9])
     assert fast.library is None and np.abs(fast.fk(q) - r.fk(q)).max() <= 1e-12
     assert not (tmp_path / "cache").exists()
+
+
+# -- robot.ik's program for one pose in C (native_program) ----------------------------------
+def _fields_agree(a, b):
+    """Two solutions of one pose say the same: every field, the joint values to rounding."""
+    assert a.branches == b.branches
+    assert a.q.shape == b.q.shape and np.abs(a.q - b.q).max(initial=0.0) <= 1e-10
+    assert np.abs(a.residual - b.residual).max(initial=0.0) <= 1e-12
+    assert (a.valid == b.valid).all() and (a.near == b.near).all()
+    assert (a.signs == b.signs).all() and a.factor_kinds == b.factor_kinds
+    assert (a.method, a.reason) == (b.method, b.reason)
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5", "stanford", "planar2r"])
+def test_native_program_agrees_with_the_numpy_path(name):
+    _need("a C compiler", shared_library.native_compiler(), "apt-get install gcc")
+    robot = dhsym.load(name)
+    solver = robot.ik_cache().solver()
+    built = solver.native(now=True)
+    assert built is not None
+    served = []
+
+    def counted(inner, pose, stretch):
+        served.append(stretch)
+        return built(inner, pose, stretch)
+
+    solver._native_program = counted  # the C, counted: it serves every pose below
+    numpy_only = IKCache(robot)  # no native compiler: the program for floats, and numpy
+    rng = np.random.default_rng(7)
+    n = len(robot.variables)
+    for q in rng.uniform(-3.0, 3.0, (12, n)):
+        T = robot.fk(q)
+        for pose in (T, np.round(T, 6), np.round(T, 3)):
+            _fields_agree(robot.ik(pose), solve(robot, pose, cache=numpy_only))
+        _fields_agree(
+            robot.ik(T, limits=True, near=q), solve(robot, T, cache=numpy_only, limits=True, near=q)
+        )
+    far = robot.fk(np.zeros(n))
+    far[:3, 3] *= 100.0  # out of reach: no solution, the same reason
+    _fields_agree(robot.ik(far), solve(robot, far, cache=numpy_only))
+    assert len(served) >= 37 and True in served and False in served
+
+
+def test_no_compile_forces_the_numpy_path(tmp_path):
+    env = dict(os.environ, DHSYM_NO_COMPILE="1", DHSYM_CACHE=str(tmp_path))
+    code = (
+        "import dhsym; from dhsym.export.shared_library import native_compiler; "
+        "r = dhsym.load('planar2r'); s = r.ik_cache().solver(); "
+        "print(native_compiler(), r.ik_cache().native, s.native(now=True))"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True
+    )
+    assert done.stdout.split() == ["None", "None", "None"]
+
+
+def test_native_source_builds_under_strict_flags(tmp_path):
+    cc = shared_library.native_compiler()
+    _need("a C compiler", cc, "apt-get install gcc")
+    solver = dhsym.load("puma560").ik_cache().solver()
+    from dhsym.ik.kept_programs import kept_program
+
+    args, program, outputs = kept_program(
+        lambda: solver._entry("scalar"), lambda: solver._rewritten("scalar")
+    )
+    (tmp_path / "p.c").write_text(shared_library.native_source(args, program, outputs))
+    done = subprocess.run(
+        [cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-c", "p.c"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr
