@@ -22,8 +22,8 @@ Examples
 ...     "      right: [a1*C1 + a2*C12]\\n      wrong: [{answer: a1*C1 - a2*C12, mistake: sign}]\\n"
 ... )
 >>> report = run_assignment_tests(Assignment.load(folder / "hw.yaml"))
->>> report.passed, [(r.question, r.case, r.got) for r in report.rows]
-(True, [('q1', 'key', 'correct'), ('q1', 'right', 'correct'), ('q1', 'wrong', 'incorrect: wrong_sign')])
+>>> report.passed, [(r.case, r.got) for r in report.rows]
+(True, [('key', 'correct'), ('right', 'correct'), ('wrong', 'incorrect: wrong_sign')])
 """
 
 from __future__ import annotations

@@ -47,7 +47,6 @@ Examples
 from __future__ import annotations
 
 import csv
-import hashlib
 import hmac
 import io
 import math
@@ -64,6 +63,7 @@ from dhsym.model.entries import exact_decimal
 from dhsym.model.parsing import parse_expression
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
+from .report_files import csv_cell
 from .submissions import identity, student_id
 
 __all__ = [
@@ -72,6 +72,7 @@ __all__ = [
     "Variant",
     "VariantSpec",
     "class_variants",
+    "list_variants",
     "new_secret",
     "read_secret",
 ]
@@ -214,6 +215,50 @@ def _first_free(
         if variant.values not in taken:
             return variant
     raise AssertionError("no free combination although fewer are taken than exist")
+
+
+def list_variants(spec: VariantSpec, roster: ClassList, fmt: str = "text") -> str:
+    """Each student's values, in the class list's order: ``text`` (aligned columns),
+    ``csv`` (``student,name,<quantities>``, cells safe for a spreadsheet) or ``json``.
+
+    >>> spec = VariantSpec.parse({"a2": [0.4, 0.5]}, b"0123456789abcdef", "HW")
+    >>> print(list_variants(spec, ClassList((("ada", "Ada"), ("bo", "Bo"))), "csv"), end="")
+    student,name,a2
+    ada,Ada,0.4
+    bo,Bo,0.5
+    """
+    drawn = class_variants(spec, roster.ids)
+    rows = [(sid, name, dict(drawn[identity(sid)].shown)) for sid, name in roster.students]
+    if fmt == "json":
+        import json
+
+        data = [{"student": s, "name": n, "values": v} for s, n, v in rows]
+        return (
+            json.dumps(
+                {"variants": list(spec.names), "students": data}, ensure_ascii=False, indent=1
+            )
+            + "\n"
+        )
+    head = ["student", "name", *spec.names]
+    body = [[s, n, *(v[k] for k in spec.names)] for s, n, v in rows]
+    if fmt == "csv":
+        out = io.StringIO()
+        writer = csv.writer(out, lineterminator="\n")
+        writer.writerow(head)
+        writer.writerows(
+            [[csv_cell(r[0]), csv_cell(r[1]), *r[2:]] for r in body]
+        )  # values are ours
+        return out.getvalue()
+    if fmt != "text":
+        raise DHError(f"unknown format {fmt!r}: expected text, csv or json")
+    widths = [max(len(r[k]) for r in [head, *body]) for k in range(len(head))]
+    lines = [
+        "  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)).rstrip()
+        for r in [head, *body]
+    ]
+    distinct = len({tuple(v.items()) for _, _, v in rows})
+    lines.append(f"{len(rows)} students, {distinct} distinct variants of {spec.combinations}")
+    return "\n".join(lines) + "\n"
 
 
 @dataclass(frozen=True)
