@@ -80,7 +80,10 @@ class QuestionTests:
                 if "answer" not in item or not set(item) <= {"answer", "mistake"}:
                     raise DHError("expected {answer: ..., mistake: kind}", field=where)
                 mistake = item.get("mistake") or ""
-                kind = mistake_kind(mistake, f"{where}.mistake") if mistake else ""
+                try:
+                    kind = mistake_kind(mistake, "mistake") if mistake else ""
+                except DHError as err:
+                    raise DHError(err.message, field=f"{where}.mistake") from None
                 wrong.append(WrongAnswer(_answer(item["answer"], where), kind))
             else:
                 wrong.append(WrongAnswer(_answer(item, where)))
