@@ -206,7 +206,7 @@ def partial_credit_assignment(tmp: Path, students: list[str]) -> tuple[Path, Pat
     """The example assignment with partial credit and variants, and its class list.
 
     Partial credit on every matrix question (``credit: entries``, ``deduct``), and a sixth
-    question drawn per student (``T0_2`` of the planar 2R with ``a1``, ``a2`` from ranges:
+    question drawn per student (``T0_2`` of the planar 2R with ``a1`` from a range of 201:
     the example's students do not answer it, so their scores are those of the example
     with partial credit); the secret and the class list are written beside it.
     """
@@ -216,10 +216,8 @@ def partial_credit_assignment(tmp: Path, students: list[str]) -> tuple[Path, Pat
             q["credit"] = "entries"
             q["deduct"] = {"wrong_sign": "25%"}
     data["questions"].append({"id": "q6", "ask": "T0_2", "points": 1, "key": "planar2r"})
-    data["variants"] = {
-        "a1": {"from": 0.30, "to": 0.50, "step": 0.01},
-        "a2": {"from": 0.20, "to": 0.40, "step": 0.01},
-    }
+    # a1 only: a2 is a symbol of the PUMA 560 too, and a drawn name applies to every table
+    data["variants"] = {"a1": {"from": 0.300, "to": 0.500, "step": 0.001}}
     data["secret"] = "hw.secret"
     (tmp / "hw.secret").write_text("bench-secret-" + "0" * 40 + "\n", encoding="ascii")
     shutil.copy(HW / "generic_modified_link.yaml", tmp / "generic_modified_link.yaml")

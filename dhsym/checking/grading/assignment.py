@@ -96,7 +96,7 @@ class Assignment:
         questions = []
         for q in self.questions:
             table = q.key.table
-            own = {s: values[str(s)] for s in table.constants if str(s) in values}
+            own = variant.values_for(table)
             if own:
                 table = table.with_values(own).substituted()
             asked = Question.parse(_ask_with(q.ask, values), table.n)

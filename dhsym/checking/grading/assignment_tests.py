@@ -39,6 +39,7 @@ from ..judging.matrix_key import MatrixPart
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits
 from .assignment import Assignment
 from .question_tests import WrongAnswer
+from .variants import Variant
 
 __all__ = ["AssignmentTestReport", "CaseResult", "key_answer", "run_assignment_tests"]
 
@@ -142,13 +143,15 @@ def run_assignment_tests(
     samples: int = 3,
     keys: PreparedKeys | None = None,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    key_answers: bool = True,
 ) -> AssignmentTestReport:
-    """Grade the key's own answer and every question test (see the module docstring)."""
+    """Grade the key's own answer and every question test (see the module docstring);
+    ``key_answers=False``: the question tests only (what ``grade`` runs before grading)."""
     keys = keys if keys is not None else PreparedKeys()
     rows: list[CaseResult] = []
     spec = assignment.variants
-    variants = [None]
-    if spec is not None:
+    variants: list[Variant | None] = [None] if key_answers else []
+    if spec is not None and key_answers:
         variants = [spec.sample(), *(spec.draw(f"check-{k}") for k in range(1, samples + 1))]
     for v in variants:
         a = assignment.for_variant(v) if v is not None else assignment

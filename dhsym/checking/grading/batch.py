@@ -350,8 +350,9 @@ def grade(
     the sum over its questions plus a few seconds before its process is killed.
 
     An assignment with question tests is refused while one fails
-    (:func:`~dhsym.checking.grading.assignment_tests.run_assignment_tests`; ``keys``: the
-    keys already prepared, e.g. by :meth:`Assignment.load`).  An assignment with
+    (:func:`~dhsym.checking.grading.assignment_tests.run_assignment_tests`, the tests only:
+    the keys' own answers are ``dhsym check-assignment``'s; ``keys``: the keys already
+    prepared, e.g. by :meth:`Assignment.load`).  An assignment with
     ``variants:`` needs the class list ``variants`` (a CSV file or a
     :class:`~dhsym.checking.grading.variants.ClassList`): each student is graded against
     their own key; a submission of a student not on it is an error.
@@ -359,7 +360,7 @@ def grade(
     keys = keys if keys is not None else PreparedKeys()
     a = assignment if isinstance(assignment, Assignment) else Assignment.load(assignment, keys)
     if any(q.tests for q in a.questions):
-        tested = run_assignment_tests(a, keys=keys)
+        tested = run_assignment_tests(a, keys=keys, key_answers=False)
         if not tested.passed:
             bad = tested.failures[0]
             raise DHError(

@@ -58,12 +58,10 @@ def student_sheets(assignment: Assignment, roster: ClassList) -> tuple[StudentSh
     out = []
     for sid, name in roster.students:
         variant = drawn[identity(sid)]
-        values = dict(variant.values)
         tables: list[DHTable] = []
         for q in assignment.questions:
-            table = q.key.table
-            own = {s: values[str(s)] for s in table.constants if str(s) in values}
-            table = table.with_values(own) if own else table
+            own = variant.values_for(q.key.table)
+            table = q.key.table.with_values(own) if own else q.key.table
             if table not in tables:
                 tables.append(table)
         mine = assignment.for_variant(variant)

@@ -61,6 +61,7 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.model.entries import exact_decimal
 from dhsym.model.parsing import parse_expression
+from dhsym.model.table import DHTable
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
 from .report_files import csv_cell
@@ -102,6 +103,11 @@ class Variant:
     values: tuple[tuple[str, sp.Expr], ...]
     shown: tuple[tuple[str, str], ...]
     counter: int = 0
+
+    def values_for(self, table: DHTable) -> dict[sp.Symbol, sp.Expr]:
+        """The values of ``table``'s constant symbols that this variant draws."""
+        mine = dict(self.values)
+        return {s: mine[str(s)] for s in table.constants if str(s) in mine}
 
     def text(self) -> str:
         """``a2 = 0.45, d3 = 1`` (the line of the feedback page and the sheet)."""

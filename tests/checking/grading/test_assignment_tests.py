@@ -68,7 +68,7 @@ def test_a_failing_test_fails_the_run_and_grade_refuses(tmp_path: Path):
     subs = tmp_path / "subs"
     (subs / "ann").mkdir(parents=True)
     (subs / "ann" / "q1.txt").write_text("a1*C1 + a2*C12")
-    with pytest.raises(DHError, match=r"question tests fail \(3 of 4; first: question q1, right"):
+    with pytest.raises(DHError, match=r"question tests fail \(3 of 3; first: question q1, right"):
         grade(hw, subs, tmp_path / "out", workers=0, progress=False)
     assert not (tmp_path / "out").exists()  # refused before anything is written
 
