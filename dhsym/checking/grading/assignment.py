@@ -11,8 +11,13 @@ The assignment (YAML) names the key and the questions::
       - {id: q2, ask: T0_2, points: 2}
       - {id: q3, ask: A1, points: 1, key: generic_modified_link.yaml}
       - {id: q4, ask: J, points: 2, credit: entries, deduct: {wrong_sign: 25%}}
+      - {id: q5, ask: px, tests: {right: [a2*C1*C2], wrong: [{answer: -a2*C1*C2, mistake: sign}]}}
+    variants: {d3: [0.1, 0.15, 0.2]}   # drawn per student (with secret: FILE)
+    secret: hw3.secret
 
-Partial credit is :mod:`~dhsym.checking.grading.credit`'s (all or nothing by default).
+Partial credit is :mod:`~dhsym.checking.grading.credit`'s (all or nothing by default),
+question tests :mod:`~dhsym.checking.grading.question_tests`', variants
+:mod:`~dhsym.checking.grading.variants`' (:meth:`Assignment.for_variant` is one student's).
 Every key is described in the assignment-file reference of the documentation.
 
 Examples
@@ -58,8 +63,10 @@ _MAX_POINTS = 1e6
 @dataclass(frozen=True)
 class AssignmentQuestion:
     """One question: its id, what is asked, points, the key (with whether the tool frame is
-    free and the rounding) and its partial credit (:class:`~.credit.Credit`: all or nothing
-    unless the question says otherwise)."""
+    free and the rounding), its partial credit (:class:`~.credit.Credit`: all or nothing
+    unless the question says otherwise) and its tests (:class:`~.question_tests.QuestionTests`).
+    With variants, ``key`` is the key as written (the table's symbols, an ``ik@`` question at
+    the first value of each drawn joint value)."""
 
     id: str
     ask: str

@@ -50,8 +50,8 @@ from .records import GradeRecord
 from .report import write_gradebook, write_summary
 from .report_files import CACHE_NAME, inside, safe_name, write_atomic
 from .sandbox import JobFailure
-from .submissions import Submission, identity, read_submissions
-from .variants import ClassList, Variant, class_variants
+from .submissions import Submission, read_submissions
+from .variants import ClassList, Variant, class_variants, variant_id
 
 __all__ = [
     "check_submission",
@@ -385,7 +385,7 @@ def grade(
     own: dict[str, Assignment] = {}  # each student's assignment, with their values
     if drawn is not None:
         for k, s in enumerate(subs):
-            v = drawn.get(identity(s.student))
+            v = drawn.get(variant_id(s.student))
             if v is None and not s.error:
                 subs[k] = replace(s, error="not on the class list of the variants")
             elif v is not None:

@@ -32,8 +32,7 @@ from dhsym.model.table import DHTable
 
 from .assignment import Assignment
 from .report_files import safe_name
-from .submissions import identity
-from .variants import ClassList, Variant, class_variants
+from .variants import ClassList, Variant, class_variants, variant_id
 
 __all__ = ["StudentSheet", "student_sheets", "write_sheets"]
 
@@ -57,7 +56,7 @@ def student_sheets(assignment: Assignment, roster: ClassList) -> tuple[StudentSh
     drawn = class_variants(assignment.variants, roster.ids)
     out = []
     for sid, name in roster.students:
-        variant = drawn[identity(sid)]
+        variant = drawn[variant_id(sid)]
         tables: list[DHTable] = []
         for q in assignment.questions:
             own = variant.values_for(q.key.table)

@@ -16,8 +16,7 @@ table: the student's key has their numbers) or a name in an ``ik@`` question
 **Seeding.**  A student's values are drawn with HMAC-SHA256 keyed by the assignment's
 secret (the file ``secret:`` names, at least 16 bytes; ``dhsym variants hw.yaml
 --new-secret`` writes one) over the assignment's title and variants declaration, the
-student id normalised as grading compares ids (NFC, case-folded:
-:func:`~dhsym.checking.grading.submissions.identity`), a counter and the quantity's name.
+student id normalised (NFC, case-folded: :func:`variant_id`), a counter and the quantity's name.
 Reproducible (the same secret, assignment and id give the same values on any machine),
 and without the secret no student's values follow from another's.  An assignment with
 ``variants:`` and no secret is refused: values derived from the assignment alone could be
@@ -51,6 +50,7 @@ import hmac
 import io
 import math
 import secrets
+import unicodedata
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
@@ -65,7 +65,6 @@ from dhsym.model.table import DHTable
 from dhsym.model.yamlsafe import FileRefused, read_limited
 
 from .report_files import csv_cell
-from .submissions import identity, student_id
 
 __all__ = [
     "ClassList",
@@ -76,6 +75,7 @@ __all__ = [
     "list_variants",
     "new_secret",
     "read_secret",
+    "variant_id",
 ]
 
 _MAX_CHOICES = 10_000
@@ -85,6 +85,16 @@ _MAX_SECRET = 4_096
 _MIN_SECRET = 16
 _MAX_TRIES = 64
 _DOMAIN = b"dhsym-variant-v1"
+
+
+def variant_id(student: str) -> str:
+    """The id a student's values are drawn for: Unicode NFC, case-folded (``José`` typed on
+    a Mac and on Windows, or in capitals, is one student; ``Ann Lee`` and ``ann_lee`` are two).
+
+    >>> variant_id("José") == variant_id("jose\u0301") == variant_id("JOSÉ"), variant_id("Ann Lee")
+    (True, 'ann lee')
+    """
+    return unicodedata.normalize("NFC", student).casefold()
 
 
 @dataclass(frozen=True)
@@ -165,7 +175,7 @@ class VariantSpec:
     def draw(self, student: str, counter: int = 0) -> Variant:
         """``student``'s values at ``counter`` (0: the first draw), from the keyed HMAC."""
         message = b"\0".join(
-            [_DOMAIN, self.label.encode(), identity(student).encode(), str(counter).encode()]
+            [_DOMAIN, self.label.encode(), variant_id(student).encode(), str(counter).encode()]
         )
         picks = []
         for q in self.quantities:
@@ -175,7 +185,7 @@ class VariantSpec:
 
     def order(self, student: str) -> bytes:
         """Where ``student`` stands when duplicates are drawn again (their first digest)."""
-        message = b"\0".join([_DOMAIN, b"order", self.label.encode(), identity(student).encode()])
+        message = b"\0".join([_DOMAIN, b"order", self.label.encode(), variant_id(student).encode()])
         return hmac.new(self.secret, message, "sha256").digest()
 
     def _variant(self, picks: Sequence[int], counter: int) -> Variant:
@@ -189,7 +199,7 @@ class VariantSpec:
 
 def class_variants(spec: VariantSpec, students: Iterable[str]) -> dict[str, Variant]:
     """Each student's variant (by normalised id), duplicates drawn again where possible."""
-    ids = {identity(s): s for s in students}
+    ids = {variant_id(s): s for s in students}
     taken: set[tuple[tuple[str, sp.Expr], ...]] = set()
     out: dict[str, Variant] = {}
     for norm in sorted(ids, key=lambda k: spec.order(ids[k])):
@@ -234,7 +244,7 @@ def list_variants(spec: VariantSpec, roster: ClassList, fmt: str = "text") -> st
     bo,Bo,0.5
     """
     drawn = class_variants(spec, roster.ids)
-    rows = [(sid, name, dict(drawn[identity(sid)].shown)) for sid, name in roster.students]
+    rows = [(sid, name, dict(drawn[variant_id(sid)].shown)) for sid, name in roster.students]
     if fmt == "json":
         import json
 
@@ -309,18 +319,18 @@ class ClassList:
         for row_no, row in enumerate(rows[1:], 2):
             if not any(c.strip() for c in row):
                 continue
-            sid = student_id(row[column].strip()) if column < len(row) else ""
+            sid = unicodedata.normalize("NFC", row[column].strip()) if column < len(row) else ""
             if not sid:
                 raise DHError("empty student id", file=file, row=row_no, field=rows[0][column])
-            if identity(sid) in seen:
+            if variant_id(sid) in seen:
                 raise DHError(
-                    f"{sid!r} is the student of row {seen[identity(sid)]} already "
+                    f"{sid!r} is the student of row {seen[variant_id(sid)]} already "
                     "(ids are compared in NFC, case-folded)",
                     file=file,
                     row=row_no,
                     field=rows[0][column],
                 )
-            seen[identity(sid)] = row_no
+            seen[variant_id(sid)] = row_no
             name = row[name_col].strip() if name_col is not None and name_col < len(row) else ""
             out.append((sid, name or sid))
         if not out:

@@ -53,8 +53,7 @@ from dhsym.model.table import DHTable
 from ..comparing.verdict import CheckResult
 from ..grading.assignment import Assignment
 from ..grading.feedback import QuestionFeedback, render_question_text, render_template
-from ..grading.submissions import identity
-from ..grading.variants import ClassList, class_variants
+from ..grading.variants import ClassList, class_variants, variant_id
 from ..judging.checker import check_answer
 from ..judging.key import Key, PreparedKeys
 from ..judging.table_judge import table_cells
@@ -198,7 +197,7 @@ def assignment_key(
                 "roster='<class list CSV>'"
             )
         cl = roster if isinstance(roster, ClassList) else ClassList.load(roster)
-        variant = class_variants(a.variants, cl.ids).get(identity(student))
+        variant = class_variants(a.variants, cl.ids).get(variant_id(student))
         if variant is None:
             raise DHError(f"{student!r} is not on the class list {cl.file or ''}".rstrip())
         a = a.for_variant(variant)

@@ -12,13 +12,13 @@ import sympy as sp
 
 from dhsym.checking.grading.assignment import Assignment
 from dhsym.checking.grading.batch import grade
-from dhsym.checking.grading.submissions import identity
 from dhsym.checking.grading.variants import (
     ClassList,
     VariantSpec,
     class_variants,
     list_variants,
     new_secret,
+    variant_id,
 )
 from dhsym.errors import DHError
 
@@ -173,7 +173,7 @@ def test_grade_checks_each_student_against_their_own_key(hw: Path, tmp_path: Pat
     a = Assignment.load(hw)
     assert a.variants is not None
     drawn = class_variants(a.variants, ["alice", "bob", "carol"])
-    mine = dict(drawn[identity("alice")].shown)
+    mine = dict(drawn[variant_id("alice")].shown)
     # a student whose lengths differ from alice's copies her answer
     copier = next(
         s
@@ -192,7 +192,7 @@ def test_grade_checks_each_student_against_their_own_key(hw: Path, tmp_path: Pat
     assert rec[copier].verdicts["q1"] == "incorrect"
     assert rec["dan"].status.startswith("error: not on the class list")
     page = (tmp_path / "out" / "feedback" / "alice.md").read_text()
-    assert f"**Your values:** {drawn[identity('alice')].text()}" in page
+    assert f"**Your values:** {drawn[variant_id('alice')].text()}" in page
     # a rerun reuses the cache of each student's own key
     again = grade(hw, subs, tmp_path / "out", workers=0, progress=False, variants=roster)
     assert again.skipped == 2 and again.graded == 0
