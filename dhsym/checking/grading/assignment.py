@@ -102,12 +102,13 @@ class Assignment:
         values = dict(variant.values)
         questions = []
         for q in self.questions:
-            table = q.key.table
-            own = variant.values_for(table)
-            if own:
-                table = table.with_values(own).substituted()
-            asked = Question.parse(_ask_with(q.ask, values), table.n)
-            key = replace(q.key, table=table, question=asked)
+            own = variant.values_for(q.key.table)
+            asked = _ask_with(q.ask, values)
+            if not own and asked == q.ask:  # untouched: the same objects (pickled once a batch)
+                questions.append(q)
+                continue
+            table = q.key.table.with_values(own).substituted() if own else q.key.table
+            key = replace(q.key, table=table, question=Question.parse(asked, table.n))
             questions.append(replace(q, key=key))
         text = self.fingerprint + "\n" + repr(variant.values)
         fp = hashlib.sha256(text.encode()).hexdigest()[:16]
