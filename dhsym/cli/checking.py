@@ -85,9 +85,11 @@ def _cmd_check(args: argparse.Namespace) -> int:
 def _cmd_grade(args: argparse.Namespace) -> int:
     from dhsym.checking.grading.assignment import Assignment
     from dhsym.checking.grading.batch import grade
+    from dhsym.checking.judging.key import PreparedKeys
     from dhsym.errors import DHError
 
-    assignment = Assignment.load(args.assignment)
+    keys = PreparedKeys()  # prepared once: to load the assignment, then for its tests
+    assignment = Assignment.load(args.assignment, keys)
     roster = None
     if args.gradebook:
         from dhsym.checking.platforms.gradebooks import Roster
@@ -107,6 +109,8 @@ def _cmd_grade(args: argparse.Namespace) -> int:
         timeout=args.timeout,
         dask=args.dask,
         progress=not args.quiet,
+        variants=args.variants,
+        keys=keys,
     )
     for warning in report.warnings:
         print(f"dhsym: warning: {warning}", file=sys.stderr)
@@ -128,6 +132,55 @@ def _cmd_grade(args: argparse.Namespace) -> int:
         print(f"{args.gradebook} import: {os.path.join(args.output, Path(out.path).name)}")
         for line in out.notes:
             print(f"note: {line}", file=sys.stderr)
+    return 0
+
+
+def _cmd_check_assignment(args: argparse.Namespace) -> int:
+    from dhsym.checking.grading.assignment import Assignment
+    from dhsym.checking.grading.assignment_tests import run_assignment_tests
+    from dhsym.checking.judging.key import PreparedKeys
+    from dhsym.model.parsing import check_count
+
+    samples = check_count(args.samples, "--samples", 0, 1000)
+    keys = PreparedKeys()
+    report = run_assignment_tests(
+        Assignment.load(args.assignment, keys), samples=samples, keys=keys
+    )
+    print(report.text(), end="")
+    return 0 if report.passed else 1
+
+
+def _cmd_variants(args: argparse.Namespace) -> int:
+    from dhsym.checking.grading.assignment import Assignment
+    from dhsym.checking.grading.variants import ClassList, list_variants, new_secret
+    from dhsym.errors import DHError
+
+    from .common import emit
+
+    if args.new_secret:
+        from dhsym.model.yamlsafe import load_yaml
+
+        data = load_yaml(Path(args.assignment).read_text(encoding="utf-8"))
+        ref = data.get("secret") if isinstance(data, dict) else None
+        if not isinstance(ref, str) or not ref.strip():
+            raise DHError(
+                "name the secret's file first: add 'secret: hw.secret' to the assignment",
+                file=args.assignment,
+                field="secret",
+            )
+        path = new_secret(Path(args.assignment).parent / ref.strip())
+        print(f"wrote {path} (keep it private: it decides every student's values)")
+        return 0
+    a = Assignment.load(args.assignment)
+    if a.variants is None:
+        raise DHError(
+            "the assignment draws no values per student (no variants:)", file=args.assignment
+        )
+    if not args.roster:
+        raise DHError(
+            "give the class list: --roster CLASS.csv (a 'submission' or 'student' column)"
+        )
+    emit(list_variants(a.variants, ClassList.load(args.roster), args.format), args.output)
     return 0
 
 
@@ -321,7 +374,46 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         metavar="NAME",
         help="the LMS assignment column (Canvas: 'Name (id)'); default the assignment title",
     )
+    g.add_argument(
+        "--variants",
+        default=None,
+        metavar="CLASS",
+        help="the class list (CSV, a 'submission' or 'student' column) of an assignment "
+        "with variants: each student is graded against their own values",
+    )
     g.set_defaults(func=_cmd_grade)
+
+    ca = add_command(
+        subparsers,
+        "check-assignment",
+        "grade the key's own answers and the question tests (exit 1 if one fails)",
+        description="Check an assignment before grading with it: for every question the key's\n"
+        "own answer is graded (with variants, for a sample of variants), and every\n"
+        "question test (tests: right/wrong) must be graded as the test says.",
+    )
+    ca.add_argument("assignment", help="assignment YAML file")
+    ca.add_argument(
+        "--samples", type=int, default=3, help="variants drawn besides the first (with variants:)"
+    )
+    ca.set_defaults(func=_cmd_check_assignment)
+
+    v = add_command(
+        subparsers,
+        "variants",
+        "list each student's values of an assignment with variants",
+        description="List the values an assignment with variants: draws for each student of a\n"
+        "class list (seeded by the assignment's secret and the student id).",
+    )
+    v.add_argument("assignment", help="assignment YAML file")
+    v.add_argument("--roster", default=None, metavar="CLASS", help="class list CSV")
+    v.add_argument("--format", choices=("text", "csv", "json"), default="text")
+    v.add_argument("-o", "--output", default=None, help="write to FILE (- : standard output)")
+    v.add_argument(
+        "--new-secret",
+        action="store_true",
+        help="write a new random secret to the file the assignment's secret: names",
+    )
+    v.set_defaults(func=_cmd_variants)
 
     n = add_command(
         subparsers,

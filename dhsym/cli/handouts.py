@@ -69,11 +69,48 @@ def _with_values(robots: list[Robot], text: str | None, figure: bool, **style: A
     return out
 
 
+def _cmd_sheets(args: argparse.Namespace) -> int:
+    """``handout hw.yaml --variants class.csv -o FOLDER``: a problem sheet per student."""
+    from dhsym.checking.grading.assignment import Assignment
+    from dhsym.checking.grading.sheets import write_sheets
+    from dhsym.checking.grading.variants import ClassList
+    from dhsym.errors import DHError
+
+    if len(args.robots) != 1 or not args.robots[0].lower().endswith((".yaml", ".yml")):
+        raise DHError(
+            "--variants makes each student's sheet of one assignment: dhsym handout "
+            "hw.yaml --variants class.csv -o FOLDER"
+        )
+    if args.output == STDOUT or args.output.endswith(".tex"):
+        raise DHError("--variants writes one sheet per student: -o names a folder")
+    for flag in ("figure", "values", "numeric"):
+        if getattr(args, flag):
+            raise DHError(f"--{flag} does not apply to --variants (each student has their values)")
+    written = write_sheets(
+        Assignment.load(args.robots[0]),
+        ClassList.load(args.variants),
+        args.output,
+        pdf=args.pdf,
+        sections=[s.strip() for s in args.sections.split(",") if s.strip()],
+        course=args.course or "",
+        date=args.date or "",
+        template_dir=args.template_dir,
+        notation=args.notation,
+        compact=not args.full,
+    )
+    for path in written:
+        wrote(path)
+    return 0
+
+
 def _cmd_handout(args: argparse.Namespace) -> int:
     from dhsym.errors import DHError
     from dhsym.explain.documents import render_handout, write_handout
     from dhsym.explain.latex import run_latex
     from dhsym.robot import load
+
+    if args.variants:
+        return _cmd_sheets(args)
 
     style = dict(compact=not args.full, style=args.notation)
     robots = [load(name, **style) for name in args.robots]
@@ -179,6 +216,13 @@ def _register_handout(subparsers: argparse._SubParsersAction[argparse.ArgumentPa
         metavar="Q",
         help="numeric check of the arm matrix at Q (comma separated; default zero); the ik "
         "section lists every solution of the pose at Q (default: away from singularities)",
+    )
+    h.add_argument(
+        "--variants",
+        default=None,
+        metavar="CLASS",
+        help="with an assignment (hw.yaml) instead of robots: one problem sheet per student "
+        "of the class list (CSV), with their values; -o names the folder",
     )
     h.set_defaults(func=_cmd_handout)
 

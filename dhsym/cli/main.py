@@ -9,8 +9,8 @@ starts without sympy. Bad input exits with status 2 and one line
 Examples
 --------
 >>> sorted(build_parser()._subparsers._group_actions[0].choices)  # doctest: +NORMALIZE_WHITESPACE
-['autograder', 'cache', 'check', 'convert', 'derive', 'export', 'fk', 'grade', 'handout',
- 'ik', 'list', 'new-assignment', 'notebooks', 'plot', 'show']
+['autograder', 'cache', 'check', 'check-assignment', 'convert', 'derive', 'export', 'fk', 'grade',
+ 'handout', 'ik', 'list', 'new-assignment', 'notebooks', 'plot', 'show', 'variants']
 """
 
 from __future__ import annotations

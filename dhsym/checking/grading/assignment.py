@@ -11,8 +11,13 @@ The assignment (YAML) names the key and the questions::
       - {id: q2, ask: T0_2, points: 2}
       - {id: q3, ask: A1, points: 1, key: generic_modified_link.yaml}
       - {id: q4, ask: J, points: 2, credit: entries, deduct: {wrong_sign: 25%}}
+      - {id: q5, ask: px, tests: {right: [a2*C1*C2], wrong: [{answer: -a2*C1*C2, mistake: sign}]}}
+    variants: {d3: [0.1, 0.15, 0.2]}   # drawn per student (with secret: FILE)
+    secret: hw3.secret
 
-Partial credit is :mod:`~dhsym.checking.grading.credit`'s (all or nothing by default).
+Partial credit is :mod:`~dhsym.checking.grading.credit`'s (all or nothing by default),
+question tests :mod:`~dhsym.checking.grading.question_tests`', variants
+:mod:`~dhsym.checking.grading.variants`' (:meth:`Assignment.for_variant` is one student's).
 Every key is described in the assignment-file reference of the documentation.
 
 Examples
@@ -35,7 +40,7 @@ import hashlib
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from dhsym.errors import DHError
@@ -43,7 +48,10 @@ from dhsym.model.yamlsafe import FileRefused, YAMLInputError, load_yaml, read_li
 
 from ..judging.key import Key, PreparedKeys
 from ..reading.limits import check_seconds
+from ..reading.questions import Question
 from .credit import Credit
+from .question_tests import QuestionTests
+from .variants import Variant, VariantSpec, read_secret
 
 __all__ = ["Assignment", "AssignmentQuestion"]
 
@@ -55,14 +63,17 @@ _MAX_POINTS = 1e6
 @dataclass(frozen=True)
 class AssignmentQuestion:
     """One question: its id, what is asked, points, the key (with whether the tool frame is
-    free and the rounding) and its partial credit (:class:`~.credit.Credit`: all or nothing
-    unless the question says otherwise)."""
+    free and the rounding), its partial credit (:class:`~.credit.Credit`: all or nothing
+    unless the question says otherwise) and its tests (:class:`~.question_tests.QuestionTests`).
+    With variants, ``key`` is the key as written (the table's symbols, an ``ik@`` question at
+    the first value of each drawn joint value)."""
 
     id: str
     ask: str
     points: float
     key: Key
     credit: Credit = Credit()
+    tests: QuestionTests = QuestionTests()
 
 
 @dataclass(frozen=True)
@@ -73,11 +84,37 @@ class Assignment:
     questions: tuple[AssignmentQuestion, ...]
     seconds: float = 5.0
     fingerprint: str = ""
+    #: the quantities drawn per student (``variants:``), None when everyone has the same
+    variants: VariantSpec | None = None
+    #: the student's values when this is one student's assignment (:meth:`for_variant`)
+    variant: Variant | None = None
 
     @property
     def max_score(self) -> float:
         """Sum of the points."""
         return sum(q.points for q in self.questions)
+
+    def for_variant(self, variant: Variant) -> Assignment:
+        """The assignment of the student who drew ``variant``: each key with their values
+        (the table's symbols replaced by the numbers, the joint values of ``ik@``
+        questions put in); its fingerprint covers the values.  Keys are not prepared
+        here (a grading worker prepares each distinct one once)."""
+        values = dict(variant.values)
+        questions = []
+        for q in self.questions:
+            own = variant.values_for(q.key.table)
+            asked = _ask_with(q.ask, values)
+            if not own and asked == q.ask:  # untouched: the same objects (pickled once a batch)
+                questions.append(q)
+                continue
+            table = q.key.table.with_values(own).substituted() if own else q.key.table
+            key = replace(q.key, table=table, question=Question.parse(asked, table.n))
+            questions.append(replace(q, key=key))
+        text = self.fingerprint + "\n" + repr(variant.values)
+        fp = hashlib.sha256(text.encode()).hexdigest()[:16]
+        return replace(
+            self, questions=tuple(questions), fingerprint=fp, variants=None, variant=variant
+        )
 
     @classmethod
     def load(cls, path: str | Path, keys: PreparedKeys | None = None) -> Assignment:
@@ -99,6 +136,9 @@ class Assignment:
             raise DHError("expected 'questions: [...]' (and 'key:') in the assignment", file=str(p))
         seconds = check_seconds(data.get("time_limit", 5.0), "time_limit", file=str(p))
         default = data.get("key")
+        spec = _variant_spec(data, p)
+        sample = dict(spec.sample().values) if spec is not None else {}
+        used: set[str] = set()
         questions, seen, digest = [], set(), [text]
         for k, q in enumerate(data["questions"], 1):
             if not isinstance(q, Mapping) or "ask" not in q or "id" not in q:
@@ -131,24 +171,77 @@ class Assignment:
             if not isinstance(ask, (str, int)):
                 raise DHError("'ask' must be text like T0_2", file=str(p), row=k, field="ask")
             rounding = q.get("rounding", data.get("rounding"))
+            asked = _ask_with(str(ask), sample)  # the sample variant's, checked here
             try:
-                key = Key.load(where, str(ask), tool_free=tool, rounding=rounding, keys=keys)
+                key = Key.load(where, asked, tool_free=tool, rounding=rounding, keys=keys)
             except DHError as err:
                 raise DHError(err.message, file=str(p), row=k, field=err.field or "ask") from None
+            used.update(n for n in sample if _ask_with(str(ask), {n: sample[n]}) != str(ask))
+            used.update(str(s) for s in key.table.constants if str(s) in sample)
             try:
                 credit = Credit.parse(q)
             except DHError as err:
                 raise DHError(err.message, file=str(p), row=k, field="credit") from None
+            try:
+                tests = QuestionTests.parse(q.get("tests"))
+            except DHError as err:
+                raise DHError(err.message, file=str(p), row=k, field=err.field or "tests") from None
             digest.append(repr(key) + (repr(credit) if credit != Credit() else ""))
-            questions.append(AssignmentQuestion(qid, str(ask), points, key, credit))
+            questions.append(AssignmentQuestion(qid, str(ask), points, key, credit, tests))
+        if spec is not None:
+            unused = [n for n in spec.names if n not in used]
+            if unused:
+                raise DHError(
+                    f"{unused[0]!r} is drawn but used by no question: a variant is a symbol "
+                    "of a question's key table (a2, d3, ...) or a name in an ik@ question "
+                    '(ask: "ik@q1,q2")',
+                    file=str(p),
+                    field=f"variants.{unused[0]}",
+                )
         fp = hashlib.sha256("\n".join(digest).encode()).hexdigest()[:16]
-        title = data.get("title")
-        return cls(
-            " ".join(str(title).split())[:200] if isinstance(title, (str, int)) else p.stem,
-            tuple(questions),
-            seconds,
-            fp,
+        return cls(_title(data, p), tuple(questions), seconds, fp, spec)
+
+
+def _title(data: Mapping[str, object], path: Path) -> str:
+    title = data.get("title")
+    return " ".join(str(title).split())[:200] if isinstance(title, (str, int)) else path.stem
+
+
+def _variant_spec(data: Mapping[str, object], path: Path) -> VariantSpec | None:
+    """The ``variants:`` of the assignment with its secret (the file ``secret:`` names,
+    beside the assignment), or None; variants without a secret are refused."""
+    if "variants" not in data:
+        return None
+    ref = data.get("secret")
+    if not isinstance(ref, str) or not ref.strip():
+        raise DHError(
+            "variants are drawn with a secret only the instructor keeps: add "
+            "'secret: <file>' (a file beside the assignment; dhsym variants "
+            f"{path.name} --new-secret writes one). Without it anyone with the assignment "
+            "could compute every student's values",
+            file=str(path),
+            field="secret",
         )
+    secret = read_secret(path.parent / ref.strip(), assignment=str(path))
+    return VariantSpec.parse(data["variants"], secret, _title(data, path), file=str(path))
+
+
+_IK_AT = re.compile(r"^(?P<head>\s*(?:ik|inverse)[^@]*@)(?P<values>.*)$", re.IGNORECASE)
+
+
+def _ask_with(ask: str, values: Mapping[str, object]) -> str:
+    """``ask`` with the drawn joint values put in: ``ik@q1,q2`` becomes ``ik@pi/6,9/20``
+    when ``q1`` and ``q2`` are drawn; any other question is left as it is.
+
+    >>> import sympy as sp
+    >>> _ask_with("ik@q1, 0.5", {"q1": sp.pi / 6}), _ask_with("T0_2", {"q1": 1})
+    ('ik@pi/6,0.5', 'T0_2')
+    """
+    m = _IK_AT.match(ask)
+    parts = [v.strip() for v in m["values"].split(",")] if m is not None else []
+    if m is None or not any(v in values for v in parts):
+        return ask
+    return m["head"] + ",".join(str(values[v]) if v in values else v for v in parts)
 
 
 def _points(value: object, path: Path, row: int) -> float:

@@ -43,6 +43,7 @@ from ..judging.checker import check_answer
 from ..judging.key import PreparedKeys
 from ..reading.limits import AnswerLimits, AnswerTimeout, check_seconds, time_limit
 from .assignment import Assignment, AssignmentQuestion
+from .assignment_tests import run_assignment_tests
 from .backends import Progress, dask_address, run_dask, run_pool, run_serial
 from .feedback import QuestionFeedback, render_feedback
 from .records import GradeRecord
@@ -50,6 +51,7 @@ from .report import write_gradebook, write_summary
 from .report_files import CACHE_NAME, inside, safe_name, write_atomic
 from .sandbox import JobFailure
 from .submissions import Submission, read_submissions
+from .variants import ClassList, Variant, class_variants, variant_id
 
 __all__ = [
     "check_submission",
@@ -160,9 +162,16 @@ def grade_submission(
             mistakes[qf.id] = tuple(result.kinds)
     student = {"id": sub.student, "name": sub.name}
     status = "timeout" if timed_out else "graded"
+    values = assignment.variant.shown if assignment.variant is not None else ()
     pages = {
         fmt: render_feedback(
-            student, feedback, title=assignment.title, fmt=fmt, status=status, flags=sub.flags
+            student,
+            feedback,
+            title=assignment.title,
+            fmt=fmt,
+            status=status,
+            flags=sub.flags,
+            values=values,
         )
         for fmt in ("md", "html")
     }
@@ -330,6 +339,8 @@ def grade(
     dask: object = None,
     progress: bool = True,
     limits: AnswerLimits | None = None,
+    variants: str | Path | ClassList | None = None,
+    keys: PreparedKeys | None = None,
 ) -> GradeReport:
     """Grade every submission and write the report folder (see the module docstring).
 
@@ -337,8 +348,28 @@ def grade(
     with ``dask`` (an address or a ``Client``).  ``timeout`` is the time limit of
     one answer (default: the assignment's ``time_limit``); a whole submission gets
     the sum over its questions plus a few seconds before its process is killed.
+
+    An assignment with question tests is refused while one fails
+    (:func:`~dhsym.checking.grading.assignment_tests.run_assignment_tests`, the tests only:
+    the keys' own answers are ``dhsym check-assignment``'s; ``keys``: the keys already
+    prepared, e.g. by :meth:`Assignment.load`).  An assignment with
+    ``variants:`` needs the class list ``variants`` (a CSV file or a
+    :class:`~dhsym.checking.grading.variants.ClassList`): each student is graded against
+    their own key; a submission of a student not on it is an error.
     """
-    a = assignment if isinstance(assignment, Assignment) else Assignment.load(assignment)
+    keys = keys if keys is not None else PreparedKeys()
+    a = assignment if isinstance(assignment, Assignment) else Assignment.load(assignment, keys)
+    if any(q.tests for q in a.questions):
+        tested = run_assignment_tests(a, keys=keys, key_answers=False)
+        if not tested.passed:
+            bad = tested.failures[0]
+            raise DHError(
+                f"the assignment's question tests fail ({len(tested.failures)} of "
+                f"{len(tested.rows)}; first: question {bad.question}, {bad.case} answer "
+                f"expected {bad.expected}, got {bad.got}): run dhsym check-assignment on it "
+                "for the table, and fix the key or the tests before grading"
+            )
+    drawn = _class_variants(a, variants)
     seconds = check_seconds(timeout, "--timeout") if timeout is not None else a.seconds
     lim = limits or AnswerLimits(seconds=seconds)
     if not isinstance(workers, int) or not 0 <= workers <= 1024:
@@ -351,6 +382,14 @@ def grade(
     subs = read_submissions(
         submissions, a, lim, exclude=(root,), warnings=warnings, refused=refused
     )
+    own: dict[str, Assignment] = {}  # each student's assignment, with their values
+    if drawn is not None:
+        for k, s in enumerate(subs):
+            v = drawn.get(variant_id(s.student))
+            if v is None and not s.error:
+                subs[k] = replace(s, error="not on the class list of the variants")
+            elif v is not None:
+                own[s.uid] = a.for_variant(v)
     root.mkdir(parents=True, exist_ok=True)
     (root / "feedback").mkdir(exist_ok=True)
     deadline = lim.seconds * max(1, len(a.questions)) + _SLACK_SECONDS
@@ -371,13 +410,13 @@ def grade(
         elif (
             old
             and _same_submission(old, s)
-            and old.fingerprint == s.fingerprint(a, run_fp)
+            and old.fingerprint == s.fingerprint(own.get(s.uid, a), run_fp)
             and all(p.is_file() for p in names)
         ):
             records[s.uid] = old
         else:
             todo.append(s)
-    jobs = [(a, s, lim) for s in todo]
+    jobs = [(own.get(s.uid, a), s, lim) for s in todo]
     if dask is not None:
         runner = run_dask(grade_submission, jobs, dask, deadline, state=PreparedKeys)
     elif workers > 0:
@@ -407,7 +446,7 @@ def grade(
             if record.status != "graded":
                 failed += 1
             else:
-                record = replace(record, fingerprint=sub.fingerprint(a, run_fp))
+                record = replace(record, fingerprint=sub.fingerprint(own.get(sub.uid, a), run_fp))
             _write_pages(root, files[sub.uid], record.pages)
             records[sub.uid] = replace(record, pages={})
             bar.step()
@@ -433,6 +472,23 @@ def grade(
         tuple(warnings),
         tuple(refused),
     )
+
+
+def _class_variants(
+    a: Assignment, variants: str | Path | ClassList | None
+) -> dict[str, Variant] | None:
+    """Each student's values (by normalised id), or None for an assignment without variants."""
+    if a.variants is None:
+        if variants is not None:
+            raise DHError("--variants: this assignment draws no values per student (no variants:)")
+        return None
+    if variants is None:
+        raise DHError(
+            "this assignment draws values per student (variants:): give the class list the "
+            "sheets were made for (--variants CLASS.csv)"
+        )
+    roster = variants if isinstance(variants, ClassList) else ClassList.load(variants)
+    return class_variants(a.variants, roster.ids)
 
 
 def _write_pages(root: Path, name: str, pages: Mapping[str, str]) -> None:

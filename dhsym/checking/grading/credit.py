@@ -41,7 +41,7 @@ from ..mistakes.registry import (
 )
 from ..reading.limits import echoed
 
-__all__ = ["Credit", "mistake_kinds"]
+__all__ = ["Credit", "mistake_kind", "mistake_kinds"]
 
 _SHARE = re.compile(r"^\s*([0-9]+(?:\.[0-9]*)?)\s*%\s*$")
 
@@ -63,6 +63,23 @@ def mistake_kinds() -> frozenset[str]:
         dynamics_mistakes(),
     )
     return frozenset(m.kind for ms in lists for m in ms) | {"missing_column"}
+
+
+def mistake_kind(name: object, what: str = "deduct") -> str:
+    """The catalogue's kind a name stands for (``sign`` is ``wrong_sign``), or a
+    :class:`~dhsym.errors.DHError` listing the catalogue (``what`` names the field).
+
+    >>> mistake_kind("sign"), mistake_kind("parallel_axis")
+    ('wrong_sign', 'parallel_axis')
+    """
+    known = mistake_kinds()
+    kind = str(name).strip()
+    kind = kind if kind in known or f"wrong_{kind}" not in known else f"wrong_{kind}"
+    if kind not in known:
+        raise DHError(
+            f"{what}: unknown mistake {echoed(name)}; the catalogue: " + ", ".join(sorted(known))
+        )
+    return kind
 
 
 def _share(value: object, what: str) -> float:
@@ -95,16 +112,9 @@ class Credit:
         raw = question.get("deduct", {}) or {}
         if not isinstance(raw, Mapping):
             raise DHError("deduct: expected a mapping like {wrong_sign: 25%}")
-        known = mistake_kinds()
         deduct = []
         for name, value in raw.items():
-            kind = str(name).strip()
-            kind = kind if kind in known or f"wrong_{kind}" not in known else f"wrong_{kind}"
-            if kind not in known:
-                raise DHError(
-                    f"deduct: unknown mistake {echoed(name)}; the catalogue: "
-                    + ", ".join(sorted(known))
-                )
+            kind = mistake_kind(name)
             deduct.append((kind, _share(value, f"deduct {kind}")))
         floor = _share(question.get("floor", 0), "floor")
         return cls(mode, tuple(deduct), floor)

@@ -115,8 +115,10 @@ def render_feedback(
     fmt: str = "md",
     status: str = "graded",
     flags: Sequence[str] = (),
+    values: Sequence[tuple[str, str]] = (),
 ) -> str:
-    """One student's feedback page (``fmt`` is ``md`` or ``html``); ``flags`` are notes."""
+    """One student's feedback page (``fmt`` is ``md`` or ``html``); ``flags`` are notes;
+    ``values`` the student's own values (name, as printed) of an assignment with variants."""
     if fmt not in ("md", "html"):
         raise DHError(f"unknown feedback format {fmt!r}: expected md or html")
     template = _environment(fmt).get_template(f"feedback.{fmt}.j2")
@@ -128,6 +130,7 @@ def render_feedback(
         max_score=sum(q.points for q in questions),
         status=status,
         flags=[str(f) for f in flags],
+        values=[(str(k), str(v)) for k, v in values],
     )
 
 

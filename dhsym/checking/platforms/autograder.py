@@ -328,6 +328,14 @@ def build_autograder(
         raise DHError(f"visibility {visibility!r}: expected one of {', '.join(VISIBILITIES)}")
     src = Path(assignment)
     original = Assignment.load(src)
+    if original.variants is not None:
+        raise DHError(
+            "the assignment draws values per student (variants:): an autograder zip would "
+            "carry its secret to the grading platform and has no class list; grade it with "
+            "dhsym grade --variants CLASS.csv",
+            file=str(src),
+            field="variants",
+        )
     text, keys = _bundle_assignment(src)
     with tempfile.TemporaryDirectory(prefix="dhsym-autograder-") as tmp:
         check = Path(tmp) / "assignment"

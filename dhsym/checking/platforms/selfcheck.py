@@ -16,6 +16,13 @@ holds no answer (``...``, ``None``, a number)::
 
     assert_answer(q2, key="puma560", question="T0_2")
 
+An assignment's question is checked with ``assignment=`` and the question's id; for an
+assignment with variants the student's own key needs their id and the class list the
+values were drawn for (and the assignment's secret beside it, so this runs where the
+instructor's files are: an autograder, a grading notebook)::
+
+    check(answer, question="q2", assignment="hw.yaml", student="alice", roster="class.csv")
+
 Examples
 --------
 >>> r = check("[[C12, -S12, 0, a1*C1 - a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0,0,1,0]]",
@@ -44,14 +51,24 @@ from dhsym.errors import DHError
 from dhsym.model.table import DHTable
 
 from ..comparing.verdict import CheckResult
+from ..grading.assignment import Assignment
 from ..grading.feedback import QuestionFeedback, render_question_text, render_template
+from ..grading.variants import ClassList, class_variants, variant_id
 from ..judging.checker import check_answer
 from ..judging.key import Key, PreparedKeys
 from ..judging.table_judge import table_cells
 from ..reading.answer_value import IKAnswer, TableAnswer, read_answer_value
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
 
-__all__ = ["Reading", "SelfCheck", "assert_answer", "check", "check_widget", "read_answer"]
+__all__ = [
+    "Reading",
+    "SelfCheck",
+    "assert_answer",
+    "assignment_key",
+    "check",
+    "check_widget",
+    "read_answer",
+]
 
 _READ_ERRORS = (DHError, RecursionError, MemoryError, OverflowError, ValueError, TypeError)
 
@@ -155,14 +172,59 @@ class SelfCheck:
             raise AssertionError(self.feedback_text())
 
 
+def assignment_key(
+    assignment: str | Path | Assignment,
+    question: str,
+    *,
+    student: str | None = None,
+    roster: str | Path | ClassList | None = None,
+    keys: PreparedKeys | None = None,
+) -> Key:
+    """The key of the question ``question`` (its id) of an assignment; with variants,
+    ``student``'s own key (their values drawn for the class list ``roster``).
+
+    >>> import tempfile
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> _ = (folder / "hw.yaml").write_text("key: planar2r\\nquestions: [{id: q1, ask: px}]\\n")
+    >>> assignment_key(folder / "hw.yaml", "q1").question.label
+    'T0_2[0,3]'
+    """
+    a = assignment if isinstance(assignment, Assignment) else Assignment.load(assignment, keys)
+    if a.variants is not None:
+        if student is None or roster is None:
+            raise DHError(
+                "this assignment draws values per student: give student='<id>' and "
+                "roster='<class list CSV>'"
+            )
+        cl = roster if isinstance(roster, ClassList) else ClassList.load(roster)
+        variant = class_variants(a.variants, cl.ids).get(variant_id(student))
+        if variant is None:
+            raise DHError(f"{student!r} is not on the class list {cl.file or ''}".rstrip())
+        a = a.for_variant(variant)
+    found = [q.key for q in a.questions if q.id == str(question)]
+    if not found:
+        ids = ", ".join(q.id for q in a.questions)
+        raise DHError(f"the assignment has no question {str(question)[:40]!r}: its ids are {ids}")
+    return found[0]
+
+
 def _key(
     key: str | Path | DHTable | Key | None,
     question: str | None,
     tool_free: bool,
     keys: PreparedKeys | None = None,
+    assignment: str | Path | Assignment | None = None,
+    student: str | None = None,
+    roster: str | Path | ClassList | None = None,
 ) -> Key:
     """The key asked for; one loaded here is prepared into ``keys`` (to check it), so
     that the check that follows does not prepare it again."""
+    if assignment is not None:
+        if key is not None or question is None:
+            raise DHError("with assignment=, give question='<question id>' and no key")
+        return assignment_key(assignment, question, student=student, roster=roster, keys=keys)
+    if student is not None:
+        raise DHError("student= is for an assignment's question: give assignment='hw.yaml'")
     if isinstance(key, Key):
         return key
     if key is None:
@@ -181,6 +243,9 @@ def check(
     tool_free: bool = False,
     show_key: bool = False,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    assignment: str | Path | Assignment | None = None,
+    student: str | None = None,
+    roster: str | Path | ClassList | None = None,
 ) -> object: ...
 
 
@@ -193,6 +258,9 @@ def check(
     tool_free: bool = False,
     show_key: bool = False,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    assignment: str | Path | Assignment | None = None,
+    student: str | None = None,
+    roster: str | Path | ClassList | None = None,
 ) -> SelfCheck: ...
 
 
@@ -204,11 +272,18 @@ def check(
     tool_free: bool = False,
     show_key: bool = False,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    assignment: str | Path | Assignment | None = None,
+    student: str | None = None,
+    roster: str | Path | ClassList | None = None,
 ) -> SelfCheck | object:
     """Check ``answer`` against ``key`` (a built-in robot, a table file, a table or a
-    :class:`Key`) and ``question``; with no answer, return :func:`check_widget`."""
+    :class:`Key`) and ``question``; with no answer, return :func:`check_widget`.
+
+    Or against the question ``question`` (its id) of ``assignment``: for an assignment
+    with variants, ``student``'s own key (:func:`assignment_key`, with the class list
+    ``roster``)."""
     keys = PreparedKeys()  # the key prepared once, for loading it and for this check
-    k = _key(key, question, tool_free, keys)
+    k = _key(key, question, tool_free, keys, assignment, student, roster)
     if answer is None:
         return check_widget(k, show_key=show_key, limits=limits)
     return SelfCheck(check_answer(k, answer, limits=limits, keys=keys), k, show_key)
@@ -221,9 +296,13 @@ def assert_answer(
     *,
     tool_free: bool = False,
     show_key: bool = False,
+    assignment: str | Path | Assignment | None = None,
+    student: str | None = None,
+    roster: str | Path | ClassList | None = None,
 ) -> None:
     """Raise ``AssertionError`` (the feedback as its message) unless ``answer`` is a
-    correct answer: the one line of an otter-grader test or an nbgrader test cell.
+    correct answer: the one line of an otter-grader test or an nbgrader test cell
+    (``assignment``, ``student``, ``roster`` as in :func:`check`).
 
     >>> assert_answer("a1*C1 + a2*C12", key="planar2r", question="px")
     >>> assert_answer(..., key="planar2r", question="px")
@@ -236,7 +315,16 @@ def assert_answer(
             "No answer yet: put your answer in the variable as text (a string: plain math "
             f"or LaTeX); it holds {type(answer).__name__}."
         )
-    check(answer, key, question, tool_free=tool_free, show_key=show_key).assert_correct()
+    check(
+        answer,
+        key,
+        question,
+        tool_free=tool_free,
+        show_key=show_key,
+        assignment=assignment,
+        student=student,
+        roster=roster,
+    ).assert_correct()
 
 
 def check_widget(

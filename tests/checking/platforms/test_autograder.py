@@ -234,3 +234,14 @@ def test_cli_builds_and_refuses(tmp_path, capsys):
         )
         == 2
     )
+
+
+def test_the_zip_refuses_an_assignment_with_variants(tmp_path):
+    (tmp_path / "hw.secret").write_text("a-secret-of-the-autograder-test-0123\n")
+    (tmp_path / "hw.yaml").write_text(
+        "key: planar2r\nsecret: hw.secret\nvariants: {a1: [0.4, 0.5]}\n"
+        "questions: [{id: q1, ask: T0_2}]\n"
+    )
+    with pytest.raises(DHError, match="dhsym grade --variants") as err:
+        build_autograder(tmp_path / "hw.yaml", tmp_path / "ag.zip", wheel=tmp_path / "none.whl")
+    assert err.value.field == "variants"
