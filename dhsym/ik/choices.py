@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhsym.errors import DHError
+from dhsym.kinematics.decoupling import StructureError
 from dhsym.kinematics.numeric import values_key
 from dhsym.model.table import DHRow, JointType
 
@@ -35,6 +36,7 @@ from .closed_form import ClosedForm
 from .closed_form_solver import ClosedFormSolver
 from .families import inverse
 from .general6r import Elimination, EliminationSolver
+from .levenberg_marquardt import DESCRIPTION, numeric_solutions
 from .protocols import IKSolver
 from .solution import IKSolution
 
@@ -154,11 +156,21 @@ class IKCache:
     #: the solvers by the values they were built with (:func:`values_key`)
     _solvers: dict[object, IKSolver] = field(default_factory=dict, init=False, repr=False)
     _given: dict[int, GivenJoint] = field(default_factory=dict, init=False, repr=False)
+    #: why the chain has no closed form, once that is known
+    _failure: str | None = field(default=None, init=False, repr=False)
 
     def inverse(self) -> ClosedForm | Elimination:
-        """The derivation, step by step (:func:`dhsym.ik.families.inverse`), cached."""
+        """The derivation, step by step (:func:`dhsym.ik.families.inverse`), cached; so is
+        the :class:`~dhsym.kinematics.decoupling.StructureError` of a chain without one
+        (raised again, not derived again)."""
+        if self._failure is not None:
+            raise StructureError(self._failure)
         if self._inverse is None:
-            self._inverse = inverse(self.chain)
+            try:
+                self._inverse = inverse(self.chain)
+            except StructureError as err:
+                self._failure = err.message
+                raise
         return self._inverse
 
     def solver(self, values: Mapping[object, object] | None = None) -> IKSolver:
@@ -251,9 +263,13 @@ def _solve_free(
         inner = inner @ np.linalg.inv(robot.fk_function(robot.n - 1, robot.n, values)(q))
     else:
         extra[var] = value
-    part = given.cache.solver(extra or None).solve(
-        inner, check="pose", tol=tol, singular_tol=singular_tol
-    )
+    try:
+        solver = given.cache.solver(extra or None)
+    except StructureError:
+        # no closed form with this joint given: the numeric solver, on the whole arm with
+        # the joint held (it says it is numeric, and how far it got)
+        return _numeric_free(robot, T, joint, value, tol=tol, values=values)
+    part = solver.solve(inner, check="pose", tol=tol, singular_tol=singular_tol)
     full = np.insert(part.q, joint - 1, value, axis=1)
     names = part.branches
     got = robot.fk_function(values=values)(full) if len(full) else np.zeros((0, 4, 4))
@@ -270,6 +286,33 @@ def _solve_free(
         part.reason if len(part) else None,
         names=tuple(s for s, k in zip(names, ok) if k),
     )
+
+
+def _numeric_free(
+    robot: KinematicChain,
+    T: np.ndarray,
+    joint: int,
+    value: float,
+    *,
+    tol: float,
+    values: Mapping[object, object] | None,
+) -> IKSolution:
+    """The solutions the numeric solver finds from several starts with joint ``joint`` held
+    at ``value`` (:func:`~dhsym.ik.levenberg_marquardt.numeric_solutions`), each residual
+    the largest entry error of its ``fk``, those within ``tol`` kept."""
+    sol = numeric_solutions(robot, T, values=values, fixed={joint: value})
+    if not len(sol):
+        return sol
+    got = robot.fk_function(values=values)(sol.q)
+    residual = np.abs(got[:, :3] - np.asarray(T)[None, :3]).reshape(len(sol), -1).max(axis=1)
+    keep = np.nonzero(residual <= tol)[0]
+    kept = replace(sol.take(keep), residual=residual[keep])
+    if not len(kept):
+        smallest = float(residual.min())
+        return replace(
+            kept, reason=f"{DESCRIPTION}: no solution within {tol:.1g} (smallest {smallest:.3g})"
+        )
+    return kept
 
 
 def solve(

@@ -232,9 +232,14 @@ class ClosedFormSolver:
         ('elbow down',)
         """
         parts: list[list[str]] = [[] for _ in range(len(q))]
+        # one elbow: the last joint a law of cosines decides; another such branch (an arm
+        # with one joint given may have two) is named by its root
+        elbows = [b.joint for b in self.ik.branches if b.role == "elbow"]
         for b, col in zip(self.ik.branches, signs.T):
             var = self.robot.variables[b.joint - 1]
-            if b.role == "elbow":
+            if b.role == "elbow" and b.joint != max(elbows):
+                words = [branch_word("sign", bool(sgn > 0), var) for sgn in col]
+            elif b.role == "elbow":
                 up = self._elbow_up(q, b) if len(q) else np.zeros(0, dtype=bool)
                 words = [branch_word("elbow", bool(u)) for u in up]
             else:
