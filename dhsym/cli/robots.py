@@ -31,6 +31,7 @@ from .common import (
 if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
     import sympy as sp
 
+    from dhsym.model.table import Elementary
     from dhsym.robot import Robot
 
 __all__ = ["JSON_SCHEMA_VERSION", "derive_json", "register"]
@@ -65,7 +66,28 @@ def _cmd_show(args: argparse.Namespace) -> int:
         print(table_markdown(t))
         if t.values:
             print("\nvalues: " + ", ".join(f"{k} = {exact_decimal(v) or v}" for k, v in t.values))
+        for label, word in (("base", t.base), ("tool", t.tool)):
+            if word:  # the table alone is not the arm: what stands before and after it
+                print(f"\n{label} transform: {_word_markdown(word)}")
     return 0
+
+
+def _word_markdown(word: tuple[Elementary, ...]) -> str:
+    r"""A word of elementary transforms in Markdown math: ``$R_z(180^{\circ})\,T_z(0.107)$``."""
+    import sympy as sp
+
+    from dhsym.model.entries import exact_decimal
+    from dhsym.notation.printers import format_angle
+
+    parts = []
+    for e in word:
+        nice = e.kind == "R" and ((e.value / sp.pi).is_rational is True or e.value == 0)
+        if e.kind == "R":
+            value = format_angle(e.value, degrees=nice, latex=True)
+        else:
+            value = exact_decimal(e.value) or sp.latex(e.value)
+        parts.append(f"{e.kind}_{e.axis}({value})")
+    return "$" + r"\,".join(parts) + "$"
 
 
 def _frames(robot: Robot, args: argparse.Namespace) -> tuple[int, int]:
