@@ -347,6 +347,7 @@ def _ik_result(robot: Robot, sols: object, names: list[str]) -> dict[str, object
             for b, sg, row, res, near in zip(sols.branches, signs, q, residual, sols.singular)
         ],
         "reason": sols.reason,
+        "note": sols.note,
     }
     if sols.method == "numeric":
         out["converged"] = bool(sols.converged)
@@ -452,6 +453,8 @@ def _print_solutions(robot: Robot, sols: object, names: list[str], free: dict[in
         )
     for row, branch, res in zip(sols.q, sols.branches, sols.residual):
         print("  " + ", ".join(f"{v:.9g}" for v in row) + f"  | {branch} | {float(res):.2g}")
+    if sols.note is not None:
+        print(f"  note: {sols.note}")
 
 
 ROBOT_HELP = "built-in robot name (dhsym list), table file, or URDF file (with --tip)"

@@ -48,6 +48,7 @@ __all__ = [
     "IKCache",
     "build_solver",
     "nearest_first",
+    "singular_family",
     "solve",
     "sweep_free_joint",
     "within_limits",
@@ -400,11 +401,89 @@ def solve(
     if brought and tols is not None:
         sol = _against_given(robot, sol, given, tols, values)
     if not sol.batch:
+        if not free and len(sol) and sol.near_singular.any():
+            sol = replace(sol, note=singular_family(robot, sol, values))
         if limits:
             sol = within_limits(robot, sol)
         if near is not None:
             sol = nearest_first(robot, sol, near)
     return sol
+
+
+def singular_family(
+    robot: KinematicChain, sol: IKSolution, values: Mapping[object, object] | None = None
+) -> str | None:
+    """At a singular pose, the combination of two joints that is all that is determined,
+    in words, or None: two revolute joints that turn about one line (the wrist at θ5 = 0)
+    move together without moving the tool, so only their sum (or difference) is fixed and
+    the solver gives one member of the family.
+
+    Found from the first solution near a singularity: a null vector of its Jacobian with
+    two equal entries (±) names the pair, and ``fk`` confirms the motion at a finite step
+    (0.3 rad) keeps the pose (an instantaneous null motion, the stretched elbow, is not a
+    family and gives None).
+
+    >>> import dhsym
+    >>> r = dhsym.load("puma560")
+    >>> import textwrap
+    >>> print(textwrap.fill(r.ik(r.fk([0.3, -0.5, 0.4, 0.2, 0.0, -1.1])).note, 80))
+    θ5 = 0: the wrist is singular (joints 4 and 6 turn about one line); θ4 + θ6 =
+    -0.9 is all that is determined (the solutions there are given with θ4 = 0)
+    """
+    rows = [r for r in robot.table.rows if r.variable is not None]
+    n = len(rows)
+    if sol.batch or not len(sol) or n > 6:
+        return None
+    fk = robot.fk_function(values=values)
+    revolute = _revolute(robot)
+    for q, near in zip(sol.q, sol.near_singular):
+        if not near:
+            continue
+        J = np.asarray(robot.jacobian(q, values=values))
+        _, sv, vt = np.linalg.svd(J)
+        if sv[-1] > 1e-6 * sv[0]:
+            continue
+        v = vt[-1]
+        big = np.nonzero(np.abs(v) > 0.3)[0]
+        if len(big) != 2 or not revolute[big].all() or abs(abs(v[big[0]]) - abs(v[big[1]])) > 1e-6:
+            continue
+        i, j = (int(k) for k in big)
+        step = np.zeros(n)
+        step[[i, j]] = 0.3 * np.sign(v[[i, j]])
+        if np.abs(fk(q + step) - fk(q)).max() > 1e-9:
+            continue  # not a finite motion: no family
+        same = np.sign(v[i]) != np.sign(v[j])  # opposite turns keep the sum
+        name_i, name_j = _plain(robot.variables[i]), _plain(robot.variables[j])
+        combo = _angle(q[i] + q[j] if same else q[j] - q[i])
+        text = f"{name_i} + {name_j}" if same else f"{name_j} − {name_i}"
+        between = [
+            f"{_plain(robot.variables[k])} = {_angle(q[k])}" for k in range(i + 1, j) if revolute[k]
+        ]
+        what = "the wrist" if j == n - 1 else f"joints {i + 1} to {j + 1}"
+        at = f"{between[0]}: " if len(between) == 1 else ""
+        singular = [row for row, hit in zip(sol.q, sol.near_singular) if hit]
+        every = all(_angle(row[i] - q[i]) == "0" for row in singular)
+        given = f"{name_i} = {_angle(q[i])}"
+        return (
+            f"{at}{what} is singular (joints {i + 1} and {j + 1} turn about one line); "
+            f"{text} = {combo} is all that is determined ("
+            + (f"the solutions there are given with {given}" if every else f"given {given}")
+            + ")"
+        )
+    return None
+
+
+def _angle(x: float) -> str:
+    """An angle in (−π, π] to four digits, rounding noise below 1e-9 read as 0."""
+    y = float(np.angle(np.exp(1j * x)))
+    return f"{0.0 if abs(y) < 1e-9 else y:.4g}"
+
+
+def _plain(variable: object) -> str:
+    """A joint variable as a student reads it (``θ4``)."""
+    from .steps import branch_word
+
+    return branch_word("sign", True, variable).split(" ")[4]
 
 
 def _tolerances(arr: np.ndarray, check: str | None, tol: float | None) -> np.ndarray | None:

@@ -121,3 +121,12 @@ def test_bad_options_exit_2_naming_the_option(extra, message, capsys):
     q = ",".join(map(str, _PANDA_Q))
     assert main(["ik", "panda", "--pose-of", q, *extra]) == 2
     assert message in capsys.readouterr().err
+
+
+def test_a_singular_wrist_names_its_family_in_text_and_json(capsys):
+    q = "0.3,-0.5,0.4,0.2,0,-1.1"
+    assert main(["ik", "puma560", "--pose-of", q, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert "θ4 + θ6 = -0.9 is all that is determined" in out["note"]
+    assert main(["ik", "puma560", "--pose-of", q]) == 0
+    assert "  note: θ5 = 0: the wrist is singular" in capsys.readouterr().out

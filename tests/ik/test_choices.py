@@ -116,3 +116,29 @@ def test_an_unreachable_pose_with_a_joint_given_numerically_gets_a_reason() -> N
     sol = r.ik(T, free={4: -2.0})
     assert len(sol) == 0 and sol.method == "numeric"
     assert "no start of 24 converged" in sol.reason and "smallest error" in sol.reason
+
+
+@pytest.mark.parametrize("name", ["puma560", "stanford"])
+@pytest.mark.parametrize("theta5", [0.0, np.pi])
+def test_a_singular_wrist_names_the_combination_that_is_determined(name, theta5) -> None:
+    # issue 32, item 2: "θ4 + θ6 = 0.7 is all that is determined", not nothing
+    r = dhsym.load(name)
+    q = np.array([0.3, -0.5, 0.4, 0.2, theta5, -1.1])
+    T = r.fk(q)
+    sol = r.ik(T)
+    assert sol.note is not None and "the wrist is singular" in sol.note
+    text = "θ4 + θ6" if theta5 == 0 else "θ6 − θ4"
+    value = float(np.angle(np.exp(1j * (q[3] + q[5] if theta5 == 0 else q[5] - q[3]))))
+    assert f"{text} = {value:.4g} is all that is determined" in sol.note
+    # the family it names keeps the pose: θ4 moved by t, θ6 by ∓t
+    row = sol.q[np.nonzero(sol.near_singular)[0][0]].copy()
+    for t in (0.5, -1.2):
+        moved = row.copy()
+        moved[3] += t
+        moved[5] += -t if theta5 == 0 else t
+        assert np.abs(r.fk(moved) - T).max() < 1e-9
+
+
+def test_a_regular_pose_has_no_family_note() -> None:
+    r = dhsym.load("puma560")
+    assert r.ik(r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])).note is None
