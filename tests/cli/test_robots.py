@@ -43,6 +43,8 @@ def test_no_solution_exits_1_with_the_reason_in_json_and_on_stderr(capsys):
     out = json.loads(captured.out)
     assert out["q"] == [] and out["solutions"] == []
     assert "theta3" in out["reason"] and "out of reach" in out["reason"]
+    assert "the wrist centre is 5 from the origin of frame 0" in out["reason"]
+    assert "this arm reaches at most about 0.9" in out["reason"]
     assert "dhsym: no solution:" in captured.err
 
 
