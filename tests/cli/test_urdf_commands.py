@@ -161,3 +161,13 @@ def test_show_prints_the_base_and_tool_transforms_with_the_table(capsys):
     assert "base transform: $R_z(180^{\\circ})$" in out and "tool transform" not in out
     assert main(["show", "kuka_lwr4"]) == 0
     assert "tool transform: $T_z(dt)\\,R_z(-45^{\\circ})$" in capsys.readouterr().out
+
+
+def test_a_huge_tip_is_not_echoed_in_full(capsys):
+    # issue 34's leftover: a 100 kB --tip was echoed whole in the error
+    tip = "x" * 100_000
+    assert main(["show", UR5, "--tip", tip]) == 2
+    err = capsys.readouterr().err
+    assert "no link named 'xxxx" in err and "(100000 characters)" in err and len(err) < 2_000
+    assert main(["show", "ur5", "--tip", "tool0"]) == 2
+    assert "'ur5' is not one" in capsys.readouterr().err

@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 
-from dhsym.errors import DHError, FormatError
+from dhsym.errors import DHError, FormatError, echoed
 from dhsym.geometry.axes import JointAxis, Tool, exact_number
 from dhsym.geometry.frame_choices import FrameChoice, match_frames, textbook_frames
 from dhsym.geometry.frames import FrameAssignment, assign_frames
@@ -172,7 +172,8 @@ def import_urdf(
                 for leaf, c in zip(leaves, counts, strict=True)
             )
             raise FormatError(
-                f"the tree branches below link {start!r}: give the tip link (tip=, --tip), one of "
+                f"the tree branches below link {echoed(start)}: give the tip link (tip=, --tip), "
+                "one of "
                 f"{choices}",
                 file=model.file,
                 field="tip",
@@ -181,7 +182,8 @@ def import_urdf(
     joints = model.chain(start, tip)
     if len(joints) > MAX_CHAIN:
         raise FormatError(
-            f"the chain from {start!r} to {tip!r} has {len(joints)} joints: at most {MAX_CHAIN} "
+            f"the chain from {echoed(start)} to {echoed(tip)} has {len(joints)} joints: at most "
+            f"{MAX_CHAIN} "
             "are read (choose base= and tip= closer together)",
             file=model.file,
             field="tip",
@@ -205,7 +207,7 @@ def import_urdf(
             )
     if not moving:
         raise FormatError(
-            f"no revolute, continuous or prismatic joint between {start!r} and {tip!r}",
+            f"no revolute, continuous or prismatic joint between {echoed(start)} and {echoed(tip)}",
             file=model.file,
             field="tip",
         )
