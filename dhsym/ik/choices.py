@@ -3,7 +3,10 @@
 :func:`solve` is what ``Robot.ik`` runs: the closed form of the arm, or, with ``free``,
 the closed form of the other joints with one joint's value given (the Panda and the
 KUKA LWR have seven joints: one given, the six left form a family of
-:mod:`dhsym.ik.families`). Then ``limits=True`` shifts each angle by multiples of 2π into
+:mod:`dhsym.ik.families`); where the six left have no closed form, the numeric solver
+with the joint held answers from several starts (``method="numeric"``,
+:func:`~dhsym.ik.levenberg_marquardt.numeric_solutions`). At a singular wrist the
+result's ``note`` names the combination that is determined (:func:`singular_family`). Then ``limits=True`` shifts each angle by multiples of 2π into
 its joint's range and drops the solutions that do not fit, and ``near=q0`` orders them
 by distance from ``q0`` (angles compared modulo 2π).
 
@@ -348,7 +351,8 @@ def solve(
     values
         Numbers for the table's symbols (the solver is built once per set of values).
     free
-        ``{joint: value}``: one joint (1-based) given; the others solved in closed form.
+        ``{joint: value}``: one joint (1-based) given; the others solved in closed form,
+        or by the general 6R, or numerically where neither fits (``method`` says which).
         One pose only.
     limits
         Keep only solutions within the joint limits of the table (one pose).
