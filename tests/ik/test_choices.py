@@ -9,13 +9,19 @@ import dhsym
 from dhsym.ik.choices import sweep_free_joint
 
 
+def _table_limits(r: dhsym.Robot) -> tuple[np.ndarray, np.ndarray]:
+    """The lower and upper joint limits of the table (every row has them)."""
+    lo = np.array([float(row.limits[0]) for row in r.table.rows])
+    hi = np.array([float(row.limits[1]) for row in r.table.rows])
+    return lo, hi
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("name", ["panda", "kuka_lwr4"])
 def test_seven_joints_with_one_given_recover_q(name: str) -> None:
     r = dhsym.load(name)
     rng = np.random.default_rng(4)
-    lo = np.array([float(row.limits[0]) for row in r.table.rows])
-    hi = np.array([float(row.limits[1]) for row in r.table.rows])
+    lo, hi = _table_limits(r)
     for q in rng.uniform(lo, hi, (20, 7)):
         sol = r.ik(r.fk(q), free={7: q[6]})
         d = np.angle(np.exp(1j * (sol.q - q)))  # modulo 2π
@@ -77,8 +83,7 @@ def test_any_joint_of_a_seven_joint_arm_can_be_given(name: str) -> None:
     # the numeric solver answers and the result says which
     r = dhsym.load(name)
     rng = np.random.default_rng(32)
-    lo = np.array([float(row.limits[0]) for row in r.table.rows])
-    hi = np.array([float(row.limits[1]) for row in r.table.rows])
+    lo, hi = _table_limits(r)
     methods = {}
     for k in range(1, 8):
         q = rng.uniform(lo, hi)
