@@ -578,6 +578,8 @@ class ClosedFormSolver:
         wrist) from frame 0's origin, and how far the arm reaches it: the farthest of
         20,000 configurations drawn over the joints that place it (seed 0), in the table's
         length unit; None when the centre is within that reach (another step fails)."""
+        if not np.isfinite(pose).all():
+            return None  # a pose that is not numbers is at no distance
         dec = self.ik.decoupling
         inner = self._inner(pose[None])[0]
         c = np.array([float(v) for v in dec.centre_in_last.xreplace(self.values)] + [1.0])
