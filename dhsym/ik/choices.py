@@ -6,9 +6,10 @@ KUKA LWR have seven joints: one given, the six left form a family of
 :mod:`dhsym.ik.families`); where the six left have no closed form, the numeric solver
 with the joint held answers from several starts (``method="numeric"``,
 :func:`~dhsym.ik.levenberg_marquardt.numeric_solutions`). At a singular wrist the
-result's ``note`` names the combination that is determined (:func:`singular_family`). Then ``limits=True`` shifts each angle by multiples of 2π into
-its joint's range and drops the solutions that do not fit, and ``near=q0`` orders them
-by distance from ``q0`` (angles compared modulo 2π).
+result's ``note`` names the combination that is determined (:func:`singular_family`).
+Then ``limits=True`` shifts each angle by multiples of 2π into its joint's range and
+drops the solutions that do not fit, and ``near=q0`` orders them by distance from ``q0``
+(angles compared modulo 2π).
 
 Examples
 --------
