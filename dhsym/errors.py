@@ -16,7 +16,15 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["DHError", "TableError", "ParseError", "GeometryError", "ChainError", "FormatError"]
+__all__ = [
+    "DHError",
+    "TableError",
+    "ParseError",
+    "GeometryError",
+    "ChainError",
+    "FormatError",
+    "echoed",
+]
 
 
 class DHError(Exception):
@@ -83,3 +91,17 @@ class ChainError(DHError):
 
 class FormatError(DHError):
     """A file of another tool (URDF, XML) cannot be read: ``field`` names the element."""
+
+
+def echoed(value: object, limit: int = 60) -> str:
+    """``repr(value)`` for an error message, cut to about ``limit`` characters: user input
+    is echoed so the user can find it, never in full (a 100 kB option is not echoed as such).
+
+    >>> echoed("digits=4"), echoed("x" * 1000, 10)
+    ("'digits=4'", "'xxxxxxxx… (1000 characters)")
+    """
+    text = repr(value)
+    if len(text) <= limit:
+        return text
+    size = len(value) if isinstance(value, (str, bytes)) else len(text)
+    return f"{text[: limit - 1]}… ({size} characters)"

@@ -211,14 +211,14 @@ def load_table_arg(
     name: str, tip: str | None = None, base: str | None = None, convention: str = "standard"
 ) -> DHTable:
     """The DH table of ``name``: a built-in name, a table file, or a URDF file (``--tip``)."""
-    from dhsym.errors import DHError
+    from dhsym.errors import DHError, echoed
 
     if os.path.splitext(name)[1].lower() in URDF_SUFFIXES:
         from dhsym.formats.urdf import import_urdf
 
         return import_urdf(name, tip=tip, base=base, convention=convention).table
     if tip is not None or base is not None:
-        raise DHError(f"--tip and --base choose a chain in a URDF file; {name} is not one")
+        raise DHError(f"--tip and --base choose a chain in a URDF file; {echoed(name)} is not one")
     from dhsym.model.library import load_table
 
     return load_table(name)

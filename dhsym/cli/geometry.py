@@ -20,17 +20,28 @@ __all__ = ["register"]
 
 
 def _cmd_convert(args: argparse.Namespace) -> int:
+    from dhsym.errors import DHError
     from dhsym.model.parsing import check_count
 
     check_count(args.samples, "--samples", 0, 100_000)
     is_urdf = os.path.splitext(args.robot)[1].lower() in URDF_SUFFIXES
+    like = None if args.like is None else load_table_arg(args.like)
+    if like is not None and args.to == "urdf":
+        raise DHError("--like chooses among equivalent DH tables: not with --to urdf")
     if is_urdf and args.to != "urdf":
         from dhsym.formats.urdf import import_urdf, table_yaml
 
-        imp = import_urdf(args.robot, tip=args.tip, base=args.base, convention=args.to)
+        imp = import_urdf(
+            args.robot,
+            tip=args.tip,
+            base=args.base,
+            convention=args.to,
+            frames="textbook" if like is None else like,
+        )
         note_warnings(imp.table)
+        _say_mismatches(imp.choice.mismatches if imp.choice else (), args.like)
         emit(table_yaml(imp), args.output)
-        err = imp.assignment.verify(args.samples)
+        err = imp.verify(args.samples)
         print(
             f"fk agrees with the URDF chain {imp.base} -> {imp.tip} at {args.samples} random "
             f"configurations (max difference {err:.2g})",
@@ -53,6 +64,12 @@ def _cmd_convert(args: argparse.Namespace) -> int:
         name = table.name or args.robot
         print(f"{name} is already in the {target.value} convention", file=sys.stderr)
     new = convert(table, target)
+    if like is not None:
+        from dhsym.geometry.frame_choices import match_frames
+
+        choice = match_frames(new, like)
+        _say_mismatches(choice.mismatches, args.like)
+        new = choice.table
     err = check_conversion(table, new, samples=args.samples)
     emit(dump_table(new), args.output)
     print(
@@ -60,6 +77,18 @@ def _cmd_convert(args: argparse.Namespace) -> int:
         file=sys.stderr,
     )
     return 0
+
+
+def _say_mismatches(mismatches: tuple[str, ...], like: str | None) -> None:
+    """The rows ``--like`` could not match, on standard error (the table is still written:
+    the nearest choice)."""
+    if mismatches:
+        print(
+            f"dhsym: note: no equivalent choice of frames matches {like} in every row:",
+            file=sys.stderr,
+        )
+        for line in mismatches:
+            print(f"  {line}", file=sys.stderr)
 
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -90,5 +119,12 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         "-o", "--output", metavar="FILE", help="write the result to FILE (- or none: stdout)"
     )
     add_urdf_options(c)
+    c.add_argument(
+        "--like",
+        metavar="TABLE",
+        help="choose the senses of the x axes that match this table (a built-in name or a "
+        "table file), e.g. --like ur5; the rows that cannot match are listed, with why "
+        "(default for a URDF: the table a textbook prints)",
+    )
     c.add_argument("--samples", type=int, default=20, help="random configurations for the fk check")
     c.set_defaults(func=_cmd_convert)

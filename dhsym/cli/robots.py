@@ -31,6 +31,7 @@ from .common import (
 if TYPE_CHECKING:  # sympy, numpy and the robot load when a command runs
     import sympy as sp
 
+    from dhsym.model.table import Elementary
     from dhsym.robot import Robot
 
 __all__ = ["JSON_SCHEMA_VERSION", "derive_json", "register"]
@@ -65,7 +66,28 @@ def _cmd_show(args: argparse.Namespace) -> int:
         print(table_markdown(t))
         if t.values:
             print("\nvalues: " + ", ".join(f"{k} = {exact_decimal(v) or v}" for k, v in t.values))
+        for label, word in (("base", t.base), ("tool", t.tool)):
+            if word:  # the table alone is not the arm: what stands before and after it
+                print(f"\n{label} transform: {_word_markdown(word)}")
     return 0
+
+
+def _word_markdown(word: tuple[Elementary, ...]) -> str:
+    r"""A word of elementary transforms in Markdown math: ``$R_z(180^{\circ})\,T_z(0.107)$``."""
+    import sympy as sp
+
+    from dhsym.model.entries import exact_decimal
+    from dhsym.notation.printers import format_angle
+
+    parts = []
+    for e in word:
+        nice = e.kind == "R" and ((e.value / sp.pi).is_rational is True or e.value == 0)
+        if e.kind == "R":
+            value = format_angle(e.value, degrees=nice, latex=True)
+        else:
+            value = exact_decimal(e.value) or sp.latex(e.value)
+        parts.append(f"{e.kind}_{e.axis}({value})")
+    return "$" + r"\,".join(parts) + "$"
 
 
 def _frames(robot: Robot, args: argparse.Namespace) -> tuple[int, int]:
@@ -190,17 +212,17 @@ def _next_step(what: str, name: str) -> str | None:
     return None
 
 
-def _parse_q(text: str, n: int) -> list[float]:
+def _parse_q(text: str, n: int, option: str = "--q") -> list[float]:
     import math
 
     from dhsym.errors import DHError
     from dhsym.model.parsing import parse_number_list
 
-    values = parse_number_list(text, "--q")
+    values = parse_number_list(text, option)
     if len(values) != n:
-        raise DHError(f"--q needs {n} values (one per joint), got {len(values)}")
+        raise DHError(f"{option} needs {n} values (one per joint), got {len(values)}")
     if not all(math.isfinite(v) for v in values):
-        raise DHError("--q values must be finite numbers")
+        raise DHError(f"{option} values must be finite numbers")
     return values
 
 
@@ -265,8 +287,80 @@ def _numeric_command(name: str) -> str:
     return f"dhsym ik {name} --pose T11,...,T34 --numeric (or --pose-of Q)"
 
 
+def _in_radians(robot: Robot, q: list[float], deg: bool) -> list[float]:
+    """Joint values ``q`` with the revolute ones turned from degrees when ``deg``."""
+    import math
+
+    rows = [r for r in robot.table.rows if r.variable is not None]
+    return [math.radians(v) if deg and r.variable_field == "theta" else v for v, r in zip(q, rows)]
+
+
+def _free_choices(args: argparse.Namespace, robot: Robot, deg: bool) -> list[dict[int, float]]:
+    """``--free K=V`` (repeatable): each a joint (1-based) and its value in the unit of
+    ``--q``; each is solved in turn. ``[{}]`` without ``--free``."""
+    import math
+
+    from dhsym.errors import DHError
+    from dhsym.model.parsing import parse_number_list
+
+    if not args.free:
+        return [{}]
+    n = len(robot.variables)
+    rows = [r for r in robot.table.rows if r.variable is not None]
+    out = []
+    for text in args.free:
+        joint, sep, value = text.partition("=")
+        if not sep or not joint.strip().isdigit() or not value.strip():
+            raise DHError(f"--free: expected JOINT=VALUE (e.g. --free 7=0.3), got {text!r}")
+        k = int(joint)
+        if not 1 <= k <= n:
+            raise DHError(f"--free {text}: joint {k} is not a joint of {robot.name} (1 … {n})")
+        (v,) = parse_number_list(value, f"--free {k}=")[:1]
+        if not math.isfinite(v):
+            raise DHError(f"--free {text}: the value must be a finite number")
+        if deg and rows[k - 1].variable_field == "theta":
+            v = math.radians(v)
+        out.append({k: v})
+    return out
+
+
+def _ik_result(robot: Robot, sols: object, names: list[str]) -> dict[str, object]:
+    """One :class:`~dhsym.ik.solution.IKSolution` as JSON data: the method, each solution
+    (branch in words, its signs, q, residual, the singularities it is near) and the reason
+    when there is none."""
+    import numpy as np
+
+    from dhsym.ik.solution import IKSolution
+
+    assert isinstance(sols, IKSolution)
+    q = np.round(np.asarray(sols.q, dtype=float), 12).tolist()
+    residual = np.asarray(sols.residual, dtype=float).tolist()
+    signs = np.asarray(sols.signs, dtype=int).tolist()
+    out: dict[str, object] = {
+        "method": sols.method,
+        "variables": names,
+        "q": q,
+        "residual": residual,
+        "branches": list(sols.branches),
+        "solutions": [
+            {"branch": b, "signs": sg, "q": row, "residual": res, "singular": list(near)}
+            for b, sg, row, res, near in zip(sols.branches, signs, q, residual, sols.singular)
+        ],
+        "reason": sols.reason,
+        "note": sols.note,
+    }
+    if sols.method == "numeric":
+        out["converged"] = bool(sols.converged)
+        out["iterations"] = sols.iterations
+    return out
+
+
 def _cmd_ik(args: argparse.Namespace) -> int:
-    """``dhsym ik NAME --pose … [--numeric]``: closed-form solutions, or one numeric one."""
+    """``dhsym ik NAME --pose …``: every closed-form solution with its branch (a joint given
+    with ``--free``, within ``--limits``, ``--near`` first), or one numeric one.
+
+    Exit status 0 with solutions, 1 with none (the reason on stderr and in the JSON), 2 on
+    bad input."""
     import numpy as np
 
     from dhsym.errors import DHError
@@ -275,7 +369,13 @@ def _cmd_ik(args: argparse.Namespace) -> int:
     robot = load_robot(args.robot, args.values, need_numbers=True, tip=args.tip, base=args.base)
     T = _pose(args, robot)
     names = [str(v) for v in robot.variables]
+    deg, _ = q_in_degrees(args, robot.table)
     if args.numeric:
+        if args.free or args.limits or args.near is not None:
+            raise DHError(
+                "--numeric finds one solution from --q0: --free, --limits and --near "
+                "apply to the closed form"
+            )
         q0 = None if args.q0 is None else _parse_q(args.q0, len(names))
         sol = numeric_ik(robot, T, q0)
         error = float(sol.residual[0])
@@ -284,6 +384,9 @@ def _cmd_ik(args: argparse.Namespace) -> int:
             "converged": bool(sol.converged),
             "iterations": sol.iterations,
             "error": error,
+            "branch": sol.branches[0],
+            "residual": error,
+            "reason": sol.reason,
         }
         solution = dict(zip(names, np.round(sol.q[0], 12).tolist()))
         result["q"] = solution
@@ -296,26 +399,62 @@ def _cmd_ik(args: argparse.Namespace) -> int:
             for n, v in solution.items():
                 print(f"  {n} = {v:.9g}")
         return 0 if sol.converged else 1
-    try:
-        sols = robot.ik(T, tol=args.tol)
-    except DHError as err:
-        raise type(err)(
-            f"{err.message}. A numeric solution: {_numeric_command(args.robot)}"
-        ) from None
-    rows = np.asarray(sols.q).tolist()
+    near = None
+    if args.near is not None:
+        near = _in_radians(robot, _parse_q(args.near, len(names), "--near"), deg)
+    results = []
+    for free in _free_choices(args, robot, deg):
+        try:
+            sols = robot.ik(T, tol=args.tol, free=free or None, limits=args.limits, near=near)
+        except DHError as err:
+            raise type(err)(
+                f"{err.message}. A numeric solution: {_numeric_command(args.robot)}"
+            ) from None
+        if args.one and len(sols) > 1:
+            sols = sols.take(np.array([0]))
+        results.append((free, sols))
+    found = any(len(s) for _, s in results)
     if args.json:
-        out: dict[str, object] = {"variables": names, "q": rows}
-        out["residual"] = np.asarray(sols.residual, dtype=float).tolist()
-        if sols.reason is not None:
-            out["reason"] = sols.reason
-        print(json.dumps(out))
+        data = [
+            {
+                **({"free": {str(k): v for k, v in f.items()}} if f else {}),
+                **_ik_result(robot, s, names),
+            }
+            for f, s in results
+        ]
+        print(json.dumps(data[0] if len(data) == 1 else {"results": data}))
     else:
-        print(f"{len(rows)} closed-form solution(s), one per line (radians): {', '.join(names)}")
-        for row in rows:
-            print("  " + ", ".join(f"{v:.9g}" for v in row))
-        if sols.reason is not None:
-            print(f"no solution: {sols.reason}", file=sys.stderr)
-    return 0
+        for free, sols in results:
+            _print_solutions(robot, sols, names, free)
+    if not found:
+        for _, sols in results:
+            if sols.reason is not None:
+                print(f"dhsym: no solution: {sols.reason}", file=sys.stderr)
+    return 0 if found else 1
+
+
+def _print_solutions(robot: Robot, sols: object, names: list[str], free: dict[int, float]) -> None:
+    """The solutions one per line: the joint values (radians for revolute joints), the
+    branch in words and the residual."""
+    from dhsym.ik.solution import IKSolution
+
+    assert isinstance(sols, IKSolution)
+    given = "".join(f" with {names[k - 1]} = {v:.9g} given" for k, v in free.items())
+    kind = {"closed form": "closed-form", "general 6R": "general 6R"}.get(sols.method, sols.method)
+    print(
+        f"{len(sols)} {kind} solution(s){given}, one per line (radians): {', '.join(names)}"
+        "  | branch | residual"
+    )
+    if sols.method == "numeric":
+        state = "converged" if sols.converged else "did NOT converge"
+        print(
+            f"  (numeric: Levenberg–Marquardt from several starts, {state}, "
+            f"{sols.iterations} steps in all; other solutions may exist)"
+        )
+    for row, branch, res in zip(sols.q, sols.branches, sols.residual):
+        print("  " + ", ".join(f"{v:.9g}" for v in row) + f"  | {branch} | {float(res):.2g}")
+    if sols.note is not None:
+        print(f"  note: {sols.note}")
 
 
 ROBOT_HELP = "built-in robot name (dhsym list), table file, or URDF file (with --tip)"
@@ -406,6 +545,26 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         help="largest entry error of fk against the pose for a solution to be kept "
         "(default: from the pose's own accuracy, 1e-9 for an exact pose; see the guide, "
         "inverse kinematics, 'Poses as they come')",
+    )
+    k.add_argument(
+        "--free",
+        metavar="JOINT=VALUE",
+        action="append",
+        help="give one joint (1-based) its value (unit of --q) and solve the others, e.g. "
+        "--free 7=0.3 on a seven-joint arm; repeat it to solve at several choices in turn",
+    )
+    k.add_argument(
+        "--limits", action="store_true", help="keep only solutions within the table's joint limits"
+    )
+    k.add_argument(
+        "--near",
+        metavar="Q",
+        help="order the solutions by distance from these joint values (unit of --q)",
+    )
+    k.add_argument(
+        "--one",
+        action="store_true",
+        help="print only the first solution (with --near: the nearest)",
     )
     k.add_argument(
         "--json", action="store_true", help="JSON output on stdout alone (notes on stderr)"

@@ -31,7 +31,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.ik.closed_form import ClosedForm
-from dhsym.ik.steps import Branch, Step, branch_word
+from dhsym.ik.steps import BRANCH_NAMES, Branch, Step, root_words
 from dhsym.model.table import DHTable, JointType
 from dhsym.notation.escape import TeX
 from dhsym.notation.layout import (
@@ -154,9 +154,10 @@ def _check(robot: Robot, q: Sequence[float], nota: Notation) -> IKCheck:
         runs: list[Run] = []
         for k, (part, b, sign) in enumerate(zip(words.split(", "), ik.branches, signs)):
             runs += [Run(", ")] if k else []
-            if b.role == "reach":  # the words of the IK results, the variable typeset
+            if b.role not in BRANCH_NAMES:  # the words of the IK results, the variable typeset
                 var = robot.variables[b.joint - 1]
-                runs += [Run(branch_word(b.role, sign > 0) + " "), Run(math=as_math(var, nota))]
+                before, after = root_words(sign > 0)
+                runs += [Run(before + " "), Run(math=as_math(var, nota)), Run(" " + after)]
             else:
                 runs.append(Run(part))
         return tuple(runs)

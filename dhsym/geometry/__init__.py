@@ -1,5 +1,6 @@
 """The geometry room: joint axes as lines, the DH frame-assignment algorithm with its
-sentences, standard <-> modified conversion, joint pairs and mobility, task-frame chains.
+sentences, the senses of x a textbook (or a reference table) chooses, standard <->
+modified conversion, joint pairs and mobility, task-frame chains.
 
 May import model, notation and kinematics.
 """
@@ -16,12 +17,15 @@ __getattr__, __dir__ = lazy_exports(
         "convert": "conversion",
         "FrameAssignment": "frames",
         "FrameChain": "chains",
+        "FrameChoice": "frame_choices",
         "Joint": "joints",
         "JointAxis": "axes",
         "Mechanism": "joints",
+        "match_frames": "frame_choices",
         "mobility": "joints",
         "PAIRS": "joints",
         "to_modified": "conversion",
+        "textbook_frames": "frame_choices",
         "to_standard": "conversion",
         "Tool": "axes",
     },
@@ -31,6 +35,7 @@ __all__ = [
     "CommonNormal",
     "FrameAssignment",
     "FrameChain",
+    "FrameChoice",
     "Joint",
     "JointAxis",
     "Mechanism",
@@ -40,7 +45,9 @@ __all__ = [
     "check_conversion",
     "common_normal",
     "convert",
+    "match_frames",
     "mobility",
+    "textbook_frames",
     "to_modified",
     "to_standard",
 ]

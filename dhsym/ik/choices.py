@@ -3,9 +3,13 @@
 :func:`solve` is what ``Robot.ik`` runs: the closed form of the arm, or, with ``free``,
 the closed form of the other joints with one joint's value given (the Panda and the
 KUKA LWR have seven joints: one given, the six left form a family of
-:mod:`dhsym.ik.families`). Then ``limits=True`` shifts each angle by multiples of 2π into
-its joint's range and drops the solutions that do not fit, and ``near=q0`` orders them
-by distance from ``q0`` (angles compared modulo 2π).
+:mod:`dhsym.ik.families`); where the six left have no closed form, the numeric solver
+with the joint held answers from several starts (``method="numeric"``,
+:func:`~dhsym.ik.levenberg_marquardt.numeric_solutions`). At a singular wrist the
+result's ``note`` names the combination that is determined (:func:`singular_family`).
+Then ``limits=True`` shifts each angle by multiples of 2π into its joint's range and
+drops the solutions that do not fit, and ``near=q0`` orders them by distance from ``q0``
+(angles compared modulo 2π).
 
 Examples
 --------
@@ -26,6 +30,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhsym.errors import DHError
+from dhsym.kinematics.decoupling import StructureError
 from dhsym.kinematics.numeric import values_key
 from dhsym.model.table import DHRow, JointType
 
@@ -35,6 +40,7 @@ from .closed_form import ClosedForm
 from .closed_form_solver import ClosedFormSolver
 from .families import inverse
 from .general6r import Elimination, EliminationSolver
+from .levenberg_marquardt import DESCRIPTION, numeric_solutions
 from .protocols import IKSolver, NativeCompiler
 from .solution import IKSolution
 
@@ -46,6 +52,7 @@ __all__ = [
     "IKCache",
     "build_solver",
     "nearest_first",
+    "singular_family",
     "solve",
     "sweep_free_joint",
     "within_limits",
@@ -164,11 +171,21 @@ class IKCache:
     #: the solvers by the values they were built with (:func:`values_key`)
     _solvers: dict[object, IKSolver] = field(default_factory=dict, init=False, repr=False)
     _given: dict[int, GivenJoint] = field(default_factory=dict, init=False, repr=False)
+    #: why the chain has no closed form, once that is known
+    _failure: str | None = field(default=None, init=False, repr=False)
 
     def inverse(self) -> ClosedForm | Elimination:
-        """The derivation, step by step (:func:`dhsym.ik.families.inverse`), cached."""
+        """The derivation, step by step (:func:`dhsym.ik.families.inverse`), cached; so is
+        the :class:`~dhsym.kinematics.decoupling.StructureError` of a chain without one
+        (raised again, not derived again)."""
+        if self._failure is not None:
+            raise StructureError(self._failure)
         if self._inverse is None:
-            self._inverse = inverse(self.chain)
+            try:
+                self._inverse = inverse(self.chain)
+            except StructureError as err:
+                self._failure = err.message
+                raise
         return self._inverse
 
     def solver(self, values: Mapping[object, object] | None = None) -> IKSolver:
@@ -261,9 +278,13 @@ def _solve_free(
         inner = inner @ np.linalg.inv(robot.fk_function(robot.n - 1, robot.n, values)(q))
     else:
         extra[var] = value
-    part = given.cache.solver(extra or None).solve(
-        inner, check="pose", tol=tol, singular_tol=singular_tol
-    )
+    try:
+        solver = given.cache.solver(extra or None)
+    except StructureError:
+        # no closed form with this joint given: the numeric solver, on the whole arm with
+        # the joint held (it says it is numeric, and how far it got)
+        return _numeric_free(robot, T, joint, value, tol=tol, values=values)
+    part = solver.solve(inner, check="pose", tol=tol, singular_tol=singular_tol)
     full = np.insert(part.q, joint - 1, value, axis=1)
     names = part.branches
     got = robot.fk_function(values=values)(full) if len(full) else np.zeros((0, 4, 4))
@@ -280,6 +301,33 @@ def _solve_free(
         part.reason if len(part) else None,
         names=tuple(s for s, k in zip(names, ok) if k),
     )
+
+
+def _numeric_free(
+    robot: KinematicChain,
+    T: np.ndarray,
+    joint: int,
+    value: float,
+    *,
+    tol: float,
+    values: Mapping[object, object] | None,
+) -> IKSolution:
+    """The solutions the numeric solver finds from several starts with joint ``joint`` held
+    at ``value`` (:func:`~dhsym.ik.levenberg_marquardt.numeric_solutions`), each residual
+    the largest entry error of its ``fk``, those within ``tol`` kept."""
+    sol = numeric_solutions(robot, T, values=values, fixed={joint: value})
+    if not len(sol):
+        return sol
+    got = robot.fk_function(values=values)(sol.q)
+    residual = np.abs(got[:, :3] - np.asarray(T)[None, :3]).reshape(len(sol), -1).max(axis=1)
+    keep = np.nonzero(residual <= tol)[0]
+    kept = replace(sol.take(keep), residual=residual[keep])
+    if not len(kept):
+        smallest = float(residual.min())
+        return replace(
+            kept, reason=f"{DESCRIPTION}: no solution within {tol:.1g} (smallest {smallest:.3g})"
+        )
+    return kept
 
 
 def solve(
@@ -314,7 +362,8 @@ def solve(
     values
         Numbers for the table's symbols (the solver is built once per set of values).
     free
-        ``{joint: value}``: one joint (1-based) given; the others solved in closed form.
+        ``{joint: value}``: one joint (1-based) given; the others solved in closed form,
+        or by the general 6R, or numerically where neither fits (``method`` says which).
         One pose only.
     limits
         Keep only solutions within the joint limits of the table (one pose).
@@ -336,7 +385,7 @@ def solve(
         sol = cache.solver(values).solve(
             arr, check=check, tol=FLOOR if tol is None else tol, singular_tol=singular_tol
         )
-        return _chosen(robot, sol, limits, near)
+        return _chosen(robot, sol, limits, near, free, values)
     given, brought, tols = arr, False, _tolerances(arr, check, tol)
     if tols is not None:
         rigid = nearest_rigid(arr)
@@ -372,13 +421,22 @@ def solve(
             sol = solver.solve(arr, check=check, tol=inner_tol, singular_tol=singular_tol)
     if brought and tols is not None:
         sol = _against_given(robot, sol, given, tols, values)
-    return _chosen(robot, sol, limits, near)
+    return _chosen(robot, sol, limits, near, free, values)
 
 
-def _chosen(robot: KinematicChain, sol: IKSolution, limits: bool, near: object) -> IKSolution:
+def _chosen(
+    robot: KinematicChain,
+    sol: IKSolution,
+    limits: bool,
+    near: object,
+    free: Mapping[int, float] | None,
+    values: Mapping[object, object] | None,
+) -> IKSolution:
     """The solutions of one pose within the joint limits (``limits``), nearest to ``near``
-    first (a batch as it is)."""
+    first, with the singular family named (a batch as it is)."""
     if not sol.batch:
+        if not free and len(sol) and sol.near_singular.any():
+            sol = replace(sol, note=singular_family(robot, sol, values))
         if limits:
             sol = within_limits(robot, sol)
         if near is not None:
@@ -406,6 +464,82 @@ def _surely_exact(T: np.ndarray) -> bool:
     )
     det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
     return det > 0.0 and max(abs(x) for x in gram) <= 1e-13 and all(x == x for x in gram)
+
+
+def singular_family(
+    robot: KinematicChain, sol: IKSolution, values: Mapping[object, object] | None = None
+) -> str | None:
+    """At a singular pose, the combination of two joints that is all that is determined,
+    in words, or None: two revolute joints that turn about one line (the wrist at θ5 = 0)
+    move together without moving the tool, so only their sum (or difference) is fixed and
+    the solver gives one member of the family.
+
+    Found from the first solution near a singularity: a null vector of its Jacobian with
+    two equal entries (±) names the pair, and ``fk`` confirms the motion at a finite step
+    (0.3 rad) keeps the pose (an instantaneous null motion, the stretched elbow, is not a
+    family and gives None).
+
+    >>> import dhsym
+    >>> r = dhsym.load("puma560")
+    >>> import textwrap
+    >>> print(textwrap.fill(r.ik(r.fk([0.3, -0.5, 0.4, 0.2, 0.0, -1.1])).note, 80))
+    θ5 = 0: the wrist is singular (joints 4 and 6 turn about one line); θ4 + θ6 =
+    -0.9 is all that is determined (the solutions there are given with θ4 = 0)
+    """
+    rows = [r for r in robot.table.rows if r.variable is not None]
+    n = len(rows)
+    if sol.batch or not len(sol) or n > 6:
+        return None
+    fk = robot.fk_function(values=values)
+    revolute = _revolute(robot)
+    for q, near in zip(sol.q, sol.near_singular):
+        if not near:
+            continue
+        J = np.asarray(robot.jacobian(q, values=values))
+        _, sv, vt = np.linalg.svd(J)
+        if sv[-1] > 1e-6 * sv[0]:
+            continue
+        v = vt[-1]
+        big = np.nonzero(np.abs(v) > 0.3)[0]
+        if len(big) != 2 or not revolute[big].all() or abs(abs(v[big[0]]) - abs(v[big[1]])) > 1e-6:
+            continue
+        i, j = (int(k) for k in big)
+        step = np.zeros(n)
+        step[[i, j]] = 0.3 * np.sign(v[[i, j]])
+        if np.abs(fk(q + step) - fk(q)).max() > 1e-9:
+            continue  # not a finite motion: no family
+        same = np.sign(v[i]) != np.sign(v[j])  # opposite turns keep the sum
+        name_i, name_j = _plain(robot.variables[i]), _plain(robot.variables[j])
+        combo = _angle(q[i] + q[j] if same else q[j] - q[i])
+        text = f"{name_i} + {name_j}" if same else f"{name_j} − {name_i}"
+        between = [
+            f"{_plain(robot.variables[k])} = {_angle(q[k])}" for k in range(i + 1, j) if revolute[k]
+        ]
+        what = "the wrist" if j == n - 1 else f"joints {i + 1} to {j + 1}"
+        at = f"{between[0]}: " if len(between) == 1 else ""
+        singular = [row for row, hit in zip(sol.q, sol.near_singular) if hit]
+        every = all(_angle(row[i] - q[i]) == "0" for row in singular)
+        given = f"{name_i} = {_angle(q[i])}"
+        return (
+            f"{at}{what} is singular (joints {i + 1} and {j + 1} turn about one line); "
+            f"{text} = {combo} is all that is determined ("
+            + (f"the solutions there are given with {given}" if every else f"given {given}")
+            + ")"
+        )
+    return None
+
+
+def _angle(x: float) -> str:
+    """An angle in (−π, π] to four digits, rounding noise below 1e-9 read as 0."""
+    y = float(np.angle(np.exp(1j * x)))
+    return f"{0.0 if abs(y) < 1e-9 else y:.4g}"
+
+
+def _plain(variable: object) -> str:
+    """A joint variable as a student reads it (``θ4``)."""
+    from .steps import branch_word
+
+    return branch_word("sign", True, variable).split(" ")[4]
 
 
 def _tolerances(arr: np.ndarray, check: str | None, tol: float | None) -> np.ndarray | None:

@@ -246,9 +246,14 @@ class ClosedFormSolver:
         ('elbow down',)
         """
         parts: list[list[str]] = [[] for _ in range(len(q))]
+        # one elbow: the last joint a law of cosines decides; another such branch (an arm
+        # with one joint given may have two) is named by its root
+        elbows = [b.joint for b in self.ik.branches if b.role == "elbow"]
         for b, col in zip(self.ik.branches, signs.T):
             var = self.robot.variables[b.joint - 1]
-            if b.role == "elbow":
+            if b.role == "elbow" and b.joint != max(elbows):
+                words = [branch_word("sign", bool(sgn > 0), var) for sgn in col]
+            elif b.role == "elbow":
                 up = self._elbow_up(q, b) if len(q) else np.zeros(0, dtype=bool)
                 words = [branch_word("elbow", bool(u)) for u in up]
             else:
@@ -600,11 +605,50 @@ class ClosedFormSolver:
             if lhs in self.robot.variables:
                 j = self.robot.variables.index(lhs)
                 if not np.isfinite(q[:, j]).any():
+                    reach = self._reach(pose)
                     return (
                         f"{said}: no real value of {lhs} on any branch (a cosine beyond ±1 "
                         "or a negative radicand, the pose is out of reach)"
+                        + (f"; {reach}" if reach else "")
                     )
         return said
+
+    def _reach(self, pose: np.ndarray) -> str | None:
+        """How far the pose puts the wrist centre (the tool point of an arm without a
+        wrist) from frame 0's origin, and how far the arm reaches it: the farthest of
+        20,000 configurations drawn over the joints that place it (seed 0), in the table's
+        length unit; None when the centre is within that reach (another step fails)."""
+        if not np.isfinite(pose).all():
+            return None  # a pose that is not numbers is at no distance
+        dec = self.ik.decoupling
+        inner = self._inner(pose[None])[0]
+        c = np.array([float(v) for v in dec.centre_in_last.xreplace(self.values)] + [1.0])
+        away = float(np.linalg.norm((inner @ c)[:3]))
+        rng = np.random.default_rng(0)
+        q = rng.uniform(-np.pi, np.pi, (20_000, self.n))
+        for k, rev in enumerate(self.revolute):
+            if not rev:
+                lo, hi = self._prismatic_range(k)
+                q[:, k] = rng.uniform(lo, hi, len(q))
+        with np.errstate(invalid="ignore"):
+            far = float(np.nanmax(np.linalg.norm(self.frame(dec.centre)(q)[:, :3, 3], axis=1)))
+        if away <= far:
+            return None
+        point = "wrist centre" if dec.wrist else "tool point"
+        return (
+            f"the {point} is {away:.3g} from the origin of frame 0; this arm reaches at most "
+            f"about {far:.3g} (lengths in the table's unit)"
+        )
+
+    def _prismatic_range(self, k: int) -> tuple[float, float]:
+        """The range of prismatic joint ``k`` (0-based among the joints): its limits, else
+        0 … 1."""
+        rows = [r for r in self.robot.table.rows if r.variable is not None]
+        limits = rows[k].limits
+        if limits is None:
+            return 0.0, 1.0
+        lo, hi = (float(sp.sympify(v).xreplace(self.values)) for v in limits)
+        return lo, hi
 
     def _inner(self, poses: np.ndarray) -> np.ndarray:
         """Poses from frame 0 to frame n: base and tool undone."""

@@ -133,7 +133,9 @@ def derive_inverted(robot: KinematicChain) -> ClosedForm:
         )
     branches = []
     for br in rev.branches:
-        role = "sign" if br.role == "elbow" else br.role
+        # read backwards, the reversed chain's wrist is the arm's shoulder; its arm and
+        # elbow are no arm or elbow of this table: named by their roots
+        role = {"wrist": "shoulder", "arm": "sign", "elbow": "sign"}.get(br.role, br.role)
         branches.append(Branch(br.symbol, role, n + 1 - br.joint, br.sentence))
     joints = [r for r in table.rows if r.variable is not None]
     for i, row in enumerate(joints, start=1):

@@ -13,15 +13,21 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhsym.errors import DHError
+from dhsym.model.table import JointType
+
 from .solution import IKSolution
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["DESCRIPTION", "METHOD", "numeric_ik"]
+__all__ = ["DESCRIPTION", "METHOD", "SELF_MOTION", "numeric_ik", "numeric_solutions"]
 
 #: what an :class:`IKSolution` of this solver says it is, and that in a sentence
 METHOD = "numeric"
+#: the singularity a numeric solution may be near: the free joints move the tool in fewer
+#: than six directions (the Jacobian of the joints left free short of rank)
+SELF_MOTION = "self-motion"
 DESCRIPTION = "numeric: Levenberg–Marquardt on the compiled fk (one local solution)"
 
 
@@ -64,6 +70,7 @@ def numeric_ik(
     tol: float = 1e-12,
     max_iter: int = 100,
     values: Mapping[object, object] | None = None,
+    fixed: Mapping[int, float] | None = None,
 ) -> IKSolution:
     """Levenberg–Marquardt on the compiled ``fk`` and Jacobian, from ``q0`` (default zeros).
 
@@ -71,7 +78,9 @@ def numeric_ik(
     start, or none. The error is the position error and the rotation vector from the
     current orientation to the goal, both in the base frame; the step solves
     ``(JᵀJ + λ diag(JᵀJ)) Δq = Jᵀe`` with λ divided by 10 after a successful step and
-    multiplied by 10 after a failed one.
+    multiplied by 10 after a failed one. ``fixed={joint: value}`` (1-based) holds those
+    joints at their values (their columns of J left out): a seven-joint arm with one
+    joint given.
 
     >>> import dhsym
     >>> r = dhsym.load("planar2r")
@@ -83,6 +92,12 @@ def numeric_ik(
     target = np.asarray(T, dtype=float)
     n = len(robot.variables)
     q = np.zeros(n) if q0 is None else np.asarray(q0, dtype=float).copy()
+    held = sorted(fixed or {})
+    if any(not 1 <= k <= n for k in held):
+        raise DHError(f"fixed: joints are 1 … {n}, got {held}")
+    for k in held:
+        q[k - 1] = float((fixed or {})[k])
+    moving = np.array([k not in held for k in range(1, n + 1)])
 
     def error(q: np.ndarray) -> np.ndarray:
         M = fk(q)
@@ -96,10 +111,10 @@ def numeric_ik(
     for it in range(1, max_iter + 1):
         if e @ e < tol**2:
             return _solution(q, True, it - 1, float(np.sqrt(e @ e)))
-        J = np.asarray(robot.jacobian(q, values=values))
+        J = np.asarray(robot.jacobian(q, values=values))[:, moving]
         H = J.T @ J
-        step = np.linalg.solve(H + lam * np.diag(np.diag(H) + 1e-12), J.T @ e)
-        trial = q + step
+        trial = q.copy()
+        trial[moving] += np.linalg.solve(H + lam * np.diag(np.diag(H) + 1e-12), J.T @ e)
         e_trial = error(trial)
         if e_trial @ e_trial < e @ e:
             q, e, lam = trial, e_trial, max(lam / 10, 1e-12)
@@ -107,3 +122,95 @@ def numeric_ik(
             lam = min(lam * 10, 1e12)
     err = float(np.sqrt(e @ e))
     return _solution(q, err < tol, it, err)
+
+
+def numeric_solutions(
+    robot: KinematicChain,
+    T: object,
+    *,
+    starts: int = 24,
+    tol: float = 1e-12,
+    values: Mapping[object, object] | None = None,
+    fixed: Mapping[int, float] | None = None,
+    seed: int = 0,
+) -> IKSolution:
+    """The distinct solutions :func:`numeric_ik` finds from several starts: all joints
+    zero, then ``starts − 1`` starts drawn (``seed``) within the joint limits (±π for a
+    revolute joint without limits, [0, 1] for a prismatic one).
+
+    What an arm without a closed form gets (the Panda with joint 4 given, say): a set of
+    local solutions, not a guarantee that every branch is found. The result is one
+    :class:`~dhsym.ik.solution.IKSolution` with ``method="numeric"``, one row per
+    distinct converged solution (angles compared modulo 2π), ``iterations`` the steps
+    taken over all starts, and a ``reason`` naming the smallest error reached when no
+    start converged.
+
+    >>> import dhsym
+    >>> r = dhsym.load("planar2r")
+    >>> sol = numeric_solutions(r, r.fk([0.4, 0.9]), starts=8)  # the whole pose: one
+    >>> sol.method, len(sol), sol.branches, np.round(sol.q, 9).tolist()
+    ('numeric', 1, ('numeric solution 1',), [[0.4, 0.9]])
+    """
+    n = len(robot.variables)
+    rows = [r for r in robot.table.rows if r.variable is not None]
+    revolute = np.array([r.joint is JointType.REVOLUTE for r in rows])
+    lo, hi = np.full(n, -np.pi), np.full(n, np.pi)
+    values_map = robot.table.value_map
+    for k, r in enumerate(rows):
+        if r.limits is not None:
+            lo[k], hi[k] = (float(x.xreplace(values_map)) for x in r.limits)
+        elif not revolute[k]:
+            lo[k], hi[k] = 0.0, 1.0
+    rng = np.random.default_rng(seed)
+    mid = np.where(np.isfinite(lo + hi), (lo + hi) / 2, 0.0)
+    first = np.clip(np.zeros(n), lo, hi) if np.isfinite(lo + hi).all() else mid
+    guesses = [first] + [rng.uniform(lo, hi) for _ in range(max(starts, 1) - 1)]
+    found: list[np.ndarray] = []
+    errors: list[float] = []
+    steps = 0
+    best = np.inf
+    for q0 in guesses:
+        one = numeric_ik(robot, T, q0, tol=tol, values=values, fixed=fixed)
+        steps += one.iterations or 0
+        best = min(best, float(one.residual[0]))
+        if not one.converged:
+            continue
+        q = one.q[0].copy()
+        q[revolute] = (q[revolute] + np.pi) % (2 * np.pi) - np.pi  # angles in [−π, π)
+        d = [q - other for other in found]
+        same = [np.abs(np.where(revolute, np.angle(np.exp(1j * x)), x)).max() < 1e-6 for x in d]
+        if not any(same):
+            found.append(q)
+            errors.append(float(one.residual[0]))
+    k = len(found)
+    # where the joints left free still move the tool in fewer than six directions (J of
+    # the moving joints short of rank), the solution is one of a continuum: said so
+    held = sorted(fixed or {})
+    moving = np.array([j not in held for j in range(1, n + 1)])
+    flat = np.zeros((k, 1), dtype=bool)
+    for i, q in enumerate(found):
+        J = np.asarray(robot.jacobian(q, values=values))[:, moving]
+        sv = np.linalg.svd(J, compute_uv=False)
+        flat[i, 0] = int(moving.sum()) > sv.size or sv[-1] < 1e-9 * max(sv[0], 1.0)
+    names = tuple(
+        f"numeric solution {i}" + (", one of a continuum (self-motion)" if flat[i - 1, 0] else "")
+        for i in range(1, k + 1)
+    )
+    reason = None
+    if not k:
+        reason = (
+            f"{DESCRIPTION}: no start of {len(guesses)} converged (smallest error {best:.3g}; "
+            "the pose may be out of reach)"
+        )
+    return IKSolution(
+        np.array(found).reshape(k, n),
+        np.ones(k, dtype=bool),
+        np.array(errors),
+        flat,
+        (SELF_MOTION,),
+        np.zeros((k, 0), dtype=int),
+        METHOD,
+        reason,
+        steps,
+        names=names,
+    )

@@ -75,6 +75,10 @@ class IKSolution:
     names: tuple[str, ...] | None = field(default=None, repr=False)
     #: the solver's way of naming rows by their values and signs (computed on first use)
     namer: BranchNamer | None = field(default=None, repr=False)
+    #: what else the solver knows of one pose's solutions: at a singular pose, the
+    #: combination of joints that is all that is determined ("θ4 + θ6 = 0.7 is all that
+    #: is determined; one solution given with θ4 = 0"), None otherwise
+    note: str | None = None
 
     @property
     def batch(self) -> bool:
@@ -165,6 +169,7 @@ class IKSolution:
             self.iterations,
             known,
             later,
+            note=self.note,
         )
 
     def __len__(self) -> int:

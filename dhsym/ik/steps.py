@@ -44,6 +44,7 @@ if TYPE_CHECKING:
 __all__ = [
     "BRANCH_NAMES",
     "REAL",
+    "ROOT_WORDS",
     "Branch",
     "Builder",
     "Equation",
@@ -52,6 +53,7 @@ __all__ = [
     "capital",
     "pose_symbols",
     "rot_x",
+    "root_words",
     "rot_z",
     "solve_equations",
     "solve_joint_from_entry",
@@ -63,29 +65,57 @@ __all__ = [
 Matrix: TypeAlias = sp.ImmutableMatrix
 
 #: The one list of branch names, by the role of the branch: (first, second). For
-#: ``"arm"`` and ``"wrist"`` the first is the sign +1; for ``"elbow"`` the first is the
-#: elbow above the shoulder-to-wrist line (found from the geometry, not from the sign).
+#: ``"arm"``, ``"wrist"`` and ``"shoulder"`` the first is the sign +1; for ``"elbow"`` the
+#: first is the elbow above the shoulder-to-wrist line (found from the geometry, not from
+#: the sign). ``"shoulder"`` is the flip of three axes that meet at the base (the chain read
+#: backwards: its wrist is the arm's shoulder).
 BRANCH_NAMES: Mapping[str, tuple[str, str]] = MappingProxyType(
     {
         "arm": ("right arm", "left arm"),
         "elbow": ("elbow up", "elbow down"),
         "wrist": ("wrist not flipped", "wrist flipped"),
+        "shoulder": ("shoulder not flipped", "shoulder flipped"),
     }
 )
+
+#: A branch with no geometric name of its own (the sign of a ``±√`` that solves one
+#: joint's equation) is named by its root: the sign +1 is the first root, −1 the second.
+ROOT_WORDS = ("first root of the", "second root of the")
+
+
+def root_words(first: bool) -> tuple[str, str]:
+    """The words around the variable in the name of a branch without a geometric name:
+    ``("first root of the", "equation")`` (the derivations typeset the variable between).
+
+    >>> root_words(False)
+    ('second root of the', 'equation')
+    """
+    return ROOT_WORDS[0 if first else 1], "equation"
 
 
 def branch_word(role: str, first: bool, variable: object = "") -> str:
     """The name of one branch: derivations, IK results, feedback and notebooks all use it.
 
-    ``first`` is the sign +1 for the arm and the wrist, the elbow up for the elbow; a branch
-    of another role (the sign of a square root) is named by that sign and its variable.
+    ``first`` is the sign +1 for the arm, the wrist and the shoulder, the elbow up for the
+    elbow; a branch of another role (the sign of a square root) is named by its root and
+    the equation of its variable (the sign itself stays in ``IKSolution.signs``).
 
-    >>> branch_word("elbow", True), branch_word("arm", False), branch_word("reach", True, "d3")
-    ('elbow up', 'left arm', '+ root for d3')
+    >>> branch_word("elbow", True), branch_word("arm", False)
+    ('elbow up', 'left arm')
+    >>> branch_word("reach", True, "d3"), branch_word("sign", False, "theta4")
+    ('first root of the d3 equation', 'second root of the θ4 equation')
     """
     if role in BRANCH_NAMES:
         return BRANCH_NAMES[role][0 if first else 1]
-    return f"{'+' if first else '-'} root for {variable}".rstrip()
+    before, after = root_words(first)
+    return " ".join(w for w in (before, _plain_name(str(variable)), after) if w)
+
+
+def _plain_name(name: str) -> str:
+    """A variable's name as a student reads it: ``theta4`` as ``θ4``, ``d3`` as it is."""
+    letters = name.rstrip("0123456789")
+    greek = sp.pretty(sp.Symbol(letters), use_unicode=True) if letters else ""
+    return (greek if len(greek) == 1 else letters) + name[len(letters) :]
 
 
 def pose_symbols() -> Matrix:

@@ -305,6 +305,7 @@ class KinematicChain:
         >>> r.fk_function() is r.fk_function(), r.fk_function(0, 1)([0.5, 0.0])[0, 3]
         (True, np.float64(0.8775825618903728))
         """
+        from .constants import measured
         from .numeric import compile_word, stored_pose_function, values_key
 
         key = PoseKey(i, j, values_key(values))
@@ -315,7 +316,11 @@ class KinematicChain:
                 j = self.n + 1 if self.table.tool else self.n
             i, j = (i or 0), (self.n if j is None else j)
             vals = self.table.with_values(values or {}).value_map
-            if self.transform_size(i, j) <= MAX_CLOSED_FORM:
+            word = chain_word(self.table, i, j)
+            # measured constants (a skewed URDF axis read as huge exact rationals) would
+            # make the closed form's radicals huge: their numbers start from floats
+            heavy = any(measured(sp.sympify(e.value).xreplace(vals)) for e in word)
+            if not heavy and self.transform_size(i, j) <= MAX_CLOSED_FORM:
                 # its programs are kept in the disk cache (dhsym.cache) by table, frames, values
                 f = stored_pose_function(
                     self._fk_entries(i, j, vals),
@@ -323,8 +328,9 @@ class KinematicChain:
                     self.variables,
                     vals,
                 )
-            else:  # too long for a closed form: the elementary transforms, multiplied as numbers
-                f = compile_word(chain_word(self.table, i, j), self.variables, vals)
+            else:  # too long or too heavy for a closed form: the elementary transforms,
+                # multiplied as numbers (each constant a float, kinematics.constants.to_float)
+                f = compile_word(word, self.variables, vals)
             self._fk_functions[key] = f
         return f
 

@@ -27,7 +27,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 
-__all__ = ["as_basic", "float_constants", "to_float"]
+__all__ = ["as_basic", "float_constants", "measured", "to_float"]
 
 _DIGITS = 30  # working precision of constant evaluation (decimal digits)
 _EXACT_INT = 2**53
@@ -90,6 +90,18 @@ def _pi_multiple(e: sp.Basic) -> Fraction | None:
         r = e.args[0]
         return Fraction(int(r.p), int(r.q))
     return None
+
+
+def measured(expr: object) -> bool:
+    """Whether ``expr`` holds a rational beyond a float's exact integers (numerator or
+    denominator above 2⁵³): a measured number read as exact (a skewed URDF axis), whose
+    closed forms grow huge radicals; numbers for it start from floats.
+
+    >>> measured(sp.Rational(89159, 1000000)), measured(sp.sqrt(sp.Rational(10**40 + 1, 3)))
+    (False, True)
+    """
+    e = as_basic(expr)
+    return any(abs(r.p) > _EXACT_INT or r.q > _EXACT_INT for r in e.atoms(sp.Rational))
 
 
 def _rational_float(r: sp.Rational) -> float:

@@ -78,7 +78,10 @@ def draw(
             T, length = sk.poses[k], L * (1.0 - 0.18 * rank)
             if frames:
                 pts.append(_triad(ax, T, length, sk.labels[k], dim))
-        if labels:
+    if labels:
+        # origins closer than half a triad share one label (the UR5's {4} {5} {6} {tool}
+        # sit within 0.1 m): no two labels are drawn within half a triad of each other
+        for members in _label_groups(np.array([P(T[:3, 3]) for T in sk.poses]), 0.5 * L):
             T = sk.poses[members[0]]
             text = " ".join("{" + sk.labels[k] + "}" for k in members)
             ax.text(
@@ -90,9 +93,36 @@ def draw(
                 va="top",
                 zorder=8,
                 bbox={"fc": "white", "ec": "0.6", "alpha": 0.85, "pad": 1.5},
+                gid="frame label",
             )
     ax.legend(handles=_legend(sk, dim), loc="upper left", fontsize=8, framealpha=0.8)
     return np.vstack([p.reshape(-1, 3) for p in pts])
+
+
+def _label_groups(points: np.ndarray, gap: float) -> list[list[int]]:
+    """The indices of ``points`` in groups: two points closer than ``gap`` are in one group
+    (and so, in a chain of such steps, are all between); groups in order of their first
+    member.
+
+    >>> _label_groups(np.array([[0, 0], [0.05, 0], [1, 0], [1.08, 0], [3, 0]]), 0.1)
+    [[0, 1], [2, 3], [4]]
+    """
+    parent = list(range(len(points)))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i in range(len(points)):
+        for j in range(i):
+            if np.linalg.norm(points[i] - points[j]) < gap:
+                parent[max(root(i), root(j))] = min(root(i), root(j))
+    groups: dict[int, list[int]] = {}
+    for i in range(len(points)):
+        groups.setdefault(root(i), []).append(i)
+    return sorted(groups.values())
 
 
 def _legend(sk: Skeleton, dim: int) -> list[Artist]:

@@ -90,7 +90,7 @@ def test_handout_sections(tmp_path, capsys):
     assert r"\subsection{Forward kinematics}" not in tex
     assert "The standard DH table of this robot" in tex  # the table opens each robot
     assert (
-        "right arm, + root for $d_{3}$, wrist not flipped" in tex
+        "right arm, first root of the $d_{3}$ equation, wrist not flipped" in tex
     )  # the check of the Stanford arm
     assert (
         main(["handout", "planar2r", "-o", str(out), "--sections", "fk,ik", "--mode", "problems"])

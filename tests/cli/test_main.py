@@ -249,7 +249,8 @@ def test_ik_json_is_alone_on_stdout_and_takes_a_rounded_pose(capsys):
     assert main(["ik", "ur5", "--pose", pose, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)  # the whole of stdout is the JSON
     assert len(out["q"]) == 8 and max(out["residual"]) <= 1e-6
-    assert main(["ik", "ur5", "--pose", pose, "--json", "--tol", "1e-9"]) == 0
+    # none within 1e-9 of a pose rounded to 6 decimals: exit status 1 (issue 32, item 3)
+    assert main(["ik", "ur5", "--pose", pose, "--json", "--tol", "1e-9"]) == 1
     out = json.loads(capsys.readouterr().out)
     assert out["q"] == [] and "rigid pose" in out["reason"]
     q = "0.3,-0.5,0.4,0.2,0.7,-1.1"

@@ -128,3 +128,46 @@ def test_converted_files_are_read_by_every_command(file: str, to: str, tmp_path:
     written = dhsym.Robot(read_table(out)) if to != "urdf" else chain_from_urdf(out, tip="tool")
     qs = np.full(table.n, 0.1)
     assert np.abs(written.fk(qs) - chain_from_urdf(source, tip=_TIPS[file]).fk(qs)).max() < 1e-9
+
+
+def test_convert_like_a_reference_matches_it_or_lists_the_rows_that_cannot(tmp_path, capsys):
+    # issue 32, item 5: dhsym convert x.urdf --like ur5
+    out = tmp_path / "ur5.yaml"
+    argv = ["convert", UR5, "--tip", "tool0", "--to", "standard", "-o", str(out)]
+    assert main([*argv, "--like", "ur5"]) == 0
+    err = capsys.readouterr().err
+    assert "no equivalent choice" not in err and "fk agrees with the URDF chain" in err
+    table = read_table(out)
+    ur5 = dhsym.load("ur5").table
+    for mine, theirs in zip(table.rows, ur5.rows, strict=True):
+        assert float(mine.a) == pytest.approx(float(theirs.a.xreplace(ur5.value_map)))
+        assert mine.alpha == theirs.alpha and mine.theta == theirs.theta
+    assert main([*argv, "--like", "puma560"]) == 0
+    err = capsys.readouterr().err
+    assert "no equivalent choice of frames matches puma560 in every row:" in err
+    assert "row 2: a = -0.425 here, 0.4318 in the reference: a length no frame choice" in err
+    # a table, not only a URDF: the Panda's own modified table stays as it is
+    assert main(["convert", "panda", "--to", "modified", "--like", "panda", "-o", "-"]) == 0
+    assert "no equivalent choice" not in capsys.readouterr().err
+    assert main(["convert", "panda", "--to", "urdf", "--like", "ur5"]) == 2
+    assert main([*argv, "--like", "planar2r"]) == 2  # another number of rows: refused
+    assert "no frame choice matches them" in capsys.readouterr().err
+
+
+def test_show_prints_the_base_and_tool_transforms_with_the_table(capsys):
+    assert main(["show", UR5, "--tip", "tool0"]) == 0
+    out = capsys.readouterr().out
+    assert "| 2 | $\\theta_{2}$ | $0$ | $-0.425$ | $0$ | R |" in out
+    assert "base transform: $R_z(180^{\\circ})$" in out and "tool transform" not in out
+    assert main(["show", "kuka_lwr4"]) == 0
+    assert "tool transform: $T_z(dt)\\,R_z(-45^{\\circ})$" in capsys.readouterr().out
+
+
+def test_a_huge_tip_is_not_echoed_in_full(capsys):
+    # issue 34's leftover: a 100 kB --tip was echoed whole in the error
+    tip = "x" * 100_000
+    assert main(["show", UR5, "--tip", tip]) == 2
+    err = capsys.readouterr().err
+    assert "no link named 'xxxx" in err and "(100000 characters)" in err and len(err) < 2_000
+    assert main(["show", "ur5", "--tip", "tool0"]) == 2
+    assert "'ur5' is not one" in capsys.readouterr().err

@@ -81,10 +81,10 @@ def test_the_check_lists_every_solution_and_each_reproduces_the_pose():
     assert "right arm, elbow down, wrist not flipped" in d.to_text()
 
 
-def test_a_prismatic_branch_is_named_by_its_sign():
+def test_a_prismatic_branch_is_named_by_its_root():
     d = derive_inverse("stanford", check=True)
     names = [_say(n) for n, _ in d.check.solutions]
-    assert "right arm, + root for d3, wrist not flipped" in names
+    assert "right arm, first root of the d3 equation, wrist not flipped" in names
     assert all("√" not in n for n in names)
     assert d.to_latex().isascii()
 

@@ -234,3 +234,25 @@ def test_sixty_twisted_joints_fk_without_a_closed_form():
     assert np.allclose(robot.fk(q), expected, atol=1e-12)
     assert np.allclose(robot.fk(np.stack([q, q]))[1], expected, atol=1e-12)
     assert np.allclose(robot.fk_function(n, 0)(q) @ expected, np.eye(4), atol=1e-12)
+
+
+def test_measured_constants_take_the_float_path_with_the_same_numbers() -> None:
+    # issue 32 (e): a skewed measured axis read as huge exact rationals; its closed form
+    # compiled huge radicals on the first fk, the elementary transforms as floats do not
+    from dhsym.kinematics.constants import measured
+    from dhsym.kinematics.transforms import chain_word, plain_product
+
+    big = sp.Rational(123456789123456789123, 10**21)
+    twist = sp.atan(sp.Rational(987654321987654321987, 10**21) / big)
+    rows = [
+        DHRow.revolute("theta1", d=big, alpha=twist),
+        DHRow.revolute(sp.Symbol("theta2", real=True) + twist, a=sp.sqrt(big)),
+        DHRow.revolute("theta3", a=sp.Rational(3, 10)),
+    ]
+    chain = KinematicChain(DHTable.from_rows(rows))
+    assert measured(rows[0].d) and not measured(rows[2].a)
+    q = [0.3, -0.7, 1.1]
+    exact = plain_product(chain_word(chain.table, 0, 3))
+    at = dict(zip(chain.variables, map(sp.Float, q)))
+    want = np.array(exact.xreplace(at).evalf(30), dtype=float)
+    assert np.abs(chain.fk(q) - want).max() < 1e-12

@@ -275,3 +275,19 @@ def test_importing_dhsym_does_not_import_matplotlib():
     )
     env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
     subprocess.run([sys.executable, "-c", code], check=True, env=env, cwd=ROOT)
+
+
+@pytest.mark.parametrize("name", ["ur5", "puma560", "panda"])
+def test_frame_labels_never_sit_on_one_another(name):
+    # issue 32, item 5: the UR5's {4}, {5}, {6}, {tool} were drawn on top of each other
+    robot = dhsym.load(name)
+    q = np.zeros(len(robot.variables))
+    fig = plot_robot(robot, q)
+    ax = fig.axes[0]
+    texts = [t for t in ax.texts if t.get_gid() == "frame label"]
+    where = np.array([t.get_position_3d() for t in texts])
+    sk = skeleton(robot, q)
+    gaps = np.linalg.norm(where[:, None] - where[None], axis=-1) + np.eye(len(where)) * 1e9
+    assert gaps.min() >= 0.5 * sk.scale  # no two labels within half a triad
+    shown = " ".join(t.get_text() for t in texts)
+    assert sorted(shown.split()) == sorted("{" + lab + "}" for lab in sk.labels)  # each once

@@ -39,7 +39,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
-from dhsym.errors import DHError
+from dhsym.errors import DHError, echoed
 from dhsym.model.parsing import ParseLimits
 
 __all__ = [
@@ -75,20 +75,6 @@ class AnswerTimeout(BaseException):  # noqa: N818 - an interruption, like Keyboa
     swallow it, so the grader always learns that the answer timed out (a timeout is
     never mistaken for a verdict, and never cached).
     """
-
-
-def echoed(value: object, limit: int = 60) -> str:
-    """``repr(value)`` for an error message, cut to about ``limit`` characters: user input
-    is echoed so the user can find it, never in full (a 100 kB option is not echoed as such).
-
-    >>> echoed("digits=4"), echoed("x" * 1000, 10)
-    ("'digits=4'", "'xxxxxxxx… (1000 characters)")
-    """
-    text = repr(value)
-    if len(text) <= limit:
-        return text
-    size = len(value) if isinstance(value, (str, bytes)) else len(text)
-    return f"{text[: limit - 1]}… ({size} characters)"
 
 
 def check_seconds(value: object, what: str, *, file: str | None = None) -> float:

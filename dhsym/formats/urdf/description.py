@@ -24,7 +24,7 @@ from typing import TypeAlias
 
 import sympy as sp
 
-from dhsym.errors import FormatError
+from dhsym.errors import FormatError, echoed
 from dhsym.kinematics.numeric import to_float
 from dhsym.kinematics.transforms import plain_product
 from dhsym.model.angles import Snapped
@@ -209,7 +209,7 @@ class UrdfModel:
         for link, what in ((base, "base"), (tip, "tip")):
             if link not in self.link_names:
                 raise FormatError(
-                    f"no link named {link!r} (links: {_listing(self.link_names)})",
+                    f"no link named {echoed(link)} (links: {_listing(self.link_names)})",
                     file=self.file,
                     field=what,
                 )
@@ -220,8 +220,8 @@ class UrdfModel:
             joint = parent.get(link)
             if joint is None or len(out) > len(parent):
                 raise FormatError(
-                    f"link {base!r} is not above link {tip!r}: the path from the root "
-                    f"{self.root!r} to {tip!r} does not pass through it",
+                    f"link {echoed(base)} is not above link {echoed(tip)}: the path from the "
+                    f"root {echoed(self.root)} to {echoed(tip)} does not pass through it",
                     file=self.file,
                     field="base",
                 )

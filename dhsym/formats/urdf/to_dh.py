@@ -38,8 +38,9 @@ from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 
-from dhsym.errors import DHError, FormatError
+from dhsym.errors import DHError, FormatError, echoed
 from dhsym.geometry.axes import JointAxis, Tool, exact_number
+from dhsym.geometry.frame_choices import FrameChoice, match_frames, textbook_frames
 from dhsym.geometry.frames import FrameAssignment, assign_frames
 from dhsym.kinematics.numeric import to_float
 from dhsym.kinematics.transforms import chain_word, plain_product, rigid_inverse
@@ -78,6 +79,9 @@ class UrdfImport:
     assignment: FrameAssignment
     table: DHTable
     inertials: tuple[tuple[str, Inertial], ...]
+    #: the senses of the x axes chosen after the frame assignment (a textbook's, or a
+    #: reference table's), with the rows a reference could not match
+    choice: FrameChoice | None = None
 
     @property
     def moving(self) -> tuple[UrdfJoint, ...]:
@@ -86,8 +90,28 @@ class UrdfImport:
 
     @property
     def steps(self) -> list[str]:
-        """The frame-assignment sentences, one per choice."""
-        return self.assignment.step_texts
+        """The frame-assignment sentences, one per choice, then the senses of x chosen."""
+        extra = list(self.choice.sentences + self.choice.mismatches) if self.choice else []
+        return self.assignment.step_texts + extra
+
+    def verify(self, samples: int = 20, *, seed: int = 0) -> float:
+        """The largest difference between ``fk`` of the table and the URDF chain at the
+        home pose and ``samples`` random configurations (the frame assignment checked
+        against the axes, and the table chosen against the assigned one)."""
+        import numpy as np
+
+        from dhsym.kinematics.chain import KinematicChain
+
+        err = self.assignment.verify(samples, seed=seed)
+        if self.choice is None or self.choice.table is self.assignment.table:
+            return err
+        n = len(self.table.variables)
+        q = np.random.default_rng(seed).uniform(-np.pi, np.pi, (samples + 1, n))
+        q[0] = 0.0
+        mine = KinematicChain(self.table).fk(q)
+        # the assigned table, with the limits and inertias of this one (fk ignores them)
+        assigned = KinematicChain(replace(self.assignment.table, name=self.table.name)).fk(q)
+        return max(err, float(np.abs(mine - assigned).max()))
 
     def chain(self, **kw: Any) -> KinematicChain:  # its keywords: compact, style
         """A :class:`~dhsym.kinematics.chain.KinematicChain` of the table (``compact``,
@@ -105,9 +129,18 @@ def import_urdf(
     *,
     snap_angles: AngleSnap | bool | float | None = True,
     physical: bool = True,
+    frames: str | DHTable = "textbook",
 ) -> UrdfImport:
     """Read a URDF and derive the DH table of the chain from ``base`` (default: the root)
     to ``tip`` (default: the one leaf link), with the frame-assignment sentences.
+
+    ``frames`` chooses among the equivalent senses of the x axes
+    (:mod:`dhsym.geometry.frame_choices`): ``"textbook"`` (default) the table a textbook
+    prints (no constant offsets of θ, the fewest negative twists, then lengths; for the
+    UR5 Universal Robots' own table), ``"assigned"`` the frame-assignment algorithm's as
+    it chose them, or a reference :class:`~dhsym.model.table.DHTable` to match (the rows
+    no choice can match are named in :attr:`UrdfImport.steps`). The joint values and
+    ``fk`` are the same for every choice.
 
     The inertials are checked as the table reader checks inertias; ``physical=False``
     accepts inertias that break the triangle inequality (published data that does), and
@@ -139,7 +172,8 @@ def import_urdf(
                 for leaf, c in zip(leaves, counts, strict=True)
             )
             raise FormatError(
-                f"the tree branches below link {start!r}: give the tip link (tip=, --tip), one of "
+                f"the tree branches below link {echoed(start)}: give the tip link (tip=, --tip), "
+                "one of "
                 f"{choices}",
                 file=model.file,
                 field="tip",
@@ -148,7 +182,8 @@ def import_urdf(
     joints = model.chain(start, tip)
     if len(joints) > MAX_CHAIN:
         raise FormatError(
-            f"the chain from {start!r} to {tip!r} has {len(joints)} joints: at most {MAX_CHAIN} "
+            f"the chain from {echoed(start)} to {echoed(tip)} has {len(joints)} joints: at most "
+            f"{MAX_CHAIN} "
             "are read (choose base= and tip= closer together)",
             file=model.file,
             field="tip",
@@ -172,7 +207,7 @@ def import_urdf(
             )
     if not moving:
         raise FormatError(
-            f"no revolute, continuous or prismatic joint between {start!r} and {tip!r}",
+            f"no revolute, continuous or prismatic joint between {echoed(start)} and {echoed(tip)}",
             file=model.file,
             field="tip",
         )
@@ -213,7 +248,21 @@ def import_urdf(
         for name, inertial in model.links
         if inertial is not None and (name == start or any(j.child == name for j in joints))
     )
-    return UrdfImport(model, start, tip, joints, fa, table, inertials)
+    choice = _choose_frames(table, frames)
+    if choice is not None:
+        table = choice.table
+    return UrdfImport(model, start, tip, joints, fa, table, inertials, choice)
+
+
+def _choose_frames(table: DHTable, frames: str | DHTable) -> FrameChoice | None:
+    """The senses of x of ``frames`` (``"textbook"``, ``"assigned"`` or a reference table)."""
+    if isinstance(frames, DHTable):
+        return match_frames(table, frames)
+    if frames == "textbook":
+        return textbook_frames(table)
+    if frames == "assigned":
+        return None
+    raise DHError(f"frames: 'textbook', 'assigned' or a reference table, not {frames!r}")
 
 
 def chain_from_urdf(

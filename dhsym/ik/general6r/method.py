@@ -107,6 +107,11 @@ def derive_general(robot: KinematicChain) -> Elimination:
     rows = table.joint_rows
     if len(rows) != 6:
         raise StructureError(f"general 6R: this family has 6 joints, not {len(rows)}")
+    if table.n != 6:  # a constant row between joints (a joint of a longer arm given)
+        raise StructureError(
+            f"general 6R: the elimination takes six rows, one per joint; this table has "
+            f"{table.n} (a fixed row between joints)"
+        )
     for k, r in enumerate(rows, start=1):
         if table.rows[r - 1].joint is not JointType.REVOLUTE:
             raise StructureError(

@@ -15,6 +15,8 @@ import sympy as sp
 import dhsym
 from dhsym.errors import FormatError, GeometryError
 from dhsym.formats.urdf.to_dh import chain_from_urdf, import_urdf
+from dhsym.kinematics.chain import KinematicChain
+from dhsym.model.table import Elementary
 
 from .support import DATA, ROBOTS, joint, long_chain, urdf, urdf_pose
 
@@ -42,8 +44,14 @@ def test_ur5_is_the_ur_dh_table_with_exact_decimals() -> None:
         sp.Rational("0.09465"),
         sp.Rational("0.0823"),
     ]
-    assert [abs(r.a) for r in rows] == [0, sp.Rational("0.425"), sp.Rational("0.39225"), 0, 0, 0]
-    assert rows[0].alpha == -sp.pi / 2 and rows[0].label == "shoulder_pan_joint"
+    # issue 32, item 5: Universal Robots' published table (a2, a3 < 0, α1 = α4 = 90°,
+    # α5 = −90°, no offsets of θ), frame 0 turned by 180° in the base
+    assert [r.a for r in rows] == [0, -sp.Rational("0.425"), -sp.Rational("0.39225"), 0, 0, 0]
+    half = sp.pi / 2
+    assert [r.alpha for r in rows] == [half, 0, 0, half, -half, 0]
+    assert [r.theta for r in rows] == list(imp.table.variables)
+    assert imp.table.base == (Elementary("R", "z", sp.pi),) and imp.table.tool == ()
+    assert rows[0].label == "shoulder_pan_joint"
     assert rows[0].limits == (sp.Rational("-6.28318530718"), sp.Rational("6.28318530718"))
     assert "1.57079632679 as ±π/2" in imp.table.warnings[0]
     assert any("parallel" in s for s in imp.steps)
@@ -297,3 +305,53 @@ def test_names_cannot_write_keys_into_the_table_file() -> None:
     text = urdf(joint("j", "a", evil, "continuous", '<axis xyz="0 0 1"/>'), ["a", evil])
     written = table_yaml(import_urdf(text))
     assert read_table_text(written).physical is True
+
+
+def test_the_ur5_urdf_gives_universal_robots_table_and_the_same_fk() -> None:
+    from dhsym.model.library import builtin_table
+
+    imp = import_urdf(DATA / "ur5_robot.urdf", tip="tool0")
+    ur5 = builtin_table("ur5")
+    values = ur5.value_map
+    for mine, theirs in zip(imp.table.rows, ur5.rows, strict=True):
+        for name, value in mine.params().items():
+            assert sp.simplify(value - theirs.params()[name].xreplace(values)) == 0, name
+    assert imp.verify(10) < 1e-9
+    robot = KinematicChain(imp.table)
+    q = np.random.default_rng(5).uniform(-math.pi, math.pi, (6, 6))
+    for row in q:
+        assert np.abs(robot.fk(row) - urdf_pose(DATA / "ur5_robot.urdf", "tool0", row)).max() < 1e-9
+    assert any("turned by 180°" in s for s in imp.steps)
+    # as the frame assignment chose them: the old table, a2 = +0.425, θ6 + 180°
+    plain = import_urdf(DATA / "ur5_robot.urdf", tip="tool0", frames="assigned")
+    assert plain.table.rows[1].a == sp.Rational("0.425") and plain.choice is None
+    assert plain.table.rows[5].offset == sp.pi
+
+
+def test_a_reference_table_is_matched_or_the_rows_that_cannot_are_named() -> None:
+    from dhsym.model.library import builtin_table
+
+    imp = import_urdf(DATA / "ur5_robot.urdf", tip="tool0", frames=builtin_table("ur5"))
+    assert imp.choice is not None and imp.choice.mismatches == ()
+    other = import_urdf(DATA / "ur5_robot.urdf", tip="tool0", frames=builtin_table("puma560"))
+    assert other.choice is not None
+    why = other.choice.mismatches
+    assert "row 2: a = -0.425 here, 0.4318 in the reference: a length no frame choice" in why[1]
+    assert any(w.startswith("row 3: α = 0° here, -90° in the reference") for w in why)
+    assert other.verify(4) < 1e-9  # whatever is chosen, the same arm
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("file", "tip", "n"), ROBOTS)
+def test_every_example_keeps_its_fk_and_dynamics_under_the_textbook_choice(file, tip, n) -> None:
+    from dhsym.robot import Robot
+
+    imp = import_urdf(DATA / file, tip=tip)
+    plain = import_urdf(DATA / file, tip=tip, frames="assigned")
+    assert imp.verify(6) < 1e-9 and len(imp.table.variables) == n
+    # the inertias turn with their frames: the same torques
+    if all(r.inertia is not None for r in imp.table.rows):
+        q = np.random.default_rng(1).uniform(-1, 1, n)
+        qd = np.full_like(q, 0.3)
+        a, b = Robot(imp.table), Robot(plain.table)
+        assert np.abs(a.rne(q, qd, qd) - b.rne(q, qd, qd)).max() < 1e-9
