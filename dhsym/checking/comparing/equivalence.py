@@ -134,13 +134,18 @@ class Sample:
         return Sample(self.symbols + tuple(new), np.vstack([self.table, extra]), self.origin)
 
 
-def values(expr: sp.Basic, sample: Sample) -> np.ndarray:
+def values(
+    expr: sp.Basic, sample: Sample, memo: dict[object, np.ndarray] | None = None
+) -> np.ndarray:
     """Values at every point: shape ``(size,)`` for an expression, ``(size, r, c)`` for a matrix.
 
-    Unknown node types give ``nan`` (never equal to anything).
+    Unknown node types give ``nan`` (never equal to anything). ``memo`` (subtree → values
+    at this sample) may be shared by calls on the same sample: many edits of one entry
+    share most of their subtrees, which are then computed once.
     """
     env = sample.env
-    memo: dict[sp.Basic, np.ndarray] = {}  # subexpressions shared by the entries, computed once
+    if memo is None:
+        memo = {}  # subexpressions shared by the entries, computed once
     if isinstance(expr, sp.MatrixBase):
         r, c = expr.shape
         try:  # every entry in one walk (the usual case) ...
