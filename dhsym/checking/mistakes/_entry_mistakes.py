@@ -281,9 +281,8 @@ class SinCosSwapped(EntryMistake):
         factor = cast(sp.Basic, part)  # swap_candidates: None or the swapped sin/cos factor
         partner = (sp.sin if isinstance(factor, sp.cos) else sp.cos)(factor.args[0])
         return (
-            f"In entry {where} sin and cos of the same angle are swapped "
-            f"({case.notation.text(part)} and {case.notation.text(partner)}): "
-            f"it is {case.notation.text(e)}."
+            f"In entry {where} sin and cos of the same angle are swapped: "
+            f"{case.notation.text(partner)} is written where {case.notation.text(part)} belongs."
         )
 
 
