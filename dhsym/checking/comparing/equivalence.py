@@ -58,7 +58,7 @@ from ..reading.limits import (
     expansion_terms,
     time_left,
 )
-from .sampled_frames import EvaluationError, evaluate, evaluate_many
+from .sampled_frames import EvaluationError, evaluate_many, evaluate_or_nan
 from .tolerances import TOLERANCES
 
 __all__ = [
@@ -156,18 +156,9 @@ def values(
         out = np.empty((sample.size, r, c))
         for i in range(r):
             for j in range(c):
-                out[:, i, j] = _values(expr[i, j], env, sample.size, memo)
+                out[:, i, j] = evaluate_or_nan(expr[i, j], env, sample.size, memo)
         return out
-    return _values(expr, env, sample.size, memo)
-
-
-def _values(
-    expr: sp.Basic, env: Mapping[sp.Basic, np.ndarray], size: int, memo: dict[object, np.ndarray]
-) -> np.ndarray:
-    try:
-        return evaluate(expr, env, size, memo)
-    except (EvaluationError, OverflowError, TypeError, ValueError):
-        return np.full(size, np.nan)
+    return evaluate_or_nan(expr, env, sample.size, memo)
 
 
 def close(a: np.ndarray, b: np.ndarray, rtol: float = EXACT_RTOL, axis: object = None) -> object:

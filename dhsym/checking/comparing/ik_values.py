@@ -32,7 +32,7 @@ import sympy as sp
 from dhsym.ik.steps import pose_symbols
 from dhsym.model.table import JointType
 
-from .sampled_frames import EvaluationError, evaluate, frames
+from .sampled_frames import evaluate_or_nan, frames
 from .tolerances import TOLERANCES
 
 if TYPE_CHECKING:
@@ -120,27 +120,22 @@ def branch_signs(ik: ClosedForm) -> np.ndarray:
     return np.array(list(itertools.product([1, -1], repeat=B)), dtype=float).reshape(2**B, B)
 
 
-def _evaluate(
-    e: sp.Expr, env: Mapping[sp.Basic, np.ndarray], size: int, memo: dict[object, np.ndarray]
-) -> np.ndarray:
-    try:
-        return evaluate(e, env, size, memo)
-    except (EvaluationError, OverflowError, TypeError, ValueError):
-        return np.full(size, np.nan)
-
-
 def key_values(
     ik: ClosedForm,
     env: Mapping[sp.Symbol, np.ndarray],
     size: int,
     rewrite: Rewrite | None = None,
+    choices: tuple[int, ...] | None = None,
 ) -> np.ndarray:
     """The joint values of every branch, ``(K, size, n)`` (NaN where a step is not real).
 
-    ``rewrite`` changes each step's right-hand side first (a mistake, recomputed).
+    ``rewrite`` changes each step's right-hand side first (a mistake, recomputed);
+    ``choices`` keeps those branches only (rows of :func:`branch_signs`), in that order.
     """
     variables = list(ik.robot.variables)
     signs = branch_signs(ik)
+    if choices is not None:
+        signs = signs[list(choices)]
     rhs = [rewrite(st.rhs) if rewrite else st.rhs for st in ik.steps]
     out = np.full((len(signs), size, len(variables)), np.nan)
     for k, choice in enumerate(signs):
@@ -149,7 +144,7 @@ def key_values(
             local[b.symbol] = np.full(size, sign)
         memo: dict[object, np.ndarray] = {}
         for st, e in zip(ik.steps, rhs, strict=True):
-            local[st.lhs] = _evaluate(e, local, size, memo)
+            local[st.lhs] = evaluate_or_nan(e, local, size, memo)
         for j, v in enumerate(variables):
             out[k, :, j] = local[v]
     return out

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
+from itertools import islice
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -28,6 +29,7 @@ from dhsym.notation.printers import Notation
 
 from ..comparing.ik_values import PoseSample, Rewrite, joint_distance, key_values, same_joints
 from ..comparing.verdict import Diagnosis
+from ._entry_mistakes import dropped_candidates, sign_candidates
 from ._mistake_base import Mistake
 
 if TYPE_CHECKING:
@@ -35,9 +37,13 @@ if TYPE_CHECKING:
 
 __all__ = [
     "IK_MISTAKES",
+    "Atan2Swapped",
     "AtanForAtan2",
     "IKCase",
+    "IKDroppedTerm",
     "IKMistake",
+    "IKStepEdit",
+    "IKWrongSign",
     "LostBranch",
     "WrongRootSign",
     "atan_swaps",
@@ -254,4 +260,108 @@ class LostBranch(IKMistake):
         return Diagnosis(self.kind, self.title, detail.strip())
 
 
-IK_MISTAKES: tuple[IKMistake, ...] = (AtanForAtan2(), WrongRootSign(), LostBranch())
+#: The most rewrites of one kind tried in the steps (a count: the diagnosis is the same on
+#: every machine).
+_MAX_REWRITES = 80
+
+
+class IKStepEdit(IKMistake):
+    """One step of the derivation written with one slip (:meth:`rewrites`), recomputed
+    on the key branch nearest to each wrong row of the answer only."""
+
+    def rewrites(self, case: IKCase) -> Iterator[tuple[sp.Expr, sp.Expr, str]]:
+        """(a step's right-hand side, the same with the slip, what the student did)."""
+        return iter(())
+
+    def explain_ik(self, case: IKCase) -> Diagnosis | None:
+        edits = list(islice(self.rewrites(case), _MAX_REWRITES))
+        for a in case.wrong:
+            row = case.answers[a]
+            with np.errstate(invalid="ignore"):
+                agree = (joint_distance(row[None], case.key, case.revolute) <= case.tol).sum(
+                    axis=(1, 2)
+                )
+            k = int(np.argmax(agree))
+            for n, (old, new, detail) in enumerate(edits):
+                memo_key = (self.kind, case.sample.origin, k, n)
+                if memo_key not in case.cache:
+                    case.cache[memo_key] = key_values(
+                        case.ik,
+                        case.sample.env,
+                        case.sample.size,
+                        _replacing({old: new}),
+                        choices=(k,),
+                    )[0]
+                if same_joints(row, case.cache[memo_key], case.revolute, case.tol, nan=True):
+                    return Diagnosis(self.kind, self.title, detail)
+        return None
+
+
+def _shown(case: IKCase, e: sp.Expr) -> str:
+    """``e`` as the feedback shows it: in the key's notation, no branch sign σ."""
+    plain = {b.symbol: 1 for b in case.ik.branches}
+    return case.notation.text(e.xreplace(plain))
+
+
+class Atan2Swapped(IKStepEdit):
+    """``atan2(x, y)`` where ``atan2(y, x)`` belongs: the angle reflected about 45°."""
+
+    kind, title = "atan2_swapped", "atan2 arguments swapped"
+
+    def rewrites(self, case: IKCase) -> Iterator[tuple[sp.Expr, sp.Expr, str]]:
+        for st in case.ik.steps:
+            for node in sorted(st.rhs.atoms(sp.atan2), key=sp.default_sort_key):
+                y, x = node.args
+                yield (
+                    st.rhs,
+                    st.rhs.xreplace({node: sp.atan2(x, y)}),
+                    f"In {case.notation.text(st.lhs)} the arguments of atan2 are swapped: "
+                    f"atan2({_shown(case, y)}, {_shown(case, x)}) takes y (the sine side) "
+                    "first, then x.",
+                )
+
+
+class IKWrongSign(IKStepEdit):
+    """One term of a step with the wrong sign (at any depth), the entries' own candidates
+    (:func:`~dhsym.checking.mistakes._entry_mistakes.sign_candidates`)."""
+
+    kind, title = "wrong_sign", "wrong sign"
+
+    def rewrites(self, case: IKCase) -> Iterator[tuple[sp.Expr, sp.Expr, str]]:
+        for st in case.ik.steps:
+            for new, term in islice(sign_candidates(st.rhs), 1, None):  # not the whole step
+                if term is None or term.has(*(b.symbol for b in case.ik.branches)):
+                    continue  # a branch sign flipped is the other branch, not a slip
+                yield (
+                    st.rhs,
+                    new,
+                    f"In {case.notation.text(st.lhs)} the term {_shown(case, term)} has the "
+                    "wrong sign.",
+                )
+
+
+class IKDroppedTerm(IKStepEdit):
+    """One term of a step left out (an offset such as ``d1`` or ``a_x*d6``), the entries'
+    own candidates (:func:`~dhsym.checking.mistakes._entry_mistakes.dropped_candidates`)."""
+
+    kind, title = "dropped_term", "a term is missing"
+
+    def rewrites(self, case: IKCase) -> Iterator[tuple[sp.Expr, sp.Expr, str]]:
+        for st in case.ik.steps:
+            for new, term in dropped_candidates(st.rhs):
+                yield (
+                    st.rhs,
+                    new,
+                    f"In {case.notation.text(st.lhs)} the term {_shown(case, term)} is missing "
+                    "(an offset left out?).",
+                )
+
+
+IK_MISTAKES: tuple[IKMistake, ...] = (
+    AtanForAtan2(),
+    WrongRootSign(),
+    Atan2Swapped(),
+    IKWrongSign(),
+    IKDroppedTerm(),
+    LostBranch(),
+)
