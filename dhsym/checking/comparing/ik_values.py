@@ -42,6 +42,7 @@ if TYPE_CHECKING:
 __all__ = [
     "PoseSample",
     "branch_signs",
+    "branch_steps",
     "joint_distance",
     "key_values",
     "pose_sample",
@@ -148,6 +149,32 @@ def key_values(
         for j, v in enumerate(variables):
             out[k, :, j] = local[v]
     return out
+
+
+def branch_steps(
+    ik: ClosedForm,
+    env: Mapping[sp.Symbol, np.ndarray],
+    size: int,
+    k: int,
+    edit: tuple[int, sp.Expr] | None = None,
+    known: Mapping[sp.Symbol, np.ndarray] | None = None,
+) -> dict[sp.Symbol, np.ndarray]:
+    """The values of every step of branch ``k`` (a row of :func:`branch_signs`), by left-hand
+    side; with ``edit`` = (step index, new right-hand side) and the unedited values
+    ``known``, only that step and those after it are computed (a mistake in one step,
+    recomputed)."""
+    local = dict(env)
+    for b, sign in zip(ik.branches, branch_signs(ik)[k], strict=True):
+        local[b.symbol] = np.full(size, sign)
+    start = 0
+    if edit is not None and known is not None:
+        start = edit[0]
+        local.update({st.lhs: known[st.lhs] for st in ik.steps[:start]})
+    memo: dict[object, np.ndarray] = {}
+    for i, st in enumerate(ik.steps[start:], start):
+        e = edit[1] if edit is not None and i == edit[0] else st.rhs
+        local[st.lhs] = evaluate_or_nan(e, local, size, memo)
+    return {st.lhs: local[st.lhs] for st in ik.steps}
 
 
 def joint_distance(a: np.ndarray, b: np.ndarray, revolute: np.ndarray) -> np.ndarray:
