@@ -323,6 +323,9 @@ def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
         check_time()  # the answer's deadline, before each mistake's search
         found.append((mistake.kind, mistake.explain_ik(case)))
     diagnoses = tuple(d for kind, d in found if d is not None and kind != "lost_branch")
+    domain = _domain(m, key_d, answers, wrong, names)
+    if domain is not None:  # the branch itself where both have values: the reason comes first
+        diagnoses = (domain, *diagnoses)
     if wrong and not diagnoses:
         diagnoses = (
             Diagnosis(
@@ -458,6 +461,42 @@ def _where_real(
             if not extra[outside].all():
                 continue
         return int(k)
+    return None
+
+
+def _domain(
+    m: _Match, key: np.ndarray, answers: np.ndarray, wrong: list[int], names: tuple[str, ...]
+) -> Diagnosis | None:
+    """The reason a wrong row is wrong when it is a key branch wherever both have values,
+    but has values where that branch has none (that do not reach the pose), or none where
+    it exists."""
+    real = ~np.isnan(key).any(axis=2)
+    for a in wrong:
+        has = ~np.isnan(answers[a]).any(axis=1)
+        for k in np.argsort(-(m.hits[a] & real).sum(axis=1), kind="stable"):
+            both = real[k] & has
+            if real[k].sum() < MIN_REAL_POSES or not both.any() or not m.hits[a, k][both].all():
+                continue
+            missing = int((real[k] & ~has).sum())
+            extra = int((~real[k] & has).sum())
+            parts = []
+            if missing:
+                parts.append(
+                    f"has no value at {missing} of the {int(real[k].sum())} poses where the "
+                    "branch exists"
+                )
+            if extra:
+                parts.append(
+                    f"has a value at {extra} poses where the branch does not exist (its square "
+                    "root is of a negative number there), and that value does not reach the pose"
+                )
+            return Diagnosis(
+                "branch_domain",
+                "right only where both have a value",
+                f"The answer is the branch {names[k]} wherever both have a value, but it "
+                + " and ".join(parts)
+                + ": a formula for one branch is real exactly where that branch exists.",
+            )
     return None
 
 

@@ -17,6 +17,7 @@ from dhsym.checking import Key, check_answer
 from dhsym.checking.comparing.verdict import Verdict
 from dhsym.checking.judging.ik_check import MIN_REAL_POSES, _where_real
 from dhsym.checking.judging.key import PreparedKeys
+from dhsym.checking.reading.limits import AnswerLimits
 from dhsym.explain.documents import render_derivation
 
 ROBOTS = ("ur5", "puma560", "stanford")
@@ -170,14 +171,23 @@ def test_a_branch_that_never_exists_accepts_nothing():
     assert _where_real(np.zeros((1, 16), dtype=bool), real, row, lambda: np.zeros(16, bool)) is None
 
 
-def test_clipping_where_the_branch_does_not_exist_is_wrong():
-    """acos of a clipped cosine is real where the branch has no value: not a solution there."""
-    key = Key.load("planar2r", "ik")
-    r = check_answer(
-        key,
-        "c2 = (px^2 + py^2 - a1^2 - a2^2)/(2*a1*a2)\n"
-        "theta2 = acos(Min(1, Max(-1, c2)))\n"
-        "theta1 = atan2(py, px) - atan2(a2*S2, a1 + a2*C2)",
-        keys=KEYS,
-    )
-    assert r.verdict is not Verdict.CORRECT
+@pytest.mark.parametrize(
+    ("theta3", "words"),
+    [
+        # |1 - D3^2| under the root: real where the elbow has no solution
+        ("atan2(sqrt(sqrt(Q_3)), D_3)", "where the branch does not exist"),
+        # NaN wherever x_4 < 0, also where the branch exists
+        ("atan2(sqrt(1 - D_3**2), D_3) + E_3 - sqrt(x_4)", "has no value at"),
+    ],
+)
+def test_a_value_where_the_branch_has_none_or_none_where_it_has_one_is_wrong(theta3, words):
+    statements = printed_statements("ur5")
+    text = branch(statements, dict.fromkeys(sigmas(statements), 1))
+    right = "theta3 = atan2(sqrt(1 - D_3**2), D_3)"
+    assert right in text
+    helpers = "E_3 = sqrt(x_4)\nQ_3 = (1 - D_3**2)**2"
+    text = text.replace(right, f"{helpers}\ntheta3 = {theta3}")
+    r = check_answer(Key.load("ur5", "ik"), text, keys=KEYS, limits=AnswerLimits(seconds=60))
+    assert r.verdict is Verdict.INCORRECT, r.message
+    assert r.kinds[0] == "branch_domain", r.message
+    assert words in r.message
