@@ -167,11 +167,18 @@ def branch_steps(
     for b, sign in zip(ik.branches, branch_signs(ik)[k], strict=True):
         local[b.symbol] = np.full(size, sign)
     start = 0
+    changed: set[sp.Symbol] = set()
     if edit is not None and known is not None:
         start = edit[0]
         local.update({st.lhs: known[st.lhs] for st in ik.steps[:start]})
+        changed.add(ik.steps[start].lhs)
     memo: dict[object, np.ndarray] = {}
     for i, st in enumerate(ik.steps[start:], start):
+        if known is not None and i > start and not (st.rhs.free_symbols & changed):
+            local[st.lhs] = known[st.lhs]  # a step the edit does not reach
+            continue
+        if i > start:
+            changed.add(st.lhs)
         e = edit[1] if edit is not None and i == edit[0] else st.rhs
         local[st.lhs] = evaluate_or_nan(e, local, size, memo)
     return {st.lhs: local[st.lhs] for st in ik.steps}

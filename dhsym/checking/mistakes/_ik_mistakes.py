@@ -290,6 +290,8 @@ class IKStepEdit(IKMistake):
         variables = list(case.ik.robot.variables)
         for a in case.wrong:
             row = case.answers[a]
+            if np.isnan(row).any(axis=1).all():
+                continue  # no value anywhere: nothing a slip in one step could be told by
             with np.errstate(invalid="ignore"):
                 near = joint_distance(row[None], case.key, case.revolute) <= case.tol
             counts = near.sum(axis=(1, 2))
