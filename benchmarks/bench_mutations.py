@@ -1,7 +1,15 @@
 """Mistakes students make, mined by mutation: is each single-edit slip named with its kind?
 
 Run ``python benchmarks/bench_mutations.py`` (``--limit N`` for a seeded sample of N
-mutants, ``--misses`` to list the mutants not diagnosed with their kind).
+single-edit mutants, ``--doubles N`` of N double-edit mutants, ``--robots NAME …`` for some
+built-in robots only, ``--no-singles``, ``--misses`` to list the mutants not diagnosed with
+their kind).
+
+Double edits: one entry edited twice, by two of the entry kinds below (a single edit, then
+one of another kind on its result; a seeded draw of one per entry). A double mutant equal
+to a single-edit one is left out (it is a single slip); one equal to the key must be graded
+CORRECT. It counts as diagnosed when *both* its kinds are named (goal ≥ 90 %); the CPU time
+per answer is printed (the machine is shared: CPU, not wall time, measures the search).
 
 Every entry of ``^0T_n`` and of the Jacobian ``J`` of every built-in robot is mutated
 by one edit, written out in the lecture notation and graded through
