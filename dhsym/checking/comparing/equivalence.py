@@ -58,7 +58,7 @@ from ..reading.limits import (
     expansion_terms,
     time_left,
 )
-from .sampled_frames import EvaluationError, evaluate, evaluate_many
+from .sampled_frames import EvaluationError, evaluate_many, evaluate_or_nan
 from .tolerances import TOLERANCES
 
 __all__ = [
@@ -134,13 +134,18 @@ class Sample:
         return Sample(self.symbols + tuple(new), np.vstack([self.table, extra]), self.origin)
 
 
-def values(expr: sp.Basic, sample: Sample) -> np.ndarray:
+def values(
+    expr: sp.Basic, sample: Sample, memo: dict[object, np.ndarray] | None = None
+) -> np.ndarray:
     """Values at every point: shape ``(size,)`` for an expression, ``(size, r, c)`` for a matrix.
 
-    Unknown node types give ``nan`` (never equal to anything).
+    Unknown node types give ``nan`` (never equal to anything). ``memo`` (subtree → values
+    at this sample) may be shared by calls on the same sample: many edits of one entry
+    share most of their subtrees, which are then computed once.
     """
     env = sample.env
-    memo: dict[sp.Basic, np.ndarray] = {}  # subexpressions shared by the entries, computed once
+    if memo is None:
+        memo = {}  # subexpressions shared by the entries, computed once
     if isinstance(expr, sp.MatrixBase):
         r, c = expr.shape
         try:  # every entry in one walk (the usual case) ...
@@ -151,18 +156,9 @@ def values(expr: sp.Basic, sample: Sample) -> np.ndarray:
         out = np.empty((sample.size, r, c))
         for i in range(r):
             for j in range(c):
-                out[:, i, j] = _values(expr[i, j], env, sample.size, memo)
+                out[:, i, j] = evaluate_or_nan(expr[i, j], env, sample.size, memo)
         return out
-    return _values(expr, env, sample.size, memo)
-
-
-def _values(
-    expr: sp.Basic, env: Mapping[sp.Basic, np.ndarray], size: int, memo: dict[object, np.ndarray]
-) -> np.ndarray:
-    try:
-        return evaluate(expr, env, size, memo)
-    except (EvaluationError, OverflowError, TypeError, ValueError):
-        return np.full(size, np.nan)
+    return evaluate_or_nan(expr, env, sample.size, memo)
 
 
 def close(a: np.ndarray, b: np.ndarray, rtol: float = EXACT_RTOL, axis: object = None) -> object:

@@ -32,7 +32,7 @@ import sympy as sp
 from dhsym.ik.steps import pose_symbols
 from dhsym.model.table import JointType
 
-from .sampled_frames import EvaluationError, evaluate, frames
+from .sampled_frames import evaluate_or_nan, frames
 from .tolerances import TOLERANCES
 
 if TYPE_CHECKING:
@@ -42,6 +42,7 @@ if TYPE_CHECKING:
 __all__ = [
     "PoseSample",
     "branch_signs",
+    "branch_steps",
     "joint_distance",
     "key_values",
     "pose_sample",
@@ -120,27 +121,22 @@ def branch_signs(ik: ClosedForm) -> np.ndarray:
     return np.array(list(itertools.product([1, -1], repeat=B)), dtype=float).reshape(2**B, B)
 
 
-def _evaluate(
-    e: sp.Expr, env: Mapping[sp.Basic, np.ndarray], size: int, memo: dict[object, np.ndarray]
-) -> np.ndarray:
-    try:
-        return evaluate(e, env, size, memo)
-    except (EvaluationError, OverflowError, TypeError, ValueError):
-        return np.full(size, np.nan)
-
-
 def key_values(
     ik: ClosedForm,
     env: Mapping[sp.Symbol, np.ndarray],
     size: int,
     rewrite: Rewrite | None = None,
+    choices: tuple[int, ...] | None = None,
 ) -> np.ndarray:
     """The joint values of every branch, ``(K, size, n)`` (NaN where a step is not real).
 
-    ``rewrite`` changes each step's right-hand side first (a mistake, recomputed).
+    ``rewrite`` changes each step's right-hand side first (a mistake, recomputed);
+    ``choices`` keeps those branches only (rows of :func:`branch_signs`), in that order.
     """
     variables = list(ik.robot.variables)
     signs = branch_signs(ik)
+    if choices is not None:
+        signs = signs[list(choices)]
     rhs = [rewrite(st.rhs) if rewrite else st.rhs for st in ik.steps]
     out = np.full((len(signs), size, len(variables)), np.nan)
     for k, choice in enumerate(signs):
@@ -149,10 +145,43 @@ def key_values(
             local[b.symbol] = np.full(size, sign)
         memo: dict[object, np.ndarray] = {}
         for st, e in zip(ik.steps, rhs, strict=True):
-            local[st.lhs] = _evaluate(e, local, size, memo)
+            local[st.lhs] = evaluate_or_nan(e, local, size, memo)
         for j, v in enumerate(variables):
             out[k, :, j] = local[v]
     return out
+
+
+def branch_steps(
+    ik: ClosedForm,
+    env: Mapping[sp.Symbol, np.ndarray],
+    size: int,
+    k: int,
+    edit: tuple[int, sp.Expr] | None = None,
+    known: Mapping[sp.Symbol, np.ndarray] | None = None,
+) -> dict[sp.Symbol, np.ndarray]:
+    """The values of every step of branch ``k`` (a row of :func:`branch_signs`), by left-hand
+    side; with ``edit`` = (step index, new right-hand side) and the unedited values
+    ``known``, only that step and those after it are computed (a mistake in one step,
+    recomputed)."""
+    local = dict(env)
+    for b, sign in zip(ik.branches, branch_signs(ik)[k], strict=True):
+        local[b.symbol] = np.full(size, sign)
+    start = 0
+    changed: set[sp.Symbol] = set()
+    if edit is not None and known is not None:
+        start = edit[0]
+        local.update({st.lhs: known[st.lhs] for st in ik.steps[:start]})
+        changed.add(ik.steps[start].lhs)
+    memo: dict[object, np.ndarray] = {}
+    for i, st in enumerate(ik.steps[start:], start):
+        if known is not None and i > start and not (st.rhs.free_symbols & changed):
+            local[st.lhs] = known[st.lhs]  # a step the edit does not reach
+            continue
+        if i > start:
+            changed.add(st.lhs)
+        e = edit[1] if edit is not None and i == edit[0] else st.rhs
+        local[st.lhs] = evaluate_or_nan(e, local, size, memo)
+    return {st.lhs: local[st.lhs] for st in ik.steps}
 
 
 def joint_distance(a: np.ndarray, b: np.ndarray, revolute: np.ndarray) -> np.ndarray:

@@ -29,7 +29,14 @@ from dhsym.kinematics.numeric import EvaluationError, evaluate, evaluate_many, w
 from dhsym.kinematics.transforms import link_word
 from dhsym.model.table import Convention, DHRow
 
-__all__ = ["EvaluationError", "evaluate", "evaluate_many", "frames", "word_product"]
+__all__ = [
+    "EvaluationError",
+    "evaluate",
+    "evaluate_many",
+    "evaluate_or_nan",
+    "frames",
+    "word_product",
+]
 
 
 class Rows(Protocol):
@@ -44,6 +51,26 @@ class Rows(Protocol):
 
     @property
     def n(self) -> int: ...
+
+
+def evaluate_or_nan(
+    expr: sp.Basic,
+    env: Mapping[sp.Basic, np.ndarray | float],
+    size: int,
+    memo: dict[object, np.ndarray] | None = None,
+) -> np.ndarray:
+    """Values of ``expr`` at ``size`` points, NaN at every point when it has none (a name
+    without a value, a node the walker does not know, an overflow): the one evaluation of
+    the checker's samples, for answers and keys alike (``memo`` as in :func:`evaluate`).
+
+    >>> x = sp.Symbol("x")
+    >>> evaluate_or_nan(sp.sqrt(x), {x: np.array([4.0])}, 1), evaluate_or_nan(x, {}, 2)
+    (array([2.]), array([nan, nan]))
+    """
+    try:
+        return evaluate(expr, env, size, memo)
+    except (EvaluationError, OverflowError, TypeError, ValueError):
+        return np.full(size, np.nan)
 
 
 def frames(table: Rows, env: Mapping[sp.Basic, np.ndarray | float], size: int) -> np.ndarray:

@@ -39,7 +39,9 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
@@ -55,7 +57,7 @@ from ..comparing.ik_values import (
     key_values,
     pose_sample,
 )
-from ..comparing.sampled_frames import EvaluationError, evaluate, frames
+from ..comparing.sampled_frames import evaluate_or_nan, frames
 from ..comparing.tolerances import TOLERANCES
 from ..comparing.verdict import CheckResult, Diagnosis, EntryResult, Verdict
 from ..mistakes.registry import IK_MISTAKES, IKCase
@@ -126,10 +128,7 @@ def _values(
                 if not ready:
                     break
                 for st in ready:
-                    try:
-                        local[st.target] = evaluate(st.expr, local, size, memo)
-                    except (EvaluationError, OverflowError, TypeError, ValueError):
-                        local[st.target] = np.full(size, np.nan)
+                    local[st.target] = evaluate_or_nan(st.expr, local, size, memo)
                     pending.remove(st)
             row = np.full((size, n), np.nan)
             tol = np.full(n, ATOL)
@@ -169,18 +168,26 @@ def branch_signs_n(count: int) -> np.ndarray:
 
 def _reaches(robot: Robot, q: np.ndarray, sample: PoseSample, position: bool) -> bool:
     """True when the joint values ``q`` ``(size, n)`` reach the sample's poses (or points)."""
+    return bool(_reaches_at(robot, q, sample, position).all())
+
+
+def _reaches_at(robot: Robot, q: np.ndarray, sample: PoseSample, position: bool) -> np.ndarray:
+    """Per pose ``(size,)``: the joint values ``q`` ``(size, n)`` reach it (never where a
+    value is NaN)."""
     env = dict(sample.env)
+    real = ~np.isnan(q).any(axis=1)
     for k, v in enumerate(robot.variables):
-        env[v] = q[:, k]
-    if np.isnan(q).any():
-        return False
+        env[v] = np.where(real, q[:, k], 0.0)
     T = frames(robot.table, env, sample.size)[:, -1]
     P = pose_symbols()
     goal = np.stack([np.stack([sample.env[P[i, j]] for j in range(4)], -1) for i in range(3)], -2)
     got = T[:, :3, :]
     if position:
         got, goal = got[:, :, 3], goal[:, :, 3]
-    return bool(np.allclose(got, goal, atol=TOLERANCES.reach_atol))
+    with np.errstate(invalid="ignore"):
+        near = np.abs(got - goal) <= TOLERANCES.reach_atol
+    ok: np.ndarray = real & near.reshape(sample.size, -1).all(axis=1)
+    return ok
 
 
 # --- the check --------------------------------------------------------------------------------
@@ -316,6 +323,9 @@ def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
         check_time()  # the answer's deadline, before each mistake's search
         found.append((mistake.kind, mistake.explain_ik(case)))
     diagnoses = tuple(d for kind, d in found if d is not None and kind != "lost_branch")
+    domain = _domain(m, key_d, answers, wrong, names)
+    if domain is not None:  # the branch itself where both have values: the reason comes first
+        diagnoses = (domain, *diagnoses)
     if wrong and not diagnoses:
         diagnoses = (
             Diagnosis(
@@ -394,6 +404,7 @@ def _match(
     hits = hits.reshape(len(answers), len(key), sample.size)
     branch: dict[int, int | None] = {}
     wrong = []
+    real = ~np.isnan(key).any(axis=2)  # (K, size): where each branch exists
     for a in range(len(answers)):
         every = np.flatnonzero(hits[a].all(axis=1))
         if len(every):
@@ -402,10 +413,15 @@ def _match(
             tols[a].max() <= ATOL and _reaches(robot, answers[a], sample, position)
         ):
             branch[a] = None  # a solution at every pose, of a branch that changes with it
+        elif (
+            where := _where_real(
+                hits[a], real, answers[a], partial(_reaches_at, robot, answers[a], sample, position)
+            )
+        ) is not None:
+            branch[a] = where  # the branch wherever it exists, and no value where it does not
         else:
             wrong.append(a)
     same = np.array([[_close(k1, k2, rev, np.full(len(rev), ATOL)) for k2 in key] for k1 in key])
-    real = ~np.isnan(key).any(axis=2)  # (K, size)
     given = np.asarray(hits.any(axis=0))  # (K, size): a branch the answer gives at that point
     covered = bool(
         all(
@@ -415,6 +431,73 @@ def _match(
         )
     )
     return _Match(hits, branch, wrong, covered)
+
+
+#: The fewest poses of a sample at which a key branch must exist for an answer to be judged
+#: as that branch where it exists (fewer: no evidence; the answer must be a solution
+#: everywhere, or another branch).
+MIN_REAL_POSES = 8
+
+
+def _where_real(
+    hits: np.ndarray, real: np.ndarray, row: np.ndarray, reaches: Callable[[], np.ndarray]
+) -> int | None:
+    """The key branch ``k`` that the answer's ``row`` ``(size, n)`` is wherever ``k`` exists,
+    having no value (NaN, or complex: NaN in the sample) exactly where ``k`` does not; or
+    None.  ``hits`` ``(K, size)``: the row is branch ``k`` at that pose; ``real``
+    ``(K, size)``: branch ``k`` exists there.  Where ``k`` does not exist a value is also
+    right when it reaches the pose (``reaches``, computed only then): it is another
+    solution there, never a wrong one.
+    """
+    has = ~np.isnan(row).any(axis=1)
+    extra: np.ndarray | None = None
+    for k in np.argsort(-(hits & real).sum(axis=1), kind="stable"):
+        exists = real[k]
+        if exists.sum() < MIN_REAL_POSES or not (hits[k] | ~exists).all():
+            continue
+        outside = has & ~exists  # a value where the branch has none
+        if outside.any():
+            extra = reaches() if extra is None else extra
+            if not extra[outside].all():
+                continue
+        return int(k)
+    return None
+
+
+def _domain(
+    m: _Match, key: np.ndarray, answers: np.ndarray, wrong: list[int], names: tuple[str, ...]
+) -> Diagnosis | None:
+    """The reason a wrong row is wrong when it is a key branch wherever both have values,
+    but has values where that branch has none (that do not reach the pose), or none where
+    it exists."""
+    real = ~np.isnan(key).any(axis=2)
+    for a in wrong:
+        has = ~np.isnan(answers[a]).any(axis=1)
+        for k in np.argsort(-(m.hits[a] & real).sum(axis=1), kind="stable"):
+            both = real[k] & has
+            if real[k].sum() < MIN_REAL_POSES or not both.any() or not m.hits[a, k][both].all():
+                continue
+            missing = int((real[k] & ~has).sum())
+            extra = int((~real[k] & has).sum())
+            parts = []
+            if missing:
+                parts.append(
+                    f"has no value at {missing} of the {int(real[k].sum())} poses where the "
+                    "branch exists"
+                )
+            if extra:
+                parts.append(
+                    f"has a value at {extra} poses where the branch does not exist (its square "
+                    "root is of a negative number there), and that value does not reach the pose"
+                )
+            return Diagnosis(
+                "branch_domain",
+                "right only where both have a value",
+                f"The answer is the branch {names[k]} wherever both have a value, but it "
+                + " and ".join(parts)
+                + ": a formula for one branch is real exactly where that branch exists.",
+            )
+    return None
 
 
 def _judge(

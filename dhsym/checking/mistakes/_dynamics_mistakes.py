@@ -40,6 +40,7 @@ from dhsym.dynamics.lagrange_euler import (
     tidy,
 )
 from dhsym.kinematics.jacobian import axis_frame
+from dhsym.model.inertia import LinkInertia
 from dhsym.model.table import Convention
 
 from ..comparing.dynamics_values import part_matrix
@@ -147,13 +148,22 @@ _CHANGES = {
 
 
 def variant_equations(
-    robot: Robot, eom: EquationsOfMotion, kind: str, part: str = "tau"
+    robot: Robot, eom: EquationsOfMotion, kind: str, part: str = "tau", link: int | None = None
 ) -> EquationsOfMotion | None:
     """The equations of motion of ``robot`` under the mistake ``kind`` (from the key's
     Lagrange–Euler ``eom``; exact in ``part`` and what it is built from), or None when
-    the mistake does not apply."""
+    the mistake does not apply; with ``link`` (0-based) the mistake made in that link
+    only (``parallel_axis``, ``l_for_lc``: ``l2`` for ``lc2`` alone)."""
     dm = eom.model
     links = list(dm.links)
+    if link is not None:
+        one = variant_equations(robot, eom, kind, part)
+        if one is None or kind not in _PER_LINK:
+            return one
+        moved = _moved(robot, eom, kind)[link]
+        links[link] = moved
+        other = lagrange(robot, replace(dm, links=tuple(links)))
+        return _with(eom, part, M=other.M, g=other.g if kind == "l_for_lc" else None)
     if kind == "christoffel_indices":
         n = dm.n
         c = eom.christoffel
@@ -164,10 +174,7 @@ def variant_equations(
     if kind == "gravity_direction":
         return None  # several variants: see _gravity_variants
     if kind == "parallel_axis":
-        for i, L in enumerate(links):
-            a = axis_frame(robot, i + 1)
-            joint = robot.transform(i + 1, a).matrix[:3, 3]
-            links[i] = replace(L, r=tuple(joint))
+        links = _moved(robot, eom, kind)
         return _with(eom, part, M=lagrange(robot, replace(dm, links=tuple(links))).M)
     if kind == "rotational_energy":
         links = [replace(L, I=sp.zeros(3, 3)) for L in links]
@@ -178,13 +185,61 @@ def variant_equations(
             links[i] = replace(L, I=(R.T * L.I * R).applyfunc(sp.expand))
         return _with(eom, part, M=lagrange(robot, replace(dm, links=tuple(links))).M)
     if kind == "l_for_lc":
-        for i, L in enumerate(links):
+        other = lagrange(robot, replace(dm, links=tuple(_moved(robot, eom, kind))))
+        return _with(eom, part, M=other.M, g=other.g)
+    raise ValueError(f"unknown dynamics mistake {kind!r}")
+
+
+#: The mistakes a student may make in one link only (one variant per link, as well).
+_PER_LINK = ("parallel_axis", "l_for_lc")
+
+
+def _moved(robot: Robot, eom: EquationsOfMotion, kind: str) -> list[LinkInertia]:
+    """The links with the centre of mass where ``kind`` puts it: on the joint axis
+    (``parallel_axis``), at the far end of the link (``l_for_lc``)."""
+    links = list(eom.model.links)
+    for i, L in enumerate(links):
+        if kind == "parallel_axis":
+            a = axis_frame(robot, i + 1)
+            links[i] = replace(L, r=tuple(robot.transform(i + 1, a).matrix[:3, 3]))
+        else:
             end = _far_end(robot, i + 1)
             if end is not None:
                 links[i] = replace(L, r=tuple(end))
-        other = lagrange(robot, replace(dm, links=tuple(links)))
-        return _with(eom, part, M=other.M, g=other.g)
-    raise ValueError(f"unknown dynamics mistake {kind!r}")
+    return links
+
+
+def _link_detail(robot: Robot, eom: EquationsOfMotion, kind: str, i: int) -> str:
+    """What the student did in link ``i`` (0-based) alone, with ``{entries}`` for where:
+    ``l2 written for lc2 in entries (1,1) and (2,1)`` when one symbol of the centre of
+    mass written as another puts it where the mistake does."""
+    r = Matrix(eom.model.links[i].r)
+    goal = Matrix(_moved(robot, eom, kind)[i].r)
+    k = i + 1
+    table = set(robot.table.constants)  # the lengths written for others: the table's
+    for c in sorted(r.free_symbols - table, key=sp.default_sort_key):
+        for t in sorted(r.free_symbols & table, key=sp.default_sort_key):
+            if (r.xreplace({c: t}) - goal).applyfunc(sp.expand) == sp.zeros(3, 1):
+                if kind == "l_for_lc":
+                    return (
+                        f"{t} written for {c} in {{entries}}: the centre of mass of link {k} "
+                        f"is put at the far end of the link; use the distance {c} from joint "
+                        f"{k} to the centre of mass."
+                    )
+                return (
+                    f"{t} written for {c} in {{entries}}: link {k}'s mass is put on its joint "
+                    f"axis, and its parallel-axis term m{k}*{c}**2 is missing."
+                )
+    if kind == "l_for_lc":
+        return (
+            f"In {{entries}} the centre of mass of link {k} is put at the far end of the "
+            f"link: use the distance from joint {k} to the centre of mass."
+        )
+    return (
+        f"In {{entries}} the parallel-axis term of link {k} is missing: its kinetic energy is "
+        f"computed as if its mass sat on joint axis {k}. Take the velocity of its centre of "
+        f"mass, v_c{k} = J_vc{k} q', in K = 1/2 m_{k} v_c{k}^T v_c{k}."
+    )
 
 
 def _gravity_variants(eom: EquationsOfMotion, part: str) -> Iterator[tuple[EquationsOfMotion, str]]:
@@ -233,6 +288,12 @@ def variant_matrices(
         v = variant_equations(robot, eom, kind, q.part)
         if v is not None:
             out.append((kind, part_matrix(v, q), _DETAILS[kind]))
+        if v is not None and kind in _PER_LINK and eom.model.n > 1:
+            for i in range(eom.model.n):
+                one = variant_equations(robot, eom, kind, q.part, link=i)
+                if one is not None:
+                    detail = _link_detail(robot, eom, kind, i)
+                    out.append((kind, part_matrix(one, q), detail))
     if q.part in _CHANGES["gravity_direction"]:
         for v, detail in _gravity_variants(eom, q.part):
             out.append(("gravity_direction", part_matrix(v, q), detail))

@@ -25,13 +25,16 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator
 from dataclasses import replace
-from typing import TypeAlias, TypeVar, cast
+from itertools import islice
+from typing import ClassVar, TypeAlias, TypeVar, cast
 
+import numpy as np
 import sympy as sp
 
 from ..comparing.equivalence import close, values
 from ..comparing.table_match import Chain, same_cells
 from ..comparing.verdict import Diagnosis
+from ..reading.limits import check_time
 from ._mistake_base import MatrixCase, Mistake, TableCase, cell_text
 
 __all__ = [
@@ -41,7 +44,10 @@ __all__ = [
     "SinCosSwapped",
     "WrongJointIndex",
     "WrongSign",
+    "PAIR_BUDGET",
     "dropped_candidates",
+    "explain_pairs",
+    "grouped",
     "one_edit",
     "sign_candidates",
     "swap_candidates",
@@ -139,7 +145,13 @@ def swap_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, sp.Expr | None]]:
 
 
 class EntryMistake(Mistake):
-    """A mistake inside one entry: candidates are rewritten key entries."""
+    """A mistake inside one entry: candidates are rewritten key entries.
+
+    ``writes_trig``: the mistake may write a sine or cosine the key's entry does not have
+    (the others only remove or keep them), which prunes the search of pairs.
+    """
+
+    writes_trig: ClassVar[bool] = False
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
@@ -150,31 +162,64 @@ class EntryMistake(Mistake):
         raise NotImplementedError
 
     def explain_matrix(self, case: MatrixCase, partial: bool = True) -> Diagnosis | None:
-        hits: list[tuple[int, int]] = []
-        details: list[str] = []
+        found: list[tuple[tuple[int, int], str]] = []
         for p in case.wrong:
             e = case.expected[p]
             for cand, part in self.candidates(e, case):
                 if close(values(cand, case.sample), case.answer_values[:, p[0], p[1]]):
-                    hits.append(case.label(p))
-                    where = case.where(p) if len(case.expected) > 1 else "your answer"
-                    details.append(_one_cell(self.message(case, where, e, part), where))
+                    found.append((p, self.message(case, _HERE, e, part)))
                     break
-        if not hits:
+        if not found:
             return None
-        return Diagnosis(self.kind, self.title, " ".join(details), tuple(hits))
+        return Diagnosis(
+            self.kind, self.title, grouped(case, found), tuple(case.label(p) for p, _ in found)
+        )
 
     def explain_table(self, case: TableCase) -> Diagnosis | None:
         return None
 
 
-def _one_cell(text: str, where: str) -> str:
+#: Where a message names its entry, filled in by :func:`grouped` (one entry or several).
+_HERE = "\x00"
+
+
+def grouped(case: MatrixCase, found: list[tuple[tuple[int, int], str]]) -> str:
+    """The messages of one mistake, each said once: the same slip in several entries
+    ("the length a2 is missing from a2*C2") names them together ("in entries (1,4) and
+    (2,4)"); ``found`` holds (position, message with :data:`_HERE` for its entry).
+
+    >>> from types import SimpleNamespace
+    >>> case = SimpleNamespace(expected=[0, 0], where=lambda p: f"({p[0] + 1},{p[1] + 1})")
+    >>> print(grouped(case, [((0, 3), f"In entry {_HERE} l2 is written for lc2."),
+    ...                      ((1, 3), f"In entry {_HERE} l2 is written for lc2."),
+    ...                      ((2, 3), f"Entry {_HERE} has the wrong sign.")]))
+    In entries (1,4) and (2,4) l2 is written for lc2. Entry (3,4) has the wrong sign.
+    """
+    by_text: dict[str, list[tuple[int, int]]] = {}
+    for p, text in found:
+        by_text.setdefault(text, []).append(p)
+    out = []
+    for text, where in by_text.items():
+        if len(case.expected) == 1:
+            out.append(_one_cell(text))
+        elif len(where) == 1:
+            out.append(text.replace(_HERE, case.where(where[0])))
+        else:
+            names = [case.where(p) for p in where]
+            listed = ", ".join(names[:-1]) + " and " + names[-1]
+            text = text.replace(f"entry {_HERE}", f"entries {listed}")
+            text = text.replace(f"Entry {_HERE} has", f"Entries {listed} have")
+            out.append(text.replace(_HERE, listed))
+    return " ".join(out)
+
+
+def _one_cell(text: str) -> str:
     """The wording of a one-cell answer (an entry question, det J): "your answer", not
     "entry (1,1)"."""
-    if where != "your answer":
-        return text
-    return text.replace("In entry your answer", "In your answer").replace(
-        "Entry your answer has", "Your answer has"
+    return (
+        text.replace(f"In entry {_HERE}", "In your answer")
+        .replace(f"Entry {_HERE} has", "Your answer has")
+        .replace(_HERE, "your answer")
     )
 
 
@@ -223,6 +268,7 @@ class SinCosSwapped(EntryMistake):
     """sin written where cos belongs (or the other way round)."""
 
     kind, title = "sin_cos_swapped", "sin and cos swapped"
+    writes_trig = True
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
@@ -235,9 +281,8 @@ class SinCosSwapped(EntryMistake):
         factor = cast(sp.Basic, part)  # swap_candidates: None or the swapped sin/cos factor
         partner = (sp.sin if isinstance(factor, sp.cos) else sp.cos)(factor.args[0])
         return (
-            f"In entry {where} sin and cos of the same angle are swapped "
-            f"({case.notation.text(part)} and {case.notation.text(partner)}): "
-            f"it is {case.notation.text(e)}."
+            f"In entry {where} sin and cos of the same angle are swapped: "
+            f"{case.notation.text(partner)} is written where {case.notation.text(part)} belongs."
         )
 
 
@@ -300,6 +345,7 @@ class WrongJointIndex(EntryMistake):
     """A sum angle on the wrong joints: ``C12`` written where ``C23`` belongs."""
 
     kind, title = "wrong_joint_index", "wrong joint index in a sum angle"
+    writes_trig = True
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
@@ -355,3 +401,127 @@ class MissingLength(EntryMistake):
             f"In entry {where} the length {case.notation.text(length)} is missing "
             f"from {case.notation.text(product)}."
         )
+
+
+#: The most (first slip, second slip) candidates one answer's search of pairs evaluates,
+#: shared among its unexplained entries and among the pairs of kinds (a count, not a time,
+#: so that a diagnosis does not depend on the machine's load).
+PAIR_BUDGET = 2400
+#: The most first slips of one kind tried in one entry (of the first ``_FIRST_TRIED``).
+_FIRST = 48
+_FIRST_TRIED = 400
+_BUILT = 6
+
+
+def _trig(e: sp.Basic, memo: dict[sp.Basic, frozenset[sp.Basic]]) -> frozenset[sp.Basic]:
+    """The sines and cosines in ``e`` (``memo``: of the subtrees seen, which the edits of
+    one entry share)."""
+    found = memo.get(e)
+    if found is None:
+        if isinstance(e, (sp.sin, sp.cos)):
+            found = frozenset((e,))
+        elif not e.args:
+            found = frozenset()
+        else:
+            found = frozenset().union(*(_trig(a, memo) for a in e.args))
+        memo[e] = found
+    return found
+
+
+def explain_pairs(
+    case: MatrixCase, mistakes: tuple[EntryMistake, ...], budget: int = PAIR_BUDGET
+) -> tuple[Diagnosis, ...]:
+    """Entries that two catalogued slips of different kinds explain together (a sign and
+    sin for cos, a dropped term and a missing length), two diagnoses per pair of kinds,
+    each entry named once.
+
+    The search composes the second slip on each candidate of the first, in the entries
+    still wrong (``case.wrong``) only, within ``budget`` candidates shared evenly by the
+    entries and the pairs of kinds; the values of one entry's candidates share their
+    unchanged subtrees (one memo per entry), so a candidate costs about the depth of its
+    edit.
+
+    >>> import sympy as sp
+    >>> from dhsym.checking.judging.key import Key, prepare
+    >>> from dhsym.checking.mistakes.registry import ENTRY_MISTAKES
+    >>> from dhsym.checking.reading.answer_value import read_answer_value
+    >>> from dhsym.checking.judging.matrix_judge import check_matrix
+    >>> from dhsym.checking.reading.limits import DEFAULT_ANSWER_LIMITS as LIMITS
+    >>> pk = prepare(Key.load("planar2r", "T0_2[0,3]"))
+    >>> r = check_matrix(pk, read_answer_value(pk.form(), "a1*S1 - a2*C12"), LIMITS)
+    >>> r.kinds
+    ('wrong_sign', 'sin_cos_swapped')
+    >>> print(r.diagnoses[0].detail)
+    In your answer the term a2*C12 has the wrong sign. (One of two slips there; the other:
+    sin and cos swapped.)
+    """
+    kinds = [(a, b) for i, a in enumerate(mistakes) for b in mistakes[i + 1 :]]
+    if not case.wrong or not kinds:
+        return ()
+    share = max(1, budget // (len(case.wrong) * len(kinds)))
+    found: dict[tuple[str, str], list[tuple[tuple[int, int], str, str]]] = {}
+    for p in case.wrong:
+        hit = _pair_at(case, p, kinds, share)
+        if hit is not None:
+            a, b, first, second = hit
+            found.setdefault((a.kind, b.kind), []).append((p, first, second))
+    out: list[Diagnosis] = []
+    by_kind = {m.kind: m for m in mistakes}
+    for (ka, kb), hits in found.items():
+        entries = tuple(case.label(p) for p, _, _ in hits)
+        a_text = grouped(case, [(p, t) for p, t, _ in hits])
+        b_text = grouped(case, [(p, t) for p, _, t in hits])
+        ta, tb = by_kind[ka].title, by_kind[kb].title
+        out.append(
+            Diagnosis(ka, ta, f"{a_text} (One of two slips there; the other: {tb}.)", entries)
+        )
+        out.append(Diagnosis(kb, tb, f"{b_text} (The second slip there, with: {ta}.)", entries))
+    return tuple(out)
+
+
+def _pair_at(
+    case: MatrixCase,
+    p: tuple[int, int],
+    kinds: list[tuple[EntryMistake, EntryMistake]],
+    share: int,
+) -> tuple[EntryMistake, EntryMistake, str, str] | None:
+    """The first pair of slips (and their messages) that gives the answer's entry ``p``."""
+    e = case.expected[p]
+    target = case.answer_values[:, p[0], p[1]]
+    # the sines and cosines a slip may bring in: those of the answer (a slip that writes
+    # one the student did not write is not theirs); the key's own are always there
+    seen: dict[sp.Basic, frozenset[sp.Basic]] = {}
+    written = _trig(case.answer[p], seen)
+    allowed = written | _trig(e, seen)
+    memo: dict[object, np.ndarray] = {}
+    firsts: dict[str, list[tuple[sp.Expr, object]]] = {}
+    for a, b in kinds:
+        if a.kind not in firsts:
+            firsts[a.kind] = [
+                (c, part)
+                for c, part in islice(a.candidates(e, case), _FIRST_TRIED)
+                if _trig(c, seen) <= allowed
+            ][:_FIRST]
+        left = share
+        for n, (cand, part) in enumerate(firsts[a.kind]):
+            if left <= 0:
+                break
+            if not b.writes_trig and not written <= _trig(cand, seen):
+                continue  # the second slip writes no sine or cosine: the answer's are missing
+            # the rest of this pair's share, spread over the first slips still to come
+            each = max(1, left // (len(firsts[a.kind]) - n))
+            # a pair that leaves other sines and cosines than the answer's costs only its
+            # construction (a student who expanded C12 is not searched: no diagnosis is
+            # better than a guess); at most _BUILT candidates built per one evaluated
+            for cand2, part2 in islice(b.candidates(cand, case), _BUILT * each):
+                if _trig(cand2, seen) != written:
+                    continue
+                left -= 1
+                each -= 1
+                if each < 0:
+                    break
+                if close(values(cand2, case.sample, memo), target):
+                    # the second slip is told against the key's entry, as the first is
+                    return a, b, a.message(case, _HERE, e, part), b.message(case, _HERE, e, part2)
+            check_time()
+    return None

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
+from itertools import islice
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -26,8 +27,16 @@ import sympy as sp
 
 from dhsym.notation.printers import Notation
 
-from ..comparing.ik_values import PoseSample, Rewrite, joint_distance, key_values, same_joints
+from ..comparing.ik_values import (
+    PoseSample,
+    Rewrite,
+    branch_steps,
+    joint_distance,
+    key_values,
+    same_joints,
+)
 from ..comparing.verdict import Diagnosis
+from ._entry_mistakes import dropped_candidates, sign_candidates
 from ._mistake_base import Mistake
 
 if TYPE_CHECKING:
@@ -35,9 +44,13 @@ if TYPE_CHECKING:
 
 __all__ = [
     "IK_MISTAKES",
+    "Atan2Swapped",
     "AtanForAtan2",
     "IKCase",
+    "IKDroppedTerm",
     "IKMistake",
+    "IKStepEdit",
+    "IKWrongSign",
     "LostBranch",
     "WrongRootSign",
     "atan_swaps",
@@ -254,4 +267,157 @@ class LostBranch(IKMistake):
         return Diagnosis(self.kind, self.title, detail.strip())
 
 
-IK_MISTAKES: tuple[IKMistake, ...] = (AtanForAtan2(), WrongRootSign(), LostBranch())
+#: The most rewrites of one kind tried in the steps (a count: the diagnosis is the same on
+#: every machine).
+_MAX_REWRITES = 60
+#: The key branches nearest to a wrong row that the rewrites are recomputed on.
+_NEAREST = 2
+
+
+class IKStepEdit(IKMistake):
+    """One step of the derivation written with one slip (:meth:`rewrites`), recomputed on
+    the key branch nearest to each wrong row of the answer only, in the steps that row's
+    wrong joints need (first those its right joints do not need: a slip there would
+    usually move them too), at most :data:`_MAX_REWRITES` of them."""
+
+    def rewrites(self, case: IKCase) -> Iterator[tuple[sp.Symbol, sp.Expr, sp.Expr, str]]:
+        """(a step's left-hand side, its right-hand side, the same with the slip, what the
+        student did)."""
+        return iter(())
+
+    def explain_ik(self, case: IKCase) -> Diagnosis | None:
+        edits = list(self.rewrites(case))
+        variables = list(case.ik.robot.variables)
+        for a in case.wrong:
+            row = case.answers[a]
+            if np.isnan(row).any(axis=1).all():
+                continue  # no value anywhere: nothing a slip in one step could be told by
+            with np.errstate(invalid="ignore"):
+                near = joint_distance(row[None], case.key, case.revolute) <= case.tol
+            counts = near.sum(axis=(1, 2))
+            # the nearest branches (a wrong joint may match another branch by chance)
+            for k in (int(x) for x in np.argsort(-counts, kind="stable")[:_NEAREST]):
+                exists = ~np.isnan(case.key[k]).any(axis=1)  # the poses where branch k is real
+                right = (near[k] | ~exists[:, None]).all(axis=0)
+                needs = _needs(case.ik)
+                order = [st.lhs for st in case.ik.steps]
+                wrong_joints = sorted(
+                    (v for v, ok in zip(variables, right) if not ok),
+                    key=lambda v: order.index(v) if v in order else len(order),
+                )
+                if not wrong_joints:
+                    continue
+                right_steps = set().union(*(needs[v] for v, ok in zip(variables, right) if ok))
+                core = needs[wrong_joints[0]]  # the slip is upstream of the first wrong joint
+                wrong_steps = set().union(*(needs[v] for v in wrong_joints))
+                # where only the wrong joints look first; then the rest of what the first wrong
+                # joint needs (a right joint may depend on a step only through a sign, as on
+                # atan2(0, S5)), then the rest of what the wrong joints need
+                groups = (core - right_steps, core & right_steps, wrong_steps - core)
+                tried = [e for g in groups for e in edits if e[0] in g][:_MAX_REWRITES]
+                base_key = ("branch steps", case.sample.origin, k)
+                if base_key not in case.cache:
+                    case.cache[base_key] = branch_steps(
+                        case.ik, case.sample.env, case.sample.size, k
+                    )
+                index = {st.lhs: i for i, st in enumerate(case.ik.steps)}
+                for lhs, _, new, detail in tried:
+                    memo_key = (self.kind, case.sample.origin, k, lhs, new)
+                    if memo_key not in case.cache:
+                        got = branch_steps(
+                            case.ik,
+                            case.sample.env,
+                            case.sample.size,
+                            k,
+                            (index[lhs], new),
+                            case.cache[base_key],
+                        )
+                        case.cache[memo_key] = np.stack(
+                            [got.get(v, np.full(case.sample.size, np.nan)) for v in variables], -1
+                        )
+                    if same_joints(row, case.cache[memo_key], case.revolute, case.tol, nan=True):
+                        return Diagnosis(self.kind, self.title, detail)
+        return None
+
+
+def _needs(ik: ClosedForm) -> dict[sp.Symbol, set[sp.Symbol]]:
+    """Each step's left-hand side → the steps it is computed from, itself included."""
+    out: dict[sp.Symbol, set[sp.Symbol]] = {}
+    for st in ik.steps:
+        out[st.lhs] = {st.lhs}.union(*(out[s] for s in st.rhs.free_symbols if s in out))
+    for v in ik.robot.variables:
+        out.setdefault(v, set())
+    return out
+
+
+def _shown(case: IKCase, e: sp.Expr) -> str:
+    """``e`` as the feedback shows it: in the key's notation, no branch sign σ."""
+    plain = {b.symbol: 1 for b in case.ik.branches}
+    return case.notation.text(e.xreplace(plain))
+
+
+class Atan2Swapped(IKStepEdit):
+    """``atan2(x, y)`` where ``atan2(y, x)`` belongs: the angle reflected about 45°."""
+
+    kind, title = "atan2_swapped", "atan2 arguments swapped"
+
+    def rewrites(self, case: IKCase) -> Iterator[tuple[sp.Symbol, sp.Expr, sp.Expr, str]]:
+        for st in case.ik.steps:
+            for node in sorted(st.rhs.atoms(sp.atan2), key=sp.default_sort_key):
+                y, x = node.args
+                yield (
+                    st.lhs,
+                    st.rhs,
+                    st.rhs.xreplace({node: sp.atan2(x, y)}),
+                    f"In {case.notation.text(st.lhs)} the arguments of atan2 are swapped: "
+                    f"atan2({_shown(case, y)}, {_shown(case, x)}) takes y (the sine side) "
+                    "first, then x.",
+                )
+
+
+class IKWrongSign(IKStepEdit):
+    """One term of a step with the wrong sign (at any depth), the entries' own candidates
+    (:func:`~dhsym.checking.mistakes._entry_mistakes.sign_candidates`)."""
+
+    kind, title = "wrong_sign", "wrong sign"
+
+    def rewrites(self, case: IKCase) -> Iterator[tuple[sp.Symbol, sp.Expr, sp.Expr, str]]:
+        for st in case.ik.steps:
+            for new, term in islice(sign_candidates(st.rhs), 1, None):  # not the whole step
+                if term is None or term.has(*(b.symbol for b in case.ik.branches)):
+                    continue  # a branch sign flipped is the other branch, not a slip
+                yield (
+                    st.lhs,
+                    st.rhs,
+                    new,
+                    f"In {case.notation.text(st.lhs)} the term {_shown(case, term)} has the "
+                    "wrong sign.",
+                )
+
+
+class IKDroppedTerm(IKStepEdit):
+    """One term of a step left out (an offset such as ``d1`` or ``a_x*d6``), the entries'
+    own candidates (:func:`~dhsym.checking.mistakes._entry_mistakes.dropped_candidates`)."""
+
+    kind, title = "dropped_term", "a term is missing"
+
+    def rewrites(self, case: IKCase) -> Iterator[tuple[sp.Symbol, sp.Expr, sp.Expr, str]]:
+        for st in case.ik.steps:
+            for new, term in dropped_candidates(st.rhs):
+                yield (
+                    st.lhs,
+                    st.rhs,
+                    new,
+                    f"In {case.notation.text(st.lhs)} the term {_shown(case, term)} is missing "
+                    "(an offset left out?).",
+                )
+
+
+IK_MISTAKES: tuple[IKMistake, ...] = (
+    AtanForAtan2(),
+    WrongRootSign(),
+    Atan2Swapped(),
+    IKWrongSign(),
+    IKDroppedTerm(),
+    LostBranch(),
+)

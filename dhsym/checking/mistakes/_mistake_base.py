@@ -150,7 +150,12 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
 
     def explain_matrix(self, case: MatrixCase, partial: bool = False) -> Diagnosis | None:
         """A diagnosis when a variant equals the whole answer (or, with ``partial``, the
-        answer at some of its wrong entries)."""
+        answer at some of its wrong entries: the variant that explains the most of them).
+
+        A variant's detail may name where with ``{entries}`` ("l2 written for lc2 in
+        entries (1,1) and (2,1)").
+        """
+        best: tuple[list[tuple[int, int]], str] | None = None
         for vals, detail in self._cached_variants(case):
             hits = [
                 p
@@ -162,10 +167,17 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
             ):
                 continue  # one constant for a varying entry: a coincidence, not this mistake
             whole = len(hits) == len(case.wrong) and close(vals, case.answer_values)
-            if hits and (partial or whole):
-                entries = tuple(case.label(p) for p in hits)
-                return Diagnosis(self.kind, self.title, detail, entries)
-        return None
+            if whole:
+                best = (hits, detail)
+                break
+            if hits and partial and (best is None or len(hits) > len(best[0])):
+                best = (hits, detail)
+        if best is None:
+            return None
+        hits, detail = best
+        return Diagnosis(
+            self.kind, self.title, _placed(case, hits, detail), tuple(map(case.label, hits))
+        )
 
     def explain_table(self, case: TableCase) -> Diagnosis | None:
         """A diagnosis when the answer table equals a variant of the key table."""
@@ -173,6 +185,18 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
             if same_cells(chain, case.answer, case.values):
                 return Diagnosis(self.kind, self.title, detail, rows=rows)
         return None
+
+
+def _placed(case: MatrixCase, hits: list[tuple[int, int]], detail: str) -> str:
+    """``detail`` with ``{entries}`` replaced by where the mistake is seen."""
+    if "{entries}" not in detail:
+        return detail
+    if case.entry is not None or len(case.expected) == 1:
+        return detail.replace("{entries}", "your answer")
+    names = [case.where(p) for p in hits]
+    if len(names) == 1:
+        return detail.replace("{entries}", f"entry {names[0]}")
+    return detail.replace("{entries}", "entries " + ", ".join(names[:-1]) + " and " + names[-1])
 
 
 def _reproduces(variant: np.ndarray, key: np.ndarray) -> bool:

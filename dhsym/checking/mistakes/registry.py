@@ -42,11 +42,14 @@ from ..comparing.verdict import Diagnosis
 from ..reading.limits import check_time
 from ._dynamics_mistakes import DynamicsMistake, dynamics_mistakes, variant_matrices
 from ._entry_mistakes import (
+    PAIR_BUDGET,
     DroppedTerm,
+    EntryMistake,
     MissingLength,
     SinCosSwapped,
     WrongJointIndex,
     WrongSign,
+    explain_pairs,
 )
 from ._ik_mistakes import IK_MISTAKES, AtanForAtan2, IKCase, IKMistake, LostBranch, WrongRootSign
 from ._jacobian_mistakes import (
@@ -82,8 +85,10 @@ __all__ = [
     "ToolFrame",
     "WrongRootSign",
     "IndexShift",
+    "ENTRY_MISTAKES",
     "MATRIX_MISTAKES",
     "MatrixCase",
+    "PAIR_BUDGET",
     "MissingLength",
     "Mistake",
     "OffsetMissing",
@@ -109,7 +114,7 @@ MATRIX_MISTAKES: tuple[Mistake, ...] = (
     OffsetMissing(),
     DegreesAsRadians(),
 )
-ENTRY_MISTAKES: tuple[Mistake, ...] = (
+ENTRY_MISTAKES: tuple[EntryMistake, ...] = (
     WrongSign(),
     SinCosSwapped(),
     WrongJointIndex(),
@@ -129,7 +134,10 @@ TABLE_MISTAKES: tuple[Mistake, ...] = (
 def diagnose_matrix(
     case: MatrixCase, mistakes: tuple[Mistake, ...] = MATRIX_MISTAKES
 ) -> tuple[Diagnosis, ...]:
-    """Explain a wrong matrix: one mistake for all wrong entries, else entry by entry.
+    """Explain a wrong matrix: one mistake for all wrong entries, else entry by entry,
+    each mistake named once with the entries it explains, then two slips of the entries'
+    kinds together (:func:`~dhsym.checking.mistakes._entry_mistakes.explain_pairs`, within
+    :data:`PAIR_BUDGET` candidates) in the entries still unexplained.
 
     ``mistakes`` are the kinds of the question (``^iT_j``: :data:`MATRIX_MISTAKES`;
     ``J``: :data:`JACOBIAN_MISTAKES`; ``det J``: :data:`DET_MISTAKES`).
@@ -150,6 +158,11 @@ def diagnose_matrix(
             found.append(d)
             done = set(d.entries)
             left = [p for p in left if case.label(p) not in done]
+    if left:  # two slips in one place: pairs of the entries' kinds, composed
+        pairs = explain_pairs(replace(case, wrong=tuple(left)), ENTRY_MISTAKES)
+        found.extend(pairs)
+        done = {e for d in pairs for e in d.entries}
+        left = [p for p in left if case.label(p) not in done]
     if left:
         where = ", ".join(case.where(p) for p in left)
         found.append(

@@ -311,6 +311,32 @@ def _signed(rhs: str, latex: bool, signs: list[sp.Symbol]) -> str:
     return _MINUS_PLUS.sub(lambda m: sub(m, "-"), rhs)
 
 
+_SIGMA = re.compile(r"(?<![A-Za-z0-9_])(?:\\sigma|σ|sigma)_?\{?([0-9]+)\}?(?![A-Za-z0-9_])")
+
+
+def _sigmas(rhs: str, signs: list[sp.Symbol], named: dict[str, sp.Symbol]) -> str:
+    r"""The branch signs of the derivations (``sigma_1``, ``σ1``, ``\sigma_{1}``) as signs
+    ±1 of the answer: one per index, the same wherever it is written.
+
+    >>> signs: list[sp.Symbol] = []
+    >>> _sigmas("atan2(sigma_1*sqrt(D), K) + σ_1 + \\sigma_{3}", signs, {})
+    'atan2( pmsign1 *sqrt(D), K) +  pmsign1  +  pmsign2'
+    >>> signs
+    [pmsign1, pmsign2]
+    """
+
+    def sub(m: re.Match[str]) -> str:
+        index = m.group(1)
+        if index not in named:
+            if len(signs) >= _MAX_SIGNS:
+                raise UnreadableAnswer(f"the answer has more than {_MAX_SIGNS} signs ±")
+            signs.append(sp.Symbol(f"{_SIGN_NAME}{len(signs) + 1}", real=True))
+            named[index] = signs[-1]
+        return f" {named[index].name} "
+
+    return _SIGMA.sub(sub, rhs).strip()
+
+
 def _read_ik(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> IKAnswer:
     """The statements of an inverse-kinematics answer, one per line or ``;`` (see
     :mod:`dhsym.checking.judging.ik_check`); refuses what it cannot read."""
@@ -345,8 +371,12 @@ def _read_ik(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> IKA
     solutions: list[dict[int, IKStatement]] = []
     helpers: list[IKStatement] = []
 
+    sigmas: dict[str, sp.Symbol] = {}
+
     def statement(target: sp.Symbol, rhs: str, joint: int | None, where: str) -> IKStatement:
         signed = _signed(rhs, is_latex(rhs), signs)
+        if not any(_SIGMA.fullmatch(name) for name in helpers_named):  # sigma_1 = … is a helper
+            signed = _sigmas(signed, signs, sigmas)
         ctx = form.names.extended([*extra, *((s.name, s) for s in signs)])
         return IKStatement(target, ReadCell.read(signed, ctx, limits, where), rhs.strip(), joint)
 

@@ -25,7 +25,11 @@ def px() -> Key:
         ("C1*(a2*C2 - a3*C23 - d4*S23) + d3*S1", "wrong_sign", "a3*C23 has the wrong sign"),
         ("a2*C1*C2 - a3*C1*C23 - d4*C1*S23 + d3*S1", "wrong_sign", "wrong sign"),
         ("C1*(a2*C2 + a3*C23) + d3*S1", "dropped_term", "-d4*S23 is missing"),
-        ("C1*(a2*C2 + a3*C23 - d4*C23) + d3*S1", "sin_cos_swapped", "S23 and C23"),
+        (
+            "C1*(a2*C2 + a3*C23 - d4*C23) + d3*S1",
+            "sin_cos_swapped",
+            "C23 is written where S23 belongs",
+        ),
         ("C1*(a2*C2 + a3*C12 - d4*S23) + d3*S1", "wrong_joint_index", "C12 is written where C23"),
         ("C1*(a2*C2 + C23 - d4*S23) + d3*S1", "missing_length", "length a3 is missing"),
     ],
@@ -75,3 +79,45 @@ def test_mutation_benchmark_sample():
     assert {o.mutant.kind for o in wrong} >= {"wrong_sign", "dropped_term", "sin_cos_swapped"}
     right = sum(o.right for o in wrong) / len(wrong)
     assert right >= 0.95, [(o.mutant.where, o.mutant.kind, o.kind) for o in wrong if not o.right]
+
+
+# --- two slips in one place, and one mistake said once (issue 34, item 3) -------------------
+
+
+@pytest.mark.parametrize(
+    ("answer", "kinds", "words"),
+    [
+        # a sign and S1 for C1 in one entry (the issue's example)
+        ("C1*(a2*C2 + a3*C23 + d4*S23) + d3*C1", {"wrong_sign", "sin_cos_swapped"}, "d4*S23"),
+        # a dropped term and a missing length
+        ("C1*(C2 + a3*C23) + d3*S1", {"dropped_term", "missing_length"}, "a2 is missing"),
+        # a wrong joint index and a wrong sign
+        ("C1*(a2*C2 - a3*C12 - d4*S23) + d3*S1", {"wrong_joint_index", "wrong_sign"}, "C12"),
+    ],
+)
+def test_two_slips_in_one_entry_are_both_named(px, answer, kinds, words):
+    r = check_answer(px, answer)
+    assert r.verdict is Verdict.INCORRECT
+    assert set(r.kinds) == kinds, r.diagnoses
+    assert "none of the usual mistakes" not in " ".join(d.detail for d in r.diagnoses)
+    assert words in " ".join(d.detail for d in r.diagnoses)
+    assert all(d.entries == ((1, 4),) for d in r.diagnoses)
+
+
+def test_one_slip_in_several_entries_is_said_once():
+    """S1 written for C1 in p_x and p_y of the 2R: one message naming both entries."""
+    key = Key.load("planar2r", "T0_2")
+    r = check_answer(
+        key, "[[C12, -S12, 0, a1*S1 + a2*C12], [S12, C12, 0, a1*C1 + a2*S12], [0,0,1,0], [0,0,0,1]]"
+    )
+    assert r.verdict is Verdict.INCORRECT
+    (d,) = r.diagnoses
+    assert d.kind == "sin_cos_swapped" and d.entries == ((1, 4), (2, 4))
+    assert d.detail.count("entries (1,4) and (2,4)") == 1, d.detail
+
+
+def test_an_unexplained_entry_stays_unexplained(px):
+    """Three slips (or a rewrite no pair of catalogued slips gives) are no pair."""
+    r = check_answer(px, "C1*(a2*S2 - a3*C23 - d4*S23) + 7*d3*S1")
+    assert r.verdict is Verdict.INCORRECT
+    assert r.kinds == ("unexplained",)
