@@ -132,6 +132,15 @@ class Credit:
         (1.5, 'partial credit: wrong sign (25% deducted), 1.5 of 2 points')
         >>> Credit(deduct=(("transposed", 0.25),)).award(2.0, wrong)
         (0.0, '')
+
+        Two mistakes in one entry: only deducted kinds may explain it.
+
+        >>> swapped = Diagnosis("sin_cos_swapped", "sin and cos swapped", "", ((1, 4),))
+        >>> both = CheckResult("T0_1", Verdict.INCORRECT, "", tuple(e), (*wrong.diagnoses, swapped))
+        >>> Credit(deduct=(("wrong_sign", 0.25),)).award(2.0, both)
+        (0.0, '')
+        >>> Credit(deduct=(("wrong_sign", 0.25), ("sin_cos_swapped", 0.25))).award(2.0, both)[0]
+        1.0
         """
         if result is None:
             return 0.0, ""
@@ -168,7 +177,10 @@ class Credit:
         hits = [d for d in result.diagnoses if d.kind in costs]
         wrong = {(e.row, e.col) for e in result.entries if not e.correct}
         if wrong:
-            explained = wrong <= {e for d in hits for e in d.entries}
+            # each wrong entry explained, and only by deducted kinds: an entry with two
+            # mistakes (a sign and a swapped sine) loses nothing less than both
+            covering = [[d for d in result.diagnoses if e in d.entries] for e in wrong]
+            explained = all(c and all(d.kind in costs for d in c) for c in covering)
         else:  # a table or a whole answer: every mistake named must be a deducted one
             explained = bool(hits) and len(hits) == len(result.diagnoses)
         if not explained:
