@@ -8,7 +8,10 @@ Debian's Chromium (driven by Playwright, software WebGL: no GPU), and prints
 * ``first frame``: milliseconds from the start of the page's navigation to its first drawn
   frame (``performance.now()`` at the first render), the median of ``--repeat`` loads;
 * ``redraws``: frames per second while a slider moves, each move waiting for the next
-  animation frame (``requestAnimationFrame``), over ``--moves`` moves;
+  animation frame (``requestAnimationFrame``), over ``--moves`` moves (a multiple of the
+  browser's frame clock: 60, 30, 20 … per second);
+* ``work``: the milliseconds of one move when moves follow each other at once, the update
+  and the drawing finished (``gl.finish()``): what bounds the rate;
 * the reference in the same process: matplotlib redrawing ``robot.plot`` (the static
   picture dhsym drew before) for the same moves, frames per second, and the ratio.
 """
@@ -40,6 +43,21 @@ MOVES = """async (moves) => {
     input.value = String(lo + ((hi - lo) * k) / moves);
     input.dispatchEvent(new Event("input"));
     await frame();
+  }
+  return (performance.now() - t0) / moves;
+}"""
+
+
+WORK = """(moves) => {
+  const view = window.dhsymView;
+  const input = document.querySelector('input[data-joint="2"]');
+  const lo = Number(input.min), hi = Number(input.max);
+  const gl = view.renderer.getContext();
+  const t0 = performance.now();
+  for (let k = 0; k < moves; k++) {
+    input.value = String(lo + ((hi - lo) * k) / moves);
+    input.dispatchEvent(new Event("input"));
+    gl.finish();  // the frame drawn, not only queued
   }
   return (performance.now() - t0) / moves;
 }"""
@@ -93,6 +111,7 @@ def main() -> None:
             page.goto(path.as_uri())
             page.wait_for_function("() => window.dhsymView && window.dhsymView.firstFrame")
             per_move = page.evaluate(MOVES, args.moves)
+            work = page.evaluate(WORK, args.moves)
             browser.close()
     fps = 1000 / per_move
     reference = matplotlib_fps(robot, max(20, args.moves // 10))
@@ -100,6 +119,7 @@ def main() -> None:
     print(f"  size         {len(html.encode()) / 1e6:.3f} MB")
     print(f"  first frame  {statistics.median(firsts):.0f} ms (median of {args.repeat} loads)")
     print(f"  redraws      {fps:.1f} frames/s while a slider moves ({args.moves} moves)")
+    print(f"  work         {work:.1f} ms per move, update and draw finished ({1000 / work:.0f}/s)")
     print(f"  reference    matplotlib robot.plot redrawn: {reference:.1f} frames/s")
     print(f"  ratio        {fps / reference:.1f}x")
 
