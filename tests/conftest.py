@@ -1,9 +1,49 @@
-"""Shared fixtures: symbols named as in the lectures."""
+"""Shared fixtures: symbols named as in the lectures; how pytest-xdist shares the tests
+out (a module that builds a fixture once for its tests runs on one worker)."""
 
 from __future__ import annotations
 
+import re
+from pathlib import Path
+
 import pytest
 import sympy as sp
+
+#: a fixture built once for the tests of a module (or class, or package)
+_SHARED_FIXTURE = re.compile(
+    r"""@pytest\.fixture\(\s*scope\s*=\s*["'](?:module|class|package)["']"""
+)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object:
+    """Under ``pytest -n N`` (the default ``--dist load``): share the tests out one by one,
+    except that the tests of a module defining a module-, class- or package-scoped
+    fixture (the docs site, the wheel and its venv, the exports of every robot, a grading
+    key, ...) go to one worker together, so that the fixture is built once, not once by
+    each worker that gets one of its tests. Another ``--dist`` is left as asked."""
+    if config.getoption("dist") != "load":
+        return None
+    from xdist.scheduler import LoadScopeScheduling
+
+    root = config.rootpath
+    shared: dict[str, bool] = {}
+
+    def builds_once(file: str) -> bool:
+        if file not in shared:
+            path = root / file
+            text = path.read_text(encoding="utf-8") if path.suffix == ".py" else ""
+            shared[file] = bool(_SHARED_FIXTURE.search(text)) and Path(file).name.startswith(
+                "test_"
+            )
+        return shared[file]
+
+    class SharedFixtureScheduling(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            file = nodeid.split("::", 1)[0]
+            return file if builds_once(file) else nodeid
+
+    return SharedFixtureScheduling(config, log)
 
 
 @pytest.fixture
