@@ -35,12 +35,12 @@ demo: $(STAMP)
 # the whole suite in two steps: the quick tests, then the few marked slow (compiling every
 # export, the general 6R, the class through Dask, ...) on their own. Both steps and all
 # their workers share one disk cache (DHSYM_TEST_CACHE: a robot is derived once for the
-# whole run), and --dist loadgroup keeps the tests of a module's shared fixture (the docs
-# site, the wheel, the exports of every robot) on one worker (tests/conftest.py).
+# whole run), and the tests of a module with a shared fixture (the docs site, the wheel,
+# the exports of every robot) run on one worker (tests/conftest.py).
 test: $(STAMP)
 	cache=$$(mktemp -d "$${TMPDIR:-/tmp}/dhsym-test-cache-XXXXXX") && \
-	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto --dist loadgroup -m "not slow" && \
-	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto --dist loadgroup -m slow; \
+	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto -m "not slow" && \
+	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto -m slow; \
 	status=$$?; rm -rf "$$cache"; exit $$status
 
 lint: $(STAMP)
