@@ -3,6 +3,7 @@ out (a module that builds a fixture once for its tests runs on one worker)."""
 
 from __future__ import annotations
 
+import functools
 import re
 from pathlib import Path
 
@@ -15,33 +16,39 @@ _SHARED_FIXTURE = re.compile(
 )
 
 
+@functools.cache
+def _builds_once(path: Path) -> bool:
+    """Whether the test module at ``path`` defines a module-, class- or package-scoped
+    fixture."""
+    if not (path.name.startswith("test_") and path.suffix == ".py" and path.is_file()):
+        return False
+    return bool(_SHARED_FIXTURE.search(path.read_text(encoding="utf-8")))
+
+
+def work_unit(nodeid: str, root: Path) -> str:
+    """What pytest-xdist gives one worker at a time: the whole file of a test module
+    that builds a shared fixture (:func:`_builds_once`), any other test by itself."""
+    file = nodeid.split("::", 1)[0]
+    return file if _builds_once(root / file) else nodeid
+
+
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object:
     """Under ``pytest -n N`` (the default ``--dist load``): share the tests out one by one,
     except that the tests of a module defining a module-, class- or package-scoped
     fixture (the docs site, the wheel and its venv, the exports of every robot, a grading
-    key, ...) go to one worker together, so that the fixture is built once, not once by
-    each worker that gets one of its tests. Another ``--dist`` is left as asked."""
+    key, ...) go to one worker together (:func:`work_unit`), so that the fixture is built
+    once, not once by each worker that gets one of its tests. Another ``--dist`` is left
+    as asked."""
     if config.getoption("dist") != "load":
         return None
     from xdist.scheduler import LoadScopeScheduling
 
     root = config.rootpath
-    shared: dict[str, bool] = {}
-
-    def builds_once(file: str) -> bool:
-        if file not in shared:
-            path = root / file
-            text = path.read_text(encoding="utf-8") if path.suffix == ".py" else ""
-            shared[file] = bool(_SHARED_FIXTURE.search(text)) and Path(file).name.startswith(
-                "test_"
-            )
-        return shared[file]
 
     class SharedFixtureScheduling(LoadScopeScheduling):
         def _split_scope(self, nodeid: str) -> str:
-            file = nodeid.split("::", 1)[0]
-            return file if builds_once(file) else nodeid
+            return work_unit(nodeid, root)
 
     return SharedFixtureScheduling(config, log)
 
