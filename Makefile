@@ -33,10 +33,15 @@ demo: $(STAMP)
 	$(VENV)/bin/dhsym handout puma560 -o build/puma560.tex --pdf
 
 # the whole suite in two steps: the quick tests, then the few marked slow (compiling every
-# export, the general 6R, the class through Dask, ...) on their own
+# export, the general 6R, the class through Dask, ...) on their own. Both steps and all
+# their workers share one disk cache (DHSYM_TEST_CACHE: a robot is derived once for the
+# whole run), and the tests of a module with a shared fixture (the docs site, the wheel,
+# the exports of every robot) run on one worker (tests/conftest.py).
 test: $(STAMP)
-	$(PY) -m pytest -q -n auto -m "not slow"
-	$(PY) -m pytest -q -n auto -m slow
+	cache=$$(mktemp -d "$${TMPDIR:-/tmp}/dhsym-test-cache-XXXXXX") && \
+	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto -m "not slow" && \
+	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto -m slow; \
+	status=$$?; rm -rf "$$cache"; exit $$status
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check dhsym tests benchmarks

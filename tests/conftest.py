@@ -1,9 +1,56 @@
-"""Shared fixtures: symbols named as in the lectures."""
+"""Shared fixtures: symbols named as in the lectures; how pytest-xdist shares the tests
+out (a module that builds a fixture once for its tests runs on one worker)."""
 
 from __future__ import annotations
 
+import functools
+import re
+from pathlib import Path
+
 import pytest
 import sympy as sp
+
+#: a fixture built once for the tests of a module (or class, or package)
+_SHARED_FIXTURE = re.compile(
+    r"""@pytest\.fixture\(\s*scope\s*=\s*["'](?:module|class|package)["']"""
+)
+
+
+@functools.cache
+def _builds_once(path: Path) -> bool:
+    """Whether the test module at ``path`` defines a module-, class- or package-scoped
+    fixture."""
+    if not (path.name.startswith("test_") and path.suffix == ".py" and path.is_file()):
+        return False
+    return bool(_SHARED_FIXTURE.search(path.read_text(encoding="utf-8")))
+
+
+def work_unit(nodeid: str, root: Path) -> str:
+    """What pytest-xdist gives one worker at a time: the whole file of a test module
+    that builds a shared fixture (:func:`_builds_once`), any other test by itself."""
+    file = nodeid.split("::", 1)[0]
+    return file if _builds_once(root / file) else nodeid
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object:
+    """Under ``pytest -n N`` (the default ``--dist load``): share the tests out one by one,
+    except that the tests of a module defining a module-, class- or package-scoped
+    fixture (the docs site, the wheel and its venv, the exports of every robot, a grading
+    key, ...) go to one worker together (:func:`work_unit`), so that the fixture is built
+    once, not once by each worker that gets one of its tests. Another ``--dist`` is left
+    as asked."""
+    if config.getoption("dist") != "load":
+        return None
+    from xdist.scheduler import LoadScopeScheduling
+
+    root = config.rootpath
+
+    class SharedFixtureScheduling(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return work_unit(nodeid, root)
+
+    return SharedFixtureScheduling(config, log)
 
 
 @pytest.fixture

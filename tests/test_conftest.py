@@ -1,0 +1,79 @@
+"""How the suite shares work (conftest.py, tests/conftest.py): one disk cache for a run
+and its xdist workers, and the tests of a module's shared fixture on one worker."""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+from tests.conftest import work_unit
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def _root_conftest():
+    spec = importlib.util.spec_from_file_location("_root_conftest", ROOT / "conftest.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.mark.parametrize(
+    "nodeid",
+    [
+        "tests/docs/test_site.py::test_the_site_builds_without_a_warning",
+        "tests/test_installed.py::test_handout_pdf",
+        "tests/export/test_compile_all.py::test_every_robot_is_exported",
+        "tests/explain/test_notebooks.py::test_notebook_runs_clean[03_puma560.ipynb]",
+    ],
+)
+def test_a_module_that_builds_a_shared_fixture_is_one_unit(nodeid):
+    assert work_unit(nodeid, ROOT) == nodeid.split("::")[0]
+
+
+@pytest.mark.parametrize(
+    "nodeid",
+    [
+        "tests/model/test_parsing.py::test_whitelist_refuses_calls",
+        "dhsym/model/table.py::dhsym.model.table.DHTable",
+        "tests/ik/test_decoupled.py::test_x[puma560]",
+    ],
+)
+def test_any_other_test_is_a_unit_by_itself(nodeid):
+    assert work_unit(nodeid, ROOT) == nodeid
+
+
+def test_a_worker_keeps_the_cache_folder_of_its_controller(tmp_path, monkeypatch):
+    conftest = _root_conftest()
+    folder = tmp_path / f"{conftest.PREFIX}abc"
+    folder.mkdir()
+    monkeypatch.delenv("DHSYM_TEST_CACHE", raising=False)
+    monkeypatch.setenv("DHSYM_CACHE", str(folder))
+    worker, controller = SimpleNamespace(workerinput={}), SimpleNamespace()
+    assert conftest._given_folder(worker) == str(folder)
+    assert conftest._given_folder(controller) is None  # the controller makes its own
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path))  # not a session folder: the user's
+    assert conftest._given_folder(worker) is None
+
+
+def test_make_test_names_one_folder_for_both_steps(tmp_path, monkeypatch):
+    conftest = _root_conftest()
+    monkeypatch.setenv("DHSYM_TEST_CACHE", str(tmp_path))
+    assert conftest._given_folder(SimpleNamespace()) == str(tmp_path)
+    assert conftest._given_folder(SimpleNamespace(workerinput={})) == str(tmp_path)
+    monkeypatch.setenv("DHSYM_TEST_CACHE", str(tmp_path / "missing"))
+    assert conftest._given_folder(SimpleNamespace()) is None
+
+
+def test_the_session_cache_is_private_and_not_the_users():
+    folder = os.environ["DHSYM_CACHE"]
+    assert Path(folder).is_dir() and os.stat(folder).st_mode & 0o077 == 0
+    assert (
+        Path(folder).name.startswith(_root_conftest().PREFIX)
+        or os.environ.get("DHSYM_TEST_CACHE") == folder
+    )
