@@ -281,7 +281,9 @@ def test_python_samples_a_batch_of_times(tmp_path):
     _, files = _export("spong2r", "python")
     module = h.load_python(files, "arm", tmp_path)
     ts = np.linspace(0.0, 1.5, 31)
-    got = module.quintic([0.0, 0.5], [1.0, -0.8], [0.2, 0.0], 0.0, 0.0, [0.0, 1.0], 1.5, ts[:, None])
+    got = module.quintic(
+        [0.0, 0.5], [1.0, -0.8], [0.2, 0.0], 0.0, 0.0, [0.0, 1.0], 1.5, ts[:, None]
+    )
     want = quintic([0, 0.5], [1, -0.8], 1.5, [0.2, 0], 0, 0, [0, 1]).sample(ts)
     for g, w in zip(got, want):
         assert g.shape == (31, 2)
