@@ -263,7 +263,7 @@ def test_octave(name, tmp_path):
     _check(robot, _run(cmd, tmp_path, ""))
 
 
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", [pytest.param("puma560", marks=pytest.mark.slow), "spong2r"])
 def test_python(name, tmp_path):
     robot, files = _export(name, "python")
     module = h.load_python(files, "arm", tmp_path)
