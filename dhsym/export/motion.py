@@ -84,7 +84,7 @@ def profile_program(kind: str) -> JointwiseProgram:
     >>> prog = profile_program("quintic")
     >>> [name for name, _ in prog.outputs]
     ['q', 'qd', 'qdd']
-    >>> prog.comment[3]
+    >>> prog.comment[5]
     'c2 = a0_j/2'
     """
     ends = {"cubic": ("q0", "qf", "v0", "vf"), "quintic": ("q0", "qf", "v0", "vf", "a0", "af")}
@@ -115,8 +115,9 @@ def profile_program(kind: str) -> JointwiseProgram:
     qd = inside * horner([k * c for k, c in enumerate(cs)][1:])
     qdd = inside * horner([k * (k - 1) * c for k, c in enumerate(cs)][2:])
     said = [
-        f"The {kind} of each joint from its boundary conditions at 0 and tf, q = sum of "
-        "c_k tc^k in the local time tc = t limited to [0, tf] (at rest outside it):",
+        f"The {kind} of each joint from its boundary conditions at 0 and tf:",
+        "q = sum of c_k tc^k in the local time tc = t limited to [0, tf]",
+        "(at rest outside it), with",
         *(f"c{k} = {c}" for k, c in enumerate(segment.coefficients)),
     ]
     return JointwiseProgram(
@@ -146,8 +147,8 @@ def computed_torque_program() -> JointwiseProgram:
         (),
         (("v", _numbers(v)),),
         (
-            "Computed torque (inverse dynamics control): tau = rne(q, qd, v) with the "
-            "commanded acceleration v = qdd_ref + kd (qd_ref - qd) + kp (q_ref - q), so that "
-            "the error e = q_ref - q obeys e'' + kd e' + kp e = 0 on the exact model.",
+            "Computed torque (inverse dynamics control): tau = rne(q, qd, v) with the",
+            "commanded acceleration v = qdd_ref + kd (qd_ref - qd) + kp (q_ref - q),",
+            "so that the error e = q_ref - q obeys e'' + kd e' + kp e = 0 on the exact model.",
         ),
     )
