@@ -57,6 +57,7 @@ RANK["plot"] = RANK["geometry"]  # siblings
 RANK["ik"] = RANK["geometry"]
 RANK["export"] = RANK["geometry"]  # a sibling too: it reads model, notation, kinematics, ik
 RANK["dynamics"] = RANK["geometry"]  # a sibling: model, notation, kinematics below it
+RANK["trajectory"] = RANK["geometry"]  # a sibling: the export prints its profiles
 #: Upward edges with a documented reason: a table's display hooks reach the printer at
 #: call time (as sympy's own Basic._repr_latex_ does). ALLOWED excuses the direction only:
 #: every import, module level or inside a function, counts when looking for circles.

@@ -177,7 +177,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         "--what",
         default="fk,jacobian,ik",
         help="comma-separated parts: fk, jacobian, ik, dynamics (or rne: numeric inertial "
-        "parameters only)",
+        "parameters only), trajectory (cubic and quintic profiles), control (computed "
+        "torque on rne: numeric inertial parameters only)",
     )
     c.add_argument(
         "--prefix",

@@ -54,8 +54,9 @@ __all__ = ["DEFAULT_PARTS", "LANGUAGES", "PARTS", "export", "export_languages"]
 
 #: The languages and the modules that print them.
 LANGUAGES = ("c", "cpp", "matlab", "rust", "python")
-#: What can be exported (``rne`` is another name for ``dynamics``).
-PARTS = ("fk", "jacobian", "ik", "dynamics")
+#: What can be exported (``rne`` is another name for ``dynamics``; ``trajectory``: the
+#: cubic and quintic profiles; ``control``: computed torque, on the exported ``rne``).
+PARTS = ("fk", "jacobian", "ik", "dynamics", "trajectory", "control")
 #: What is exported unless asked otherwise (the dynamics needs numeric inertial parameters).
 DEFAULT_PARTS = ("fk", "jacobian", "ik")
 
@@ -79,7 +80,10 @@ def _parts(what: str | Iterable[str]) -> tuple[str, ...]:
         if w not in parts:
             parts.append(w)
     if not parts:
-        raise DHError("nothing to export: give what=fk,jacobian,ik,dynamics (or a part of it)")
+        raise DHError(
+            "nothing to export: give what=fk,jacobian,ik,dynamics,trajectory,control "
+            "(or a part of it)"
+        )
     return tuple(p for p in PARTS if p in parts)
 
 
@@ -104,8 +108,11 @@ def export(
     what
         Parts: ``"fk"``, ``"jacobian"``, ``"ik"``, ``"dynamics"`` (or ``"rne"``: the
         inverse dynamics ``rne(q, qd, qdd)`` of ``robot.rne``, for numeric inertial
-        parameters only) as a sequence or ``"fk,ik"``. The IK checks its solutions with
-        the fk, so ``ik`` brings ``fk`` along.
+        parameters only), ``"trajectory"`` (``<prefix>_cubic`` and ``<prefix>_quintic``:
+        q, q̇, q̈ of each joint at a time ``t`` from its boundary conditions) and
+        ``"control"`` (``<prefix>_computed_torque``, numeric inertial parameters only) as a
+        sequence or ``"fk,ik"``. The IK checks its solutions with the fk, so ``ik`` brings
+        ``fk`` along, and ``control`` brings ``dynamics`` (its ``rne``).
     prefix
         The name in front of every function and file (``<prefix>_fk``, ``<prefix>.h``):
         an ASCII letter, then letters, digits and ``_``, never a path (anything else is a
@@ -165,9 +172,12 @@ def export_languages(
     from .identifiers import comment_lines
     from .identifiers import prefix as prefix_for
     from .languages import Context, header_lines, render_files
+    from .motion import computed_torque_program, profile_program
     from .program import fk_program, ik_program, jacobian_program, rne_program
 
     parts = _parts(what)
+    if "control" in parts and "dynamics" not in parts:  # computed torque calls rne
+        parts = _parts((*parts, "dynamics"))
     languages = [(lang, _language(lang)) for lang in langs]
     names = {
         lang: prefix_for(prefix, lang, default=robot.name or "robot") for lang in dict(languages)
@@ -180,6 +190,10 @@ def export_languages(
     jac = (
         jacobian_program(robot, symbolic_lengths=symbolic_lengths) if "jacobian" in parts else None
     )
+    profiles = (
+        tuple(profile_program(k) for k in ("cubic", "quintic")) if "trajectory" in parts else ()
+    )
+    control = computed_torque_program() if "control" in parts else None
     effective = tuple(sorted(set(parts) | {"fk"}))
     out: dict[str, dict[str, str]] = {}
     for lang, language in languages:
@@ -200,6 +214,8 @@ def export_languages(
             jacobian=jac,
             ik=ik,
             rne=rne,
+            profiles=profiles,
+            control=control,
             parameters=fk.parameters,
             revolute=tuple(
                 r.joint.value == "R" for r in robot.table.rows if r.variable is not None

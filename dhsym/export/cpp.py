@@ -35,6 +35,14 @@ class CppPrinter(CXX17CodePrinter):
         v, up, down = (self._print(a) for a in expr.args)
         return f"({v} > 0.0 ? {up} : ({v} < 0.0 ? {down} : 0.0))"
 
+    def _print_Clamp(self, expr: sp.Expr) -> str:
+        t, tf = (self._print(a) for a in expr.args)
+        return f"std::fmin(std::fmax({t}, 0.0), {tf})"
+
+    def _print_Inside(self, expr: sp.Expr) -> str:
+        t, tf = (self._print(a) for a in expr.args)
+        return f"({t} >= 0.0 && {t} <= {tf} ? 1.0 : 0.0)"
+
 
 LANGUAGE = Language(
     name="cpp",

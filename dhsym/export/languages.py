@@ -35,6 +35,7 @@ from .identifiers import comment_lines
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
+    from .motion import JointwiseProgram
     from .program import IKProgram, Program, RNEProgram
 
 __all__ = ["Context", "Language", "header_lines", "render_files"]
@@ -67,6 +68,9 @@ class Context:
     parameters: tuple[object, ...]
     revolute: tuple[bool, ...]
     rne: RNEProgram | None = None
+    #: the exported profiles (``cubic``, ``quintic``) and computed torque, when asked for
+    profiles: tuple[JointwiseProgram, ...] = ()
+    control: JointwiseProgram | None = None
 
 
 def _cell(e: sp.Expr) -> str:

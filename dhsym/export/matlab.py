@@ -38,6 +38,14 @@ class MatlabPrinter(OctaveCodePrinter):
         v, up, down = (self._print(a) for a in expr.args)
         return f"({up}*({v} > 0) + {down}*({v} < 0))"
 
+    def _print_Clamp(self, expr: sp.Expr) -> str:
+        t, tf = (self._print(a) for a in expr.args)
+        return f"min(max({t}, 0), {tf})"
+
+    def _print_Inside(self, expr: sp.Expr) -> str:
+        t, tf = (self._print(a) for a in expr.args)
+        return f"double({t} >= 0 & {t} <= {tf})"
+
 
 LANGUAGE = Language(
     name="matlab",
@@ -49,6 +57,9 @@ LANGUAGE = Language(
         ("matlab_njoints.m.j2", "{prefix}_njoints.m", None),
         ("matlab_max_ik.m.j2", "{prefix}_max_ik_solutions.m", "ik"),
         ("matlab_rne.m.j2", "{prefix}_rne.m", "dynamics"),
+        ("matlab_cubic.m.j2", "{prefix}_cubic.m", "trajectory"),
+        ("matlab_quintic.m.j2", "{prefix}_quintic.m", "trajectory"),
+        ("matlab_computed_torque.m.j2", "{prefix}_computed_torque.m", "control"),
     ),
     comment="%",
     note="addpath the folder; T = {prefix}_fk(q)",

@@ -36,6 +36,14 @@ class PythonPrinter(NumPyPrinter):
         v, up, down = (self._print(a) for a in expr.args)
         return f"numpy.where({v} > 0, {up}, numpy.where({v} < 0, {down}, 0.0))"
 
+    def _print_Clamp(self, expr: sp.Expr) -> str:
+        t, tf = (self._print(a) for a in expr.args)
+        return f"numpy.clip({t}, 0.0, {tf})"
+
+    def _print_Inside(self, expr: sp.Expr) -> str:
+        t, tf = (self._print(a) for a in expr.args)
+        return f"numpy.where(({t} >= 0) & ({t} <= {tf}), 1.0, 0.0)"
+
 
 LANGUAGE = Language(
     name="python",

@@ -61,6 +61,14 @@ class RustPrinter(RustCodePrinter):
         v, up, down = (self._print(a) for a in expr.args)
         return f"(if {v} > 0.0 {{ {up} }} else if {v} < 0.0 {{ {down} }} else {{ 0.0 }})"
 
+    def _print_Clamp(self, expr: sp.Expr) -> str:
+        t, tf = (self._print(a) for a in expr.args)
+        return f"{t}.max(0.0).min({tf})"
+
+    def _print_Inside(self, expr: sp.Expr) -> str:
+        t, tf = (self._print(a) for a in expr.args)
+        return f"(if {t} >= 0.0 && {t} <= {tf} {{ 1.0 }} else {{ 0.0 }})"
+
 
 LANGUAGE = Language(
     name="rust",
