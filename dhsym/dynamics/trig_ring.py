@@ -76,7 +76,7 @@ class TrigRing:
 
     def poly(self, expr: sp.Expr) -> sp.Poly:
         """``expr`` as a polynomial in the generators (coefficients: the constants)."""
-        e = sp.expand(sp.sympify(expr).xreplace(dict(zip(self.atoms, self.gens))))
+        e = sp.expand(expr.xreplace(dict(zip(self.atoms, self.gens))))
         if e.free_symbols & set(self.variables):
             raise DHError(f"not a polynomial in sines and cosines of the joint angles: {expr}")
         return sp.Poly(e, *self.gens) if self.gens else sp.Poly(e, sp.Dummy("one"))
