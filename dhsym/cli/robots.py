@@ -25,6 +25,7 @@ from .common import (
     load_robot,
     load_table_arg,
     note_warnings,
+    progress_line,
     q_in_degrees,
 )
 
@@ -167,8 +168,11 @@ def _derive_more(robot: Robot, what: str, args: argparse.Namespace) -> int:
     else:
         from dhsym.explain.documents import render_derivation
 
+        extra = {"progress": progress_line(f"{robot.name or 'robot'}: {what}")}
         try:
-            out = render_derivation(robot, fmt=args.format, what=what)
+            out = render_derivation(
+                robot, fmt=args.format, what=what, **(extra if what == "dynamics" else {})
+            )
         except DHError as err:
             nxt = _next_step(what, args.robot)
             if nxt is None:

@@ -52,7 +52,7 @@ import sympy as sp
 from dhsym.kinematics.simplification import prove_equal
 from dhsym.model.inertia import LinkInertia
 
-from .lagrange_euler import link_jacobians, ring_equations
+from .lagrange_euler import link_jacobians, ring_energies, ring_equations
 from .model import DynamicModel, dynamic_model
 from .trig_ring import lecture_form
 
@@ -111,6 +111,8 @@ class CompactDynamics:
         Spong's ``c_ijk`` as ``[i][j][k]`` (0-based), in the same form.
     constants
         The grouped constants of M and C (``K1``, …) then of g (``gamma1``, …).
+    kinetic, potential
+        Each link's kinetic and potential energy (nothing named).
     values
         The numbers of the inertial symbols introduced by ``symbolic=True`` (empty
         otherwise): ``expanded().M.subs(values)`` is the table's M.
@@ -124,6 +126,8 @@ class CompactDynamics:
     christoffel: tuple[tuple[tuple[sp.Expr, ...], ...], ...]
     constants: tuple[GroupedConstant, ...]
     values: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    kinetic: tuple[sp.Expr, ...] = ()
+    potential: tuple[sp.Expr, ...] = ()
 
     @property
     def substitution(self) -> dict[sp.Symbol, sp.Expr]:
@@ -192,9 +196,7 @@ def symbolic_links(dm: DynamicModel) -> tuple[DynamicModel, dict[sp.Symbol, sp.E
     links = []
     for i, L in enumerate(dm.links, start=1):
         tb = LinkInertia.textbook(i)
-        inertia = Matrix(
-            [[name(L.I[a, b], tb.I[a, b].name) for b in range(3)] for a in range(3)]
-        )
+        inertia = Matrix([[name(L.I[a, b], tb.I[a, b].name) for b in range(3)] for a in range(3)])
         links.append(
             replace(
                 L,
@@ -251,7 +253,11 @@ def compact_dynamics(
     taken = _taken(dm)
     inertial = _Namer("K", taken)
     gravitational = _Namer("gamma", taken)
-    Mx = Matrix(n, n, lambda j, k: lecture_form(ring, eq.M[j][k], inertial))
+    upper = {
+        (j, k): lecture_form(ring, eq.M[j][k], inertial)
+        for j, k in itertools.combinations_with_replacement(range(n), 2)
+    }
+    Mx = Matrix(n, n, lambda j, k: upper[min(j, k), max(j, k)])
     shown = {
         (i, j, k): lecture_form(ring, eq.christoffel[i][j][k], inertial)
         for i, j, k in itertools.product(range(n), repeat=3)
@@ -262,6 +268,7 @@ def compact_dynamics(
         for i in range(n)
     )
     C = Matrix(n, n, lambda k, j: sp.Add(*(chris[i][j][k] * dm.rates[i] for i in range(n))))
+    say("grouped constants")
     g = Matrix([lecture_form(ring, p, gravitational) for p in eq.g])
     qd, qdd = Matrix(dm.rates), Matrix(dm.accelerations)
     tau = Matrix(Mx * qdd + C * qd + g)
@@ -274,4 +281,5 @@ def compact_dynamics(
         chris,
         (*inertial.constants, *gravitational.constants),
         tuple(sorted(extra.items(), key=lambda kv: kv[0].name)),
+        *ring_energies(dm, eq),
     )

@@ -55,6 +55,7 @@ __all__ = [
     "lagrange",
     "link_jacobians",
     "RingEquations",
+    "ring_energies",
     "ring_equations",
     "tidy",
 ]
@@ -246,6 +247,23 @@ def ring_equations(dm: DynamicModel, say: Callable[[str], None] = lambda _m: Non
     )
 
 
+def ring_energies(
+    dm: DynamicModel, eq: RingEquations
+) -> tuple[tuple[sp.Expr, ...], tuple[sp.Expr, ...]]:
+    """Each link's kinetic energy ``½ q̇ᵀ M_i q̇`` (its share of M, in the lecture form) and
+    potential energy (collected by the masses)."""
+    qd = dm.rates
+    kinetic = []
+    for share in eq.links:
+        terms = []
+        for j, k in itertools.combinations_with_replacement(range(dm.n), 2):
+            if share is not None and not share[j][k].is_zero:
+                weight = sp.Rational(1, 2) if j == k else sp.Integer(1)
+                terms.append(weight * lecture_form(eq.ring, share[j][k]) * qd[j] * qd[k])
+        kinetic.append(sp.Add(*terms))
+    return tuple(kinetic), tuple(tidy(p, dm.masses) for p in eq.potential)
+
+
 def _ring_lagrange(dm: DynamicModel) -> EquationsOfMotion:
     """Lagrange–Euler through :func:`ring_equations`: each entry one term per trigonometric
     monomial (what :func:`lagrange` does from :data:`RING_JOINTS` joints on)."""
@@ -258,21 +276,8 @@ def _ring_lagrange(dm: DynamicModel) -> EquationsOfMotion:
     C = Matrix(n, n, lambda k, j: sp.Add(*(christoffel[i][j][k] * dm.rates[i] for i in range(n))))
     g = Matrix([lecture_form(ring, p) for p in eq.g])
     qd, qdd = Matrix(dm.rates), Matrix(dm.accelerations)
-    kinetic = []
-    for share in eq.links:
-        if share is None:
-            kinetic.append(sp.Integer(0))
-            continue
-        kinetic.append(
-            sp.Add(
-                *(
-                    lecture_form(ring, share[j][k]) * qd[j] * qd[k] * (1 if j == k else 2) / 2
-                    for j, k in itertools.combinations_with_replacement(range(n), 2)
-                )
-            )
-        )
+    kinetic, potential = ring_energies(dm, eq)
     tau = Matrix(M * qdd + C * qd + g)
-    potential = tuple(tidy(p, dm.masses) for p in eq.potential)
     return EquationsOfMotion("lagrange", dm, M, C, g, tau, christoffel, tuple(kinetic), potential)
 
 

@@ -24,11 +24,15 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import sympy as sp
 
+from dhsym.dynamics.compact_form import GroupedConstant, compact_dynamics
 from dhsym.dynamics.equations import EquationsOfMotion, NEStep
+from dhsym.dynamics.lagrange_euler import RING_JOINTS
+from dhsym.dynamics.recursive_newton_euler import rne_expressions
 from dhsym.model.inertia import LinkInertia
 from dhsym.model.table import DHTable
 from dhsym.notation.escape import TeX
@@ -91,12 +95,25 @@ def _link(i: int, L: LinkInertia, nota: Notation, width: float) -> LinkData:
     )
 
 
+def _grouped(
+    robot: Robot, say: Callable[[str], None]
+) -> tuple[EquationsOfMotion, tuple[GroupedConstant, ...], tuple[tuple[sp.Symbol, sp.Expr], ...]]:
+    """Lagrange–Euler in the compact form with grouped constants (six-joint arms): lengths
+    and inertias both symbolic when the table's lengths are symbols, else both numbers."""
+    cd = compact_dynamics(robot, symbolic=bool(robot.table.constants), progress=say)
+    eom = EquationsOfMotion(
+        "lagrange", cd.model, cd.M, cd.C, cd.g, cd.tau, cd.christoffel, cd.kinetic, cd.potential
+    )
+    return eom, cd.constants, cd.values
+
+
 def derive_dynamics(
     name_or_robot: str | Path | DHTable | Robot,
     *,
     compact: bool | None = None,
     notation: TrigStyle | str | None = None,
     width: float = LATEX_WIDTH,
+    progress: Callable[[str], None] | None = None,
 ) -> DynamicsDerivation:
     """The equations of motion of a robot: Lagrange–Euler step by step, then Newton–Euler.
 
@@ -107,6 +124,12 @@ def derive_dynamics(
         parameters gets the textbook symbols (``m1``, ``rx1``, ``Izz1``, …).
     compact, notation, width
         As for :func:`~dhsym.explain.derivation.derive`.
+    progress
+        Told each stage of the derivation (the command line prints it on standard error).
+
+    From :data:`~dhsym.dynamics.lagrange_euler.RING_JOINTS` joints on, M, C and g are
+    printed in the compact form with grouped inertial constants
+    (:func:`~dhsym.dynamics.compact_form.compact_dynamics`), listed in ``constants``.
 
     >>> d = derive_dynamics("planar2r")
     >>> [e.name.text for e in d.christoffel]
@@ -116,8 +139,21 @@ def derive_dynamics(
     """
     robot = styled(name_or_robot, compact, notation)
     nota = robot.notation
-    lag: EquationsOfMotion = robot.dynamics()
-    ne: EquationsOfMotion = robot.dynamics(method="newton-euler")
+    say = progress or (lambda _msg: None)
+    constants: tuple[GroupedConstant, ...] = ()
+    numbers: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    if len(robot.table.variables) >= RING_JOINTS:
+        lag, constants, numbers = _grouped(robot, say)
+    else:
+        lag = robot.dynamics()
+    say("Newton-Euler recursion")
+    if constants or numbers:  # the compact form's model; the recursion's steps, nested
+        recorded: list[NEStep] = []
+        rne_expressions(lag.model, record=recorded)
+        ne_steps = tuple(recorded)
+    else:
+        ne_steps = robot.dynamics(method="newton-euler").steps
+    say("layout")
     n = lag.M.rows
     shown: list[sp.Expr] = []
     energies = []
@@ -155,7 +191,7 @@ def derive_dynamics(
         _eq(_name(rf"\tau_{{{k + 1}}}", f"tau{k + 1}"), lag.tau[k], nota, width) for k in range(n)
     )
     shown += [*lag.M, *lag.C, *lag.g]
-    steps = tuple(_step(s, nota, width) for s in ne.steps)
+    steps = tuple(_step(s, nota, width) for s in ne_steps)
     name = robot.name or "robot"
     return DynamicsDerivation(
         name=name,
@@ -174,4 +210,8 @@ def derive_dynamics(
         width=width,
         links=tuple(_link(i, L, nota, width) for i, L in enumerate(lag.model.links, start=1)),
         coriolis=coriolis,
+        constants=tuple(
+            _eq(_name(sp.latex(k.symbol), str(k.symbol)), k.value, nota, width) for k in constants
+        ),
+        parameter_values=tuple(_eq(_name(sp.latex(s), str(s)), v, nota, width) for s, v in numbers),
     )
