@@ -69,6 +69,10 @@ _VECTORS = {
 }
 
 
+#: the Newton–Euler steps a derivation in the compact form prints (the rest nest over pages)
+_SHOWN_SIX_JOINTS = ("omega", "omegadot")
+
+
 def _name(tex: str, text: str) -> Math:
     return Math(TeX(tex), text)
 
@@ -147,10 +151,10 @@ def derive_dynamics(
     else:
         lag = robot.dynamics()
     say("Newton-Euler recursion")
-    if constants or numbers:  # the compact form's model; the recursion's steps, nested
-        recorded: list[NEStep] = []
+    if constants or numbers:  # six joints: the angular rates of the recursion; the forces
+        recorded: list[NEStep] = []  # nested over pages are what the compiled rne computes
         rne_expressions(lag.model, record=recorded)
-        ne_steps = tuple(recorded)
+        ne_steps = tuple(s for s in recorded if s.name in _SHOWN_SIX_JOINTS)
     else:
         ne_steps = robot.dynamics(method="newton-euler").steps
     say("layout")
