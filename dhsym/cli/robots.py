@@ -168,11 +168,12 @@ def _derive_more(robot: Robot, what: str, args: argparse.Namespace) -> int:
     else:
         from dhsym.explain.documents import render_derivation
 
-        extra = {"progress": progress_line(f"{robot.name or 'robot'}: {what}")}
         try:
-            out = render_derivation(
-                robot, fmt=args.format, what=what, **(extra if what == "dynamics" else {})
-            )
+            if what == "dynamics":
+                say = progress_line(f"{robot.name or 'robot'}: {what}")
+                out = render_derivation(robot, fmt=args.format, what=what, progress=say)
+            else:
+                out = render_derivation(robot, fmt=args.format, what=what)
         except DHError as err:
             nxt = _next_step(what, args.robot)
             if nxt is None:
