@@ -32,6 +32,7 @@ import sympy as sp
 from dhsym.dynamics.compact_form import GroupedConstant, compact_dynamics
 from dhsym.dynamics.equations import EquationsOfMotion, NEStep
 from dhsym.dynamics.lagrange_euler import RING_JOINTS
+from dhsym.dynamics.model import DynamicModel
 from dhsym.dynamics.recursive_newton_euler import rne_expressions
 from dhsym.model.inertia import LinkInertia
 from dhsym.model.table import DHTable
@@ -99,6 +100,26 @@ def _link(i: int, L: LinkInertia, nota: Notation, width: float) -> LinkData:
     )
 
 
+def _tau_by_parts(dm: DynamicModel) -> sp.ImmutableMatrix:
+    """``τ_k = Σ_j M_kj q̈_j + Σ_j C_kj q̇_j + g_k`` with the entries as names (M_{jk}, j ≤ k,
+    as printed): the six-joint τ written out would repeat M, C and g over pages."""
+    n = dm.n
+
+    def entry(name: str, k: int, j: int) -> sp.Symbol:
+        return sp.Symbol(f"{name}{k + 1}{j + 1}", real=True)
+
+    return sp.ImmutableMatrix(
+        [
+            sp.Add(
+                *(entry("M", min(k, j), max(k, j)) * dm.accelerations[j] for j in range(n)),
+                *(entry("C", k, j) * dm.rates[j] for j in range(n)),
+                sp.Symbol(f"g{k + 1}", real=True),
+            )
+            for k in range(n)
+        ]
+    )
+
+
 def _grouped(
     robot: Robot, say: Callable[[str], None]
 ) -> tuple[EquationsOfMotion, tuple[GroupedConstant, ...], tuple[tuple[sp.Symbol, sp.Expr], ...]]:
@@ -106,8 +127,9 @@ def _grouped(
     and inertias both symbolic when the table's lengths are symbols, else both numbers."""
     cd = compact_dynamics(robot, symbolic=bool(robot.table.constants), progress=say)
     eom = EquationsOfMotion(
-        "lagrange", cd.model, cd.M, cd.C, cd.g, cd.tau, cd.christoffel, cd.kinetic, cd.potential
-    )
+        "lagrange", cd.model, cd.M, cd.C, cd.g, _tau_by_parts(cd.model), cd.christoffel,
+        cd.kinetic, cd.potential,
+    )  # fmt: skip
     return eom, cd.constants, cd.values
 
 
