@@ -29,11 +29,11 @@ Examples
 >>> cd = compact_dynamics(dhsym.load("spong2r"))
 >>> for k in cd.constants:
 ...     print(k.symbol, "=", k.value)
-K1 = I1 + I2 + l1**2*m2 + lc1**2*m1 + lc2**2*m2
-K2 = I2 + lc2**2*m2
+Ig1 = I1 + I2 + l1**2*m2 + lc1**2*m1 + lc2**2*m2
+Ig2 = I2 + lc2**2*m2
 gamma1 = g*l1*m2 + g*lc1*m1
 >>> cd.M[0, 0]
-K1 + 2*l1*lc2*m2*cos(theta2)
+Ig1 + 2*l1*lc2*m2*cos(theta2)
 >>> cd.g.T
 Matrix([[g*lc2*m2*cos(theta1 + theta2) + gamma1*cos(theta1), g*lc2*m2*cos(theta1 + theta2)]])
 >>> cd.proven()
@@ -43,6 +43,7 @@ True
 from __future__ import annotations
 
 import itertools
+import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, TypeAlias
@@ -110,7 +111,7 @@ class CompactDynamics:
     christoffel
         Spong's ``c_ijk`` as ``[i][j][k]`` (0-based), in the same form.
     constants
-        The grouped constants of M and C (``K1``, …) then of g (``gamma1``, …).
+        The grouped constants of M and C (``I1``, …) then of g (``gamma1``, …).
     kinetic, potential
         Each link's kinetic and potential energy (nothing named).
     values
@@ -251,7 +252,8 @@ def compact_dynamics(
     eq = ring_equations(dm, say)
     ring, n = eq.ring, dm.n
     taken = _taken(dm)
-    inertial = _Namer("K", taken)
+    # Armstrong, Khatib and Burdick's I1, I2, …; Ig1, … when the table has an I1 of its own
+    inertial = _Namer("Ig" if any(re.fullmatch(r"I\d+", t) for t in taken) else "I", taken)
     gravitational = _Namer("gamma", taken)
     upper = {
         (j, k): lecture_form(ring, eq.M[j][k], inertial)
