@@ -83,14 +83,27 @@ def mechanics_planar(n: int) -> sp.Matrix:
     return lm.mass_matrix
 
 
-def fresh(code: str, env: dict[str, str] | None = None) -> float:
-    """Wall time of ``code`` in a fresh Python process (imports included)."""
+def fresh(code: str, env: dict[str, str] | None = None) -> tuple[float, float]:
+    """Wall time and CPU time (user + system) of ``code`` in a fresh Python process
+    (imports included). On a shared machine the CPU time is the figure that carries over."""
     import os
+    import resource
     import subprocess
 
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     subprocess.run([sys.executable, "-c", code], check=True, env={**os.environ, **(env or {})})
-    return time.perf_counter() - t0
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu
+
+
+def cpu_timed(f, *a, **k):
+    """``(result, wall seconds, CPU seconds of this process)``."""
+    w0, c0 = time.perf_counter(), time.process_time()
+    out = f(*a, **k)
+    return out, time.perf_counter() - w0, time.process_time() - c0
 
 
 def ops_split(exprs: list[sp.Expr]) -> tuple[int, int, int]:
@@ -110,11 +123,11 @@ def compact_figures(arms: list[str]) -> None:
     from dhsym.export.program import rne_program
 
     for name in arms:
-        cd, t = timed(compact_dynamics, dhsym.load(name))
+        cd, t, cpu = cpu_timed(compact_dynamics, dhsym.load(name))
         ops = {part: sum(sp.count_ops(e) for e in getattr(cd, part)) for part in "MCg"}
         print(
-            f"{name}: compact M, C, g (symbolic lengths and inertias) in {t:.1f} s "
-            f"[goal <= 15 s]; M11 has {cd.terms(1, 1)} terms [goal <= 30]; "
+            f"{name}: compact M, C, g (symbolic lengths and inertias) in {t:.1f} s wall, "
+            f"{cpu:.1f} s CPU [goal <= 15 s]; M11 has {cd.terms(1, 1)} terms [goal <= 30]; "
             f"{len(cd.constants)} grouped constants; count_ops M {ops['M']}, C {ops['C']}, "
             f"g {ops['g']}"
         )
@@ -125,8 +138,11 @@ def compact_figures(arms: list[str]) -> None:
                 f"'puma560', '--what', 'dynamics', '--format', '{fmt}', '-o', "
                 f"'{out}/puma.out']))"
             )
-            t = fresh(code)
-        print(f"dhsym derive puma560 --what dynamics --format {fmt}: {t:.1f} s [goal <= 60 s]")
+            t, cpu = fresh(code)
+        print(
+            f"dhsym derive puma560 --what dynamics --format {fmt}: {t:.1f} s wall, "
+            f"{cpu:.1f} s CPU [goal <= 60 s]"
+        )
     prog = rne_program(dhsym.load("puma560"))
     mul, add, total = ops_split([a.expr for a in prog.body] + [o.expr for o in prog.outputs])
     print(
