@@ -12,7 +12,8 @@ derives them that way, fast, and without any general ``simplify``:
    angles (a :class:`TrigRing`), whose coefficients are polynomials in the lengths and
    inertial parameters: sums of the same trigonometric monomial are collected exactly;
 2. ``sin² x`` is replaced by ``1 − cos² x`` (a normal form: ``C4² + S4²`` and its relatives
-   vanish structurally); for the print, a pair ``k·m·C² − k·m`` is written ``−k·m·S²``;
+   vanish structurally); for the print, a pair ``k·m·C² − k·m`` is written ``−k·m·S²`` and
+   pairs of terms fold into sum angles (``C23 S3 − S23 C3 = −S2``);
 3. the Christoffel symbols and g are derivatives of these polynomials (the chain rule on the
    generators: ``d cos x / dq = −sin x ∂x/∂q``), reduced again;
 4. each coefficient that is a sum of inertial terms becomes a named constant, the same
@@ -50,7 +51,7 @@ from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
-from dhsym.kinematics.simplification import prove_equal
+from dhsym.kinematics.simplification import fold_sum_angles, prove_equal, tidy_signs
 from dhsym.model.inertia import LinkInertia
 
 from .lagrange_euler import link_jacobians, ring_energies, ring_equations
@@ -175,6 +176,18 @@ class CompactDynamics:
         return prove_equal(self.expanded("g"), g)
 
 
+#: Entries with at most this many terms get the sum-angle fold (``C23 S3 − S23 C3 = −S2``);
+#: the pair search is quadratic in the terms.
+_FOLD_TERMS = 40
+
+
+def _folded(expr: sp.Expr) -> sp.Expr:
+    """``expr`` with pairs of terms folded into sum angles (exact; never ``simplify``)."""
+    if len(sp.Add.make_args(expr)) > _FOLD_TERMS:
+        return expr
+    return tidy_signs(fold_sum_angles(expr))
+
+
 def symbolic_links(dm: DynamicModel) -> tuple[DynamicModel, dict[sp.Symbol, sp.Expr]]:
     """``dm`` with every numeric nonzero inertial parameter a symbol (zeros kept), and the
     symbols' numbers: the structure of the table with the lecture's names
@@ -256,12 +269,12 @@ def compact_dynamics(
     inertial = _Namer("Ig" if any(re.fullmatch(r"I\d+", t) for t in taken) else "I", taken)
     gravitational = _Namer("gamma", taken)
     upper = {
-        (j, k): lecture_form(ring, eq.M[j][k], inertial)
+        (j, k): _folded(lecture_form(ring, eq.M[j][k], inertial))
         for j, k in itertools.combinations_with_replacement(range(n), 2)
     }
     Mx = Matrix(n, n, lambda j, k: upper[min(j, k), max(j, k)])
     shown = {
-        (i, j, k): lecture_form(ring, eq.christoffel[i][j][k], inertial)
+        (i, j, k): _folded(lecture_form(ring, eq.christoffel[i][j][k], inertial))
         for i, j, k in itertools.product(range(n), repeat=3)
         if i <= j
     }
@@ -271,7 +284,7 @@ def compact_dynamics(
     )
     C = Matrix(n, n, lambda k, j: sp.Add(*(chris[i][j][k] * dm.rates[i] for i in range(n))))
     say("grouped constants")
-    g = Matrix([lecture_form(ring, p, gravitational) for p in eq.g])
+    g = Matrix([_folded(lecture_form(ring, p, gravitational)) for p in eq.g])
     qd, qdd = Matrix(dm.rates), Matrix(dm.accelerations)
     tau = Matrix(Mx * qdd + C * qd + g)
     return CompactDynamics(
