@@ -4,6 +4,12 @@ run in the same process.
 Run ``python benchmarks/bench_dynamics.py`` (``--symbolic`` also derives the PUMA 560 with
 fully symbolic inertial parameters, which takes minutes). Prints:
 
+0. the PUMA 560 (and with ``--arms`` the Stanford arm and the UR5) in the compact form with
+   grouped constants (``compact_dynamics``: goal ≤ 15 s), the terms of M11 (goal ≤ 30), the
+   operation counts (``sympy.count_ops``) of M, C, g; the command ``dhsym derive puma560
+   --what dynamics`` in a fresh process (Markdown and LaTeX, goal ≤ 60 s); the exported
+   ``rne``'s multiplications and additions against Corke's 224 + 174; the first ``rne`` in a
+   fresh process with an empty disk cache (goal ≤ 2 s);
 1. the PUMA 560's symbolic M, C and g (Lagrange–Euler) with its published numeric inertial
    parameters (goal: under 30 s), and the Newton–Euler τ;
 2. dhsym's Lagrange–Euler against ``sympy.physics.mechanics.LagrangesMethod`` on a planar
@@ -77,11 +83,91 @@ def mechanics_planar(n: int) -> sp.Matrix:
     return lm.mass_matrix
 
 
+def fresh(code: str, env: dict[str, str] | None = None) -> tuple[float, float]:
+    """Wall time and CPU time (user + system) of ``code`` in a fresh Python process
+    (imports included). On a shared machine the CPU time is the figure that carries over."""
+    import os
+    import resource
+    import subprocess
+
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-c", code], check=True, env={**os.environ, **(env or {})})
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu
+
+
+def cpu_timed(f, *a, **k):
+    """``(result, wall seconds, CPU seconds of this process)``."""
+    w0, c0 = time.perf_counter(), time.process_time()
+    out = f(*a, **k)
+    return out, time.perf_counter() - w0, time.process_time() - c0
+
+
+def ops_split(exprs: list[sp.Expr]) -> tuple[int, int, int]:
+    """(multiplications and divisions, additions and subtractions, all) of ``exprs``."""
+    total = sp.Add(*(sp.count_ops(e, visual=True) for e in exprs))
+    sym = {str(s): total.coeff(s) for s in total.free_symbols} if total != 0 else {}
+    mul = sum(int(sym.get(k, 0)) for k in ("MUL", "DIV"))
+    add = sum(int(sym.get(k, 0)) for k in ("ADD", "SUB"))
+    return mul, add, int(sum(int(v) for v in sym.values()))
+
+
+def compact_figures(arms: list[str]) -> None:
+    """Part 0: the compact form, the command line, the exported rne, the first call."""
+    import tempfile
+
+    from dhsym.dynamics.compact_form import compact_dynamics
+    from dhsym.export.program import rne_program
+
+    for name in arms:
+        cd, t, cpu = cpu_timed(compact_dynamics, dhsym.load(name))
+        ops = {part: sum(sp.count_ops(e) for e in getattr(cd, part)) for part in "MCg"}
+        print(
+            f"{name}: compact M, C, g (symbolic lengths and inertias) in {t:.1f} s wall, "
+            f"{cpu:.1f} s CPU [goal <= 15 s]; M11 has {cd.terms(1, 1)} terms [goal <= 30]; "
+            f"{len(cd.constants)} grouped constants; count_ops M {ops['M']}, C {ops['C']}, "
+            f"g {ops['g']}"
+        )
+    for fmt in ("markdown", "latex"):
+        with tempfile.TemporaryDirectory() as out:
+            code = (
+                "import sys; from dhsym.cli.main import main; sys.exit(main(['derive', "
+                f"'puma560', '--what', 'dynamics', '--format', '{fmt}', '-o', "
+                f"'{out}/puma.out']))"
+            )
+            t, cpu = fresh(code)
+        print(
+            f"dhsym derive puma560 --what dynamics --format {fmt}: {t:.1f} s wall, "
+            f"{cpu:.1f} s CPU [goal <= 60 s]"
+        )
+    prog = rne_program(dhsym.load("puma560"))
+    mul, add, total = ops_split([a.expr for a in prog.body] + [o.expr for o in prog.outputs])
+    print(
+        f"exported rne of the PUMA 560: {mul} multiplications, {add} additions, {total} "
+        f"operations in all (Corke's simplified PUMA: 224 + 174; goal <= 400 flops)"
+    )
+    with tempfile.TemporaryDirectory() as cache:
+        code = "import dhsym; p = dhsym.load('puma560'); p.rne([0.1] * 6, [0.2] * 6, [0.3] * 6)"
+        t, cpu = fresh(code, {"DHSYM_CACHE": cache})
+    print(
+        f"first rne of the PUMA 560 in a fresh process, empty disk cache: {t:.1f} s wall, "
+        f"{cpu:.1f} s CPU [goal <= 2 s]"
+    )
+
+
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--symbolic", action="store_true", help="also the fully symbolic PUMA 560")
     p.add_argument("--batch", type=int, default=100_000, help="states in the rne batch")
+    p.add_argument("--arms", action="store_true", help="part 0 also for the Stanford arm and UR5")
+    p.add_argument("--only-compact", action="store_true", help="part 0 only")
     args = p.parse_args()
+    compact_figures(["puma560", *(["stanford", "ur5"] if args.arms else [])])
+    if args.only_compact:
+        return 0
 
     puma = dhsym.load("puma560")
     numeric = Robot(puma.table.substituted())
@@ -107,6 +193,8 @@ def main() -> int:
         _, t = timed(lagrange, symbolic)
         print(f"PUMA 560, symbolic inertias and lengths: Lagrange M, C, g in {t:.1f} s")
 
+    # the sympy.physics.mechanics reference runs on planar arms (the PUMA 560 in
+    # LagrangesMethod is not attempted here)
     for n in (2, 3):
         arm = planar(n)
         ours, t_ours = timed(lagrange, arm)

@@ -47,19 +47,11 @@ from dhsym.explain import derive_dynamics
 # $m_i$, its centre of mass at distance $l_{ci}$ from joint $i$ and moment of inertia $I_i$
 # about the axis through its centre of mass parallel to $z$. In the standard convention frame
 # $i$ sits at the *far* end of link $i$, so the centre of mass is at $l_{ci} - l_i$ along
-# $x_i$. The table carries these as the `m`, `r` and `I` of each row (the names of
-# roboticstoolbox's `Link`):
+# $x_i$. The built-in table `spong2r` carries these as the `m`, `r` and `I` of each row (the
+# names of roboticstoolbox's `Link`), with Spong's symbols ($l_{c1}$, $m_1$, $I_1$):
 
 # %%
-SPONG = """
-name: Two-link planar elbow arm
-convention: standard
-gravity: [0, -g, 0]
-joints:
-  - {type: R, theta: q1, d: 0, a: l1, alpha: 0, m: m1, r: [lc1 - l1, 0, 0], I: [Ix1, Iy1, I1]}
-  - {type: R, theta: q2, d: 0, a: l2, alpha: 0, m: m2, r: [lc2 - l2, 0, 0], I: [Ix2, Iy2, I2]}
-"""
-arm = dhsym.Robot(dhsym.read_table_text(SPONG))
+arm = dhsym.load("spong2r")
 arm.table
 
 # %% [markdown]
@@ -88,7 +80,8 @@ eom.M
 
 # %%
 q1, q2, m1, m2, l1, lc1, lc2, I1, I2, g = (
-    sp.Symbol(n, real=True) for n in ("q1", "q2", "m1", "m2", "l1", "lc1", "lc2", "I1", "I2", "g")
+    sp.Symbol(n, real=True)
+    for n in ("theta1", "theta2", "m1", "m2", "l1", "lc1", "lc2", "I1", "I2", "g")
 )
 d11 = m1 * lc1**2 + m2 * (l1**2 + lc2**2 + 2 * l1 * lc2 * sp.cos(q2)) + I1 + I2
 d12 = m2 * (lc2**2 + l1 * lc2 * sp.cos(q2)) + I2
@@ -152,10 +145,6 @@ values = {
     "m2": 1.0,
     "I1": 1 / 12,
     "I2": 1 / 12,
-    "Ix1": 0.0,
-    "Iy1": 1 / 12,
-    "Ix2": 0.0,
-    "Iy2": 1 / 12,
     "g": 9.81,
 }
 swing = arm.simulate([0.0, 0.0], [0.0, 0.0], 4.0, dt=2e-3, values=values)

@@ -28,6 +28,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -52,6 +53,7 @@ __all__ = [
     "load_table_arg",
     "note_warnings",
     "parse_values",
+    "progress_line",
     "run_quietly",
     "wrote",
 ]
@@ -262,6 +264,19 @@ def load_robot(
                 f"line with --values {example}"
             )
     return Robot(table)
+
+
+def progress_line(task: str, *, after: float = 2.0) -> Callable[[str], None]:
+    """A callback printing ``dhsym: <task>: <stage> (N s)`` on standard error, from the first
+    stage reached ``after`` seconds into the work (quick work prints nothing)."""
+    start = time.perf_counter()
+
+    def say(stage: str) -> None:
+        elapsed = time.perf_counter() - start
+        if elapsed >= after:
+            print(f"dhsym: {task}: {stage} ({elapsed:.0f} s)", file=sys.stderr, flush=True)
+
+    return say
 
 
 def note_warnings(table: object) -> None:

@@ -186,7 +186,8 @@ def ik_json(robot: Robot) -> dict[str, object]:
 
 def dynamics_json(robot: Robot) -> dict[str, object]:
     """The equations of motion: ``rates``, ``accelerations``, ``gravity``, ``energies``
-    (``link``, ``kinetic``, ``potential``), ``M`` (n×n formulas), ``christoffel`` (the
+    (``link``, ``kinetic``, ``potential``), ``links`` (``link``, ``m``, ``r``, ``I``: each
+    link's mass, centre of mass and inertia), ``M`` and ``C`` (n×n formulas), ``christoffel`` (the
     nonzero ``c_ijk``, ``i ≤ j``: ``i``, ``j``, ``k`` (1-based), ``value``), ``g``, ``tau``
     and ``newton_euler`` (``sweep``, ``name``, ``link``, ``rule``, ``value``: formulas).
 
@@ -194,6 +195,8 @@ def dynamics_json(robot: Robot) -> dict[str, object]:
     >>> d = dynamics_json(load("planar2r"))
     >>> d["M"][1][1]["compact"], [c["i"] * 100 + c["j"] * 10 + c["k"] for c in d["christoffel"]]
     ('Izz2 + m2*(a2**2 + rx2**2 + ry2**2 + 2*a2*rx2)', [112, 121, 221])
+    >>> d["links"][1]["m"]["compact"], d["C"][1][0]["compact"][:40]
+    ('m2', 'm2*(a1*thetadot1*ry2*C2 + a1*thetadot1*a')
     """
     lag = robot.dynamics()
     ne = robot.dynamics(method="newton-euler")
@@ -208,7 +211,17 @@ def dynamics_json(robot: Robot) -> dict[str, object]:
             {"link": i, "kinetic": f(k), "potential": f(p)}
             for i, (k, p) in enumerate(zip(lag.kinetic, lag.potential, strict=True), start=1)
         ],
+        "links": [
+            {
+                "link": i,
+                "m": f(L.m),
+                "r": [f(x) for x in L.r],
+                "I": [[f(L.I[a, b]) for b in range(3)] for a in range(3)],
+            }
+            for i, L in enumerate(lag.model.links, start=1)
+        ],
         "M": [[f(lag.M[i, j]) for j in range(n)] for i in range(n)],
+        "C": [[f(lag.C[i, j]) for j in range(n)] for i in range(n)],
         "christoffel": [
             {"i": i + 1, "j": j + 1, "k": k + 1, "value": f(lag.christoffel[i][j][k])}
             for i in range(n)

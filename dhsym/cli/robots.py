@@ -25,6 +25,7 @@ from .common import (
     load_robot,
     load_table_arg,
     note_warnings,
+    progress_line,
     q_in_degrees,
 )
 
@@ -190,7 +191,11 @@ def _derive_more(robot: Robot, what: str, args: argparse.Namespace) -> int:
         from dhsym.explain.documents import render_derivation
 
         try:
-            out = render_derivation(robot, fmt=args.format, what=what)
+            if what == "dynamics":
+                say = progress_line(f"{robot.name or 'robot'}: {what}")
+                out = render_derivation(robot, fmt=args.format, what=what, progress=say)
+            else:
+                out = render_derivation(robot, fmt=args.format, what=what)
         except DHError as err:
             nxt = _next_step(what, args.robot)
             if nxt is None:

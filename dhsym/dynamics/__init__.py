@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from dhsym._lazy import public_dir
 
+from .compact_form import CompactDynamics, GroupedConstant, compact_dynamics
 from .equations import EquationsOfMotion, NEStep
 from .inertial_parameters import BaseParameters, Regressor, base_parameters, regressor
 from .lagrange_euler import lagrange
@@ -18,6 +19,9 @@ from .static_forces import Statics, static_torques, statics
 
 __all__ = [
     "BaseParameters",
+    "CompactDynamics",
+    "GroupedConstant",
+    "compact_dynamics",
     "DynamicModel",
     "Regressor",
     "Statics",

@@ -30,6 +30,9 @@ Matrix([
 
 from __future__ import annotations
 
+import itertools
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
@@ -40,6 +43,7 @@ from dhsym.model.table import JointType
 
 from .equations import EquationsOfMotion
 from .model import DynamicModel, dynamic_model
+from .trig_ring import TrigRing, lecture_form
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
@@ -50,6 +54,9 @@ __all__ = [
     "coriolis_matrix",
     "lagrange",
     "link_jacobians",
+    "RingEquations",
+    "ring_energies",
+    "ring_equations",
     "tidy",
 ]
 
@@ -165,10 +172,126 @@ def potential_energies(dm: DynamicModel) -> tuple[sp.Expr, ...]:
     return tuple(out)
 
 
+@dataclass(frozen=True)
+class RingEquations:
+    """M, the Christoffel symbols and g of a model as reduced polynomials of one ring, and
+    each link's share of M (for its kinetic energy). ``christoffel[i][j][k]`` is ``c_ijk``."""
+
+    ring: TrigRing
+    M: tuple[tuple[sp.Poly, ...], ...]
+    christoffel: tuple[tuple[tuple[sp.Poly, ...], ...], ...]
+    g: tuple[sp.Poly, ...]
+    links: tuple[tuple[tuple[sp.Poly, ...], ...] | None, ...]
+    potential: tuple[sp.Expr, ...]
+
+
+def ring_equations(dm: DynamicModel, say: Callable[[str], None] = lambda _m: None) -> RingEquations:
+    """M, ``c_ijk`` and g of ``dm`` as polynomials of a :class:`TrigRing` (steps 1–3 of the
+    module docstring); ``say`` is told each stage."""
+    n = dm.n
+    say("link Jacobians")
+    jacobians: list[tuple[Matrix, Matrix] | None] = []
+    for i, L in enumerate(dm.links, start=1):
+        if L.m == 0 and L.I.is_zero_matrix:
+            jacobians.append(None)
+        else:
+            jacobians.append(link_jacobians(dm, i))
+    heights = [sp.expand(p) for p in potential_energies(dm)]
+    pieces = [e for J in jacobians if J for part in J for e in part] + heights
+    ring = TrigRing.of(pieces, dm.variables)
+    say("inertia matrix")
+    zero = ring.poly(sp.Integer(0))
+    M = [[zero for _ in range(n)] for _ in range(n)]
+    shares: list[tuple[tuple[sp.Poly, ...], ...] | None] = []
+    for J, L in zip(jacobians, dm.links):
+        if J is None:
+            shares.append(None)
+            continue
+        Pv = [[ring.poly(e) for e in J[0].row(r)] for r in range(3)]
+        Pw = [[ring.poly(e) for e in J[1].row(r)] for r in range(3)]
+        Mi = [[zero for _ in range(n)] for _ in range(n)]
+        for j, k in itertools.combinations_with_replacement(range(n), 2):
+            acc = zero
+            if L.m != 0:
+                acc = sum((Pv[r][j] * Pv[r][k] for r in range(3)), zero) * ring.poly(L.m)
+            for a, b in itertools.product(range(3), repeat=2):
+                if L.I[a, b] != 0 and not Pw[a][j].is_zero and not Pw[b][k].is_zero:
+                    acc += Pw[a][j] * Pw[b][k] * ring.poly(L.I[a, b])
+            Mi[j][k] = Mi[k][j] = ring.reduce(acc)
+            M[j][k] += acc
+        shares.append(tuple(tuple(row) for row in Mi))
+    for j, arm in enumerate(dm.armature()):
+        M[j][j] += ring.poly(arm)
+    for j, k in itertools.combinations_with_replacement(range(n), 2):
+        M[j][k] = M[k][j] = ring.reduce(M[j][k])
+    say("Christoffel symbols")
+    dM = [[[ring.diff(M[k][j], i) for j in range(n)] for k in range(n)] for i in range(n)]
+    half = ring.poly(sp.Rational(1, 2))
+    cs: dict[tuple[int, int, int], sp.Poly] = {}
+    for i, j, k in itertools.product(range(n), repeat=3):  # c_ijk = c_jik
+        if i <= j:
+            cs[i, j, k] = ring.reduce((dM[i][k][j] + dM[j][k][i] - dM[k][i][j]) * half)
+    christoffel = tuple(
+        tuple(tuple(cs[min(i, j), max(i, j), k] for k in range(n)) for j in range(n))
+        for i in range(n)
+    )
+    say("gravity vector")
+    P = ring.poly(sp.Add(*heights))
+    return RingEquations(
+        ring,
+        tuple(tuple(row) for row in M),
+        christoffel,
+        tuple(ring.diff(P, k) for k in range(n)),
+        tuple(shares),
+        tuple(heights),
+    )
+
+
+def ring_energies(
+    dm: DynamicModel, eq: RingEquations
+) -> tuple[tuple[sp.Expr, ...], tuple[sp.Expr, ...]]:
+    """Each link's kinetic energy ``½ q̇ᵀ M_i q̇`` (its share of M, in the lecture form) and
+    potential energy (collected by the masses)."""
+    qd = dm.rates
+    kinetic = []
+    for share in eq.links:
+        terms = []
+        for j, k in itertools.combinations_with_replacement(range(dm.n), 2):
+            if share is not None and not share[j][k].is_zero:
+                weight = sp.Rational(1, 2) if j == k else sp.Integer(1)
+                terms.append(weight * lecture_form(eq.ring, share[j][k]) * qd[j] * qd[k])
+        kinetic.append(sp.Add(*terms))
+    return tuple(kinetic), tuple(tidy(p, dm.masses) for p in eq.potential)
+
+
+def _ring_lagrange(dm: DynamicModel) -> EquationsOfMotion:
+    """Lagrange–Euler through :func:`ring_equations`: each entry one term per trigonometric
+    monomial (what :func:`lagrange` does from :data:`RING_JOINTS` joints on)."""
+    eq = ring_equations(dm)
+    ring, n = eq.ring, dm.n
+    M = Matrix(n, n, lambda j, k: lecture_form(ring, eq.M[j][k]))
+    christoffel = tuple(
+        tuple(tuple(lecture_form(ring, c) for c in cj) for cj in ci) for ci in eq.christoffel
+    )
+    C = Matrix(n, n, lambda k, j: sp.Add(*(christoffel[i][j][k] * dm.rates[i] for i in range(n))))
+    g = Matrix([lecture_form(ring, p) for p in eq.g])
+    qd, qdd = Matrix(dm.rates), Matrix(dm.accelerations)
+    kinetic, potential = ring_energies(dm, eq)
+    tau = Matrix(M * qdd + C * qd + g)
+    return EquationsOfMotion("lagrange", dm, M, C, g, tau, christoffel, tuple(kinetic), potential)
+
+
+#: From this many joints on, :func:`lagrange` works in the polynomial ring of the sines and
+#: cosines (:func:`ring_equations`): the entry-by-entry folding is quadratic in the terms.
+RING_JOINTS = 4
+
+
 def lagrange(robot: KinematicChain, model: DynamicModel | None = None) -> EquationsOfMotion:
     """The equations of motion by Lagrange–Euler (see the module docstring)."""
     dm = model or dynamic_model(robot)
     n = dm.n
+    if n >= RING_JOINTS:
+        return _ring_lagrange(dm)
     params = dm.masses
     qd = Matrix(dm.rates)
     energies = potential_energies(dm)

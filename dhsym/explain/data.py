@@ -456,3 +456,7 @@ class DynamicsDerivation(Document):
     width: float = LATEX_WIDTH
     links: tuple[LinkData, ...] = ()
     coriolis: MatrixBlock | None = None  # C(q, q̇), after the Christoffel symbols
+    #: the grouped inertial constants (``K1 = …``, ``gamma1 = …``) of the compact form
+    constants: tuple[Equation, ...] = ()
+    #: the numbers of the inertial symbols the compact form introduced (``m2 = 87/5``)
+    parameter_values: tuple[Equation, ...] = ()

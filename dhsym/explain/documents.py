@@ -76,7 +76,7 @@ _OPTIONS = MappingProxyType(
         "jacobian": ("frame", "point", "compact", "notation", "width", "numeric"),
         "singularities": ("compact", "notation", "width", "numeric"),
         "ik": ("compact", "notation", "width", "check", "numeric"),
-        "dynamics": ("compact", "notation", "width", "numeric"),
+        "dynamics": ("compact", "notation", "width", "numeric", "progress"),
         "trajectory": (),
         "control": (),
     }

@@ -24,11 +24,16 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import sympy as sp
 
+from dhsym.dynamics.compact_form import GroupedConstant, compact_dynamics
 from dhsym.dynamics.equations import EquationsOfMotion, NEStep
+from dhsym.dynamics.lagrange_euler import RING_JOINTS
+from dhsym.dynamics.model import DynamicModel
+from dhsym.dynamics.recursive_newton_euler import rne_expressions
 from dhsym.model.inertia import LinkInertia
 from dhsym.model.table import DHTable
 from dhsym.notation.escape import TeX
@@ -65,6 +70,10 @@ _VECTORS = {
 }
 
 
+#: the Newton–Euler steps a derivation in the compact form prints (the rest nest over pages)
+_SHOWN_SIX_JOINTS = ("omega", "omegadot")
+
+
 def _name(tex: str, text: str) -> Math:
     return Math(TeX(tex), text)
 
@@ -91,12 +100,46 @@ def _link(i: int, L: LinkInertia, nota: Notation, width: float) -> LinkData:
     )
 
 
+def _tau_by_parts(dm: DynamicModel) -> sp.ImmutableMatrix:
+    """``τ_k = Σ_j M_kj q̈_j + Σ_j C_kj q̇_j + g_k`` with the entries as names (M_{jk}, j ≤ k,
+    as printed): the six-joint τ written out would repeat M, C and g over pages."""
+    n = dm.n
+
+    def entry(name: str, k: int, j: int) -> sp.Symbol:
+        return sp.Symbol(f"{name}{k + 1}{j + 1}", real=True)
+
+    return sp.ImmutableMatrix(
+        [
+            sp.Add(
+                *(entry("M", min(k, j), max(k, j)) * dm.accelerations[j] for j in range(n)),
+                *(entry("C", k, j) * dm.rates[j] for j in range(n)),
+                sp.Symbol(f"g{k + 1}", real=True),
+            )
+            for k in range(n)
+        ]
+    )
+
+
+def _grouped(
+    robot: Robot, say: Callable[[str], None]
+) -> tuple[EquationsOfMotion, tuple[GroupedConstant, ...], tuple[tuple[sp.Symbol, sp.Expr], ...]]:
+    """Lagrange–Euler in the compact form with grouped constants (six-joint arms): lengths
+    and inertias both symbolic when the table's lengths are symbols, else both numbers."""
+    cd = compact_dynamics(robot, symbolic=bool(robot.table.constants), progress=say)
+    eom = EquationsOfMotion(
+        "lagrange", cd.model, cd.M, cd.C, cd.g, _tau_by_parts(cd.model), cd.christoffel,
+        cd.kinetic, cd.potential,
+    )  # fmt: skip
+    return eom, cd.constants, cd.values
+
+
 def derive_dynamics(
     name_or_robot: str | Path | DHTable | Robot,
     *,
     compact: bool | None = None,
     notation: TrigStyle | str | None = None,
     width: float = LATEX_WIDTH,
+    progress: Callable[[str], None] | None = None,
 ) -> DynamicsDerivation:
     """The equations of motion of a robot: Lagrange–Euler step by step, then Newton–Euler.
 
@@ -107,6 +150,12 @@ def derive_dynamics(
         parameters gets the textbook symbols (``m1``, ``rx1``, ``Izz1``, …).
     compact, notation, width
         As for :func:`~dhsym.explain.derivation.derive`.
+    progress
+        Told each stage of the derivation (the command line prints it on standard error).
+
+    From :data:`~dhsym.dynamics.lagrange_euler.RING_JOINTS` joints on, M, C and g are
+    printed in the compact form with grouped inertial constants
+    (:func:`~dhsym.dynamics.compact_form.compact_dynamics`), listed in ``constants``.
 
     >>> d = derive_dynamics("planar2r")
     >>> [e.name.text for e in d.christoffel]
@@ -116,8 +165,21 @@ def derive_dynamics(
     """
     robot = styled(name_or_robot, compact, notation)
     nota = robot.notation
-    lag: EquationsOfMotion = robot.dynamics()
-    ne: EquationsOfMotion = robot.dynamics(method="newton-euler")
+    say = progress or (lambda _msg: None)
+    constants: tuple[GroupedConstant, ...] = ()
+    numbers: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    if len(robot.table.variables) >= RING_JOINTS:
+        lag, constants, numbers = _grouped(robot, say)
+    else:
+        lag = robot.dynamics()
+    say("Newton-Euler recursion")
+    if constants or numbers:  # six joints: the angular rates of the recursion; the forces
+        recorded: list[NEStep] = []  # nested over pages are what the compiled rne computes
+        rne_expressions(lag.model, record=recorded)
+        ne_steps = tuple(s for s in recorded if s.name in _SHOWN_SIX_JOINTS)
+    else:
+        ne_steps = robot.dynamics(method="newton-euler").steps
+    say("layout")
     n = lag.M.rows
     shown: list[sp.Expr] = []
     energies = []
@@ -155,7 +217,7 @@ def derive_dynamics(
         _eq(_name(rf"\tau_{{{k + 1}}}", f"tau{k + 1}"), lag.tau[k], nota, width) for k in range(n)
     )
     shown += [*lag.M, *lag.C, *lag.g]
-    steps = tuple(_step(s, nota, width) for s in ne.steps)
+    steps = tuple(_step(s, nota, width) for s in ne_steps)
     name = robot.name or "robot"
     return DynamicsDerivation(
         name=name,
@@ -174,4 +236,8 @@ def derive_dynamics(
         width=width,
         links=tuple(_link(i, L, nota, width) for i, L in enumerate(lag.model.links, start=1)),
         coriolis=coriolis,
+        constants=tuple(
+            _eq(_name(sp.latex(k.symbol), str(k.symbol)), k.value, nota, width) for k in constants
+        ),
+        parameter_values=tuple(_eq(_name(sp.latex(s), str(s)), v, nota, width) for s, v in numbers),
     )

@@ -23,6 +23,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
@@ -218,6 +219,34 @@ _ANCHOR = "{}={}"
 _SHALLOW = {False: "  ", True: r"\quad "}
 
 
+def _fitting(breaks: list[int], size: Callable[[int], float], budget: float) -> list[int]:
+    r"""The breaks whose line is within ``budget``. A longer line holds a shorter one as its
+    prefix (only a bracket's form, ``(`` or ``\Bigl(``, may differ), so the scan stops once
+    a line is over twice the budget: a long sum costs its lines, not its length per line.
+
+    >>> _fitting([1, 2, 3, 4], lambda j: 10.0 * j, 25.0)
+    [1, 2]
+    """
+    out = []
+    for j in breaks:
+        w = size(j)
+        if w <= budget:
+            out.append(j)
+        elif w > 2 * budget + 20:
+            break
+    return out
+
+
+def _line_size(
+    measure: Callable[[str], float],
+    indent: str,
+    content: Callable[[int, int], str],
+    start: int,
+    end: int,
+) -> float:
+    return measure(indent + content(start, end))
+
+
 def fill(items: Sequence[Piece], width: float, latex: bool) -> list[str]:
     r"""Lines of ``items`` no wider than ``width`` (LaTeX in ``math_width``, text in characters).
 
@@ -262,11 +291,14 @@ def fill(items: Sequence[Piece], width: float, latex: bool) -> list[str]:
             end = n
         else:
             breaks = [j for j in range(start + 1, n) if items[j].brk]
-            fits = [j for j in breaks if measure(indent + content(start, j)) <= budget]
+            size = partial(_line_size, measure, indent, content, start)
+            fits = _fitting(breaks, size, budget)
             if not fits and lines and indent != _SHALLOW[latex]:
                 # deep under a bracket, nothing fits: continue under the sum instead
                 indent = _SHALLOW[latex]
-                fits = [j for j in breaks if measure(indent + content(start, j)) <= budget]
+                fits = _fitting(
+                    breaks, partial(_line_size, measure, indent, content, start), budget
+                )
             if fits:
                 shallow = min(items[j].depth for j in fits)
                 end = max(j for j in fits if items[j].depth == shallow)

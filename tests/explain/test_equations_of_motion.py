@@ -247,3 +247,37 @@ def test_spong2r_prints_its_links_and_C_and_never_lc_beside_c1(capsys):
     assert r"\subsection*{The links: masses, centres of mass and inertias}" in tex
     md = d.to_markdown()
     assert "### The links: masses, centres of mass and inertias" in md and r"C(q, \dot{q})" in md
+
+
+@pytest.fixture(scope="module")
+def puma_dynamics():
+    return derive_dynamics("puma560")
+
+
+@pytest.mark.slow
+def test_puma_derivation_prints_grouped_constants_and_their_numbers(puma_dynamics):
+    d = puma_dynamics
+    names = [e.name.text for e in d.constants]
+    assert names[:2] == ["I1", "I2"] and any(n.startswith("gamma") for n in names)
+    assert "Jm1" in d.constants[0].text_lines[0]
+    values = {e.name.text: e.text_lines[0] for e in d.parameter_values}
+    assert values["m2"] == "17.4"
+    m11 = d.inertia[0].text_lines
+    assert "I1" in m11[0] and not any("m2" in line for line in m11)  # m2 inside constants
+    assert {s.name for s in d.outward} == {"omega", "omegadot"}
+    text = render_derivation(dhsym.load("puma560"), fmt="text", what="dynamics")
+    assert "Armstrong, Khatib and Burdick" in text and "I1 = " in text
+
+
+@pytest.mark.tex
+@pytest.mark.slow
+def test_puma_dynamics_handout_compiles_without_overfull_boxes(tmp_path, need_tex):
+    from dhsym.explain.documents import write_handout
+    from dhsym.explain.latex import run_latex
+
+    tex = write_handout(["puma560"], tmp_path / "puma.tex", sections="dynamics", mode="answers")
+    source = tex.read_text()
+    assert r"I_{1} &=" in source and "Armstrong, Khatib and Burdick" in source
+    run = run_latex(tex)
+    assert run.pdf.exists()
+    assert list(run.issues) == [], [str(i) for i in run.issues]
