@@ -38,6 +38,7 @@ ORDER = [
     "ik",
     "dynamics",
     "geometry",
+    "screws",
     "plot",
     "formats",
     "export",
