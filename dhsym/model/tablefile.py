@@ -74,7 +74,14 @@ from .table import (
 )
 from .yamlsafe import FileRefused, YAMLInputError, YAMLLimits, load_yaml, read_limited
 
-__all__ = ["MAX_FILE_BYTES", "dump_table", "read_table", "read_table_text", "table_from_data"]
+__all__ = [
+    "MAX_FILE_BYTES",
+    "dump_table",
+    "read_steps",
+    "read_table",
+    "read_table_text",
+    "table_from_data",
+]
 
 MAX_FILE_BYTES = 1_000_000
 _ROW_KEYS = (
@@ -333,6 +340,16 @@ def _elementaries(data: object, where: str, unit: AngleUnit) -> tuple[Elementary
             expr = to_radians(expr, unit)
         out.append(Elementary(name[0], name[1].lower(), expr))
     return tuple(out)
+
+
+def read_steps(data: object, where: str, unit: AngleUnit | str) -> tuple[Elementary, ...]:
+    """A list of constant steps like a table's ``base`` (``[{Tz: 0.5}, {Rx: 90}]``), angles
+    in ``unit``; errors name ``where`` as the field (the PoE files' ``M`` reads so too).
+
+    >>> read_steps([{"Tz": 0.5}, {"Rx": 90}], "base", "deg")
+    (Tz(1/2), Rx(pi/2))
+    """
+    return _elementaries(data, where, AngleUnit.parse(unit))
 
 
 class _Reader(StrPrinter):

@@ -49,6 +49,7 @@ from typing import TypeAlias
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.kinematics.constants import as_basic
 from dhsym.model.entries import as_expr
 from dhsym.notation.printers import Notation
 
@@ -75,7 +76,7 @@ def is_zero(expr: sp.Expr) -> bool:
     >>> is_zero(sp.cos(t) ** 2 + sp.sin(t) ** 2 - 1), is_zero(sp.sqrt(2) - 1)
     (True, False)
     """
-    expr = sp.sympify(expr)  # a sympy object or a Python number: never text
+    expr = as_basic(expr)  # a sympy object or a Python number: text is refused
     if expr == 0:
         return True
     if not expr.free_symbols:
