@@ -356,10 +356,11 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     )
     d.add_argument(
         "--what",
-        choices=["fk", "jacobian", "singularities", "ik", "dynamics"],
+        choices=["fk", "jacobian", "singularities", "screws", "ik", "dynamics"],
         default="fk",
         help="fk: forward kinematics (default); jacobian: column by column; singularities: "
-        "det J factored and named; ik: closed-form inverse kinematics, every branch; "
+        "det J factored and named; screws: the screw axes, M and the product of "
+        "exponentials; ik: closed-form inverse kinematics, every branch; "
         "dynamics: energies, M, Christoffel symbols, g, tau and the Newton-Euler passes",
     )
     add_urdf_options(d)

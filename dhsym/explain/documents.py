@@ -53,7 +53,7 @@ __all__ = [
 
 #: What can be derived: forward kinematics, the Jacobian, its singularities, the inverse,
 #: the equations of motion.
-WHAT = ("fk", "jacobian", "singularities", "ik", "dynamics")
+WHAT = ("fk", "jacobian", "singularities", "screws", "ik", "dynamics")
 
 #: Headings of the handout sections.
 SECTION_TITLES = MappingProxyType(
@@ -61,6 +61,7 @@ SECTION_TITLES = MappingProxyType(
         "fk": "Forward kinematics",
         "jacobian": "The Jacobian",
         "singularities": "Singular configurations",
+        "screws": "Screw axes and the product of exponentials",
         "ik": "Inverse kinematics",
         "dynamics": "Equations of motion",
     }
@@ -72,6 +73,7 @@ _OPTIONS = MappingProxyType(
     {
         "jacobian": ("frame", "point", "compact", "notation", "width", "numeric"),
         "singularities": ("compact", "notation", "width", "numeric"),
+        "screws": ("compact", "notation", "width", "numeric"),
         "ik": ("compact", "notation", "width", "check", "numeric"),
         "dynamics": ("compact", "notation", "width", "numeric"),
     }
@@ -119,6 +121,10 @@ def document(
         return derive_singularities(r, **opts)
     if what == "dynamics":
         return derive_dynamics(r, **opts)
+    if what == "screws":
+        from .screw_axes import derive_screws
+
+        return derive_screws(r, **opts)
     return derive_inverse(r, **opts)
 
 
