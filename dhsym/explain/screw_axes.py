@@ -7,8 +7,8 @@ Robotics*, chapter 4): for each joint the DH frame whose ``z`` is its axis, the 
 the body axes ``B = Ad_{M^{-1}} S`` and the two product-of-exponentials formulas.
 
 >>> d = derive_screws("planar2r")
->>> d.kind, d.n, d.formula_space.text
-('screws', 2, 'T(theta) = e^([S1]*theta1) e^([S2]*theta2) M')
+>>> d.kind, d.n, d.product_space.text
+('screws', 2, 'e^([S1]*theta1) e^([S2]*theta2) M')
 >>> d.steps[1].v.rows[1][0].text
 '-a1'
 """
@@ -72,8 +72,8 @@ class ScrewDerivation(Document):
     home: MatrixBlock
     space: MatrixBlock
     body: MatrixBlock
-    formula_space: Math
-    formula_body: Math
+    product_space: Math
+    product_body: Math
     legend: tuple[LegendLine, ...]
     width: float = LATEX_WIDTH
 
@@ -133,8 +133,8 @@ def derive_screws(
         body=matrix_block(
             Math(TeX("B"), "B"), B, robot.notation, width=width, names=indexed_names("B")
         ),
-        formula_space=Math(TeX(poe.formula_latex("space")), poe.formula_text("space")),
-        formula_body=Math(TeX(poe.formula_latex("body")), poe.formula_text("body")),
+        product_space=Math(TeX(poe.product_latex("space")), poe.product_text("space")),
+        product_body=Math(TeX(poe.product_latex("body")), poe.product_text("body")),
         legend=legend_lines([*poe.home, *S, *B], robot.notation),
         width=width,
     )

@@ -221,17 +221,23 @@ class ProductOfExponentials:
             for i, (s, q) in enumerate(zip(self.axes(frame), self.variables), start=1)
         )
 
-    def formula_latex(self, frame: str = "space") -> str:
-        r"""``T(\theta) = e^{[\mathcal{S}_1]\theta_1} \cdots M`` (space) or ``M e^{…}`` (body)."""
+    def product_latex(self, frame: str = "space") -> str:
+        r"""``e^{[\mathcal{S}_1]\theta_1} \cdots M`` (space) or ``M e^{[\mathcal{B}_1]…}`` (body)."""
         factors = " ".join(e.latex() for e in self.exponentials(frame))
-        body = _frame(frame) == "body"
-        return rf"T(\theta) = {'M ' + factors if body else factors + ' M'}"
+        return f"M {factors}" if _frame(frame) == "body" else f"{factors} M"
+
+    def product_text(self, frame: str = "space") -> str:
+        """The product in plain text."""
+        factors = " ".join(e.text() for e in self.exponentials(frame))
+        return f"M {factors}" if _frame(frame) == "body" else f"{factors} M"
+
+    def formula_latex(self, frame: str = "space") -> str:
+        r"""``T(\theta) = `` the product (:meth:`product_latex`)."""
+        return rf"T(\theta) = {self.product_latex(frame)}"
 
     def formula_text(self, frame: str = "space") -> str:
-        """The formula in plain text."""
-        factors = " ".join(e.text() for e in self.exponentials(frame))
-        body = _frame(frame) == "body"
-        return f"T(theta) = {'M ' + factors if body else factors + ' M'}"
+        """``T(theta) = `` the product in plain text."""
+        return f"T(theta) = {self.product_text(frame)}"
 
     # -- forward kinematics -------------------------------------------------------------
     def _pose(self, M: sp.MatrixBase) -> Pose:

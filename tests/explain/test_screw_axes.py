@@ -15,7 +15,7 @@ def test_the_steps_and_results_of_a_scara() -> None:
     d = derive_screws("scara")
     assert d.n == 4 and [s.revolute for s in d.steps] == [True, True, False, True]
     assert d.steps[2].point is None
-    assert d.formula_body.text.startswith("T(theta) = M e^([B1]*theta1)")
+    assert d.product_body.text.startswith("M e^([B1]*theta1)")
 
 
 @pytest.mark.parametrize(
