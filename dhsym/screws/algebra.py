@@ -373,7 +373,7 @@ def matrix_log(T: sp.MatrixBase) -> MatrixLog:
     return MatrixLog(ScrewAxis(omega, v), theta)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Exponential:
     r"""One factor :math:`e^{[\mathcal{S}_i]\theta_i}` of a product of exponentials, as the
     lecture prints it; ``matrix`` is its closed form (:func:`matrix_exp`).
@@ -432,6 +432,9 @@ class Exponential:
         return self.text()
 
     def __str__(self) -> str:
+        return self.text()
+
+    def __repr__(self) -> str:
         return self.text()
 
     def _repr_latex_(self) -> str:

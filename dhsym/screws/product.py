@@ -222,7 +222,8 @@ class ProductOfExponentials:
         )
 
     def product_latex(self, frame: str = "space") -> str:
-        r"""``e^{[\mathcal{S}_1]\theta_1} \cdots M`` (space) or ``M e^{[\mathcal{B}_1]…}`` (body)."""
+        r"""The product in LaTeX: ``e^{[\mathcal{S}_1]\theta_1} \cdots M`` (space) or
+        ``M e^{[\mathcal{B}_1]\theta_1} \cdots`` (body)."""
         factors = " ".join(e.latex() for e in self.exponentials(frame))
         return f"M {factors}" if _frame(frame) == "body" else f"{factors} M"
 

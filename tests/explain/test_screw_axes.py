@@ -48,3 +48,22 @@ def test_cli_derive_screws_text(capsys) -> None:
     out = capsys.readouterr().out
     assert out.startswith("Stanford")
     assert "Joint 3 (prismatic, d3), z of frame 2:" in out
+
+
+@pytest.mark.tex
+@pytest.mark.slow
+def test_handout_screws_section_compiles_without_overfull_boxes(tmp_path, need_tex) -> None:
+    from importlib import resources
+
+    from dhsym.explain.documents import write_handout
+    from dhsym.explain.latex import run_latex
+    from dhsym.robot import from_poe
+
+    with resources.as_file(resources.files("dhsym.screws") / "robots") as folder:
+        ur5 = from_poe(folder / "lynch_park_ur5.poe.yaml")
+    tex = write_handout(["puma560", ur5, "stanford"], tmp_path / "s.tex", sections="fk,screws")
+    source = tex.read_text()
+    assert r"\subsection{Screw axes and the product of exponentials}" in source
+    run = run_latex(tex)
+    assert run.pdf.exists()
+    assert list(run.issues) == [], [str(i) for i in run.issues]
