@@ -47,6 +47,7 @@ dhsym.errors.TableError: arm.yaml: row 1, field alfa: unknown column 'alfa': exp
 from __future__ import annotations
 
 import json
+import os
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -80,6 +81,7 @@ __all__ = [
     "read_steps",
     "read_table",
     "read_table_text",
+    "read_text_file",
     "table_from_data",
 ]
 
@@ -121,16 +123,21 @@ def read_table(path: str | Path) -> DHTable:
     Only a regular file is read (``/dev/zero`` or a FIFO is refused at once), and
     at most :data:`MAX_FILE_BYTES` of it.
     """
+    return read_table_text(read_text_file(path, "table file"), file=str(Path(path)))
+
+
+def read_text_file(path: str | os.PathLike[str], what: str) -> str:
+    """The UTF-8 text of a regular file of at most :data:`MAX_FILE_BYTES` (a table file, a
+    PoE file); anything else is a :class:`~dhsym.errors.TableError` naming the file."""
     p = Path(path)
     try:
-        data = read_limited(p, MAX_FILE_BYTES, what="table file")
+        data = read_limited(p, MAX_FILE_BYTES, what=what)
     except FileRefused as err:
         raise TableError(err.message, file=str(p)) from None
     try:
-        text = data.decode("utf-8")
+        return data.decode("utf-8")
     except UnicodeDecodeError:
         raise TableError("not a UTF-8 text file", file=str(p)) from None
-    return read_table_text(text, file=str(p))
 
 
 def read_table_text(text: str, *, file: str | None = None) -> DHTable:

@@ -55,8 +55,8 @@ from dhsym.kinematics.transforms import plain_product
 from dhsym.model.entries import as_expr
 from dhsym.model.kinds import AngleUnit
 from dhsym.model.parsing import symbol
-from dhsym.model.tablefile import MAX_FILE_BYTES, read_steps
-from dhsym.model.yamlsafe import FileRefused, YAMLInputError, YAMLLimits, load_yaml, read_limited
+from dhsym.model.tablefile import MAX_FILE_BYTES, read_steps, read_text_file
+from dhsym.model.yamlsafe import YAMLInputError, YAMLLimits, load_yaml
 from dhsym.notation.printers import Notation, decimal_lengths
 
 from .algebra import ScrewAxis, adjoint, is_zero
@@ -80,16 +80,7 @@ def is_poe_path(path: str | os.PathLike[str]) -> bool:
 
 def read_poe(path: str | os.PathLike[str]) -> ProductOfExponentials:
     """Read a PoE file (at most :data:`~dhsym.model.tablefile.MAX_FILE_BYTES`, a regular file)."""
-    p = Path(path)
-    try:
-        data = read_limited(p, MAX_FILE_BYTES, what="PoE file")
-    except FileRefused as err:
-        raise TableError(err.message, file=str(p)) from None
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError:
-        raise TableError("not a UTF-8 text file", file=str(p)) from None
-    return read_poe_text(text, file=str(p))
+    return read_poe_text(read_text_file(path, "PoE file"), file=str(Path(path)))
 
 
 def read_poe_text(text: str, *, file: str | None = None) -> ProductOfExponentials:
