@@ -26,7 +26,11 @@ from dhsym.screws.product import (
 
 URDF = Path(__file__).parents[1] / "data" / "urdf"
 #: proofs that take more than ~10 s on a loaded 2-core machine (measured: see the report)
-TIPS = {"ur5_robot.urdf": "tool0"}
+TIPS = {
+    "ur5_robot.urdf": "tool0",
+    "panda.urdf": "panda_hand_tcp",
+    "kinova.urdf": "j2s6s200_end_effector",
+}
 SLOW = {"jaco", "kuka_lwr4", "panda", "puma260", "puma560", "puma560_modified", "ur10", "ur3"}
 
 
