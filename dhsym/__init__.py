@@ -26,6 +26,7 @@ __getattr__, __dir__ = _lazy.lazy_exports(
         "model": "model",
         "notation": "notation",
         "plot": "plot",
+        "screws": "screws",
         # model
         "AngleUnit": "dhsym.model.kinds",
         "Convention": "dhsym.model.kinds",
@@ -82,6 +83,11 @@ __getattr__, __dir__ = _lazy.lazy_exports(
         # formats
         "from_rtb": "dhsym.robot",
         "from_urdf": "dhsym.robot",
+        "from_poe": "dhsym.robot",
+        # screws
+        "ScrewAxis": "dhsym.screws.algebra",
+        "ProductOfExponentials": "dhsym.screws.product",
+        "read_poe": "dhsym.screws.poefile",
         "FormatError": "dhsym.errors",
         # errors, version
         "ChainError": "dhsym.errors",
@@ -116,7 +122,9 @@ __all__ = [
     "PAIRS",
     "ParseError",
     "Pose",
+    "ProductOfExponentials",
     "Robot",
+    "ScrewAxis",
     "TableError",
     "Tool",
     "animate_path",
@@ -132,6 +140,7 @@ __all__ = [
     "dump_table",
     "export",
     "frame_origins",
+    "from_poe",
     "from_rtb",
     "from_urdf",
     "grade",
@@ -145,6 +154,7 @@ __all__ = [
     "plot_robot",
     "plot_solutions",
     "plot_workspace",
+    "read_poe",
     "read_table",
     "read_table_text",
     "singularities",

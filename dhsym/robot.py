@@ -31,8 +31,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, overload
 
+import sympy as sp
+
 from dhsym.errors import DHError
-from dhsym.kinematics.chain import KinematicChain
+from dhsym.kinematics.chain import JacobianKey, KinematicChain
 from dhsym.model.kinds import Convention
 from dhsym.model.library import load_table
 from dhsym.model.table import DHTable
@@ -52,9 +54,10 @@ if TYPE_CHECKING:
     from dhsym.ik.protocols import NativeCompiler
     from dhsym.ik.solution import IKSolution
     from dhsym.model.angles import AngleSnap
+    from dhsym.screws.product import ProductOfExponentials, ScrewJacobian
     from dhsym.trajectory.paths import CartesianPath, JointPath
 
-__all__ = ["Robot", "RobotState", "from_rtb", "from_urdf", "inverse", "load"]
+__all__ = ["Robot", "RobotState", "from_poe", "from_rtb", "from_urdf", "inverse", "load"]
 
 
 @dataclass(eq=False)
@@ -69,6 +72,8 @@ class RobotState:
     lagrange: EquationsOfMotion | None = None
     newton_euler: EquationsOfMotion | None = None
     dynamics_functions: dict[object, DynamicsFunctions] = field(default_factory=dict)
+    poe: ProductOfExponentials | None = None
+    screw_jacobians: dict[str, ScrewJacobian] = field(default_factory=dict)
     lock: threading.RLock = field(default_factory=threading.RLock, repr=False)
 
     def memo_size(self) -> int:
@@ -170,6 +175,100 @@ class Robot(KinematicChain):
             near=near,
             cache=self.ik_cache(),
         )
+
+    # -- screws and the product of exponentials (dhsym.screws) -------------------------
+    def poe(self) -> ProductOfExponentials:
+        """This robot as a product of exponentials (:mod:`dhsym.screws.product`): the space
+        screw axes and the home configuration ``M`` read off the DH frames at ``q = 0``,
+        with the steps; the space frame is the frame of ``fk``, the tool frame its end."""
+        from dhsym.screws.product import from_chain
+
+        shared = self._shared
+        if shared.poe is None:
+            with shared.lock:
+                if shared.poe is None:
+                    shared.poe = from_chain(self)
+        return shared.poe
+
+    def screw_axes(self, frame: str = "space") -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix]:
+        """``(S, M)``: the screw axes as the columns of a 6×n matrix (rows ``[ω; v]``, Lynch
+        and Park, *Modern Robotics*) in the ``"space"`` frame (``S_i``) or the ``"body"``
+        frame (``B_i``), and the home configuration ``M``, exact.
+
+        >>> S, M = load("planar2r").screw_axes("body")
+        >>> S.T
+        Matrix([
+        [0, 0, 1, 0, a1 + a2, 0],
+        [0, 0, 1, 0,      a2, 0]])
+        """
+        poe = self.poe()
+        return poe.screw_matrix(frame), poe.home
+
+    def _screw_jacobian(self, frame: str) -> ScrewJacobian:
+        shared = self._shared
+        with shared.lock:
+            found = shared.screw_jacobians.get(frame)
+            if found is None:
+                poe = self.poe()
+                found = poe.jacobian_space() if frame == "space" else poe.jacobian_body()
+                shared.screw_jacobians[frame] = found
+            return found
+
+    @overload
+    def jacobian_space(self, q: None = None) -> ScrewJacobian: ...
+    @overload
+    def jacobian_space(
+        self, q: object, *, values: Mapping[object, object] | None = None
+    ) -> np.ndarray: ...
+    def jacobian_space(
+        self, q: object = None, *, values: Mapping[object, object] | None = None
+    ) -> ScrewJacobian | np.ndarray:
+        """The space Jacobian ``J_s`` (rows ``[ω; v]``), exact; at ``q`` its numbers (``(n,)``
+        → ``(6, n)``, ``(N, n)`` → ``(N, 6, n)``, as :meth:`jacob0`). It relates to the DH
+        Jacobian (rows ``[v; ω]``) by ``J_s = [[0, I], [I, [p]]] jacob0``
+        (:func:`dhsym.screws.product.space_from_geometric`).
+
+        >>> load("planar2r").jacobian_space([0.0, 0.0])[:, 1]
+        array([ 0.,  0.,  1.,  0., -1.,  0.])
+        """
+        return self._screw_jacobian_at("space", q, values)
+
+    @overload
+    def jacobian_body(self, q: None = None) -> ScrewJacobian: ...
+    @overload
+    def jacobian_body(
+        self, q: object, *, values: Mapping[object, object] | None = None
+    ) -> np.ndarray: ...
+    def jacobian_body(
+        self, q: object = None, *, values: Mapping[object, object] | None = None
+    ) -> ScrewJacobian | np.ndarray:
+        """The body Jacobian ``J_b`` (rows ``[ω; v]``, in the tool frame), exact or at ``q``;
+        it is :meth:`jacobe` with its halves swapped
+        (:func:`dhsym.screws.product.body_from_geometric`).
+
+        >>> import numpy as np
+        >>> r = load("planar2r")
+        >>> np.allclose(r.jacobian_body([0.3, 0.5])[3:], r.jacobe([0.3, 0.5])[:3])
+        True
+        """
+        return self._screw_jacobian_at("body", q, values)
+
+    def _screw_jacobian_at(
+        self, frame: str, q: object, values: Mapping[object, object] | None
+    ) -> ScrewJacobian | np.ndarray:
+        from dhsym.kinematics.numeric import compile_matrix, values_key
+
+        J = self._screw_jacobian(frame)
+        if q is None:
+            if values is not None:
+                raise DHError(f"jacobian_{frame}() without q is exact: values need q")
+            return J
+        vals = self.table.with_values(dict(values or {})).value_map
+        key = JacobianKey(f"screw-{frame}", None, values_key(values))
+        f = self._jacobian_functions.get(key)
+        if f is None:
+            f = self._jacobian_functions[key] = compile_matrix(J.matrix, self.variables, vals)
+        return f(q)
 
     # -- formats and compiled code (dhsym.formats, dhsym.export) -------------------------
     def to_urdf(self, *, name: str | None = None) -> str:
@@ -410,7 +509,9 @@ def load(name_or_path: str | Path, **kw: Any) -> Robot:
     """A :class:`Robot` from a built-in name or a table file (``compact``, ``style`` as Robot).
 
     A ``.urdf`` path (or URDF text) is read by :func:`from_urdf`, which also takes ``tip``,
-    ``base``, ``convention`` and ``snap_angles``.
+    ``base``, ``convention`` and ``snap_angles``. A ``.poe.yaml`` path (a product of
+    exponentials, :mod:`dhsym.screws.poefile`) is read by :func:`from_poe`, which also
+    takes ``convention``.
 
     >>> load("planar2r").name
     'Planar 2R'
@@ -418,7 +519,36 @@ def load(name_or_path: str | Path, **kw: Any) -> Robot:
     text = str(name_or_path)
     if text.lstrip().startswith("<") or Path(text).suffix.lower() in (".urdf", ".xacro"):
         return from_urdf(name_or_path, **kw)
+    from dhsym.screws.poefile import is_poe_path
+
+    if is_poe_path(text):
+        return from_poe(name_or_path, **kw)
     return Robot(load_table(name_or_path), **kw)
+
+
+def from_poe(
+    source: str | os.PathLike[str] | ProductOfExponentials,
+    convention: Convention | str = "standard",
+    **kw: Any,
+) -> Robot:
+    """A :class:`Robot` from a PoE file or description: its screw axes as lines, given DH
+    frames by :func:`dhsym.geometry.frames.assign_frames` (:func:`dhsym.screws.poe_to_dh.to_dh`;
+    variables zero at home, in the order of the axes); ``kw`` are Robot's keywords.
+
+    >>> from dhsym.screws.poefile import read_poe_text
+    >>> poe = read_poe_text('''
+    ... M: [[1, 0, 0, 2], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+    ... joints: [{w: [0, 0, 1], point: [0, 0, 0]}, {w: [0, 0, 1], point: [1, 0, 0]}]''')
+    >>> r = from_poe(poe)
+    >>> r.screw_axes()[0] == poe.screw_matrix(), r.fk([0.5, 0.0])[0, 3]
+    (True, np.float64(1.7551651237807455))
+    """
+    from dhsym.screws.poe_to_dh import to_dh
+    from dhsym.screws.poefile import read_poe
+    from dhsym.screws.product import ProductOfExponentials
+
+    poe = source if isinstance(source, ProductOfExponentials) else read_poe(source)
+    return Robot(to_dh(poe, convention).table, **kw)
 
 
 def from_urdf(

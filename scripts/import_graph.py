@@ -39,6 +39,7 @@ ORDER = [
     "ik",
     "dynamics",
     "geometry",
+    "screws",
     "plot",
     "formats",
     "export",

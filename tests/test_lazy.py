@@ -24,6 +24,7 @@ ROOMS = {
     "model",
     "notation",
     "plot",
+    "screws",
 }
 #: Every room's ``__init__`` lists its names through ``lazy_exports`` or ``public_dir``.
 LAZY_ROOMS = sorted(ROOMS)

@@ -212,7 +212,8 @@ def add_urdf_options(parser: argparse.ArgumentParser) -> None:
 def load_table_arg(
     name: str, tip: str | None = None, base: str | None = None, convention: str = "standard"
 ) -> DHTable:
-    """The DH table of ``name``: a built-in name, a table file, or a URDF file (``--tip``)."""
+    """The DH table of ``name``: a built-in name, a table file, a URDF file (``--tip``) or a
+    product of exponentials (``*.poe.yaml``, :mod:`dhsym.screws.poefile`)."""
     from dhsym.errors import DHError, echoed
 
     if os.path.splitext(name)[1].lower() in URDF_SUFFIXES:
@@ -221,6 +222,13 @@ def load_table_arg(
         return import_urdf(name, tip=tip, base=base, convention=convention).table
     if tip is not None or base is not None:
         raise DHError(f"--tip and --base choose a chain in a URDF file; {echoed(name)} is not one")
+    from dhsym.screws.poefile import is_poe_path
+
+    if is_poe_path(name):  # a product of exponentials: its axes given DH frames
+        from dhsym.screws.poe_to_dh import to_dh
+        from dhsym.screws.poefile import read_poe
+
+        return to_dh(read_poe(name), convention).table
     from dhsym.model.library import load_table
 
     return load_table(name)

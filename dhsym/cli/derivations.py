@@ -1,4 +1,4 @@
-"""``dhsym derive --what jacobian|singularities|ik|dynamics --format json``: as JSON.
+"""``dhsym derive --what jacobian|singularities|screws|ik|dynamics --format json``: as JSON.
 
 Each object has ``schema``, ``dhsym`` (version), ``robot``, ``convention``, ``what`` and
 ``variables``; every formula comes three ways: ``compact`` (C/S notation), ``full``
@@ -39,6 +39,7 @@ __all__ = [
     "ik_json",
     "jacobian_json",
     "control_json",
+    "screws_json",
     "singularities_json",
     "trajectory_json",
 ]
@@ -287,12 +288,61 @@ def control_json(robot: Robot) -> dict[str, object]:
     }
 
 
+def screws_json(robot: Robot) -> dict[str, object]:
+    """The screw axes (Lynch and Park, *Modern Robotics*; rows ``[ω; v]``): ``space`` and
+    ``body`` (6×n) and ``home`` (M, 4×4), each ``compact``/``full``/``latex``; ``axes``
+    (each ``index``, ``joint``, ``variable``, ``frame``, ``omega``, ``point``, ``v``), the
+    ``formula`` (space and body) and ``legend``.
+
+    >>> from dhsym import load
+    >>> d = screws_json(load("planar2r"))
+    >>> d["what"], d["space"]["compact"][4], d["axes"][1]["v"]
+    ('screws', ['0', '-a1'], ['0', '-a1', '0'])
+    """
+    poe = robot.poe()
+    text = robot.notation.text
+    full = Notation(robot.notation.labels, compact=False)
+    S, B = poe.screw_matrix("space"), poe.screw_matrix("body")
+
+    def three(M: sp.MatrixBase) -> dict[str, list[list[str]]]:
+        return {
+            "compact": _grid(text, M),
+            "full": _grid(full.text, M),
+            "latex": _grid(robot.notation.latex, M),
+        }
+
+    axes = [
+        {
+            "index": s.joint,
+            "joint": s.kind.value,
+            "variable": str(s.variable),
+            "frame": s.frame,
+            "omega": [text(x) for x in s.omega * s.rate],
+            "point": [text(x) for x in s.point] if s.kind.value == "R" else None,
+            "v": [text(x) for x in s.v],
+        }
+        for s in poe.steps
+    ]
+    return {
+        **_head(robot, "screws"),
+        "space_frame": poe.frames[0],
+        "tool_frame": poe.frames[1],
+        "axes": axes,
+        "home": three(poe.home),
+        "space": three(S),
+        "body": three(B),
+        "formula": {"space": poe.formula_text("space"), "body": poe.formula_text("body")},
+        "legend": _legend(robot, [*poe.home, *S, *B]),
+    }
+
+
 def derivation_json(robot: Robot, what: str) -> dict[str, object]:
-    """The JSON of ``what`` (``jacobian``, ``singularities``, ``ik``, ``dynamics`` or
-    ``trajectory``)."""
+    """The JSON of ``what`` (``jacobian``, ``singularities``, ``screws``, ``ik``,
+    ``dynamics``, ``trajectory`` or ``control``)."""
     build = {
         "jacobian": jacobian_json,
         "singularities": singularities_json,
+        "screws": screws_json,
         "ik": ik_json,
         "dynamics": dynamics_json,
         "trajectory": trajectory_json,

@@ -195,7 +195,8 @@ def _register_handout(subparsers: argparse._SubParsersAction[argparse.ArgumentPa
         "--sections",
         default="fk",
         metavar="LIST",
-        help="comma separated, any of fk, jacobian, singularities, ik, dynamics (default fk)",
+        help="comma separated, any of fk, jacobian, singularities, screws, ik, dynamics "
+        "(default fk)",
     )
     h.add_argument(
         "--figure",

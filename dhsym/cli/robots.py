@@ -500,10 +500,20 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     )
     d.add_argument(
         "--what",
-        choices=["fk", "jacobian", "singularities", "ik", "dynamics", "trajectory", "control"],
+        choices=[
+            "fk",
+            "jacobian",
+            "singularities",
+            "screws",
+            "ik",
+            "dynamics",
+            "trajectory",
+            "control",
+        ],  # fmt: skip
         default="fk",
         help="fk: forward kinematics (default); jacobian: column by column; singularities: "
-        "det J factored and named; ik: closed-form inverse kinematics, every branch; "
+        "det J factored and named; screws: the screw axes, M and the product of "
+        "exponentials; ik: closed-form inverse kinematics, every branch; "
         "dynamics: energies, M, Christoffel symbols, g, tau and the Newton-Euler passes; "
         "trajectory: the cubic, quintic and LSPB of a joint from their boundary conditions; "
         "control: the computed-torque error equation and its gains",

@@ -54,7 +54,7 @@ __all__ = [
 
 #: What can be derived: forward kinematics, the Jacobian, its singularities, the inverse,
 #: the equations of motion.
-WHAT = ("fk", "jacobian", "singularities", "ik", "dynamics", "trajectory", "control")
+WHAT = ("fk", "jacobian", "singularities", "screws", "ik", "dynamics", "trajectory", "control")
 
 #: Headings of the handout sections.
 SECTION_TITLES = MappingProxyType(
@@ -62,6 +62,7 @@ SECTION_TITLES = MappingProxyType(
         "fk": "Forward kinematics",
         "jacobian": "The Jacobian",
         "singularities": "Singular configurations",
+        "screws": "Screw axes and the product of exponentials",
         "ik": "Inverse kinematics",
         "dynamics": "Equations of motion",
         "trajectory": "Trajectories",
@@ -75,6 +76,7 @@ _OPTIONS = MappingProxyType(
     {
         "jacobian": ("frame", "point", "compact", "notation", "width", "numeric"),
         "singularities": ("compact", "notation", "width", "numeric"),
+        "screws": ("compact", "notation", "width", "numeric"),
         "ik": ("compact", "notation", "width", "check", "numeric"),
         "dynamics": ("compact", "notation", "width", "numeric", "progress"),
         "trajectory": (),
@@ -124,6 +126,10 @@ def document(
         return derive_singularities(r, **opts)
     if what == "dynamics":
         return derive_dynamics(r, **opts)
+    if what == "screws":
+        from .screw_axes import derive_screws
+
+        return derive_screws(r, **opts)
     if what == "trajectory":
         return derive_trajectory(r)
     if what == "control":

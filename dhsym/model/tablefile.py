@@ -47,6 +47,7 @@ dhsym.errors.TableError: arm.yaml: row 1, field alfa: unknown column 'alfa': exp
 from __future__ import annotations
 
 import json
+import os
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -74,7 +75,15 @@ from .table import (
 )
 from .yamlsafe import FileRefused, YAMLInputError, YAMLLimits, load_yaml, read_limited
 
-__all__ = ["MAX_FILE_BYTES", "dump_table", "read_table", "read_table_text", "table_from_data"]
+__all__ = [
+    "MAX_FILE_BYTES",
+    "dump_table",
+    "read_steps",
+    "read_table",
+    "read_table_text",
+    "read_text_file",
+    "table_from_data",
+]
 
 MAX_FILE_BYTES = 1_000_000
 _ROW_KEYS = (
@@ -114,16 +123,21 @@ def read_table(path: str | Path) -> DHTable:
     Only a regular file is read (``/dev/zero`` or a FIFO is refused at once), and
     at most :data:`MAX_FILE_BYTES` of it.
     """
+    return read_table_text(read_text_file(path, "table file"), file=str(Path(path)))
+
+
+def read_text_file(path: str | os.PathLike[str], what: str) -> str:
+    """The UTF-8 text of a regular file of at most :data:`MAX_FILE_BYTES` (a table file, a
+    PoE file); anything else is a :class:`~dhsym.errors.TableError` naming the file."""
     p = Path(path)
     try:
-        data = read_limited(p, MAX_FILE_BYTES, what="table file")
+        data = read_limited(p, MAX_FILE_BYTES, what=what)
     except FileRefused as err:
         raise TableError(err.message, file=str(p)) from None
     try:
-        text = data.decode("utf-8")
+        return data.decode("utf-8")
     except UnicodeDecodeError:
         raise TableError("not a UTF-8 text file", file=str(p)) from None
-    return read_table_text(text, file=str(p))
 
 
 def read_table_text(text: str, *, file: str | None = None) -> DHTable:
@@ -333,6 +347,16 @@ def _elementaries(data: object, where: str, unit: AngleUnit) -> tuple[Elementary
             expr = to_radians(expr, unit)
         out.append(Elementary(name[0], name[1].lower(), expr))
     return tuple(out)
+
+
+def read_steps(data: object, where: str, unit: AngleUnit | str) -> tuple[Elementary, ...]:
+    """A list of constant steps like a table's ``base`` (``[{Tz: 0.5}, {Rx: 90}]``), angles
+    in ``unit``; errors name ``where`` as the field (the PoE files' ``M`` reads so too).
+
+    >>> read_steps([{"Tz": 0.5}, {"Rx": 90}], "base", "deg")
+    (Tz(1/2), Rx(pi/2))
+    """
+    return _elementaries(data, where, AngleUnit.parse(unit))
 
 
 class _Reader(StrPrinter):
