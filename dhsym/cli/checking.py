@@ -406,7 +406,12 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     )
     v.add_argument("assignment", help="assignment YAML file")
     v.add_argument("--roster", default=None, metavar="CLASS", help="class list CSV")
-    v.add_argument("--format", choices=("text", "csv", "json"), default="text")
+    v.add_argument(
+        "--format",
+        choices=("text", "csv", "json"),
+        default="text",
+        help="the list as text (default), a CSV table or JSON",
+    )
     v.add_argument("-o", "--output", default=None, help="write to FILE (- : standard output)")
     v.add_argument(
         "--new-secret",

@@ -10,7 +10,8 @@ Examples
 --------
 >>> sorted(build_parser()._subparsers._group_actions[0].choices)  # doctest: +NORMALIZE_WHITESPACE
 ['autograder', 'cache', 'check', 'check-assignment', 'convert', 'derive', 'export', 'fk', 'grade',
- 'handout', 'ik', 'list', 'new-assignment', 'notebooks', 'plot', 'show', 'variants']
+ 'handout', 'ik', 'list', 'new-assignment', 'notebooks', 'plot', 'show', 'variants',
+ 'view']
 """
 
 from __future__ import annotations

@@ -316,7 +316,7 @@ def links_program(robot: KinematicChain) -> Program:
     >>> import dhsym
     >>> prog = links_program(dhsym.load("planar2r"))
     >>> (prog.rows, prog.cols), [str(o.expr) for o in prog.outputs[:4]]
-    ((8, 4), ['c1', '-s1', '0', 'c1'])
+    ((8, 4), ['c1', '-s1', '0.0', 'c1'])
     """
     rows: list[list[sp.Expr]] = []
     for i in range(1, robot.n + 1):

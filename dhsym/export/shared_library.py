@@ -339,6 +339,7 @@ def native_source(
     import sympy as sp
 
     from dhsym.ik.rewriting import ROUNDING, TAU
+    from dhsym.model.entries import as_expr
 
     from .c import NativePrinter
 
@@ -359,7 +360,7 @@ def native_source(
     ]
     body += [f"    const double {lhs} = {printer.doprint(rhs)};" for lhs, rhs in lines]
     body += [
-        f"    out[{k}] = {printer.doprint(sp.sympify(o).xreplace(names))};"
+        f"    out[{k}] = {printer.doprint(as_expr(o).xreplace(names))};"
         for k, o in enumerate(outputs)
     ]
     return "\n".join(

@@ -43,6 +43,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.kinematics.numeric import to_float
+from dhsym.model.entries import as_expr
 from dhsym.model.inertia import LinkInertia
 from dhsym.model.kinds import Convention
 from dhsym.model.table import DHRow, DHTable, Elementary, JointType
@@ -159,7 +160,7 @@ Entries = tuple[float, float, float, float]
 
 def _number(value: sp.Expr, values: dict[sp.Symbol, sp.Expr]) -> float:
     """The value of an exact entry as a float (0 when it is still a symbol)."""
-    e = sp.sympify(value).xreplace(values)
+    e = as_expr(value).xreplace(values)
     return 0.0 if e.free_symbols else to_float(e)
 
 

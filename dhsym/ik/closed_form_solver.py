@@ -44,6 +44,7 @@ from dhsym.errors import DHError
 from dhsym.kinematics.decoupling import StructureError
 from dhsym.kinematics.jacobian import axis_frame
 from dhsym.kinematics.numeric import evaluate_chunked
+from dhsym.model.entries import as_expr
 from dhsym.model.table import JointType
 
 from .closed_form import ClosedForm
@@ -647,7 +648,7 @@ class ClosedFormSolver:
         limits = rows[k].limits
         if limits is None:
             return 0.0, 1.0
-        lo, hi = (float(sp.sympify(v).xreplace(self.values)) for v in limits)
+        lo, hi = (float(as_expr(v).xreplace(self.values)) for v in limits)
         return lo, hi
 
     def _inner(self, poses: np.ndarray) -> np.ndarray:

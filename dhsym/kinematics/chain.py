@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING, Any, overload
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.model.entries import as_expr
 from dhsym.model.table import Convention, DHTable, Elementary, JointType
 from dhsym.notation.printers import Notation, TrigStyle, decimal_lengths
 
@@ -319,7 +320,7 @@ class KinematicChain:
             word = chain_word(self.table, i, j)
             # measured constants (a skewed URDF axis read as huge exact rationals) would
             # make the closed form's radicals huge: their numbers start from floats
-            heavy = any(measured(sp.sympify(e.value).xreplace(vals)) for e in word)
+            heavy = any(measured(as_expr(e.value).xreplace(vals)) for e in word)
             if not heavy and self.transform_size(i, j) <= MAX_CLOSED_FORM:
                 # its programs are kept in the disk cache (dhsym.cache) by table, frames, values
                 f = stored_pose_function(
