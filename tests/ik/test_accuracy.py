@@ -81,7 +81,9 @@ def test_an_exact_pose_is_solved_as_before() -> None:
     batch = np.stack([T, np.round(T, 4)])
     sol = r.ik(batch)
     assert sol.count.tolist() == [8, 8]
-    assert np.array_equal(sol.solution(0).q, r.ik(batch[:1]).solution(0).q)
+    # in a batch with a rounded pose the exact one goes through the stretched program (its
+    # roots clamped at 0): the same solutions, equal to rounding
+    np.testing.assert_allclose(sol.solution(0).q, r.ik(batch[:1]).solution(0).q, atol=1e-12)
 
 
 @pytest.mark.parametrize("decimals", [6, 3])
