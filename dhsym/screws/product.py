@@ -233,11 +233,11 @@ class ProductOfExponentials:
         return f"M {factors}" if _frame(frame) == "body" else f"{factors} M"
 
     def formula_latex(self, frame: str = "space") -> str:
-        r"""``T(\theta) = `` the product (:meth:`product_latex`)."""
+        r"""``T(\theta)`` equated to the product (:meth:`product_latex`), in LaTeX."""
         return rf"T(\theta) = {self.product_latex(frame)}"
 
     def formula_text(self, frame: str = "space") -> str:
-        """``T(theta) = `` the product in plain text."""
+        """``T(theta)`` equated to the product, in plain text."""
         return f"T(theta) = {self.product_text(frame)}"
 
     # -- forward kinematics -------------------------------------------------------------
