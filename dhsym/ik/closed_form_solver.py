@@ -461,7 +461,9 @@ class ClosedFormSolver:
         checked = target is not None
         fn = self._program(("stretched" if stretch else "checked") if checked else "raw")
         w = len(self._wrist_s)
-        F = len(self._factor_exprs) if checked else 0
+        # the factors, not the program, say how many closeness rows it has: a program read
+        # from the disk cache was never rewritten in this process
+        F = len(self._singular_factors()) if checked else 0
         at = Layout.numpy(n, w, F)
         keep = list(range(n + w))  # the joint values and the wrist sines
         if checked:

@@ -61,6 +61,24 @@ def test_a_warm_solver_reads_its_programs(tmp_path, monkeypatch):
     assert np.array_equal(one.q, again.q) and np.array_equal(batch.q, batch_again.q, equal_nan=True)
 
 
+def test_a_warm_solver_at_a_singular_wrist_finds_its_factors(tmp_path, monkeypatch):
+    """A program read from disk was never rewritten in this process: the batch at a
+    singular wrist still knows how many singular factors the program returns (it once
+    read 0 and failed to broadcast)."""
+    _cache(tmp_path, monkeypatch)
+    r = dhsym.load("puma560")
+    rng = np.random.default_rng(3)
+    q = rng.uniform(-3, 3, (50, 6))
+    q[::2, 4] = 1e-9
+    T = r.fk(q)
+    cold = build_solver(r.inverse(), None).solve(T)
+    warm = build_solver(r.inverse(), None).solve(T)
+    assert np.array_equal(cold.valid, warm.valid)
+    assert np.allclose(cold.q, warm.q, equal_nan=True, atol=1e-12)
+    assert np.array_equal(cold.near, warm.near)
+    assert all(np.abs(r.fk(warm.solution(k).q) - T[k]).max() < 1e-9 for k in range(len(q)))
+
+
 def test_a_tampered_program_is_refused(tmp_path, monkeypatch):
     store = _cache(tmp_path, monkeypatch)
     r = dhsym.load("puma560")
