@@ -10,7 +10,7 @@ from __future__ import annotations
 from .blends import lspb, minimum_time, trapezoidal
 from .paths import CartesianPath, JointPath, ctraj, jtraj
 from .profiles import Derivation, Profile, Segment, cubic, quintic
-from .via import mstraj, spline, via_blends
+from .via import mstraj, spline, via_blends, via_cubic
 
 __all__ = [
     "CartesianPath",
@@ -28,4 +28,5 @@ __all__ = [
     "spline",
     "trapezoidal",
     "via_blends",
+    "via_cubic",
 ]

@@ -1,5 +1,6 @@
-r"""Motion through via points: straight segments joined by blends (:func:`mstraj`), and
-cubic splines with continuous acceleration (:func:`spline`).
+r"""Motion through via points: straight segments joined by blends (:func:`mstraj`,
+:func:`via_blends`), cubics with the via velocities chosen by a rule (:func:`via_cubic`)
+and cubic splines with continuous acceleration (:func:`spline`).
 
 :func:`mstraj` follows roboticstoolbox's ``mstraj`` (Corke, *Robotics, Vision and
 Control*), exact: each segment's time is the slowest joint's at its speed limit (or
@@ -18,6 +19,15 @@ given acceleration join them, their durations computed.
 ends), the unknown velocities at the inner via points chosen so that the acceleration is
 continuous there (Spong–Hutchinson–Vidyasagar, *Robot Modeling and Control*; Craig,
 *Introduction to Robotics*, ch. 7): a tridiagonal linear system, solved exactly.
+
+:func:`via_cubic` passes through every via point at the given times too, one cubic per
+interval, but chooses the velocity at each inner via point by the rule of the lectures
+(Spong–Hutchinson–Vidyasagar, *Robot Modeling and Control*, ch. 5, and Craig,
+*Introduction to Robotics*, ch. 7, cubic polynomials for a path with via points): with
+the slopes ``d_k = (q_k − q_{k−1})/(t_k − t_{k−1})`` of the straight lines between
+neighbouring via points, ``v_k = (d_k + d_{k+1})/2`` when ``d_k`` and ``d_{k+1}`` have
+the same sign, else ``v_k = 0``. Velocity is continuous, acceleration in general not;
+:func:`spline` is the variant with continuous acceleration.
 
 Examples
 --------
@@ -39,7 +49,7 @@ from dhsym.errors import DHError
 
 from .profiles import Derivation, Profile, Segment, exact_value, polynomial_segment
 
-__all__ = ["mstraj", "spline", "via_blends"]
+__all__ = ["mstraj", "spline", "via_blends", "via_cubic"]
 
 
 def _rows(via: object, name: str) -> tuple[list[list[sp.Expr]], bool]:
@@ -177,6 +187,19 @@ def mstraj(
     return Profile("via", tuple(tuple(j) for j in joints), (d,) * n, scalar=False)
 
 
+def _via_times(times: Sequence[object], m: int, who: str) -> list[sp.Expr]:
+    """The exact times of ``m`` via points: from 0, increasing."""
+    ts = [exact_value(t, f"times[{i}]") for i, t in enumerate(times)]
+    if len(ts) != m:
+        raise DHError(f"{who}: {m} via points but {len(ts)} times")
+    if ts[0] != 0:
+        raise DHError(f"{who}: times must start at 0, got {ts[0]}")
+    for i in range(1, m):
+        if not bool(ts[i] > ts[i - 1]):
+            raise DHError(f"{who}: times must increase: times[{i}] = {ts[i]} ≤ {ts[i - 1]}")
+    return ts
+
+
 def spline(via: object, times: Sequence[object], v0: object = 0, vf: object = 0) -> Profile:
     r"""The cubic spline through ``via`` (``(m,)`` or ``(m, n)``) at ``times`` (from 0,
     increasing), with velocities ``v0`` and ``vf`` at the ends and continuous
@@ -188,14 +211,7 @@ def spline(via: object, times: Sequence[object], v0: object = 0, vf: object = 0)
     """
     rows, scalar = _rows(via, "via")
     m, n = len(rows), len(rows[0])
-    ts = [exact_value(t, f"times[{i}]") for i, t in enumerate(times)]
-    if len(ts) != m:
-        raise DHError(f"spline: {m} via points but {len(ts)} times")
-    if ts[0] != 0:
-        raise DHError(f"spline: times must start at 0, got {ts[0]}")
-    for i in range(1, m):
-        if not bool(ts[i] > ts[i - 1]):
-            raise DHError(f"spline: times must increase: times[{i}] = {ts[i]} ≤ {ts[i - 1]}")
+    ts = _via_times(times, m, "spline")
     start_v, end_v = _per_joint(v0, n, "v0"), _per_joint(vf, n, "vf")
     v = sp.symbols(f"v_1:{m - 1}", real=True) if m > 2 else ()
     joints, derivations = [], []
@@ -344,3 +360,91 @@ def via_blends(via: object, durations: Sequence[object], acc: object) -> Profile
         joints.append(segs)
         derivations.append(d)
     return Profile("via blends", tuple(joints), tuple(derivations), scalar)
+
+
+def _quotient(num: sp.Expr, den: sp.Expr) -> sp.Expr:
+    """``num/den`` as written (unevaluated when ``den`` is not 1)."""
+    if den == 1:
+        return num
+    return sp.Mul(num, sp.Pow(den, -1, evaluate=False), evaluate=False)
+
+
+def _half(x: sp.Expr) -> sp.Expr:
+    """``x/2`` as the lecture writes it, ``(d_1 + d_2)/2``."""
+    return sp.Mul(sp.Rational(1, 2), x, evaluate=False)
+
+
+def _via_velocity(before: sp.Expr, after: sp.Expr, where: str) -> tuple[sp.Expr, str]:
+    """The rule at one via point: the average of the slopes ``before`` and ``after``
+    when they have the same sign, else 0; and the sentence saying which case it was."""
+    product = sp.simplify(before * after)
+    if not product.is_number:
+        raise DHError(
+            f"via_cubic: {where}cannot tell whether the slopes {before} and {after} "
+            "have the same sign: give numbers"
+        )
+    if bool(product > 0):
+        return sp.simplify((before + after) / 2), "same sign: the average of the slopes"
+    return sp.Integer(0), "the sign changes or a slope is 0: at rest"
+
+
+def via_cubic(via: object, times: Sequence[object], v0: object = 0, vf: object = 0) -> Profile:
+    r"""Cubics through ``via`` (``(m,)`` or ``(m, n)``) at ``times`` (from 0, increasing),
+    with velocities ``v0`` and ``vf`` at the ends and the velocity at each inner via
+    point chosen by the lectures' rule (see the module docstring): the average of the
+    adjacent slopes when they have the same sign, else 0. Each interval is
+    :func:`~dhsym.trajectory.profiles.cubic`'s polynomial between its two via points
+    and velocities; the derivation lists the slopes and the chosen velocities.
+
+    >>> p = via_cubic([0, 1, 3, 2], [0, 1, 2, 3])
+    >>> p.derivation().pairs
+    ((d_1, 1), (d_2, 2), (d_3, -1), (v_1, 3/2), (v_2, 0))
+    >>> [seg.coefficients for seg in p.joints[0]]
+    [(0, 0, 3/2, -1/2), (1, 3/2, 3, -5/2), (3, 0, -3, 2)]
+    """
+    rows, scalar = _rows(via, "via")
+    m, n = len(rows), len(rows[0])
+    ts = _via_times(times, m, "via_cubic")
+    start_v, end_v = _per_joint(v0, n, "v0"), _per_joint(vf, n, "vf")
+    d_syms = sp.symbols(f"d_1:{m}", real=True)
+    v_syms = sp.symbols(f"v_1:{m - 1}", real=True) if m > 2 else ()
+    joints, derivations = [], []
+    for j in range(n):
+        where = f"joint {j + 1}: " if n > 1 else ""
+        slopes = [
+            sp.simplify((rows[i + 1][j] - rows[i][j]) / (ts[i + 1] - ts[i])) for i in range(m - 1)
+        ]
+        chosen, said = [], []
+        for k in range(m - 2):
+            value, why = _via_velocity(slopes[k], slopes[k + 1], f"{where}via point {k + 1}: ")
+            chosen.append(value)
+            said.append(f"v_{k + 1} ({why})")
+        speeds = [start_v[j], *chosen, end_v[j]]
+        segs = tuple(
+            polynomial_segment(
+                ts[i], ts[i + 1] - ts[i], [rows[i][j], speeds[i]], [rows[i + 1][j], speeds[i + 1]]
+            )[0]
+            for i in range(m - 1)
+        )
+        d_eqs = [
+            sp.Eq(d, _quotient(rows[i + 1][j] - rows[i][j], ts[i + 1] - ts[i]), evaluate=False)
+            for i, d in enumerate(d_syms)
+        ]
+        v_eqs = [
+            sp.Eq(v, _half(d_syms[k] + d_syms[k + 1]) if x != 0 else x, evaluate=False)
+            for k, (v, x) in enumerate(zip(v_syms, chosen))
+        ]
+        labels = (
+            *(f"d_{i + 1} (the slope from via point {i} to {i + 1})" for i in range(m - 1)),
+            *said,
+        )
+        derivations.append(
+            Derivation(
+                labels,
+                (*d_eqs, *v_eqs),
+                (*d_syms, *v_syms),
+                (*slopes, *chosen),
+            )
+        )
+        joints.append(segs)
+    return Profile("via cubic", tuple(joints), tuple(derivations), scalar)

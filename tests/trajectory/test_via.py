@@ -8,7 +8,7 @@ import pytest
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.trajectory import mstraj, spline
+from dhsym.trajectory import mstraj, spline, via_cubic
 
 # roboticstoolbox.mstraj(array([[0, 0], [1, 2], [2, 2]]), dt=0.1, tacc=0.2, qdmax=[1, 1]):
 # 33 rows, every fourth kept (rows 0, 4, …, 32)
@@ -116,3 +116,87 @@ def test_craig_via_blends() -> None:
         via_blends(via, durations, 0.5)
     with pytest.raises(DHError, match="at least three via points"):
         via_blends([0, 1], [1], 8)
+
+
+# --- the via-point rule: cubics with the via velocities chosen by the slopes ------------
+def _cubic_by_hand(q0, q1, v0, v1, h):
+    """Craig's closed form of the cubic between two via points (an independent method)."""
+    D = q1 - q0
+    return (q0, v0, 3 * D / h**2 - (2 * v0 + v1) / h, -2 * D / h**3 + (v0 + v1) / h**2)
+
+
+def test_via_cubic_worked_example() -> None:
+    # via points 10, 30, 40, 20 (degrees) at 0, 2, 3, 5 s: slopes 10, 10, -10
+    p = via_cubic([10, 30, 40, 20], [0, 2, 3, 5])
+    d = p.derivation()
+    assert d.pairs == (
+        (sp.Symbol("d_1", real=True), 10),
+        (sp.Symbol("d_2", real=True), 10),
+        (sp.Symbol("d_3", real=True), -10),
+        (sp.Symbol("v_1", real=True), 10),  # same sign: (10 + 10)/2
+        (sp.Symbol("v_2", real=True), 0),  # the sign changes: at rest
+    )
+    assert d.check()
+    R = sp.Rational
+    want = [
+        _cubic_by_hand(R(10), R(30), R(0), R(10), R(2)),
+        _cubic_by_hand(R(30), R(40), R(10), R(0), R(1)),
+        _cubic_by_hand(R(40), R(20), R(0), R(0), R(2)),
+    ]
+    assert [s.coefficients for s in p.joints[0]] == want
+    assert want[0] == (10, 0, 10, -5 / R(2)) and want[1] == (30, 10, 10, -10)
+    assert "same sign" in d.labels[3] and "sign changes" in d.labels[4]
+    assert str(d).splitlines()[:5] == [
+        "d_1 = 20/2",
+        "d_2 = 10",
+        "d_3 = -20/2",
+        "v_1 = (d_1 + d_2)/2",
+        "v_2 = 0",
+    ]
+
+
+def test_via_cubic_is_continuous_in_position_and_velocity() -> None:
+    via = [[0, 1], [1, 3], [3, 2], [2, 2], [-1, 0]]
+    times = [0, 1, sp.Rational(5, 2), 3, 5]
+    p = via_cubic(via, times, v0=[0, 1], vf=[1, 0])
+    t = sp.Symbol("t")
+    for j, segs in enumerate(p.joints):
+        assert segs[0].position(sp.Integer(0)) == via[0][j]
+        assert sp.diff(segs[0].position(t), t).subs(t, 0) == [0, 1][j]
+        assert sp.diff(segs[-1].position(t), t).subs(t, 5) == [1, 0][j]
+        for k in range(len(segs) - 1):
+            a, b = segs[k], segs[k + 1]
+            assert a.end == b.start == times[k + 1]
+            assert a.position(a.end) == b.position(b.start) == via[k + 1][j]
+            va = sp.diff(a.position(t), t).subs(t, a.end)
+            vb = sp.diff(b.position(t), t).subs(t, b.start)
+            assert va == vb
+    # joint 2: slopes 2, -2/3, 0, -1: a sign change, a zero slope, a zero slope
+    assert p.derivation(2).solution[-3:] == (0, 0, 0)
+    # joint 1: slopes 1, 4/3, -2, -3/2: the average, a sign change, same sign
+    assert p.derivation(1).solution[-3:] == (sp.Rational(7, 6), 0, sp.Rational(-7, 4))
+    q, qd, _ = p.sample(np.linspace(0, 5, 501))
+    assert np.all(np.isfinite(q))
+    at = p.sample([1 - 1e-9, 1 + 1e-9])[1]
+    np.testing.assert_allclose(at[0], at[1], atol=1e-6)
+
+
+def test_via_cubic_differs_from_the_spline_in_acceleration() -> None:
+    via, times = [0, 1, 3, 2], [0, 1, 2, 3]
+    rule, smooth = via_cubic(via, times), spline(via, times)
+    jump = rule.sample([1 - 1e-9, 1 + 1e-9])[2]
+    assert abs(jump[0] - jump[1]) > 1  # the rule: acceleration jumps at the via point
+    cont = smooth.sample([1 - 1e-9, 1 + 1e-9])[2]
+    assert abs(cont[0] - cont[1]) < 1e-6  # the spline: continuous
+
+
+def test_via_cubic_arguments() -> None:
+    with pytest.raises(DHError, match="times must increase"):
+        via_cubic([0, 1, 2], [0, 2, 1])
+    with pytest.raises(DHError, match="3 via points but 2 times"):
+        via_cubic([0, 1, 2], [0, 1])
+    a, b = sp.symbols("a b", real=True)
+    with pytest.raises(DHError, match="have the same sign: give numbers"):
+        via_cubic([0, a, b], [0, 1, 2])
+    two = via_cubic([0, 1], [0, 2])  # no via point: one cubic
+    assert two.joints[0][0].coefficients == (0, 0, sp.Rational(3, 4), sp.Rational(-1, 4))
