@@ -230,6 +230,12 @@ def ctraj(
     """The straight line from pose ``T0`` to pose ``T1`` (see the module docstring),
     solved at the times ``t`` (an int: that many samples, roboticstoolbox's steps).
 
+    The poses asked for are roboticstoolbox's ``ctraj(T0, T1, t)`` (tested to 1e-9 on
+    recorded numbers): the same time scaling, the progress ``s`` the trapezoidal
+    profile :func:`~dhsym.trajectory.blends.lspb` from 0 to 1 with ``V = 1.5/t_f`` over
+    the steps ``0, 1, …, t − 1`` (an int ``t``) or over ``[0, max t]``, and the same
+    rotation (the shortest turn, as its quaternion slerp).
+
     Parameters
     ----------
     near

@@ -10,6 +10,8 @@ import dhsym
 from dhsym.errors import DHError
 from dhsym.trajectory.paths import interpolate_poses, jtraj, rotation_exp, rotation_log
 
+from ._rtb_ctraj import RTB_CTRAJ
+
 # roboticstoolbox.jtraj([0, 1, -0.5], [1, -1, 0.5], linspace(0, 3, 5))
 RTB_JTRAJ = (
     [[0.0, 1.0, -0.5], [0.103515625, 0.79296875, -0.396484375], [0.5, 0.0, 0.0],
@@ -88,3 +90,29 @@ def test_puma_line_out_of_reach_stops_with_the_sample() -> None:
     assert free.stopped >= path.stopped and "no solution" in free.reason
     reach = np.linalg.norm(free.T[:, :3, 3], axis=1)
     assert reach[free.stopped] > reach[free.stopped - 1]  # moving outwards, the last reachable
+
+
+@pytest.mark.parametrize("case", sorted(RTB_CTRAJ))
+def test_ctraj_poses_equal_roboticstoolbox(case: str) -> None:
+    """The poses asked for along the line equal roboticstoolbox's ``ctraj`` to 1e-9: the
+    same trapezoidal time scaling of the progress, the same shortest turn."""
+    T0, T1, want, t = RTB_CTRAJ[case]
+    times = np.linspace(0, 2, 9) if t == "linspace(0, 2, 9)" else t
+    r = dhsym.load("puma560")
+    path = r.ctraj(np.array(T0), np.array(T1), times, max_step=np.inf, singular=False)
+    assert path.T.shape == (len(want), 4, 4)
+    np.testing.assert_allclose(path.T, want, rtol=0, atol=1e-9)
+    assert path.complete, path.reason
+    np.testing.assert_allclose(r.fk(path.q), want, rtol=0, atol=1e-9)  # and solved
+
+
+def test_ctraj_case_c_turns_the_short_way_by_nearly_a_half_turn() -> None:
+    T0, T1, want, _ = RTB_CTRAJ["C"]
+    R0, R1 = np.array(T0)[:3, :3], np.array(T1)[:3, :3]
+    angle = np.linalg.norm(rotation_log(R0.T @ R1))
+    assert 2.8 < angle < np.pi  # the case that tells the shortest turn from the long one
+    steps = [
+        np.linalg.norm(rotation_log(np.array(a)[:3, :3].T @ np.array(b)[:3, :3]))
+        for a, b in zip(want[:-1], want[1:])
+    ]
+    assert abs(sum(steps) - angle) < 1e-9  # roboticstoolbox's path turns by that angle only
