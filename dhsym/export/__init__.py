@@ -108,8 +108,9 @@ def export(
     what
         Parts: ``"fk"``, ``"jacobian"``, ``"ik"``, ``"dynamics"`` (or ``"rne"``: the
         inverse dynamics ``rne(q, qd, qdd)`` of ``robot.rne``, for numeric inertial
-        parameters only), ``"trajectory"`` (``<prefix>_cubic`` and ``<prefix>_quintic``:
-        q, q̇, q̈ of each joint at a time ``t`` from its boundary conditions) and
+        parameters only), ``"trajectory"`` (``<prefix>_cubic``, ``<prefix>_quintic`` and
+        ``<prefix>_lspb``: q, q̇, q̈ of each joint at a time ``t`` from its boundary
+        conditions; ``<prefix>_spline``: the cubic spline through via points) and
         ``"control"`` (``<prefix>_computed_torque``, numeric inertial parameters only) as a
         sequence or ``"fk,ik"``. The IK checks its solutions with the fk, so ``ik`` brings
         ``fk`` along, and ``control`` brings ``dynamics`` (its ``rne``).
@@ -172,7 +173,7 @@ def export_languages(
     from .identifiers import comment_lines
     from .identifiers import prefix as prefix_for
     from .languages import Context, header_lines, render_files
-    from .motion import computed_torque_program, profile_program
+    from .motion import computed_torque_program, lspb_program, profile_program, spline_program
     from .program import fk_program, ik_program, jacobian_program, rne_program
 
     parts = _parts(what)
@@ -191,8 +192,11 @@ def export_languages(
         jacobian_program(robot, symbolic_lengths=symbolic_lengths) if "jacobian" in parts else None
     )
     profiles = (
-        tuple(profile_program(k) for k in ("cubic", "quintic")) if "trajectory" in parts else ()
+        (*(profile_program(k) for k in ("cubic", "quintic")), lspb_program())
+        if "trajectory" in parts
+        else ()
     )
+    spline = spline_program() if "trajectory" in parts else None
     control = computed_torque_program() if "control" in parts else None
     effective = tuple(sorted(set(parts) | {"fk"}))
     out: dict[str, dict[str, str]] = {}
@@ -216,6 +220,7 @@ def export_languages(
             rne=rne,
             profiles=profiles,
             control=control,
+            spline=spline,
             parameters=fk.parameters,
             revolute=tuple(
                 r.joint.value == "R" for r in robot.table.rows if r.variable is not None

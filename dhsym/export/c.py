@@ -50,6 +50,10 @@ class CPrinter(C99CodePrinter):
         t, tf = (self._print(a) for a in expr.args)
         return f"({t} >= 0.0 && {t} <= {tf} ? 1.0 : 0.0)"
 
+    def _print_Pick(self, expr: sp.Expr) -> str:
+        c, a, b = (self._print(x) for x in expr.args)
+        return f"({c} ? {a} : {b})"
+
 
 class NativePrinter(CPrinter):
     """The C printer of the solver's program for one pose

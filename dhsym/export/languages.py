@@ -35,7 +35,7 @@ from .identifiers import comment_lines
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
-    from .motion import JointwiseProgram
+    from .motion import JointwiseProgram, SplineProgram
     from .program import IKProgram, Program, RNEProgram
 
 __all__ = ["Context", "Language", "header_lines", "render_files"]
@@ -71,6 +71,8 @@ class Context:
     #: the exported profiles (``cubic``, ``quintic``) and computed torque, when asked for
     profiles: tuple[JointwiseProgram, ...] = ()
     control: JointwiseProgram | None = None
+    #: the cubic spline through via points, when the trajectory is asked for
+    spline: SplineProgram | None = None
 
 
 def _cell(e: sp.Expr) -> str:

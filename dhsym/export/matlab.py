@@ -46,6 +46,12 @@ class MatlabPrinter(OctaveCodePrinter):
         t, tf = (self._print(a) for a in expr.args)
         return f"double({t} >= 0 & {t} <= {tf})"
 
+    def _print_Pick(self, expr: sp.Expr) -> str:
+        # the file's local function pick: only the value chosen is used (a product with
+        # the condition would carry the NaN of the other value along)
+        c, a, b = (self._print(x) for x in expr.args)
+        return f"pick({c}, {a}, {b})"
+
 
 LANGUAGE = Language(
     name="matlab",
@@ -59,6 +65,8 @@ LANGUAGE = Language(
         ("matlab_rne.m.j2", "{prefix}_rne.m", "dynamics"),
         ("matlab_cubic.m.j2", "{prefix}_cubic.m", "trajectory"),
         ("matlab_quintic.m.j2", "{prefix}_quintic.m", "trajectory"),
+        ("matlab_lspb.m.j2", "{prefix}_lspb.m", "trajectory"),
+        ("matlab_spline.m.j2", "{prefix}_spline.m", "trajectory"),
         ("matlab_computed_torque.m.j2", "{prefix}_computed_torque.m", "control"),
     ),
     comment="%",

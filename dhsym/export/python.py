@@ -44,6 +44,10 @@ class PythonPrinter(NumPyPrinter):
         t, tf = (self._print(a) for a in expr.args)
         return f"numpy.where(({t} >= 0) & ({t} <= {tf}), 1.0, 0.0)"
 
+    def _print_Pick(self, expr: sp.Expr) -> str:
+        c, a, b = (self._print(x) for x in expr.args)
+        return f"numpy.where({c}, {a}, {b})"
+
 
 LANGUAGE = Language(
     name="python",

@@ -69,6 +69,13 @@ class RustPrinter(RustCodePrinter):
         t, tf = (self._print(a) for a in expr.args)
         return f"(if {t} >= 0.0 && {t} <= {tf} {{ 1.0 }} else {{ 0.0 }})"
 
+    def _print_Pick(self, expr: sp.Expr) -> str:
+        c, a, b = (self._print(x) for x in expr.args)
+        return f"(if {c} {{ {a} }} else {{ {b} }})"
+
+    def _print_NaN(self, expr: sp.Expr) -> str:
+        return "f64::NAN"
+
 
 LANGUAGE = Language(
     name="rust",

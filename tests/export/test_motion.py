@@ -14,10 +14,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import sympy as sp
 
 import dhsym
 from dhsym.errors import DHError
-from dhsym.trajectory import cubic, quintic
+from dhsym.trajectory import cubic, lspb, quintic, spline
 
 from ..conftest import _need
 from . import _harness as h
@@ -108,7 +109,7 @@ def _check(robot: dhsym.Robot, out: np.ndarray) -> None:
     assert np.all(np.abs(got_t - want_t) <= 1e-9 * np.maximum(scale, 1.0))
 
 
-_C_MAIN = """
+_C_IO = """
 #include <stdio.h>
 #include "arm.{ext}"
 #define N {n}
@@ -123,6 +124,11 @@ static void put(const double *x)
     int j;
     for (j = 0; j < N; ++j) printf("%.17g\\n", x[j]);
 }}
+"""
+
+_C_MAIN = (
+    _C_IO
+    + """
 int main(void)
 {{
     int m, i;
@@ -144,8 +150,9 @@ int main(void)
     return 0;
 }}
 """
+)
 
-_RUST_MAIN = """
+_RUST_IO = """
 mod arm;
 use std::io::Read;
 const N: usize = arm::NJOINTS;
@@ -154,7 +161,11 @@ fn arr(v: &[f64]) -> [f64; N] {
     a.copy_from_slice(&v[..N]);
     a
 }
-fn main() {
+"""
+
+_RUST_MAIN = (
+    _RUST_IO
+    + """fn main() {
     let mut s = String::new();
     std::io::stdin().read_to_string(&mut s).unwrap();
     let v: Vec<f64> = s.split_whitespace().map(|x| x.parse().unwrap()).collect();
@@ -178,6 +189,7 @@ fn main() {
     }
 }
 """
+)
 
 _OCTAVE = """
 fid = fopen('in.txt'); v = fscanf(fid, '%f'); fclose(fid);
@@ -204,13 +216,12 @@ def _run(cmd: list[str], folder: Path, text: str) -> np.ndarray:
     return np.array([float(t) for t in res.stdout.split()])
 
 
-def _c_like(name: str, tmp_path: Path, cpp: bool) -> None:
-    robot, files = _export(name, "cpp" if cpp else "c")
+def _build_c_like(files: dict[str, str], main: str, n: int, tmp_path: Path, cpp: bool) -> str:
+    """Write ``files`` and the driver ``main`` (formatted for C or C++), build with strict
+    flags; the program's path."""
     for fname, text in files.items():
         (tmp_path / fname).write_text(text)
-    main = _C_MAIN.format(
-        ext="hpp" if cpp else "h", n=len(robot.variables), ns="arm::" if cpp else "arm_"
-    )
+    main = main.format(ext="hpp" if cpp else "h", n=n, ns="arm::" if cpp else "arm_")
     if cpp:
         (tmp_path / "main.cpp").write_text(main)
         cmd = ["g++", "-std=c++17", "-Wall", "-Wextra", "-Werror", "-O2", "main.cpp", "-o", "prog"]
@@ -219,7 +230,13 @@ def _c_like(name: str, tmp_path: Path, cpp: bool) -> None:
         flags = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
         cmd = ["gcc", *flags, "main.c", "arm.c", "-o", "prog", "-lm"]
     subprocess.run(cmd, cwd=tmp_path, check=True, capture_output=True, text=True)
-    _check(robot, _run([str(tmp_path / "prog")], tmp_path, _stdin(robot)))
+    return str(tmp_path / "prog")
+
+
+def _c_like(name: str, tmp_path: Path, cpp: bool) -> None:
+    robot, files = _export(name, "cpp" if cpp else "c")
+    prog = _build_c_like(files, _C_MAIN, len(robot.variables), tmp_path, cpp)
+    _check(robot, _run([prog], tmp_path, _stdin(robot)))
 
 
 @pytest.mark.slow
@@ -324,9 +341,11 @@ def test_parts_and_files():
         "arm_computed_torque.m",
         "arm_cubic.m",
         "arm_fk.m",
+        "arm_lspb.m",
         "arm_njoints.m",
         "arm_quintic.m",
         "arm_rne.m",
+        "arm_spline.m",
     ]
     # the default parts stay as they were: no profile, no controller
     plain = dhsym.export(dhsym.load("planar2r"), "c", prefix="arm")
@@ -349,3 +368,251 @@ def test_cli_exports_trajectory_and_control(tmp_path):
     header = (tmp_path / "puma.h").read_text()
     assert "void puma_quintic(" in header and "void puma_computed_torque(" in header
     assert "void puma_rne(" in header
+
+
+# --- LSPB and the cubic spline through via points ----------------------------------------
+def _lspb_cases(n: int) -> list[tuple[np.ndarray, ...]]:
+    """(q0, qf, v, tf, t): feasible speeds (either sign), a joint at rest, times inside
+    [0, tf], at both ends and outside; the last case's speeds too high (NaN)."""
+    rng = np.random.default_rng(36)
+    cases = []
+    for k in range(8):
+        q0, qf = rng.uniform(-2, 2, (2, n))
+        if k == 1:
+            qf[0] = q0[0]  # at rest
+        tf = float(rng.uniform(0.5, 3.0))
+        ratio = 2.5 if k == 7 else rng.uniform(1.05, 1.95, n)
+        v = ratio * np.abs(qf - q0) / tf * rng.choice([-1.0, 1.0], n)
+        t = [0.0, tf, -0.5, tf + 1.0][k] if k < 4 else float(rng.uniform(0, tf))
+        cases.append((q0, qf, v, np.array([tf]), np.array([t])))
+    return cases
+
+
+def _want_lspb(case) -> np.ndarray:
+    q0, qf, v, (tf,), (t,) = case
+    if np.any((q0 != qf) & (np.abs(v) > 2 * np.abs(qf - q0) / tf)):  # the blends do not fit
+        rest = q0 == qf
+        out = np.full((3, len(q0)), np.nan)
+        out[0, rest], out[1:, rest] = q0[rest], 0.0
+        return out.reshape(-1)
+    profile = lspb(list(q0), list(qf), tf, v=list(np.abs(v)))
+    q, qd, qdd = (x[0] for x in profile.sample([min(max(t, 0.0), tf)]))
+    if not 0.0 <= t <= tf:
+        qd, qdd = np.zeros(len(q0)), np.zeros(len(q0))
+    return np.concatenate([q, qd, qdd])
+
+
+def _spline_cases(n: int) -> list[tuple[np.ndarray, ...]]:
+    """(times, via (m, n), v0, vf, t) for m = 2, 3, 5 via points."""
+    rng = np.random.default_rng(37)
+    cases = []
+    for k, m in enumerate((2, 3, 5, 5, 5, 3)):
+        times = np.concatenate([[0.0], np.cumsum(rng.uniform(0.3, 1.5, m - 1))])
+        via = rng.uniform(-2, 2, (m, n))
+        v0, vf = rng.uniform(-1, 1, (2, n))
+        t = [rng.uniform(0, times[-1]), times[1], times[-1] + 0.5, -0.3][k % 4]
+        if k == 4:
+            t = times[2]  # at an inner via point
+        cases.append((times, via, v0, vf, np.array([t])))
+    return cases
+
+
+def _want_spline(case) -> np.ndarray:
+    times, via, v0, vf, (t,) = case
+    profile = spline(via.tolist(), list(times), list(v0), list(vf))
+    q, qd, qdd = (x[0] for x in profile.sample([min(max(t, 0.0), times[-1])]))
+    if not 0.0 <= t <= times[-1]:
+        qd, qdd = np.zeros(len(v0)), np.zeros(len(v0))
+    return np.concatenate([q, qd, qdd])
+
+
+def _via_stdin(n: int) -> str:
+    rows = [str(len(_lspb_cases(n)))]
+    rows += [" ".join(repr(float(x)) for x in np.concatenate(c)) for c in _lspb_cases(n)]
+    rows.append(str(len(_spline_cases(n))))
+    for times, via, v0, vf, t in _spline_cases(n):
+        values = np.concatenate([times, via.reshape(-1), v0, vf, t])
+        rows.append(f"{len(times)} " + " ".join(repr(float(x)) for x in values))
+    return "\n".join(rows) + "\n"
+
+
+def _check_via(n: int, out: np.ndarray) -> None:
+    """``out``: q, qd, qdd of each LSPB case, then of each spline case."""
+    want_l = np.array([_want_lspb(c) for c in _lspb_cases(n)])
+    want_s = np.array([_want_spline(c) for c in _spline_cases(n)])
+    assert np.isnan(want_l[-1]).any()  # the case whose blends do not fit
+    assert out.size == want_l.size + want_s.size
+    got_l, got_s = out[: want_l.size].reshape(want_l.shape), out[want_l.size :]
+    np.testing.assert_allclose(got_l, want_l, rtol=1e-12, atol=1e-11, equal_nan=True)
+    np.testing.assert_allclose(got_s.reshape(want_s.shape), want_s, rtol=1e-10, atol=1e-10)
+
+
+_C_VIA_MAIN = (
+    _C_IO
+    + """
+int main(void)
+{{
+    int count, i, m;
+    double b[3 * N + 2], times[8], via[8 * N], ends[2 * N], q[N], qd[N], qdd[N], t;
+    if (scanf("%d", &count) != 1) return 1;
+    for (i = 0; i < count; ++i) {{
+        if (!read(b, 3 * N + 2)) return 1;
+        {ns}lspb(b, b + N, b + 2 * N, b[3 * N], b[3 * N + 1], q, qd, qdd);
+        put(q); put(qd); put(qdd);
+    }}
+    if (scanf("%d", &count) != 1) return 1;
+    for (i = 0; i < count; ++i) {{
+        if (scanf("%d", &m) != 1 || m > 8) return 1;
+        if (!read(times, m) || !read(via, m * N) || !read(ends, 2 * N) || !read(&t, 1)) return 1;
+        {ns}spline(m, times, via, ends, ends + N, t, q, qd, qdd);
+        put(q); put(qd); put(qdd);
+    }}
+    return 0;
+}}
+"""
+)
+
+_RUST_VIA_MAIN = (
+    _RUST_IO
+    + """fn put(a: &[f64; N]) {
+    for y in a.iter() { println!("{:e}", y); }
+}
+fn main() {
+    let mut s = String::new();
+    std::io::stdin().read_to_string(&mut s).unwrap();
+    let v: Vec<f64> = s.split_whitespace().map(|x| x.parse().unwrap()).collect();
+    let mut at = 1;
+    for _ in 0..(v[0] as usize) {
+        let b = &v[at..at + 3 * N + 2];
+        let (q, qd, qdd) = arm::lspb(&arr(b), &arr(&b[N..]), &arr(&b[2 * N..]), b[3 * N], b[3 * N + 1]);
+        put(&q); put(&qd); put(&qdd);
+        at += 3 * N + 2;
+    }
+    let count = v[at] as usize;
+    at += 1;
+    for _ in 0..count {
+        let m = v[at] as usize;
+        at += 1;
+        let via: Vec<[f64; N]> = (0..m).map(|k| arr(&v[at + m + k * N..])).collect();
+        let e = at + m + m * N;
+        let (q, qd, qdd) = arm::spline(&v[at..at + m], &via, &arr(&v[e..]), &arr(&v[e + N..]), v[e + 2 * N]);
+        put(&q); put(&qd); put(&qdd);
+        at = e + 2 * N + 1;
+    }
+}
+"""
+)
+
+_OCTAVE_VIA = """
+fid = fopen('in.txt'); v = fscanf(fid, '%f'); fclose(fid);
+n = arm_njoints(); at = 2;
+for i = 1:v(1)
+  b = v(at:at + 3 * n + 1);
+  [q, qd, qdd] = arm_lspb(b(1:n), b(n + 1:2 * n), b(2 * n + 1:3 * n), b(3 * n + 1), b(3 * n + 2));
+  printf('%.17g\\n', q, qd, qdd);
+  at = at + 3 * n + 2;
+end
+count = v(at); at = at + 1;
+for i = 1:count
+  m = v(at); at = at + 1;
+  times = v(at:at + m - 1); at = at + m;
+  via = reshape(v(at:at + m * n - 1), n, m)'; at = at + m * n;
+  v0 = v(at:at + n - 1); vf = v(at + n:at + 2 * n - 1); t = v(at + 2 * n); at = at + 2 * n + 1;
+  [q, qd, qdd] = arm_spline(times, via, v0, vf, t);
+  printf('%.17g\\n', q, qd, qdd);
+end
+"""
+
+VIA_ROBOT = "puma560"
+
+
+def _via_export(lang: str) -> tuple[int, dict[str, str]]:
+    robot = dhsym.load(VIA_ROBOT)
+    return len(robot.variables), dhsym.export(robot, lang, what="trajectory", prefix="arm")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("cpp", [False, True], ids=["c", "cpp"])
+def test_lspb_and_spline_c_like(cpp, tmp_path):
+    _need("g++" if cpp else "gcc", shutil.which("g++" if cpp else "gcc") is not None, "apt")
+    n, files = _via_export("cpp" if cpp else "c")
+    prog = _build_c_like(files, _C_VIA_MAIN, n, tmp_path, cpp)
+    _check_via(n, _run([prog], tmp_path, _via_stdin(n)))
+
+
+@pytest.mark.slow
+def test_lspb_and_spline_rust(tmp_path):
+    rustc = h.rustc()
+    _need("rustc", rustc is not None, "apt-get install rustc (or rustup)")
+    n, files = _via_export("rust")
+    for fname, text in files.items():
+        (tmp_path / fname).write_text(text)
+    (tmp_path / "main.rs").write_text(_RUST_VIA_MAIN)
+    cmd = [rustc, "-O", "-A", "dead_code", "-D", "warnings", "main.rs", "-o", "prog"]
+    subprocess.run(cmd, cwd=tmp_path, check=True, capture_output=True, text=True)
+    _check_via(n, _run([str(tmp_path / "prog")], tmp_path, _via_stdin(n)))
+
+
+@pytest.mark.slow
+def test_lspb_and_spline_octave(tmp_path):
+    _need("octave", shutil.which("octave") is not None, "apt-get install octave")
+    n, files = _via_export("matlab")
+    for fname, text in files.items():
+        (tmp_path / fname).write_text(text)
+    (tmp_path / "in.txt").write_text(_via_stdin(n))
+    (tmp_path / "drive.m").write_text(_OCTAVE_VIA)
+    cmd = ["octave", "--no-gui", "--quiet", "--no-window-system", "drive.m"]
+    _check_via(n, _run(cmd, tmp_path, ""))
+
+
+def test_lspb_and_spline_python(tmp_path):
+    n, files = _via_export("python")
+    module = h.load_python(files, "arm", tmp_path)
+    out = [np.concatenate(module.lspb(*c)) for c in _lspb_cases(n)]
+    out += [np.concatenate(module.spline(*c[:4], c[4][0])) for c in _spline_cases(n)]
+    _check_via(n, np.concatenate(out))
+
+
+def test_lspb_and_spline_python_sample_a_batch_of_times(tmp_path):
+    """``t`` of shape (N, 1) gives (N, n), the samples of ``.sample`` (the spline also
+    before its start and after its end, at rest)."""
+    _, files = _export("spong2r", "python")
+    module = h.load_python(files, "arm", tmp_path)
+    ts = np.linspace(0.0, 1.5, 31)
+    got = module.lspb([0.0, 0.5], [1.0, -0.8], [1.0, 1.2], 1.5, ts[:, None])
+    want = lspb([0, 0.5], [1, -0.8], 1.5, v=[1.0, 1.2]).sample(ts)
+    for g, w in zip(got, want):
+        assert g.shape == (31, 2)
+        np.testing.assert_allclose(g, w, rtol=1e-12, atol=1e-12)
+    via, times = [[0.0, 1.0], [1.0, -1.0], [0.5, 0.0], [2.0, 0.5]], [0.0, 0.5, 1.2, 2.0]
+    ts = np.linspace(-0.5, 2.5, 61)
+    got = module.spline(times, via, [0.0, 0.5], [0.0, 0.0], ts[:, None])
+    inside = np.clip(ts, 0.0, 2.0)
+    want = list(spline(via, times, [0, 0.5], [0, 0]).sample(inside))
+    rest = (ts < 0) | (ts > 2)
+    want[1][rest], want[2][rest] = 0.0, 0.0
+    for g, w in zip(got, want):
+        assert g.shape == (61, 2)
+        np.testing.assert_allclose(g, w, rtol=1e-10, atol=1e-10)
+
+
+def test_spline_row_is_the_trajectory_rooms_equation():
+    """The exported row ``lower v_a + diag v_b + upper v_c = rhs`` is the continuity of
+    the acceleration of ``dhsym.trajectory.spline`` (checked on numbers: the row holds
+    for the velocities that ``spline`` solves)."""
+    from dhsym.export.motion import spline_program
+
+    row = dict(spline_program().row.outputs)
+    via, times = [0, 2, -1, 3], [0, 1, 3, 4]
+    solved = spline(via, times, 1, -1).derivation().solution
+    v = [1, *solved, -1]
+    for b in (1, 2):
+        values = {
+            sp.Symbol(name, real=True): x
+            for name, x in zip(
+                ("qa", "qb", "qc", "ha", "hb"),
+                (via[b - 1], via[b], via[b + 1], times[b] - times[b - 1], times[b + 1] - times[b]),
+            )
+        }
+        lo, di, up, rh = (float(row[k].xreplace(values)) for k in ("lower", "diag", "upper", "rhs"))
+        assert abs(lo * float(v[b - 1]) + di * float(v[b]) + up * float(v[b + 1]) - rh) < 1e-12
