@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhsym.errors import DHError
+from dhsym.kinematics.rotations import rotation_log
 from dhsym.model.table import JointType
 
 from .solution import IKSolution
@@ -48,18 +49,7 @@ def _solution(q: np.ndarray, converged: bool, iterations: int, error: float) -> 
 
 def _rotation_error(R: np.ndarray, goal: np.ndarray) -> np.ndarray:
     """The rotation vector (axis times angle) that turns ``R`` into ``goal``, base frame."""
-    E = goal @ R.T
-    v = 0.5 * np.array([E[2, 1] - E[1, 2], E[0, 2] - E[2, 0], E[1, 0] - E[0, 1]])
-    s, c = float(np.linalg.norm(v)), (float(np.trace(E)) - 1.0) / 2.0
-    if s > 1e-9:
-        rotvec: np.ndarray = np.arctan2(s, c) / s * v
-        return rotvec
-    if c > 0:
-        return v
-    k = int(np.argmax(np.linalg.norm(E + np.eye(3), axis=0)))  # a half turn: axis from E + I
-    axis = (E + np.eye(3))[:, k]
-    half_turn: np.ndarray = np.pi * axis / np.linalg.norm(axis)
-    return half_turn
+    return rotation_log(goal @ R.T)
 
 
 def numeric_ik(

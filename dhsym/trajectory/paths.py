@@ -5,7 +5,8 @@ straight Cartesian line solved by the closed-form inverse kinematics (:func:`ctr
 timed to the same end, as roboticstoolbox's ``jtraj`` (and the lectures) do.
 :func:`ctraj` moves the tool's origin along the straight line from ``T0`` to ``T1`` and
 turns its orientation about one fixed axis, the shortest rotation from ``R0`` to ``R1``
-(``R(s) = R0 exp(s log(R0ᵀ R1))``, the same path as quaternion slerp; Lynch–Park,
+(``R(s) = R0 exp(s log(R0ᵀ R1))``, the same path as quaternion slerp, with the numeric
+exponential and logarithm of :mod:`dhsym.kinematics.rotations`; Lynch–Park,
 *Modern Robotics*, ch. 9, straight-line paths), with the progress ``s(t)`` a
 trapezoidal profile from 0 to 1 (as roboticstoolbox's ``ctraj``); every sample is
 solved by the robot's inverse kinematics, keeping the branch nearest the previous
@@ -29,6 +30,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhsym.errors import DHError
+from dhsym.kinematics.rotations import rotation_exp, rotation_log
 from dhsym.model.kinds import JointType
 
 from .blends import lspb
@@ -38,7 +40,7 @@ if TYPE_CHECKING:
     from dhsym.ik.choices import IKCache
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["CartesianPath", "JointPath", "ctraj", "jtraj", "rotation_exp", "rotation_log"]
+__all__ = ["CartesianPath", "JointPath", "ctraj", "jtraj"]
 
 
 @dataclass(frozen=True)
@@ -101,59 +103,7 @@ def jtraj(
     return JointPath(ts, q, qd, qdd, profile)
 
 
-# --- rotations: the shortest turn ------------------------------------------------------
-def rotation_log(R: np.ndarray) -> np.ndarray:
-    """The rotation vector ``θ ω`` (``θ`` in ``[0, π]``) of rotation matrices ``(..., 3, 3)``.
-
-    >>> rotation_log(rotation_exp(np.array([0.0, 0.0, 3.0])))
-    array([0., 0., 3.])
-    """
-    R = np.asarray(R, dtype=float)
-    cos = np.clip((np.trace(R, axis1=-2, axis2=-1) - 1) / 2, -1.0, 1.0)
-    theta = np.arccos(cos)
-    skew = np.stack(
-        [R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]],
-        axis=-1,
-    )
-    sin = np.sin(theta)
-    small = sin < 1e-6
-    scale = np.where(small, 0.5 + theta**2 / 12, theta / (2 * np.where(small, 1.0, sin)))
-    w = skew * scale[..., None]
-    near_pi = small & (cos < 0)
-    if np.any(near_pi):  # θ ≈ π: the axis from the symmetric part R + I = 2 ω ωᵀ
-        Rp = R[near_pi]
-        B = (Rp + np.eye(3)) / 2
-        k = np.argmax(np.diagonal(B, axis1=-2, axis2=-1), axis=-1)
-        col = np.take_along_axis(B, k[:, None, None], axis=-1)[..., 0]
-        axis = col / np.linalg.norm(col, axis=-1, keepdims=True)
-        sk = skew[near_pi]  # the sign of the axis from the small antisymmetric part
-        sign = np.where(np.einsum("...i,...i->...", axis, sk) < 0, -1.0, 1.0)
-        w[near_pi] = axis * (sign * theta[near_pi])[:, None]
-    out: np.ndarray = w
-    return out
-
-
-def rotation_exp(w: np.ndarray) -> np.ndarray:
-    """Rodrigues' formula: the rotations ``exp([w])`` of rotation vectors ``(..., 3)``.
-
-    >>> np.round(rotation_exp(np.array([0.0, 0.0, np.pi / 2])), 12) + 0.0
-    array([[ 0., -1.,  0.],
-           [ 1.,  0.,  0.],
-           [ 0.,  0.,  1.]])
-    """
-    w = np.asarray(w, dtype=float)
-    theta = np.linalg.norm(w, axis=-1)
-    small = theta < 1e-8
-    safe = np.where(small, 1.0, theta)
-    a = np.where(small, 1 - theta**2 / 6, np.sin(theta) / safe)
-    b = np.where(small, 0.5 - theta**2 / 24, (1 - np.cos(theta)) / safe**2)
-    K = np.zeros((*w.shape[:-1], 3, 3))
-    K[..., 0, 1], K[..., 0, 2], K[..., 1, 2] = -w[..., 2], w[..., 1], -w[..., 0]
-    K = K - np.swapaxes(K, -1, -2)
-    R: np.ndarray = np.eye(3) + a[..., None, None] * K + b[..., None, None] * (K @ K)
-    return R
-
-
+# --- the shortest turn ----------------------------------------------------------------
 def interpolate_poses(T0: np.ndarray, T1: np.ndarray, s: np.ndarray) -> np.ndarray:
     """Poses ``(N, 4, 4)`` at progress ``s`` ``(N,)``: the origin on the straight line,
     the rotation about the one axis of the shortest turn from ``R0`` to ``R1``.
