@@ -38,7 +38,17 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import dhsym
-from dhsym.control import PD, ComputedTorque, PDGravity, error_equation, gains, scaled_model, simulate
+from dhsym.control import (
+    PD,
+    ComputedTorque,
+    PDGravity,
+    error_equation,
+    gains,
+    plot_torques,
+    plot_tracking_error,
+    scaled_model,
+    simulate,
+)
 from dhsym.trajectory import quintic
 
 # %% [markdown]
@@ -71,15 +81,8 @@ runs = {
     "computed torque": simulate(arm, ComputedTorque(kp, kd, ref, model=model), 2.0, values=values, dt=2e-3),
 }
 fig, axes = plt.subplots(1, 2, figsize=(11, 3.5))
-for name, run in runs.items():
-    axes[0].plot(run.t, np.abs(run.error).max(axis=1), label=name)
-    axes[1].plot(run.t, run.tau[:, 0], label=name)
-axes[0].set_yscale("log")
-axes[0].set_title("largest tracking error (rad)")
-axes[1].set_title("torque of joint 1 (N m)")
-for ax in axes:
-    ax.set_xlabel("t (s)")
-axes[0].legend()
+plot_tracking_error(runs, largest=True, log=True, ax=axes[0])
+plot_torques(runs, joints=[1], ax=axes[1])
 plt.show()
 {name: f"{run.max_error:.1e}" for name, run in runs.items()}
 
@@ -108,9 +111,6 @@ print(f"exact model: largest error {exact.max_error:.1e} rad")
 print(f"10 % heavier model: largest error {heavy.max_error:.1e} rad, bound {np.abs(eta).max() / kp:.1e} rad")
 
 # %%
-plt.figure(figsize=(6, 3))
-plt.plot(heavy.t, heavy.error)
-plt.xlabel("t (s)")
-plt.ylabel("e (rad)")
-plt.title("PUMA 560, computed torque with a 10 % heavier model")
-plt.show()
+fig = plot_tracking_error(heavy)
+fig.axes[0].set_title("PUMA 560, computed torque with a 10 % heavier model")
+fig

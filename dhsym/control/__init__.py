@@ -1,6 +1,7 @@
 """Control on the arm's own dynamics: PD, PD + gravity compensation, computed torque and
 PID as small frozen objects giving τ(t, q, q̇), the closed-loop error equation and its
-gains, and the closed loop simulated with model error and disturbances.
+gains, the closed loop simulated with model error and disturbances, and its tracking
+error and torques drawn (matplotlib, imported when drawing).
 
 May import model, notation, kinematics, ik, dynamics and trajectory (``docs/architecture.md``).
 """
@@ -17,6 +18,7 @@ from .controllers import (
     error_equation,
     gains,
 )
+from .plots import plot_torques, plot_tracking_error
 from .simulation import ClosedLoop, scaled_model, simulate
 
 __all__ = [
@@ -29,6 +31,8 @@ __all__ = [
     "Reference",
     "error_equation",
     "gains",
+    "plot_torques",
+    "plot_tracking_error",
     "scaled_model",
     "simulate",
 ]
