@@ -18,7 +18,7 @@ from .controllers import (
     error_equation,
     gains,
 )
-from .plots import plot_torques, plot_tracking_error
+from .tracking_plots import plot_torques, plot_tracking_error
 from .simulation import ClosedLoop, scaled_model, simulate
 
 __all__ = [
