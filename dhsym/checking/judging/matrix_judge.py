@@ -38,6 +38,7 @@ from ..mistakes.registry import (
     DET_MISTAKES,
     JACOBIAN_MISTAKES,
     MATRIX_MISTAKES,
+    SCREW_MISTAKES,
     BlockTransposed,
     MatrixCase,
     Mistake,
@@ -51,6 +52,7 @@ from ..reading.questions import Question
 from .key import PreparedKey
 from .matrix_key import DeterminantPart, DynamicsPart, MatrixPart, sample_for
 from .rounding import rounding_accepts
+from .screw_key import ScrewPart
 
 __all__ = ["MISTAKES", "check_matrix", "matrix_part"]
 
@@ -68,6 +70,7 @@ MISTAKES: dict[str, tuple[Mistake, ...]] = {
     "jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()),
     "det": DET_MISTAKES,
     "dynamics": dynamics_mistakes(),
+    "screw": SCREW_MISTAKES,
 }
 
 
@@ -277,7 +280,7 @@ def check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) ->
         pk.variant_values,
         pk.robot,
         part.singularities if isinstance(part, DeterminantPart) else None,
-        part.variants if isinstance(part, DynamicsPart) else (),
+        part.variants if isinstance(part, (DynamicsPart, ScrewPart)) else (),
     )
     diagnoses = shape_lead + lead + diagnose_matrix(case, MISTAKES.get(q.kind, MATRIX_MISTAKES))
     if unknown:
