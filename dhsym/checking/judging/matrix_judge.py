@@ -255,6 +255,18 @@ def check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) ->
                 alternative="rows [ω; v]",
                 key=key.name,
             )
+    if wrong and q.kind == "screw" and q.part in ("S", "B") and ans.shape == (6, 6):
+        listed = _compare(pk, ans.T, tuple(cells[(k % 6) * 6 + k // 6] for k in range(36)), limits)
+        if not listed[1]:  # six axes listed one per row, as S_1 … S_6 are often printed
+            return CheckResult(
+                q.spec,
+                Verdict.CORRECT,
+                "The screw axes are right, listed one per row; as a matrix they are its "
+                "columns (rows [ω; v]).",
+                tuple(listed[0]),
+                alternative="axes as rows",
+                key=key.name,
+            )
     if not wrong and not shape_lead:
         what = f"{_one(q)} is right" if total == 1 else f"All {total} entries are right"
         rounded = [e for e in entries if e.proof == "rounding"]
