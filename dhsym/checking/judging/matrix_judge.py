@@ -52,7 +52,7 @@ from ..reading.questions import Question
 from .key import PreparedKey
 from .matrix_key import DeterminantPart, DynamicsPart, MatrixPart, sample_for
 from .rounding import rounding_accepts
-from .screw_key import ScrewPart
+from .screw_key import ScrewPart, axes_listed
 
 __all__ = ["MISTAKES", "check_matrix", "matrix_part"]
 
@@ -255,9 +255,21 @@ def check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) ->
                 alternative="rows [ω; v]",
                 key=key.name,
             )
-    if wrong and q.kind == "screw" and q.part in ("S", "B") and ans.shape == (6, 6):
-        listed = _compare(pk, ans.T, tuple(cells[(k % 6) * 6 + k // 6] for k in range(36)), limits)
-        if not listed[1]:  # six axes listed one per row, as S_1 … S_6 are often printed
+    if (
+        wrong
+        and q.kind == "screw"
+        and q.part in ("S", "B")
+        and ans.shape == (6, 6)
+        and isinstance(part, ScrewPart)
+        and axes_listed(part, key.table, ans)
+    ):  # six axes listed one per row, as S_1 … S_6 are often printed: judged as listed
+        ans, cells = (
+            sp.ImmutableMatrix(ans.T),
+            tuple(cells[(k % 6) * 6 + k // 6] for k in range(36)),
+        )
+        listed = _compare(pk, ans, cells, limits)
+        entries, wrong, unknown = listed
+        if not wrong:
             return CheckResult(
                 q.spec,
                 Verdict.CORRECT,

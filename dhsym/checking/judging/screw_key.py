@@ -16,7 +16,7 @@ Examples
 >>> type(part).__name__, part.expected.T.tolist()
 ('ScrewPart', [[0, 0, 1, 0, 0, 0], [0, 0, 1, 0, -a1, 0]])
 >>> prepare(Key.load("planar2r", "S2[4,0]")).part.expected_text
-(('-a1', '- a_{1}'),)
+(('-a1', '-a_{1}'),)
 """
 
 from __future__ import annotations
@@ -24,10 +24,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+import numpy as np
 import sympy as sp
 
 from dhsym.model.table import DHTable
 
+from ..comparing.equivalence import close, values
 from ..mistakes.registry import screw_variants
 from ..reading.answer_names import NameContext
 from ..reading.questions import Question
@@ -36,7 +38,7 @@ from .matrix_key import MatrixPart, _samples, _texts
 if TYPE_CHECKING:
     from dhsym.robot import Robot
 
-__all__ = ["ScrewPart", "prepare_screw", "screw_key_matrix"]
+__all__ = ["ScrewPart", "axes_listed", "prepare_screw", "screw_key_matrix"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -94,3 +96,26 @@ def prepare_screw(
         variants,
     )
     return names, part
+
+
+def axes_listed(part: ScrewPart, table: DHTable, answer: sp.ImmutableMatrix) -> bool:
+    """Whether a 6×6 answer of six screw axes reads closer to the key, or to the key under
+    one of its mistakes, with its rows as the axes (``S_1 … S_6`` listed one per row, as
+    often printed) than with its columns; compared at the key's diagnosis sample.
+
+    >>> from dhsym.checking.judging.key import Key, prepare
+    >>> pk = prepare(Key.load("puma560", "S"))
+    >>> axes_listed(pk.part, pk.key.table, pk.part.expected.T)
+    True
+    >>> axes_listed(pk.part, pk.key.table, pk.part.expected)
+    False
+    """
+    d = part.diagnosis(table, answer)
+    sample = d.sample.extended(answer.free_symbols - set(d.sample.symbols))
+    targets = [d.key_values, *(values(m, d.sample) for _, m, _ in part.variants)]
+
+    def distance(M: sp.ImmutableMatrix) -> int:
+        got = values(M, sample)
+        return min(int(np.sum(~np.asarray(close(got, t, axis=0)))) for t in targets)
+
+    return distance(sp.ImmutableMatrix(answer.T)) < distance(answer)

@@ -62,7 +62,7 @@ _TITLES = {
 }
 _BOOK = "Lynch and Park, Modern Robotics"
 _SIGN = (
-    "The v of the revolute axes has the wrong sign: v = omega x q is the velocity of the "
+    "The v of {which} has the wrong sign: v = omega x q is the velocity of the "
     "space origin turning the wrong way; a point p of the turning link moves with "
     "omega x (p - q), so at the origin v = -omega x q ({book})."
 )
@@ -96,9 +96,29 @@ SCREW_MISTAKES: tuple[ScrewMistake, ...] = tuple(
 )
 
 
-def _flipped(axes: tuple[ScrewAxis, ...]) -> tuple[ScrewAxis, ...]:
-    """The axes with ``v`` of every revolute axis negated (``ω × q`` for ``−ω × q``)."""
-    return tuple(ScrewAxis(s.omega, -s.v) if s.is_revolute else s for s in axes)
+def _flipped(axes: tuple[ScrewAxis, ...], only: int | None = None) -> tuple[ScrewAxis, ...]:
+    """The axes with ``v`` of every revolute axis (or of axis ``only``, 0-based) negated:
+    ``ω × q`` for ``−ω × q``."""
+    return tuple(
+        ScrewAxis(s.omega, -s.v) if s.is_revolute and only in (None, k) else s
+        for k, s in enumerate(axes)
+    )
+
+
+def _one_by_one(
+    axes: tuple[ScrewAxis, ...], letter: str
+) -> list[tuple[tuple[ScrewAxis, ...], str]]:
+    """The axes with every revolute ``v`` flipped, then with each one flipped alone (a
+    student who slipped in one axis) when there is more than one, each with the detail
+    that says which (details tell the variants apart)."""
+    alone = [k for k, s in enumerate(axes) if s.is_revolute and any(x != 0 for x in s.v)]
+    every = _SIGN.format(which=f"the revolute axes {letter}_i", book=_BOOK)
+    out = [(_flipped(axes), every)]
+    if len(alone) > 1:
+        for k in alone:
+            which = f"the axis {letter}_{k + 1}"
+            out.append((_flipped(axes, k), _SIGN.format(which=which, book=_BOOK)))
+    return out
 
 
 def _columns(axes: tuple[ScrewAxis, ...]) -> Matrix:
@@ -209,12 +229,12 @@ def screw_variants(robot: Robot, part: str) -> tuple[tuple[str, Matrix, str], ..
     poe = robot.poe()
     S, B, M, q = poe.space, poe.body, poe.home, poe.variables
     revolute = any(s.is_revolute for s in S)
-    sign = _SIGN.format(book=_BOOK)
     out: Variants = []
     if part in ("S", "B"):
         own, other = (S, B) if part == "S" else (B, S)
         if revolute:
-            out.append(("omega_cross_q", _columns(_flipped(own)), sign))
+            flips = _one_by_one(own, part)
+            out += [("omega_cross_q", _columns(axes), detail) for axes, detail in flips]
         kind = "body_for_space" if part == "S" else "space_for_body"
         given, asked = ("body", "space") if part == "S" else ("space", "body")
         out.append(
@@ -236,6 +256,8 @@ def screw_variants(robot: Robot, part: str) -> tuple[tuple[str, Matrix, str], ..
         Js, Jb = robot.jacobian_space().matrix, robot.jacobian_body().matrix
         own, other = (Js, Jb) if part == "Js" else (Jb, Js)
         if revolute:
+            which = "the revolute axes " + ("S_i" if part == "Js" else "B_i")
+            sign = _SIGN.format(which=which, book=_BOOK)
             out.append(("omega_cross_q", _flipped_jacobian(poe, part, own), sign))
         given, asked = ("J_b", "J_s") if part == "Js" else ("J_s", "J_b")
         out.append(
@@ -257,8 +279,10 @@ def screw_variants(robot: Robot, part: str) -> tuple[tuple[str, Matrix, str], ..
     else:  # T(theta)
         P = _exps(S, q)
         if revolute:
-            out.append(("omega_cross_q", Matrix(_exps(_flipped(S), q) * M), sign))
-            out.append(("omega_cross_q", Matrix(M * _exps(_flipped(B), q)), sign))
+            for axes, detail in _one_by_one(S, "S"):
+                out.append(("omega_cross_q", Matrix(_exps(axes, q) * M), detail))
+            for axes, detail in _one_by_one(B, "B"):
+                out.append(("omega_cross_q", Matrix(M * _exps(axes, q)), detail))
         out.append(
             (
                 "body_for_space",
