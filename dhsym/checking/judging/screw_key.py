@@ -86,16 +86,8 @@ def prepare_screw(
     variants = tuple((kind, _cut(m, question), detail) for kind, m, detail in found)
     syms = set(table.variables) | set(table.constants)
     symbolic, valued, expected_valued = _samples(table, expected, syms)
-    part = ScrewPart(
-        expected,
-        expected_valued,
-        _texts(robot, expected),
-        frozenset(syms),
-        symbolic,
-        valued,
-        variants,
-    )
-    return names, part
+    common = (expected, expected_valued, _texts(robot, expected), frozenset(syms))
+    return names, ScrewPart(*common, symbolic, valued, variants)
 
 
 def axes_listed(part: ScrewPart, table: DHTable, answer: sp.ImmutableMatrix) -> bool:
