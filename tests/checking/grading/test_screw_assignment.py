@@ -6,12 +6,15 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
+import pytest
+
 from dhsym.checking import grade
 from dhsym.checking.grading.assignment import Assignment
 from dhsym.checking.grading.assignment_tests import key_answer, run_assignment_tests
 from dhsym.checking.judging.checker import check_answer
 from dhsym.checking.judging.key import PreparedKeys
 from dhsym.cli.main import main
+from dhsym.errors import DHError
 
 HOMEWORK = """\
 title: "Homework 7: the planar 2R arm as a product of exponentials"
@@ -142,3 +145,10 @@ def test_variants_draw_the_lengths_and_the_keys_follow(tmp_path: Path):
     text = key_answer(keys.get(home.key))
     assert "a1" not in text and "a2" not in text  # the student's numbers
     assert check_answer(home.key, text, keys=keys).correct
+
+
+def test_a_bad_poe_question_names_the_file_row_and_field(tmp_path: Path):
+    hw = _write(tmp_path, "key: planar2r\nquestions:\n  - {id: s, ask: S}\n  - {id: t, ask: S3}\n")
+    with pytest.raises(DHError, match="the screw axes are S1 … S2") as err:
+        Assignment.load(hw)
+    assert (err.value.file, err.value.row, err.value.field) == (str(hw), 2, "ask")
