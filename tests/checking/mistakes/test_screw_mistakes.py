@@ -27,7 +27,6 @@ ROBOTS = resources.files("dhsym.screws") / "robots"
 UR5 = str(ROBOTS / "lynch_park_ur5.poe.yaml")
 THREE_R = str(ROBOTS / "lynch_park_3r.poe.yaml")
 KEYS = PreparedKeys()
-C1, C12 = sp.Symbol("theta1", real=True), None
 th1, th2 = sp.symbols("theta1 theta2", real=True)
 a1, a2 = sp.symbols("a1 a2", real=True)
 
