@@ -263,7 +263,11 @@ Question kinds (ask: in the assignment, --question for check):
   g, C                 the gravity vector g(q); the Coriolis matrix C(q, qdot)
   c_ijk                Spong's Christoffel symbol, 1-based (e.g. c_112)
   tau                  the joint torques M qddot + C qdot + g (rates qdot1, accelerations qddot1)
-  tau_static           the torques J^T F balancing a tip wrench fx fy fz nx ny nz (base frame)"""
+  tau_static           the torques J^T F balancing a tip wrench fx fy fz nx ny nz (base frame)
+  S, S<i>, B, B<i>     the space or body screw axes (6xn, rows [w; v]), or one axis (S3)
+  Mhome (M0)           the home configuration M of the product of exponentials
+  Js, Jb               the space and body Jacobians (rows [w; v])
+  T(theta)             the forward kinematics in product-of-exponentials form, its closed form"""
 
 CHECK_EPILOG = QUESTION_KINDS + "\n\n" + CHECK_EPILOG_TAIL
 
@@ -300,7 +304,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         required=True,
         help="the question kind: table, T<i>_<j>, A<k>, arm, px, py, pz, T<i>_<j>[row,col] "
         "(0-based), J, J[row,col], det J, ik, ik all, ik@q1,...,qn, M, M[row,col], g, C, "
-        "c_ijk, tau, tau_static (see below)",
+        "c_ijk, tau, tau_static, S, S<i>, B, B<i>, Mhome, Js, Jb, T(theta) (see below)",
     )
     c.add_argument("--answer", required=True, help="answer file, or - for standard input")
     c.add_argument(

@@ -384,14 +384,16 @@ class MistakeCatalogue(Directive):
             title = getattr(cls, "title", "") or getattr(cls(), "title", "")
             home = cls.__module__ if _public(cls.__module__) else "dhsym.checking.mistakes.registry"
             rows.append((cls.kind, title, where, doc, f"{home}.{cls.__name__}"))
-        for m in mistakes.dynamics_mistakes():  # one class, one instance per kind
+        per_instance = [(m, "dynamics") for m in mistakes.dynamics_mistakes()]
+        per_instance += [(m, "product of exponentials") for m in mistakes.SCREW_MISTAKES]
+        for m, where in per_instance:  # one class, one instance per kind
             cls = type(m)
             doc = " ".join((inspect.getdoc(cls) or "").split("\n\n")[0].split())
             rows.append(
                 (
                     m.kind,
                     m.title,
-                    "dynamics",
+                    where,
                     doc,
                     f"dhsym.checking.mistakes.registry.{cls.__name__}",
                 )

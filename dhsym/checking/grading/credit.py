@@ -36,6 +36,7 @@ from ..mistakes.registry import (
     IK_MISTAKES,
     JACOBIAN_MISTAKES,
     MATRIX_MISTAKES,
+    SCREW_MISTAKES,
     TABLE_MISTAKES,
     dynamics_mistakes,
 )
@@ -61,6 +62,7 @@ def mistake_kinds() -> frozenset[str]:
         DET_MISTAKES,
         IK_MISTAKES,
         dynamics_mistakes(),
+        SCREW_MISTAKES,
     )
     return frozenset(m.kind for ms in lists for m in ms) | {"missing_column"}
 

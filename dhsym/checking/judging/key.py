@@ -4,8 +4,9 @@ A :class:`Key` is a frozen value: a DH table and what is asked about it.
 :func:`prepare` derives what every answer to it is compared with: the robot, the names
 an answer may use and one prepared part per kind of question, built by that kind's own
 preparer (:data:`PREPARERS`): a matrix (:mod:`~dhsym.checking.judging.matrix_key`), the
-dynamics, inverse kinematics (:mod:`~dhsym.checking.judging.ik_key`) or a table (nothing
-to derive).  A worker keeps its prepared keys in :class:`PreparedKeys`.
+dynamics, inverse kinematics (:mod:`~dhsym.checking.judging.ik_key`), a product of
+exponentials (:mod:`~dhsym.checking.judging.screw_key`) or a table (nothing to derive).
+A worker keeps its prepared keys in :class:`PreparedKeys`.
 
 Examples
 --------
@@ -27,7 +28,8 @@ from typing import Any, TypeAlias
 from dhsym.errors import DHError
 from dhsym.model.library import load_table
 from dhsym.model.table import DHTable, JointType
-from dhsym.robot import Robot
+from dhsym.robot import Robot, from_poe
+from dhsym.screws.poefile import is_poe_path
 
 from ..reading.answer_names import NameContext
 from ..reading.answer_value import AnswerForm
@@ -35,6 +37,7 @@ from ..reading.questions import Question
 from .ik_key import IKPart, prepare_ik
 from .matrix_key import MatrixPart, prepare_dynamics, prepare_matrix
 from .rounding import DEFAULT_ROUNDING, Rounding
+from .screw_key import prepare_screw
 
 __all__ = [
     "PREPARERS",
@@ -72,7 +75,8 @@ class Key:
         rounding: object = None,
         keys: PreparedKeys | None = None,
     ) -> Key:
-        """A key from a built-in robot name, a table file or a table.
+        """A key from a built-in robot name, a table file (a ``*.poe.yaml`` product of
+        exponentials is given its DH table, :func:`~dhsym.robot.from_poe`) or a table.
 
         ``rounding``: anything :meth:`Rounding.parse` reads (``"digits=4"``, ``"abs=1e-3"``,
         ``{"rel": 0.001}``, ``"off"``); None is the default (3 significant digits).
@@ -83,13 +87,21 @@ class Key:
                 "the key is a built-in robot's name, a table file or a DHTable, "
                 f"got {type(ref).__name__}"
             )
-        table = ref if isinstance(ref, DHTable) else load_table(ref)
+        table = ref if isinstance(ref, DHTable) else _key_table(ref)
         q = question if isinstance(question, Question) else Question.parse(question, table.n)
         name = table.name or (Path(ref).stem if not isinstance(ref, DHTable) else "")
         key = cls(table, q, name, tool_free, Rounding.parse(rounding))
         # a key that cannot be checked against (too large, wrong values) stops here
         keys.get(key) if keys is not None else prepare(key)
         return key
+
+
+def _key_table(ref: str | Path) -> DHTable:
+    """The table of a key given by name or file; a PoE file's robot is read through its DH
+    frames (:func:`~dhsym.screws.poe_to_dh.to_dh`): the same fk, space frame and ``M``."""
+    if is_poe_path(str(ref)):
+        return from_poe(ref).table
+    return load_table(ref)
 
 
 @dataclass(frozen=True)
@@ -120,6 +132,7 @@ PREPARERS: Mapping[str, Preparer] = {
     "entry": prepare_matrix,
     "jacobian": prepare_matrix,
     "det": prepare_matrix,
+    "screw": prepare_screw,
 }
 
 

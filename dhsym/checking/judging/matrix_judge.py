@@ -38,6 +38,7 @@ from ..mistakes.registry import (
     DET_MISTAKES,
     JACOBIAN_MISTAKES,
     MATRIX_MISTAKES,
+    SCREW_MISTAKES,
     BlockTransposed,
     MatrixCase,
     Mistake,
@@ -51,6 +52,7 @@ from ..reading.questions import Question
 from .key import PreparedKey
 from .matrix_key import DeterminantPart, DynamicsPart, MatrixPart, sample_for
 from .rounding import rounding_accepts
+from .screw_key import ScrewPart, axes_listed
 
 __all__ = ["MISTAKES", "check_matrix", "matrix_part"]
 
@@ -68,6 +70,7 @@ MISTAKES: dict[str, tuple[Mistake, ...]] = {
     "jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()),
     "det": DET_MISTAKES,
     "dynamics": dynamics_mistakes(),
+    "screw": SCREW_MISTAKES,
 }
 
 
@@ -252,6 +255,30 @@ def check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) ->
                 alternative="rows [ω; v]",
                 key=key.name,
             )
+    if (
+        wrong
+        and q.kind == "screw"
+        and q.part in ("S", "B")
+        and ans.shape == (6, 6)
+        and isinstance(part, ScrewPart)
+        and axes_listed(part, key.table, ans)
+    ):  # six axes listed one per row, as S_1 … S_6 are often printed: judged as listed
+        ans, cells = (
+            sp.ImmutableMatrix(ans.T),
+            tuple(cells[(k % 6) * 6 + k // 6] for k in range(36)),
+        )
+        listed = _compare(pk, ans, cells, limits)
+        entries, wrong, unknown = listed
+        if not wrong:
+            return CheckResult(
+                q.spec,
+                Verdict.CORRECT,
+                "The screw axes are right, listed one per row; as a matrix they are its "
+                "columns (rows [ω; v]).",
+                tuple(listed[0]),
+                alternative="axes as rows",
+                key=key.name,
+            )
     if not wrong and not shape_lead:
         what = f"{_one(q)} is right" if total == 1 else f"All {total} entries are right"
         rounded = [e for e in entries if e.proof == "rounding"]
@@ -277,7 +304,7 @@ def check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) ->
         pk.variant_values,
         pk.robot,
         part.singularities if isinstance(part, DeterminantPart) else None,
-        part.variants if isinstance(part, DynamicsPart) else (),
+        part.variants if isinstance(part, (DynamicsPart, ScrewPart)) else (),
     )
     diagnoses = shape_lead + lead + diagnose_matrix(case, MISTAKES.get(q.kind, MATRIX_MISTAKES))
     if unknown:

@@ -1,10 +1,11 @@
 r"""The registry of classic DH mistakes: which are tried for which question, and in what order.
 
 The mistakes themselves live in plug-in modules by family (table rows, matrix entries,
-whole matrices, Jacobians, inverse kinematics, dynamics); this module lists them per kind
-of question (:data:`MATRIX_MISTAKES`, :data:`TABLE_MISTAKES`, :data:`JACOBIAN_MISTAKES`,
-:data:`DET_MISTAKES`, :data:`IK_MISTAKES`), re-exports them as the public catalogue, and
-finds the one that explains a wrong answer (:func:`diagnose_matrix`, :func:`diagnose_table`).
+whole matrices, Jacobians, inverse kinematics, dynamics, products of exponentials); this
+module lists them per kind of question (:data:`MATRIX_MISTAKES`, :data:`TABLE_MISTAKES`,
+:data:`JACOBIAN_MISTAKES`, :data:`DET_MISTAKES`, :data:`IK_MISTAKES`, :data:`SCREW_MISTAKES`),
+re-exports them as the public catalogue, and finds the one that explains a wrong answer
+(:func:`diagnose_matrix`, :func:`diagnose_table`).
 
 A :class:`Mistake` takes the key (its table rows, the frames asked, the random
 sample) and produces *variants*: what a student who made that mistake would have
@@ -24,7 +25,10 @@ Kinds: ``wrong_sign`` (at any depth), ``sin_cos_swapped``, ``dropped_term``,
 ``atan_for_atan2``, ``lost_branch``, ``wrong_root_sign``; for the dynamics questions
 (``M``, ``g``, ``C``, ``c_ijk``, ``tau``) ``parallel_axis``, ``rotational_energy``,
 ``gravity_direction``, ``l_for_lc``, ``christoffel_indices``, ``inertia_frame``
-(:mod:`dhsym.checking.mistakes._dynamics_mistakes`).
+(:mod:`dhsym.checking.mistakes._dynamics_mistakes`); for a product of exponentials (``S``,
+``B``, ``Mhome``, ``Js``, ``Jb``, ``T(theta)``) ``omega_cross_q``, ``body_for_space``,
+``space_for_body``, ``wrong_home``, ``rows_swapped`` (:data:`SCREW_MISTAKES`,
+:mod:`dhsym.checking.mistakes._screw_mistakes`).
 
 Examples
 --------
@@ -64,6 +68,7 @@ from ._jacobian_mistakes import (
 from ._matrix_mistakes import BlockTransposed, OtherConvention, ReverseOrder, Transposed
 from ._mistake_base import MatrixCase, Mistake, TableCase
 from ._row_mistakes import DegreesAsRadians, IndexShift, OffsetMissing, SingleWrongRow
+from ._screw_mistakes import SCREW_MISTAKES, ScrewMistake, screw_variants
 
 __all__ = [
     "DET_MISTAKES",
@@ -96,6 +101,8 @@ __all__ = [
     "ReverseOrder",
     "SinCosSwapped",
     "SingleWrongRow",
+    "SCREW_MISTAKES",
+    "ScrewMistake",
     "TABLE_MISTAKES",
     "TableCase",
     "Transposed",
@@ -103,6 +110,7 @@ __all__ = [
     "WrongSign",
     "diagnose_matrix",
     "diagnose_table",
+    "screw_variants",
     "variant_matrices",
 ]
 

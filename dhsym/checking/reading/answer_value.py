@@ -222,6 +222,8 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
     if q.entry is not None or q.kind == "det" or form.shape == (1, 1):
         cell = expression_cell(answer, limits)
         return MatrixAnswer(cell, (1, 1), (ReadCell.read(cell, names, limits, "the answer"),))
+    if q.kind == "screw" and form.shape != (4, 4):
+        return _read_axes(form, answer, limits)
     if q.kind == "dynamics":
         shapes = ((rows, cols), (cols, rows)) if cols == 1 else ((rows, cols),)
         grid = matrix_cells(answer, limits, shapes)
@@ -249,6 +251,22 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
         row.insert(k, _ZERO)
         full += row
     return MatrixAnswer(_source(answer), (6, cols), tuple(full), missing_column=k)
+
+
+def _read_axes(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> MatrixAnswer:
+    """Screw axes or a PoE Jacobian in the key's shape (6×n, rows ``[ω; v]``).  Screw axes
+    may also be listed one per row (n×6, as ``S_1, …, S_n`` are often written) when that
+    cannot be taken for columns (n ≠ 6); one axis is a column or a row."""
+    rows, cols = form.shape
+    listed = form.question.part in ("S", "B") and rows != cols
+    grid = matrix_cells(answer, limits, ((rows, cols), (cols, rows)) if listed else ((rows, cols),))
+    if len(grid) != rows:  # the axes as rows: they are the key's columns
+        grid = [list(column) for column in zip(*grid, strict=True)]
+    where = [f"entry ({i},{j})" for i in range(1, rows + 1) for j in range(1, cols + 1)]
+    if cols == 1:
+        where = [f"entry {i}" for i in range(1, rows + 1)]
+    cells = _read_all([c for row in grid for c in row], where, form, limits)
+    return MatrixAnswer(_source(answer), form.shape, cells)
 
 
 def _source(answer: object) -> str:

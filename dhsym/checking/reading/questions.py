@@ -3,7 +3,9 @@ Jacobian ``J`` or one entry ``J[r,c]``, its determinant ``det J``, or the invers
 ``ik`` (symbolic in the pose; ``ik all`` asks for every branch, ``ik@q1,…,qn`` for the numbers
 of the pose that these joint values reach); the dynamics ``M``, ``M[i,j]``, ``g``, ``C``, Spong's
 Christoffel symbol ``c_ijk`` (1-based, ``c_112``), ``tau`` (symbolic in q, q̇, q̈) and the
-statics ``tau_static`` (τ = Jᵀ F).
+statics ``tau_static`` (τ = Jᵀ F); a robot as a product of exponentials (``kind`` ``screw``,
+:mod:`~dhsym.checking.reading.screw_questions`): the screw axes ``S``, ``S3``, ``B``, the home
+configuration ``Mhome``, ``Js``, ``Jb`` and ``T(theta)``.
 
 Examples
 --------
@@ -17,6 +19,8 @@ Question(spec='T0_6[0,3]', kind='entry', frm=0, to=6, entry=(0, 3), pose=None, e
 ['J', 'J[1,0]', 'det J', 'ik', 'ik all', 'ik@1.5707963267949,0']
 >>> [Question.parse(s, 2).label for s in ("M", "M[0,1]", "g", "C", "c_{112}", "τ", "tau_s")]
 ['M', 'M[0,1]', 'g', 'C', 'c_112', 'tau', 'tau_static']
+>>> [Question.parse(s, 2).label for s in ("S", "S_2", "B", "Mhome", "J_s", "Jb[5,1]", "T(θ)")]
+['S', 'S2', 'B', 'Mhome', 'Js', 'Jb[5,1]', 'T(theta)']
 """
 
 from __future__ import annotations
@@ -26,6 +30,8 @@ from dataclasses import dataclass, field
 
 from dhsym.errors import DHError
 from dhsym.model.parsing import parse_number_list
+
+from .screw_questions import parse_screw, screw_label, screw_latex
 
 __all__ = ["Question"]
 
@@ -45,7 +51,8 @@ _DYNAMICS = re.compile(
 )
 _KINDS = (
     "table, T<i>_<j>, A<k>, arm, px/py/pz, optionally with [row,col] (0-based), e.g. T0_6[0,3]; "
-    "J, J[row,col], det J, ik, ik all, ik@q1,...,qn; M, M[row,col], g, C, c_ijk, tau, tau_static"
+    "J, J[row,col], det J, ik, ik all, ik@q1,...,qn; M, M[row,col], g, C, c_ijk, tau, tau_static; "
+    "S, S<i>, B, B<i>, Mhome, Js, Jb, T(theta)"
 )
 
 
@@ -58,6 +65,8 @@ class Question:
     symbolic answer in the pose ``n s a p``) and ``every`` asks for every branch.
     For ``dynamics``, ``part`` is ``M``, ``g``, ``C``, ``tau``, ``tau_static`` or ``c`` (the
     Christoffel symbol ``c_ijk``, its 1-based ``index``); ``entry`` is 0-based.
+    For ``screw``, ``part`` is ``S``, ``B``, ``Mhome``, ``Js``, ``Jb`` or ``T`` and ``column``
+    the 1-based screw axis asked alone (``S3``).
     """
 
     spec: str
@@ -69,6 +78,7 @@ class Question:
     every: bool = False
     part: str = field(default="", repr=False)
     index: tuple[int, int, int] | None = field(default=None, repr=False)
+    column: int | None = field(default=None, repr=False)
 
     @classmethod
     def parse(cls, spec: str, n: int) -> Question:
@@ -81,6 +91,9 @@ class Question:
         if text.lower() in ("table", "dh", "dh table", "dh_table"):
             return cls(text, "table")
         compact = text.replace(" ", "")
+        screw = parse_screw(compact, n)
+        if screw is not None:
+            return cls(text, "screw", 0, n, screw[1], part=screw[0], column=screw[2])
         m = _JACOBIAN.match(compact)
         if m is not None:
             entry = (int(m["r"]), int(m["c"])) if m["r"] is not None else None
@@ -147,6 +160,8 @@ class Question:
             if self.index is not None:
                 return "c_" + "".join(map(str, self.index))
             return self.part + (f"[{self.entry[0]},{self.entry[1]}]" if self.entry else "")
+        if self.kind == "screw":
+            return screw_label(self.part, self.entry, self.column)
         base = "J" if self.kind == "jacobian" else f"T{self.frm}_{self.to}"
         return f"{base}[{self.entry[0]},{self.entry[1]}]" if self.entry else base
 
@@ -161,6 +176,8 @@ class Question:
             return r"\text{inverse kinematics}"
         if self.kind == "dynamics":
             return _dynamics_latex(self)
+        if self.kind == "screw":
+            return screw_latex(self.part, self.entry, self.column)
         base = "J" if self.kind == "jacobian" else f"{{}}^{{{self.frm}}}T_{{{self.to}}}"
         if self.entry:
             return f"{base}[{self.entry[0] + 1},{self.entry[1] + 1}]"
