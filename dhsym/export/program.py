@@ -645,14 +645,43 @@ def _shared_lines(
             else:
                 rest.append((s, e))
         pending = rest
+    alias = {}  # a line that only renames another is no line
+    for s, e in ordered:
+        if e.is_Symbol:
+            alias[s] = alias.get(e, e)
+    ordered = [(s, e.xreplace(alias)) for s, e in ordered if s not in alias]
+    outputs = [e.xreplace(alias) for e in outputs]
     names = (f"w{j}" for j in range(10**6))
     final = {
         s: sp.Symbol(name, **_REAL)
         for (s, _), name in zip(ordered, (n for n in names if n not in taken))
     }
     body = [Assign(s.name, t) for s, t in trig]
-    body += [Assign(final[s].name, _numbers(e.xreplace(final))) for s, e in ordered]
-    return body, [_numbers(e.xreplace(final)) for e in outputs]
+    body += [Assign(final[s].name, _common_factor(_numbers(e.xreplace(final)))) for s, e in ordered]
+    return body, [_common_factor(_numbers(e.xreplace(final))) for e in outputs]
+
+
+def _common_factor(e: sp.Expr) -> sp.Expr:
+    """Terms of a sum with the same number (up to sign) as one product: ``k·x − k·y`` is
+    ``k·(x − y)``, one multiplication instead of two (left unevaluated, as printed).
+
+    >>> x, y, z = sp.symbols("x y z", real=True)
+    >>> _common_factor(0.4318 * x - 0.4318 * y + 2.0 * z + x * y)
+    x*y + 2.0*z + 0.4318*(x - y)
+    """
+    if not e.is_Add:
+        return e
+    groups: dict[sp.Expr, list[sp.Expr]] = {}
+    for t in e.args:
+        k, rest = t.as_coeff_Mul()
+        groups.setdefault(abs(k), []).append(sp.sign(k) * rest)
+    terms = []
+    for k, parts in groups.items():
+        if len(parts) < 2 or k == 1:
+            terms += [k * p for p in parts]
+        else:
+            terms.append(sp.Mul(k, sp.Add(*parts), evaluate=False))
+    return sp.Add(*terms, evaluate=False) if len(terms) > 1 else terms[0]
 
 
 def rne_program(
