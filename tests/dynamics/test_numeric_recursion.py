@@ -96,7 +96,10 @@ def test_rne_equals_the_exact_newton_euler(name):
         np.testing.assert_allclose(f.rne(q, v, a), row, rtol=1e-13, atol=1e-12)
 
 
-@pytest.mark.parametrize("name", ["spong2r", "scara", "turned"])
+SIX_JOINTS = [pytest.param(name, marks=pytest.mark.slow) for name in ("puma560", "stanford")]
+
+
+@pytest.mark.parametrize("name", ["spong2r", "scara", "turned", *SIX_JOINTS])
 def test_inertia_coriolis_and_gravity_equal_lagrange(name):
     robot = ROBOTS[name]()
     values = _values(robot, 3)
@@ -104,20 +107,6 @@ def test_inertia_coriolis_and_gravity_equal_lagrange(name):
     eom = lagrange(dm.robot, dm)
     f = dynamics_functions(robot, values)
     Q, V, _ = _states(dm.n, 5, 13)
-    _close(f.inertia(Q), _exact(eom.M, dm, Q, V, V))
-    _close(f.gravload(Q), _exact(eom.g, dm, Q, V, V))
-    _close(f.coriolis(Q, V) @ V[..., None], _exact(eom.C * sp.Matrix(dm.rates), dm, Q, V, V))
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("name", ["puma560", "stanford"])
-def test_six_joint_inertia_and_gravity_equal_lagrange(name):
-    robot = ROBOTS[name]()
-    values = _values(robot, 5)
-    dm = numeric_model(robot, values)
-    eom = lagrange(dm.robot, dm)
-    f = dynamics_functions(robot, values)
-    Q, V, _ = _states(dm.n, 4, 17)
     _close(f.inertia(Q), _exact(eom.M, dm, Q, V, V))
     _close(f.gravload(Q), _exact(eom.g, dm, Q, V, V))
     _close(f.coriolis(Q, V) @ V[..., None], _exact(eom.C * sp.Matrix(dm.rates), dm, Q, V, V))
