@@ -41,7 +41,6 @@ from dhsym.kinematics.numeric import (
     NumericProgram,
     compile_program,
     evaluate_chunked,
-    stored_program,
     to_float,
 )
 
@@ -58,28 +57,25 @@ __all__ = ["DynamicsFunctions", "Trajectory", "dynamics_functions", "numeric_mod
 class _Compiled:
     """``f(*arrays)`` of compiled expressions into an array ``(..., *shape)``; the
     expressions (``exprs()``) are written out and code generated on first use (numpy for
-    batches, plain floats for one state); their program is kept in the disk cache as
-    ``entry`` when given (:func:`~dhsym.kinematics.numeric.stored_program`)."""
+    batches, plain floats for one state)."""
 
     def __init__(
         self,
         exprs: Callable[[], Sequence[sp.Expr]],
         args: Sequence[sp.Symbol],
         shape: tuple[int, ...],
-        entry: str | None = None,
     ) -> None:
         self.shape = shape
         self.size = int(np.prod(shape)) if shape else 1
         self._exprs = exprs
         self._args = list(args)
-        self._entry = entry
         self._program: NumericProgram | None = None
         self._batch: Callable[..., list[Any]] | None = None
         self._single: Callable[..., list[Any]] | None = None
 
     def _compile(self, floats: bool) -> Callable[..., list[Any]]:
         if self._program is None:
-            self._program = stored_program(self._entry, self._exprs, self._args)
+            self._program = NumericProgram.of(self._exprs(), self._args)
         return compile_program(self._program, self._args, floats=floats)
 
     def __call__(self, *parts: np.ndarray) -> np.ndarray:
