@@ -14,8 +14,9 @@ fully symbolic inertial parameters, which takes minutes). Prints:
    parameters (goal: under 30 s), and the Newton–Euler τ;
 2. dhsym's Lagrange–Euler against ``sympy.physics.mechanics.LagrangesMethod`` on a planar
    2R and 3R arm with symbolic masses, lengths and inertias (same arm, same results);
-3. the compiled ``rne`` of the PUMA 560 for a batch of 10⁵ states and for one state,
-   against pinocchio's ``rnea`` called from Python (when ``pin`` is installed).
+3. the numeric ``rne`` (the recursion on numbers) of the PUMA 560 for a batch of 10⁵
+   states and for one state, against pinocchio's ``rnea`` called from Python (when ``pin``
+   is installed).
 """
 
 from __future__ import annotations

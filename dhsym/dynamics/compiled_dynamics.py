@@ -1,8 +1,9 @@
 """Numbers of the equations of motion, compiled once and batched like ``fk``.
 
-The expressions are those of :mod:`.newton_euler`, raw (never expanded: the recursion's
-shared subexpressions are what :func:`~dhsym.kinematics.numeric.compile_exprs` finds
-with ``cse``); with roboticstoolbox's names:
+τ is the Newton–Euler recursion evaluated on numbers (:mod:`.numeric_recursion`, the
+recursion of :mod:`.recursive_newton_euler` on float arrays: no symbolic derivation
+before the first numbers; the tests prove it equal to the exact τ, M and g); with
+roboticstoolbox's names:
 
 * ``rne(q, qd, qdd)``: joint torques, with ``Jm G²`` and friction ``B G² q̇ + |G| Tc``;
 * ``inertia(q)``: M(q) (with ``Jm G²``), ``M[:, j] = τ(q, 0, e_j)`` without gravity;
@@ -40,14 +41,12 @@ from dhsym.kinematics.numeric import (
     NumericProgram,
     compile_program,
     evaluate_chunked,
-    stored_program,
     to_float,
 )
-from dhsym.model.parsing import REAL
 
 from .lagrange_euler import potential_energies
 from .model import DynamicModel, dynamic_model
-from .recursive_newton_euler import rne_expressions
+from .numeric_recursion import NumericRecursion, numeric_recursion
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
@@ -58,28 +57,25 @@ __all__ = ["DynamicsFunctions", "Trajectory", "dynamics_functions", "numeric_mod
 class _Compiled:
     """``f(*arrays)`` of compiled expressions into an array ``(..., *shape)``; the
     expressions (``exprs()``) are written out and code generated on first use (numpy for
-    batches, plain floats for one state); their program is kept in the disk cache as
-    ``entry`` when given (:func:`~dhsym.kinematics.numeric.stored_program`)."""
+    batches, plain floats for one state)."""
 
     def __init__(
         self,
         exprs: Callable[[], Sequence[sp.Expr]],
         args: Sequence[sp.Symbol],
         shape: tuple[int, ...],
-        entry: str | None = None,
     ) -> None:
         self.shape = shape
         self.size = int(np.prod(shape)) if shape else 1
         self._exprs = exprs
         self._args = list(args)
-        self._entry = entry
         self._program: NumericProgram | None = None
         self._batch: Callable[..., list[Any]] | None = None
         self._single: Callable[..., list[Any]] | None = None
 
     def _compile(self, floats: bool) -> Callable[..., list[Any]]:
         if self._program is None:
-            self._program = stored_program(self._entry, self._exprs, self._args)
+            self._program = NumericProgram.of(self._exprs(), self._args)
         return compile_program(self._program, self._args, floats=floats)
 
     def __call__(self, *parts: np.ndarray) -> np.ndarray:
@@ -106,30 +102,24 @@ class Trajectory:
 
 
 class DynamicsFunctions:
-    """The compiled dynamics of one robot with numeric parameters (see the module docstring).
+    """The numeric dynamics of one robot with numeric parameters (see the module docstring).
 
-    One function is compiled, ``τ(q, q̇, q̈, g)`` of the Newton–Euler recursion (the
-    gravity vector an argument); M, C and g are read off it as roboticstoolbox does:
-    ``M[:, j] = τ(q, 0, e_j, 0)``, ``g = τ(q, 0, 0, g)``, and the Christoffel symbols
-    ``c_jj = τ(q, e_j, 0, 0)``, ``c_jk = (τ(q, e_j + e_k, 0, 0) − c_jj − c_kk) / 2``.
+    One function computes everything, ``τ(q, q̇, q̈, g)`` of the Newton–Euler recursion
+    (:class:`~.numeric_recursion.NumericRecursion`, built on the first call; the gravity
+    vector an argument); M, C and g are read off it as roboticstoolbox does, each in one
+    batch: ``M[:, j] = τ(q, 0, e_j, 0)``, ``g = τ(q, 0, 0, g)``, and the Christoffel
+    symbols ``c_jj = τ(q, e_j, 0, 0)``, ``c_jk = (τ(q, e_j + e_k, 0, 0) − c_jj − c_kk) / 2``.
     """
 
-    def __init__(self, dm: DynamicModel, *, entry: str | None = None) -> None:
+    def __init__(self, dm: DynamicModel) -> None:
         self.model = dm
-        n = self.n = dm.n
-        q, qd, qdd = dm.variables, dm.rates, dm.accelerations
-        # the gravity arguments: names no table can give a symbol (the parser's are words)
-        gsym = sp.symbols("gravity·x gravity·y gravity·z", **REAL)
-
-        def tau() -> list[sp.Expr]:
-            return list(rne_expressions(dm, gravity=gsym))
+        self.n = dm.n
 
         def potential() -> list[sp.Expr]:
             return [sum(potential_energies(dm), sp.Integer(0))]
 
-        # τ(q, q̇, q̈, g) is written out on the first call, or read from the disk cache
-        self._rne = _Compiled(tau, (*q, *qd, *qdd, *gsym), (n,), entry)
-        self._potential = _Compiled(potential, q, (1,))
+        self._recursion: NumericRecursion | None = None
+        self._potential = _Compiled(potential, dm.variables, (1,))
         self.gravity = np.array([to_float(g) for g in dm.gravity])
         links = [dm.links[r - 1] for r in dm.joints]
         try:
@@ -142,7 +132,25 @@ class DynamicsFunctions:
         self.has_friction = bool(np.any(self._viscous) or np.any(self._coulomb))
 
     def _tau(self, Q: np.ndarray, V: np.ndarray, A: np.ndarray, g: np.ndarray) -> np.ndarray:
-        return self._rne(Q, V, A, np.broadcast_to(g, (*Q.shape[:-1], 3)))
+        """τ at states ``(..., n)`` (broadcast together) with gravity ``g`` ``(3,)``."""
+        if self._recursion is None:
+            self._recursion = numeric_recursion(self.model)
+        shape = np.broadcast_shapes(Q.shape, V.shape, A.shape)
+        Qf, Vf, Af = (np.broadcast_to(x, shape).reshape(-1, self.n) for x in (Q, V, A))
+        return self._recursion.tau(Qf, Vf, Af, g).reshape(shape)
+
+    def _columns(self, Q: np.ndarray, V: np.ndarray, A: np.ndarray, g: np.ndarray) -> np.ndarray:
+        """τ at the states ``Q`` ``(..., n)`` for each of the ``K`` rates and accelerations
+        ``V``, ``A`` ``(K, n)``, in one batch: ``(K, ..., n)``."""
+        K = V.shape[0]
+        lead = (1,) * (Q.ndim - 1)
+        shape = (K, *Q.shape)
+        return self._tau(
+            np.broadcast_to(Q, shape),
+            np.broadcast_to(V.reshape(K, *lead, self.n), shape),
+            np.broadcast_to(A.reshape(K, *lead, self.n), shape),
+            g,
+        )
 
     # --- the calls ---------------------------------------------------------------------
     def _states(self, *xs: object) -> list[np.ndarray]:
@@ -169,27 +177,21 @@ class DynamicsFunctions:
     def inertia(self, q: object) -> np.ndarray:
         """M(q), ``(..., n, n)``."""
         (Q,) = self._states(q)
-        zero, unit = np.zeros_like(Q), np.eye(self.n)
-        cols = [
-            self._tau(Q, zero, np.broadcast_to(unit[j], Q.shape), np.zeros(3))
-            for j in range(self.n)
-        ]
-        return np.stack(cols, axis=-1)
+        cols = self._columns(Q, np.zeros((self.n, self.n)), np.eye(self.n), np.zeros(3))
+        return np.moveaxis(cols, 0, -1)
 
     def christoffel(self, q: object) -> np.ndarray:
         """The Christoffel symbols ``c[..., i, j, k]`` = Spong's ``c_ijk`` (0-based)."""
         (Q,) = self._states(q)
-        zero, unit, g0 = np.zeros_like(Q), np.eye(self.n), np.zeros(3)
-
-        def h(v: np.ndarray) -> np.ndarray:
-            return self._tau(Q, np.broadcast_to(v, Q.shape), zero, g0)
-
-        c = np.empty((*Q.shape[:-1], self.n, self.n, self.n))
-        diag = [h(unit[j]) for j in range(self.n)]
-        for j in range(self.n):
-            c[..., j, j, :] = diag[j]
-            for k in range(j + 1, self.n):
-                c[..., j, k, :] = c[..., k, j, :] = (h(unit[j] + unit[k]) - diag[j] - diag[k]) / 2
+        n, unit = self.n, np.eye(self.n)
+        pairs = [(j, k) for j in range(n) for k in range(j + 1, n)]
+        rates = np.array([*unit, *(unit[j] + unit[k] for j, k in pairs)]).reshape(-1, n)
+        h = self._columns(Q, rates, np.zeros_like(rates), np.zeros(3))
+        c = np.empty((*Q.shape[:-1], n, n, n))
+        for j in range(n):
+            c[..., j, j, :] = h[j]
+        for m, (j, k) in enumerate(pairs, start=n):
+            c[..., j, k, :] = c[..., k, j, :] = (h[m] - h[j] - h[k]) / 2
         return c
 
     def coriolis(self, q: object, qd: object) -> np.ndarray:
@@ -207,8 +209,23 @@ class DynamicsFunctions:
     def accel(self, q: object, qd: object, tau: object) -> np.ndarray:
         """Forward dynamics: q̈ = M(q)⁻¹ (τ − C q̇ − g − friction)."""
         Q, V, T = self._states(q, qd, tau)
-        bias = self.rne(Q, V, np.zeros_like(Q))
-        return np.linalg.solve(self.inertia(Q), (T - bias)[..., None])[..., 0]
+        n = self.n
+        # one batch: the bias τ(q, q̇, 0, g) and the columns of M, τ(q, 0, e_j, 0)
+        shape = (n + 1, *Q.shape)
+        rates = np.broadcast_to(V, shape).copy()
+        rates[1:] = 0.0
+        accs = np.zeros(shape)
+        for j in range(n):
+            accs[j + 1, ..., j] = 1.0
+        gravity = np.zeros((*shape[:-1], 3))
+        gravity[0] = self.gravity
+        if self._recursion is None:
+            self._recursion = numeric_recursion(self.model)
+        Qf, Vf, Af = (np.broadcast_to(x, shape).reshape(-1, n) for x in (Q, rates, accs))
+        out = self._recursion.tau(Qf, Vf, Af, gravity.reshape(-1, 3)).reshape(shape)
+        bias = out[0] + self.friction(V) if self.has_friction else out[0]
+        M = np.moveaxis(out[1:], 0, -1)
+        return np.linalg.solve(M, (T - bias)[..., None])[..., 0]
 
     def energy(self, q: object, qd: object) -> np.ndarray:
         """Total energy ``½ q̇ᵀ M q̇ + P(q)`` (motor inertia included)."""
@@ -263,17 +280,10 @@ class DynamicsFunctions:
 def dynamics_functions(
     robot: KinematicChain, values: Mapping[object, object] | None = None, *, textbook: bool = True
 ) -> DynamicsFunctions:
-    """Compile the dynamics of ``robot`` with the table's values and ``values`` (numbers
-    for lengths and inertial symbols), substituted before the recursion is written out
-    (zero products vanish there), so the compiled code is as short as the numbers allow
-    (the model: :func:`numeric_model`). The compiled program is kept in the disk cache
-    (:mod:`dhsym.cache`), named by the table, ``values`` and ``textbook``."""
-    from dhsym.cache.keys import entry_name
-    from dhsym.model.table import symbol_values
-
-    given = sorted(f"{sp.srepr(k)}={sp.srepr(v)}" for k, v in symbol_values(values).items())
-    entry = entry_name(robot.table, "rne", f"textbook={textbook}", *given)
-    return DynamicsFunctions(numeric_model(robot, values, textbook=textbook), entry=entry)
+    """The numeric dynamics of ``robot`` with the table's values and ``values`` (numbers
+    for lengths and inertial symbols; the model: :func:`numeric_model`), evaluated by the
+    numeric recursion (:mod:`.numeric_recursion`): nothing is derived or compiled."""
+    return DynamicsFunctions(numeric_model(robot, values, textbook=textbook))
 
 
 def numeric_model(

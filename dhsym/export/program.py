@@ -536,6 +536,154 @@ def _pythagoras(e: sp.Expr) -> sp.Expr:
     return e.replace(lambda a: a.is_Add, fold)
 
 
+class _ValueNumbering:
+    """Names every compound subexpression once (value numbering): ``numbering(e)`` is
+    ``e`` with each sum, product and power, innermost first, replaced by a temporary
+    ``_v<k>``, the same one wherever the same value recurs; ``lines`` holds the
+    definitions in order. Numbers, symbols, ``-x``, ``k·x`` and the sine and cosine of a
+    joint variable stay as they are.
+
+    >>> x, y = sp.symbols("x y", real=True)
+    >>> numbering = _ValueNumbering()
+    >>> numbering(2 * x * y + sp.sin(x)), numbering(-x * y)
+    (_v1, -_v0)
+    >>> numbering.lines
+    [(_v0, x*y), (_v1, 2*_v0 + sin(x))]
+    """
+
+    def __init__(self) -> None:
+        self.lines: list[tuple[sp.Symbol, sp.Expr]] = []
+        self._names: dict[sp.Expr, sp.Symbol] = {}
+
+    def __call__(self, e: sp.Expr) -> sp.Expr:
+        if e.is_Atom or (isinstance(e, (sp.sin, sp.cos)) and e.args[0].is_Atom):
+            return e
+        coeff, rest = e.as_coeff_Mul()
+        if coeff is not sp.S.One:  # -x, k·x: the factor stays outside the name
+            return coeff * self(rest)
+        value = e.func(*(self(a) for a in e.args))
+        if value.is_Atom:
+            return value
+        name = self._names.get(value)
+        if name is None:
+            name = self._names[value] = sp.Symbol(f"_v{len(self.lines)}", **_REAL)
+            self.lines.append((name, value))
+        return name
+
+
+def _inline_once(
+    lines: Sequence[tuple[sp.Symbol, sp.Expr]], exprs: Sequence[sp.Expr]
+) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
+    """Each line used once written into its user, where sums meet sums and like terms
+    cancel (the lines of one step meet those of the next: ``x + y`` then ``2(x + y) − x``
+    is ``x + y``); unused lines dropped."""
+    defs = dict(lines)
+    order = [s for s, _ in lines]
+    exprs = list(exprs)
+    while True:
+        uses: dict[sp.Symbol, int] = {}
+        for e in [*defs.values(), *exprs]:
+            for t in e.free_symbols:
+                if t in defs:
+                    uses[t] = uses.get(t, 0) + 1
+        once = [t for t in order if t in defs and uses.get(t, 0) == 1]
+        dead = [t for t in order if t in defs and t not in uses]
+        if not once and not dead:
+            break
+        for t in dead:
+            del defs[t]
+        # a line used once is written into its user; its own uses are counted again next
+        # round (one round writes a chain of single uses one link at a time)
+        for t in once:
+            value = {t: defs.pop(t)}  # as written so far (earlier lines written into it)
+            for s in defs:
+                if t in defs[s].free_symbols:
+                    defs[s] = defs[s].xreplace(value)
+            exprs = [e.xreplace(value) if t in e.free_symbols else e for e in exprs]
+    return [(s, defs[s]) for s in order if s in defs], exprs
+
+
+def _shared_lines(
+    lines: Sequence[tuple[sp.Symbol, sp.Expr]],
+    exprs: Sequence[sp.Expr],
+    joints: Mapping[sp.Symbol, int],
+    taken: set[str],
+) -> tuple[list[Assign], list[sp.Expr]]:
+    """Straight-line code of ``exprs`` on the named ``lines``: the trig of the joints named
+    (``s1``, ``c23``), numbers as floats, products common to several lines shared
+    (:func:`sympy.cse`), the lines each value needs in dependency order, renamed
+    ``w0``, ``w1`` … in that order; unused lines dropped."""
+    lines, exprs = _inline_once(lines, exprs)
+    every = [e for _, e in lines] + list(exprs)
+    for e in every:  # a value can make an entry complex: exported code computes reals
+        for part in (e, *(a for a in e.atoms(sp.Function, sp.Pow) if a.is_number)):
+            check_real(part, field="values", text=False)
+    named, trig = _name_trig(every, joints, taken)
+    fresh = (sp.Symbol(f"_x{k}", **_REAL) for k in range(10**6))
+    common, reduced = sp.cse([_numbers(e) for e in named], symbols=fresh, order="canonical")
+    k = len(lines)
+    items = [*common, *((s, e) for (s, _), e in zip(lines, reduced[:k]))]
+    outputs = reduced[k:]
+    # the lines the outputs need, each after what it uses (stable)
+    definition = dict(items)
+    live: set[sp.Symbol] = set()
+    stack = [s for e in outputs for s in e.free_symbols if s in definition]
+    while stack:
+        s = stack.pop()
+        if s not in live:
+            live.add(s)
+            stack += [t for t in definition[s].free_symbols if t in definition]
+    pending = [(s, e) for s, e in items if s in live]
+    ordered: list[tuple[sp.Symbol, sp.Expr]] = []
+    done: set[sp.Symbol] = set()
+    while pending:
+        rest = []
+        for s, e in pending:
+            if all(t in done or t not in definition for t in e.free_symbols):
+                ordered.append((s, e))
+                done.add(s)
+            else:
+                rest.append((s, e))
+        pending = rest
+    alias = {}  # a line that only renames another is no line
+    for s, e in ordered:
+        if e.is_Symbol:
+            alias[s] = alias.get(e, e)
+    ordered = [(s, e.xreplace(alias)) for s, e in ordered if s not in alias]
+    outputs = [e.xreplace(alias) for e in outputs]
+    names = (f"w{j}" for j in range(10**6))
+    final = {
+        s: sp.Symbol(name, **_REAL)
+        for (s, _), name in zip(ordered, (n for n in names if n not in taken))
+    }
+    body = [Assign(s.name, t) for s, t in trig]
+    body += [Assign(final[s].name, _common_factor(_numbers(e.xreplace(final)))) for s, e in ordered]
+    return body, [_common_factor(_numbers(e.xreplace(final))) for e in outputs]
+
+
+def _common_factor(e: sp.Expr) -> sp.Expr:
+    """Terms of a sum with the same number (up to sign) as one product: ``k·x − k·y`` is
+    ``k·(x − y)``, one multiplication instead of two (left unevaluated, as printed).
+
+    >>> x, y, z = sp.symbols("x y z", real=True)
+    >>> _common_factor(0.4318 * x - 0.4318 * y + 2.0 * z + x * y)
+    x*y + 2.0*z + 0.4318*(x - y)
+    """
+    if not e.is_Add:
+        return e
+    groups: dict[sp.Expr, list[sp.Expr]] = {}
+    for t in e.args:
+        k, rest = t.as_coeff_Mul()
+        groups.setdefault(abs(k), []).append(sp.sign(k) * rest)
+    terms = []
+    for k, parts in groups.items():
+        if len(parts) < 2 or k == 1:
+            terms += [k * p for p in parts]
+        else:
+            terms.append(sp.Mul(k, sp.Add(*parts), evaluate=False))
+    return sp.Add(*terms, evaluate=False) if len(terms) > 1 else terms[0]
+
+
 def rne_program(
     robot: KinematicChain,
     *,
@@ -575,13 +723,16 @@ def rne_program(
             "--symbolic-lengths (fk, jacobian and ik can take the lengths as parameters)"
         )
     dm = numeric_model(robot, values)
-    tau = rne_expressions(dm)
     n = dm.n
     qs = [sp.Symbol(f"q{k}", **_REAL) for k in range(1, n + 1)]
     vs = [sp.Symbol(f"qd{k}", **_REAL) for k in range(1, n + 1)]
     accs = [sp.Symbol(f"qdd{k}", **_REAL) for k in range(1, n + 1)]
     rename = dict(zip((*dm.variables, *dm.rates, *dm.accelerations), (*qs, *vs, *accs)))
-    exprs = [_pythagoras(t.xreplace(rename)) for t in tau]
+    # the recursion with every entry of every step named as it is computed, the same
+    # value under one name (the outward and inward passes share them)
+    numbering = _ValueNumbering()
+    tau = rne_expressions(dm, clean=lambda e: numbering(_pythagoras(e.xreplace(rename))))
+    exprs = list(tau)
     links = [dm.links[r - 1] for r in dm.joints]
     friction: bool | None = False  # None: the friction is not numeric
     try:
@@ -596,7 +747,10 @@ def rne_program(
     except DHError:
         friction = None
     known = set(qs) | set(vs) | set(accs)
-    free = sorted({s.name for e in exprs for s in e.free_symbols} - {s.name for s in known})
+    defined = {s.name for s, _ in numbering.lines}
+    every = [*exprs, *(e for _, e in numbering.lines)]
+    free = sorted({s.name for e in every for s in e.free_symbols} - {s.name for s in known})
+    free = [f for f in free if f not in defined]
     if friction is None or free:
         missing = ", ".join(free) if free else "friction (B, Tc, G)"
         raise DHError(
@@ -605,7 +759,7 @@ def rne_program(
         )
     taken = {s.name for s in known}
     index = {s: k for k, s in enumerate(qs, start=1)}
-    body, reduced = _straight_line(exprs, index, taken)
+    body, reduced = _shared_lines(numbering.lines, exprs, index, taken)
     inputs = tuple(
         (s.name, arr, k)
         for arr, syms in (("q", qs), ("qd", vs), ("qdd", accs))
