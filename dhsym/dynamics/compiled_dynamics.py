@@ -41,15 +41,25 @@ from dhsym.kinematics.numeric import (
     NumericProgram,
     compile_program,
     evaluate_chunked,
+    stored_program,
     to_float,
 )
+from dhsym.model.parsing import REAL
 
 from .lagrange_euler import potential_energies
 from .model import DynamicModel, dynamic_model
 from .numeric_recursion import NumericRecursion, numeric_recursion
+from .recursive_newton_euler import rne_expressions
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
+
+#: a call with at most this many states is "small" (one state, or ``accel``'s n + 1)
+SMALL = 64
+#: small calls answered by the numeric recursion before τ is compiled for them: a
+#: simulation (thousands of small calls) then runs on the compiled program, about ten
+#: times faster per state, while a first answer never waits for a derivation
+COMPILE_AFTER = 256
 
 __all__ = ["DynamicsFunctions", "Trajectory", "dynamics_functions", "numeric_model"]
 
@@ -57,25 +67,28 @@ __all__ = ["DynamicsFunctions", "Trajectory", "dynamics_functions", "numeric_mod
 class _Compiled:
     """``f(*arrays)`` of compiled expressions into an array ``(..., *shape)``; the
     expressions (``exprs()``) are written out and code generated on first use (numpy for
-    batches, plain floats for one state)."""
+    batches, plain floats for one state); their program is kept in the disk cache as
+    ``entry`` when given (:func:`~dhsym.kinematics.numeric.stored_program`)."""
 
     def __init__(
         self,
         exprs: Callable[[], Sequence[sp.Expr]],
         args: Sequence[sp.Symbol],
         shape: tuple[int, ...],
+        entry: str | None = None,
     ) -> None:
         self.shape = shape
         self.size = int(np.prod(shape)) if shape else 1
         self._exprs = exprs
         self._args = list(args)
+        self._entry = entry
         self._program: NumericProgram | None = None
         self._batch: Callable[..., list[Any]] | None = None
         self._single: Callable[..., list[Any]] | None = None
 
     def _compile(self, floats: bool) -> Callable[..., list[Any]]:
         if self._program is None:
-            self._program = NumericProgram.of(self._exprs(), self._args)
+            self._program = stored_program(self._entry, self._exprs, self._args)
         return compile_program(self._program, self._args, floats=floats)
 
     def __call__(self, *parts: np.ndarray) -> np.ndarray:
@@ -111,14 +124,25 @@ class DynamicsFunctions:
     symbols ``c_jj = τ(q, e_j, 0, 0)``, ``c_jk = (τ(q, e_j + e_k, 0, 0) − c_jj − c_kk) / 2``.
     """
 
-    def __init__(self, dm: DynamicModel) -> None:
+    def __init__(self, dm: DynamicModel, *, entry: str | None = None) -> None:
         self.model = dm
-        self.n = dm.n
+        n = self.n = dm.n
+        # the gravity arguments: names no table can give a symbol (the parser's are words)
+        gsym = sp.symbols("gravity·x gravity·y gravity·z", **REAL)
+
+        def tau() -> list[sp.Expr]:
+            return list(rne_expressions(dm, gravity=gsym))
 
         def potential() -> list[sp.Expr]:
             return [sum(potential_energies(dm), sp.Integer(0))]
 
         self._recursion: NumericRecursion | None = None
+        # τ(q, q̇, q̈, g) compiled for small calls after COMPILE_AFTER of them (kept in the
+        # disk cache as ``entry``); until then, and for batches, the numeric recursion
+        self._compiled = _Compiled(
+            tau, (*dm.variables, *dm.rates, *dm.accelerations, *gsym), (n,), entry
+        )
+        self._small = 0
         self._potential = _Compiled(potential, dm.variables, (1,))
         self.gravity = np.array([to_float(g) for g in dm.gravity])
         links = [dm.links[r - 1] for r in dm.joints]
@@ -133,11 +157,23 @@ class DynamicsFunctions:
 
     def _tau(self, Q: np.ndarray, V: np.ndarray, A: np.ndarray, g: np.ndarray) -> np.ndarray:
         """τ at states ``(..., n)`` (broadcast together) with gravity ``g`` ``(3,)``."""
-        if self._recursion is None:
-            self._recursion = numeric_recursion(self.model)
         shape = np.broadcast_shapes(Q.shape, V.shape, A.shape)
         Qf, Vf, Af = (np.broadcast_to(x, shape).reshape(-1, self.n) for x in (Q, V, A))
-        return self._recursion.tau(Qf, Vf, Af, g).reshape(shape)
+        return self._rows(Qf, Vf, Af, g).reshape(shape)
+
+    def _rows(self, Q: np.ndarray, V: np.ndarray, A: np.ndarray, g: np.ndarray) -> np.ndarray:
+        """τ at the states ``(m, n)`` with gravity ``(3,)`` or ``(m, 3)``: the numeric
+        recursion, or for a small call after :data:`COMPILE_AFTER` of them the compiled
+        program state by state (plain floats)."""
+        m = Q.shape[0]
+        if m <= SMALL:
+            self._small += 1
+            if self._small > COMPILE_AFTER:
+                G = np.broadcast_to(g, (m, 3))
+                return np.stack([self._compiled(Q[i], V[i], A[i], G[i]) for i in range(m)])
+        if self._recursion is None:
+            self._recursion = numeric_recursion(self.model)
+        return self._recursion.tau(Q, V, A, g)
 
     def _columns(self, Q: np.ndarray, V: np.ndarray, A: np.ndarray, g: np.ndarray) -> np.ndarray:
         """τ at the states ``Q`` ``(..., n)`` for each of the ``K`` rates and accelerations
@@ -219,10 +255,8 @@ class DynamicsFunctions:
             accs[j + 1, ..., j] = 1.0
         gravity = np.zeros((*shape[:-1], 3))
         gravity[0] = self.gravity
-        if self._recursion is None:
-            self._recursion = numeric_recursion(self.model)
         Qf, Vf, Af = (np.broadcast_to(x, shape).reshape(-1, n) for x in (Q, rates, accs))
-        out = self._recursion.tau(Qf, Vf, Af, gravity.reshape(-1, 3)).reshape(shape)
+        out = self._rows(Qf, Vf, Af, gravity.reshape(-1, 3)).reshape(shape)
         bias = out[0] + self.friction(V) if self.has_friction else out[0]
         M = np.moveaxis(out[1:], 0, -1)
         return np.linalg.solve(M, (T - bias)[..., None])[..., 0]
@@ -282,8 +316,16 @@ def dynamics_functions(
 ) -> DynamicsFunctions:
     """The numeric dynamics of ``robot`` with the table's values and ``values`` (numbers
     for lengths and inertial symbols; the model: :func:`numeric_model`), evaluated by the
-    numeric recursion (:mod:`.numeric_recursion`): nothing is derived or compiled."""
-    return DynamicsFunctions(numeric_model(robot, values, textbook=textbook))
+    numeric recursion (:mod:`.numeric_recursion`): nothing is derived before the first
+    numbers. A long run of small calls (a simulation) compiles τ after
+    :data:`COMPILE_AFTER` of them, the program kept in the disk cache (:mod:`dhsym.cache`)
+    named by the table, ``values`` and ``textbook``."""
+    from dhsym.cache.keys import entry_name
+    from dhsym.model.table import symbol_values
+
+    given = sorted(f"{sp.srepr(k)}={sp.srepr(v)}" for k, v in symbol_values(values).items())
+    entry = entry_name(robot.table, "rne", f"textbook={textbook}", *given)
+    return DynamicsFunctions(numeric_model(robot, values, textbook=textbook), entry=entry)
 
 
 def numeric_model(

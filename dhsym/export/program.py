@@ -645,7 +645,7 @@ def _shared_lines(
             else:
                 rest.append((s, e))
         pending = rest
-    alias = {}  # a line that only renames another is no line
+    alias: dict[sp.Basic, sp.Basic] = {}  # a line that only renames another is no line
     for s, e in ordered:
         if e.is_Symbol:
             alias[s] = alias.get(e, e)

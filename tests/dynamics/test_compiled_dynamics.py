@@ -341,3 +341,31 @@ def test_batches_longer_than_a_chunk_equal_their_states():
     tau = robot.rne(Q, V, A)
     for k in (0, CHUNK - 1, CHUNK, CHUNK + 2):
         np.testing.assert_allclose(tau[k], robot.rne(Q[k], V[k], A[k]), rtol=1e-12, atol=1e-12)
+
+
+def test_a_long_run_of_small_calls_switches_to_the_compiled_program_with_the_same_numbers(
+    tmp_path, monkeypatch
+) -> None:
+    """After COMPILE_AFTER small calls τ comes from the compiled program (kept in the disk
+    cache), and agrees with the numeric recursion; batches stay on the recursion."""
+    from dhsym.dynamics import compiled_dynamics as cd
+
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path / "c"))
+    monkeypatch.delenv("DHSYM_NO_CACHE", raising=False)
+    monkeypatch.setattr(cd, "COMPILE_AFTER", 3)
+    f = cd.dynamics_functions(arm("standard", prismatic=True))
+    rng = np.random.default_rng(5)
+    q, qd, qdd = rng.uniform(-1, 1, (3, 4))
+    before = [f.rne(q, qd, qdd) for _ in range(3)]
+    assert f._compiled._program is None  # not compiled yet
+    after = f.rne(q, qd, qdd)
+    assert f._compiled._program is not None
+    np.testing.assert_allclose(after, before[0], rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(f.accel(q, qd, after), qdd, rtol=1e-9, atol=1e-10)
+    batch = rng.uniform(-1, 1, (100, 4))
+    np.testing.assert_allclose(
+        f.rne(batch, batch, batch)[7], f.rne(batch[7], batch[7], batch[7]), rtol=1e-10, atol=1e-12
+    )
+    warm = cd.dynamics_functions(arm("standard", prismatic=True))
+    monkeypatch.setattr(cd, "COMPILE_AFTER", 0)
+    np.testing.assert_allclose(warm.rne(q, qd, qdd), after, rtol=1e-12, atol=1e-14)
