@@ -36,17 +36,23 @@ b'[1, 2]' None None
 from __future__ import annotations
 
 import hmac
+import json
 import os
 import re
 import secrets
 import shutil
 import stat
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TypeVar
 
-__all__ = ["CacheInfo", "Store", "cache_enabled", "cache_root", "default_store"]
+from dhsym.errors import DHError
+
+__all__ = ["CacheInfo", "Store", "cache_enabled", "cache_root", "default_store", "derived_once"]
+
+T = TypeVar("T")
 
 _NAME = re.compile(r"[a-z][a-z0-9_]{0,31}-[0-9a-f]{16,64}(\.[a-z]{1,8})?")
 _KEY_BYTES = 32
@@ -73,6 +79,71 @@ def cache_enabled() -> bool:
 def default_store() -> Store | None:
     """The store of :func:`cache_root`, or ``None`` when the cache is turned off."""
     return Store(cache_root()) if cache_enabled() else None
+
+
+def derived_once(
+    name: Callable[[], str],
+    derive: Callable[[], T],
+    write: Callable[[T], bytes | None],
+    read: Callable[[bytes], T | None],
+    refusal: type[DHError],
+) -> T:
+    """``derive()``, kept in :func:`default_store` as entry ``name()``: a later process reads
+    it back (verified) with ``read`` instead (``None`` from ``read``: not what this version
+    writes, derived again and rewritten). ``write`` gives the bytes to keep (``None``:
+    kept in this process only). A ``refusal`` that ``derive`` raises is kept too, as its
+    message, and raised again without deriving. With the cache off: ``derive()``.
+
+    >>> import tempfile
+    >>> from dhsym.errors import TableError
+    >>> def derive():
+    ...     print("derived")
+    ...     return 42
+    >>> def once():
+    ...     return derived_once(lambda: "answer-" + "0" * 16, derive, lambda v: b"%d" % v,
+    ...                         lambda data: int(data), TableError)
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     os.environ["DHSYM_CACHE"] = tmp
+    ...     try:
+    ...         print(once(), once())
+    ...     finally:
+    ...         del os.environ["DHSYM_CACHE"]
+    derived
+    42 42
+    """
+    store = default_store()
+    if store is None:
+        return derive()
+    entry = name()
+    data = store.read(entry)
+    if data is not None:
+        refused = _refusal(data)
+        if refused is not None:
+            raise refusal(refused)
+        found = read(data)
+        if found is not None:
+            return found
+    try:
+        value = derive()
+    except refusal as err:  # a refusal found after seconds of work is kept too
+        store.write(entry, json.dumps({"refused": err.message}).encode())
+        raise
+    kept = write(value)
+    if kept is not None:
+        store.write(entry, kept)
+    return value
+
+
+def _refusal(data: bytes) -> str | None:
+    """The message of a kept refusal (``{"refused": message}``), else ``None``."""
+    if not data.startswith(b'{"refused"'):
+        return None
+    try:
+        doc = json.loads(data)
+    except ValueError:
+        return None
+    refused = doc.get("refused") if isinstance(doc, dict) else None
+    return refused if isinstance(refused, str) else None
 
 
 @dataclass(frozen=True)
