@@ -164,12 +164,16 @@ def derived_once(
     >>> def once():
     ...     return derived_once(lambda: "answer-" + "0" * 16, derive, lambda v: b"%d" % v,
     ...                         lambda data: int(data), TableError)
+    >>> before = os.environ.get("DHSYM_CACHE")
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     os.environ["DHSYM_CACHE"] = tmp
     ...     try:
     ...         print(once(), once())
     ...     finally:
-    ...         del os.environ["DHSYM_CACHE"]
+    ...         if before is None:
+    ...             del os.environ["DHSYM_CACHE"]
+    ...         else:
+    ...             os.environ["DHSYM_CACHE"] = before
     derived
     42 42
     """
