@@ -8,15 +8,16 @@ wall time and the median CPU time (user + system of the process: less disturbed 
 work on a shared machine), each also as a ratio to the reference's, and the load average
 before and after.
 
-The first answers (``dhsym check … ik@…`` on the PUMA 560, ``puma.ik(T)``,
-``puma.rne(q, qd, qdd)``, the Panda's IK with joint 7 given) run twice each way: *cold*
+The first answers (``dhsym check … ik@…`` on the PUMA 560, ``ik(T)`` of the PUMA 560, the
+UR5 and the Stanford arm, ``puma.rne(q, qd, qdd)``, the Panda's IK with joint 7 given; ``--only
+WORD`` keeps those whose name holds the word) run twice each way: *cold*
 with ``DHSYM_CACHE`` an empty temporary folder of its own (everything derived, compiled and
 written to the disk cache), *warm* with a folder a cold run filled (dhsym.cache: read back
 and verified). The startup table runs with an empty cache folder of its own (a command
 that reads nothing from it measures the same either way).
 
     python benchmarks/bench_cli.py [--runs 9] [--cold-runs 1] [--no-first | --first-only]
-                                   [--python PATH]
+                                   [--only WORD] [--python PATH]
 
 ``--python`` takes the interpreter of another environment (for instance a fresh venv
 with only the wheel installed: there is no editable-install finder to import).
@@ -62,6 +63,7 @@ def commands(answer: Path) -> dict[str, list[str]]:
 
 Q = "0.3,-0.5,0.4,0.2,0.7,-1.1"
 _PUMA = f"import dhsym, numpy as np; r = dhsym.load('puma560'); q = np.array([{Q}]); "
+_ARM = "import dhsym, numpy as np; r = dhsym.load('{}'); q = np.array([" + Q + "]); "
 _PANDA = "import dhsym, numpy as np; r = dhsym.load('panda'); "
 _PANDA += "q = np.array([0.3, -0.5, 0.4, -1.9, 0.7, 1.6, 0.6]); "
 
@@ -82,6 +84,8 @@ def first_answers(answer: Path) -> dict[str, list[str]]:
             str(answer),
         ],
         "puma.ik(T)": ["-c", _PUMA + "assert len(r.ik(r.fk(q)).q) == 8"],
+        "ur5.ik(T)": ["-c", _ARM.format("ur5") + "assert len(r.ik(r.fk(q)).q) == 8"],
+        "stanford.ik(T)": ["-c", _ARM.format("stanford") + "assert len(r.ik(r.fk(q)).q) == 8"],
         "puma.rne(q, qd, qdd)": ["-c", _PUMA + "assert r.rne(q, q, q).shape == (6,)"],
         "panda.ik(T, free={7: q7})": [
             "-c",
@@ -168,6 +172,9 @@ def main() -> None:
     parser.add_argument(
         "--first-only", action="store_true", help="the first answers only (no startup table)"
     )
+    parser.add_argument(
+        "--only", default="", help="the first answers whose name holds this word (ik, rne, …)"
+    )
     parser.add_argument("--python", default=sys.executable, help="interpreter to run")
     args = parser.parse_args()
 
@@ -191,6 +198,8 @@ def main() -> None:
             joints = Path(cwd) / "joints.txt"
             joints.write_text(Q.replace(",", ", "))
             first = first_answers(joints)
+            ref, *rest = first
+            first = {k: v for k, v in first.items() if k == ref or args.only in k}
             first_wall, first_cpu = first_answer_rounds(
                 args.python, first, cwd, args.runs, args.cold_runs
             )

@@ -110,9 +110,11 @@ class CodecError(ValueError):
 def write_exprs(items: Sequence[Any], extra: Mapping[str, type] | None = None) -> str:
     """The JSON document of ``items`` (expressions and matrices), each shared node once.
 
-    ``extra`` names more classes (a dhsym ``Function``) the document may apply; the
-    reader must be given the same. Raises :class:`CodecError` for what it cannot write
-    (a ``Dummy``, an undefined function, a class outside the table).
+    ``extra`` names more classes (a dhsym ``Function``, or an undefined function such as
+    the ``R_z`` of :data:`dhsym.notation.layout.WORD_FUNCTIONS`, given as that very class)
+    the document may apply; the reader must be given the same. Raises :class:`CodecError`
+    for what it cannot write (a ``Dummy``, another undefined function, a class outside the
+    table).
     """
     classes = {**CLASSES, **(extra or {})}
     nodes: list[Any] = []
@@ -163,7 +165,9 @@ def _node(e: sp.Basic, index: Mapping[sp.Basic, int], classes: Mapping[str, type
         text = sp.srepr(e)  # Float('0.25', precision=53): the exact round trip sympy defines
         digits = text[len("Float('") : text.index("'", len("Float('"))]
         return ["F", digits, int(e._prec)]
-    if isinstance(e, sp.Dummy) or isinstance(e, AppliedUndef):
+    if isinstance(e, sp.Dummy) or (
+        isinstance(e, AppliedUndef) and classes.get(type(e).__name__) is not type(e)
+    ):
         raise CodecError(f"{type(e).__name__} {e} cannot be written (no stable name)")
     if isinstance(e, sp.Symbol):
         if type(e) is not sp.Symbol:

@@ -46,6 +46,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -416,13 +417,26 @@ def native_program(
     fn = getattr(lib, _NATIVE)
     fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int, ctypes.c_void_p]
     fn.restype = None
-    size = len(outputs)
+    # one buffer for the two poses and one for the outputs, made once: a call copies the
+    # poses in and reads the outputs out (no array made, no address looked up per call);
+    # the lock keeps threads that share the solver from sharing the buffers at once
+    poses = (ctypes.c_double * 32)()
+    out = (ctypes.c_double * len(outputs))()
+    inner_in = np.frombuffer(memoryview(poses), dtype=float, count=16).reshape(4, 4)
+    pose_in = np.frombuffer(memoryview(poses), dtype=float, count=16, offset=128).reshape(4, 4)
+    pose_at = ctypes.byref(poses, 128)
+    values_out = np.frombuffer(memoryview(out), dtype=float)
+    lock = threading.Lock()
 
     def run(inner: np.ndarray, pose: np.ndarray, stretch: bool) -> list[float]:
-        out = np.empty(size)
-        at = _address(inner)
-        fn(at, at if pose is inner else _address(pose), stretch, _address(out))
-        values: list[float] = out.tolist()
+        with lock:
+            inner_in[...] = inner
+            if pose is inner:
+                fn(poses, poses, stretch, out)
+            else:
+                pose_in[...] = pose
+                fn(poses, pose_at, stretch, out)
+            values: list[float] = values_out.tolist()
         return values
 
     run.library = lib  # type: ignore[attr-defined]  # kept alive with the function

@@ -40,6 +40,7 @@ from .closed_form import ClosedForm
 from .closed_form_solver import ClosedFormSolver
 from .families import inverse
 from .general6r import Elimination, EliminationSolver
+from .kept_derivations import kept_inverse
 from .levenberg_marquardt import DESCRIPTION, numeric_solutions
 from .protocols import IKSolver, NativeCompiler
 from .solution import IKSolution
@@ -175,14 +176,15 @@ class IKCache:
     _failure: str | None = field(default=None, init=False, repr=False)
 
     def inverse(self) -> ClosedForm | Elimination:
-        """The derivation, step by step (:func:`dhsym.ik.families.inverse`), cached; so is
-        the :class:`~dhsym.kinematics.decoupling.StructureError` of a chain without one
-        (raised again, not derived again)."""
+        """The derivation, step by step (:func:`dhsym.ik.families.inverse`), cached here and
+        in the disk cache (:func:`dhsym.ik.kept_derivations.kept_inverse`: a later process
+        reads it); so is the :class:`~dhsym.kinematics.decoupling.StructureError` of a
+        chain without one (raised again, not derived again)."""
         if self._failure is not None:
             raise StructureError(self._failure)
         if self._inverse is None:
             try:
-                self._inverse = inverse(self.chain)
+                self._inverse = kept_inverse(self.chain, inverse)
             except StructureError as err:
                 self._failure = err.message
                 raise

@@ -470,28 +470,19 @@ def singularities(robot: KinematicChain) -> Singularities:
     det(J J^T)
     """
     from dhsym.cache.keys import entry_name
-    from dhsym.cache.store import default_store
+    from dhsym.cache.store import derived_once
 
-    store = default_store()
-    name = entry_name(robot.table, "singularities")
-    if store is not None:
-        data = store.read(name)
-        found = stored_singularities(data, robot) if data is not None else None
-        if isinstance(found, StructureError):
-            raise found
-        if found is not None:
-            return found
-    try:
-        result = _derive(robot)
-    except StructureError as err:  # a refusal found after seconds of work is kept too
-        if store is not None:
-            store.write(name, json.dumps({"refused": err.message}).encode())
-        raise
-    if store is not None:
-        data = singularities_data(result)
-        if data is not None:
-            store.write(name, data)
-    return result
+    def read(data: bytes) -> Singularities | None:
+        found = stored_singularities(data, robot)
+        return found if isinstance(found, Singularities) else None
+
+    return derived_once(
+        lambda: entry_name(robot.table, "singularities"),
+        lambda: _derive(robot),
+        singularities_data,
+        read,
+        StructureError,
+    )
 
 
 def singularities_data(result: Singularities) -> bytes | None:

@@ -40,6 +40,7 @@ if TYPE_CHECKING:  # the model imports this room at call time (a table's view): 
 __all__ = [
     "LATEX_WIDTH",
     "TEXT_WIDTH",
+    "WORD_FUNCTIONS",
     "Equation",
     "LegendLine",
     "Math",
@@ -73,6 +74,10 @@ TEXT_WIDTH = 100
 _OPS = MappingProxyType(
     {(k, a): sp.Function(f"{k}_{a}", commutative=False) for k in "RT" for a in "xyz"}
 )
+
+#: The non-commuting factors of :func:`word_expr` by name (``R_z``, ``T_x``, …): the classes
+#: a stored derivation's sentences may apply (:func:`dhsym.cache.codec.read_exprs`).
+WORD_FUNCTIONS = MappingProxyType({f.__name__: f for f in _OPS.values()})
 
 _ENTRY_NAMES = [
     (f"r_{{{r + 1}{c + 1}}}", f"r{r + 1}{c + 1}") for r in range(3) for c in range(3)

@@ -67,6 +67,23 @@ def test_what_cannot_be_written_is_refused(item):
         write_exprs([item])
 
 
+def test_an_undefined_function_is_written_only_as_the_class_given():
+    """The derivations' non-commuting ``R_z``, ``T_x`` (dhsym.notation.layout): written and
+    read back when the very class is given; one of the same name but another class is not."""
+    from dhsym.model.table import Elementary
+    from dhsym.notation.layout import WORD_FUNCTIONS, word_expr
+
+    t = sp.Symbol("theta4", real=True)
+    word = word_expr([Elementary("R", "z", t), Elementary("T", "x", sp.Symbol("a3"))])
+    (back,) = read_exprs(write_exprs([word], WORD_FUNCTIONS), WORD_FUNCTIONS)
+    assert back == word and sp.srepr(back) == sp.srepr(word) and not back.is_commutative
+    with pytest.raises(CodecError):
+        write_exprs([word])
+    other = sp.Function("R_z")(t)
+    with pytest.raises(CodecError):
+        write_exprs([other], WORD_FUNCTIONS)
+
+
 def _doc(nodes, roots=(0,)):
     return json.dumps({"format": "dhsym-exprs 1", "nodes": nodes, "roots": list(roots)})
 

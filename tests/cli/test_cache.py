@@ -1,4 +1,4 @@
-"""``dhsym cache info|clear`` and ``--no-cache`` (dhsym.cli.cache)."""
+"""``dhsym cache info|clear|trim`` and ``--no-cache`` (dhsym.cli.cache)."""
 
 from __future__ import annotations
 
@@ -26,6 +26,30 @@ def test_info_and_clear(tmp_path, monkeypatch, capsys):
     assert "removed 1 entry" in capsys.readouterr().out
     assert main(["cache", "info"]) == 0
     assert "entries: 0" in capsys.readouterr().out
+
+
+def test_trim_to_a_size(tmp_path, monkeypatch, capsys):
+    _fill(tmp_path, monkeypatch)
+    Store(tmp_path / "c").write("rne-" + "b" * 64, b"678")
+    old = tmp_path / "c" / "entries" / ("rne-" + "a" * 64)
+    os.utime(old, (0, 0))  # the least recently used
+    assert main(["cache", "info"]) == 0
+    assert "limit:   536,870,912 bytes" in capsys.readouterr().out
+    assert main(["cache", "trim"]) == 0  # within the limit: nothing to do
+    assert "removed 0 entries" in capsys.readouterr().out
+    assert main(["cache", "trim", "--max-size", "4"]) == 0
+    out = capsys.readouterr().out
+    assert "removed 1 entry (5 bytes)" in out and "3 bytes left (at most 4)" in out
+    assert not old.exists() and (tmp_path / "c" / "entries" / ("rne-" + "b" * 64)).exists()
+    assert main(["cache", "trim", "--max-size", "lots"]) == 2
+    assert "--max-size: not a size: 'lots'" in capsys.readouterr().err
+
+
+def test_the_limit_from_the_environment(tmp_path, monkeypatch, capsys):
+    _fill(tmp_path, monkeypatch)
+    monkeypatch.setenv("DHSYM_CACHE_SIZE", "1k")
+    assert main(["cache", "info"]) == 0
+    assert "limit:   1,024 bytes" in capsys.readouterr().out
 
 
 def test_no_cache_turns_the_store_off_for_the_command_only(tmp_path, monkeypatch, capsys):

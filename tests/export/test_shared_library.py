@@ -189,6 +189,27 @@ def test_native_program_agrees_with_the_numpy_path(name):
     assert len(served) >= 37 and True in served and False in served
 
 
+def test_native_program_shared_by_threads_gives_each_its_own_answer():
+    """The program copies the poses into one buffer made once: threads that call it at
+    once each get the outputs of their own pose (a lock), as one thread calling in turn."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    _need("a C compiler", shared_library.native_compiler(), "apt-get install gcc")
+    robot = dhsym.load("puma560")
+    solver = robot.ik_cache().solver()
+    built = solver.native(now=True)
+    assert built is not None
+    poses = robot.fk(np.random.default_rng(11).uniform(-3.0, 3.0, (64, 6)))
+    inner = [np.ascontiguousarray(solver._inner(T)) for T in poses]
+    rounded = [np.round(T, 3) for T in poses]  # another pose given: the second buffer
+    calls = [(a, a, False) for a in inner] + [(a, b, True) for a, b in zip(inner, rounded)]
+    serial = [built(*c) for c in calls]
+    assert len({tuple(v) for v in serial}) == len(calls)  # each pose its own outputs
+    with ThreadPoolExecutor(4) as pool:
+        for _ in range(5):
+            assert list(pool.map(lambda c: built(*c), calls)) == serial
+
+
 def test_no_compile_forces_the_numpy_path(tmp_path):
     env = dict(os.environ, DHSYM_NO_COMPILE="1", DHSYM_CACHE=str(tmp_path))
     code = (
