@@ -363,7 +363,15 @@ def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
     )
     first = diagnoses[0]
     message = f"{what}. Most likely: {first.title}. {first.detail}"
-    return CheckResult(q.spec, Verdict.INCORRECT, message, entries, diagnoses, key=key.name)
+    given = result[1]  # each key branch given or not, at the verdict's own poses
+    branches = (
+        tuple((names[k], bool(given.given[k])) for k in np.flatnonzero(given.exists))
+        if q.every
+        else ()
+    )
+    return CheckResult(
+        q.spec, Verdict.INCORRECT, message, entries, diagnoses, key=key.name, branches=branches
+    )
 
 
 def _close(a: np.ndarray, b: np.ndarray, revolute: np.ndarray, tol: np.ndarray) -> np.ndarray:
@@ -382,13 +390,16 @@ class _Match:
     ``hits[a, k, p]``: row ``a`` is branch ``k`` at point ``p``; ``branch[a]`` the branch a
     row is at every point (None: none, or it changes with the pose); ``wrong`` the rows that
     are no solution at some point; ``covered`` True when every distinct branch is given at
-    every point.
+    every point; ``given[k]`` True when the rows that are solutions give branch ``k`` (or
+    one equal to it) at every point where it exists, ``exists[k]`` when it exists at some.
     """
 
     hits: np.ndarray
     branch: dict[int, int | None]
     wrong: list[int]
     covered: bool
+    given: np.ndarray
+    exists: np.ndarray
 
 
 def _match(
@@ -437,7 +448,16 @@ def _match(
             for p in range(sample.size)
         )
     )
-    return _Match(hits, branch, wrong, covered)
+    right_rows = [a for a in range(len(answers)) if a not in wrong]
+    solved = hits[right_rows].any(axis=0) if right_rows else np.zeros_like(real)
+    each = np.array(
+        [
+            all((same[k, :, p] & solved[:, p]).any() or not real[k, p] for p in range(sample.size))
+            for k in range(len(key))
+        ],
+        dtype=bool,
+    )
+    return _Match(hits, branch, wrong, covered, each, real.any(axis=1))
 
 
 #: The fewest poses of a sample at which a key branch must exist for an answer to be judged
