@@ -267,7 +267,7 @@ def render_handout(
 
 def _sheet_items(
     robots: Sequence[Robot | str | Path | Derivation],
-    wanted: list[str],
+    wanted: Sequence[str],
     title: str | None,
     figures: dict[str, str] | None,
     options: dict[str, Any],

@@ -614,8 +614,9 @@ def _forks(sock: socket.socket, states: dict[Callable[[], object], object]) -> N
                 os.close(f)
             sock.sendall(_PID.pack(pid))
         elif op == b"R":
-            pid, flags = _PID.unpack(_recv_exact(sock, _PID.size)), _recv_exact(sock, 1)[0]
-            sock.sendall(_PID.pack(_reap_child(pid[0], flags)))
+            (child,) = _PID.unpack(_recv_exact(sock, _PID.size))
+            flags = _recv_exact(sock, 1)[0]
+            sock.sendall(_PID.pack(_reap_child(child, flags)))
 
 
 def _reap_child(pid: int, flags: int) -> int:

@@ -449,14 +449,15 @@ def _match(
         )
     )
     right_rows = [a for a in range(len(answers)) if a not in wrong]
-    solved = hits[right_rows].any(axis=0) if right_rows else np.zeros_like(real)
+    solved: np.ndarray = (
+        np.asarray(hits[right_rows].any(axis=0)) if right_rows else np.zeros_like(real)
+    )
     each = np.array(
         [
             all((same[k, :, p] & solved[:, p]).any() or not real[k, p] for p in range(sample.size))
             for k in range(len(key))
-        ],
-        dtype=bool,
-    )
+        ]
+    ).astype(bool)
     return _Match(hits, branch, wrong, covered, each, real.any(axis=1))
 
 
