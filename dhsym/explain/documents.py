@@ -248,21 +248,9 @@ def render_handout(
     items, title = _sheet_items(robots, wanted, title, figures, options)
     own = (r.notation.style for r in robots if isinstance(r, Robot))
     nota = Notation(style=options.get("notation") or next(own, TrigStyle.UPPER))
-    env = environment("latex", template_dir)
-    return render_template(
-        env,
-        "handout.tex.j2",
-        items=items,
-        sections=wanted,
-        title=title,
-        course=course,
-        author=author,
-        date=date,
-        mode=mode,
-        convention_note=convention_note,
-        general={c: general_link(c, nota) for c in ("standard", "modified")},
-        abbrev=_abbreviations(nota),
-    )
+    sheet = {"items": items, "title": title, "author": author}
+    common = dict(course=course, date=date, mode=mode, convention_note=convention_note)
+    return _render_handout(template_dir, nota, wanted, sheet, None, **common)
 
 
 def _sheet_items(
@@ -343,20 +331,29 @@ def render_sheets(
         parts.append({"items": items, "title": title, "author": sheet.author})
     first = [as_robot(r) for r in sheets[0].robots]
     style = options.get("notation") or (first[0].notation.style if first else TrigStyle.UPPER)
-    nota = Notation(style=style)
+    common = dict(course=course, date=date, mode=mode, convention_note=convention_note)
+    return _render_handout(template_dir, Notation(style=style), wanted, parts[0], parts, **common)
+
+
+def _render_handout(
+    template_dir: str | Path | None,
+    nota: Notation,
+    wanted: Sequence[str],
+    sheet: dict[str, Any],
+    sheets: list[dict[str, Any]] | None,
+    **common: Any,  # course, date, mode, convention_note
+) -> str:
+    """The handout template rendered: one sheet (``items``, ``title``, ``author``), or
+    ``sheets`` merged (the first is also the context's)."""
     env = environment("latex", template_dir)
+    merged = {"sheets": sheets} if sheets is not None else {}
     return render_template(
         env,
         "handout.tex.j2",
-        sheets=parts,
-        items=parts[0]["items"],
+        **merged,
+        **sheet,
         sections=wanted,
-        title=parts[0]["title"],
-        course=course,
-        author=parts[0]["author"],
-        date=date,
-        mode=mode,
-        convention_note=convention_note,
+        **common,
         general={c: general_link(c, nota) for c in ("standard", "modified")},
         abbrev=_abbreviations(nota),
     )

@@ -172,12 +172,7 @@ class Sandbox:
             proc.kill()
         except OSError:
             pass
-        for stream in (proc.stdin, proc.stdout):
-            try:
-                if stream is not None:
-                    stream.close()
-            except OSError:
-                pass
+        _close_streams(proc)
         try:
             proc.wait(timeout=10)
         except subprocess.TimeoutExpired:
@@ -443,12 +438,7 @@ class Template:
                 pass
         proc, self.proc = self.proc, None
         if proc is not None:
-            for stream in (proc.stdin, proc.stdout):
-                try:
-                    if stream is not None:
-                        stream.close()
-                except OSError:
-                    pass
+            _close_streams(proc)
             try:
                 proc.wait(timeout=10)  # it ends when its socket closes
             except subprocess.TimeoutExpired:
@@ -476,6 +466,16 @@ def _recv_exact(sock: socket.socket, n: int) -> bytes:
             raise _Gone
         data += chunk
     return data
+
+
+def _close_streams(proc: subprocess.Popen[bytes] | _Forked) -> None:
+    """Close a child's stdin and stdout (ours: the parent's ends of its pipes)."""
+    for stream in (proc.stdin, proc.stdout):
+        try:
+            if stream is not None:
+                stream.close()
+        except OSError:
+            pass
 
 
 class _Forked:
