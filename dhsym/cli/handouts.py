@@ -72,7 +72,7 @@ def _with_values(robots: list[Robot], text: str | None, figure: bool, **style: A
 def _cmd_sheets(args: argparse.Namespace) -> int:
     """``handout hw.yaml --variants class.csv -o FOLDER``: a problem sheet per student."""
     from dhsym.checking.grading.assignment import Assignment
-    from dhsym.checking.grading.sheets import write_sheets
+    from dhsym.checking.grading.sheets import write_merged, write_sheets
     from dhsym.checking.grading.variants import ClassList
     from dhsym.errors import DHError
 
@@ -86,11 +86,10 @@ def _cmd_sheets(args: argparse.Namespace) -> int:
     for flag in ("figure", "values", "numeric"):
         if getattr(args, flag):
             raise DHError(f"--{flag} does not apply to --variants (each student has their values)")
-    written = write_sheets(
-        Assignment.load(args.robots[0]),
-        ClassList.load(args.variants),
-        args.output,
-        pdf=args.pdf,
+    if args.merged is not None and not args.merged.lower().endswith((".tex", ".pdf")):
+        raise DHError("--merged names one .tex or .pdf file for all the sheets")
+    assignment, roster = Assignment.load(args.robots[0]), ClassList.load(args.variants)
+    options = dict(
         sections=[s.strip() for s in args.sections.split(",") if s.strip()],
         course=args.course or "",
         date=args.date or "",
@@ -98,6 +97,9 @@ def _cmd_sheets(args: argparse.Namespace) -> int:
         notation=args.notation,
         compact=not args.full,
     )
+    written = write_sheets(assignment, roster, args.output, pdf=args.pdf, **options)
+    if args.merged is not None:
+        written.append(write_merged(assignment, roster, args.merged, **options))
     for path in written:
         wrote(path)
     return 0
@@ -224,6 +226,13 @@ def _register_handout(subparsers: argparse._SubParsersAction[argparse.ArgumentPa
         metavar="CLASS",
         help="with an assignment (hw.yaml) instead of robots: one problem sheet per student "
         "of the class list (CSV), with their values; -o names the folder",
+    )
+    h.add_argument(
+        "--merged",
+        default=None,
+        metavar="FILE.pdf",
+        help="with --variants: also every student's sheet in one document (a .pdf is "
+        "compiled, a .tex written), each sheet on new pages",
     )
     h.set_defaults(func=_cmd_handout)
 

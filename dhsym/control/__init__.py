@@ -18,8 +18,8 @@ from .controllers import (
     error_equation,
     gains,
 )
-from .tracking_plots import plot_torques, plot_tracking_error
 from .simulation import ClosedLoop, scaled_model, simulate
+from .tracking_plots import plot_torques, plot_tracking_error
 
 __all__ = [
     "PD",

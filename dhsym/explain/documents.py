@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
 from typing import Any
@@ -46,9 +47,11 @@ from .velocity_kinematics import derive_jacobian, derive_singularities
 __all__ = [
     "SECTION_TITLES",
     "WHAT",
+    "HandoutSheet",
     "document",
     "render_derivation",
     "render_handout",
+    "render_sheets",
     "write_handout",
 ]
 
@@ -242,9 +245,24 @@ def render_handout(
     if unknown:
         raise DHError(f"unknown handout option(s): {', '.join(sorted(unknown))}")
     wanted = _sections(sections)
-    built = [_item_documents(r, wanted, options) for r in robots]
+    items, title = _sheet_items(robots, wanted, title, figures, options)
     own = (r.notation.style for r in robots if isinstance(r, Robot))
     nota = Notation(style=options.get("notation") or next(own, TrigStyle.UPPER))
+    sheet = {"items": items, "title": title, "author": author}
+    common = dict(course=course, date=date, mode=mode, convention_note=convention_note)
+    return _render_handout(template_dir, nota, wanted, sheet, None, **common)
+
+
+def _sheet_items(
+    robots: Sequence[Robot | str | Path | Derivation],
+    wanted: Sequence[str],
+    title: str | None,
+    figures: dict[str, str] | None,
+    options: dict[str, Any],
+) -> tuple[list[dict[str, Any]], str]:
+    """The handout's items (a robot each: its derivations, key and figure) and its title
+    (the sections and robots' names when not given)."""
+    built = [_item_documents(r, wanted, options) for r in robots]
     keys = _unique_keys([fk.name for fk, _ in built])
     items = [
         {
@@ -261,18 +279,81 @@ def render_handout(
         heads = [SECTION_TITLES[w] for w in wanted]
         heads = heads[:1] + [h[:1].lower() + h[1:] for h in heads[1:]]
         title = ", ".join(heads) + ": " + ", ".join(fk.name for fk, _ in built)
+    return items, title
+
+
+@dataclass(frozen=True)
+class HandoutSheet:
+    """One sheet of a merged handout (:func:`render_sheets`): its robots, title, author,
+    and the derivations' options that are its own (``check``: the joint values of its
+    numeric check and of its IK pose)."""
+
+    robots: tuple[Robot | str | Path, ...]
+    title: str | None = None
+    author: str = ""
+    check: Sequence[object] | bool | None = None
+
+
+def render_sheets(
+    sheets: Sequence[HandoutSheet],
+    *,
+    course: str = "",
+    date: str = "",
+    mode: str = "problems",
+    sections: Sequence[str] | str = ("fk",),
+    convention_note: bool = False,
+    template_dir: str | Path | None = None,
+    **options: Any,  # the derivations' keywords, as render_handout's
+) -> str:
+    r"""Several handouts as one LaTeX document, from the one handout template: each sheet
+    starts on a new page, its pages and sections numbered from 1 (a class's problem
+    sheets, one per student, to print at once).
+
+    >>> tex = render_sheets([HandoutSheet(("planar2r",), "HW", "Ada"),
+    ...                      HandoutSheet(("planar2r",), "HW", "Bo")])
+    >>> tex.count(r"\documentclass"), tex.count(r"\setcounter{page}{1}"), tex.count("Bo")
+    (1, 2, 1)
+    """
+    if not sheets:
+        raise DHError("a merged handout needs at least one sheet")
+    if mode not in ("answers", "problems"):
+        raise DHError(f"unknown mode {mode!r}: expected 'answers' or 'problems'")
+    unknown = set(options) - set(_DERIVE_OPTIONS) - {"frame", "point"}
+    if unknown:
+        raise DHError(f"unknown handout option(s): {', '.join(sorted(unknown))}")
+    if "check" in options:
+        raise DHError("check is each sheet's own: HandoutSheet(..., check=...)")
+    wanted = _sections(sections)
+    parts = []
+    for sheet in sheets:
+        own = {**options, **({"check": sheet.check} if sheet.check is not None else {})}
+        items, title = _sheet_items(sheet.robots, wanted, sheet.title, None, own)
+        parts.append({"items": items, "title": title, "author": sheet.author})
+    first = [as_robot(r) for r in sheets[0].robots]
+    style = options.get("notation") or (first[0].notation.style if first else TrigStyle.UPPER)
+    common = dict(course=course, date=date, mode=mode, convention_note=convention_note)
+    return _render_handout(template_dir, Notation(style=style), wanted, parts[0], parts, **common)
+
+
+def _render_handout(
+    template_dir: str | Path | None,
+    nota: Notation,
+    wanted: Sequence[str],
+    sheet: dict[str, Any],
+    sheets: list[dict[str, Any]] | None,
+    **common: Any,  # course, date, mode, convention_note
+) -> str:
+    """The handout template rendered: one sheet (``items``, ``title``, ``author``), or
+    ``sheets`` merged (the first is also the context's)."""
     env = environment("latex", template_dir)
+    merged = {"sheets": sheets} if sheets is not None else {}
     return render_template(
         env,
         "handout.tex.j2",
-        items=items,
+        **merged,
+        **sheet,
         sections=wanted,
-        title=title,
-        course=course,
-        author=author,
-        date=date,
-        mode=mode,
-        convention_note=convention_note,
+        **common,
         general={c: general_link(c, nota) for c in ("standard", "modified")},
         abbrev=_abbreviations(nota),
     )

@@ -70,3 +70,8 @@ def count_calls(_: object, state: Counter) -> tuple[int, int]:
     """(this process's id, the number of jobs its state has seen, this one included)."""
     state.calls += 1
     return os.getpid(), state.calls
+
+
+def warm_counter(state: Counter) -> None:
+    """Warm a :class:`Counter` as a template does before it forks: it starts at 100."""
+    state.calls = 100

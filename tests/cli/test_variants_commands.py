@@ -5,6 +5,8 @@ from __future__ import annotations
 import csv
 import io
 import json
+import re
+import shutil
 from pathlib import Path
 
 import pytest
@@ -102,3 +104,41 @@ def test_sheets_compile_to_pdf(hw: Path, tmp_path: Path):
     assert main(["handout", str(hw), "--variants", roster, "-o", str(sheets), "--pdf"]) == 0
     pdfs = sorted(sheets.glob("*.pdf"))
     assert len(pdfs) == 3 and all(p.read_bytes().startswith(b"%PDF") for p in pdfs)
+
+
+def test_merged_sheets_are_one_document_a_page_per_student(hw: Path, tmp_path: Path):
+    """--merged: every student's sheet in one LaTeX document from the handout template,
+    compiled: one page per student, no overfull box, each student's values on their page."""
+    from dhsym.explain.latex import run_latex
+
+    (hw.parent / "hw.secret").write_text("a-secret-of-the-cli-tests-0123456789\n")
+    roster = str(hw.parent / "class.csv")
+    merged = tmp_path / "class.tex"
+    args = ["handout", str(hw), "--variants", roster, "-o", str(tmp_path / "sheets")]
+    assert main([*args, "--merged", str(merged)]) == 0
+    tex = merged.read_text(encoding="utf-8")
+    assert tex.count(r"\documentclass") == 1 and tex.count(r"\setcounter{page}{1}") == 3
+    for student in ("alice", "bob"):  # the same sheet as the student's own file
+        own = (tmp_path / "sheets" / f"{student}.tex").read_text(encoding="utf-8")
+        values = own.split("Your values: ", 1)[1].split("}", 1)[0]
+        assert f"Your values: {values}" in tex
+    if shutil.which("pdflatex") is None and shutil.which("latexmk") is None:
+        pytest.skip("no TeX installed")
+    run = run_latex(merged)
+    assert run.pdf.read_bytes().startswith(b"%PDF")
+    pages = re.search(r"Output written on .*?\((\d+) pages?", run.log)
+    assert pages is not None and int(pages[1]) == 3  # one page per student of the class list
+    assert not [i for i in run.issues if i.kind == "overfull"]
+    assert "Overfull" not in run.log
+    assert main([*args, "--merged", str(tmp_path / "class.txt")]) == 2
+
+
+def test_merged_pdf_is_compiled_by_the_command(hw: Path, tmp_path: Path):
+    (hw.parent / "hw.secret").write_text("a-secret-of-the-cli-tests-0123456789\n")
+    if shutil.which("pdflatex") is None and shutil.which("latexmk") is None:
+        pytest.skip("no TeX installed")
+    roster = str(hw.parent / "class.csv")
+    out = tmp_path / "print" / "class.pdf"
+    args = ["handout", str(hw), "--variants", roster, "-o", str(tmp_path / "sheets")]
+    assert main([*args, "--merged", str(out)]) == 0
+    assert out.read_bytes().startswith(b"%PDF") and out.with_suffix(".tex").is_file()

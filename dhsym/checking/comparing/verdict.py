@@ -116,6 +116,9 @@ class CheckResult:
     expected_table, answer_table
         For a table question: the key's and the student's table as text cells
         (header row first).
+    branches
+        For an answer to ``ik all``: each key branch that exists at the poses checked,
+        by name, and whether the answer gives it (partial credit per branch).
     """
 
     question: str
@@ -128,6 +131,7 @@ class CheckResult:
     key: str = ""
     expected_table: tuple[tuple[str, ...], ...] = ()
     answer_table: tuple[tuple[str, ...], ...] = ()
+    branches: tuple[tuple[str, bool], ...] = ()
 
     @property
     def correct(self) -> bool:
@@ -140,8 +144,9 @@ class CheckResult:
         return tuple(d.kind for d in self.diagnoses)
 
     def to_json(self) -> dict[str, object]:
-        """The documented JSON object of ``dhsym check --json`` (docs/reference/json.md)."""
-        return {
+        """The documented JSON object of ``dhsym check --json`` (docs/reference/json.md);
+        ``branches`` only for an ``ik all`` answer."""
+        out: dict[str, object] = {
             "schema": JSON_SCHEMA_VERSION,
             "key": self.key,
             "question": self.question,
@@ -154,6 +159,9 @@ class CheckResult:
             "expected_table": [list(r) for r in self.expected_table],
             "answer_table": [list(r) for r in self.answer_table],
         }
+        if self.branches:
+            out["branches"] = [{"name": n, "given": ok} for n, ok in self.branches]
+        return out
 
     @classmethod
     def from_json(cls, data: dict[str, Any]) -> CheckResult:
@@ -191,4 +199,5 @@ class CheckResult:
             key=str(data.get("key", "")),
             expected_table=tuple(tuple(r) for r in data.get("expected_table", [])),
             answer_table=tuple(tuple(r) for r in data.get("answer_table", [])),
+            branches=tuple((str(b["name"]), bool(b["given"])) for b in data.get("branches", [])),
         )

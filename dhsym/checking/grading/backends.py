@@ -7,7 +7,10 @@ Each job but the serial ones runs in a :class:`~dhsym.checking.grading.sandbox.S
   child a *batch* of jobs at a time
   (:meth:`~dhsym.checking.grading.sandbox.Sandbox.call_many`: one message out,
   one result back per job as it finishes, each job under its own deadline; after a
-  kill the rest of the batch goes on in a fresh child);
+  kill the rest of the batch goes on in a fresh child); the children are forked from
+  one warm :class:`~dhsym.checking.grading.sandbox.Template` that imported the modules
+  and built the jobs' shared state once (``warm``), so a child, and the fresh child
+  after a kill, starts in milliseconds instead of importing sympy;
 - :func:`run_dask` sends each job to a Dask worker, where it runs in a sandbox of
   the worker thread (any ``--nthreads`` is safe: a hung job blocks nothing but its
   own child process, which is killed on time);
@@ -31,7 +34,7 @@ from typing import IO
 
 from dhsym.errors import DHError
 
-from .sandbox import PRELOAD, STARTUP_SECONDS, JobFailure, Sandbox, run_in_sandbox
+from .sandbox import PRELOAD, STARTUP_SECONDS, JobFailure, Sandbox, Template, run_in_sandbox
 
 __all__ = ["Progress", "dask_address", "run_dask", "run_pool", "run_serial"]
 
@@ -84,12 +87,18 @@ def run_pool(
     preload: Sequence[str] = PRELOAD,
     batch: int | None = None,
     state: Callable[[], object] | None = None,
+    warm: Callable[[object], object] | None = None,
+    local: object | None = None,
 ) -> Iterator[tuple[int, object]]:
     """Run the jobs in ``workers`` sandboxes; each job gets ``deadline`` seconds of work.
 
     Jobs go to the children in batches of ``batch`` (default: about an eighth of a
     worker's share, 1 … 16), each job still under its own deadline
-    (:meth:`Sandbox.call_many`); results come as jobs finish.
+    (:meth:`Sandbox.call_many`); results come as jobs finish.  The children are forked
+    from one :class:`Template` (cold children where it cannot run), which builds the
+    state once for all of them, ``warm(state())``, before the first fork; forked from this
+    process when it runs one thread, the template starts from ``local``, this process's
+    own state (e.g. the keys it prepared), instead of ``state()``.
     """
     import queue
 
@@ -97,7 +106,9 @@ def run_pool(
     size = batch or max(1, min(16, len(jobs) // (8 * n)))
     pending = deque(range(k, min(k + size, len(jobs))) for k in range(0, len(jobs), size))
     results: queue.SimpleQueue[tuple[int, object] | None] = queue.SimpleQueue()
-    owned = [Sandbox(preload) for _ in range(n)]
+    template = Template(preload, state, warm, local)
+    template.start()  # before this function's threads: forked from this process if it can
+    owned = [Sandbox(preload, template) for _ in range(n)]
     stop = threading.Event()
     lock = threading.Lock()
 
@@ -143,6 +154,7 @@ def run_pool(
             t.join()
         for box in owned:
             box.close()
+        template.close()
 
 
 def dask_address(address: object) -> object:

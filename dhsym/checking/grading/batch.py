@@ -30,8 +30,10 @@ import json
 import math
 import statistics
 import time
-from collections.abc import Mapping
+from collections import Counter
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
+from functools import partial
 from pathlib import Path
 from typing import TypedDict
 
@@ -40,7 +42,7 @@ from dhsym.model.yamlsafe import FileRefused, read_limited
 
 from ..comparing.verdict import CheckResult, Verdict
 from ..judging.checker import check_answer
-from ..judging.key import PreparedKeys
+from ..judging.key import Key, PreparedKeys
 from ..reading.limits import AnswerLimits, AnswerTimeout, check_seconds, time_limit
 from .assignment import Assignment, AssignmentQuestion
 from .assignment_tests import run_assignment_tests
@@ -58,6 +60,8 @@ __all__ = [
     "GradeReport",
     "grade",
     "grade_submission",
+    "prepare_keys",
+    "shared_keys",
 ]
 
 _MAX_CACHE = 500_000_000
@@ -118,6 +122,32 @@ def check_submission(
             result = replace(result, message=f"{result.message} {why[0].upper()}{why[1:]}.")
         out.append(QuestionFeedback(q.id, q.ask, q.points, score, result))
     return tuple(out)
+
+
+def shared_keys(assignments: Iterable[Assignment]) -> tuple[Key, ...]:
+    """The keys that more than one submission is graded against, in the assignment's
+    order: what a grading run prepares once, before its workers fork (a variant's own
+    key is prepared by the worker that grades it).
+
+    >>> from dhsym.checking.grading.assignment import AssignmentQuestion
+    >>> qs = [AssignmentQuestion(f"q{k}", ask, 1, Key.load("planar2r", ask))
+    ...       for k, ask in enumerate(("T0_2", "table"))]
+    >>> a = Assignment("hw", tuple(qs))
+    >>> [k.question.spec for k in shared_keys([a, a])], shared_keys([a])
+    (['T0_2', 'table'], ())
+    """
+    counts = Counter(q.key for a in assignments for q in a.questions)
+    return tuple(k for k, n in counts.items() if n > 1)
+
+
+def prepare_keys(keys: tuple[Key, ...], prepared: PreparedKeys) -> None:
+    """Prepare ``keys`` into a worker's map (a key that cannot be prepared is left for the
+    job that meets it, which reports it)."""
+    for k in keys:
+        try:
+            prepared.get(k)
+        except Exception:  # noqa: BLE001, S112 - the job that needs the key says why
+            continue
 
 
 def _wrong_parts(result: CheckResult) -> tuple[tuple[str, str], ...]:
@@ -420,7 +450,10 @@ def grade(
     if dask is not None:
         runner = run_dask(grade_submission, jobs, dask, deadline, state=PreparedKeys)
     elif workers > 0:
-        runner = run_pool(grade_submission, jobs, workers, deadline, state=PreparedKeys)
+        warm = partial(prepare_keys, shared_keys(j[0] for j in jobs))
+        runner = run_pool(
+            grade_submission, jobs, workers, deadline, state=PreparedKeys, warm=warm, local=keys
+        )
     else:
         runner = run_serial(grade_submission, jobs, state=PreparedKeys)
     bar = Progress(len(jobs), enabled=progress)

@@ -6,10 +6,12 @@ A question of the assignment may say::
     - {id: q6, ask: M, points: 3, deduct: {wrong_sign: 25%, parallel_axis: 50%}, floor: 10%}
 
 ``credit: all`` (the default) is all or nothing.  ``credit: entries`` gives the share of
-the right entries of a matrix or vector (rows of a table).  ``deduct`` names mistakes of the
-catalogue (:mod:`dhsym.checking.mistakes.registry`; ``sign`` is ``wrong_sign``) and what
-each costs: a wrong answer whose every wrong entry is explained by those mistakes earns the
-points less the deductions, never less than ``floor``.  When both apply the better counts.
+the right entries of a matrix or vector (rows of a table; for ``ik all`` the key's
+branches: each branch a part, the share of the branches the answer gives).  ``deduct``
+names mistakes of the catalogue (:mod:`dhsym.checking.mistakes.registry`; ``sign`` is
+``wrong_sign``) and what each costs: a wrong answer whose every wrong entry is explained by
+those mistakes earns the points less the deductions, never less than ``floor``.  When both
+apply the better counts.
 
 Examples
 --------
@@ -135,6 +137,13 @@ class Credit:
         >>> Credit(deduct=(("transposed", 0.25),)).award(2.0, wrong)
         (0.0, '')
 
+        ``ik all``: each key branch is a part.
+
+        >>> ik = CheckResult("ik all", Verdict.INCORRECT, "Not every solution is given.",
+        ...                  branches=(("elbow up", True), ("elbow down", False)))
+        >>> Credit("entries").award(3.0, ik)
+        (1.5, 'partial credit: 1 of 2 branches right (not given: elbow down), 1.5 of 3 points')
+
         Two mistakes in one entry: only deducted kinds may explain it.
 
         >>> swapped = Diagnosis("sin_cos_swapped", "sin and cos swapped", "", ((1, 4),))
@@ -162,6 +171,13 @@ class Credit:
     def _entries(self, result: CheckResult) -> tuple[float, str] | None:
         if self.mode != "entries":
             return None
+        if result.branches:  # ik all: each key branch a part
+            right = sum(ok for _, ok in result.branches)
+            missing = ", ".join(name for name, ok in result.branches if not ok)
+            why = f"{right} of {len(result.branches)} branches right"
+            return right / len(result.branches), why + (
+                f" (not given: {missing})" if missing else ""
+            )
         if len(result.entries) > 1:
             right = sum(e.correct for e in result.entries)
             return right / len(result.entries), f"{right} of {len(result.entries)} entries right"

@@ -4,7 +4,9 @@
 assignment with the student's values (as the table's ``values:``, which the problem sheet
 prints as "Lengths: a1 = 0.37, …") and the joint values of its first ``ik@`` question;
 :func:`write_sheets` writes one LaTeX problem sheet per student (``dhsym handout hw.yaml
---variants class.csv -o FOLDER``), compiled to PDF on request.
+--variants class.csv -o FOLDER``), compiled to PDF on request; :func:`write_merged` all of
+them as one document from the same template, each student's sheet on new pages
+(``--merged class.pdf``).
 
 Examples
 --------
@@ -34,7 +36,7 @@ from .assignment import Assignment
 from .report_files import safe_name
 from .variants import ClassList, Variant, class_variants, variant_id
 
-__all__ = ["StudentSheet", "student_sheets", "write_sheets"]
+__all__ = ["StudentSheet", "student_sheets", "write_merged", "write_sheets"]
 
 
 @dataclass(frozen=True)
@@ -86,24 +88,69 @@ def write_sheets(
 
     root = Path(folder)
     root.mkdir(parents=True, exist_ok=True)
-    asks_ik = any(q.key.question.kind == "ik" for q in assignment.questions)
-    parts = list(dict.fromkeys([*sections, *(["ik"] if asks_ik else [])]))
     used: set[str] = set()
     written = []
     for sheet in student_sheets(assignment, roster):
         path = root / (safe_name(sheet.student, used) + ".tex")
-        who = sheet.name if sheet.name == sheet.student else f"{sheet.name} ({sheet.student})"
         written.append(
             write_handout(
                 [Robot(t) for t in sheet.tables],
                 path,
                 pdf=pdf,
                 title=assignment.title,
-                author=f"{who}. Your values: {sheet.variant.text()}",
+                author=_author(sheet),
                 mode="problems",
-                sections=parts,
+                sections=_sections(assignment, sections),
                 check=list(sheet.pose) if sheet.pose is not None else None,
                 **options,
             )
         )
     return written
+
+
+def write_merged(
+    assignment: Assignment,
+    roster: ClassList,
+    output: str | Path,
+    *,
+    sections: Sequence[str] = ("fk",),
+    **options: Any,  # render_sheets' keywords (course, date, template_dir, notation, ...)
+) -> Path:
+    """Every student's problem sheet in one document (``output``: ``.tex``, or ``.pdf``:
+    the ``.tex`` beside it, compiled), from the handout template, in the class list's
+    order, each sheet on new pages numbered from 1; the file written."""
+    from dhsym.explain.documents import HandoutSheet, render_sheets
+    from dhsym.explain.latex import compile_pdf
+    from dhsym.robot import Robot
+
+    out = Path(output)
+    if out.suffix.lower() not in (".tex", ".pdf"):
+        raise DHError(f"--merged: the merged sheets are a .tex or .pdf file, got {out.name}")
+    sheets = [
+        HandoutSheet(
+            tuple(Robot(t) for t in sheet.tables),
+            assignment.title,
+            _author(sheet),
+            list(sheet.pose) if sheet.pose is not None else None,
+        )
+        for sheet in student_sheets(assignment, roster)
+    ]
+    tex = out.with_suffix(".tex")
+    tex.parent.mkdir(parents=True, exist_ok=True)
+    text = render_sheets(
+        sheets, mode="problems", sections=_sections(assignment, sections), **options
+    )
+    tex.write_text(text, encoding="utf-8")
+    return compile_pdf(tex) if out.suffix.lower() == ".pdf" else tex
+
+
+def _author(sheet: StudentSheet) -> str:
+    """The line under a sheet's title: who, and their values."""
+    who = sheet.name if sheet.name == sheet.student else f"{sheet.name} ({sheet.student})"
+    return f"{who}. Your values: {sheet.variant.text()}"
+
+
+def _sections(assignment: Assignment, sections: Sequence[str]) -> list[str]:
+    """The sheet's sections: those asked, and the inverse kinematics when a question asks it."""
+    asks_ik = any(q.key.question.kind == "ik" for q in assignment.questions)
+    return list(dict.fromkeys([*sections, *(["ik"] if asks_ik else [])]))

@@ -60,7 +60,7 @@ from ..comparing.ik_values import (
 from ..comparing.sampled_frames import evaluate_or_nan, frames
 from ..comparing.tolerances import TOLERANCES
 from ..comparing.verdict import CheckResult, Diagnosis, EntryResult, Verdict
-from ..mistakes.registry import IK_MISTAKES, IKCase
+from ..mistakes.registry import IK_MISTAKES, IKCase, IKVariants
 from ..reading.answer_value import IKAnswer, IKStatement
 from ..reading.limits import check_time
 from .ik_key import IKPart
@@ -193,20 +193,27 @@ def _reaches_at(robot: Robot, q: np.ndarray, sample: PoseSample, position: bool)
 # --- the check --------------------------------------------------------------------------------
 
 
-def _sample(pk: PreparedKey, ans: IKAnswer, fresh: bool) -> PoseSample:
-    """The question's pose; or random poses, with the table's lengths when the answer writes
-    none of them as symbols (it used their numbers)."""
+def _valued(pk: PreparedKey, ans: IKAnswer) -> bool:
+    """True when the answer writes none of the lengths as symbols (it used their numbers)
+    and the table has numbers for them all."""
+    table = pk.key.table
+    return set(table.constants) <= set(table.value_map) and not (ans.symbols & set(table.constants))
+
+
+def _sample(pk: PreparedKey, ans: IKAnswer) -> PoseSample:
+    """Fresh random poses for the verdict (with the table's lengths when the answer uses
+    their numbers), or the question's pose."""
     part = ik_part(pk)
     if part.pose is not None:
         return part.pose
-    table = pk.key.table
-    valued = set(table.constants) <= set(table.value_map) and not (
-        ans.symbols & set(table.constants)
-    )
-    values = table.value_map if valued else None
-    if fresh:
-        return pose_sample(pk.robot, values=values)
-    return part.diagnosis_poses[valued]  # drawn once, by prepare_ik
+    return pose_sample(pk.robot, values=pk.key.table.value_map if _valued(pk, ans) else None)
+
+
+def _diagnosis(pk: PreparedKey, ans: IKAnswer) -> IKVariants:
+    """The key's diagnosis poses for this answer (the question's pose, or the random poses
+    drawn by prepare_ik) with the key's values there under each mistake."""
+    part = ik_part(pk)
+    return part.diagnosis[part.pose is None and _valued(pk, ans)]
 
 
 def _entries(
@@ -294,12 +301,12 @@ def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
         d = Diagnosis("circular", "defined through itself", text)
         return CheckResult(q.spec, Verdict.INCORRECT, text, diagnoses=(d,), key=key.name)
     position = not ik.decoupling.wrist
-    sample = _sample(pk, ans, fresh=True)
+    sample = _sample(pk, ans)
     result = _judge(pk, ans, ik, sample, position)
     if result[0]:
         return _correct(pk, ans, ik, sample, result, position)
-    dsample = _sample(pk, ans, fresh=False)
-    key_d = key_values(ik, dsample.env, dsample.size)
+    prepared = _diagnosis(pk, ans)  # the key's values under each mistake, built with the key
+    dsample, key_d = prepared.sample, prepared.key
     answers, tols, meta = _values(ans, dsample, variables)
     m = _match(key_d, answers, tols, dsample, robot, position)
     wrong = m.wrong
@@ -316,7 +323,7 @@ def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
         tols.max(axis=0) if len(tols) else np.full(len(variables), ATOL),
         q.every,
         nota,
-        pk.variant_values,
+        prepared,
     )
     found = []
     for mistake in IK_MISTAKES:
@@ -356,7 +363,15 @@ def check_ik(pk: PreparedKey, ans: IKAnswer) -> CheckResult:
     )
     first = diagnoses[0]
     message = f"{what}. Most likely: {first.title}. {first.detail}"
-    return CheckResult(q.spec, Verdict.INCORRECT, message, entries, diagnoses, key=key.name)
+    given = result[1]  # each key branch given or not, at the verdict's own poses
+    branches = (
+        tuple((names[k], bool(given.given[k])) for k in np.flatnonzero(given.exists))
+        if q.every
+        else ()
+    )
+    return CheckResult(
+        q.spec, Verdict.INCORRECT, message, entries, diagnoses, key=key.name, branches=branches
+    )
 
 
 def _close(a: np.ndarray, b: np.ndarray, revolute: np.ndarray, tol: np.ndarray) -> np.ndarray:
@@ -375,13 +390,16 @@ class _Match:
     ``hits[a, k, p]``: row ``a`` is branch ``k`` at point ``p``; ``branch[a]`` the branch a
     row is at every point (None: none, or it changes with the pose); ``wrong`` the rows that
     are no solution at some point; ``covered`` True when every distinct branch is given at
-    every point.
+    every point; ``given[k]`` True when the rows that are solutions give branch ``k`` (or
+    one equal to it) at every point where it exists, ``exists[k]`` when it exists at some.
     """
 
     hits: np.ndarray
     branch: dict[int, int | None]
     wrong: list[int]
     covered: bool
+    given: np.ndarray
+    exists: np.ndarray
 
 
 def _match(
@@ -430,7 +448,17 @@ def _match(
             for p in range(sample.size)
         )
     )
-    return _Match(hits, branch, wrong, covered)
+    right_rows = [a for a in range(len(answers)) if a not in wrong]
+    solved: np.ndarray = (
+        np.asarray(hits[right_rows].any(axis=0)) if right_rows else np.zeros_like(real)
+    )
+    each = np.array(
+        [
+            all((same[k, :, p] & solved[:, p]).any() or not real[k, p] for p in range(sample.size))
+            for k in range(len(key))
+        ]
+    ).astype(bool)
+    return _Match(hits, branch, wrong, covered, each, real.any(axis=1))
 
 
 #: The fewest poses of a sample at which a key branch must exist for an answer to be judged

@@ -4,8 +4,10 @@
 answer's clock starts, and compiles its branches; a numeric question (``ik@q1,…``)
 keeps its pose, and every branch gets the name the IK results give it (``"elbow up"``).
 The random poses at which the mistakes of wrong answers are recomputed are drawn here
-too, so the part (:class:`IKPart`) is a frozen value.  Checking an answer is
-:mod:`~dhsym.checking.judging.ik_check`'s.
+too, and the key's values under every catalogued mistake built there
+(:func:`~dhsym.checking.mistakes.registry.prepare_ik_variants`), so the part
+(:class:`IKPart`) is a frozen value and a wrong answer's diagnosis only compares.
+Checking an answer is :mod:`~dhsym.checking.judging.ik_check`'s.
 
 Examples
 --------
@@ -19,6 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -32,6 +35,7 @@ from dhsym.model.table import DHTable
 from ..comparing.ik_values import PoseSample, key_values, pose_sample, same_joints
 from ..comparing.sampled_frames import frames
 from ..comparing.tolerances import TOLERANCES
+from ..mistakes.registry import IKVariants, prepare_ik_variants
 from ..reading.answer_names import NameContext
 from ..reading.questions import Question
 
@@ -48,15 +52,16 @@ class IKPart:
     ``ik`` is the key's closed form; ``pose`` the question's pose (``ik@…``; None: random
     poses); ``branch_names`` each key branch's name, at the pose or in general;
     ``symbols`` the symbols an answer may use besides its own (the lengths, the pose);
-    ``diagnosis_poses`` the poses a wrong answer's mistakes are recomputed at, by whether
-    the answer uses the table's numbers for the lengths (True) or their symbols (False).
+    ``diagnosis`` the poses a wrong answer's mistakes are recomputed at, with the key's
+    values there under each mistake, by whether the answer uses the table's numbers for
+    the lengths (True) or their symbols (False); a numeric question's is its pose, for both.
     """
 
     ik: ClosedForm
     pose: PoseSample | None
     branch_names: tuple[str, ...]
     symbols: frozenset[sp.Symbol]
-    diagnosis_poses: Mapping[bool, PoseSample]
+    diagnosis: Mapping[bool, IKVariants]
 
 
 def prepare_ik(
@@ -88,6 +93,7 @@ def prepare_ik(
         # worker, outside every student's time limit (the first build takes seconds)
         at_pose = key_values(ik, pose.env, pose.size)
         branch_names = tuple(_numeric_names(robot, ik, pose, at_pose))
+        poses[False] = poses[True] = pose
     else:  # the key's branches compiled once, before the first answer's clock starts
         sample = pose_sample(robot, values=table.value_map or None)
         key_values(ik, sample.env, sample.size)
@@ -95,8 +101,12 @@ def prepare_ik(
         poses[False] = pose_sample(robot, values=None)
         if set(table.constants) <= set(table.value_map):
             poses[True] = pose_sample(robot, values=table.value_map)
+    # the mistakes' variants, at each diagnosis pose: a wrong answer's diagnosis only compares
+    nota = robot.notation
+    built = {id(s): prepare_ik_variants(ik, s, branch_names, nota) for s in poses.values()}
+    diagnosis = MappingProxyType({valued: built[id(s)] for valued, s in poses.items()})
     symbols = frozenset(set(table.constants) | set(pose_symbols()[:3, :]))
-    return names, IKPart(ik, pose, branch_names, symbols, poses)
+    return names, IKPart(ik, pose, branch_names, symbols, diagnosis)
 
 
 def _reference_names(robot: Robot, ik: ClosedForm) -> tuple[str, ...]:

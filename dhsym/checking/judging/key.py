@@ -21,9 +21,9 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TypeAlias
+from typing import TypeAlias
 
 from dhsym.errors import DHError
 from dhsym.model.library import load_table
@@ -141,16 +141,15 @@ class PreparedKey:
     """What checking many answers to one key shares: the robot, names, the kind's part.
 
     Built once per worker (:class:`PreparedKeys`) before any answer's clock starts, and
-    never changed after, but for ``variant_values``: the mistake catalogue's memo, a
-    mistake's values at a diagnosis sample by (mistake, sample origin, …), computed on the
-    first wrong answer that needs them.
+    never changed after: what the mistakes of a wrong answer are recomputed from (the
+    key's values under each catalogued mistake at its diagnosis samples) is built with the
+    part, so the first wrong answer's diagnosis only compares.
     """
 
     key: Key
     robot: Robot
     names: NameContext
     part: KeyPart
-    variant_values: dict[tuple[object, ...], Any] = field(default_factory=dict)
 
     def form(self) -> AnswerForm:
         """What reading an answer to this key needs: the question, the names, the key's

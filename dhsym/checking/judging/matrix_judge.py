@@ -34,23 +34,13 @@ from ..comparing.equivalence import (
     values,
 )
 from ..comparing.verdict import CheckResult, Diagnosis, EntryResult, Verdict
-from ..mistakes.registry import (
-    DET_MISTAKES,
-    JACOBIAN_MISTAKES,
-    MATRIX_MISTAKES,
-    SCREW_MISTAKES,
-    BlockTransposed,
-    MatrixCase,
-    Mistake,
-    diagnose_matrix,
-    dynamics_mistakes,
-)
+from ..mistakes.registry import QUESTION_MISTAKES, MatrixCase, diagnose_matrix, mistakes_for
 from ..reading.answer_names import NameContext
 from ..reading.answer_value import MatrixAnswer, ReadCell
 from ..reading.limits import AnswerLimits, check_time
 from ..reading.questions import Question
 from .key import PreparedKey
-from .matrix_key import DeterminantPart, DynamicsPart, MatrixPart, sample_for
+from .matrix_key import DeterminantPart, DiagnosisSample, DynamicsPart, MatrixPart, sample_for
 from .rounding import rounding_accepts
 from .screw_key import ScrewPart, axes_listed
 
@@ -65,13 +55,8 @@ def matrix_part(pk: PreparedKey) -> MatrixPart:
     return part
 
 
-#: the mistakes tried on a wrong answer, by kind of question (the others: the matrix ones)
-MISTAKES: dict[str, tuple[Mistake, ...]] = {
-    "jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()),
-    "det": DET_MISTAKES,
-    "dynamics": dynamics_mistakes(),
-    "screw": SCREW_MISTAKES,
-}
+#: the mistakes tried on a wrong answer, by kind of question (the registry's table)
+MISTAKES = QUESTION_MISTAKES
 
 
 def _shown(cell: str) -> str:
@@ -154,11 +139,11 @@ def _rounded(pk: PreparedKey, cell: ReadCell, sample: Sample, key: np.ndarray) -
 
 
 def _diagnosis_values(
-    pk: PreparedKey, ans: sp.ImmutableMatrix, unknown: list[sp.Basic]
+    d: DiagnosisSample, ans: sp.ImmutableMatrix, unknown: list[sp.Basic]
 ) -> tuple[Sample, np.ndarray, np.ndarray]:
-    """The key's diagnosis sample (fixed per key, so the mistakes' variants are cached),
-    extended with the unknown symbols, the key's and the answer's values there."""
-    d = matrix_part(pk).diagnosis(pk.key.table, ans)
+    """The key's diagnosis sample (fixed per key: the mistakes' variants were built there
+    when the key was prepared), extended with the unknown symbols, the key's and the
+    answer's values there."""
     sample = d.sample.extended(unknown)
     return sample, d.key_values, values(ans, sample)
 
@@ -287,7 +272,8 @@ def check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) ->
             some = " up to rounding" if total == 1 else f"; {len(rounded)} of them up to rounding"
             what = f"{what}{some} ({how})"
         return CheckResult(q.spec, Verdict.CORRECT, what + ".", tuple(entries), key=key.name)
-    sample, kv, av = _diagnosis_values(pk, ans, unknown)
+    d = part.diagnosis(key.table, ans)  # the key's diagnosis sample and its variants
+    sample, kv, av = _diagnosis_values(d, ans, unknown)
     case = MatrixCase(
         tuple(key.table.rows),
         key.table.convention,
@@ -301,12 +287,12 @@ def check_matrix(pk: PreparedKey, answer: MatrixAnswer, limits: AnswerLimits) ->
         av,
         tuple(wrong),
         nota,
-        pk.variant_values,
-        pk.robot,
-        part.singularities if isinstance(part, DeterminantPart) else None,
-        part.variants if isinstance(part, (DynamicsPart, ScrewPart)) else (),
+        robot=pk.robot,
+        singularities=part.singularities if isinstance(part, DeterminantPart) else None,
+        dynamics_variants=part.variants if isinstance(part, (DynamicsPart, ScrewPart)) else (),
+        prepared=d.variants,
     )
-    diagnoses = shape_lead + lead + diagnose_matrix(case, MISTAKES.get(q.kind, MATRIX_MISTAKES))
+    diagnoses = shape_lead + lead + diagnose_matrix(case, mistakes_for(q.kind))
     if unknown:
         names = ", ".join(str(s) for s in unknown)
         known = ", ".join(str(s) for s in sorted(pk.names.symbols, key=sp.default_sort_key))

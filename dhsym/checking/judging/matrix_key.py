@@ -3,7 +3,8 @@
 A matrix key is derived once per worker, before any answer's clock starts
 (:func:`prepare_matrix`, :func:`prepare_dynamics`): the expected matrix, the same with
 the table's numbers for its lengths, its text and LaTeX, and the two diagnosis samples
-(:class:`DiagnosisSample`) at which the mistakes of wrong answers are recomputed.  A
+(:class:`DiagnosisSample`) at which the mistakes of wrong answers are recomputed, with
+the mistakes' variants there.  A
 determinant key also keeps its singularities (:class:`DeterminantPart`), a dynamics key
 its part under each catalogued mistake (:class:`DynamicsPart`).  Every part is a frozen
 value.
@@ -20,7 +21,9 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -31,7 +34,14 @@ from dhsym.model.table import DHTable
 
 from ..comparing.dynamics_values import dynamics_key, part_matrix, question_symbols, rate_aliases
 from ..comparing.equivalence import Sample, values
-from ..mistakes.registry import variant_matrices
+from ..mistakes.registry import (
+    MatrixCase,
+    Mistake,
+    Variants,
+    mistakes_for,
+    prepare_variants,
+    variant_matrices,
+)
 from ..reading.answer_names import NameContext
 from ..reading.questions import Question
 
@@ -52,14 +62,17 @@ __all__ = [
 
 @dataclass(frozen=True, eq=False)
 class DiagnosisSample:
-    """The points the mistakes of wrong answers are recomputed at (fixed per key, so the
-    mistakes' variants are computed once per worker) and the key's values there.
+    """The points the mistakes of wrong answers are recomputed at (fixed per key), the
+    key's values there, and each whole-matrix mistake's variants there (``variants``:
+    :func:`~dhsym.checking.mistakes.registry.prepare_variants`), all built when the key is
+    prepared, before any answer's clock starts.
 
     Only the diagnosis uses them: every verdict draws its own fresh points.
     """
 
     sample: Sample
     key_values: np.ndarray
+    variants: Mapping[Mistake, Variants]
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,14 +136,46 @@ def _texts(robot: Robot, expected: sp.ImmutableMatrix) -> tuple[tuple[str, str],
 
 
 def _samples(
-    table: DHTable, expected: sp.ImmutableMatrix, syms: set[sp.Symbol]
+    table: DHTable,
+    question: Question,
+    robot: Robot,
+    expected: sp.ImmutableMatrix,
+    syms: set[sp.Symbol],
+    singularities: Singularities | None = None,
+    dynamics_variants: tuple[tuple[str, sp.ImmutableMatrix, str], ...] = (),
 ) -> tuple[DiagnosisSample, DiagnosisSample, sp.ImmutableMatrix]:
-    """The symbolic and valued diagnosis samples, and ``expected`` with the table's numbers."""
+    """The symbolic and valued diagnosis samples with the mistakes' variants there, and
+    ``expected`` with the table's numbers.  The valued sample gets variants only when the
+    table has numbers (else no answer is diagnosed there: :func:`sample_for`)."""
     out = []
-    for fixed in (None, table.value_map):
-        sample = Sample.random(syms, fixed=fixed)
-        out.append(DiagnosisSample(sample, values(expected, sample)))
+    mistakes = mistakes_for(question.kind)
     value_map = table.value_map
+    scratch: dict[tuple[object, ...], object] = {}  # what both samples' variants derive
+    for fixed in (None, value_map):
+        sample = Sample.random(syms, fixed=fixed)
+        kv = values(expected, sample)
+        variants: Mapping[Mistake, Variants] = MappingProxyType({})
+        if fixed is None or fixed:
+            case = MatrixCase(  # the key's own case: the answer is the key
+                tuple(table.rows),
+                table.convention,
+                question.frm,
+                question.to,
+                question.entry,
+                expected,
+                expected,
+                sample,
+                kv,
+                kv,
+                (),
+                robot.notation,
+                robot=robot,
+                singularities=singularities,
+                dynamics_variants=dynamics_variants,
+                cache=scratch,
+            )
+            variants = prepare_variants(case, mistakes)
+        out.append(DiagnosisSample(sample, kv, variants))
     valued = expected.subs(value_map) if value_map else expected
     return out[0], out[1], valued
 
@@ -161,7 +206,7 @@ def prepare_matrix(
     full, sing = _expected(question, robot)
     expected = sp.ImmutableMatrix([[full[question.entry]]]) if question.entry else full
     syms = set(table.variables) | set(table.constants)
-    symbolic, valued, expected_valued = _samples(table, expected, syms)
+    symbolic, valued, expected_valued = _samples(table, question, robot, expected, syms, sing)
     common = (expected, expected_valued, _texts(robot, expected), frozenset(syms))
     if sing is not None:
         return names, DeterminantPart(*common, symbolic, valued, sing)
@@ -185,7 +230,9 @@ def prepare_dynamics(
         expected = part_matrix(eom, q)
         variants = tuple(variant_matrices(robot, eom, q))
     syms = set(table.variables) | set(table.constants) | set(extra)
-    symbolic, valued, expected_valued = _samples(table, expected, syms)
+    symbolic, valued, expected_valued = _samples(
+        table, question, robot, expected, syms, dynamics_variants=variants
+    )
     part = DynamicsPart(
         expected,
         expected_valued,

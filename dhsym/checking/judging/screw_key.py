@@ -85,7 +85,9 @@ def prepare_screw(
     found = screw_variants(robot, question.part)
     variants = tuple((kind, _cut(m, question), detail) for kind, m, detail in found)
     syms = set(table.variables) | set(table.constants)
-    symbolic, valued, expected_valued = _samples(table, expected, syms)
+    symbolic, valued, expected_valued = _samples(
+        table, question, robot, expected, syms, dynamics_variants=variants
+    )
     common = (expected, expected_valued, _texts(robot, expected), frozenset(syms))
     return names, ScrewPart(*common, symbolic, valued, variants)
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from itertools import islice
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -30,6 +31,7 @@ from dhsym.notation.printers import Notation
 from ..comparing.ik_values import (
     PoseSample,
     Rewrite,
+    branch_signs,
     branch_steps,
     joint_distance,
     key_values,
@@ -37,7 +39,7 @@ from ..comparing.ik_values import (
 )
 from ..comparing.verdict import Diagnosis
 from ._entry_mistakes import dropped_candidates, sign_candidates
-from ._mistake_base import Mistake
+from ._mistake_base import Mistake, Variants
 
 if TYPE_CHECKING:
     from dhsym.ik.closed_form import ClosedForm
@@ -50,14 +52,44 @@ __all__ = [
     "IKDroppedTerm",
     "IKMistake",
     "IKStepEdit",
+    "IKVariants",
     "IKWrongSign",
     "LostBranch",
     "WrongRootSign",
+    "StepEdits",
     "atan_swaps",
+    "prepare_ik_variants",
     "root_rewrites",
 ]
 
 _MAX_TERMS = 12  # terms of a radicand whose sign is flipped one at a time
+
+
+#: one slip in one step: (the step's left-hand side, its right-hand side, the same with the
+#: slip, what the student did)
+Edit = tuple[sp.Symbol, sp.Expr, sp.Expr, str]
+
+
+@dataclass(frozen=True, eq=False)
+class StepEdits:
+    """One :class:`IKStepEdit` kind's slips in the key's steps and the joint values of every
+    key branch with each of them, ``values[e]`` ``(K, size, n)`` (slip ``edits[e]``)."""
+
+    edits: tuple[Edit, ...]
+    values: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class IKVariants:
+    """The key's joint values at one pose sample, alone (``key``, ``(K, size, n)``) and under
+    each catalogued mistake: the whole steps rewritten (``whole``: ``atan`` for ``atan2``, a
+    sign under a root) and one slip in one step (``steps``), built when the key is prepared
+    (:func:`prepare_ik_variants`), before any answer's clock starts; read-only after."""
+
+    sample: PoseSample
+    key: np.ndarray
+    whole: Mapping[IKMistake, Variants]
+    steps: Mapping[IKStepEdit, StepEdits]
 
 
 @dataclass(frozen=True, eq=False)
@@ -67,7 +99,9 @@ class IKCase:
     ``key`` is ``(K, size, n)`` (one row per choice of the signs σ, named in ``names``),
     ``answers`` ``(A, size, n)`` (one row per choice of the student's ``±``); ``wrong``
     lists the student's rows that are no branch of the key, ``matched`` the key's
-    branches the answer gives; ``every`` is True when the question asks for all of them.
+    branches the answer gives; ``every`` is True when the question asks for all of them;
+    ``prepared`` the mistakes' variants at the sample, built with the key (None: each
+    mistake builds its own when asked).
     """
 
     ik: ClosedForm
@@ -80,7 +114,7 @@ class IKCase:
     tol: np.ndarray
     every: bool
     notation: Notation = field(default_factory=Notation)
-    cache: dict[tuple[object, ...], Any] = field(default_factory=dict)
+    prepared: IKVariants | None = None
 
     @property
     def revolute(self) -> np.ndarray:
@@ -95,12 +129,9 @@ class IKMistake(Mistake):
         """(the key's joint values ``(K, size, n)`` under this mistake, what the student did)."""
         return iter(())
 
-    def _variants(self, case: IKCase) -> list[tuple[np.ndarray, str]]:
-        key = (self.kind, case.sample.origin)
-        if key not in case.cache:
-            case.cache[key] = list(self.ik_variants(case))
-        cached: list[tuple[np.ndarray, str]] = case.cache[key]
-        return cached
+    def _variants(self, case: IKCase) -> Variants:
+        found = case.prepared.whole.get(self) if case.prepared is not None else None
+        return found if found is not None else tuple(self.ik_variants(case))
 
     def explain_ik(self, case: IKCase) -> Diagnosis | None:
         """A diagnosis when one of the student's wrong rows equals a variant's branch."""
@@ -275,10 +306,11 @@ _NEAREST = 2
 
 
 class IKStepEdit(IKMistake):
-    """One step of the derivation written with one slip (:meth:`rewrites`), recomputed on
-    the key branch nearest to each wrong row of the answer only, in the steps that row's
-    wrong joints need (first those its right joints do not need: a slip there would
-    usually move them too), at most :data:`_MAX_REWRITES` of them."""
+    """One step of the derivation written with one slip (:meth:`rewrites`): every slip is
+    recomputed on every key branch when the key is prepared (:meth:`build_edits`); a wrong
+    row of the answer is compared with the key branches nearest to it only, in the steps
+    that row's wrong joints need (first those its right joints do not need: a slip there
+    would usually move them too), at most :data:`_MAX_REWRITES` of them."""
 
     def rewrites(self, case: IKCase) -> Iterator[tuple[sp.Symbol, sp.Expr, sp.Expr, str]]:
         """(a step's left-hand side, its right-hand side, the same with the slip, what the
@@ -286,7 +318,8 @@ class IKStepEdit(IKMistake):
         return iter(())
 
     def explain_ik(self, case: IKCase) -> Diagnosis | None:
-        edits = list(self.rewrites(case))
+        table = self._edits(case)
+        edits = table.edits
         variables = list(case.ik.robot.variables)
         for a in case.wrong:
             row = case.answers[a]
@@ -314,30 +347,33 @@ class IKStepEdit(IKMistake):
                 # joint needs (a right joint may depend on a step only through a sign, as on
                 # atan2(0, S5)), then the rest of what the wrong joints need
                 groups = (core - right_steps, core & right_steps, wrong_steps - core)
-                tried = [e for g in groups for e in edits if e[0] in g][:_MAX_REWRITES]
-                base_key = ("branch steps", case.sample.origin, k)
-                if base_key not in case.cache:
-                    case.cache[base_key] = branch_steps(
-                        case.ik, case.sample.env, case.sample.size, k
-                    )
-                index = {st.lhs: i for i, st in enumerate(case.ik.steps)}
-                for lhs, _, new, detail in tried:
-                    memo_key = (self.kind, case.sample.origin, k, lhs, new)
-                    if memo_key not in case.cache:
-                        got = branch_steps(
-                            case.ik,
-                            case.sample.env,
-                            case.sample.size,
-                            k,
-                            (index[lhs], new),
-                            case.cache[base_key],
-                        )
-                        case.cache[memo_key] = np.stack(
-                            [got.get(v, np.full(case.sample.size, np.nan)) for v in variables], -1
-                        )
-                    if same_joints(row, case.cache[memo_key], case.revolute, case.tol, nan=True):
-                        return Diagnosis(self.kind, self.title, detail)
+                tried = [e for g in groups for e, ed in enumerate(edits) if ed[0] in g]
+                for e in tried[:_MAX_REWRITES]:
+                    if same_joints(row, table.values[e, k], case.revolute, case.tol, nan=True):
+                        return Diagnosis(self.kind, self.title, edits[e][3])
         return None
+
+    def build_edits(self, case: IKCase) -> StepEdits:
+        """Every slip of this kind (:meth:`rewrites`) and the joint values of every key
+        branch with it, at the case's sample (built once, when the key is prepared)."""
+        ik, sample = case.ik, case.sample
+        edits = tuple(self.rewrites(case))
+        variables = list(ik.robot.variables)
+        index = {st.lhs: i for i, st in enumerate(ik.steps)}
+        K = len(branch_signs(ik))
+        out = np.full((len(edits), K, sample.size, len(variables)), np.nan)
+        for k in range(K):
+            base = branch_steps(ik, sample.env, sample.size, k)
+            for e, (lhs, _, new, _) in enumerate(edits):
+                got = branch_steps(ik, sample.env, sample.size, k, (index[lhs], new), base)
+                for j, v in enumerate(variables):
+                    if v in got:
+                        out[e, k, :, j] = got[v]
+        return StepEdits(edits, out)
+
+    def _edits(self, case: IKCase) -> StepEdits:
+        found = case.prepared.steps.get(self) if case.prepared is not None else None
+        return found if found is not None else self.build_edits(case)
 
 
 def _needs(ik: ClosedForm) -> dict[sp.Symbol, set[sp.Symbol]]:
@@ -421,3 +457,33 @@ IK_MISTAKES: tuple[IKMistake, ...] = (
     IKDroppedTerm(),
     LostBranch(),
 )
+
+
+def prepare_ik_variants(
+    ik: ClosedForm, sample: PoseSample, names: tuple[str, ...], notation: Notation
+) -> IKVariants:
+    """The key's joint values at ``sample`` alone and under every catalogued mistake
+    (:data:`IK_MISTAKES`), built once, when the key is prepared: a wrong answer's diagnosis
+    then only compares.
+
+    >>> import dhsym
+    >>> from dhsym.checking.comparing.ik_values import pose_sample
+    >>> robot = dhsym.load("planar2r")
+    >>> ik = robot.inverse()
+    >>> v = prepare_ik_variants(ik, pose_sample(robot, size=8), ("up", "down"), robot.notation)
+    >>> v.key.shape, sorted(m.kind for m in v.whole)
+    ((2, 8, 2), ['atan_for_atan2', 'wrong_root_sign'])
+    >>> sorted(m.kind for m in v.steps)
+    ['atan2_swapped', 'dropped_term', 'wrong_sign']
+    """
+    key = key_values(ik, sample.env, sample.size)
+    n = len(ik.robot.variables)
+    case = IKCase(ik, sample, key, key, (), (), names, np.zeros(n), False, notation)
+    whole: dict[IKMistake, Variants] = {}
+    steps: dict[IKStepEdit, StepEdits] = {}
+    for m in IK_MISTAKES:
+        if isinstance(m, IKStepEdit):
+            steps[m] = m.build_edits(case)
+        elif type(m).ik_variants is not IKMistake.ik_variants:
+            whole[m] = tuple(m.ik_variants(case))
+    return IKVariants(sample, key, MappingProxyType(whole), MappingProxyType(steps))

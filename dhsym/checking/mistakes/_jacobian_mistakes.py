@@ -55,10 +55,14 @@ def _robot(case: MatrixCase) -> Robot:
 
 
 def _cached(case: MatrixCase, key: str, build: Any) -> np.ndarray:
-    """Values of an exact variant at the case's sample, computed once per key and sample."""
+    """Values of an exact variant at the case's sample: the variant derived once per key
+    (the cases of a key's samples share their scratch), its values once per sample."""
     k = (key, case.sample.origin)
     if k not in case.cache:
-        case.cache[k] = values(build(), case.sample)
+        exact = case.cache.get((key,))
+        if exact is None:
+            exact = case.cache[(key,)] = build()
+        case.cache[k] = values(exact, case.sample)
     cached: np.ndarray = case.cache[k]
     return cached
 

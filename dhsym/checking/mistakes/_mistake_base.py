@@ -16,9 +16,10 @@ Examples
 from __future__ import annotations
 
 from abc import ABC
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, ClassVar
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any, ClassVar, TypeAlias
 
 import numpy as np
 import sympy as sp
@@ -36,7 +37,10 @@ if TYPE_CHECKING:
     from dhsym.kinematics.singularities import Singularities
     from dhsym.robot import Robot
 
-__all__ = ["MatrixCase", "Mistake", "TableCase", "cell_text"]
+__all__ = ["MatrixCase", "Mistake", "TableCase", "Variants", "cell_text", "prepare_variants"]
+
+#: a mistake's variants at a sample: (the key's values under the mistake, what the student did)
+Variants: TypeAlias = tuple[tuple[np.ndarray, str], ...]
 
 
 @dataclass(frozen=True, eq=False)
@@ -45,11 +49,12 @@ class MatrixCase:
 
     ``expected``/``answer`` are 4×4 (or 1×1 for an entry question at ``entry``,
     0-based; 6×n for a Jacobian); ``wrong`` lists the 0-based positions that differ;
-    ``cache`` keeps the variants of one key between answers (the prepared key's
-    ``variant_values``); ``robot`` is the key's robot (Jacobian and determinant
-    variants); ``singularities`` a determinant key's, derived once per key;
-    ``dynamics_variants`` a dynamics key's part under each catalogued mistake,
-    ``(kind, matrix, detail)``.
+    ``prepared`` holds each whole-matrix mistake's variants at the sample, built when the
+    key was prepared (:func:`prepare_variants`); ``cache`` is scratch shared by the
+    mistakes while variants are built (the full matrix, ``J``); ``robot`` is the key's
+    robot (Jacobian and determinant variants); ``singularities`` a determinant key's,
+    derived once per key; ``dynamics_variants`` a dynamics key's part under each
+    catalogued mistake, ``(kind, matrix, detail)``.
     """
 
     rows: tuple[DHRow, ...]
@@ -68,6 +73,7 @@ class MatrixCase:
     robot: Robot | None = None
     singularities: Singularities | None = None
     dynamics_variants: tuple[tuple[str, sp.ImmutableMatrix, str], ...] = ()
+    prepared: Mapping[Mistake, Variants] = field(default_factory=dict)
 
     def chain_values(
         self, rows: tuple[DHRow, ...], convention: Convention, reverse: str = ""
@@ -137,16 +143,19 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
         """(the key table under this mistake, what the student did, rows involved)."""
         return iter(())
 
-    def _cached_variants(self, case: MatrixCase) -> list[tuple[np.ndarray, str]]:
-        key = (self.kind, case.sample.origin, case.entry)
-        if key not in case.cache:
-            found = []
-            for vals, detail in self.matrix_variants(case):
-                if not close(vals, case.key_values):
-                    found.append((vals, detail))
-            case.cache[key] = found
-        cached: list[tuple[np.ndarray, str]] = case.cache[key]
-        return cached
+    def build_variants(self, case: MatrixCase) -> Variants:
+        """This mistake's variants at the case's sample that differ from the key (built
+        once per key and sample, when the key is prepared: :func:`prepare_variants`)."""
+        return tuple(
+            (vals, detail)
+            for vals, detail in self.matrix_variants(case)
+            if not close(vals, case.key_values)
+        )
+
+    def variants(self, case: MatrixCase) -> Variants:
+        """The variants the key was prepared with; built here only for a case without them."""
+        found = case.prepared.get(self)
+        return found if found is not None else self.build_variants(case)
 
     def explain_matrix(self, case: MatrixCase, partial: bool = False) -> Diagnosis | None:
         """A diagnosis when a variant equals the whole answer (or, with ``partial``, the
@@ -156,7 +165,7 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
         entries (1,1) and (2,1)").
         """
         best: tuple[list[tuple[int, int]], str] | None = None
-        for vals, detail in self._cached_variants(case):
+        for vals, detail in self.variants(case):
             hits = [
                 p
                 for p in case.wrong
@@ -185,6 +194,31 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
             if same_cells(chain, case.answer, case.values):
                 return Diagnosis(self.kind, self.title, detail, rows=rows)
         return None
+
+
+def _builds_variants(mistake: Mistake) -> bool:
+    """True for a mistake that recomputes the whole matrix (not an entry-wise one)."""
+    return type(mistake).matrix_variants is not Mistake.matrix_variants
+
+
+def prepare_variants(case: MatrixCase, mistakes: Iterable[Mistake]) -> Mapping[Mistake, Variants]:
+    """Every whole-matrix mistake's variants at ``case``'s sample, built once, when the key
+    is prepared (``case`` is the key's own: its answer is the key), read-only after.
+
+    >>> import dhsym
+    >>> from dhsym.checking.comparing.equivalence import Sample, values
+    >>> robot = dhsym.load("planar2r")
+    >>> T = robot.transform(0, 2).matrix
+    >>> s = Sample.random(set(robot.table.variables) | set(robot.table.constants))
+    >>> kv = values(T, s)
+    >>> rows, conv = tuple(robot.table.rows), robot.table.convention
+    >>> case = MatrixCase(rows, conv, 0, 2, None, T, T, s, kv, kv, ())
+    >>> from dhsym.checking.mistakes.registry import MATRIX_MISTAKES
+    >>> built = prepare_variants(case, MATRIX_MISTAKES)
+    >>> [m.kind for m in built][:2], len(built[MATRIX_MISTAKES[0]])
+    (['transposed', 'other_convention'], 2)
+    """
+    return MappingProxyType({m: m.build_variants(case) for m in mistakes if _builds_variants(m)})
 
 
 def _placed(case: MatrixCase, hits: list[tuple[int, int]], detail: str) -> str:

@@ -40,6 +40,7 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import replace
 
 from ..comparing.verdict import Diagnosis
@@ -55,7 +56,16 @@ from ._entry_mistakes import (
     WrongSign,
     explain_pairs,
 )
-from ._ik_mistakes import IK_MISTAKES, AtanForAtan2, IKCase, IKMistake, LostBranch, WrongRootSign
+from ._ik_mistakes import (
+    IK_MISTAKES,
+    AtanForAtan2,
+    IKCase,
+    IKMistake,
+    IKVariants,
+    LostBranch,
+    WrongRootSign,
+    prepare_ik_variants,
+)
 from ._jacobian_mistakes import (
     DET_MISTAKES,
     JACOBIAN_MISTAKES,
@@ -66,7 +76,7 @@ from ._jacobian_mistakes import (
     ToolFrame,
 )
 from ._matrix_mistakes import BlockTransposed, OtherConvention, ReverseOrder, Transposed
-from ._mistake_base import MatrixCase, Mistake, TableCase
+from ._mistake_base import MatrixCase, Mistake, TableCase, Variants, prepare_variants
 from ._row_mistakes import DegreesAsRadians, IndexShift, OffsetMissing, SingleWrongRow
 from ._screw_mistakes import SCREW_MISTAKES, ScrewMistake, screw_variants
 
@@ -83,6 +93,7 @@ __all__ = [
     "DegreesAsRadians",
     "IKCase",
     "IKMistake",
+    "IKVariants",
     "LostBranch",
     "MissingFactor",
     "NextAxis",
@@ -94,6 +105,7 @@ __all__ = [
     "MATRIX_MISTAKES",
     "MatrixCase",
     "PAIR_BUDGET",
+    "QUESTION_MISTAKES",
     "MissingLength",
     "Mistake",
     "OffsetMissing",
@@ -106,10 +118,14 @@ __all__ = [
     "TABLE_MISTAKES",
     "TableCase",
     "Transposed",
+    "Variants",
     "WrongJointIndex",
     "WrongSign",
     "diagnose_matrix",
     "diagnose_table",
+    "mistakes_for",
+    "prepare_ik_variants",
+    "prepare_variants",
     "screw_variants",
     "variant_matrices",
 ]
@@ -137,6 +153,26 @@ TABLE_MISTAKES: tuple[Mistake, ...] = (
     WrongSign(),
     SingleWrongRow(),
 )
+
+#: the mistakes tried on a wrong matrix answer, by kind of question (the others: the
+#: matrix ones, :data:`MATRIX_MISTAKES`)
+QUESTION_MISTAKES: Mapping[str, tuple[Mistake, ...]] = {
+    "jacobian": (*JACOBIAN_MISTAKES, BlockTransposed()),
+    "det": DET_MISTAKES,
+    "dynamics": dynamics_mistakes(),
+    "screw": SCREW_MISTAKES,
+}
+
+
+def mistakes_for(kind: str) -> tuple[Mistake, ...]:
+    """The whole-matrix mistakes tried on a wrong answer to a question of ``kind``.
+
+    >>> [m.kind for m in mistakes_for("jacobian")]
+    ['tool_frame', 'next_axis', 'prismatic_column', 'transposed']
+    >>> mistakes_for("matrix") == MATRIX_MISTAKES
+    True
+    """
+    return QUESTION_MISTAKES.get(kind, MATRIX_MISTAKES)
 
 
 def diagnose_matrix(

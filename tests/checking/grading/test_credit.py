@@ -54,3 +54,54 @@ def test_bad_credit_rules_are_refused_naming_the_question(tmp_path, extra, messa
     with pytest.raises(DHError, match=message) as err:
         Assignment.load(tmp_path / "hw.yaml")
     assert err.value.row == 1
+
+
+IK_ASSIGNMENT = """key: planar2r
+questions:
+  - {id: q1, ask: ik all, points: 3, credit: entries}
+  - {id: q2, ask: ik all, points: 3}
+"""
+#: the 2R's inverse kinematics, the elbow-down branch only (no ± on theta2)
+ONE_BRANCH = (
+    "D = (p_x**2 + p_y**2 - a1**2 - a2**2)/(2*a1*a2)\n"
+    "theta2 = atan2(sqrt(1 - D**2), D)\n"
+    "theta1 = atan2(p_y, p_x) - atan2(a2*sin(theta2), a1 + a2*cos(theta2))"
+)
+
+
+def test_ik_all_with_credit_entries_gives_points_per_branch(tmp_path):
+    """Each key branch is a part: one of the 2R's two branches earns half the points, in
+    the gradebook and the feedback; without credit: entries it stays all or nothing."""
+    (tmp_path / "hw.yaml").write_text(IK_ASSIGNMENT, encoding="utf-8")
+    ann = tmp_path / "subs" / "ann"
+    ann.mkdir(parents=True)
+    for qid in ("q1", "q2"):
+        (ann / f"{qid}.txt").write_text(ONE_BRANCH, encoding="utf-8")
+    out = tmp_path / "out"
+    grade(tmp_path / "hw.yaml", tmp_path / "subs", out, workers=0, progress=False)
+    (row,) = csv.DictReader((out / "gradebook.csv").open(encoding="utf-8"))
+    assert (row["q1"], row["q2"], row["total"]) == ("1.5", "0", "1.5")
+    page = (out / row["feedback"]).read_text(encoding="utf-8")
+    assert "Partial credit: 1 of 2 branches right (not given: elbow up), 1.5 of 3 points." in page
+
+
+def test_ik_all_branches_of_the_puma_count_each_branch_once():
+    """The PUMA 560's derivation with the shoulder sign fixed (σ1 = +1) gives 4 of its 8
+    branches: each is named, and credit: entries gives half the points."""
+    import dhsym
+    from dhsym.checking import Key, check_answer
+    from dhsym.checking.grading.credit import Credit
+
+    robot = dhsym.load("puma560")
+    steps = robot.inverse().steps
+    text = "\n".join(
+        f"{robot.notation.text(st.lhs)} = {robot.notation.text(st.rhs)}" for st in steps
+    ).replace("sigma_1*", "")
+    result = check_answer(Key.load("puma560", "ik all"), text)
+    assert result.verdict.value == "incorrect"
+    assert len(result.branches) == 8 and sum(ok for _, ok in result.branches) == 4
+    assert len({name for name, _ in result.branches}) == 8
+    score, why = Credit("entries").award(2.0, result)
+    assert score == 1.0 and why.startswith("partial credit: 4 of 8 branches right (not given: ")
+    assert result.to_json()["branches"][0] == {"name": result.branches[0][0], "given": True}
+    assert type(result).from_json(result.to_json()).branches == result.branches

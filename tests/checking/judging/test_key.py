@@ -77,9 +77,85 @@ def test_matrix_parts_hold_typed_values():
 def test_ik_part_draws_its_diagnosis_poses_once():
     part = prepare(Key.load("planar2r", "ik")).part
     assert isinstance(part, IKPart) and part.pose is None
-    assert set(part.diagnosis_poses) == {False, True}  # planar2r's lengths have numbers
-    assert part.diagnosis_poses[True].origin != part.diagnosis_poses[False].origin
+    assert set(part.diagnosis) == {False, True}  # planar2r's lengths have numbers
+    assert part.diagnosis[True].sample.origin != part.diagnosis[False].sample.origin
     at = prepare(Key.load("planar2r", "ik@0.3,0.9")).part
-    assert isinstance(at, IKPart) and at.pose is not None and not at.diagnosis_poses
+    assert isinstance(at, IKPart) and at.pose is not None
+    assert at.diagnosis[False].sample is at.pose and at.diagnosis[True].sample is at.pose
     assert np.allclose(at.pose.q, [[0.3, 0.9]])
     assert len(at.branch_names) == 2
+
+
+def _count_builds(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """Every build of a mistake's variants from now on, by mistake kind (the builders of
+    whole-matrix variants, whole-IK variants and one-step IK slips)."""
+    from dhsym.checking.mistakes import _ik_mistakes, _mistake_base
+
+    built: list[str] = []
+    for owner, name in (
+        (_mistake_base.Mistake, "build_variants"),
+        (_ik_mistakes.IKStepEdit, "build_edits"),
+        (_ik_mistakes.AtanForAtan2, "ik_variants"),
+        (_ik_mistakes.WrongRootSign, "ik_variants"),
+    ):
+        original = getattr(owner, name)
+
+        def counted(self, case, _original=original):  # type: ignore[no-untyped-def]
+            built.append(self.kind)
+            return _original(self, case)
+
+        monkeypatch.setattr(owner, name, counted)
+    return built
+
+
+@pytest.mark.parametrize(
+    ("robot", "question", "wrong"),
+    [
+        # the Jacobian of the 2R with a term of column 1 left out
+        (
+            "planar2r",
+            "J",
+            "[[-a2*S12, -a2*S12], [a2*C12, a2*C12], [0, 0], [0, 0], [0, 0], [1, 1]]",
+        ),
+        # the IK of the 2R with a slip in one step (a sign in theta1)
+        (
+            "planar2r",
+            "ik",
+            "D = (p_x**2 + p_y**2 - a1**2 - a2**2)/(2*a1*a2)\n"
+            "theta2 = atan2(sqrt(1 - D**2), D)\n"
+            "theta1 = atan2(p_y, p_x) + atan2(a2*sin(theta2), a1 + a2*cos(theta2))",
+        ),
+        (
+            "puma560",
+            "T0_2",
+            "[[C1*C2, S1*C2, S2, 0], [-C1*S2, -S1*S2, C2, 0], [S1, -C1, 0, 0],"
+            " [a2*C1*C2, a2*S1*C2, a2*S2, 1]]",
+        ),
+    ],
+)
+def test_a_prepared_key_diagnoses_its_first_wrong_answer_without_building(
+    monkeypatch: pytest.MonkeyPatch, robot: str, question: str, wrong: str
+) -> None:
+    key = Key.load(robot, question)
+    keys = PreparedKeys()
+    pk = keys.get(key)  # before any answer's clock: everything the mistakes need is built
+    built = _count_builds(monkeypatch)
+    first = check_answer(key, wrong, keys=keys)
+    assert first.verdict.value == "incorrect" and first.kinds
+    assert first.kinds[0] != "unexplained"
+    assert built == []  # the first wrong answer only compared with what was prepared
+    # and a key prepared now (with the counters in place) does build them, once, here
+    prepare(key)
+    assert built, "the counters see the builders"
+    del built[:]
+    check_answer(key, wrong, keys=keys)
+    assert built == [] and keys.get(key) is pk
+
+
+def test_prepared_key_has_no_memo_to_fill():
+    """A prepared key is frozen in fact: no mutable memo that answers fill."""
+    pk = prepare(Key.load("planar2r", "ik"))
+    assert not any(isinstance(v, dict) for v in vars(pk).values())
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        pk.part = TablePart()  # type: ignore[misc]
+    assert not hasattr(pk, "variant_values")

@@ -43,7 +43,8 @@ def _case():
     from dhsym.checking.judging.matrix_judge import _diagnosis_values
     from dhsym.checking.mistakes.registry import MatrixCase
 
-    sample, kv, av = _diagnosis_values(PK, sp.ImmutableMatrix([[E]]), [])
+    answer = sp.ImmutableMatrix([[E]])
+    sample, kv, av = _diagnosis_values(PK.part.diagnosis(KEY.table, answer), answer, [])
     return MatrixCase(
         tuple(KEY.table.rows),
         KEY.table.convention,
