@@ -401,8 +401,12 @@ class General6R:
         """The exact matrices ``P(θ3) m45 = Q m12`` (:func:`elimination_matrices`)."""
         return elimination_matrices(self.table)
 
-    def solve(self, T: np.ndarray) -> np.ndarray:
-        """Every real solution of the pose ``T`` (4×4), each checked by ``fk``: ``(k, 6)``."""
+    def solve(self, T: np.ndarray, *, within: float = 0.0) -> np.ndarray:
+        """Every real solution of the pose ``T`` (4×4), each checked by ``fk``: ``(k, 6)``.
+
+        ``within`` also keeps the polished candidates whose largest entry error is within
+        it (a rounded pose a little out of reach: a pair of roots that rounding turned
+        complex polishes to the arm stretched towards the pose, not onto it)."""
         T = np.asarray(T, dtype=float)
         if T.shape != (4, 4) or not np.isfinite(T).all():
             raise DHError(f"expected one finite 4×4 pose, got shape {T.shape}")
@@ -418,7 +422,7 @@ class General6R:
         q[q <= -math.pi + 1e-15] = math.pi
         scale = max(1.0, float(np.abs(T[:3, 3]).max()))
         err = np.abs(self.fk(q)[:, :3, :] - T[:3, :]).max(axis=(1, 2))
-        q = q[err < self.tol * scale]
+        q = q[(err < self.tol * scale) | (err <= within)]
         return _distinct(q)
 
 
