@@ -418,7 +418,10 @@ class General6R:
         theta = _candidates(arr, Tp, max(_ANGLE_TOL, math.sqrt(within)))
         if not len(theta):
             return np.empty((0, 6))
-        theta = _polish(arr, theta, Tp, 30 if within else 10)
+        if within:  # out of reach Newton may wander: the candidates after 10 and 30 steps
+            theta = np.concatenate([_polish(arr, theta, Tp), _polish(arr, theta, Tp, 30)])
+        else:
+            theta = _polish(arr, theta, Tp)
         q = np.empty_like(theta)
         q[:, arr.joint] = arr.sign * (theta - arr.offset)
         q = np.remainder(q + math.pi, 2 * math.pi) - math.pi
