@@ -35,13 +35,13 @@ from dhsym.kinematics.numeric import values_key
 from dhsym.model.table import DHRow, JointType
 
 from .accuracy import EXACT as _EXACT
-from .accuracy import FLOOR, nearest_rigid, pose_accuracy
+from .accuracy import FLOOR, REFINE, nearest_rigid, pose_accuracy
 from .closed_form import ClosedForm
 from .closed_form_solver import ClosedFormSolver
 from .families import inverse
 from .general6r import Elimination, EliminationSolver
 from .kept_derivations import kept_inverse
-from .levenberg_marquardt import DESCRIPTION, numeric_solutions
+from .levenberg_marquardt import DESCRIPTION, numeric_ik, numeric_solutions
 from .protocols import IKSolver, NativeCompiler
 from .solution import IKSolution
 
@@ -60,6 +60,13 @@ __all__ = [
 ]
 
 _TWO_PI = 2 * np.pi
+#: the most Levenberg–Marquardt steps a branch near a pose that is not exact is refined by
+REFINE_STEPS = 12
+#: a Jacobian whose smallest singular value is below this fraction of its largest holds
+#: Levenberg–Marquardt at a stretched arm (the refinement starts again beside it)
+_STUCK = 1e-3
+#: two refined solutions closer than this (angles by cosine and sine) are one
+_SAME = 1e-6
 
 
 def _limits(robot: KinematicChain) -> tuple[np.ndarray, np.ndarray]:
@@ -259,8 +266,10 @@ def _solve_free(
     tol: float,
     singular_tol: float,
     values: Mapping[object, object] | None,
+    stretch: bool = False,
 ) -> IKSolution:
-    """Every solution of the pose ``T`` with joint ``joint`` at ``value``."""
+    """Every solution of the pose ``T`` with joint ``joint`` at ``value`` (``stretch``: a
+    closed form reads every negative radicand as 0, as for a pose that is not exact)."""
     robot = cache.chain
     given = cache.given(joint)
     row = given.row
@@ -286,7 +295,10 @@ def _solve_free(
         # no closed form with this joint given: the numeric solver, on the whole arm with
         # the joint held (it says it is numeric, and how far it got)
         return _numeric_free(robot, T, joint, value, tol=tol, values=values)
-    part = solver.solve(inner, check="pose", tol=tol, singular_tol=singular_tol)
+    if stretch and isinstance(solver, ClosedFormSolver):
+        part = solver.solve(inner, check="pose", tol=tol, singular_tol=singular_tol, stretch=True)
+    else:
+        part = solver.solve(inner, check="pose", tol=tol, singular_tol=singular_tol)
     full = np.insert(part.q, joint - 1, value, axis=1)
     names = part.branches
     got = robot.fk_function(values=values)(full) if len(full) else np.zeros((0, 4, 4))
@@ -300,7 +312,7 @@ def _solve_free(
         part.factor_kinds,
         part.signs[ok],
         part.method,
-        part.reason if len(part) else None,
+        None if ok.any() else (part.reason or f"no branch reproduces the pose within {tol:g}"),
         names=tuple(s for s, k in zip(names, ok) if k),
     )
 
@@ -398,6 +410,11 @@ def solve(
     inner_tol = FLOOR if tol is None else tol
     if tols is not None and tols.size:
         inner_tol = max(inner_tol, float(np.max(tols)))
+    if brought:
+        # the branches within REFINE tolerances of a pose that is not exact are refined
+        # against it (_against_given): the arm stretched at a boundary, or a branch whose
+        # radicand rounding pushed below 0, lands near the pose, not on it
+        inner_tol *= REFINE
     if free:
         if len(free) != 1:
             raise DHError(f"free: give exactly one joint, got {len(free)}")
@@ -410,6 +427,7 @@ def solve(
             tol=inner_tol,
             singular_tol=singular_tol,
             values=values,
+            stretch=brought,
         )
     else:
         solver = cache.solver(values)
@@ -422,7 +440,8 @@ def solve(
         else:
             sol = solver.solve(arr, check=check, tol=inner_tol, singular_tol=singular_tol)
     if brought and tols is not None:
-        sol = _against_given(robot, sol, given, tols, values)
+        held = None if not free else {int(k): float(v) for k, v in free.items()}
+        sol = _against_given(robot, sol, given, tols, values, rigid=arr, held=held)
     return _chosen(robot, sol, limits, near, free, values)
 
 
@@ -563,30 +582,119 @@ def _against_given(
     given: np.ndarray,
     tols: np.ndarray,
     values: Mapping[object, object] | None,
+    *,
+    rigid: np.ndarray,
+    held: Mapping[int, float] | None = None,
 ) -> IKSolution:
-    """``sol`` (solutions of the nearest rigid poses) with each residual measured against
-    the poses as ``given`` (largest entry error of ``fk``), the solutions within ``tols``
-    kept."""
+    """``sol`` (solutions of the nearest ``rigid`` poses) with each residual measured
+    against the poses as ``given`` (largest entry error of ``fk``), the solutions within
+    ``tols`` kept.
+
+    A solution within :data:`~dhsym.ik.accuracy.REFINE` tolerances but not within one is
+    refined first (:func:`_refined`): where rounding put the pose a little outside the
+    workspace or a radicand a little below 0, the closed form (stretched) lands near the
+    pose, not on it. Refined rows that meet an earlier row are dropped (two branches that
+    merge at a singularity)."""
     fk = robot.fk_function(values=values)
+    revolute = _revolute(robot)
     if not sol.batch:
+        tol = float(tols)
         if not len(sol):
-            return replace(sol, reason=_reason(sol.reason, given, float(tols)))
-        res = _entry_error(fk(sol.q), given[None])
-        keep = np.nonzero(res <= float(tols))[0]
-        kept = replace(sol.take(keep), residual=res[keep])
+            return replace(sol, reason=_reason(sol.reason, given, tol))
+        q = sol.q.copy()
+        res = _entry_error(fk(q), given[None])
+        moved = _refined(robot, q, res, rigid, given, tol, values, held)
+        keep = np.nonzero(res <= tol)[0]
+        if moved.any():
+            keep = keep[_first_of_each(q[keep], revolute)]
+        kept = replace(sol.take(keep, q), residual=res[keep])
         if not len(kept):
-            return replace(kept, reason=_reason(sol.reason, given, float(tols)))
+            said = sol.reason or (
+                f"no branch of the {sol.method} reproduces the pose within {tol:.1g} "
+                f"(the closest to {float(res.min()):.2g})"
+            )
+            return replace(kept, reason=_reason(said, given, tol))
         return kept
     valid = sol.valid.copy()
     residual = np.array(sol.residual, dtype=float)
     q = sol.q.copy()
     i, k = np.nonzero(valid)
     if i.size:
-        res = _entry_error(fk(q[i, k]), given[i])
+        flat = q[i, k]
+        res = _entry_error(fk(flat), given[i])
+        for pose in np.unique(i[(res > tols[i]) & (res <= REFINE * tols[i])]):
+            rows = np.nonzero(i == pose)[0]
+            part, part_res = flat[rows], res[rows]
+            if _refined(
+                robot, part, part_res, rigid[pose], given[pose], float(tols[pose]), values, held
+            ).any():
+                ok = np.nonzero(part_res <= tols[pose])[0]
+                merged = np.setdiff1d(ok, ok[_first_of_each(part[ok], revolute)])
+                part_res[merged] = np.inf  # a refined row that meets an earlier one
+            flat[rows], res[rows] = part, part_res
+        q[i, k] = flat
         residual[i, k] = res
         valid[i, k] = res <= tols[i]
     q[~valid] = np.nan
     return replace(sol, q=q, valid=valid, residual=residual)
+
+
+def _refined(
+    robot: KinematicChain,
+    q: np.ndarray,
+    res: np.ndarray,
+    rigid: np.ndarray,
+    given: np.ndarray,
+    tol: float,
+    values: Mapping[object, object] | None,
+    held: Mapping[int, float] | None,
+) -> np.ndarray:
+    """Refine in place the rows of ``q`` ``(k, n)`` whose residual ``res`` against the pose
+    as ``given`` is above ``tol`` but within :data:`~dhsym.ik.accuracy.REFINE` tolerances:
+    Levenberg–Marquardt (:func:`~dhsym.ik.levenberg_marquardt.numeric_ik`, the joints of
+    ``held`` held) from the row towards the ``rigid`` pose, the refined row and its
+    residual kept when closer to the pose as given. Returns which rows moved.
+
+    A stretched arm sits at a singular configuration, where the pose moves only to second
+    order along the Jacobian's null direction ``v`` and Levenberg–Marquardt cannot leave
+    it: when the first start does not reach the tolerance and the Jacobian there is nearly
+    singular (:data:`_STUCK`), the row is refined again from ``q ± δ v``, ``δ = √res``
+    (the step that moves the pose by about ``res``)."""
+    fk = robot.fk_function(values=values)
+    moving = np.array([k + 1 not in (held or {}) for k in range(q.shape[1])])
+    moved = np.zeros(len(q), dtype=bool)
+    for r in np.nonzero((res > tol) & (res <= REFINE * tol))[0]:
+        starts = [q[r]]
+        for attempt in range(2):
+            for start in starts:
+                step = numeric_ik(
+                    robot, rigid, start, max_iter=REFINE_STEPS, values=values, fixed=held
+                )
+                better = float(_entry_error(fk(step.q), given[None])[0])
+                if better < res[r]:
+                    q[r], res[r], moved[r] = step.q[0], better, True
+            if res[r] <= tol or attempt:
+                break
+            J = np.asarray(robot.jacobian(q[r], values=values))[:, moving]
+            _, sv, vt = np.linalg.svd(J)
+            if sv[-1] > _STUCK * sv[0]:
+                break  # not singular: nothing holds it, it is no solution
+            v = np.zeros(q.shape[1])
+            v[moving] = vt[-1] * np.sqrt(res[r])
+            starts = [q[r] + v, q[r] - v]
+    return moved
+
+
+def _first_of_each(q: np.ndarray, revolute: np.ndarray) -> np.ndarray:
+    """The indices of the rows of ``q`` ``(k, n)`` that differ from every earlier row by
+    more than :data:`_SAME` (angles compared by cosine and sine)."""
+    key = np.concatenate([np.cos(q[:, revolute]), np.sin(q[:, revolute]), q[:, ~revolute]], axis=1)
+    first = [
+        r
+        for r in range(len(q))
+        if not (np.abs(key[:r] - key[r]).max(axis=1, initial=0) < _SAME).any()
+    ]
+    return np.array(first, dtype=int)
 
 
 def _entry_error(got: np.ndarray, want: np.ndarray) -> np.ndarray:

@@ -3,16 +3,38 @@ checked against the pose as given within a tolerance that follows its accuracy."
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 import dhsym
 from dhsym.ik.accuracy import FLOOR, nearest_rigid, pose_accuracy, written_decimals
+from dhsym.model.library import builtin_names
 
-ROBOTS = ("puma560", "ur5", "stanford")
+DATA = Path(__file__).resolve().parents[1] / "data" / "urdf"
+#: every built-in arm of six joint variables (the 6R arms and the Stanford arm)
+SIX = tuple(n for n in builtin_names() if len(dhsym.load(n).variables) == 6)
+#: the URDF examples: the UR5 whole, the Panda with joint 7 given (its closed form)
+URDF = {"ur5_robot.urdf": ("tool0", None), "panda.urdf": ("panda_hand", 7)}
+#: the general 6R (one eigenproblem per pose) and the Panda (one pose per call, ``free``
+#: takes one pose) take well over 10 s for 1,000 poses
+SLOW = {"jaco", "panda.urdf"}
+POSES = 1000
+#: what is still missed: the general 6R at 3 decimals, one pose of 1,000 (a pair of
+#: solutions 0.008 rad apart that the rounding turns into a complex pair of eigenvalues
+#: 0.06 rad off the real axis; polishing from their real parts does not reach the pose)
+STILL_MISSED = {("jaco", 3): 1}
 
 
-def _configurations(robot: dhsym.Robot, count: int = 200) -> tuple[np.ndarray, np.ndarray]:
+def _load(name: str) -> tuple[dhsym.Robot, int | None]:
+    if name in URDF:
+        tip, given = URDF[name]
+        return dhsym.from_urdf(DATA / name, tip=tip), given
+    return dhsym.load(name), None
+
+
+def _configurations(robot: dhsym.Robot, count: int = POSES) -> tuple[np.ndarray, np.ndarray]:
     rev = np.array([r.joint.name == "REVOLUTE" for r in robot.table.rows if r.variable is not None])
     rng = np.random.default_rng(32)
     Q = rng.uniform(-np.pi, np.pi, (count, len(rev)))
@@ -20,46 +42,55 @@ def _configurations(robot: dhsym.Robot, count: int = 200) -> tuple[np.ndarray, n
     return Q, rev
 
 
-#: the closed forms at 6, 4 and 3 decimals; the general 6R (jaco) at 6 only: it does not
-#: stretch the arm, so at 4 and 3 decimals a few boundary poses lose branches (4 and 6 of
-#: 1374 with this seed)
-CASES = [(name, d) for name in ROBOTS for d in (6, 4, 3)] + [("jaco", 6)]
+CASES = [
+    pytest.param(name, d, marks=[pytest.mark.slow] if name in SLOW else [])
+    for name in (*SIX, *URDF)
+    for d in (6, 4, 3)
+]
 
 
 @pytest.mark.parametrize(("name", "decimals"), CASES)
-def test_every_branch_of_a_rounded_pose_is_found(name: str, decimals: int) -> None:
-    robot = dhsym.load(name)
+def test_every_rounded_pose_is_solved_and_its_branch_found(name: str, decimals: int) -> None:
+    """1,000 poses reachable by construction (``fk`` of random joint values), rounded to
+    ``decimals``: each gets a solution within its tolerance, and the joint values it came
+    from are among the answers to the accuracy the rounding allows.
+
+    That accuracy: rounding moves the pose by at most half a unit of the last decimal in
+    each entry, so the joints by at most about ``3·half / σ_min(J)`` to first order (the
+    smallest singular value of the Jacobian at the true joints); the bound is ten times
+    that (second order near a singularity), at least 1e-6. Near a singularity it allows
+    much (the joints there are ill-conditioned), elsewhere a few hundredths of a radian
+    at 3 decimals and less than 1e-4 at 6."""
+    robot, given = _load(name)
     Q, rev = _configurations(robot)
+    T = robot.fk(Q)
+    P = np.round(T, decimals)
     half = 0.5 * 10.0**-decimals
-    exact = found = matched = strict = before = 0
-    for q in Q:
-        T = robot.fk(q)
-        truth = robot.ik(T, singular_tol=3e-2)
-        P = np.round(T, decimals)
-        sol = robot.ik(P)
-        before += len(robot.ik(P, tol=1e-9))
-        tol = pose_accuracy(P).tol
-        assert tol >= FLOOR and tol <= 2 * 3 * half  # the rule, within its bound
-        # each residual is the largest entry error against the pose as given
-        if len(sol):
-            got = robot.fk(sol.q)
-            err = np.abs(got[:, :3] - P[:3]).reshape(len(sol), -1).max(axis=1)
-            assert np.allclose(err, sol.residual, rtol=0, atol=1e-15)
-            assert (sol.residual <= tol).all()
-        exact += len(truth)
-        found += len(sol)
-        if truth.near.any():  # near a singularity single joints are ill-conditioned
+    if given is None:
+        batch = robot.ik(P)  # the batch: one call for the 1,000 poses
+        sols = [batch.solution(i) for i in range(len(P))]
+        assert robot.ik(P, tol=1e-9).count.sum() == 0  # at 1e-9 nothing (issue 32)
+    else:
+        sols = [robot.ik(P[i], free={given: Q[i, given - 1]}) for i in range(len(P))]
+    moving = [k for k in range(len(rev)) if k + 1 != given]
+    missed = []
+    for i, sol in enumerate(sols):
+        tol = pose_accuracy(P[i]).tol
+        assert FLOOR <= tol <= 2 * 3 * half  # the rule, within its bound
+        if not len(sol):
+            missed.append((i, sol.reason))
             continue
-        for q0 in truth.q:
-            strict += 1
-            d = sol.q - q0
-            d[:, rev] = (d[:, rev] + np.pi) % (2 * np.pi) - np.pi
-            if len(sol) and np.abs(d).max(axis=1).min() < 1e3 * half:
-                matched += 1
-    assert before == 0  # at 1e-9 nothing (the finding of issue 32)
-    # near the boundary or a singularity two branches may merge into one (the arm stretched)
-    assert found >= 0.985 * exact
-    assert matched >= 0.98 * strict
+        # each residual is the largest entry error against the pose as given, within tol
+        err = np.abs(robot.fk(sol.q)[:, :3] - P[i, :3]).reshape(len(sol), -1).max(axis=1)
+        np.testing.assert_allclose(err, sol.residual, rtol=0, atol=1e-15)
+        assert (sol.residual <= tol).all()
+        d = sol.q - Q[i]
+        d[:, rev] = (d[:, rev] + np.pi) % (2 * np.pi) - np.pi
+        sigma = np.linalg.svd(robot.jacob0(Q[i])[:, moving], compute_uv=False)[-1]
+        bound = max(10 * 3 * half / sigma, 1e-6)
+        if np.abs(d).max(axis=1).min() > bound:
+            missed.append((i, f"the branch of the true joints is missing (σ_min {sigma:.2g})"))
+    assert len(missed) <= STILL_MISSED.get((name, decimals), 0), missed
 
 
 def test_the_ur5_pose_of_the_issue() -> None:

@@ -254,8 +254,9 @@ def _eigen_qz(big: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return x, W
 
 
-def _candidates(arr: _Arrangement, Tp: np.ndarray) -> np.ndarray:
-    """Chain angles ``(k, 6)`` of every real eigenvalue, before polishing."""
+def _candidates(arr: _Arrangement, Tp: np.ndarray, angle_tol: float = _ANGLE_TOL) -> np.ndarray:
+    """Chain angles ``(k, 6)`` of every real eigenvalue (``|Im θ| < angle_tol``), before
+    polishing."""
     best = None
     for delta in _SHIFTS:
         found = _pencil(arr, Tp, delta), delta
@@ -273,7 +274,7 @@ def _candidates(arr: _Arrangement, Tp: np.ndarray) -> np.ndarray:
     (big, Q1, R8, r, P), delta = found
     with np.errstate(all="ignore"):
         phi = 2.0 * np.arctan(x.astype(complex))
-    real = np.isfinite(phi) & (np.abs(phi.imag) < _ANGLE_TOL)
+    real = np.isfinite(phi) & (np.abs(phi.imag) < angle_tol)
     if not real.any():
         return np.empty((0, 6))
     phi = phi.real[real]
@@ -401,24 +402,33 @@ class General6R:
         """The exact matrices ``P(θ3) m45 = Q m12`` (:func:`elimination_matrices`)."""
         return elimination_matrices(self.table)
 
-    def solve(self, T: np.ndarray) -> np.ndarray:
-        """Every real solution of the pose ``T`` (4×4), each checked by ``fk``: ``(k, 6)``."""
+    def solve(self, T: np.ndarray, *, within: float = 0.0) -> np.ndarray:
+        """Every real solution of the pose ``T`` (4×4), each checked by ``fk``: ``(k, 6)``.
+
+        ``within`` also keeps the polished candidates whose largest entry error is within
+        it (a rounded pose a little out of reach: a pair of roots that rounding turned
+        complex polishes to the arm stretched towards the pose, not onto it): a double root
+        that a pose error ε splits moves by about √ε, so eigenvalues with ``|Im θ|`` up to
+        ``√within`` are candidates too."""
         T = np.asarray(T, dtype=float)
         if T.shape != (4, 4) or not np.isfinite(T).all():
             raise DHError(f"expected one finite 4×4 pose, got shape {T.shape}")
         arr = self.arrangement
         Tp = arr.target(T)
-        theta = _candidates(arr, Tp)
+        theta = _candidates(arr, Tp, max(_ANGLE_TOL, math.sqrt(within)))
         if not len(theta):
             return np.empty((0, 6))
-        theta = _polish(arr, theta, Tp)
+        if within:  # out of reach Newton may wander: the candidates after 10 and 30 steps
+            theta = np.concatenate([_polish(arr, theta, Tp), _polish(arr, theta, Tp, 30)])
+        else:
+            theta = _polish(arr, theta, Tp)
         q = np.empty_like(theta)
         q[:, arr.joint] = arr.sign * (theta - arr.offset)
         q = np.remainder(q + math.pi, 2 * math.pi) - math.pi
         q[q <= -math.pi + 1e-15] = math.pi
         scale = max(1.0, float(np.abs(T[:3, 3]).max()))
         err = np.abs(self.fk(q)[:, :3, :] - T[:3, :]).max(axis=(1, 2))
-        q = q[err < self.tol * scale]
+        q = q[(err < self.tol * scale) | (err <= within)]
         return _distinct(q)
 
 

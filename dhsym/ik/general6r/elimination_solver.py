@@ -153,7 +153,7 @@ class EliminationSolver:
         none = np.empty((0, 6)), np.empty(0), np.empty(0, dtype=bool)
         if not np.isfinite(T).all():
             return (*none, "the pose is not finite")
-        q = self.core.solve(T)
+        q = self.core.solve(T, within=tol if check == "pose" else 0.0)
         if not len(q):
             return (*none, "the eigenproblem has no real eigenvalue that gives a solution")
         got = self.fk(q)
