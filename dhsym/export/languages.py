@@ -37,6 +37,7 @@ if TYPE_CHECKING:
 
     from .motion import JointwiseProgram
     from .program import IKProgram, Program, RNEProgram
+    from .screws import ScrewPrograms
 
 __all__ = ["Context", "Language", "header_lines", "render_files"]
 
@@ -71,6 +72,8 @@ class Context:
     #: the exported profiles (``cubic``, ``quintic``) and computed torque, when asked for
     profiles: tuple[JointwiseProgram, ...] = ()
     control: JointwiseProgram | None = None
+    #: the product of exponentials' fk (space form) and Jacobians, when asked for
+    screws: ScrewPrograms | None = None
 
 
 def _cell(e: sp.Expr) -> str:

@@ -9,7 +9,6 @@ two-link arm with numbers for its masses and inertias."""
 from __future__ import annotations
 
 import shutil
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -145,19 +144,8 @@ int main(void)
 }}
 """
 
-_RUST_MAIN = """
-mod arm;
-use std::io::Read;
-const N: usize = arm::NJOINTS;
-fn arr(v: &[f64]) -> [f64; N] {
-    let mut a = [0.0; N];
-    a.copy_from_slice(&v[..N]);
-    a
-}
-fn main() {
-    let mut s = String::new();
-    std::io::stdin().read_to_string(&mut s).unwrap();
-    let v: Vec<f64> = s.split_whitespace().map(|x| x.parse().unwrap()).collect();
+_RUST_MAIN = h.rust_main(
+    """\
     let mut at = 1;
     for _ in 0..(v[0] as usize) {
         let b = &v[at..at + 6 * N + 2];
@@ -176,8 +164,16 @@ fn main() {
         for y in tau.iter() { println!("{:e}", y); }
         at += 7 * N;
     }
+""",
+    items="""\
+const N: usize = arm::NJOINTS;
+fn arr(v: &[f64]) -> [f64; N] {
+    let mut a = [0.0; N];
+    a.copy_from_slice(&v[..N]);
+    a
 }
-"""
+""",
+)
 
 _OCTAVE = """
 fid = fopen('in.txt'); v = fscanf(fid, '%f'); fclose(fid);
@@ -199,27 +195,13 @@ end
 """
 
 
-def _run(cmd: list[str], folder: Path, text: str) -> np.ndarray:
-    res = subprocess.run(cmd, cwd=folder, input=text, capture_output=True, text=True, check=True)
-    return np.array([float(t) for t in res.stdout.split()])
-
-
 def _c_like(name: str, tmp_path: Path, cpp: bool) -> None:
     robot, files = _export(name, "cpp" if cpp else "c")
-    for fname, text in files.items():
-        (tmp_path / fname).write_text(text)
     main = _C_MAIN.format(
         ext="hpp" if cpp else "h", n=len(robot.variables), ns="arm::" if cpp else "arm_"
     )
-    if cpp:
-        (tmp_path / "main.cpp").write_text(main)
-        cmd = ["g++", "-std=c++17", "-Wall", "-Wextra", "-Werror", "-O2", "main.cpp", "-o", "prog"]
-    else:
-        (tmp_path / "main.c").write_text(main)
-        flags = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
-        cmd = ["gcc", *flags, "main.c", "arm.c", "-o", "prog", "-lm"]
-    subprocess.run(cmd, cwd=tmp_path, check=True, capture_output=True, text=True)
-    _check(robot, _run([str(tmp_path / "prog")], tmp_path, _stdin(robot)))
+    prog = h.build_c(files, tmp_path, main, cpp)
+    _check(robot, h.numbers([str(prog)], tmp_path, _stdin(robot)))
 
 
 @pytest.mark.slow
@@ -242,12 +224,8 @@ def test_rust(name, tmp_path):
     rustc = h.rustc()
     _need("rustc", rustc is not None, "apt-get install rustc (or rustup)")
     robot, files = _export(name, "rust")
-    for fname, text in files.items():
-        (tmp_path / fname).write_text(text)
-    (tmp_path / "main.rs").write_text(_RUST_MAIN)
-    cmd = [rustc, "-O", "-A", "dead_code", "main.rs", "-o", "prog"]
-    subprocess.run(cmd, cwd=tmp_path, check=True, capture_output=True, text=True)
-    _check(robot, _run([str(tmp_path / "prog")], tmp_path, _stdin(robot)))
+    prog = h.build_rust(files, tmp_path, _RUST_MAIN)
+    _check(robot, h.numbers([str(prog)], tmp_path, _stdin(robot)))
 
 
 @pytest.mark.slow
@@ -255,12 +233,8 @@ def test_rust(name, tmp_path):
 def test_octave(name, tmp_path):
     _need("octave", shutil.which("octave") is not None, "apt-get install octave")
     robot, files = _export(name, "matlab")
-    for fname, text in files.items():
-        (tmp_path / fname).write_text(text)
     (tmp_path / "in.txt").write_text(_stdin(robot))
-    (tmp_path / "drive.m").write_text(_OCTAVE)
-    cmd = ["octave", "--no-gui", "--quiet", "--no-window-system", "drive.m"]
-    _check(robot, _run(cmd, tmp_path, ""))
+    _check(robot, h.octave(files, tmp_path, _OCTAVE))
 
 
 @pytest.mark.parametrize("name", [pytest.param("puma560", marks=pytest.mark.slow), "spong2r"])
