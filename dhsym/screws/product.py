@@ -72,7 +72,6 @@ import sympy as sp
 from dhsym.errors import DHError
 from dhsym.kinematics.jacobian import _joint_rows, axis_frame, compact, resolve_frame
 from dhsym.kinematics.pose import Pose
-from dhsym.kinematics.simplification import prove_equal
 from dhsym.kinematics.transforms import rigid_inverse
 from dhsym.model.kinds import JointType
 from dhsym.notation.printers import Notation
@@ -386,20 +385,30 @@ def from_chain(chain: KinematicChain) -> ProductOfExponentials:
 
 
 def prove_same_fk(poe: ProductOfExponentials, chain: KinematicChain) -> bool:
-    """Exact proof that both PoE forms of ``poe`` equal the plain DH product of ``chain``
-    (entries reduced modulo ``sin² + cos² = 1``,
-    :func:`~dhsym.kinematics.simplification.prove_equal`).
+    """Exact proof that both PoE forms of ``poe`` equal the plain DH product of ``chain``.
+
+    Nothing is simplified: the three products — the elementary matrices of the DH word
+    from the space frame to the tool frame, :math:`e^{[\\mathcal{S}_1]\\theta_1}\\cdots M`
+    and :math:`M e^{[\\mathcal{B}_1]\\theta_1}\\cdots` — are multiplied factor by factor in
+    one polynomial ring of the sines and cosines (joint angles and constant angles) and
+    the square roots, each step reduced modulo ``sin² + cos² = 1`` and ``(√b)² = b``, and
+    their entries compared (:func:`~dhsym.kinematics.trig_ring.prove_products_equal`).
 
     >>> import dhsym
     >>> r = dhsym.load("planar2r")
     >>> prove_same_fk(from_chain(r), r)
     True
     """
-    plain = chain.plain_transform(resolve_frame(chain, "base"), resolve_frame(chain, "tool"))
+    from dhsym.kinematics.transforms import chain_word, elementary_matrix
+    from dhsym.kinematics.trig_ring import prove_products_equal
+
     if tuple(poe.variables) != tuple(chain.variables):
         raise DHError("the PoE description and the chain have different joint variables")
-    # the compact forms: reducing them is faster than reducing the expanded products
-    return prove_equal(poe.fk_space().matrix, plain) and prove_equal(poe.fk_body().matrix, plain)
+    word = chain_word(chain.table, resolve_frame(chain, "base"), resolve_frame(chain, "tool"))
+    dh = [elementary_matrix(e) for e in word]
+    space = [*(e.matrix for e in poe.exponentials("space")), poe.home]
+    body = [poe.home, *(e.matrix for e in poe.exponentials("body"))]
+    return prove_products_equal([dh, space, body], poe.variables)
 
 
 _SWAP = sp.ImmutableMatrix(sp.BlockMatrix([[sp.zeros(3), sp.eye(3)], [sp.eye(3), sp.zeros(3)]]))
