@@ -70,7 +70,13 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.kinematics.jacobian import _joint_rows, axis_frame, compact, resolve_frame
+from dhsym.kinematics.jacobian import (
+    LectureMatrix,
+    axis_frame,
+    compact,
+    joint_rows,
+    resolve_frame,
+)
 from dhsym.kinematics.pose import Pose
 from dhsym.kinematics.transforms import rigid_inverse
 from dhsym.model.kinds import JointType
@@ -136,29 +142,17 @@ class AxisStep:
 
 
 @dataclass(frozen=True)
-class ScrewJacobian:
-    """An exact 6×n Jacobian with rows ``[ω; v]``: ``frame`` is ``"space"`` or ``"body"``."""
+class ScrewJacobian(LectureMatrix):
+    """An exact 6×n Jacobian with rows ``[ω; v]``: ``frame`` is ``"space"`` or ``"body"``
+    (printed as :class:`~dhsym.kinematics.jacobian.LectureMatrix` prints, ``J_s``, ``J_b``)."""
 
     matrix: Matrix
     frame: str
     notation: Notation = field(repr=False)
 
-    def text(self) -> str:
-        """The matrix in plain text, lecture notation."""
-        return self.notation.text(self.matrix)
-
-    def latex(self) -> str:
-        """The matrix in LaTeX, lecture notation."""
-        return self.notation.latex(self.matrix)
-
-    def _sympystr(self, printer: object) -> str:
-        return self.text()
-
-    def _latex(self, printer: object) -> str:
-        return self.latex()
-
-    def _repr_latex_(self) -> str:
-        return f"$$J_{{{self.frame[0]}}} = {self.latex()}$$"
+    def symbol_latex(self) -> str:
+        """``J_{s}`` or ``J_{b}``, in LaTeX."""
+        return f"J_{{{self.frame[0]}}}"
 
 
 def _vector(M: sp.MatrixBase) -> Matrix:
@@ -349,7 +343,7 @@ def from_chain(chain: KinematicChain) -> ProductOfExponentials:
     k = resolve_frame(chain, "base")
     e = resolve_frame(chain, "tool")
     axes, steps, variables = [], [], []
-    for row, var, joint, rate in _joint_rows(chain):
+    for row, var, joint, rate in joint_rows(chain):
         a = axis_frame(chain, row)
         home = _at_home(chain, chain.transform(k, a).matrix)
         z, origin = home[:3, 2], home[:3, 3]
