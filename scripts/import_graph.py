@@ -4,7 +4,7 @@ Reads every module with ``ast`` (module-level and lazy imports inside functions 
 and prints the room-to-room edges. Exit status 1 when
 
 - an edge points up the order model → cache → notation → kinematics → ik/dynamics/geometry/plot/
-  export → formats → trajectory → control → robot (the facade, ``dhsym.robot.Robot``) →
+  trajectory → screws/export → formats → control → robot (the facade, ``dhsym.robot.Robot``) →
   explain → checking → cli,
   except the documented exceptions in ``ALLOWED``;
 - any imports, counted all (module level and inside functions; only ``if TYPE_CHECKING:``
@@ -56,7 +56,7 @@ ORDER = [
 RANK = {room: k for k, room in enumerate(ORDER)}
 RANK["plot"] = RANK["geometry"]  # siblings
 RANK["ik"] = RANK["geometry"]
-RANK["export"] = RANK["geometry"]  # a sibling too: it reads model, notation, kinematics, ik
+RANK["export"] = RANK["screws"]  # a sibling of screws: it prints the product of exponentials
 RANK["dynamics"] = RANK["geometry"]  # a sibling: model, notation, kinematics below it
 RANK["trajectory"] = RANK["geometry"]  # a sibling: the export prints its profiles
 #: Upward edges with a documented reason: a table's display hooks reach the printer at

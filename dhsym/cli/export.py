@@ -178,7 +178,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         default="fk,jacobian,ik",
         help="comma-separated parts: fk, jacobian, ik, dynamics (or rne: numeric inertial "
         "parameters only), trajectory (cubic and quintic profiles), control (computed "
-        "torque on rne: numeric inertial parameters only)",
+        "torque on rne: numeric inertial parameters only), screws (the product of "
+        "exponentials: fk_space, jacobian_space, jacobian_body)",
     )
     c.add_argument(
         "--prefix",

@@ -52,11 +52,11 @@ from typing import TYPE_CHECKING, TypeAlias
 import sympy as sp
 
 from dhsym.kinematics.simplification import fold_sum_angles, prove_equal, tidy_signs
+from dhsym.kinematics.trig_ring import lecture_form
 from dhsym.model.inertia import LinkInertia
 
 from .lagrange_euler import link_jacobians, ring_energies, ring_equations
 from .model import DynamicModel, dynamic_model
-from .trig_ring import lecture_form
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain

@@ -39,11 +39,11 @@ import sympy as sp
 
 from dhsym.kinematics.jacobian import axis_frame, compact
 from dhsym.kinematics.simplification import fold_sum_angles, tidy_signs
+from dhsym.kinematics.trig_ring import TrigRing, lecture_form
 from dhsym.model.table import JointType
 
 from .equations import EquationsOfMotion
 from .model import DynamicModel, dynamic_model
-from .trig_ring import TrigRing, lecture_form
 
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain

@@ -1,5 +1,5 @@
-"""Source code to take away: fk, Jacobian, closed-form IK and inverse dynamics (rne) in C,
-C++, MATLAB, Rust, NumPy.
+"""Source code to take away: fk, Jacobian, closed-form IK, inverse dynamics (rne) and the
+product of exponentials in C, C++, MATLAB, Rust, NumPy.
 
 The room turns a robot's exact closed forms (:mod:`dhsym.kinematics`) into
 self-contained source files with no dependency on dhsym: :mod:`.program` is the
@@ -7,8 +7,9 @@ front end (named straight-line programs), :mod:`.ik_source` the one adapter to t
 derivation, :mod:`.languages` and the templates in ``templates/export`` the back end, one
 module per language (:mod:`.c`, :mod:`.cpp`, :mod:`.matlab`, :mod:`.rust`,
 :mod:`.python`), and :mod:`.shared_library` builds the C once and loads it with ``ctypes``.
-May import model, notation, kinematics, ik (the derivation, read by :mod:`.ik_source`) and
-dynamics (the Newton–Euler recursion, read by :func:`.program.rne_program`).
+May import model, notation, kinematics, ik (the derivation, read by :mod:`.ik_source`),
+dynamics (the Newton–Euler recursion, read by :func:`.program.rne_program`), trajectory
+(the profiles, :mod:`.motion`) and screws (the product of exponentials, :mod:`.screws`).
 
 ``dhsym.export(robot, lang, ...)`` is :func:`export` (the module is callable).
 
@@ -55,8 +56,9 @@ __all__ = ["DEFAULT_PARTS", "LANGUAGES", "PARTS", "export", "export_languages"]
 #: The languages and the modules that print them.
 LANGUAGES = ("c", "cpp", "matlab", "rust", "python")
 #: What can be exported (``rne`` is another name for ``dynamics``; ``trajectory``: the
-#: cubic and quintic profiles; ``control``: computed torque, on the exported ``rne``).
-PARTS = ("fk", "jacobian", "ik", "dynamics", "trajectory", "control")
+#: cubic and quintic profiles; ``control``: computed torque, on the exported ``rne``;
+#: ``screws``: the product of exponentials' fk in space form and ``J_s``, ``J_b``).
+PARTS = ("fk", "jacobian", "ik", "dynamics", "trajectory", "control", "screws")
 #: What is exported unless asked otherwise (the dynamics needs numeric inertial parameters).
 DEFAULT_PARTS = ("fk", "jacobian", "ik")
 
@@ -81,7 +83,7 @@ def _parts(what: str | Iterable[str]) -> tuple[str, ...]:
             parts.append(w)
     if not parts:
         raise DHError(
-            "nothing to export: give what=fk,jacobian,ik,dynamics,trajectory,control "
+            "nothing to export: give what=fk,jacobian,ik,dynamics,trajectory,control,screws "
             "(or a part of it)"
         )
     return tuple(p for p in PARTS if p in parts)
@@ -110,10 +112,13 @@ def export(
         inverse dynamics ``rne(q, qd, qdd)`` of ``robot.rne``, for numeric inertial
         parameters only), ``"trajectory"`` (``<prefix>_cubic``, ``<prefix>_quintic`` and
         ``<prefix>_lspb``: q, q̇, q̈ of each joint at a time ``t`` from its boundary
-        conditions; ``<prefix>_spline``: the cubic spline through via points) and
-        ``"control"`` (``<prefix>_computed_torque``, numeric inertial parameters only) as a
-        sequence or ``"fk,ik"``. The IK checks its solutions with the fk, so ``ik`` brings
-        ``fk`` along, and ``control`` brings ``dynamics`` (its ``rne``).
+        conditions; ``<prefix>_spline``: the cubic spline through via points),
+        ``"control"`` (``<prefix>_computed_torque``, numeric inertial parameters only) and
+        ``"screws"`` (the product of exponentials of Lynch and Park: ``<prefix>_fk_space``,
+        the pose of ``fk`` as ``e^[S1]q1 … e^[Sn]qn M``, and ``<prefix>_jacobian_space``,
+        ``<prefix>_jacobian_body``, rows ``[ω; v]``; the header lists the screw axes and
+        ``M``) as a sequence or ``"fk,ik"``. The IK checks its solutions with the fk, so
+        ``ik`` brings ``fk`` along, and ``control`` brings ``dynamics`` (its ``rne``).
     prefix
         The name in front of every function and file (``<prefix>_fk``, ``<prefix>.h``):
         an ASCII letter, then letters, digits and ``_``, never a path (anything else is a
@@ -175,6 +180,7 @@ def export_languages(
     from .languages import Context, header_lines, render_files
     from .motion import computed_torque_program, lspb_program, profile_program, spline_program
     from .program import fk_program, ik_program, jacobian_program, rne_program
+    from .screws import description_lines, screw_programs
 
     parts = _parts(what)
     if "control" in parts and "dynamics" not in parts:  # computed torque calls rne
@@ -198,6 +204,7 @@ def export_languages(
     )
     spline = spline_program() if "trajectory" in parts else None
     control = computed_torque_program() if "control" in parts else None
+    screws = screw_programs(robot, symbolic_lengths=symbolic_lengths) if "screws" in parts else None
     effective = tuple(sorted(set(parts) | {"fk"}))
     out: dict[str, dict[str, str]] = {}
     for lang, language in languages:
@@ -210,6 +217,8 @@ def export_languages(
         header = header_lines(robot, said)
         if ik is not None:
             header += comment_lines(f"Inverse kinematics: {ik.source.structure}")
+        if screws is not None:
+            header += [c for line in description_lines(screws.poe) for c in comment_lines(line)]
         ctx = Context(
             prefix=name,
             header=tuple(header),
@@ -221,6 +230,7 @@ def export_languages(
             profiles=profiles,
             control=control,
             spline=spline,
+            screws=screws,
             parameters=fk.parameters,
             revolute=tuple(
                 r.joint.value == "R" for r in robot.table.rows if r.variable is not None

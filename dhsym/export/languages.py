@@ -37,6 +37,7 @@ if TYPE_CHECKING:
 
     from .motion import JointwiseProgram, SplineProgram
     from .program import IKProgram, Program, RNEProgram
+    from .screws import ScrewPrograms
 
 __all__ = ["Context", "Language", "header_lines", "render_files"]
 
@@ -73,6 +74,8 @@ class Context:
     control: JointwiseProgram | None = None
     #: the cubic spline through via points, when the trajectory is asked for
     spline: SplineProgram | None = None
+    #: the product of exponentials' fk (space form) and Jacobians, when asked for
+    screws: ScrewPrograms | None = None
 
 
 def _cell(e: sp.Expr) -> str:

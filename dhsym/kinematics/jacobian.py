@@ -44,7 +44,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import TYPE_CHECKING, Any, Protocol, TypeAlias
 
 import sympy as sp
 
@@ -66,6 +66,8 @@ __all__ = [
     "AnalyticJacobian",
     "Jacobian",
     "JacobianColumn",
+    "JointRow",
+    "LectureMatrix",
     "analytic_jacobian",
     "analytic_jacobian_function",
     "axis_frame",
@@ -73,6 +75,7 @@ __all__ = [
     "euler_angles",
     "geometric_jacobian",
     "jacobian_function",
+    "joint_rows",
     "numeric_jacobian",
     "rate_matrix",
     "resolve_frame",
@@ -143,8 +146,22 @@ def axis_frame(robot: KinematicChain, row: int) -> int:
     return row - 1 if robot.convention is Convention.STANDARD else row
 
 
-def _joint_rows(robot: KinematicChain) -> list[tuple[int, sp.Symbol, JointType, sp.Expr]]:
-    """(row, variable, joint type, d entry / d variable) for every joint row."""
+#: ``(row, variable, joint type, rate)`` of one joint: see :func:`joint_rows`
+JointRow: TypeAlias = tuple[int, sp.Symbol, JointType, sp.Expr]
+
+
+def joint_rows(robot: KinematicChain) -> list[JointRow]:
+    """``(row, variable, joint type, rate)`` for every row with a joint variable, in order:
+    the row's number (from 1), its variable, revolute or prismatic, and the rate
+    ``∂ entry / ∂ variable`` of its variable entry (1, or −1 for an entry ``−q``); an entry
+    that is not linear in its variable is a :class:`~dhsym.errors.DHError` naming the row
+    and field. The Jacobians (geometric, analytic) and the screw axes of
+    :func:`dhsym.screws.product.from_chain` read the joints through it.
+
+    >>> import dhsym
+    >>> joint_rows(dhsym.load("stanford"))[2]
+    (3, d3, <JointType.PRISMATIC: 'P'>, 1)
+    """
     out = []
     for i, row in enumerate(robot.table.rows, start=1):
         if row.variable is None or row.variable_field is None:
@@ -192,8 +209,45 @@ class JacobianColumn:
     angular: Matrix
 
 
+class _Printable(Protocol):
+    """What :class:`LectureMatrix` prints: an exact matrix, its notation and its symbol."""
+
+    @property
+    def matrix(self) -> Matrix: ...
+
+    @property
+    def notation(self) -> Notation: ...
+
+    def symbol_latex(self) -> str: ...
+
+
+class LectureMatrix:
+    """The printing hooks of an exact matrix shown in lecture notation (a mixin): plain
+    text and LaTeX through the robot's :class:`~dhsym.notation.printers.Notation`, sympy's
+    ``_sympystr`` and ``_latex``, and Jupyter's ``_repr_latex_`` as ``symbol = matrix``.
+    The class gives ``matrix``, ``notation`` and :meth:`symbol_latex` (the geometric
+    :class:`Jacobian`, the screws room's ``ScrewJacobian``)."""
+
+    def text(self: _Printable) -> str:
+        """The matrix in plain text, compact notation."""
+        return self.notation.text(self.matrix)
+
+    def latex(self: _Printable) -> str:
+        """The matrix in LaTeX, compact notation."""
+        return self.notation.latex(self.matrix)
+
+    def _sympystr(self: _Printable, printer: object) -> str:
+        return self.notation.text(self.matrix)
+
+    def _latex(self: _Printable, printer: object) -> str:
+        return self.notation.latex(self.matrix)
+
+    def _repr_latex_(self: _Printable) -> str:
+        return f"$${self.symbol_latex()} = {self.notation.latex(self.matrix)}$$"
+
+
 @dataclass(frozen=True)
-class Jacobian:
+class Jacobian(LectureMatrix):
     """The 6×n geometric Jacobian ``[J_v; J_ω]`` of a robot, exact and compact.
 
     ``frame`` is the frame the vectors are written in; ``point`` the frame whose origin
@@ -229,22 +283,9 @@ class Jacobian:
     def __getitem__(self, key: object) -> object:
         return self.matrix[key]
 
-    def text(self) -> str:
-        """The matrix in plain text, compact notation."""
-        return self.notation.text(self.matrix)
-
-    def latex(self) -> str:
-        """The matrix in LaTeX, compact notation."""
-        return self.notation.latex(self.matrix)
-
-    def _sympystr(self, printer: object) -> str:
-        return self.text()
-
-    def _latex(self, printer: object) -> str:
-        return self.latex()
-
-    def _repr_latex_(self) -> str:
-        return f"$${{}}^{{{self.frame}}}J = {self.latex()}$$"
+    def symbol_latex(self) -> str:
+        """``{}^{0}J``: the Jacobian's symbol with its frame, in LaTeX."""
+        return f"{{}}^{{{self.frame}}}J"
 
     def verify(self) -> bool:
         """Exact proof against the plain forward kinematics.
@@ -299,7 +340,7 @@ def geometric_jacobian(
     k = resolve_frame(robot, frame)
     e = resolve_frame(robot, point)
     columns = []
-    for row, var, joint, rate in _joint_rows(robot):
+    for row, var, joint, rate in joint_rows(robot):
         a = axis_frame(robot, row)
         turn = robot.transform(k, a).matrix[:3, :3]
         axis = turn[:, 2]
@@ -477,7 +518,7 @@ def numeric_jacobian(
     frames = word_product(word, env, N, prefixes=True)  # (N, len(word) + 1, 4, 4)
     end = frames[:, -1, :3, 3]
     J = np.zeros((N, 6, robot.n))
-    for col, (row, _, joint, rate) in enumerate(_joint_rows(robot)):
+    for col, (row, _, joint, rate) in enumerate(joint_rows(robot)):
         # frame a's product is a prefix of the word from the base to the tool
         F = frames[:, len(chain_word(robot.table, base, axis_frame(robot, row)))]
         z, p = F[:, :3, 2], F[:, :3, 3]

@@ -70,9 +70,14 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.kinematics.jacobian import _joint_rows, axis_frame, compact, resolve_frame
+from dhsym.kinematics.jacobian import (
+    LectureMatrix,
+    axis_frame,
+    compact,
+    joint_rows,
+    resolve_frame,
+)
 from dhsym.kinematics.pose import Pose
-from dhsym.kinematics.simplification import prove_equal
 from dhsym.kinematics.transforms import rigid_inverse
 from dhsym.model.kinds import JointType
 from dhsym.notation.printers import Notation
@@ -137,29 +142,17 @@ class AxisStep:
 
 
 @dataclass(frozen=True)
-class ScrewJacobian:
-    """An exact 6×n Jacobian with rows ``[ω; v]``: ``frame`` is ``"space"`` or ``"body"``."""
+class ScrewJacobian(LectureMatrix):
+    """An exact 6×n Jacobian with rows ``[ω; v]``: ``frame`` is ``"space"`` or ``"body"``
+    (printed as :class:`~dhsym.kinematics.jacobian.LectureMatrix` prints, ``J_s``, ``J_b``)."""
 
     matrix: Matrix
     frame: str
     notation: Notation = field(repr=False)
 
-    def text(self) -> str:
-        """The matrix in plain text, lecture notation."""
-        return self.notation.text(self.matrix)
-
-    def latex(self) -> str:
-        """The matrix in LaTeX, lecture notation."""
-        return self.notation.latex(self.matrix)
-
-    def _sympystr(self, printer: object) -> str:
-        return self.text()
-
-    def _latex(self, printer: object) -> str:
-        return self.latex()
-
-    def _repr_latex_(self) -> str:
-        return f"$$J_{{{self.frame[0]}}} = {self.latex()}$$"
+    def symbol_latex(self) -> str:
+        """``J_{s}`` or ``J_{b}``, in LaTeX."""
+        return f"J_{{{self.frame[0]}}}"
 
 
 def _vector(M: sp.MatrixBase) -> Matrix:
@@ -350,7 +343,7 @@ def from_chain(chain: KinematicChain) -> ProductOfExponentials:
     k = resolve_frame(chain, "base")
     e = resolve_frame(chain, "tool")
     axes, steps, variables = [], [], []
-    for row, var, joint, rate in _joint_rows(chain):
+    for row, var, joint, rate in joint_rows(chain):
         a = axis_frame(chain, row)
         home = _at_home(chain, chain.transform(k, a).matrix)
         z, origin = home[:3, 2], home[:3, 3]
@@ -386,20 +379,30 @@ def from_chain(chain: KinematicChain) -> ProductOfExponentials:
 
 
 def prove_same_fk(poe: ProductOfExponentials, chain: KinematicChain) -> bool:
-    """Exact proof that both PoE forms of ``poe`` equal the plain DH product of ``chain``
-    (entries reduced modulo ``sin² + cos² = 1``,
-    :func:`~dhsym.kinematics.simplification.prove_equal`).
+    """Exact proof that both PoE forms of ``poe`` equal the plain DH product of ``chain``.
+
+    Nothing is simplified: the three products — the elementary matrices of the DH word
+    from the space frame to the tool frame, :math:`e^{[\\mathcal{S}_1]\\theta_1}\\cdots M`
+    and :math:`M e^{[\\mathcal{B}_1]\\theta_1}\\cdots` — are multiplied factor by factor in
+    one polynomial ring of the sines and cosines (joint angles and constant angles) and
+    the square roots, each step reduced modulo ``sin² + cos² = 1`` and ``(√b)² = b``, and
+    their entries compared (:func:`~dhsym.kinematics.trig_ring.prove_products_equal`).
 
     >>> import dhsym
     >>> r = dhsym.load("planar2r")
     >>> prove_same_fk(from_chain(r), r)
     True
     """
-    plain = chain.plain_transform(resolve_frame(chain, "base"), resolve_frame(chain, "tool"))
+    from dhsym.kinematics.transforms import chain_word, elementary_matrix
+    from dhsym.kinematics.trig_ring import prove_products_equal
+
     if tuple(poe.variables) != tuple(chain.variables):
         raise DHError("the PoE description and the chain have different joint variables")
-    # the compact forms: reducing them is faster than reducing the expanded products
-    return prove_equal(poe.fk_space().matrix, plain) and prove_equal(poe.fk_body().matrix, plain)
+    word = chain_word(chain.table, resolve_frame(chain, "base"), resolve_frame(chain, "tool"))
+    dh = [elementary_matrix(e) for e in word]
+    space = [*(e.matrix for e in poe.exponentials("space")), poe.home]
+    body = [poe.home, *(e.matrix for e in poe.exponentials("body"))]
+    return prove_products_equal([dh, space, body], poe.variables)
 
 
 _SWAP = sp.ImmutableMatrix(sp.BlockMatrix([[sp.zeros(3), sp.eye(3)], [sp.eye(3), sp.zeros(3)]]))

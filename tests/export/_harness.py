@@ -1,6 +1,12 @@
 # ruff: noqa: E501
 """Drive exported code in each language: build it, feed it configurations and poses, read
-back fk, Jacobians and IK solutions (all numbers printed with 17 digits)."""
+back fk, Jacobians and IK solutions (all numbers printed with 17 digits).
+
+The pieces every compile test shares (``test_languages``, ``test_rne``, ``test_motion``,
+``test_screws``): :func:`build_c` and :func:`build_rust` write the files and a driver and
+build them under the strict flags (:data:`C_FLAGS`, :data:`CPP_FLAGS`), :func:`numbers` runs
+a program and reads the numbers it prints, :func:`octave` runs a driver script in GNU
+Octave beside the files, :func:`load_python` imports the NumPy module."""
 
 from __future__ import annotations
 
@@ -27,9 +33,65 @@ def _numbers(text: str) -> list[float]:
     return [float(t) for t in text.split()]
 
 
+#: gcc's flags for exported C (warnings are errors)
+C_FLAGS = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2")
+#: g++'s flags for exported C++
+CPP_FLAGS = ("-std=c++17", "-Wall", "-Wextra", "-Werror", "-O2")
+
+
 def _write(files: dict[str, str], folder: Path) -> None:
     for name, text in files.items():
         (folder / name).write_text(text)
+
+
+def build_c(files: dict[str, str], folder: Path, main: str, cpp: bool = False) -> Path:
+    """Write ``files`` and the driver ``main`` (``main.c`` or ``main.cpp``) into ``folder`` and
+    build them with gcc (C99, with every ``.c`` file) or g++ (C++17); the program's path."""
+    _write(files, folder)
+    if cpp:
+        (folder / "main.cpp").write_text(main)
+        cmd = ["g++", *CPP_FLAGS, "main.cpp", "-o", "prog"]
+    else:
+        (folder / "main.c").write_text(main)
+        sources = sorted(name for name in files if name.endswith(".c"))
+        cmd = ["gcc", *C_FLAGS, "main.c", *sources, "-o", "prog", "-lm"]
+    subprocess.run(cmd, cwd=folder, check=True, capture_output=True, text=True)
+    return folder / "prog"
+
+
+def rust_main(body: str, items: str = "", module: str = "arm") -> str:
+    """A Rust driver of ``module``: ``items`` (constants, helpers), then ``main`` with the
+    numbers on standard input in ``v: Vec<f64>`` and ``body`` (indented by four)."""
+    return (
+        f"mod {module};\nuse std::io::Read;\n{items}fn main() {{\n"
+        "    let mut s = String::new();\n"
+        "    std::io::stdin().read_to_string(&mut s).unwrap();\n"
+        "    let v: Vec<f64> = s.split_whitespace().map(|x| x.parse().unwrap()).collect();\n"
+        f"{body}}}\n"
+    )
+
+
+def build_rust(files: dict[str, str], folder: Path, main: str) -> Path:
+    """Write ``files`` and the driver ``main.rs`` into ``folder`` and build them with rustc
+    (edition 2021, ``-O``; functions the driver does not call are allowed); the program."""
+    _write(files, folder)
+    (folder / "main.rs").write_text(main)
+    cmd = [rustc(), "--edition", "2021", "-O", "-A", "dead_code", "main.rs", "-o", "prog"]
+    subprocess.run(cmd, cwd=folder, check=True, capture_output=True, text=True)
+    return folder / "prog"
+
+
+def numbers(cmd: list[str], folder: Path, text: str = "") -> np.ndarray:
+    """Run ``cmd`` in ``folder`` with ``text`` on its standard input: the numbers it prints."""
+    res = subprocess.run(cmd, cwd=folder, input=text, capture_output=True, text=True, check=True)
+    return np.array(_numbers(res.stdout))
+
+
+def octave(files: dict[str, str], folder: Path, script: str) -> np.ndarray:
+    """Run the driver ``script`` in GNU Octave beside ``files``: the numbers it prints."""
+    _write(files, folder)
+    (folder / "drive.m").write_text(script)
+    return numbers(["octave", "--no-gui", "--quiet", "--no-window-system", "drive.m"], folder)
 
 
 def _input(q: np.ndarray, poses: np.ndarray) -> str:
@@ -87,7 +149,6 @@ int main(void)
 
 def run_c(files, prefix, q, poses, n, jac, ik, folder: Path, cpp: bool = False, params=None):
     """Compile with gcc/g++ under the issue's flags and run."""
-    _write(files, folder)
     N = prefix.upper()
     ns = f"{prefix}::" if cpp else f"{prefix}_"
     cN = f"{prefix}::" if cpp else f"{N}_"
@@ -121,17 +182,9 @@ def run_c(files, prefix, q, poses, n, jac, ik, folder: Path, cpp: bool = False, 
     if cpp:
         main = main.replace(f"{N}_NJOINTS", f"{prefix}::NJOINTS")
         main = main.replace(f"{prefix}_fk", f"{prefix}::fk")
-        (folder / "main.cpp").write_text(main)
-        cmd = ["g++", "-std=c++17", "-Wall", "-Wextra", "-Werror", "-O2", "main.cpp", "-o", "prog"]
-    else:
-        (folder / "main.c").write_text(main)
-        flags = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
-        cmd = ["gcc", *flags, "main.c", f"{prefix}.c", "-o", "prog", "-lm"]
-    subprocess.run(cmd, cwd=folder, check=True, capture_output=True, text=True)
-    res = subprocess.run(
-        [str(folder / "prog")], input=_input(q, poses), capture_output=True, text=True, check=True
-    )
-    return _parse(_numbers(res.stdout), len(q), len(poses), n, jac, ik)
+    prog = build_c(files, folder, main, cpp)
+    out = numbers([str(prog)], folder, _input(q, poses))
+    return _parse(list(out), len(q), len(poses), n, jac, ik)
 
 
 _RUST_MAIN = """
@@ -161,7 +214,6 @@ fn main() {{
 
 
 def run_rust(files, prefix, q, poses, n, jac, ik, folder: Path, params=None):
-    _write(files, folder)
     pa = ""
     if params is not None:
         pa = ", &[" + ", ".join(repr(float(v)) for v in params) + "]"
@@ -182,22 +234,12 @@ def run_rust(files, prefix, q, poses, n, jac, ik, folder: Path, params=None):
             else "let _ = t;"
         ),
     )
-    (folder / "main.rs").write_text(main)
-    subprocess.run(
-        [rustc(), "--edition", "2021", "-O", "main.rs", "-o", "prog"],
-        cwd=folder,
-        check=True,
-        capture_output=True,
-        text=True,
-    )
-    res = subprocess.run(
-        [str(folder / "prog")], input=_input(q, poses), capture_output=True, text=True, check=True
-    )
-    return _parse(_numbers(res.stdout), len(q), len(poses), n, jac, ik)
+    prog = build_rust(files, folder, main)
+    out = numbers([str(prog)], folder, _input(q, poses))
+    return _parse(list(out), len(q), len(poses), n, jac, ik)
 
 
 def run_octave(files, prefix, q, poses, n, jac, ik, folder: Path):
-    _write(files, folder)
     np.savetxt(folder / "q.txt", q, fmt="%.17g")
     np.savetxt(folder / "t.txt", poses.reshape(len(poses), 16), fmt="%.17g")
     lines = [
@@ -216,15 +258,8 @@ def run_octave(files, prefix, q, poses, n, jac, ik, folder: Path):
             f"  [Q, c] = {prefix}_ik(T); fprintf('%d\\n', c); fprintf('%.17g\\n', Q.');",
             "end",
         ]
-    (folder / "drive.m").write_text("\n".join(lines) + "\n")
-    res = subprocess.run(
-        ["octave", "--no-gui", "--quiet", "--no-window-system", "drive.m"],
-        cwd=folder,
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    return _parse(_numbers(res.stdout), len(q), len(poses) if ik else 0, n, jac, ik)
+    out = octave(files, folder, "\n".join(lines) + "\n")
+    return _parse(list(out), len(q), len(poses) if ik else 0, n, jac, ik)
 
 
 def load_python(files, prefix, folder: Path):

@@ -7,7 +7,6 @@ numeric 2R (standard DH) and 3R (modified DH, friction) arms."""
 from __future__ import annotations
 
 import shutil
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -74,11 +73,6 @@ def _stdin(states) -> str:
     return "\n".join(rows) + "\n"
 
 
-def _run(cmd: list[str], folder: Path, text: str, n: int) -> np.ndarray:
-    res = subprocess.run(cmd, cwd=folder, input=text, capture_output=True, text=True, check=True)
-    return np.array([float(t) for t in res.stdout.split()]).reshape(-1, n)
-
-
 _C_MAIN = """
 #include <stdio.h>
 #include "arm.{ext}"
@@ -98,13 +92,7 @@ int main(void)
 }}
 """
 
-_RUST_MAIN = """
-mod arm;
-use std::io::Read;
-fn main() {
-    let mut s = String::new();
-    std::io::stdin().read_to_string(&mut s).unwrap();
-    let v: Vec<f64> = s.split_whitespace().map(|x| x.parse().unwrap()).collect();
+_RUST_MAIN = h.rust_main("""\
     let n = arm::NJOINTS;
     let m = v[0] as usize;
     for i in 0..m {
@@ -115,8 +103,7 @@ fn main() {
         for j in 0..n { q[j] = v[at + j]; qd[j] = v[at + n + j]; qdd[j] = v[at + 2 * n + j]; }
         for x in arm::rne(&q, &qd, &qdd).iter() { println!("{:e}", x); }
     }
-}
-"""
+""")
 
 
 def _export(name: str, lang: str) -> tuple[dhsym.Robot, dict[str, str]]:
@@ -127,19 +114,10 @@ def _export(name: str, lang: str) -> tuple[dhsym.Robot, dict[str, str]]:
 def _c_like(name: str, tmp_path: Path, cpp: bool) -> None:
     robot, files = _export(name, "cpp" if cpp else "c")
     n = len(robot.variables)
-    for fname, text in files.items():
-        (tmp_path / fname).write_text(text)
     main = _C_MAIN.format(ext="hpp" if cpp else "h", N=n, call="arm::rne" if cpp else "arm_rne")
-    if cpp:
-        (tmp_path / "main.cpp").write_text(main)
-        cmd = ["g++", "-std=c++17", "-Wall", "-Wextra", "-Werror", "-O2", "main.cpp", "-o", "prog"]
-    else:
-        (tmp_path / "main.c").write_text(main)
-        flags = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
-        cmd = ["gcc", *flags, "main.c", "arm.c", "-o", "prog", "-lm"]
-    subprocess.run(cmd, cwd=tmp_path, check=True, capture_output=True, text=True)
+    prog = h.build_c(files, tmp_path, main, cpp)
     states = _states(n)
-    _check(robot, states, _run([str(tmp_path / "prog")], tmp_path, _stdin(states), n))
+    _check(robot, states, h.numbers([str(prog)], tmp_path, _stdin(states)).reshape(-1, n))
 
 
 @pytest.mark.slow
@@ -162,19 +140,10 @@ def test_rust(name, tmp_path):
     rustc = h.rustc()
     _need("rustc", rustc is not None, "apt-get install rustc (or rustup)")
     robot, files = _export(name, "rust")
-    for fname, text in files.items():
-        (tmp_path / fname).write_text(text)
-    (tmp_path / "main.rs").write_text(_RUST_MAIN)
-    subprocess.run(
-        [rustc, "-O", "-A", "dead_code", "main.rs", "-o", "prog"],
-        cwd=tmp_path,
-        check=True,
-        capture_output=True,
-        text=True,
-    )
+    prog = h.build_rust(files, tmp_path, _RUST_MAIN)
     n = len(robot.variables)
     states = _states(n)
-    _check(robot, states, _run([str(tmp_path / "prog")], tmp_path, _stdin(states), n))
+    _check(robot, states, h.numbers([str(prog)], tmp_path, _stdin(states)).reshape(-1, n))
 
 
 @pytest.mark.slow
@@ -182,18 +151,15 @@ def test_rust(name, tmp_path):
 def test_octave(name, tmp_path):
     _need("octave", shutil.which("octave") is not None, "apt-get install octave")
     robot, files = _export(name, "matlab")
-    for fname, text in files.items():
-        (tmp_path / fname).write_text(text)
     n = len(robot.variables)
     states = _states(n)
     np.savetxt(tmp_path / "s.txt", np.hstack(states), fmt="%.17g")
-    (tmp_path / "drive.m").write_text(
+    script = (
         "S = dlmread('s.txt');\n"
         f"for i = 1:rows(S)\n  tau = arm_rne(S(i, 1:{n})', S(i, {n + 1}:{2 * n})', S(i, {2 * n + 1}:{3 * n})');\n"
         "  printf('%.17g\\n', tau);\nend\n"
     )
-    cmd = ["octave", "--no-gui", "--quiet", "--no-window-system", "drive.m"]
-    _check(robot, states, _run(cmd, tmp_path, "", n))
+    _check(robot, states, h.octave(files, tmp_path, script).reshape(-1, n))
 
 
 @pytest.mark.parametrize("name", NAMES)

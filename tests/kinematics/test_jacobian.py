@@ -284,3 +284,34 @@ def test_jacobian_from_numeric_frames_takes_values() -> None:
     values = {"a1": 1.0, "a2": 0.8, "a3": 0.5}
     q = [0.3, -0.7, 1.1]
     assert np.abs(numeric_jacobian(robot, q, values) - robot.jacob0(q, values=values)).max() < 1e-12
+
+
+def test_the_geometric_and_the_screw_jacobians_print_through_one_mixin() -> None:
+    """``Jacobian`` and the screws room's ``ScrewJacobian`` share the printing hooks of
+    :class:`LectureMatrix`: plain text, LaTeX, sympy's printers and Jupyter's display."""
+    from dhsym.kinematics.jacobian import LectureMatrix
+    from dhsym.screws.product import ScrewJacobian
+
+    robot = dhsym.load("planar2r")
+    J = geometric_jacobian(robot)
+    Js = robot.poe().jacobian_space()
+    assert isinstance(J, LectureMatrix) and isinstance(Js, ScrewJacobian)
+    assert isinstance(Js, LectureMatrix)
+    assert J._repr_latex_() == r"$${}^{0}J = " + J.latex() + "$$"
+    assert Js._repr_latex_() == "$$J_{s} = " + Js.latex() + "$$"
+    assert sp.sstr(J) == J.text() and sp.latex(Js) == Js.latex()
+    assert Js.text().splitlines()[5] == "[0, -a1*C1],"
+
+
+def test_joint_rows_name_each_joint_and_its_rate() -> None:
+    from dhsym.kinematics.jacobian import joint_rows
+    from dhsym.model.table import DHRow, DHTable
+
+    rows = joint_rows(dhsym.load("stanford"))
+    assert [(r, str(v), j.value) for r, v, j, _ in rows][:3] == [
+        (1, "theta1", "R"),
+        (2, "theta2", "R"),
+        (3, "d3", "P"),
+    ]
+    table = DHTable.from_rows([DHRow.revolute("-theta1", a="a1"), DHRow.revolute("theta2")])
+    assert [rate for *_, rate in joint_rows(dhsym.Robot(table))] == [-1, 1]

@@ -5,9 +5,9 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from dhsym.dynamics.trig_ring import TrigRing, lecture_form
 from dhsym.errors import DHError
 from dhsym.kinematics.simplification import prove_equal
+from dhsym.kinematics.trig_ring import TrigRing, lecture_form
 
 t1, t2, t3, d, a = sp.symbols("theta1 theta2 theta3 d a", real=True)
 S, C = sp.sin, sp.cos
