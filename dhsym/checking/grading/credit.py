@@ -37,6 +37,7 @@ from ..mistakes.registry import (
     JACOBIAN_MISTAKES,
     MATRIX_MISTAKES,
     TABLE_MISTAKES,
+    TRAJECTORY_MISTAKES,
     dynamics_mistakes,
 )
 from ..reading.limits import echoed
@@ -50,7 +51,7 @@ _SHARE = re.compile(r"^\s*([0-9]+(?:\.[0-9]*)?)\s*%\s*$")
 def mistake_kinds() -> frozenset[str]:
     """Every kind of mistake the checker can name (what ``deduct`` may list).
 
-    >>> {"wrong_sign", "parallel_axis", "transposed"} <= mistake_kinds()
+    >>> {"wrong_sign", "parallel_axis", "transposed", "kd_without_two"} <= mistake_kinds()
     True
     """
     lists = (
@@ -61,6 +62,7 @@ def mistake_kinds() -> frozenset[str]:
         DET_MISTAKES,
         IK_MISTAKES,
         dynamics_mistakes(),
+        TRAJECTORY_MISTAKES,
     )
     return frozenset(m.kind for ms in lists for m in ms) | {"missing_column"}
 

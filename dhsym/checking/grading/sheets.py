@@ -2,7 +2,8 @@
 
 :func:`student_sheets` gives, for every student of the class list, the key tables of the
 assignment with the student's values (as the table's ``values:``, which the problem sheet
-prints as "Lengths: a1 = 0.37, …") and the joint values of its first ``ik@`` question;
+prints as "Lengths: a1 = 0.37, …") and the joint values of its first ``ik@`` question (a
+profile's drawn values, which have no table, are in the line of the student's values);
 :func:`write_sheets` writes one LaTeX problem sheet per student (``dhsym handout hw.yaml
 --variants class.csv -o FOLDER``), compiled to PDF on request.
 
@@ -30,6 +31,7 @@ from typing import Any
 from dhsym.errors import DHError
 from dhsym.model.table import DHTable
 
+from ..judging.trajectory_key import TrajectoryKey
 from .assignment import Assignment
 from .report_files import safe_name
 from .variants import ClassList, Variant, class_variants, variant_id
@@ -59,6 +61,8 @@ def student_sheets(assignment: Assignment, roster: ClassList) -> tuple[StudentSh
         variant = drawn[variant_id(sid)]
         tables: list[DHTable] = []
         for q in assignment.questions:
+            if isinstance(q.key, TrajectoryKey):  # a profile: its values are in the title
+                continue
             own = variant.values_for(q.key.table)
             table = q.key.table.with_values(own) if own else q.key.table
             if table not in tables:

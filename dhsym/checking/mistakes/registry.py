@@ -24,7 +24,11 @@ Kinds: ``wrong_sign`` (at any depth), ``sin_cos_swapped``, ``dropped_term``,
 ``atan_for_atan2``, ``lost_branch``, ``wrong_root_sign``; for the dynamics questions
 (``M``, ``g``, ``C``, ``c_ijk``, ``tau``) ``parallel_axis``, ``rotational_energy``,
 ``gravity_direction``, ``l_for_lc``, ``christoffel_indices``, ``inertia_frame``
-(:mod:`dhsym.checking.mistakes._dynamics_mistakes`).
+(:mod:`dhsym.checking.mistakes._dynamics_mistakes`); for the trajectory and gain questions
+(``traj a<k>``, ``tb``, ``kp``, ``kd``) ``tf_for_tf_squared``,
+``boundary_velocity_left_out``, ``blend_time_wrong_limit``, ``kd_without_two``,
+``kp_not_squared`` (:data:`TRAJECTORY_MISTAKES`, from
+:mod:`dhsym.checking.mistakes.trajectory_mistakes`).
 
 Examples
 --------
@@ -64,6 +68,7 @@ from ._jacobian_mistakes import (
 from ._matrix_mistakes import BlockTransposed, OtherConvention, ReverseOrder, Transposed
 from ._mistake_base import MatrixCase, Mistake, TableCase
 from ._row_mistakes import DegreesAsRadians, IndexShift, OffsetMissing, SingleWrongRow
+from .trajectory_mistakes import TRAJECTORY_MISTAKES, TrajectoryMistake
 
 __all__ = [
     "DET_MISTAKES",
@@ -98,6 +103,8 @@ __all__ = [
     "SingleWrongRow",
     "TABLE_MISTAKES",
     "TableCase",
+    "TRAJECTORY_MISTAKES",
+    "TrajectoryMistake",
     "Transposed",
     "WrongJointIndex",
     "WrongSign",
