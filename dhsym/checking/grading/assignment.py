@@ -108,7 +108,7 @@ class Assignment:
         questions = []
         for q in self.questions:
             if isinstance(q.key, TrajectoryKey):
-                drawn = {n: values[n] for n in spec_names(q.key.spec) if n in values}
+                drawn = {n: values[n] for n in spec_names(q.key.spec, q.ask) if n in values}
                 questions.append(replace(q, key=q.key.with_drawn(drawn)) if drawn else q)
                 continue
             own = variant.values_for(q.key.table)
@@ -184,7 +184,7 @@ class Assignment:
             key: AnyKey
             try:
                 if is_profile_spec(ref):  # a trajectory or gain question: a profile's key
-                    drawn = {n: sample[n] for n in spec_names(ref) if n in sample}
+                    drawn = {n: sample[n] for n in spec_names(ref, asked) if n in sample}
                     key = TrajectoryKey.load(ref, asked, rounding=rounding, drawn=drawn)
                     if keys is not None:
                         keys.get(key)

@@ -121,21 +121,19 @@ def _kind(name: str) -> str:
     return _KIND_ALIASES.get(low.replace("_", ""), low)
 
 
-def spec_names(spec: str) -> set[str]:
-    """The names a profile's values use (what a variant may draw).
+def spec_names(spec: str, ask: str = "") -> set[str]:
+    """The names a profile's values and the time of a ``q@<t>`` question use (what a
+    variant may draw).
 
-    >>> sorted(spec_names("cubic(q0=0, qf=Q, tf=tf)"))
-    ['Q', 'tf']
+    >>> sorted(spec_names("cubic(q0=0, qf=Q, tf=tf)", "q@T/2"))
+    ['Q', 'T', 'tf']
     """
     m = _SPEC.match(spec) if len(spec) <= _MAX_SPEC else None
     if m is None:
         return set()
-    out: set[str] = set()
-    for arg in m["args"].split(","):
-        a = _ARG.match(arg)
-        if a is not None:
-            out |= {n for n in _NAME.findall(a["value"]) if n not in ("pi", "sqrt")}
-    return out
+    texts = [a["value"] for a in map(_ARG.match, m["args"].split(",")) if a is not None]
+    texts += [ask.split("@", 1)[1]] if "@" in ask[:_MAX_SPEC] else []
+    return {n for t in texts for n in _NAME.findall(t) if n not in ("pi", "sqrt")}
 
 
 @dataclass(frozen=True)
@@ -194,7 +192,9 @@ class Motion:
                 field="key",
             )
         if kind == "lspb" and "V" in given and "a" in given:
-            raise DHError("lspb: give the line's velocity V or the acceleration a, not both")
+            raise DHError(
+                "lspb: give the line's velocity V or the acceleration a, not both", field="key"
+            )
         return cls(kind, tuple((n, given[n]) for n in known if n in given))
 
     @property
@@ -225,12 +225,12 @@ class Motion:
 
 def _value(text: str, name: str, drawn: Mapping[str, sp.Expr]) -> sp.Expr:
     """One parameter: the whitelist parser, with the trajectory names and the drawn ones."""
-    by_canon = {_canon(k): v for k, v in drawn.items()}
+    by_name = {normalize_name(k): v for k, v in drawn.items()}
 
     def resolve(word: str) -> sp.Expr | None:
+        if normalize_name(word) in by_name:
+            return by_name[normalize_name(word)]
         c = _canon(word)
-        if c in by_canon:
-            return by_canon[c]
         return SYMBOLS[_BY_CANON[c]] if c in _BY_CANON else None
 
     expr = parse_expression(text, resolve=resolve, field=f"key.{name}")
@@ -248,14 +248,16 @@ def _value(text: str, name: str, drawn: Mapping[str, sp.Expr]) -> sp.Expr:
 @dataclass(frozen=True)
 class TrajectoryKey:
     """The key of one trajectory or gain question: the profile as written (``spec``,
-    re-read with a student's drawn values), its data (``motion``), the question, its name
-    (the profile as printed) and the accepted rounding of decimals."""
+    re-read with a student's ``drawn`` values), its data (``motion``), the question, its
+    name (the profile as printed) and the accepted rounding of decimals."""
 
     spec: str
     motion: Motion
     question: Question
     name: str = ""
     rounding: Rounding = DEFAULT_ROUNDING
+    #: a student's drawn values of names in the profile or the question's time
+    drawn: tuple[tuple[str, sp.Expr], ...] = ()
 
     @classmethod
     def load(
@@ -281,7 +283,8 @@ class TrajectoryKey:
                 "are traj a<k>, tb, vmax, q@<t>, kp and kd",
                 field="ask",
             )
-        key = cls(str(spec), motion, q, motion.text, Rounding.parse(rounding))
+        mine = tuple((n, v) for n, v in (drawn or {}).items() if n in spec_names(spec, q.spec))
+        key = cls(str(spec), motion, q, motion.text, Rounding.parse(rounding), mine)
         try:
             prepare_trajectory(key)  # a key that cannot be checked against stops here
         except DHError as err:  # the profile's own check (a duration, a blend that fits)
@@ -400,7 +403,7 @@ def expected_values(key: TrajectoryKey) -> dict[str, sp.Expr]:
     elif part == "vmax":
         out["key"] = _peak_velocity(motion, p)
     else:
-        out["key"] = _position(motion, p, part[2:])
+        out["key"] = _position(motion, p, part[2:], key.drawn)
     return out
 
 
@@ -425,9 +428,12 @@ def _peak_velocity(motion: Motion, p: Profile) -> sp.Expr:
     return sp.factor(sp.diff(first.position(t), t).subs(t, at))
 
 
-def _position(motion: Motion, p: Profile, written: str) -> sp.Expr:
-    """The position at the time ``written`` (a number, or in the key's names: ``tf/2``)."""
-    t = _value(written, "t", {n: x for n, x in motion.params})
+def _position(
+    motion: Motion, p: Profile, written: str, drawn: tuple[tuple[str, sp.Expr], ...]
+) -> sp.Expr:
+    """The position at the time ``written`` (a number, or in the key's names: ``tf/2``,
+    or the names drawn for a student)."""
+    t = _value(written, "t", {**dict(motion.params), **dict(drawn)})
     end = p.duration
     if t.is_number and end.is_number and not (bool(t >= 0) and bool(t <= end)):
         raise DHError(f"q@{written}: the time is outside the motion, 0 … {end}", field="ask")
