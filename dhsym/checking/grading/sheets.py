@@ -95,6 +95,12 @@ def write_sheets(
     used: set[str] = set()
     written = []
     for sheet in student_sheets(assignment, roster):
+        if not sheet.tables:
+            raise DHError(
+                "a problem sheet prints the key robots' tables, and every question of this "
+                "assignment is about a profile: list each student's values with dhsym variants "
+                "ASSIGNMENT --roster CLASS.csv"
+            )
         path = root / (safe_name(sheet.student, used) + ".tex")
         who = sheet.name if sheet.name == sheet.student else f"{sheet.name} ({sheet.student})"
         written.append(

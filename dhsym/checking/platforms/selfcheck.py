@@ -23,6 +23,9 @@ instructor's files are: an autograder, a grading notebook)::
 
     check(answer, question="q2", assignment="hw.yaml", student="alice", roster="class.csv")
 
+A trajectory or gain question's key is a profile (``key="cubic(q0=0, qf=1, tf=2)"``,
+``question="traj a2"``; see :mod:`~dhsym.checking.judging.trajectory_key`).
+
 Examples
 --------
 >>> r = check("[[C12, -S12, 0, a1*C1 - a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0,0,1,0]]",
@@ -37,6 +40,8 @@ Traceback (most recent call last):
 AssertionError: INCORRECT (0 / 1 points). 1 of 16 entries is wrong. Most likely: wrong sign. ...
 >>> read_answer(Key.load("planar2r", "T0_2[0,3]"), r"a_1 \cos\theta_1 + a2 C12").latex
 'a_{1} C_{1} + a_{2} C_{12}'
+>>> check("10", key="gains(omega=10)", question="kd").result.kinds
+('kd_without_two',)
 """
 
 from __future__ import annotations
