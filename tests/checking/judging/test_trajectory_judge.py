@@ -176,3 +176,12 @@ def test_prepared_once_per_worker() -> None:
     key = TrajectoryKey.load("quintic(q0=0, qf=1, tf=2)", "traj a3")
     assert keys.get(key) is keys.get(TrajectoryKey.load("quintic(q0=0, qf=1, tf=2)", "traj a3"))
     assert check_answer(key, "10/8", keys=keys).correct and len(keys) == 1
+
+
+def test_equal_answers_whose_doubles_cancel_and_a_difference_below_double_precision() -> None:
+    key = TrajectoryKey.load(SYMBOLIC_CUBIC, "traj a2")
+    padded = "3*(qf-q0)/tf^2 + ((q0+qf)^30 - (q0+qf)^29*q0 - (q0+qf)^29*qf)"
+    r = check_answer(key, padded)
+    assert r.correct and r.entries[0].proof == "exact"
+    assert check_answer(key, "sin(qf)^2 + cos(qf)^2 - 1 + 3*(qf-q0)/tf^2").correct
+    assert not check_answer(key, "3*(qf-q0)/tf^2 + 10^-30").correct
