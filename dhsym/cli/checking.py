@@ -48,7 +48,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
     from dhsym.checking.comparing.verdict import CheckResult, Verdict
     from dhsym.checking.grading.feedback import render_check
     from dhsym.checking.judging.checker import check_answer
-    from dhsym.checking.judging.key import Key
+    from dhsym.checking.judging.key import load_key
     from dhsym.checking.reading.limits import (
         DEFAULT_ANSWER_LIMITS,
         AnswerLimits,
@@ -61,7 +61,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
         if args.timeout is not None
         else DEFAULT_ANSWER_LIMITS
     )
-    key = Key.load(args.key, args.question, tool_free=args.tool_free, rounding=args.rounding)
+    key = load_key(args.key, args.question, tool_free=args.tool_free, rounding=args.rounding)
     try:
         answer = _read_answer(args.answer, limits.max_bytes)
         result = check_answer(key, answer, limits=limits)
@@ -267,7 +267,13 @@ Question kinds (ask: in the assignment, --question for check):
   S, S<i>, B, B<i>     the space or body screw axes (6xn, rows [w; v]), or one axis (S3)
   Mhome (M0)           the home configuration M of the product of exponentials
   Js, Jb               the space and body Jacobians (rows [w; v])
-  T(theta)             the forward kinematics in product-of-exponentials form, its closed form"""
+  T(theta)             the forward kinematics in product-of-exponentials form, its closed form
+Of a profile (the key: cubic(q0=0, qf=1, tf=2), quintic(...), lspb(q0=, qf=, tf=, V= or a=),
+minimum_time(q0=, qf=, vmax=, amax=) or gains(omega=, zeta=1); names keep it symbolic):
+  traj a<k>            coefficient k of a cubic or quintic (e.g. traj a2 = 3(qf - q0)/tf^2)
+  tb, vmax             the blend time; the peak velocity of a rest-to-rest motion
+  q@<t>                the position at time t (e.g. q@1.5, q@tf/2)
+  kp, kd               the gains for the natural frequency omega and damping zeta"""
 
 CHECK_EPILOG = QUESTION_KINDS + "\n\n" + CHECK_EPILOG_TAIL
 
@@ -275,7 +281,7 @@ GRADE_EPILOG = (
     QUESTION_KINDS
     + """
 
-The assignment file: title, key (robot or table file), time_limit, rounding,
+The assignment file: title, key (robot, table file or profile), time_limit, rounding,
 questions: [{id, ask, points, key, rounding, tool}]; every key is described in
 docs/guide/assignments.md, and dhsym new-assignment DIR writes a commented example.
 
@@ -295,16 +301,22 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         subparsers,
         "check",
         "check one answer (exit 0 correct, 1 incorrect, 2 unreadable)",
-        description="Check one answer against a key: a built-in robot or a table file.",
+        description="Check one answer against a key: a built-in robot, a table file or a "
+        "profile (cubic(q0=0, qf=1, tf=2)).",
         epilog=CHECK_EPILOG,
     )
-    c.add_argument("--key", required=True, help="built-in robot name or table file")
+    c.add_argument(
+        "--key",
+        required=True,
+        help="built-in robot name, table file, or a profile such as 'cubic(q0=0, qf=1, tf=2)'",
+    )
     c.add_argument(
         "--question",
         required=True,
         help="the question kind: table, T<i>_<j>, A<k>, arm, px, py, pz, T<i>_<j>[row,col] "
         "(0-based), J, J[row,col], det J, ik, ik all, ik@q1,...,qn, M, M[row,col], g, C, "
-        "c_ijk, tau, tau_static, S, S<i>, B, B<i>, Mhome, Js, Jb, T(theta) (see below)",
+        "c_ijk, tau, tau_static, S, S<i>, B, B<i>, Mhome, Js, Jb, T(theta); of a profile "
+        "traj a<k>, tb, vmax, q@<t>, kp, kd (see below)",
     )
     c.add_argument("--answer", required=True, help="answer file, or - for standard input")
     c.add_argument(

@@ -398,6 +398,16 @@ class MistakeCatalogue(Directive):
                     f"dhsym.checking.mistakes.registry.{cls.__name__}",
                 )
             )
+        for t in mistakes.TRAJECTORY_MISTAKES:  # one frozen value per kind
+            rows.append(
+                (
+                    t.kind,
+                    t.title,
+                    "trajectories and gains",
+                    t.detail,
+                    "dhsym.checking.mistakes.trajectory_mistakes.TrajectoryMistake",
+                )
+            )
         rows.sort(key=lambda r: r[0])
         if type(self.state).__module__.startswith("myst_parser"):
             text = ["| kind | title | checked in | what the student did |", "|---|---|---|---|"]

@@ -180,3 +180,34 @@ def test_a_missing_answer_file_is_named(tmp_path, capsys):
     argv = ["check", "--key", "planar2r", "--question", "T0_2", "--answer", str(missing)]
     assert main(argv) == 2
     assert str(missing) in capsys.readouterr().out
+
+
+def test_check_a_profile_key(monkeypatch, capsys):
+    def run(answer: str, *args: str) -> tuple[int, str]:
+        monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(answer.encode())))
+        code = main(["check", "--answer", "-", *args])
+        return code, capsys.readouterr().out
+
+    key = ["--key", "cubic(q0=q0, qf=qf, tf=tf)", "--question", "traj a2"]
+    assert run("3*(qf - q0)/tf^2", *key)[0] == 0
+    code, out = run("3*(qf - q0)/tf", *key, "--json")
+    data = json.loads(out)
+    assert code == 1 and data["diagnosis"][0]["kind"] == "tf_for_tf_squared"
+    assert data["key"] == "cubic(q0=q0, qf=qf, tf=tf)"
+    assert run("0.3", "--key", "cubic(q0=0, qf=1, tf=3)", "--question", "traj a2")[0] == 1
+    assert (
+        run(
+            "0.3",
+            "--key",
+            "cubic(q0=0, qf=1, tf=3)",
+            "--question",
+            "traj a2",
+            "--rounding",
+            "abs=0.05",
+        )[0]
+        == 0
+    )
+    assert (
+        main(["check", "--key", "cubic(q0=0, qf=1)", "--question", "traj a2", "--answer", "-"]) == 2
+    )
+    assert "cubic needs tf" in capsys.readouterr().err

@@ -12,7 +12,8 @@ The assignment (YAML) names the key and the questions::
       - {id: q3, ask: A1, points: 1, key: generic_modified_link.yaml}
       - {id: q4, ask: J, points: 2, credit: entries, deduct: {wrong_sign: 25%}}
       - {id: q5, ask: px, tests: {right: [a2*C1*C2], wrong: [{answer: -a2*C1*C2, mistake: sign}]}}
-    variants: {d3: [0.1, 0.15, 0.2]}   # drawn per student (with secret: FILE)
+      - {id: q6, ask: traj a2, key: "cubic(q0=0, qf=1, tf=T)"}   # a profile's key: T is drawn
+    variants: {d3: [0.1, 0.15, 0.2], T: [2, 3, 4]}   # drawn per student (with secret: FILE)
     secret: hw3.secret
 
 Partial credit is :mod:`~dhsym.checking.grading.credit`'s (all or nothing by default),
@@ -46,7 +47,8 @@ from pathlib import Path
 from dhsym.errors import DHError
 from dhsym.model.yamlsafe import FileRefused, YAMLInputError, load_yaml, read_limited
 
-from ..judging.key import Key, PreparedKeys
+from ..judging.key import AnyKey, Key, PreparedKeys
+from ..judging.trajectory_key import TrajectoryKey, is_profile_spec, spec_names
 from ..reading.limits import check_seconds
 from ..reading.questions import Question
 from .credit import Credit
@@ -63,15 +65,17 @@ _MAX_POINTS = 1e6
 @dataclass(frozen=True)
 class AssignmentQuestion:
     """One question: its id, what is asked, points, the key (with whether the tool frame is
-    free and the rounding), its partial credit (:class:`~.credit.Credit`: all or nothing
-    unless the question says otherwise) and its tests (:class:`~.question_tests.QuestionTests`).
-    With variants, ``key`` is the key as written (the table's symbols, an ``ik@`` question at
-    the first value of each drawn joint value)."""
+    free and the rounding; a trajectory or gain question's key is a profile,
+    :class:`~dhsym.checking.judging.trajectory_key.TrajectoryKey`), its partial credit
+    (:class:`~.credit.Credit`: all or nothing unless the question says otherwise) and its
+    tests (:class:`~.question_tests.QuestionTests`).  With variants, ``key`` is the key as
+    written (the table's symbols, an ``ik@`` question at the first value of each drawn joint
+    value, a profile with the first value of each drawn name)."""
 
     id: str
     ask: str
     points: float
-    key: Key
+    key: AnyKey
     credit: Credit = Credit()
     tests: QuestionTests = QuestionTests()
 
@@ -97,11 +101,16 @@ class Assignment:
     def for_variant(self, variant: Variant) -> Assignment:
         """The assignment of the student who drew ``variant``: each key with their values
         (the table's symbols replaced by the numbers, the joint values of ``ik@``
-        questions put in); its fingerprint covers the values.  Keys are not prepared
-        here (a grading worker prepares each distinct one once)."""
+        questions put in, a profile's drawn names given their values); its fingerprint
+        covers the values.  Keys are not prepared here (a grading worker prepares each
+        distinct one once)."""
         values = dict(variant.values)
         questions = []
         for q in self.questions:
+            if isinstance(q.key, TrajectoryKey):
+                drawn = {n: values[n] for n in spec_names(q.key.spec, q.ask) if n in values}
+                questions.append(replace(q, key=q.key.with_drawn(drawn)) if drawn else q)
+                continue
             own = variant.values_for(q.key.table)
             asked = _ask_with(q.ask, values)
             if not own and asked == q.ask:  # untouched: the same objects (pickled once a batch)
@@ -172,12 +181,20 @@ class Assignment:
                 raise DHError("'ask' must be text like T0_2", file=str(p), row=k, field="ask")
             rounding = q.get("rounding", data.get("rounding"))
             asked = _ask_with(str(ask), sample)  # the sample variant's, checked here
+            key: AnyKey
             try:
-                key = Key.load(where, asked, tool_free=tool, rounding=rounding, keys=keys)
+                if is_profile_spec(ref):  # a trajectory or gain question: a profile's key
+                    drawn = {n: sample[n] for n in spec_names(ref, asked) if n in sample}
+                    key = TrajectoryKey.load(ref, asked, rounding=rounding, drawn=drawn)
+                    if keys is not None:
+                        keys.get(key)
+                    used.update(drawn)
+                else:
+                    key = Key.load(where, asked, tool_free=tool, rounding=rounding, keys=keys)
+                    used.update(str(s) for s in key.table.constants if str(s) in sample)
             except DHError as err:
                 raise DHError(err.message, file=str(p), row=k, field=err.field or "ask") from None
             used.update(n for n in sample if _ask_with(str(ask), {n: sample[n]}) != str(ask))
-            used.update(str(s) for s in key.table.constants if str(s) in sample)
             try:
                 credit = Credit.parse(q)
             except DHError as err:
@@ -193,8 +210,9 @@ class Assignment:
             if unused:
                 raise DHError(
                     f"{unused[0]!r} is drawn but used by no question: a variant is a symbol "
-                    "of a question's key table (a2, d3, ...) or a name in an ik@ question "
-                    '(ask: "ik@q1,q2")',
+                    "of a question's key table (a2, d3, ...), a name in an ik@ question "
+                    '(ask: "ik@q1,q2") or a name in a profile key (key: "cubic(q0=0, qf=1, '
+                    'tf=T)")',
                     file=str(p),
                     field=f"variants.{unused[0]}",
                 )

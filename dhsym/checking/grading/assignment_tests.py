@@ -34,8 +34,9 @@ from dhsym.errors import DHError
 
 from ..comparing.verdict import CheckResult, Verdict
 from ..judging.checker import check_answer
-from ..judging.key import Key, PreparedKey, PreparedKeys, TablePart
+from ..judging.key import AnyKey, PreparedKey, PreparedKeys, TablePart
 from ..judging.matrix_key import MatrixPart
+from ..judging.trajectory_key import PreparedTrajectory
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits
 from .assignment import Assignment
 from .question_tests import WrongAnswer
@@ -104,15 +105,22 @@ class AssignmentTestReport:
         return "\n".join(lines) + "\n"
 
 
-def key_answer(pk: PreparedKey) -> str:
+def key_answer(pk: PreparedKey | PreparedTrajectory) -> str:
     """The key's own answer as a student could write it: the matrix's entries as dhsym
-    prints them, the table in Markdown, the joint values of ``ik@`` or the derivation of
-    the inverse kinematics (as ``dhsym derive … --what ik`` prints it).
+    prints them, the table in Markdown, the joint values of ``ik@``, the derivation of
+    the inverse kinematics (as ``dhsym derive … --what ik`` prints it) or a profile's
+    value.
 
+    >>> from dhsym.checking.judging.key import Key
+    >>> from dhsym.checking.judging.trajectory_key import TrajectoryKey
     >>> keys = PreparedKeys()
     >>> key_answer(keys.get(Key.load("planar2r", "T0_2[0,3]")))
     'a1*C1 + a2*C12'
+    >>> key_answer(keys.get(TrajectoryKey.load("cubic(q0=q0, qf=qf, tf=tf)", "traj a2")))
+    '3*(-q_0 + q_f)/t_f**2'
     """
+    if isinstance(pk, PreparedTrajectory):
+        return pk.part.text
     part, question = pk.part, pk.key.question
     if isinstance(part, MatrixPart):
         texts = [t for t, _ in part.expected_text]
@@ -177,7 +185,7 @@ def _row(
     qid: str,
     case: str,
     variant: str,
-    key: Key,
+    key: AnyKey,
     answer: str,
     wrong: WrongAnswer | None,
     keys: PreparedKeys,

@@ -42,7 +42,7 @@ from dhsym.model.yamlsafe import FileRefused, read_limited
 
 from ..comparing.verdict import CheckResult, Verdict
 from ..judging.checker import check_answer
-from ..judging.key import Key, PreparedKeys
+from ..judging.key import AnyKey, PreparedKeys
 from ..reading.limits import AnswerLimits, AnswerTimeout, check_seconds, time_limit
 from .assignment import Assignment, AssignmentQuestion
 from .assignment_tests import run_assignment_tests
@@ -124,7 +124,7 @@ def check_submission(
     return tuple(out)
 
 
-def shared_keys(assignments: Iterable[Assignment]) -> tuple[Key, ...]:
+def shared_keys(assignments: Iterable[Assignment]) -> tuple[AnyKey, ...]:
     """The keys that more than one submission is graded against, in the assignment's
     order: what a grading run prepares once, before its workers fork (a variant's own
     key is prepared by the worker that grades it).
@@ -140,7 +140,7 @@ def shared_keys(assignments: Iterable[Assignment]) -> tuple[Key, ...]:
     return tuple(k for k, n in counts.items() if n > 1)
 
 
-def prepare_keys(keys: tuple[Key, ...], prepared: PreparedKeys) -> None:
+def prepare_keys(keys: tuple[AnyKey, ...], prepared: PreparedKeys) -> None:
     """Prepare ``keys`` into a worker's map (a key that cannot be prepared is left for the
     job that meets it, which reports it)."""
     for k in keys:

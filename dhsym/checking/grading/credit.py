@@ -40,6 +40,7 @@ from ..mistakes.registry import (
     MATRIX_MISTAKES,
     SCREW_MISTAKES,
     TABLE_MISTAKES,
+    TRAJECTORY_MISTAKES,
     dynamics_mistakes,
 )
 from ..reading.limits import echoed
@@ -53,7 +54,7 @@ _SHARE = re.compile(r"^\s*([0-9]+(?:\.[0-9]*)?)\s*%\s*$")
 def mistake_kinds() -> frozenset[str]:
     """Every kind of mistake the checker can name (what ``deduct`` may list).
 
-    >>> {"wrong_sign", "parallel_axis", "transposed"} <= mistake_kinds()
+    >>> {"wrong_sign", "parallel_axis", "transposed", "kd_without_two"} <= mistake_kinds()
     True
     """
     lists = (
@@ -65,6 +66,7 @@ def mistake_kinds() -> frozenset[str]:
         IK_MISTAKES,
         dynamics_mistakes(),
         SCREW_MISTAKES,
+        TRAJECTORY_MISTAKES,
     )
     return frozenset(m.kind for ms in lists for m in ms) | {"missing_column"}
 

@@ -2,7 +2,8 @@
 
 :func:`student_sheets` gives, for every student of the class list, the key tables of the
 assignment with the student's values (as the table's ``values:``, which the problem sheet
-prints as "Lengths: a1 = 0.37, …") and the joint values of its first ``ik@`` question;
+prints as "Lengths: a1 = 0.37, …") and the joint values of its first ``ik@`` question (a
+profile's drawn values, which have no table, are in the line of the student's values);
 :func:`write_sheets` writes one LaTeX problem sheet per student (``dhsym handout hw.yaml
 --variants class.csv -o FOLDER``), compiled to PDF on request; :func:`write_merged` all of
 them as one document from the same template, each student's sheet on new pages
@@ -32,6 +33,7 @@ from typing import Any
 from dhsym.errors import DHError
 from dhsym.model.table import DHTable
 
+from ..judging.trajectory_key import TrajectoryKey
 from .assignment import Assignment
 from .report_files import safe_name
 from .variants import ClassList, Variant, class_variants, variant_id
@@ -61,6 +63,8 @@ def student_sheets(assignment: Assignment, roster: ClassList) -> tuple[StudentSh
         variant = drawn[variant_id(sid)]
         tables: list[DHTable] = []
         for q in assignment.questions:
+            if isinstance(q.key, TrajectoryKey):  # a profile: its values are in the title
+                continue
             own = variant.values_for(q.key.table)
             table = q.key.table.with_values(own) if own else q.key.table
             if table not in tables:
@@ -91,6 +95,12 @@ def write_sheets(
     used: set[str] = set()
     written = []
     for sheet in student_sheets(assignment, roster):
+        if not sheet.tables:
+            raise DHError(
+                "a problem sheet prints the key robots' tables, and every question of this "
+                "assignment is about a profile: list each student's values with dhsym variants "
+                "ASSIGNMENT --roster CLASS.csv"
+            )
         path = root / (safe_name(sheet.student, used) + ".tex")
         written.append(
             write_handout(

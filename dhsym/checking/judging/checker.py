@@ -3,7 +3,10 @@ r"""Checking one answer against a key: read it once, then the kind's judge compa
 The key is prepared once (:mod:`~dhsym.checking.judging.key`); the answer is read into
 the value its question expects (:func:`~dhsym.checking.reading.answer_value.read_answer_value`)
 and judged by its kind's judge: :mod:`~dhsym.checking.judging.matrix_judge`,
-:mod:`~dhsym.checking.judging.table_judge` or :mod:`~dhsym.checking.judging.ik_check`.
+:mod:`~dhsym.checking.judging.table_judge` or :mod:`~dhsym.checking.judging.ik_check`;
+an answer to a trajectory or gain question (its key a profile,
+:class:`~dhsym.checking.judging.trajectory_key.TrajectoryKey`) by
+:mod:`~dhsym.checking.judging.trajectory_judge`.
 
 Examples
 --------
@@ -29,14 +32,16 @@ from ..comparing.verdict import CheckResult, Verdict
 from ..reading.answer_value import IKAnswer, TableAnswer, read_answer_value
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
 from .ik_check import check_ik
-from .key import Key, PreparedKeys, prepare
+from .key import AnyKey, Key, PreparedKey, PreparedKeys, prepare
 from .matrix_judge import check_matrix
 from .table_judge import check_table
+from .trajectory_judge import check_trajectory
+from .trajectory_key import PreparedTrajectory, TrajectoryKey, prepare_trajectory
 
 __all__ = ["check_answer"]
 
 
-def _unreadable(key: Key, reason: str) -> CheckResult:
+def _unreadable(key: AnyKey, reason: str) -> CheckResult:
     return CheckResult(
         key.question.spec,
         Verdict.UNREADABLE,
@@ -47,7 +52,7 @@ def _unreadable(key: Key, reason: str) -> CheckResult:
 
 
 def check_answer(
-    key: Key,
+    key: AnyKey,
     answer: str | bytes,
     *,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
@@ -63,14 +68,21 @@ def check_answer(
     ``keys`` is the caller's map of prepared keys (a grading worker's): without it the
     key is prepared for this one check.
     """
-    if not isinstance(key, Key):
-        raise DHError(
-            f"check_answer: expected a Key (Key.load(robot, question)), got {type(key).__name__}"
-        )
     # a fault of the key raises here: it is never the answer's
-    pk = keys.get(key) if keys is not None else prepare(key)
+    pk: PreparedKey | PreparedTrajectory
+    if isinstance(key, TrajectoryKey):
+        pk = keys.get(key) if keys is not None else prepare_trajectory(key)
+    elif isinstance(key, Key):
+        pk = keys.get(key) if keys is not None else prepare(key)
+    else:
+        raise DHError(
+            "check_answer: expected a Key (Key.load(robot, question)) or a TrajectoryKey, "
+            f"got {type(key).__name__}"
+        )
     try:
         with time_limit(limits.seconds):
+            if isinstance(pk, PreparedTrajectory):  # one expression, read by its judge
+                return check_trajectory(pk, answer, limits)
             read = read_answer_value(pk.form(), answer, limits)  # the one reading
             # the reading's type is the kind's: a table, IK statements or a matrix
             if isinstance(read, TableAnswer):

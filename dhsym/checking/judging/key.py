@@ -6,7 +6,10 @@ an answer may use and one prepared part per kind of question, built by that kind
 preparer (:data:`PREPARERS`): a matrix (:mod:`~dhsym.checking.judging.matrix_key`), the
 dynamics, inverse kinematics (:mod:`~dhsym.checking.judging.ik_key`), a product of
 exponentials (:mod:`~dhsym.checking.judging.screw_key`) or a table (nothing to derive).
-A worker keeps its prepared keys in :class:`PreparedKeys`.
+A worker keeps its prepared keys in :class:`PreparedKeys`, with those of the trajectory
+and gain questions, whose key is a profile instead of a table
+(:class:`~dhsym.checking.judging.trajectory_key.TrajectoryKey`; :func:`load_key` reads
+either from what an assignment or a command line names).
 
 Examples
 --------
@@ -23,7 +26,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TypeAlias
+from typing import TypeAlias, overload
 
 from dhsym.errors import DHError
 from dhsym.model.library import load_table
@@ -38,15 +41,23 @@ from .ik_key import IKPart, prepare_ik
 from .matrix_key import MatrixPart, prepare_dynamics, prepare_matrix
 from .rounding import DEFAULT_ROUNDING, Rounding
 from .screw_key import prepare_screw
+from .trajectory_key import (
+    PreparedTrajectory,
+    TrajectoryKey,
+    is_profile_spec,
+    prepare_trajectory,
+)
 
 __all__ = [
     "PREPARERS",
     "Key",
+    "AnyKey",
     "KeyPart",
     "PreparedKey",
     "PreparedKeys",
     "Preparer",
     "TablePart",
+    "load_key",
     "prepare",
 ]
 
@@ -89,6 +100,12 @@ class Key:
             )
         table = ref if isinstance(ref, DHTable) else _key_table(ref)
         q = question if isinstance(question, Question) else Question.parse(question, table.n)
+        if q.kind == "trajectory":
+            raise DHError(
+                f"question {q.spec!r} asks about a profile: its key is one, like "
+                "cubic(q0=0, qf=1, tf=2), lspb(q0=0, qf=1, tf=2, a=2) or gains(omega=10)",
+                field="key",
+            )
         name = table.name or (Path(ref).stem if not isinstance(ref, DHTable) else "")
         key = cls(table, q, name, tool_free, Rounding.parse(rounding))
         # a key that cannot be checked against (too large, wrong values) stops here
@@ -168,9 +185,14 @@ class PreparedKey:
         )
 
 
+#: the key of any question: a DH table's, or a profile's
+AnyKey: TypeAlias = Key | TrajectoryKey
+
+
 class PreparedKeys:
-    """A worker's prepared keys: each :class:`Key` (a frozen value) prepared once, on
-    first use, and kept as long as this map (a grading worker's life).
+    """A worker's prepared keys: each :class:`Key` or
+    :class:`~dhsym.checking.judging.trajectory_key.TrajectoryKey` (frozen values) prepared
+    once, on first use, and kept as long as this map (a grading worker's life).
 
     >>> keys = PreparedKeys()
     >>> k = Key.load("planar2r", "T0_2")
@@ -180,16 +202,54 @@ class PreparedKeys:
 
     def __init__(self) -> None:
         self._prepared: dict[Key, PreparedKey] = {}
+        self._trajectories: dict[TrajectoryKey, PreparedTrajectory] = {}
 
     def __len__(self) -> int:
-        return len(self._prepared)
+        return len(self._prepared) + len(self._trajectories)
 
-    def get(self, key: Key) -> PreparedKey:
-        """``key`` prepared (:func:`prepare`), the first time only."""
+    @overload
+    def get(self, key: Key) -> PreparedKey: ...
+
+    @overload
+    def get(self, key: TrajectoryKey) -> PreparedTrajectory: ...
+
+    def get(self, key: AnyKey) -> PreparedKey | PreparedTrajectory:
+        """``key`` prepared (:func:`prepare`, or
+        :func:`~dhsym.checking.judging.trajectory_key.prepare_trajectory`), the first time
+        only."""
+        if isinstance(key, TrajectoryKey):
+            pt = self._trajectories.get(key)
+            if pt is None:
+                pt = self._trajectories[key] = prepare_trajectory(key)
+            return pt
         pk = self._prepared.get(key)
         if pk is None:
             pk = self._prepared[key] = prepare(key)
         return pk
+
+
+def load_key(
+    ref: str | Path | DHTable,
+    question: str,
+    *,
+    tool_free: bool = False,
+    rounding: object = None,
+    keys: PreparedKeys | None = None,
+) -> AnyKey:
+    """The key ``ref`` names: a profile (``cubic(q0=0, qf=1, tf=2)``) gives a
+    :class:`~dhsym.checking.judging.trajectory_key.TrajectoryKey`, anything else (a
+    built-in robot, a table file, a table) a :class:`Key` (:meth:`Key.load`).
+
+    >>> type(load_key("gains(omega=10)", "kp")).__name__, type(load_key("planar2r", "px")).__name__
+    ('TrajectoryKey', 'Key')
+    """
+    if is_profile_spec(ref):
+        assert isinstance(ref, str)
+        key = TrajectoryKey.load(ref, question, rounding=rounding)
+        if keys is not None:
+            keys.get(key)
+        return key
+    return Key.load(ref, question, tool_free=tool_free, rounding=rounding, keys=keys)
 
 
 def prepare(key: Key) -> PreparedKey:

@@ -1,222 +1,152 @@
-r"""Homework on trajectories and gains: a key (a profile's data, exact or symbolic), the
-questions it answers, and the judge that names the typical mistakes
-(:mod:`dhsym.checking.mistakes.trajectory_mistakes`).
+r"""Judging an answer to a trajectory or gain question: one expression, compared with the
+key at fresh random points, then proven equal when affordable; decimals right up to the
+key's :class:`~dhsym.checking.judging.rounding.Rounding`; a wrong answer equal to the key
+under a catalogued mistake (:mod:`~dhsym.checking.mistakes.trajectory_mistakes`, values
+derived once by :func:`~dhsym.checking.judging.trajectory_key.prepare_trajectory`) is
+named in the feedback.
 
-Questions: ``traj a<k>`` (a coefficient of a cubic or quintic), ``tb`` (the blend time of
-a linear segment with parabolic blends or of the minimum-time profile), ``vmax`` (the
-peak velocity), ``q@<t>`` (the position at time ``t``), ``kp`` and ``kd`` (the gains for
-a natural frequency ``omega`` and damping ``zeta``, 1 for critical damping). Answers are
-read by the whitelist reader (plain math or LaTeX, never ``sympify``), with the names
-``q0``, ``qf``, ``tf``, ``v0``, ``vf``, ``V``, ``a``, ``omega``, ``zeta``.
+The answer is read once by the reader every kind shares
+(:class:`~dhsym.checking.reading.answer_value.ReadCell`: plain math or LaTeX, the
+whitelist parser, never ``sympify``) with the names ``q0``, ``qf``, ``tf``, ``v0``,
+``vf``, ``V``, ``a``, ``vmax``, ``amax``, ``omega``, ``zeta`` (also ``q_0``, ``t_f``,
+``\omega``, …).  Symbols that are positive in the key (``t_f``, ``ω``, …) are sampled
+positive, and points where the key has no real value (a blend that does not fit) are
+left out.
 
 Examples
 --------
->>> key = TrajectoryKey.of("cubic", q0=0, qf=1, tf=2)
->>> check_trajectory_answer(key, "traj a2", "3/4").correct
+>>> from dhsym.checking.judging.checker import check_answer
+>>> key = TrajectoryKey.load("cubic(q0=0, qf=1, tf=2)", "traj a2")
+>>> check_answer(key, "3/4").correct
 True
->>> r = check_trajectory_answer(key, "traj a2", "3/2")
+>>> r = check_answer(key, "3/2")
 >>> r.verdict.value, r.kinds
 ('incorrect', ('tf_for_tf_squared',))
 """
 
 from __future__ import annotations
 
-import re
-from dataclasses import dataclass
-
+import numpy as np
 import sympy as sp
 
-from dhsym.errors import DHError
-from dhsym.model.entries import as_expr
-from dhsym.trajectory import Profile, cubic, lspb, minimum_time, quintic
-
-from ..comparing.verdict import CheckResult, Diagnosis, Verdict
+from ..comparing.equivalence import Sample, agree_precisely, cancellation, close, values
+from ..comparing.verdict import CheckResult, Diagnosis, EntryResult, Verdict
 from ..mistakes.trajectory_mistakes import TRAJECTORY_MISTAKES
-from ..reading.answer_names import NameContext
-from ..reading.answers import read_expression
+from ..reading.answer_value import ReadCell
+from ..reading.answers import expression_cell
+from ..reading.limits import AnswerLimits, check_time, expansion_terms, time_left
+from .rounding import rounding_accepts
+from .trajectory_key import PreparedTrajectory, TrajectoryKey, trajectory_sample
 
-__all__ = ["TrajectoryKey", "check_trajectory_answer"]
+__all__ = ["check_trajectory"]
 
-#: the symbols of symbolic keys and the names a student may use for them
-SYMBOLS = {
-    "q0": sp.Symbol("q_0", real=True),
-    "qf": sp.Symbol("q_f", real=True),
-    "tf": sp.Symbol("t_f", positive=True),
-    "v0": sp.Symbol("v_0", real=True),
-    "vf": sp.Symbol("v_f", real=True),
-    "V": sp.Symbol("V", positive=True),
-    "a": sp.Symbol("a", positive=True),
-    "vmax": sp.Symbol("v_max", positive=True),
-    "amax": sp.Symbol("a_max", positive=True),
-    "omega": sp.Symbol("omega", positive=True),
-    "zeta": sp.Symbol("zeta", positive=True),
-}
-_PARAMS = {
-    "cubic": ("q0", "qf", "tf", "v0", "vf"),
-    "quintic": ("q0", "qf", "tf", "v0", "vf"),
-    "lspb": ("q0", "qf", "tf", "V", "a"),
-    "minimum_time": ("q0", "qf", "vmax", "amax"),
-    "gains": ("omega", "zeta"),
-}
-_QUESTION = re.compile(
-    r"^(?:traj\s+)?(?:(?P<coef>a(?P<k>\d))|(?P<tb>t_?b|blend)|(?P<vmax>v_?max|peak)"
-    r"|q@(?P<t>[0-9./ ]{1,20})|(?P<gain>k_?p|k_?d))$",
-    re.IGNORECASE,
-)
+_MAX_PROOF_OPS = 400
 
 
-@dataclass(frozen=True)
-class TrajectoryKey:
-    """A profile's data (``kind``: ``cubic``, ``quintic``, ``lspb``, ``minimum_time``, or
-    ``gains``), exact: numbers, or the symbols ``q_0``, ``q_f``, ``t_f``, … when a value
-    is given as its name (``TrajectoryKey.of("quintic", q0="q0", qf="qf", tf="tf")``)."""
-
-    kind: str
-    params: tuple[tuple[str, sp.Expr], ...]
-
-    @classmethod
-    def of(cls, kind: str, **params: object) -> TrajectoryKey:
-        """The key of a ``kind`` profile with ``params`` (names of :data:`_PARAMS`)."""
-        if kind not in _PARAMS:
-            raise DHError(f"trajectory key: unknown kind {kind!r}: expected {', '.join(_PARAMS)}")
-        unknown = set(params) - set(_PARAMS[kind])
-        if unknown:
-            raise DHError(f"trajectory key: {kind} takes no {', '.join(sorted(unknown))}")
-        values = []
-        for name, v in params.items():
-            if v is None:
-                continue
-            if isinstance(v, str) and v in SYMBOLS:
-                values.append((name, SYMBOLS[v]))
-            else:
-                values.append((name, as_expr(v, field=name)))
-        return cls(kind, tuple(values))
-
-    @property
-    def values(self) -> dict[str, sp.Expr]:
-        """The parameters by name."""
-        return dict(self.params)
-
-    def profile(self, at_rest: bool = False) -> Profile:
-        """The key's profile (``at_rest``: with the end velocities 0)."""
-        v = self.values
-        if self.kind in ("cubic", "quintic"):
-            make = cubic if self.kind == "cubic" else quintic
-            zero = sp.Integer(0)
-            ends = (zero, zero) if at_rest else (v.get("v0", zero), v.get("vf", zero))
-            return make(v["q0"], v["qf"], v["tf"], *ends)
-        if self.kind == "lspb":
-            return lspb(v["q0"], v["qf"], v["tf"], v=v.get("V"), a=v.get("a"))
-        if self.kind == "minimum_time":
-            return minimum_time(v["q0"], v["qf"], v["vmax"], v["amax"])
-        raise DHError(f"a {self.kind} key has no profile")
-
-    def expected(self, question: str) -> dict[str, sp.Expr]:
-        """What the question's answer is (``key``) and what the mistakes need."""
-        m = _QUESTION.match(question.strip())
-        if m is None:
-            raise DHError(
-                f"unknown trajectory question {question!r}: expected traj a<k>, tb, vmax, "
-                "q@<t>, kp or kd"
-            )
-        v = self.values
-        if m["gain"]:
-            if self.kind != "gains":
-                raise DHError(f"{question}: a gains question needs a gains key")
-            w, z = v["omega"], v.get("zeta", sp.Integer(1))
-            kp = m["gain"].lower().replace("_", "") == "kp"
-            return {"key": w**2 if kp else 2 * z * w, "omega": w}
-        p = self.profile()
-        out: dict[str, sp.Expr] = {}
-        if "tf" in v:
-            out["t_f"] = v["tf"]
-        if m["coef"]:
-            if len(p.joints[0]) != 1:
-                raise DHError(f"{question}: coefficients belong to a cubic or quintic key")
-            k = int(m["k"])
-            coeffs = p.coefficients
-            if k >= len(coeffs):
-                raise DHError(f"{question}: a {self.kind} has a0 … a{len(coeffs) - 1}")
-            out["key"] = coeffs[k]
-            tf = SYMBOLS["tf"]
-            symbolic = TrajectoryKey(
-                self.kind, tuple((n, tf if n == "tf" else x) for n, x in self.params)
-            )
-            out["key_tf"], out["tf_symbol"] = symbolic.profile().coefficients[k], tf
-            if any(v.get(e, 0) != 0 for e in ("v0", "vf")):
-                out["key_at_rest"] = self.profile(at_rest=True).coefficients[k]
-        elif m["tb"]:
-            if self.kind not in ("lspb", "minimum_time"):
-                raise DHError(f"{question}: a blend time belongs to an lspb or minimum_time key")
-            seg = p.joints[0][0]
-            out["key"] = seg.end
-            out["blend_other"] = _other_blend(self, seg.end)
-        elif m["vmax"]:
-            mid = p.duration / 2  # every profile of a key is symmetric from rest to rest
-            if any(v.get(e, 0) != 0 for e in ("v0", "vf")):
-                raise DHError(f"{question}: the peak velocity is asked of rest-to-rest motions")
-            t = sp.Symbol("t", nonnegative=True)
-            first = p.joints[0][0]
-            if len(p.joints[0]) > 1:  # the end of the first blend: the line's velocity
-                out["key"] = sp.simplify(sp.diff(first.position(t), t).subs(t, first.end))
-            else:
-                out["key"] = sp.factor(sp.diff(first.position(t), t).subs(t, mid))
-        else:
-            out["key"] = p.at(as_expr(m["t"].strip(), field="question"))[0]
-        return out
-
-
-def _other_blend(key: TrajectoryKey, tb: sp.Expr) -> sp.Expr | None:
-    """The blend time of the wrong limit (see the mistakes)."""
-    v = key.values
-    D = v["qf"] - v["q0"]
-    if key.kind == "minimum_time":
-        vmax, amax = v["vmax"], v["amax"]
-        cruise, triangle = vmax / amax, sp.sqrt(sp.Abs(D) / amax)
-        return triangle if tb == cruise else cruise
-    if key.kind == "lspb" and "a" in v:  # the larger root
-        return v["tf"] - tb
-    return None
-
-
-def _same(a: sp.Expr, b: sp.Expr) -> bool:
-    if sp.simplify(a - b) == 0:
+def _exactly_equal(answer: sp.Expr, key: sp.Expr, limits: AnswerLimits) -> bool:
+    """True when ``answer - key`` cancels to 0 (a rational function of the symbols and
+    roots); skipped for answers whose expansion is large (each step of the check is
+    bounded by size: the deadline is cooperative) or when the deadline is near."""
+    difference = answer - key
+    if difference == 0:
         return True
-    if a.is_number and b.is_number:  # decimals as written: three significant digits
-        x, y = complex(a), complex(b)
-        return abs(x - y) <= 5e-4 * max(abs(y), 1e-12)
-    return False
-
-
-def check_trajectory_answer(key: TrajectoryKey, question: str, answer: str) -> CheckResult:
-    """The verdict on ``answer`` (text) to ``question`` under ``key``, with the typical
-    mistake named when the answer is one of them."""
-    values = key.expected(question)
-    expected = values["key"]
-    ctx = NameContext(aliases=tuple(SYMBOLS.items()))
+    if sp.count_ops(answer) > _MAX_PROOF_OPS or expansion_terms(difference) > limits.proof_terms:
+        return False
+    if time_left() < limits.proof_seconds:
+        return False
     try:
-        got = read_expression(answer, ctx)
-    except DHError as err:
-        return CheckResult(
-            question,
-            Verdict.UNREADABLE,
-            f"The answer could not be read: {err.message}",
-            reason=err.message,
-            key=key.kind,
-        )
-    if _same(got, expected):
-        return CheckResult(
-            question, Verdict.CORRECT, f"Correct: {sp.sstr(expected)}.", key=key.kind
-        )
-    name = re.sub(r"[\s_]", "", question.lower()).removeprefix("traj")
-    found = []
-    for m in TRAJECTORY_MISTAKES:
-        wrong = m.wrong(name, values)
-        if wrong is not None and _same(got, wrong):
-            found.append(Diagnosis(m.kind, m.title, m.detail))
-    message = (
-        f"Not the expected value: {found[0].title}. {found[0].detail}"
-        if found
-        else "Not the expected value: write the conditions of the profile and solve them again."
+        return bool(sp.cancel(sp.together(difference)) == 0)
+    except (RecursionError, MemoryError, sp.PolynomialError):
+        return False
+
+
+def check_trajectory(
+    pt: PreparedTrajectory, answer: str | bytes, limits: AnswerLimits
+) -> CheckResult:
+    """Check ``answer`` (text, untrusted) against the prepared trajectory key ``pt``.
+
+    Reading errors are raised (:func:`~dhsym.checking.judging.checker.check_answer`
+    turns them into an unreadable verdict with the reason)."""
+    key, part = pt.key, pt.part
+    q = key.question
+    cell = expression_cell(answer, limits)
+    read = ReadCell.read(cell, pt.names, limits, "the answer")
+    ans = read.value
+    unknown = sorted(ans.free_symbols - pt.names.symbols, key=sp.default_sort_key)
+    sample = trajectory_sample(
+        part.expected.free_symbols | {w for _, v in part.wrong for w in v.free_symbols},
+        part.expected,
     )
-    return CheckResult(question, Verdict.INCORRECT, message, diagnoses=tuple(found), key=key.kind)
+    if unknown:
+        sample = sample.extended(unknown)
+    kv = np.broadcast_to(values(part.expected, sample), (sample.size,))
+    av = np.broadcast_to(values(ans, sample), (sample.size,))
+    check_time()
+    proof, note = "", ""
+    near = bool(close(av, kv))
+    if not unknown and (near or cancellation(ans, sample, av - kv)):
+        # equal at every point, or a difference the doubles cannot tell from the rounding
+        # error of the sums the answer cancels: the exact proof or 60-digit numbers decide
+        if _exactly_equal(ans, part.expected, limits):
+            proof = "exact"
+        elif agree_precisely(ans, part.expected):
+            proof = "numeric"
+    if not proof and read.template is not None:
+        note = _rounded(key, read, sample, kv)
+        proof = "rounding" if note else ""
+    shown = " ".join(cell.split())
+    shown = shown if len(shown) <= 200 else shown[:199] + "…"
+    wrong_text = "" if proof else sp.sstr(ans)
+    entry = EntryResult(
+        1,
+        1,
+        bool(proof),
+        shown if proof or len(cell) > 160 else wrong_text,
+        part.text,
+        "" if proof else sp.latex(ans),
+        part.latex,
+        proof,
+        note,
+    )
+    if proof:
+        how = f" up to rounding ({note})" if note else ""
+        return CheckResult(
+            q.spec, Verdict.CORRECT, f"The answer is right{how}.", (entry,), key=key.name
+        )
+    found = []
+    by_kind = {m.kind: m for m in TRAJECTORY_MISTAKES}
+    for kind, value in part.wrong:
+        check_time()
+        wv = np.broadcast_to(values(value, sample), (sample.size,))
+        if close(av, wv) or (read.template is not None and _rounded(key, read, sample, wv)):
+            m = by_kind[kind]
+            found.append(Diagnosis(m.kind, m.title, m.detail, ((1, 1),)))
+    if unknown:
+        names = ", ".join(str(s) for s in unknown)
+        found.insert(
+            0,
+            Diagnosis(
+                "unknown_symbol",
+                "unknown symbols",
+                f"The answer uses {names}, which the question does not have (its names: "
+                "q0, qf, tf, v0, vf, V, a, vmax, amax, omega, zeta).",
+            ),
+        )
+    lead = next((d for d in found if d.kind != "unknown_symbol"), None)
+    message = (
+        f"The answer is wrong. Most likely: {lead.title}. {lead.detail}"
+        if lead is not None
+        else "The answer is wrong: write the conditions of the profile and solve them again."
+    )
+    return CheckResult(q.spec, Verdict.INCORRECT, message, (entry,), tuple(found), key=key.name)
+
+
+def _rounded(key: TrajectoryKey, read: ReadCell, sample: Sample, target: np.ndarray) -> str:
+    """How the answer, written with decimals, equals ``target`` up to the key's rounding
+    rule, or ``""``."""
+    assert read.template is not None
+    env = sample.extended(read.template.free_symbols - set(sample.symbols)).env
+    how = rounding_accepts(
+        key.rounding, read.template, read.literals, env, sample.size, np.asarray(target, float)
+    )
+    return how or ""

@@ -28,7 +28,12 @@ Kinds: ``wrong_sign`` (at any depth), ``sin_cos_swapped``, ``dropped_term``,
 (:mod:`dhsym.checking.mistakes._dynamics_mistakes`); for a product of exponentials (``S``,
 ``B``, ``Mhome``, ``Js``, ``Jb``, ``T(theta)``) ``omega_cross_q``, ``body_for_space``,
 ``space_for_body``, ``wrong_home``, ``rows_swapped`` (:data:`SCREW_MISTAKES`,
-:mod:`dhsym.checking.mistakes._screw_mistakes`).
+:mod:`dhsym.checking.mistakes._screw_mistakes`);
+for the trajectory and gain questions
+(``traj a<k>``, ``tb``, ``kp``, ``kd``) ``tf_for_tf_squared``,
+``boundary_velocity_left_out``, ``blend_time_wrong_limit``, ``kd_without_two``,
+``kp_not_squared`` (:data:`TRAJECTORY_MISTAKES`, from
+:mod:`dhsym.checking.mistakes.trajectory_mistakes`).
 
 Examples
 --------
@@ -79,6 +84,7 @@ from ._matrix_mistakes import BlockTransposed, OtherConvention, ReverseOrder, Tr
 from ._mistake_base import MatrixCase, Mistake, TableCase, Variants, prepare_variants
 from ._row_mistakes import DegreesAsRadians, IndexShift, OffsetMissing, SingleWrongRow
 from ._screw_mistakes import SCREW_MISTAKES, ScrewMistake, screw_variants
+from .trajectory_mistakes import TRAJECTORY_MISTAKES, TrajectoryMistake
 
 __all__ = [
     "DET_MISTAKES",
@@ -117,6 +123,8 @@ __all__ = [
     "ScrewMistake",
     "TABLE_MISTAKES",
     "TableCase",
+    "TRAJECTORY_MISTAKES",
+    "TrajectoryMistake",
     "Transposed",
     "Variants",
     "WrongJointIndex",

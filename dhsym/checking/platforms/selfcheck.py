@@ -23,6 +23,9 @@ instructor's files are: an autograder, a grading notebook)::
 
     check(answer, question="q2", assignment="hw.yaml", student="alice", roster="class.csv")
 
+A trajectory or gain question's key is a profile (``key="cubic(q0=0, qf=1, tf=2)"``,
+``question="traj a2"``; see :mod:`~dhsym.checking.judging.trajectory_key`).
+
 Examples
 --------
 >>> r = check("[[C12, -S12, 0, a1*C1 - a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0,0,1,0]]",
@@ -37,6 +40,8 @@ Traceback (most recent call last):
 AssertionError: INCORRECT (0 / 1 points). 1 of 16 entries is wrong. Most likely: wrong sign. ...
 >>> read_answer(Key.load("planar2r", "T0_2[0,3]"), r"a_1 \cos\theta_1 + a2 C12").latex
 'a_{1} C_{1} + a_{2} C_{12}'
+>>> check("10", key="gains(omega=10)", question="kd").result.kinds
+('kd_without_two',)
 """
 
 from __future__ import annotations
@@ -55,9 +60,11 @@ from ..grading.assignment import Assignment
 from ..grading.feedback import QuestionFeedback, render_question_text, render_template
 from ..grading.variants import ClassList, class_variants, variant_id
 from ..judging.checker import check_answer
-from ..judging.key import Key, PreparedKeys
+from ..judging.key import AnyKey, Key, PreparedKeys, load_key
 from ..judging.table_judge import table_cells
-from ..reading.answer_value import IKAnswer, TableAnswer, read_answer_value
+from ..judging.trajectory_key import PreparedTrajectory, TrajectoryKey
+from ..reading.answer_value import IKAnswer, ReadCell, TableAnswer, read_answer_value
+from ..reading.answers import expression_cell
 from ..reading.limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, CheckTimeout, time_limit
 
 __all__ = [
@@ -87,7 +94,7 @@ class Reading:
 
 
 def read_answer(
-    key: Key,
+    key: AnyKey,
     answer: str | bytes,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
     keys: PreparedKeys | None = None,
@@ -101,6 +108,9 @@ def read_answer(
     try:
         with time_limit(min(limits.seconds, 2.0)):
             pk = keys.get(key)
+            if isinstance(pk, PreparedTrajectory):  # one expression, in the profile's names
+                cell = expression_cell(answer, limits)
+                return Reading(latex=sp.latex(ReadCell.read(cell, pk.names, limits, "").value))
             read = read_answer_value(pk.form(), answer, limits)
             if isinstance(read, TableAnswer):
                 return Reading(table=table_cells(read.table))
@@ -125,7 +135,7 @@ class SelfCheck:
     """The result of :func:`check`, shown as rich output in a notebook."""
 
     result: CheckResult
-    key: Key
+    key: AnyKey
     show_key: bool = False
     points: float = 1.0
 
@@ -147,7 +157,7 @@ class SelfCheck:
         return {
             "r": r,
             "question": self.key.question,
-            "robot": self.key.table.name or self.key.name,
+            "robot": _about(self.key),
             "wrong": [e for e in r.entries if not e.correct],
             "lead": lead,
             "show_key": self.show_key,
@@ -172,6 +182,11 @@ class SelfCheck:
             raise AssertionError(self.feedback_text())
 
 
+def _about(key: AnyKey) -> str:
+    """What a key is about, for the title: the robot's name, or the profile."""
+    return key.name if isinstance(key, TrajectoryKey) else key.table.name or key.name
+
+
 def assignment_key(
     assignment: str | Path | Assignment,
     question: str,
@@ -179,7 +194,7 @@ def assignment_key(
     student: str | None = None,
     roster: str | Path | ClassList | None = None,
     keys: PreparedKeys | None = None,
-) -> Key:
+) -> AnyKey:
     """The key of the question ``question`` (its id) of an assignment; with variants,
     ``student``'s own key (their values drawn for the class list ``roster``).
 
@@ -209,14 +224,14 @@ def assignment_key(
 
 
 def _key(
-    key: str | Path | DHTable | Key | None,
+    key: str | Path | DHTable | AnyKey | None,
     question: str | None,
     tool_free: bool,
     keys: PreparedKeys | None = None,
     assignment: str | Path | Assignment | None = None,
     student: str | None = None,
     roster: str | Path | ClassList | None = None,
-) -> Key:
+) -> AnyKey:
     """The key asked for; one loaded here is prepared into ``keys`` (to check it), so
     that the check that follows does not prepare it again."""
     if assignment is not None:
@@ -225,19 +240,25 @@ def _key(
         return assignment_key(assignment, question, student=student, roster=roster, keys=keys)
     if student is not None:
         raise DHError("student= is for an assignment's question: give assignment='hw.yaml'")
-    if isinstance(key, Key):
+    if isinstance(key, (Key, TrajectoryKey)):
         return key
     if key is None:
-        raise DHError("give the key: a built-in robot (key='puma560'), a table file or a table")
+        raise DHError(
+            "give the key: a built-in robot (key='puma560'), a table file, a table or a "
+            "profile (key='cubic(q0=0, qf=1, tf=2)')"
+        )
     if question is None:
-        raise DHError("give the question: table, T<i>_<j>, A<k>, arm, px/py/pz or T<i>_<j>[r,c]")
-    return Key.load(key, question, tool_free=tool_free, keys=keys)
+        raise DHError(
+            "give the question: table, T<i>_<j>, A<k>, arm, px/py/pz or T<i>_<j>[r,c]; of a "
+            "profile traj a<k>, tb, vmax, q@<t>, kp or kd"
+        )
+    return load_key(key, question, tool_free=tool_free, keys=keys)
 
 
 @overload
 def check(
     answer: None = None,
-    key: str | Path | DHTable | Key | None = None,
+    key: str | Path | DHTable | AnyKey | None = None,
     question: str | None = None,
     *,
     tool_free: bool = False,
@@ -252,7 +273,7 @@ def check(
 @overload
 def check(
     answer: str | bytes,
-    key: str | Path | DHTable | Key | None = None,
+    key: str | Path | DHTable | AnyKey | None = None,
     question: str | None = None,
     *,
     tool_free: bool = False,
@@ -266,7 +287,7 @@ def check(
 
 def check(
     answer: str | bytes | None = None,
-    key: str | Path | DHTable | Key | None = None,
+    key: str | Path | DHTable | AnyKey | None = None,
     question: str | None = None,
     *,
     tool_free: bool = False,
@@ -291,7 +312,7 @@ def check(
 
 def assert_answer(
     answer: object,
-    key: str | Path | DHTable | Key | None = None,
+    key: str | Path | DHTable | AnyKey | None = None,
     question: str | None = None,
     *,
     tool_free: bool = False,
@@ -328,7 +349,7 @@ def assert_answer(
 
 
 def check_widget(
-    key: str | Path | DHTable | Key | None = None,
+    key: str | Path | DHTable | AnyKey | None = None,
     question: str | None = None,
     *,
     tool_free: bool = False,
@@ -349,9 +370,7 @@ def check_widget(
     keys = PreparedKeys()  # this widget's key, prepared once for every keystroke and check
     k = _key(key, question, tool_free, keys)
     q = k.question
-    title = w.HTMLMath(
-        render_template("selfcheck_title.html.j2", question=q, robot=k.table.name or k.name)
-    )
+    title = w.HTMLMath(render_template("selfcheck_title.html.j2", question=q, robot=_about(k)))
     area = w.Textarea(
         value=answer,
         placeholder="Your answer: plain math (C1, a1*C12, [[…], […]]) or LaTeX",

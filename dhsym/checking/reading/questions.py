@@ -5,7 +5,10 @@ of the pose that these joint values reach); the dynamics ``M``, ``M[i,j]``, ``g`
 Christoffel symbol ``c_ijk`` (1-based, ``c_112``), ``tau`` (symbolic in q, q̇, q̈) and the
 statics ``tau_static`` (τ = Jᵀ F); a robot as a product of exponentials (``kind`` ``screw``,
 :mod:`~dhsym.checking.reading.screw_questions`): the screw axes ``S``, ``S3``, ``B``, the home
-configuration ``Mhome``, ``Js``, ``Jb`` and ``T(theta)``.
+configuration ``Mhome``, ``Js``, ``Jb`` and ``T(theta)``;
+of a time profile (kind ``trajectory``, its key a profile
+such as ``cubic(q0=0, qf=1, tf=2)``): a coefficient ``traj a<k>``, the blend time ``tb``,
+the peak velocity ``vmax``, the position at a time ``q@<t>``, the gains ``kp`` and ``kd``.
 
 Examples
 --------
@@ -21,6 +24,8 @@ Question(spec='T0_6[0,3]', kind='entry', frm=0, to=6, entry=(0, 3), pose=None, e
 ['M', 'M[0,1]', 'g', 'C', 'c_112', 'tau', 'tau_static']
 >>> [Question.parse(s, 2).label for s in ("S", "S_2", "B", "Mhome", "J_s", "Jb[5,1]", "T(θ)")]
 ['S', 'S2', 'B', 'Mhome', 'Js', 'Jb[5,1]', 'T(theta)']
+>>> [Question.parse(s, 0).label for s in ("traj a2", "t_b", "traj v_max", "q@ 1/2", "K_d")]
+['traj a2', 'tb', 'vmax', 'q@1/2', 'kd']
 """
 
 from __future__ import annotations
@@ -49,17 +54,25 @@ _DYNAMICS = re.compile(
     r"|^c_?\{?(?P<i>\d),?(?P<j>\d),?(?P<k>\d)\}?$"
     r"|^(?P<static>(?:tau|τ)_?(?:static|statics|s|\{s\})|statics)$"
 )
+_TRAJECTORY = re.compile(
+    r"^(?:traj(?:ectory)?\s*(?P<coef>a(?P<k>\d))|(?:traj(?:ectory)?\s*)?(?:(?P<tb>t_?b)"
+    r"|(?P<vmax>v_?max|v_?\{max\})|q\s*@\s*(?P<t>[A-Za-z0-9_./*+() -]{1,40})"
+    r"|(?P<gain>k_?\{?[pd]\}?)))$",
+    re.IGNORECASE,
+)
 _KINDS = (
     "table, T<i>_<j>, A<k>, arm, px/py/pz, optionally with [row,col] (0-based), e.g. T0_6[0,3]; "
     "J, J[row,col], det J, ik, ik all, ik@q1,...,qn; M, M[row,col], g, C, c_ijk, tau, tau_static; "
-    "S, S<i>, B, B<i>, Mhome, Js, Jb, T(theta)"
+    "S, S<i>, B, B<i>, Mhome, Js, Jb, T(theta); "
+    "of a profile: traj a<k>, tb, vmax, q@<t>, kp, kd"
 )
 
 
 @dataclass(frozen=True)
 class Question:
     """One question: ``kind`` is ``table``, ``matrix`` (``^frm T_to``), ``entry`` (0-based),
-    ``jacobian`` (``J``, or its ``entry``), ``det`` (``det J``), ``ik`` or ``dynamics``.
+    ``jacobian`` (``J``, or its ``entry``), ``det`` (``det J``), ``ik``, ``dynamics`` or
+    ``trajectory``.
 
     For ``ik``, ``pose`` holds the joint values whose pose is to be solved (None: a
     symbolic answer in the pose ``n s a p``) and ``every`` asks for every branch.
@@ -67,6 +80,8 @@ class Question:
     Christoffel symbol ``c_ijk``, its 1-based ``index``); ``entry`` is 0-based.
     For ``screw``, ``part`` is ``S``, ``B``, ``Mhome``, ``Js``, ``Jb`` or ``T`` and ``column``
     the 1-based screw axis asked alone (``S3``).
+    For ``trajectory``, ``part`` is ``a<k>``, ``tb``, ``vmax``, ``q@<t>`` (the time as
+    written, read with the key's names when the key is prepared), ``kp`` or ``kd``.
     """
 
     spec: str
@@ -84,12 +99,16 @@ class Question:
     def parse(cls, spec: str, n: int) -> Question:
         """Read ``table``, ``T0_2``, ``T02``, ``^0T_2``, ``A3``, ``arm``, ``px``, ``…[r,c]``,
         ``J``, ``J[r,c]``, ``det J``, ``ik``, ``ik all``, ``ik@q1,…,qn``, ``M``, ``M[r,c]``,
-        ``g``, ``C``, ``c_ijk``, ``tau`` and ``tau_static``."""
+        ``g``, ``C``, ``c_ijk``, ``tau``, ``tau_static``; ``traj a<k>``, ``tb``, ``vmax``,
+        ``q@<t>``, ``kp`` and ``kd`` (``n`` does not matter for these)."""
         text = str(spec).strip()
         if len(text) > 200:
             raise DHError(f"unknown question {text[:40]!r}…: a question is at most 200 characters")
         if text.lower() in ("table", "dh", "dh table", "dh_table"):
             return cls(text, "table")
+        m = _TRAJECTORY.match(text)
+        if m is not None:
+            return cls(text, "trajectory", part=_trajectory_part(m))
         compact = text.replace(" ", "")
         screw = parse_screw(compact, n)
         if screw is not None:
@@ -156,6 +175,8 @@ class Question:
         if self.kind == "ik":
             head = "ik all" if self.every else "ik"
             return head + ("@" + ",".join(f"{x:.15g}" for x in self.pose) if self.pose else "")
+        if self.kind == "trajectory":
+            return f"traj {self.part}" if self.part.startswith("a") else self.part
         if self.kind == "dynamics":
             if self.index is not None:
                 return "c_" + "".join(map(str, self.index))
@@ -178,10 +199,34 @@ class Question:
             return _dynamics_latex(self)
         if self.kind == "screw":
             return screw_latex(self.part, self.entry, self.column)
+        if self.kind == "trajectory":
+            return _trajectory_latex(self.part)
         base = "J" if self.kind == "jacobian" else f"{{}}^{{{self.frm}}}T_{{{self.to}}}"
         if self.entry:
             return f"{base}[{self.entry[0] + 1},{self.entry[1] + 1}]"
         return base
+
+
+def _trajectory_part(m: re.Match[str]) -> str:
+    """The canonical part of a trajectory question: ``a2``, ``tb``, ``vmax``, ``q@<t>``
+    (the time without spaces), ``kp`` or ``kd``."""
+    if m["coef"]:
+        return f"a{m['k']}"
+    if m["tb"]:
+        return "tb"
+    if m["vmax"]:
+        return "vmax"
+    if m["gain"]:
+        return "k" + m["gain"].rstrip("}").lower()[-1]
+    return "q@" + "".join(m["t"].split())
+
+
+def _trajectory_latex(part: str) -> str:
+    r"""``a_{2}``, ``t_b``, ``\dot q_{\max}``, ``q(1/2)``, ``K_p``, ``K_d``."""
+    if part.startswith("q@"):
+        return rf"q({part[2:]})"
+    fixed = {"tb": "t_b", "vmax": r"\dot q_{\max}", "kp": "K_p", "kd": "K_d"}
+    return fixed.get(part, f"a_{{{part[1:]}}}")
 
 
 def _dynamics_latex(q: Question) -> str:

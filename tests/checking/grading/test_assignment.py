@@ -7,6 +7,7 @@ from pathlib import Path
 import pytest
 
 from dhsym.checking.grading.assignment import Assignment
+from dhsym.checking.judging.trajectory_key import TrajectoryKey
 from dhsym.errors import DHError
 
 HW = Path(__file__).resolve().parents[3] / "examples" / "homework"
@@ -45,3 +46,47 @@ def test_every_problem_names_the_file_row_and_field(tmp_path, text, row, field):
     with pytest.raises(DHError) as err:
         Assignment.load(bad)
     assert (err.value.file, err.value.row, err.value.field) == (str(bad), row, field)
+
+
+def test_a_trajectory_question_has_a_profile_for_its_key(tmp_path):
+    (tmp_path / "hw.yaml").write_text(
+        "key: planar2r\nrounding: digits=4\nquestions:\n"
+        "  - {id: q1, ask: px}\n"
+        '  - {id: t1, ask: traj a2, key: "cubic(q0=0, qf=pi/2, tf=2)", points: 2}\n'
+        '  - {id: t2, ask: kd, key: "gains(omega=omega, zeta=1)", rounding: off}\n'
+    )
+    a = Assignment.load(tmp_path / "hw.yaml")
+    t1, t2 = a.questions[1].key, a.questions[2].key
+    assert isinstance(t1, TrajectoryKey) and isinstance(t2, TrajectoryKey)
+    assert t1.name == "cubic(q0=0, qf=pi/2, tf=2)" and str(t1.rounding) == "digits=4"
+    assert str(t2.rounding) == "off" and a.max_score == 4
+    # the fingerprint follows the profile
+    (tmp_path / "hw.yaml").write_text((tmp_path / "hw.yaml").read_text().replace("tf=2)", "tf=3)"))
+    assert Assignment.load(tmp_path / "hw.yaml").fingerprint != a.fingerprint
+
+
+@pytest.mark.parametrize(
+    ("question", "message", "field"),
+    [
+        ("{id: t1, ask: traj a2}", "asks about a profile", "key"),
+        ('{id: t1, ask: tb, key: "cubic(q0=0, qf=1, tf=2)"}', "lspb or minimum_time", "ask"),
+        ('{id: t1, ask: T0_2, key: "cubic(q0=0, qf=1, tf=2)"}', "not one a profile", "ask"),
+        ('{id: t1, ask: traj a2, key: "cubic(q0=0, qf=1, tf=X)"}', "unknown name X", "key.tf"),
+        ('{id: t1, ask: traj a2, key: "cubic(q0=0, qf=1, tf=0)"}', "positive", "key"),
+        ('{id: t1, ask: vmax, key: "lspb(q0=0, qf=1, tf=2, V=5)"}', "too large", "key"),
+        (
+            '{id: t1, ask: kd, key: "gains(omega=1)", deduct: {kd_twice: 10%}}',
+            "catalogue",
+            "credit",
+        ),
+    ],
+)
+def test_a_bad_trajectory_question_names_the_file_row_and_field(tmp_path, question, message, field):
+    (tmp_path / "hw.yaml").write_text(f"key: planar2r\nquestions:\n  - {question}\n")
+    with pytest.raises(DHError, match=message) as err:
+        Assignment.load(tmp_path / "hw.yaml")
+    assert (err.value.file, err.value.row, err.value.field) == (
+        str(tmp_path / "hw.yaml"),
+        1,
+        field,
+    )

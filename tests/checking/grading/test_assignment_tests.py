@@ -116,3 +116,40 @@ def test_the_guides_examples_are_checked(tmp_path: Path):
         assert report.passed, report.text()
         checked += 1
     assert checked >= 2
+
+
+def test_trajectory_questions_are_tested_like_the_others(tmp_path):
+    (tmp_path / "hw.yaml").write_text(
+        "questions:\n"
+        '  - id: t1\n    ask: traj a3\n    key: "quintic(q0=q0, qf=qf, tf=tf)"\n'
+        "    tests:\n"
+        '      right: ["10*(qf - q0)/tf^3", "\\\\frac{10(q_f-q_0)}{t_f^3}"]\n'
+        '      wrong: [{answer: "10*(qf - q0)/tf^2", mistake: tf_for_tf_squared}, "0"]\n'
+        '  - id: t2\n    ask: kp\n    key: "gains(omega=4)"\n'
+        "    tests: {right: ['16', '16.0'], wrong: [{answer: '4', mistake: kp_not_squared}]}\n"
+    )
+    report = run_assignment_tests(Assignment.load(tmp_path / "hw.yaml"))
+    assert report.passed, report.text()
+    rows = [(r.question, r.case, r.got) for r in report.rows]
+    assert rows == [
+        ("t1", "key", "correct"),
+        ("t2", "key", "correct"),
+        ("t1", "right", "correct"),
+        ("t1", "right", "correct"),
+        ("t1", "wrong", "incorrect: tf_for_tf_squared"),
+        ("t1", "wrong", "incorrect"),
+        ("t2", "right", "correct"),
+        ("t2", "right", "correct"),
+        ("t2", "wrong", "incorrect: kp_not_squared"),
+    ]
+    # a test naming the wrong mistake fails, and grade refuses the assignment
+    (tmp_path / "hw.yaml").write_text(
+        (tmp_path / "hw.yaml")
+        .read_text()
+        .replace("mistake: kp_not_squared", "mistake: kd_without_two")
+    )
+    report = run_assignment_tests(Assignment.load(tmp_path / "hw.yaml"))
+    assert [(r.question, r.got) for r in report.failures] == [("t2", "incorrect: kp_not_squared")]
+    (tmp_path / "subs" / "ann").mkdir(parents=True)
+    with pytest.raises(DHError, match="question tests fail"):
+        grade(tmp_path / "hw.yaml", tmp_path / "subs", tmp_path / "out", workers=0, progress=False)

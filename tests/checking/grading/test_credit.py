@@ -105,3 +105,35 @@ def test_ik_all_branches_of_the_puma_count_each_branch_once():
     assert score == 1.0 and why.startswith("partial credit: 4 of 8 branches right (not given: ")
     assert result.to_json()["branches"][0] == {"name": result.branches[0][0], "given": True}
     assert type(result).from_json(result.to_json()).branches == result.branches
+
+
+TRAJECTORY = """title: Trajectories
+questions:
+  - id: t1
+    ask: traj a2
+    key: "cubic(q0=q0, qf=qf, tf=tf)"
+    points: 2
+    deduct: {tf_for_tf_squared: 25%}
+  - {id: t2, ask: kd, key: "gains(omega=10)", points: 1, deduct: {kd_without_two: 50%}}
+  - {id: t3, ask: kp, key: "gains(omega=10)", points: 1, deduct: {kd_without_two: 50%}}
+  - {id: t4, ask: tb, key: "lspb(q0=0, qf=1, tf=2, a=2)", points: 1, credit: entries}
+"""
+
+
+def test_deductions_name_the_trajectory_mistakes(tmp_path):
+    """Issue 35, item 5: a trajectory mistake of the catalogue costs what deduct says; another
+    mistake, or none, costs everything."""
+    (tmp_path / "hw.yaml").write_text(TRAJECTORY, encoding="utf-8")
+    ann = tmp_path / "subs" / "ann"
+    ann.mkdir(parents=True)
+    answers = {"t1": "3*(qf-q0)/tf", "t2": "10", "t3": "10", "t4": "1 + sqrt(2)/2"}
+    for qid, text in answers.items():
+        (ann / f"{qid}.txt").write_text(text, encoding="utf-8")
+    out = tmp_path / "out"
+    grade(tmp_path / "hw.yaml", tmp_path / "subs", out, workers=0, progress=False)
+    (row,) = csv.DictReader((out / "gradebook.csv").open(encoding="utf-8"))
+    assert (row["t1"], row["t2"], row["t3"], row["t4"]) == ("1.5", "0.5", "0", "0")
+    page = (out / row["feedback"]).read_text(encoding="utf-8")
+    assert r"Partial credit: t\_f for t\_f² (25% deducted), 1.5 of 2 points." in page
+    assert r"Partial credit: K\_d without the factor 2 (50% deducted), 0.5 of 1 points." in page
+    assert r"Most likely: K\_p = ω." in page and "blend time from the wrong limit" in page

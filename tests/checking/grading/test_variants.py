@@ -205,3 +205,39 @@ def test_feedback_without_variants_has_no_values_line(tmp_path: Path):
     )
     assert report.graded == 10
     assert "Your values" not in (tmp_path / "o" / "feedback" / "alice.md").read_text()
+
+
+def test_a_profile_drawn_per_student_is_graded_against_their_own_values(tmp_path: Path):
+    (tmp_path / "hw.secret").write_text("s3cret-for-the-tests-0123456789\n")
+    (tmp_path / "hw.yaml").write_text(
+        "title: HW profiles\nsecret: hw.secret\nvariants: {T: [2, 3, 4, 5], Q: [1, 2]}\n"
+        "questions:\n"
+        '  - {id: t1, ask: traj a2, key: "cubic(q0=0, qf=Q, tf=T)"}\n'
+        '  - {id: t2, ask: "q@T/2", key: "quintic(q0=0, qf=Q, tf=T)"}\n'
+    )
+    a = Assignment.load(tmp_path / "hw.yaml")
+    assert a.variants is not None and a.variants.names == ("T", "Q")
+    roster = tmp_path / "class.csv"
+    roster.write_text("student\nalice\nbob\ncarol\n")
+    drawn = class_variants(a.variants, ["alice", "bob", "carol"])
+    values = {s: {k: v for k, v in drawn[s].values} for s in ("alice", "bob", "carol")}
+    mine = a.for_variant(drawn["alice"])
+    assert (
+        mine.questions[0].key.name
+        == f"cubic(q0=0, qf={values['alice']['Q']}, tf={values['alice']['T']})"
+    )
+    a2 = {s: 3 * v["Q"] / v["T"] ** 2 for s, v in values.items()}
+    copier = next(s for s in ("bob", "carol") if a2[s] != a2["alice"])
+    subs = tmp_path / "subs"
+    for who in ("alice", copier):
+        (subs / who).mkdir(parents=True)
+        (subs / who / "t1.txt").write_text(str(a2["alice"]))
+        (subs / who / "t2.txt").write_text(f"{values[who]['Q']}/2")  # the midpoint, their own
+    report = grade(
+        tmp_path / "hw.yaml", subs, tmp_path / "out", workers=0, progress=False, variants=roster
+    )
+    rec = {r.student: r for r in report.records}
+    assert rec["alice"].verdicts == {"t1": "correct", "t2": "correct"}
+    assert rec[copier].verdicts == {"t1": "incorrect", "t2": "correct"}
+    page = (tmp_path / "out" / "feedback" / "alice.md").read_text()
+    assert f"**Your values:** {drawn['alice'].text()}" in page

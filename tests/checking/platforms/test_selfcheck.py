@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from dhsym.checking import Key, SelfCheck, check, check_widget
+from dhsym.checking import Key, SelfCheck, TrajectoryKey, assert_answer, check, check_widget
 from dhsym.checking.platforms.selfcheck import read_answer
 from dhsym.errors import DHError
 
@@ -89,3 +89,16 @@ def test_widget_previews_and_checks(need_ipywidgets):
     assert "CORRECT" in verdict.value and "INCORRECT" not in verdict.value
     assert isinstance(check(RIGHT, key="planar2r", question="T0_2"), SelfCheck)
     assert check_widget("planar2r", "px", answer="a1*C1").children[2].value.count("dhsym reads")
+
+
+def test_a_profile_key_in_a_notebook():
+    r = check("3*(qf - q0)/tf", key="cubic(q0=q0, qf=qf, tf=tf)", question="traj a2")
+    assert r.verdict == "incorrect" and r"t\_f for t\_f²" in r._repr_markdown_()
+    assert check("3 (q_f-q_0)/t_f^2", key="cubic(q0=q0, qf=qf, tf=tf)", question="traj a2").correct
+    with pytest.raises(AssertionError, match="K_p = ω"):
+        assert_answer("10", key="gains(omega=10)", question="kp")
+    preview = read_answer(TrajectoryKey.load("gains(omega=omega)", "kd"), r"2\zeta\omega")
+    assert preview.latex == r"2 \omega \zeta" and not preview.error
+    assert read_answer(TrajectoryKey.load("gains(omega=10)", "kd"), "2 +").error
+    with pytest.raises(DHError, match="asks about a profile"):
+        check("1", key="planar2r", question="traj a2")
