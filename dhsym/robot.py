@@ -256,18 +256,18 @@ class Robot(KinematicChain):
     def _screw_jacobian_at(
         self, frame: str, q: object, values: Mapping[object, object] | None
     ) -> ScrewJacobian | np.ndarray:
-        from dhsym.kinematics.numeric import compile_matrix, values_key
+        from dhsym.kinematics.numeric import values_key
+        from dhsym.screws.numeric import screw_jacobian_function
 
-        J = self._screw_jacobian(frame)
         if q is None:
             if values is not None:
                 raise DHError(f"jacobian_{frame}() without q is exact: values need q")
-            return J
+            return self._screw_jacobian(frame)
         vals = self.table.with_values(dict(values or {})).value_map
         key = JacobianKey(f"screw-{frame}", None, values_key(values))
         f = self._jacobian_functions.get(key)
         if f is None:
-            f = self._jacobian_functions[key] = compile_matrix(J.matrix, self.variables, vals)
+            f = self._jacobian_functions[key] = screw_jacobian_function(self.poe(), frame, vals)
         return f(q)
 
     # -- formats and compiled code (dhsym.formats, dhsym.export) -------------------------

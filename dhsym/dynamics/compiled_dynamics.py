@@ -143,6 +143,7 @@ class DynamicsFunctions:
             tau, (*dm.variables, *dm.rates, *dm.accelerations, *gsym), (n,), entry
         )
         self._small = 0
+        self._exact_only = False
         self._potential = _Compiled(potential, dm.variables, (1,))
         self.gravity = np.array([to_float(g) for g in dm.gravity])
         links = [dm.links[r - 1] for r in dm.joints]
@@ -166,13 +167,21 @@ class DynamicsFunctions:
         recursion, or for a small call after :data:`COMPILE_AFTER` of them the compiled
         program state by state (plain floats)."""
         m = Q.shape[0]
+        G = np.broadcast_to(g, (m, 3))
         if m <= SMALL:
             self._small += 1
             if self._small > COMPILE_AFTER:
-                G = np.broadcast_to(g, (m, 3))
                 return np.stack([self._compiled(Q[i], V[i], A[i], G[i]) for i in range(m)])
+        if self._recursion is None and not self._exact_only:
+            try:
+                self._recursion = numeric_recursion(self.model)
+            except DHError:
+                # a parameter without a number (``rz1`` of a planar arm) may vanish from
+                # the exact τ (its products by exact zeros): the compiled program answers,
+                # or names what is missing
+                self._exact_only = True
         if self._recursion is None:
-            self._recursion = numeric_recursion(self.model)
+            return self._compiled(Q, V, A, G)
         return self._recursion.tau(Q, V, A, g)
 
     def _columns(self, Q: np.ndarray, V: np.ndarray, A: np.ndarray, g: np.ndarray) -> np.ndarray:

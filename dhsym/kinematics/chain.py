@@ -481,10 +481,29 @@ class KinematicChain:
                 if frame != "base":
                     raise DHError("the numeric analytic Jacobian is in the base frame")
                 f = jac.analytic_jacobian_function(self, euler, values)
+            elif frame == "tool":
+                f = self._carried_to_tool(values)
             else:
                 f = jac.jacobian_function(self, frame, values=values)
             self._jacobian_functions[key] = f
         return f(q)
+
+    def _carried_to_tool(
+        self, values: Mapping[Any, object] | None
+    ) -> Callable[[object], np.ndarray]:
+        """``jacobe`` as ``diag(Rᵀ, Rᵀ) jacob0`` in numbers, ``R`` the tool's rotation: the
+        exact Jacobian in the tool frame of a long chain (a Panda's) takes minutes to write
+        out, the rotation of the base frame's one is a product of numbers."""
+
+        import numpy as np
+
+        def evaluate(q: object) -> np.ndarray:
+            Q = np.asarray(q, dtype=float)
+            J0 = self._jacobian_numbers(Q, "base", None, values)
+            Rt = np.swapaxes(self.fk(Q, values=values)[..., :3, :3], -1, -2)
+            return np.concatenate([Rt @ J0[..., :3, :], Rt @ J0[..., 3:, :]], axis=-2)
+
+        return evaluate
 
     # -- helpers ---------------------------------------------------------------------
     def _check_row(self, i: int) -> None:

@@ -75,12 +75,14 @@ def test_dynamics_kept_and_read_back(tmp_path, monkeypatch):
 
     monkeypatch.setenv("DHSYM_CACHE", str(tmp_path / "c"))
     monkeypatch.delenv("DHSYM_NO_CACHE", raising=False)
+    import dhsym.dynamics.compiled_dynamics as cd
+
+    # the compiled τ is what a long simulation switches to: at once here
+    monkeypatch.setattr(cd, "COMPILE_AFTER", 0)
     arm = dhsym.Robot(read_table_text(PENDULUM))
     x = np.array([0.3])
     first = dynamics_functions(arm).rne(x, x, x)
     assert len(list(_entries(Store(tmp_path / "c"), "rne"))) == 1
-    import dhsym.dynamics.compiled_dynamics as cd
-
     monkeypatch.setattr(cd, "rne_expressions", None)  # read back, not derived again
     assert np.array_equal(dynamics_functions(arm).rne(x, x, x), first)
 

@@ -315,3 +315,17 @@ def test_joint_rows_name_each_joint_and_its_rate() -> None:
     ]
     table = DHTable.from_rows([DHRow.revolute("-theta1", a="a1"), DHRow.revolute("theta2")])
     assert [rate for *_, rate in joint_rows(dhsym.Robot(table))] == [-1, 1]
+
+
+@pytest.mark.parametrize("name", ["stanford", "puma560_modified", "ur5", "example4_6dof"])
+def test_jacobe_is_the_exact_tool_frame_jacobian_in_numbers(name: str) -> None:
+    """``jacobe`` (diag(Rᵀ, Rᵀ) jacob0 in numbers) equals the exact Jacobian in the tool
+    frame, compiled."""
+    from dhsym.kinematics.jacobian import jacobian_function
+
+    robot = dhsym.load(name)
+    q = np.random.default_rng(11).uniform(-2, 2, (5, robot.n))
+    np.testing.assert_allclose(robot.jacobe(q), jacobian_function(robot, "tool")(q), atol=1e-12)
+    np.testing.assert_allclose(
+        robot.jacobe(q[0]), jacobian_function(robot, "tool")(q[0]), atol=1e-12
+    )

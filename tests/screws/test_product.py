@@ -12,7 +12,7 @@ import sympy as sp
 
 import dhsym
 from dhsym.errors import DHError
-from dhsym.kinematics.jacobian import geometric_jacobian
+from dhsym.kinematics.jacobian import geometric_jacobian, numeric_jacobian
 from dhsym.kinematics.simplification import prove_equal
 from dhsym.model.library import builtin_names
 from dhsym.robot import from_urdf
@@ -190,29 +190,38 @@ def test_space_jacobian_is_the_adjoint_of_the_body_jacobian() -> None:
     assert prove_equal(poe.jacobian_space().matrix, adjoint(T) * poe.jacobian_body().matrix)
 
 
-#: the KUKA LWR4's and the Jaco's symbolic space and body Jacobians ran for minutes: left out
-#: until their products are compact (issue 36's note)
-@pytest.mark.parametrize(
-    "name",
-    [
-        "ur5",
-        "puma560",
-        "puma560_modified",
-        "stanford",
-        pytest.param("panda", marks=pytest.mark.slow),
-    ],
-)
+@pytest.mark.parametrize("name", _names() + _urdfs())
 def test_jacobian_numbers_equal_jacob0_and_jacobe_carried(name: str) -> None:
+    """For every built-in robot and URDF example: ``robot.jacobian_space(q)`` and
+    ``jacobian_body(q)`` (the adjoint products of the screw axes, in numbers) equal the DH
+    geometric Jacobian carried to their frames."""
     robot = _robot(name)
     rng = np.random.default_rng(7)
     for q in rng.uniform(-2, 2, size=(3, robot.n)):
-        J0, Je, T = robot.jacob0(q), robot.jacobe(q), robot.fk(q)
+        # the DH Jacobian from the frames in numbers (nothing derived: the Panda's exact
+        # Jacobian takes a minute to write out), carried to the tool by R
+        J0, T = numeric_jacobian(robot, q), robot.fk(q)
+        Rt = T[:3, :3].T
+        Je = np.vstack([Rt @ J0[:3], Rt @ J0[3:]])
         p = T[:3, 3]
         px = np.array([[0, -p[2], p[1]], [p[2], 0, -p[0]], [-p[1], p[0], 0]])
         Js = np.vstack([J0[3:], J0[:3] + px @ J0[3:]])
         Jb = np.vstack([Je[3:], Je[:3]])
         np.testing.assert_allclose(robot.jacobian_space(q), Js, atol=1e-12)
         np.testing.assert_allclose(robot.jacobian_body(q), Jb, atol=1e-12)
+
+
+#: the exact J_s and J_b compiled, against the numbers of the adjoint products (two methods);
+#: the LWR4's and the Jaco's exact Jacobians take minutes to write out and are left out
+@pytest.mark.parametrize("name", ["ur5", "puma560", "puma560_modified", "stanford"])
+def test_exact_jacobians_compiled_equal_their_numbers(name: str) -> None:
+    robot = _robot(name)
+    poe = robot.poe()
+    q = np.random.default_rng(3).uniform(-2, 2, size=(4, robot.n))
+    np.testing.assert_allclose(
+        poe.function("jacobian_space")(q), robot.jacobian_space(q), atol=1e-12
+    )
+    np.testing.assert_allclose(poe.function("jacobian_body")(q), robot.jacobian_body(q), atol=1e-12)
 
 
 def test_jacobians_batch_and_exact_forms() -> None:

@@ -130,6 +130,7 @@ def shared_keys(assignments: Iterable[Assignment]) -> tuple[AnyKey, ...]:
     key is prepared by the worker that grades it).
 
     >>> from dhsym.checking.grading.assignment import AssignmentQuestion
+    >>> from dhsym.checking.judging.key import Key
     >>> qs = [AssignmentQuestion(f"q{k}", ask, 1, Key.load("planar2r", ask))
     ...       for k, ask in enumerate(("T0_2", "table"))]
     >>> a = Assignment("hw", tuple(qs))
