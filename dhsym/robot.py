@@ -257,7 +257,7 @@ class Robot(KinematicChain):
         self, frame: str, q: object, values: Mapping[object, object] | None
     ) -> ScrewJacobian | np.ndarray:
         from dhsym.kinematics.numeric import values_key
-        from dhsym.screws.numeric import screw_jacobian_function
+        from dhsym.screws.poe_numbers import screw_jacobian_function
 
         if q is None:
             if values is not None:
