@@ -43,8 +43,8 @@ def register(subparsers: Any) -> None:
         subparsers,
         "cache",
         "show, clear or trim the cache of derived results and built libraries",
-        epilog="The folder is $DHSYM_CACHE, else the user cache folder (~/.cache/dhsym on "
-        "Linux); its entries take at most $DHSYM_CACHE_SIZE (default 512M), the least "
+        epilog="The folder is DHSYM_CACHE, else the user cache folder (~/.cache/dhsym on "
+        "Linux); its entries take at most DHSYM_CACHE_SIZE (default 512M), the least "
         "recently used deleted first. 'dhsym --no-cache COMMAND' (or DHSYM_NO_CACHE=1) "
         "runs without it.",
     )

@@ -66,7 +66,6 @@ __all__ = [
     "AnalyticJacobian",
     "Jacobian",
     "JacobianColumn",
-    "JointRow",
     "LectureMatrix",
     "analytic_jacobian",
     "analytic_jacobian_function",

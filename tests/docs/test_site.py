@@ -151,7 +151,14 @@ def test_every_mistake_kind_is_in_the_catalogue(site):
         cls.kind
         for cls in vars(mistakes).values()
         if inspect.isclass(cls) and isinstance(getattr(cls, "kind", None), str) and cls.kind
-    ] + [m.kind for m in (*mistakes.dynamics_mistakes(), *mistakes.SCREW_MISTAKES)]
+    ] + [
+        m.kind
+        for m in (
+            *mistakes.dynamics_mistakes(),
+            *mistakes.SCREW_MISTAKES,
+            *mistakes.TRAJECTORY_MISTAKES,
+        )
+    ]
     kinds = set(detectors)
     assert len(kinds) >= 15
     # the header, one row a detector (two detectors may find one kind: a whole matrix or

@@ -81,7 +81,7 @@ from ._jacobian_mistakes import (
     ToolFrame,
 )
 from ._matrix_mistakes import BlockTransposed, OtherConvention, ReverseOrder, Transposed
-from ._mistake_base import MatrixCase, Mistake, TableCase, Variants, prepare_variants
+from ._mistake_base import MatrixCase, Mistake, TableCase, prepare_variants
 from ._row_mistakes import DegreesAsRadians, IndexShift, OffsetMissing, SingleWrongRow
 from ._screw_mistakes import SCREW_MISTAKES, ScrewMistake, screw_variants
 from .trajectory_mistakes import TRAJECTORY_MISTAKES, TrajectoryMistake
@@ -126,7 +126,6 @@ __all__ = [
     "TRAJECTORY_MISTAKES",
     "TrajectoryMistake",
     "Transposed",
-    "Variants",
     "WrongJointIndex",
     "WrongSign",
     "diagnose_matrix",
