@@ -34,10 +34,10 @@ from dhsym.model.table import DHTable
 
 from ..comparing.dynamics_values import dynamics_key, part_matrix, question_symbols, rate_aliases
 from ..comparing.equivalence import Sample, values
-from ..mistakes._mistake_base import Variants
 from ..mistakes.registry import (
     MatrixCase,
     Mistake,
+    Variants,
     mistakes_for,
     prepare_variants,
     variant_matrices,

@@ -82,6 +82,9 @@ from ._jacobian_mistakes import (
 )
 from ._matrix_mistakes import BlockTransposed, OtherConvention, ReverseOrder, Transposed
 from ._mistake_base import MatrixCase, Mistake, TableCase, prepare_variants
+
+# Variants is a type alias: re-exported here, kept out of __all__ (autodoc cannot format it)
+from ._mistake_base import Variants as Variants
 from ._row_mistakes import DegreesAsRadians, IndexShift, OffsetMissing, SingleWrongRow
 from ._screw_mistakes import SCREW_MISTAKES, ScrewMistake, screw_variants
 from .trajectory_mistakes import TRAJECTORY_MISTAKES, TrajectoryMistake
