@@ -117,8 +117,10 @@ def export(
         ``"screws"`` (the product of exponentials of Lynch and Park: ``<prefix>_fk_space``,
         the pose of ``fk`` as ``e^[S1]q1 … e^[Sn]qn M``, and ``<prefix>_jacobian_space``,
         ``<prefix>_jacobian_body``, rows ``[ω; v]``; the header lists the screw axes and
-        ``M``) as a sequence or ``"fk,ik"``. The IK checks its solutions with the fk, so
-        ``ik`` brings ``fk`` along, and ``control`` brings ``dynamics`` (its ``rne``).
+        ``M``) as a sequence or ``"fk,ik"``. The IK checks its solutions with the fk and
+        refines a branch near a pose that is not exact with the fk and the Jacobian, so
+        ``ik`` brings ``fk`` and ``jacobian`` along, and ``control`` brings ``dynamics``
+        (its ``rne``).
     prefix
         The name in front of every function and file (``<prefix>_fk``, ``<prefix>.h``):
         an ASCII letter, then letters, digits and ``_``, never a path (anything else is a
@@ -194,8 +196,12 @@ def export_languages(
         ik_program(robot, symbolic_lengths=symbolic_lengths, cache=cache) if "ik" in parts else None
     )
     fk = fk_program(robot, symbolic_lengths=symbolic_lengths)
+    # the IK refines a branch near a pose that is not exact with the fk and the Jacobian
+    brought = {"fk", "jacobian"} if "ik" in parts else {"fk"}
     jac = (
-        jacobian_program(robot, symbolic_lengths=symbolic_lengths) if "jacobian" in parts else None
+        jacobian_program(robot, symbolic_lengths=symbolic_lengths)
+        if "jacobian" in parts or "ik" in parts
+        else None
     )
     profiles = (
         (*(profile_program(k) for k in ("cubic", "quintic")), lspb_program())
@@ -205,7 +211,7 @@ def export_languages(
     spline = spline_program() if "trajectory" in parts else None
     control = computed_torque_program() if "control" in parts else None
     screws = screw_programs(robot, symbolic_lengths=symbolic_lengths) if "screws" in parts else None
-    effective = tuple(sorted(set(parts) | {"fk"}))
+    effective = tuple(sorted(set(parts) | brought))
     out: dict[str, dict[str, str]] = {}
     for lang, language in languages:
         name = names[lang]

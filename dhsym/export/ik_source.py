@@ -43,7 +43,8 @@ import numpy as np
 import sympy as sp
 
 from dhsym.errors import DHError
-from dhsym.ik.accuracy import EXACT, FLOOR, MOST_DECIMALS
+from dhsym.ik import levenberg_marquardt as _lm
+from dhsym.ik.accuracy import EXACT, FLOOR, MOST_DECIMALS, REFINE, REFINE_STEPS, SAME, STUCK
 from dhsym.ik.choices import IKCache
 from dhsym.ik.closed_form import ClosedForm
 from dhsym.ik.closed_form import ClosedForm as InverseKinematics  # what is exported
@@ -56,7 +57,7 @@ from dhsym.model.table import JointType
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["IKSource", "IKStep", "ik_source", "pose_input"]
+__all__ = ["IKSource", "IKStep", "Refinement", "ik_source", "pose_input"]
 
 
 def pose_input() -> sp.IndexedBase:
@@ -78,6 +79,38 @@ class IKStep:
 
 
 @dataclass(frozen=True)
+class Refinement:
+    """The numbers of ``robot.ik``'s refinement of a branch near a pose that is not exact
+    (:mod:`dhsym.ik.accuracy`, and the steps of
+    :func:`~dhsym.ik.levenberg_marquardt.numeric_ik`), which the exported IK repeats.
+
+    A branch whose residual against the pose as given is above the tolerance but within
+    ``within`` tolerances gets at most ``steps`` Levenberg–Marquardt steps towards the
+    nearest rigid pose (the error: the position and the rotation vector, base frame; the
+    step: ``(JᵀJ + λ diag(diag(JᵀJ) + diagonal_floor)) Δq = Jᵀe``, λ from ``damping``,
+    divided or multiplied by ``damping_step`` within ``damping_range``; stop when the
+    error's length is below ``converged``). When that does not reach the tolerance and the
+    Jacobian's smallest singular value is below ``stuck`` times its largest (a stretched
+    arm), it starts again from ``q ± √res v`` (``v`` the Jacobian's null direction). Rows
+    closer than ``same`` (by cosine and sine) are one once a row moved.
+
+    >>> r = Refinement()
+    >>> r.within, r.steps, r.stuck, r.same
+    (30, 12, 0.001, 1e-06)
+    """
+
+    within: float = REFINE
+    steps: int = REFINE_STEPS
+    stuck: float = STUCK
+    same: float = SAME
+    damping: float = _lm.DAMPING
+    damping_step: float = _lm.DAMPING_STEP
+    damping_range: tuple[float, float] = _lm.DAMPING_RANGE
+    diagonal_floor: float = _lm.DIAGONAL_FLOOR
+    converged: float = _lm.CONVERGED
+
+
+@dataclass(frozen=True)
 class IKSource:
     """What the exporters need of a closed-form IK (see the module docstring)."""
 
@@ -94,6 +127,8 @@ class IKSource:
     tolerance: float
     exact: float = EXACT
     most_decimals: int = MOST_DECIMALS
+    #: how a branch near a pose that is not exact is refined (as ``robot.ik`` does)
+    refinement: Refinement = Refinement()
 
     @property
     def count(self) -> int:

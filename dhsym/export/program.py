@@ -38,7 +38,7 @@ from dhsym.model.parsing import REAL as _REAL
 from dhsym.model.table import JointType
 
 from .identifiers import identifier
-from .ik_source import IKSource, ik_source
+from .ik_source import IKSource, Refinement, ik_source
 
 if TYPE_CHECKING:
     from dhsym.ik.choices import IKCache
@@ -168,6 +168,12 @@ class IKProgram:
     def most_decimals(self) -> int:
         """The most decimals looked for in a pose's entries (its half unit)."""
         return self.source.most_decimals
+
+    @property
+    def refinement(self) -> Refinement:
+        """How a branch near a pose that is not exact is refined (Levenberg–Marquardt on
+        the exported fk and Jacobian, as ``robot.ik``)."""
+        return self.source.refinement
 
     @property
     def safe_sqrt(self) -> bool:

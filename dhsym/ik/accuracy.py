@@ -60,6 +60,9 @@ __all__ = [
     "MOST_DECIMALS",
     "PoseAccuracy",
     "REFINE",
+    "REFINE_STEPS",
+    "SAME",
+    "STUCK",
     "nearest_rigid",
     "pose_accuracy",
     "written_decimals",
@@ -76,6 +79,14 @@ MOST_DECIMALS = 12
 #: rounding moves the pose a little out of reach, and the arm stretched towards it lands
 #: near it (a few tolerances: up to 14 on the PUMA's shoulder in 1,000 poses), not on it
 REFINE = 30
+#: the most Levenberg–Marquardt steps such a branch is refined by
+REFINE_STEPS = 12
+#: a Jacobian whose smallest singular value is below this fraction of its largest holds
+#: Levenberg–Marquardt at a stretched arm (the refinement starts again beside it, along the
+#: Jacobian's null direction, ``√res`` away)
+STUCK = 1e-3
+#: two refined solutions closer than this (angles by cosine and sine) are one
+SAME = 1e-6
 
 
 @dataclass(frozen=True)

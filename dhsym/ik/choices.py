@@ -35,7 +35,9 @@ from dhsym.kinematics.numeric import values_key
 from dhsym.model.table import DHRow, JointType
 
 from .accuracy import EXACT as _EXACT
-from .accuracy import FLOOR, REFINE, nearest_rigid, pose_accuracy
+from .accuracy import FLOOR, REFINE, REFINE_STEPS, nearest_rigid, pose_accuracy
+from .accuracy import SAME as _SAME
+from .accuracy import STUCK as _STUCK
 from .closed_form import ClosedForm
 from .closed_form_solver import ClosedFormSolver
 from .families import inverse
@@ -60,13 +62,7 @@ __all__ = [
 ]
 
 _TWO_PI = 2 * np.pi
-#: the most Levenberg–Marquardt steps a branch near a pose that is not exact is refined by
-REFINE_STEPS = 12
-#: a Jacobian whose smallest singular value is below this fraction of its largest holds
-#: Levenberg–Marquardt at a stretched arm (the refinement starts again beside it)
-_STUCK = 1e-3
-#: two refined solutions closer than this (angles by cosine and sine) are one
-_SAME = 1e-6
+# the refinement's numbers (REFINE_STEPS, _STUCK, _SAME) are the rule's: dhsym.ik.accuracy
 
 
 def _limits(robot: KinematicChain) -> tuple[np.ndarray, np.ndarray]:

@@ -22,7 +22,18 @@ from .solution import IKSolution
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["DESCRIPTION", "METHOD", "SELF_MOTION", "numeric_ik", "numeric_solutions"]
+__all__ = [
+    "CONVERGED",
+    "DAMPING",
+    "DAMPING_RANGE",
+    "DAMPING_STEP",
+    "DESCRIPTION",
+    "DIAGONAL_FLOOR",
+    "METHOD",
+    "SELF_MOTION",
+    "numeric_ik",
+    "numeric_solutions",
+]
 
 #: what an :class:`IKSolution` of this solver says it is, and that in a sentence
 METHOD = "numeric"
@@ -30,6 +41,16 @@ METHOD = "numeric"
 #: than six directions (the Jacobian of the joints left free short of rank)
 SELF_MOTION = "self-motion"
 DESCRIPTION = "numeric: Levenberg–Marquardt on the compiled fk (one local solution)"
+#: the damping λ a solve starts with; divided by :data:`DAMPING_STEP` after a step that
+#: lowers the error, multiplied by it after one that does not, kept within
+#: :data:`DAMPING_RANGE` (the exported IK's refinement takes the same numbers)
+DAMPING = 1e-2
+DAMPING_STEP = 10.0
+DAMPING_RANGE = (1e-12, 1e12)
+#: a solve has converged when the error's length (position and rotation vector) is below this
+CONVERGED = 1e-12
+#: added to the diagonal of ``JᵀJ`` the damping scales (a zero column stays solvable)
+DIAGONAL_FLOOR = 1e-12
 
 
 def _solution(q: np.ndarray, converged: bool, iterations: int, error: float) -> IKSolution:
@@ -57,7 +78,7 @@ def numeric_ik(
     T: object,
     q0: object = None,
     *,
-    tol: float = 1e-12,
+    tol: float = CONVERGED,
     max_iter: int = 100,
     values: Mapping[object, object] | None = None,
     fixed: Mapping[int, float] | None = None,
@@ -96,7 +117,7 @@ def numeric_ik(
         )
 
     e = error(q)
-    lam = 1e-2
+    lam = DAMPING
     it = 0
     for it in range(1, max_iter + 1):
         if e @ e < tol**2:
@@ -104,12 +125,12 @@ def numeric_ik(
         J = np.asarray(robot.jacobian(q, values=values))[:, moving]
         H = J.T @ J
         trial = q.copy()
-        trial[moving] += np.linalg.solve(H + lam * np.diag(np.diag(H) + 1e-12), J.T @ e)
+        trial[moving] += np.linalg.solve(H + lam * np.diag(np.diag(H) + DIAGONAL_FLOOR), J.T @ e)
         e_trial = error(trial)
         if e_trial @ e_trial < e @ e:
-            q, e, lam = trial, e_trial, max(lam / 10, 1e-12)
+            q, e, lam = trial, e_trial, max(lam / DAMPING_STEP, DAMPING_RANGE[0])
         else:
-            lam = min(lam * 10, 1e12)
+            lam = min(lam * DAMPING_STEP, DAMPING_RANGE[1])
     err = float(np.sqrt(e @ e))
     return _solution(q, err < tol, it, err)
 
