@@ -187,6 +187,22 @@ def test_exported_cpp_ik_finds_every_branch_of_rounded_poses(name, tmp_path):
         assert len(continuum) <= CONTINUUM, continuum
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["puma560", "ur5", "stanford"])
+def test_exported_numpy_ik_finds_every_branch_of_rounded_poses(name, tmp_path):
+    """The NumPy module: 200 poses at each of 6, 4 and 3 decimals, as the C."""
+    robot = _load(name)
+    mod = h.load_python(dhsym.export(robot, "python", what=("ik",), prefix="arm"), "arm", tmp_path)
+    T, rev = _poses(robot, 200)
+    for decimals in (6, 4, 3):
+        poses = np.round(T, decimals)
+        got = []
+        for P in poses:
+            q, res = mod.ik_with_residual(P)
+            got.append(np.column_stack([q, res]))
+        assert len(_compare(robot, poses, got, rev)) <= CONTINUUM
+
+
 def test_the_refinement_is_robot_ik_s():
     """The numbers the exported refinement is printed with are the rule's (one copy)."""
     r = ik_source(dhsym.load("ur5")).refinement
