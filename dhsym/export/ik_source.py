@@ -96,10 +96,10 @@ class Refinement:
 
     >>> r = Refinement()
     >>> r.within, r.steps, r.stuck, r.same
-    (30, 12, 0.001, 1e-06)
+    (30.0, 12, 0.001, 1e-06)
     """
 
-    within: float = REFINE
+    within: float = float(REFINE)
     steps: int = REFINE_STEPS
     stuck: float = STUCK
     same: float = SAME

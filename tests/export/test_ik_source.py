@@ -203,6 +203,35 @@ def test_exported_numpy_ik_finds_every_branch_of_rounded_poses(name, tmp_path):
         assert len(_compare(robot, poses, got, rev)) <= CONTINUUM
 
 
+_RUST_BODY = """    for t in v.chunks(16) {
+        let t: [f64; 16] = t.try_into().unwrap();
+        let mut s = [[0.0; arm::NJOINTS]; arm::MAX_IK_SOLUTIONS];
+        let mut r = [0.0; arm::MAX_IK_SOLUTIONS];
+        let c = arm::ik(&t, None, &mut s, &mut r);
+        println!("{}", c);
+        for (row, res) in s[..c].iter().zip(r.iter()) {
+            for x in row.iter() { print!("{:e} ", x); }
+            println!("{:e}", res);
+        }
+    }
+"""
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["puma560", "ur5", "stanford"])
+def test_exported_rust_ik_finds_every_branch_of_rounded_poses(name, tmp_path):
+    """The Rust module: 200 poses at each of 6, 4 and 3 decimals, as the C."""
+    if not h.rustc():
+        pytest.skip("rustc is not installed (rustup)")
+    robot = _load(name)
+    files = dhsym.export(robot, "rust", what=("ik",), prefix="arm")
+    prog = h.build_rust(files, tmp_path, h.rust_main(_RUST_BODY))
+    T, rev = _poses(robot, 200)
+    for decimals in (6, 4, 3):
+        poses = np.round(T, decimals)
+        assert len(_compare(robot, poses, _run(prog, poses, len(rev)), rev)) <= CONTINUUM
+
+
 def test_the_refinement_is_robot_ik_s():
     """The numbers the exported refinement is printed with are the rule's (one copy)."""
     r = ik_source(dhsym.load("ur5")).refinement
