@@ -232,6 +232,38 @@ def test_exported_rust_ik_finds_every_branch_of_rounded_poses(name, tmp_path):
         assert len(_compare(robot, poses, _run(prog, poses, len(rev)), rev)) <= CONTINUUM
 
 
+_OCTAVE_DRIVER = """Ts = dlmread('t.txt');
+for i = 1:size(Ts, 1)
+  [Q, c, r] = arm_ik(reshape(Ts(i, :), 4, 4).');
+  fprintf('%d\\n', c);
+  fprintf('%.17g\\n', [Q, r].');
+end
+"""
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["puma560", "ur5"])
+def test_exported_octave_ik_finds_every_branch_of_rounded_poses(name, tmp_path):
+    """The MATLAB/Octave files in GNU Octave: 200 poses at each of 6, 4 and 3 decimals."""
+    if not shutil.which("octave"):
+        pytest.skip("octave is not installed (apt-get install octave)")
+    robot = _load(name)
+    files = dhsym.export(robot, "matlab", what=("ik",), prefix="arm")
+    T, rev = _poses(robot, 200)
+    n = len(rev)
+    for decimals in (6, 4, 3):
+        poses = np.round(T, decimals)
+        np.savetxt(tmp_path / "t.txt", poses.reshape(len(poses), 16), fmt="%.17g")
+        out = h.octave(files, tmp_path, _OCTAVE_DRIVER)
+        got, at = [], 0
+        for _ in poses:
+            c = int(out[at])
+            got.append(out[at + 1 : at + 1 + c * (n + 1)].reshape(c, n + 1))
+            at += 1 + c * (n + 1)
+        assert at == len(out)
+        assert len(_compare(robot, poses, got, rev)) <= CONTINUUM
+
+
 def test_the_refinement_is_robot_ik_s():
     """The numbers the exported refinement is printed with are the rule's (one copy)."""
     r = ik_source(dhsym.load("ur5")).refinement
