@@ -115,9 +115,14 @@ def _exported(name: str, lang: str, folder: Path) -> tuple[dhsym.Robot, Path]:
 def _run(prog: Path, poses: np.ndarray, n: int) -> list[np.ndarray]:
     """Each pose's exported solutions: rows of ``n`` joint values and the residual."""
     text = "".join(" ".join(repr(float(v)) for v in T.ravel()) + "\n" for T in poses)
-    out = h.numbers([str(prog)], prog.parent, text)
+    return _solutions(h.numbers([str(prog)], prog.parent, text), len(poses), n)
+
+
+def _solutions(out: np.ndarray, count: int, n: int) -> list[np.ndarray]:
+    """The numbers a driver printed, per pose: the count, then each solution's ``n`` joint
+    values and its residual."""
     rows, at = [], 0
-    for _ in poses:
+    for _ in range(count):
         c = int(out[at])
         rows.append(out[at + 1 : at + 1 + c * (n + 1)].reshape(c, n + 1))
         at += 1 + c * (n + 1)
@@ -254,13 +259,7 @@ def test_exported_octave_ik_finds_every_branch_of_rounded_poses(name, tmp_path):
     for decimals in (6, 4, 3):
         poses = np.round(T, decimals)
         np.savetxt(tmp_path / "t.txt", poses.reshape(len(poses), 16), fmt="%.17g")
-        out = h.octave(files, tmp_path, _OCTAVE_DRIVER)
-        got, at = [], 0
-        for _ in poses:
-            c = int(out[at])
-            got.append(out[at + 1 : at + 1 + c * (n + 1)].reshape(c, n + 1))
-            at += 1 + c * (n + 1)
-        assert at == len(out)
+        got = _solutions(h.octave(files, tmp_path, _OCTAVE_DRIVER), len(poses), n)
         assert len(_compare(robot, poses, got, rev)) <= CONTINUUM
 
 
