@@ -5,7 +5,8 @@
     void <prefix>_fk(const double q[N], double T[16]);
     void <prefix>_jacobian(const double q[N], double J[6*N]);
     int  <prefix>_ik(const double T[16], double tol, double q[][N], double residual[]);
-    /* count; every branch within tol (<= 0: dhsym's rule for poses as they come) */
+    /* count; every branch within tol (<= 0: dhsym's rule for poses as they come), a branch
+       near a pose that is not exact refined on fk and jacobian first, as robot.ik */
 
 With symbolic lengths each function takes ``const double p[<PREFIX>_NPARAMS]`` last.
 
