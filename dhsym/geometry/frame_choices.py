@@ -48,7 +48,9 @@ from dhsym.model.inertia import LinkInertia
 from dhsym.model.kinds import Convention
 from dhsym.model.table import DHRow, DHTable, Elementary, JointType
 
-__all__ = ["FrameChoice", "flip_x", "match_frames", "textbook_frames"]
+from .axes import Frame
+
+__all__ = ["FrameChoice", "flip_x", "match_frames", "textbook_frames", "turned"]
 
 _PI = sp.pi
 
@@ -106,6 +108,17 @@ def _turned_inertia(inertia: LinkInertia | None) -> LinkInertia | None:
     return replace(
         inertia, r=(-r[0], -r[1], r[2]), I=sp.ImmutableMatrix(R * sp.Matrix(inertia.I) * R)
     )
+
+
+def turned(frame: Frame) -> Frame:
+    """The frame turned by π about its z axis (``x → −x``): what :func:`flip_x` does to
+    frame k of a table, done to the frame itself.
+
+    >>> from dhsym.geometry.axes import vector
+    >>> turned(Frame(1, vector([0, 0, 1]), vector([1, 0, 0]), vector([0, 0, 1]))).x.T
+    Matrix([[-1, 0, 0]])
+    """
+    return Frame(frame.index, frame.origin, -frame.x, frame.z)
 
 
 def flip_x(table: DHTable, k: int) -> DHTable:

@@ -261,17 +261,20 @@ def _axes(axes: Sequence[JointAxis | Sequence[object]]) -> tuple[JointAxis, ...]
 
 
 def _check_pairs(axes: tuple[JointAxis, ...], vals: dict[Any, Any]) -> None:
+    # only the directions (and for two revolute joints one point) are needed: no common
+    # normal with its feet is computed here
     for k in range(1, len(axes)):
         L1, L2 = axes[k - 1], axes[k]
-        rel = common_normal(L1, L2, values=vals).relation
-        if L1.joint == L2.joint == "P" and rel in (Relation.PARALLEL, Relation.COINCIDENT):
+        if L1.joint != L2.joint or not is_zero_vector(Vector(L1.direction.cross(L2.direction))):
+            continue
+        if L1.joint == "P":
             raise GeometryError(
                 f"joints {L1.name} and {L2.name} are both prismatic with parallel axes: their "
                 "displacements are not independent (two consecutive parallel P joints "
                 "act as one); merge them into one prismatic joint",
                 row=k + 1,
             )
-        if L1.joint == L2.joint == "R" and rel is Relation.COINCIDENT:
+        if L1.contains(L2.point, vals):
             raise GeometryError(
                 f"the axes of joints {L1.name} and {L2.name} coincide: two revolute joints about "
                 "one line are not independent (their angles add); merge them",
@@ -417,14 +420,19 @@ def _verify(fa: FrameAssignment, samples: int, seed: int, tol: float) -> float:
         for f in [*fa.frames, fa.tool.frame if fa.tool else fa.frames[-1]]
     ]
     offsets = [to_float(vm.offset.subs(vals)) for vm in fa.variable_map]
+    Q = np.zeros((samples + 1, n))
+    for m in range(1, samples + 1):
+        Q[m] = rng.uniform(-np.pi, np.pi, n)
+    signs = np.array([vm.sign for vm in fa.variable_map], dtype=float)
+    every = prefixes(Q * signs + np.array(offsets))  # (samples + 1, len(full) + 1, 4, 4)
+    moves = [axis.motions(Q[:, k], vals) for k, axis in enumerate(fa.axes)]
     worst = 0.0
     for m in range(samples + 1):
-        q = np.zeros(n) if m == 0 else rng.uniform(-np.pi, np.pi, n)
-        now = prefixes([vm.sign * q[k] + offsets[k] for k, vm in enumerate(fa.variable_map)])
+        now = every[m]
         motion = np.eye(4)
         for k in range(n + 2):
             if 1 <= k <= n:
-                motion = motion @ fa.axes[k - 1].motion(q[k - 1], vals)
+                motion = motion @ moves[k - 1][m]
             worst = max(worst, float(np.max(np.abs(now[cut[k]] - motion @ homes[k]))))
     if worst > tol:
         raise GeometryError(f"the table does not reproduce the joint axes (error {worst:.3g})")
