@@ -342,7 +342,8 @@ class JointAxis:
         >>> JointAxis((1, 0, 0), (0, 0, 1)).motion(np.pi)[:3, 3].round(12) + 0.0
         array([2., 0., 0.])
         """
-        return self.motions(np.array([q], dtype=float), values)[0]
+        one: np.ndarray = self.motions(np.array([q], dtype=float), values)[0]
+        return one
 
     def motions(self, q: np.ndarray, values: Values | None = None) -> np.ndarray:
         """The motions of :meth:`motion` for ``N`` values of ``q`` at once: ``(N, 4, 4)``

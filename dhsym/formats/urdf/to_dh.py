@@ -39,7 +39,7 @@ from typing import TYPE_CHECKING, Any
 import sympy as sp
 
 from dhsym.errors import DHError, FormatError, echoed
-from dhsym.geometry.axes import JointAxis, Tool, exact_number
+from dhsym.geometry.axes import Frame, JointAxis, Tool, exact_number
 from dhsym.geometry.frame_choices import FrameChoice, match_frames, textbook_frames, turned
 from dhsym.geometry.frames import FrameAssignment, assign_frames
 from dhsym.kinematics.numeric import to_float
@@ -105,10 +105,11 @@ class UrdfImport:
         derived for the check).
         """
         chosen = self.choice.flipped if self.choice is not None else ()
-        frames = tuple(
-            turned(f) if k in chosen else f for k, f in enumerate(self.assignment.frames)
-        )
-        checked = replace(self.assignment, frames=frames, table=self.table)
+        frames = [turned(f) if k in chosen else f for k, f in enumerate(self.assignment.frames)]
+        if self.choice is not None and self.choice.last_z_reversed:
+            last = frames[-1]
+            frames[-1] = Frame(last.index, last.origin, last.x, -last.z)
+        checked = replace(self.assignment, frames=tuple(frames), table=self.table)
         return checked.verify(samples, seed=seed)
 
     def chain(self, **kw: Any) -> KinematicChain:  # its keywords: compact, style
