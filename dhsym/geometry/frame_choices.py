@@ -172,12 +172,19 @@ def flip_x(table: DHTable, k: int) -> DHTable:
     >>> [(r.theta, r.a) for r in flip_x(t, 1).rows]
     [(theta1 + pi, -1), (theta2 + pi, 1)]
     """
-    rows = list(table.rows)
+    return _apply(table, (k,))
+
+
+Parts = tuple[list[DHRow], tuple[Elementary, ...], tuple[Elementary, ...]]
+
+
+def _flip_parts(parts: Parts, k: int, modified: bool) -> Parts:
+    """Rows, base and tool with frame ``k`` turned by π about its z axis (see the module)."""
+    rows, base, tool = parts
+    rows = list(rows)
     n = len(rows)
     if not 0 <= k <= n:
         raise DHError(f"frame {k}: the frames are 0 … {n}")
-    base, tool = tuple(table.base), tuple(table.tool)
-    modified = table.convention is Convention.MODIFIED
     if k == 0:
         base = _merge(base + (Elementary("R", "z", _PI),))
     else:
@@ -187,9 +194,9 @@ def flip_x(table: DHTable, k: int) -> DHTable:
     if k == n:
         tool = _merge((Elementary("R", "z", -_PI),) + tool)
     else:
-        r = _shift_theta(rows[k], -_PI) if k else _shift_theta(rows[0], -_PI)
+        r = _shift_theta(rows[k], -_PI)
         rows[k] = _negate(r) if modified else r
-    return replace(table, rows=tuple(rows), base=base, tool=tool)
+    return rows, base, tool
 
 
 def reverse_last_z(table: DHTable) -> DHTable:
@@ -311,9 +318,13 @@ def _choose(
 
 
 def _apply(table: DHTable, flipped: Sequence[int]) -> DHTable:
+    """The table with the frames ``flipped`` turned, built once (not once a frame)."""
+    modified = table.convention is Convention.MODIFIED
+    parts: Parts = (list(table.rows), tuple(table.base), tuple(table.tool))
     for k in flipped:
-        table = flip_x(table, k)
-    return table
+        parts = _flip_parts(parts, k, modified)
+    rows, base, tool = parts
+    return replace(table, rows=tuple(rows), base=base, tool=tool)
 
 
 def textbook_frames(table: DHTable) -> FrameChoice:
@@ -345,11 +356,13 @@ def textbook_frames(table: DHTable) -> FrameChoice:
     def row_cost(k: int, e: Entries) -> Cost:
         return (int(abs(e[0]) > tiny), int(e[3] < -tiny), int(e[2] < -tiny), 0)
 
+    modified = table.convention is Convention.MODIFIED
+    plain: Parts = (list(table.rows), tuple(table.base), tuple(table.tool))
     ends = {
         (0, 0): len(table.base),
-        (0, 1): len(flip_x(table, 0).base),
+        (0, 1): len(_flip_parts(plain, 0, modified)[1]),
         (n, 0): len(table.tool),
-        (n, 1): len(flip_x(table, n).tool),
+        (n, 1): len(_flip_parts(plain, n, modified)[2]),
     }
 
     def end_cost(k: int, turned: int) -> Cost:
