@@ -28,19 +28,32 @@ of 20, 30 and 100 joints) and every file in ``tests/data/urdf``, interleaved wit
 reference ``python -c "import sympy"`` (``bench_cli``'s timing and table: median wall and
 CPU seconds, each as a ratio to the reference's, ``--runs`` rounds).
 
-Figures measured on the shared 2-core machine (load average about 10), ``--cli --runs 1``,
-CPU seconds of the whole process (start-up included; the reference ``import sympy``
-0.5 s, ``dhsym list`` 0.9 s); before → after the changes of this file's commit:
+Figures measured on the shared 2-core machine, CPU seconds of the whole fresh process
+(start-up included; ``dhsym list`` alone is 0.9 s), cold. Before: a script timing each
+command once at load average 8–10 (commit 57dedda); after: ``--cli --runs 1`` at load
+average 11.7–12.1, reference ``import sympy`` 0.50 s (CPU times swell by a tenth or two
+under such load)::
 
-* axes ``3 1e-40 7``, ``1e300 1e-300 1``, ``0.3 1e-17 0.95``: convert and show 1.0–1.2 s
-  (the 16–20 s of ``factorint`` were already gone: exact rationals of bounded size);
-* Panda: convert 2.3 → 1.5 s (the check of the chosen table derived two 7-joint closed
-  forms; now one numeric word product), show 1.35 s;
-* chains: 20 joints convert 1.7 → 1.3 s, show 1.1 s; 30 joints convert 2.0 → 1.5 s, show
-  1.2 s; 100 joints convert 5.7 → 4.6 s, show 2.3 → 2.0 s. Of the 100-joint convert,
-  2.75 s are the table file's writer (``model.tablefile.dump_table``: ``nsimplify`` of
-  each revolute limit in degrees, −180/π for −1 rad, about 14 ms each, 200 limits):
-  outside this room, reported for a fix there.
+    file                     convert before -> after   show before -> after
+    axis 3 1e-40 7           1.09 -> 1.13 (2.3x)       1.12 -> 1.07 (2.2x)
+    axis 1e300 1e-300 1      1.11 -> 0.97 (2.0x)       1.14 -> 1.07 (2.2x)
+    axis 0.3 1e-17 0.95      1.17 -> 1.27 (2.6x)       1.14 -> 1.27 (2.5x)
+    chain of 20 joints       1.66 -> 2.14 (4.3x)       1.13 -> 1.27 (2.6x)
+    chain of 30 joints       1.98 -> 2.30 (4.6x)       1.23 -> 1.27 (2.6x)
+    chain of 100 joints      5.71 -> 5.23 (10.5x)      2.45 -> 2.36 (4.8x)
+    UR5                      1.33 -> 1.16 (2.3x)       1.14 -> 1.19 (2.4x)
+    Panda                    2.30 -> 1.77 (3.6x)       1.35 -> 1.37 (2.8x)
+    Kinova                   1.51 -> 1.22 (2.5x)       1.12 -> 1.21 (2.4x)
+    SO-ARM100                1.50 -> 1.33 (2.7x)       1.33 -> 1.37 (2.8x)
+
+(ratios to ``import sympy`` in the same run). The measured axes were no longer slow at
+57dedda (exact rational unit vectors of bounded size; the 16–20 s of ``factorint`` were
+gone). In one warm process ``import_urdf`` of the 100-joint chain takes 0.9–1.3 s
+(was 1.3–1.7 s) and the check of the chosen table 0.14 s (was 0.55 s; the Panda's 0.03 s,
+was 0.83 s: it derived two 7-joint closed forms). What keeps ``convert`` of long chains
+over 2 s is the table file's writer (``model.tablefile.dump_table``, outside this room):
+``nsimplify`` of each revolute limit in degrees (−180/π for −1 rad), about 14 ms a limit,
+2.75 s for the 200 limits of the 100-joint chain, 0.56 s for the 20-joint one.
 """
 
 from __future__ import annotations
