@@ -342,16 +342,28 @@ class JointAxis:
         >>> JointAxis((1, 0, 0), (0, 0, 1)).motion(np.pi)[:3, 3].round(12) + 0.0
         array([2., 0., 0.])
         """
+        one: np.ndarray = self.motions(np.array([q], dtype=float), values)[0]
+        return one
+
+    def motions(self, q: np.ndarray, values: Values | None = None) -> np.ndarray:
+        """The motions of :meth:`motion` for ``N`` values of ``q`` at once: ``(N, 4, 4)``
+        (the line read as floats once: Rodrigues' formula, Lynch and Park,
+        *Modern Robotics*, 3.2.3.3).
+
+        >>> JointAxis((0, 0, 0), (0, 0, 1), "P").motions(np.array([1.0, 2.0]))[:, 2, 3]
+        array([1., 2.])
+        """
         subs = dict(values or {})
-        p = np.array([to_float(c.subs(subs)) for c in self.point])
+        p = np.array([to_float(c.xreplace(subs)) for c in self.point])
         u = np.array([to_float(c) for c in self.direction])
-        M = np.eye(4)
+        q = np.asarray(q, dtype=float).reshape(-1)
+        M = np.tile(np.eye(4), (q.size, 1, 1))
         if self.joint == "P":
-            M[:3, 3] = q * u
+            M[:, :3, 3] = q[:, None] * u
             return M
         K = np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
-        R = np.eye(3) + np.sin(q) * K + (1 - np.cos(q)) * K @ K
-        M[:3, :3], M[:3, 3] = R, p - R @ p
+        R = np.eye(3) + np.sin(q)[:, None, None] * K + (1 - np.cos(q))[:, None, None] * (K @ K)
+        M[:, :3, :3], M[:, :3, 3] = R, p - R @ p
         return M
 
 

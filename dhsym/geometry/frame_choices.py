@@ -14,6 +14,26 @@ same joint values, and changes the table only by signs and offsets of π:
 * frame 0 turned adds ``Rz(π)`` to the base transform, frame *n* turned puts ``Rz(−π)``
   before the tool transform; a link's inertia, written in its frame, turns with it.
 
+The other equivalent choices, and what is decided about each:
+
+* **the sense of z.** Every ``z`` but one is a joint's axis, and the joint variable turns
+  right-handed about it: reversing ``z_k`` reverses the variable (``θ_k = −q_k``), and
+  takes the joint's limits, velocity and torque with it. The table keeps the URDF's joint
+  values with their signs (``fk(q)`` is the URDF's pose for every q, and every round trip
+  relies on it), and a row reading ``−θ_k`` is no table a textbook prints; so a joint's
+  ``z`` is never reversed. A twist of 180° between two joint axes the file gives in
+  opposite senses therefore stays, and the table says why (:attr:`FrameChoice.forced`;
+  a maker that reverses such an axis, as Kinova's manual does, writes ``q_k = −θ_k``
+  beside its table). The one free ``z`` is the last frame's in the standard convention
+  (no joint turns about ``z_n``): :func:`reverse_last_z` turns frame *n* by π about
+  ``x_n`` when that brings a twist ``|α_n| > 90°`` (a tool pointing back) into
+  [−90°, 90°], the tool transform taking the turn.
+* **where an origin slides.** Along two parallel joint axes the common normal may slide;
+  the frame-assignment algorithm already takes the one through the previous origin, so
+  ``d = 0`` on the row (Ghosal, Lecture 5). Sliding it elsewhere only moves the same
+  length to the next row (``d_k + d_{k+1}`` is fixed), so no other choice gives more
+  zeros.
+
 :func:`textbook_frames` chooses the senses (one pass of dynamic programming along the
 chain, every choice weighed at once) that a textbook would print: first no constant
 offset of θ, then the fewest negative twists, the fewest negative lengths, the shortest
@@ -48,7 +68,16 @@ from dhsym.model.inertia import LinkInertia
 from dhsym.model.kinds import Convention
 from dhsym.model.table import DHRow, DHTable, Elementary, JointType
 
-__all__ = ["FrameChoice", "flip_x", "match_frames", "textbook_frames"]
+from .axes import Frame
+
+__all__ = [
+    "FrameChoice",
+    "flip_x",
+    "match_frames",
+    "reverse_last_z",
+    "textbook_frames",
+    "turned",
+]
 
 _PI = sp.pi
 
@@ -56,23 +85,39 @@ _PI = sp.pi
 @dataclass(frozen=True)
 class FrameChoice:
     """A table with some ``x`` axes turned: the table, the frames turned (0 … n), and
-    the rows that still differ from a reference (:func:`match_frames`), each with why."""
+    the rows that still differ from a reference (:func:`match_frames`), each with why.
+
+    ``last_z_reversed`` says that frame *n* (standard convention: a frame with no joint
+    on its ``z`` axis) was also turned by π about its ``x`` axis (:func:`reverse_last_z`).
+    ``forced`` says, row by row, why a twist of 180° stays (:func:`textbook_frames`)."""
 
     table: DHTable
     flipped: tuple[int, ...]
     mismatches: tuple[str, ...] = ()
+    last_z_reversed: bool = False
+    forced: tuple[str, ...] = ()
 
     @property
     def sentences(self) -> tuple[str, ...]:
         """What was chosen, in words (for the table file's comments)."""
+        n = self.table.n
+        said: tuple[str, ...]
         if not self.flipped:
-            return ("every x axis as the frame-assignment algorithm chose it",)
-        frames = ", ".join(f"x{k}" for k in self.flipped)
-        return (
-            f"{frames} turned by 180° about their z axes (the same arm and the same joint "
-            "values): a table without constant offsets of θ, twists and lengths signed as a "
-            "textbook prints them",
-        )
+            said = ("every x axis as the frame-assignment algorithm chose it",)
+        else:
+            frames = ", ".join(f"x{k}" for k in self.flipped)
+            said = (
+                f"{frames} turned by 180° about their z axes (the same arm and the same joint "
+                "values): a table without constant offsets of θ, twists and lengths signed as "
+                "a textbook prints them",
+            )
+        if self.last_z_reversed:
+            said += (
+                f"z{n} reversed (frame {n} turned by 180° about x{n}): no joint turns about "
+                f"z{n}, so its sense is free; the twist α{n} avoids 180° and the tool "
+                "transform takes the turn",
+            )
+        return said + self.forced
 
 
 def _wrap(angle: sp.Expr) -> sp.Expr:
@@ -108,6 +153,17 @@ def _turned_inertia(inertia: LinkInertia | None) -> LinkInertia | None:
     )
 
 
+def turned(frame: Frame) -> Frame:
+    """The frame turned by π about its z axis (``x → −x``): what :func:`flip_x` does to
+    frame k of a table, done to the frame itself.
+
+    >>> from dhsym.geometry.axes import vector
+    >>> turned(Frame(1, vector([0, 0, 1]), vector([1, 0, 0]), vector([0, 0, 1]))).x.T
+    Matrix([[-1, 0, 0]])
+    """
+    return Frame(frame.index, frame.origin, -frame.x, frame.z)
+
+
 def flip_x(table: DHTable, k: int) -> DHTable:
     """The same arm with frame ``k`` (0 … n) turned by π about its z axis.
 
@@ -116,12 +172,19 @@ def flip_x(table: DHTable, k: int) -> DHTable:
     >>> [(r.theta, r.a) for r in flip_x(t, 1).rows]
     [(theta1 + pi, -1), (theta2 + pi, 1)]
     """
-    rows = list(table.rows)
+    return _apply(table, (k,))
+
+
+Parts = tuple[list[DHRow], tuple[Elementary, ...], tuple[Elementary, ...]]
+
+
+def _flip_parts(parts: Parts, k: int, modified: bool) -> Parts:
+    """Rows, base and tool with frame ``k`` turned by π about its z axis (see the module)."""
+    rows, base, tool = parts
+    rows = list(rows)
     n = len(rows)
     if not 0 <= k <= n:
         raise DHError(f"frame {k}: the frames are 0 … {n}")
-    base, tool = tuple(table.base), tuple(table.tool)
-    modified = table.convention is Convention.MODIFIED
     if k == 0:
         base = _merge(base + (Elementary("R", "z", _PI),))
     else:
@@ -131,9 +194,37 @@ def flip_x(table: DHTable, k: int) -> DHTable:
     if k == n:
         tool = _merge((Elementary("R", "z", -_PI),) + tool)
     else:
-        r = _shift_theta(rows[k], -_PI) if k else _shift_theta(rows[0], -_PI)
+        r = _shift_theta(rows[k], -_PI)
         rows[k] = _negate(r) if modified else r
-    return replace(table, rows=tuple(rows), base=base, tool=tool)
+    return rows, base, tool
+
+
+def reverse_last_z(table: DHTable) -> DHTable:
+    """The same arm with frame *n* of a standard table turned by π about its x axis
+    (``z_n → −z_n``): ``α_n + π``, ``Rx(π)`` before the tool transform, link *n*'s
+    inertia turned with its frame. In the standard convention no joint turns about
+    ``z_n`` (``z_k`` is the axis of joint *k + 1*), so its sense is a free choice; every
+    other ``z`` is a joint's axis, whose sense is the sense of its variable.
+
+    >>> from dhsym.model.table import DHRow, DHTable
+    >>> t = reverse_last_z(DHTable.from_rows([DHRow.revolute("theta1", a=1, alpha=sp.pi)]))
+    >>> t.rows[0].alpha, t.tool
+    (0, (Rx(pi),))
+    """
+    if table.convention is not Convention.STANDARD:
+        raise DHError("z_n is the last joint's axis in the modified convention: not reversed")
+    rows = list(table.rows)
+    last = rows[-1]
+    inertia = last.inertia
+    if inertia is not None:
+        R = sp.diag(1, -1, -1)
+        r = inertia.r
+        inertia = replace(
+            inertia, r=(r[0], -r[1], -r[2]), I=sp.ImmutableMatrix(R * sp.Matrix(inertia.I) * R)
+        )
+    rows[-1] = replace(last, alpha=_wrap(last.alpha + _PI), inertia=inertia)
+    tool = _merge((Elementary("R", "x", -_PI),) + tuple(table.tool))
+    return replace(table, rows=tuple(rows), tool=tool)
 
 
 def _merge(word: Sequence[Elementary]) -> tuple[Elementary, ...]:
@@ -227,39 +318,88 @@ def _choose(
 
 
 def _apply(table: DHTable, flipped: Sequence[int]) -> DHTable:
+    """The table with the frames ``flipped`` turned, built once (not once a frame)."""
+    modified = table.convention is Convention.MODIFIED
+    parts: Parts = (list(table.rows), tuple(table.base), tuple(table.tool))
     for k in flipped:
-        table = flip_x(table, k)
-    return table
+        parts = _flip_parts(parts, k, modified)
+    rows, base, tool = parts
+    return replace(table, rows=tuple(rows), base=base, tool=tool)
 
 
 def textbook_frames(table: DHTable) -> FrameChoice:
     """The senses of the x axes a textbook would print: no constant offset of θ where a
     turned frame removes it, then the fewest negative twists, the fewest negative lengths
-    ``a``, the shortest base and tool transforms (in that order). The same arm, the same
-    joint values: ``fk(q)`` is unchanged.
+    ``a``, the shortest base and tool transforms (in that order). In the standard
+    convention the last ``z`` is reversed first when ``|α_n| > 90°``
+    (:func:`reverse_last_z`); a joint's ``z`` never is, and each twist of 180° that
+    stays is explained in :attr:`FrameChoice.forced` (see the module's notes). The same
+    arm, the same joint values: ``fk(q)`` is unchanged.
 
     >>> from dhsym.model.library import builtin_table
     >>> textbook_frames(builtin_table("puma560")).flipped  # the lecture's table stays
     ()
+    >>> t = DHTable.from_rows([DHRow.revolute("theta1", a=1, alpha=sp.pi / 2),
+    ...                        DHRow.revolute("theta2", a=1, alpha=sp.pi),
+    ...                        DHRow.revolute("theta3", a=1)])
+    >>> print(textbook_frames(t).forced[0][:60])
+    α2 = 180° stays: z1 and z2 are the axes of joints 2 and 3, w
     """
     tiny = 1e-12
+    n = table.n
+    last_z = table.convention is Convention.STANDARD and (
+        abs(_number(table.rows[-1].alpha, table.value_map)) > math.pi / 2 + tiny
+    )
+    if last_z:
+        table = reverse_last_z(table)
 
     def row_cost(k: int, e: Entries) -> Cost:
         return (int(abs(e[0]) > tiny), int(e[3] < -tiny), int(e[2] < -tiny), 0)
 
-    n = table.n
+    modified = table.convention is Convention.MODIFIED
+    plain: Parts = (list(table.rows), tuple(table.base), tuple(table.tool))
     ends = {
         (0, 0): len(table.base),
-        (0, 1): len(flip_x(table, 0).base),
+        (0, 1): len(_flip_parts(plain, 0, modified)[1]),
         (n, 0): len(table.tool),
-        (n, 1): len(flip_x(table, n).tool),
+        (n, 1): len(_flip_parts(plain, n, modified)[2]),
     }
 
     def end_cost(k: int, turned: int) -> Cost:
         return (0, 0, 0, ends[k, turned])
 
     flipped = _choose(table, row_cost, end_cost)
-    return FrameChoice(_apply(table, flipped), flipped)
+    chosen = _apply(table, flipped)
+    return FrameChoice(chosen, flipped, last_z_reversed=last_z, forced=_forced(chosen))
+
+
+def _forced(table: DHTable) -> tuple[str, ...]:
+    """Why each twist of 180° stays: the two z axes are joint axes pointing opposite ways.
+
+    A joint's ``z`` points along its axis as the file gives it, and the joint variable
+    turns right-handed about it. Reversing that ``z`` would remove the 180° (and, at
+    the first joint, a base turned upside down) only by reversing the variable:
+    ``θ_k = −q_k``. dhsym does not do that: the table's variables are the file's joint
+    values with their signs (``fk(q)``, the limits, velocities and torques mean what the
+    URDF says), and a row reading ``−θ_k`` is no table a textbook prints. A maker's
+    manual that reverses an axis says so beside its table (``q_k = −θ_k``); here the
+    comment says why the twist stays.
+    """
+    out = []
+    standard = table.convention is Convention.STANDARD
+    for k, r in enumerate(table.rows, start=1):
+        # standard row k: α_k from z_{k−1} (joint k) to z_k (joint k + 1; none for k = n);
+        # modified row k: α_{k−1} from z_{k−1} (joint k − 1; none for k = 1) to z_k (joint k)
+        if k == (table.n if standard else 1):
+            continue
+        if abs(abs(_number(r.alpha, table.value_map)) - math.pi) < 1e-9:
+            twist, first = (k, k) if standard else (k - 1, k - 1)
+            out.append(
+                f"α{twist} = 180° stays: z{k - 1} and z{k} are the axes of joints {first} and "
+                f"{first + 1}, which the URDF gives in opposite senses; reversing one would "
+                "reverse its joint variable (θ = −q), and the table keeps the URDF's joint values"
+            )
+    return tuple(out)
 
 
 def match_frames(table: DHTable, reference: DHTable, *, tol: float = 1e-9) -> FrameChoice:

@@ -45,10 +45,16 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 import sympy as sp
+from sympy.polys.matrices import DomainMatrix
 
 from dhsym.errors import GeometryError
 from dhsym.kinematics.numeric import compile_word, to_float
-from dhsym.kinematics.transforms import chain_word, plain_product, rigid_inverse
+from dhsym.kinematics.transforms import (
+    chain_word,
+    elementary_matrix,
+    plain_product,
+    rigid_inverse,
+)
 from dhsym.model.parsing import symbol
 from dhsym.model.table import AngleUnit, Convention, DHRow, DHTable, Elementary
 from dhsym.notation.tables import table_markdown
@@ -261,17 +267,20 @@ def _axes(axes: Sequence[JointAxis | Sequence[object]]) -> tuple[JointAxis, ...]
 
 
 def _check_pairs(axes: tuple[JointAxis, ...], vals: dict[Any, Any]) -> None:
+    # only the directions (and for two revolute joints one point) are needed: no common
+    # normal with its feet is computed here
     for k in range(1, len(axes)):
         L1, L2 = axes[k - 1], axes[k]
-        rel = common_normal(L1, L2, values=vals).relation
-        if L1.joint == L2.joint == "P" and rel in (Relation.PARALLEL, Relation.COINCIDENT):
+        if L1.joint != L2.joint or not is_zero_vector(Vector(L1.direction.cross(L2.direction))):
+            continue
+        if L1.joint == "P":
             raise GeometryError(
                 f"joints {L1.name} and {L2.name} are both prismatic with parallel axes: their "
                 "displacements are not independent (two consecutive parallel P joints "
                 "act as one); merge them into one prismatic joint",
                 row=k + 1,
             )
-        if L1.joint == L2.joint == "R" and rel is Relation.COINCIDENT:
+        if L1.contains(L2.point, vals):
             raise GeometryError(
                 f"the axes of joints {L1.name} and {L2.name} coincide: two revolute joints about "
                 "one line are not independent (their angles add); merge them",
@@ -374,6 +383,8 @@ def _check_home_exact(fa: FrameAssignment) -> None:
         Elementary(e.kind, e.axis, e.value.xreplace(zero)) for e in chain_word(table, -1, n + 1)
     ]
     cut = _prefix_lengths(table)
+    if _home_is_rational(full, cut, frames):
+        return
     numeric = not any(f.matrix.free_symbols for f in frames) and not any(
         e.value.free_symbols for e in full
     )
@@ -393,6 +404,35 @@ def _check_home_exact(fa: FrameAssignment) -> None:
                 f"internal check failed: frame {k} of the table differs from the "
                 "assigned frame at home (please report this)"
             )
+
+
+def _home_is_rational(full: list[Elementary], cut: list[int], frames: list[Frame]) -> bool:
+    """The home check exactly over the rationals, when every factor and frame is rational
+    (turns by multiples of π/2 and rational lengths: most robot files); False when one
+    is not (the caller checks then). The products run in sympy's dense matrices over
+    ``QQ`` (a 100-joint chain in milliseconds, not the seconds of generic sympy matrices).
+    Raises :class:`~dhsym.errors.GeometryError` when a frame differs.
+    """
+    wants = [f.matrix for f in frames]
+    if any(not x.is_Rational for w in wants for x in w):
+        return False
+    factors = []
+    for e in full:
+        m = elementary_matrix(e)
+        if any(not x.is_Rational for x in m):
+            return False
+        factors.append(DomainMatrix.from_Matrix(m).convert_to(sp.QQ))
+    product, done = DomainMatrix.eye(4, sp.QQ), 0
+    for k, want in enumerate(wants):
+        for factor in factors[done : cut[k]]:
+            product = product * factor
+        done = cut[k]
+        if product.to_Matrix() != want:
+            raise GeometryError(
+                f"internal check failed: frame {k} of the table differs from the "
+                "assigned frame at home (please report this)"
+            )
+    return True
 
 
 def _prefix_lengths(table: DHTable) -> list[int]:
@@ -417,14 +457,19 @@ def _verify(fa: FrameAssignment, samples: int, seed: int, tol: float) -> float:
         for f in [*fa.frames, fa.tool.frame if fa.tool else fa.frames[-1]]
     ]
     offsets = [to_float(vm.offset.subs(vals)) for vm in fa.variable_map]
+    Q = np.zeros((samples + 1, n))
+    for m in range(1, samples + 1):
+        Q[m] = rng.uniform(-np.pi, np.pi, n)
+    signs = np.array([vm.sign for vm in fa.variable_map], dtype=float)
+    every = prefixes(Q * signs + np.array(offsets))  # (samples + 1, len(full) + 1, 4, 4)
+    moves = [axis.motions(Q[:, k], vals) for k, axis in enumerate(fa.axes)]
     worst = 0.0
     for m in range(samples + 1):
-        q = np.zeros(n) if m == 0 else rng.uniform(-np.pi, np.pi, n)
-        now = prefixes([vm.sign * q[k] + offsets[k] for k, vm in enumerate(fa.variable_map)])
+        now = every[m]
         motion = np.eye(4)
         for k in range(n + 2):
             if 1 <= k <= n:
-                motion = motion @ fa.axes[k - 1].motion(q[k - 1], vals)
+                motion = motion @ moves[k - 1][m]
             worst = max(worst, float(np.max(np.abs(now[cut[k]] - motion @ homes[k]))))
     if worst > tol:
         raise GeometryError(f"the table does not reproduce the joint axes (error {worst:.3g})")

@@ -355,3 +355,21 @@ def test_measured_geometry_works_through_frames_fk_and_convert(capsys, tmp_path)
     path.write_text(dump_table(fa.table))
     assert main(["convert", str(path), "--to", "modified"]) == 0
     assert "tool pose agrees" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("angle", [sp.pi / 2, sp.Rational(1, 3)])
+def test_the_home_check_fails_on_a_table_that_does_not_fit_its_frames(angle) -> None:
+    # rational factors are checked exactly over QQ, others at 50 digits: both must catch a
+    # table whose frame 1 is turned while the assigned frame is not
+    from dataclasses import replace
+
+    from dhsym.geometry.frame_choices import flip_x
+    from dhsym.geometry.frames import _check_home_exact
+
+    c, s = sp.cos(angle), sp.sin(angle)
+    fa = assign_frames(
+        [((0, 0, 0), (0, 0, 1), "R"), ((1, 0, 0), (0, -s, c), "R"), ((2, 0, 0), (0, 0, 1), "R")]
+    )
+    _check_home_exact(fa)  # the table as assigned fits
+    with pytest.raises(GeometryError, match="internal check failed: frame 1"):
+        _check_home_exact(replace(fa, table=flip_x(fa.table, 1)))

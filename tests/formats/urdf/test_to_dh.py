@@ -215,6 +215,12 @@ def test_measured_axes_convert_without_factorising_huge_numbers(axis: str, tmp_p
     path.write_text(_two_joints(" ".join(repr(float(v / big)) for v in exact)))
     for q in [np.zeros(2), *rng.uniform(-math.pi, math.pi, (5, 2))]:
         assert np.abs(robot.fk(q) - urdf_pose(path, "c", q)).max() < 1e-9
+    # what keeps it fast: the axis is an exact unit vector of bounded rationals (a small
+    # integer direction exactly, a measured one through 12-digit stereographic coordinates),
+    # never a root of a huge integer
+    (axis2,) = [a for a in import_urdf(text, tip="c").assignment.axes if a.name == "j2"]
+    assert sp.expand(axis2.direction.dot(axis2.direction)) == 1
+    assert all(c.is_Rational and abs(c.p) < 10**25 and c.q < 10**25 for c in axis2.direction)
 
 
 _RPY = ("0 0 0", "0 0 0", "1.5707963267948966 0 0")
@@ -355,3 +361,78 @@ def test_every_example_keeps_its_fk_and_dynamics_under_the_textbook_choice(file,
         qd = np.full_like(q, 0.3)
         a, b = Robot(imp.table), Robot(plain.table)
         assert np.abs(a.rne(q, qd, qd) - b.rne(q, qd, qd)).max() < 1e-9
+
+
+@pytest.mark.parametrize("n", [20, 30])
+def test_checking_a_long_chain_derives_no_closed_form(n: int, monkeypatch) -> None:
+    # the check of the chosen table against the joint axes is one numeric product of the
+    # elementary words: a 100-joint closed form (or the Panda's) is never derived for it
+    imp = import_urdf(plain_chain(n), tip=f"l{n}")
+
+    def refuse(*args: object, **kw: object) -> None:
+        raise AssertionError("a closed form was derived to check the table")
+
+    monkeypatch.setattr(KinematicChain, "fk", refuse)
+    monkeypatch.setattr(KinematicChain, "transform", refuse)
+    assert imp.choice is not None and imp.verify(5) < 1e-9
+    panda = import_urdf(DATA / "panda.urdf", tip="panda_hand")
+    assert panda.verify(5) < 1e-9
+
+
+def test_a_turned_table_that_does_not_fit_the_axes_is_caught() -> None:
+    # the check can fail: a frame turned in the table but not in the frames it is checked on
+    from dataclasses import replace
+
+    from dhsym.geometry.frame_choices import flip_x
+
+    imp = import_urdf(DATA / "ur5_robot.urdf", tip="tool0")
+    wrong = replace(imp, table=flip_x(imp.table, 3))
+    with pytest.raises(GeometryError, match="does not reproduce the joint axes"):
+        wrong.verify(3)
+
+
+@pytest.mark.parametrize(("file", "tip", "n"), ROBOTS)
+def test_parallel_axes_get_the_common_normal_with_no_offset(file: str, tip: str, n: int) -> None:
+    # where the origin may slide along a pair of parallel axes, it slides to d = 0
+    imp = import_urdf(DATA / file, tip=tip)
+    axes = imp.assignment.axes
+    parallel = [
+        k
+        for k in range(1, n)
+        if all(c == 0 for c in axes[k - 1].direction.cross(axes[k].direction))
+    ]
+    assert file != "ur5_robot.urdf" or parallel == [2, 3]
+    for k in parallel:  # row k: from z_(k-1) (joint k) to z_k (joint k + 1)
+        row = imp.table.rows[k - 1]
+        assert (row.offset if row.variable_field == "d" else row.d) == 0
+
+
+def test_a_half_turn_between_joint_axes_is_explained_in_the_table_file() -> None:
+    from dhsym.formats.urdf import table_yaml
+
+    imp = import_urdf(DATA / "kinova.urdf", tip="j2s6s200_end_effector")
+    assert imp.table.rows[1].alpha == sp.pi  # Kinova's own table has it too
+    assert any(
+        s.startswith("α2 = 180° stays: z1 and z2 are the axes of joints 2 and 3") for s in imp.steps
+    )
+    lines = table_yaml(imp).splitlines()
+    assert any(line.startswith("# ") and "α2 = 180° stays" in line for line in lines)
+
+
+def test_a_tool_turned_upside_down_reverses_the_last_z_and_keeps_fk(tmp_path: Path) -> None:
+    text = urdf(
+        joint("j1", "a", "b", body='<origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>')
+        + joint("j2", "b", "c", body='<origin xyz="0.2 0 0"/><axis xyz="0 0 1"/>')
+        + joint("t", "c", "d", "fixed", '<origin xyz="0.1 0 0" rpy="3.141592653589793 0 0"/>'),
+        links="abcd",
+    )
+    assigned = import_urdf(text, tip="d", frames="assigned")
+    assert abs(assigned.table.rows[1].alpha) == sp.pi
+    imp = import_urdf(text, tip="d")
+    assert imp.choice is not None and imp.choice.last_z_reversed
+    assert imp.table.rows[1].alpha == 0 and imp.verify(5) < 1e-9
+    path = tmp_path / "upside_down.urdf"
+    path.write_text(text)
+    robot = KinematicChain(imp.table)
+    for q in np.random.default_rng(4).uniform(-math.pi, math.pi, (5, 2)):
+        assert np.abs(robot.fk(q) - urdf_pose(path, "d", q)).max() < 1e-9
