@@ -429,7 +429,9 @@ def dump_table(table: DHTable, *, angles: str | None = None) -> str:
         if unit is AngleUnit.RAD:
             return _plain(v)
         sym = sp.Add(*[t for t in sp.Add.make_args(v) if t.free_symbols])
-        const = sp.nsimplify(sp.expand((v - sym) * 180 / sp.pi))
+        const = sp.expand((v - sym) * 180 / sp.pi)
+        if const.has(sp.Float):  # a decimal that may be a whole number of degrees (90.0)
+            const = sp.nsimplify(const)
         if not const.is_Rational:  # a measured angle (a URDF limit): degrees, 12 digits
             const = sp.Rational(f"{float(const):.12g}")
         if sym == 0:
