@@ -566,6 +566,7 @@ def _rne_recursion(dm: DynamicModel, clean: Callable[[sp.Expr], sp.Expr]) -> lis
         u = (R.T * R_pre * ez).applyfunc(sp.expand)
         r2 = (R.T * (p - r1)).applyfunc(sp.expand)
         k = index.get(i)
+        a_before = a
         wp, wdp = keep(R.T * w), keep(R.T * wd)
         a_A = keep(R.T * (a + U * r1))
         if row.joint is JointType.REVOLUTE and k is not None:
@@ -575,26 +576,44 @@ def _rne_recursion(dm: DynamicModel, clean: Callable[[sp.Expr], sp.Expr]) -> lis
             w, wd = wp, wdp
         U = u_matrix(w, wd)
         acc = a_A + U * r2
-        if row.joint is JointType.PRISMATIC and k is not None:
+        turns = not (row.joint is JointType.PRISMATIC and k is not None)
+        if not turns:
             acc += 2 * w.cross(u) * dm.rates[k] + u * dm.accelerations[k]
         a = keep(acc)
         rc = M(L.r)
         F = keep(L.m * (a + U * rc))
         N = L.I * wd + w.cross(L.I * w)
-        links.append((R, u, r1, r2, rc, k, row.joint, F, N))
+        # the last link needs no acceleration of its own when its frame only turns about an
+        # axis through its origin and its centre of mass (a wrist's flange): R a_n = a_{n-1}
+        # and R r_c is constant (r_c along u)
+        carried = (
+            i == table.n > 1
+            and turns
+            and r1 == zero
+            and r2 == zero
+            and rc.cross(u).applyfunc(sp.expand) == zero
+        )
+        along = (u.T * rc)[0, 0] * R_pre * ez
+        links.append((R, u, r1, r2, rc, k, row.joint, F, N, L.m, U, a_before, along, carried))
     tau: list[sp.Expr] = [sp.Integer(0)] * dm.n
-    f, m = zero, zero  # of the link after, in its frame
-    R_next, r1_next = M.eye(3), zero
-    for R, u, r1, r2, rc, k, joint, F, N in reversed(links):
-        Rf = keep(R_next * f)
-        f = keep(F + Rf)
-        n = N + rc.cross(F) + R_next * m + r1_next.cross(Rf)
-        m = keep(n + r2.cross(f))
+    Rf, Rm = zero, zero  # force and moment about o_i of the link after, in frame i
+    for R, u, r1, r2, rc, k, joint, F, N, mass, U, a_before, along, carried in reversed(links):
+        if carried:  # F = m a_n + h: m a_n = m R^T a_{n-1} crosses the joint unturned
+            h = keep(mass * U * rc)
+            m = keep(N + rc.cross(h))  # less r_c × m a_n, which is normal to u
+            f = zero
+            Rf = mass * a_before + keep(R * h)
+            Rm = keep(R * m) + along.cross(mass * a_before)
+        else:
+            f = keep(F + Rf)
+            m = keep(N + rc.cross(F) + Rm + r2.cross(f))
         if k is not None:
             L = dm.links[dm.joints[k] - 1]
             t = (u.T * (m if joint is JointType.REVOLUTE else f))[0, 0]
             tau[k] = clean(t + L.Jm * L.G**2 * dm.accelerations[k])
-        R_next, r1_next = R, r1
+        if not carried:
+            Rf = keep(R * f)
+            Rm = R * m + r1.cross(Rf)
     return tau
 
 
