@@ -500,14 +500,14 @@ class RNEProgram:
 
 _PASSES = (
     "Recursive Newton-Euler (Luh, Walker and Paul; Craig, Introduction to Robotics, 6.5),",
-    "each link in its own frame, arranged as Khalil and Dombre, Modeling, Identification",
-    "and Control of Robots, 9.5 arrange it for few operations.",
+    "each link in its own frame, arranged for few operations as Khalil and Dombre do",
+    "(Modeling, Identification and Control of Robots, the Newton-Euler algorithm).",
     "Outward pass, link 1 to n: angular velocity and acceleration, then",
-    "U_i = [wdot_i] + [w_i][w_i] (one matrix for every point of the link), the",
-    "acceleration of the frame (gravity enters as an acceleration of the base) and",
-    "F_i = m_i (a_i + U_i r_ci), N_i = I_i wdot_i + w_i x I_i w_i.",
-    "Inward pass, link n to 1: force f_i, moment n_i about the frame's origin and m_i",
-    "about the joint axis's point, whose component along the axis is the joint torque.",
+    "U_i = [wdot_i] + [w_i][w_i] (the acceleration of a point r of the link is a_i + U_i r),",
+    "the acceleration a_i of the frame (gravity enters as an acceleration of the base),",
+    "F_i = m_i (a_i + U_i r_ci) and N_i = I_i wdot_i + w_i x I_i w_i.",
+    "Inward pass, link n to 1: force f_i, and moment m_i about the joint axis's point, whose",
+    "component along the axis is the joint torque.",
 )
 
 
