@@ -576,9 +576,10 @@ def _rne_recursion(dm: DynamicModel, clean: Callable[[sp.Expr], sp.Expr]) -> lis
             w, wd = wp, wdp
         U = u_matrix(w, wd)
         acc = a_A + U * r2
-        turns = not (row.joint is JointType.PRISMATIC and k is not None)
-        if not turns:
+        turns = True  # the frame only turns about the joint (no sliding)
+        if row.joint is JointType.PRISMATIC and k is not None:
             acc += 2 * w.cross(u) * dm.rates[k] + u * dm.accelerations[k]
+            turns = False
         a = keep(acc)
         rc = M(L.r)
         F = keep(L.m * (a + U * rc))
@@ -818,9 +819,11 @@ def rne_program(
     values: Mapping[object, object] | None = None,
 ) -> RNEProgram:
     """Inverse dynamics τ = rne(q, q̇, q̈) as ``robot.rne`` computes it: the exact
-    recursive Newton–Euler expressions of :mod:`dhsym.dynamics.recursive_newton_euler` on the
-    table's numbers (and ``values``), plus motor inertia ``Jm G² q̈`` and friction
-    ``B G² q̇ + |G| Tc`` when given. Every inertial parameter must be a number.
+    recursive Newton–Euler recursion of :mod:`dhsym.dynamics.recursive_newton_euler`,
+    arranged for few operations (:func:`_rne_recursion`), on the table's numbers (and
+    ``values``), plus motor inertia ``Jm G² q̈`` and friction ``B G² q̇ + |G| Tc`` when
+    given. Every inertial parameter must be a number. The PUMA 560's comes to 210
+    multiplications and 188 additions (``sympy.count_ops``; and 10 squares).
 
     >>> import dhsym
     >>> from dhsym.model.tablefile import read_table_text
