@@ -6,10 +6,12 @@ varying inputs, timed with clock_gettime inside the program, gcc -O2), through c
 (dhsym.export.shared_library, timeit), and dhsym's own NumPy/float path (robot.fk, robot.ik)
 as the reference; EAIK's ``IK`` (Python call into its C++, all solutions, unchecked)
 when installed and the table suits it; roboticstoolbox is not compared. Then the PUMA
-560's inverse dynamics: the exported ``rne`` in a C loop (200,000 calls), through ctypes
-(``compiled(robot).rne``) and ``robot.rne`` on one state (the reference). The ratio
-column is dhsym's own time over this row's (fk to robot.fk, IK to robot.ik), per robot,
-in the same run; the load average is printed first.
+560's inverse dynamics: its operation count, the exported ``rne`` in a C loop (best of 15
+runs of 100,000 calls, wall and thread CPU time, the latter not counting time the process
+waits for a core), through ctypes (``compiled(robot).rne``), the exported NumPy module and
+``robot.rne`` on one state (the reference, NumPy). The ratio column is dhsym's own time
+over this row's (fk to robot.fk, IK to robot.ik, rne to robot.rne), per robot, in the same
+run; the load average is printed first and last.
 
     PYTHONPATH=. python benchmarks/bench_export.py
 """
@@ -168,38 +170,65 @@ _RNE_MAIN = r"""
 #include <math.h>
 #include <time.h>
 #include "arm.h"
-static double now(void)
+static double seconds(clockid_t clock)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    clock_gettime(clock, &t);
     return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 int main(void)
 {
     double q[6] = {0.3, -0.5, 0.4, 0.2, 0.7, -1.1}, qd[6] = {0.5, -0.2, 0.1, 0.9, -0.4, 0.3};
-    double qdd[6] = {1.0, 0.5, -0.7, 0.2, 0.3, -0.1}, tau[6], sink = 0.0, t0;
-    long i, m = 200000;
-    t0 = now();
-    for (i = 0; i < m; ++i) {
-        q[0] = 1e-7 * (double)i;
-        arm_rne(q, qd, qdd, tau);
-        sink += tau[0];
+    double qdd[6] = {1.0, 0.5, -0.7, 0.2, 0.3, -0.1}, tau[6], sink = 0.0;
+    double wall = 1e30, cpu = 1e30, w0, c0;
+    long i, r, m = 100000;
+    for (r = 0; r < 15; ++r) {  /* best of 15 runs of m calls */
+        w0 = seconds(CLOCK_MONOTONIC);
+        c0 = seconds(CLOCK_THREAD_CPUTIME_ID);
+        for (i = 0; i < m; ++i) {
+            q[0] = 1e-7 * (double)i;
+            arm_rne(q, qd, qdd, tau);
+            sink += tau[0];
+        }
+        c0 = (seconds(CLOCK_THREAD_CPUTIME_ID) - c0) / m * 1e9;
+        w0 = (seconds(CLOCK_MONOTONIC) - w0) / m * 1e9;
+        if (c0 < cpu) cpu = c0;
+        if (w0 < wall) wall = w0;
     }
-    printf("rne_ns %.2f\nsink %g\n", (now() - t0) / m * 1e9, sink);
+    printf("rne_ns %.2f\nrne_cpu_ns %.2f\nsink %g\n", wall, cpu, sink);
     return 0;
 }
 """
 
 
+def rne_operations(robot: dhsym.Robot) -> dict[str, int]:
+    """Multiplications (``MUL``, ``DIV``), additions (``ADD``, ``SUB``) and squares
+    (``POW``, written ``x*x`` by the compiler) of the exported ``rne``, by ``sympy.count_ops``
+    on its program, as ``tests/export/test_rne.py`` counts them."""
+    import sympy as sp
+
+    from dhsym.export.program import rne_program
+
+    prog = rne_program(robot)
+    total = sp.Add(*(sp.count_ops(e, visual=True) for e in prog.expressions()))
+    ops = {str(s): int(total.coeff(s)) for s in total.free_symbols}
+    return {
+        "mul": ops.get("MUL", 0) + ops.get("DIV", 0),
+        "add": ops.get("ADD", 0) + ops.get("SUB", 0),
+        "pow": ops.get("POW", 0),
+    }
+
+
 def bench_rne(name: str) -> None:
-    """The exported inverse dynamics against ``robot.rne`` (one state per call)."""
+    """The exported inverse dynamics against ``robot.rne`` (NumPy, one state per call)."""
     robot = dhsym.load(name)
     q = np.array([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
     qd = np.array([0.5, -0.2, 0.1, 0.9, -0.4, 0.3])
     qdd = np.array([1.0, 0.5, -0.7, 0.2, 0.3, -0.1])
     with tempfile.TemporaryDirectory() as tmp:
-        for fname, text in dhsym.export(robot, "c", what="rne", prefix="arm").items():
-            (Path(tmp) / fname).write_text(text)
+        for lang in ("c", "python"):
+            for fname, text in dhsym.export(robot, lang, what="rne", prefix="arm").items():
+                (Path(tmp) / fname).write_text(text)
         (Path(tmp) / "main.c").write_text(_RNE_MAIN)
         subprocess.run(
             ["gcc", "-std=gnu99", "-O2", "main.c", "arm.c", "-o", "bench", "-lm"],
@@ -207,17 +236,30 @@ def bench_rne(name: str) -> None:
             check=True,
         )
         out = subprocess.run([str(Path(tmp) / "bench")], capture_output=True, text=True, check=True)
+        spec = importlib.util.spec_from_file_location("arm_rne_numpy", Path(tmp) / "arm.py")
+        assert spec is not None and spec.loader is not None
+        exported = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(exported)
     c = {k: float(v) for k, v in (line.split() for line in out.stdout.splitlines())}
     fast = compiled(robot)
     assert np.allclose(fast.rne(q, qd, qdd), robot.rne(q, qd, qdd), rtol=1e-9, atol=1e-9)
+    assert np.allclose(exported.rne(q, qd, qdd), robot.rne(q, qd, qdd), rtol=1e-9, atol=1e-9)
+    reference = per_call(lambda x: robot.rne(*x), (q, qd, qdd), 5000)
     rows = [
-        ("rne, C loop", c["rne_ns"]),
+        ("rne, C loop (wall)", c["rne_ns"]),
+        ("rne, C loop (thread CPU)", c["rne_cpu_ns"]),
         ("rne, ctypes (compiled)", per_call(lambda x: fast.rne(*x), (q, qd, qdd), 20000)),
-        ("rne, dhsym robot.rne", per_call(lambda x: robot.rne(*x), (q, qd, qdd), 5000)),
+        ("rne, exported NumPy", per_call(lambda x: exported.rne(*x), (q, qd, qdd), 5000)),
+        ("rne, dhsym robot.rne", reference),
     ]
-    print(f"{robot.name} inverse dynamics (recursive Newton-Euler, friction, motor inertia)")
+    ops = rne_operations(robot)
+    print(
+        f"{robot.name} inverse dynamics (recursive Newton-Euler, friction, motor inertia): "
+        f"{ops['mul']} mul + {ops['add']} add = {ops['mul'] + ops['add']} operations "
+        f"(and {ops['pow']} squares)"
+    )
     for label, ns in rows:
-        print(f"  {label:28s} {ns:12.1f} ns   dhsym/this = {rows[2][1] / ns:8.1f}x")
+        print(f"  {label:28s} {ns:12.1f} ns   robot.rne/this = {reference / ns:8.1f}x")
 
 
 def main() -> None:

@@ -140,21 +140,3 @@ def test_symbolic_lengths_build_and_run(lang, text, tmp_path):
     else:
         result = h.run_c(files, "arm", q, poses, n, True, True, tmp_path, lang == "cpp", params)
     _compare(robot, q, poses, result)
-
-
-def test_the_puma_rne_program_shares_the_recursion_and_makes_no_trivial_products():
-    from dhsym.export.program import rne_program
-
-    prog = rne_program(dhsym.load("puma560"))
-    exprs = [a.expr for a in prog.body] + [o.expr for o in prog.outputs]
-    total = sp.Add(*(sp.count_ops(e, visual=True) for e in exprs))
-    ops = {str(s): int(total.coeff(s)) for s in total.free_symbols}
-    mul = ops.get("MUL", 0) + ops.get("DIV", 0)
-    add = ops.get("ADD", 0) + ops.get("SUB", 0)
-    # the expanded recursion, shared by sympy.cse alone, took 542 + 408
-    assert mul <= 260 and add <= 220, (mul, add)
-    for e in exprs:  # no product by 0 or ±1.0 (-1: a minus sign), no line that renames
-        for m in sp.preorder_traversal(e):
-            if m.is_Mul:
-                assert all(a == -1 or abs(a) not in (0, 1) for a in m.args if a.is_Number), e
-    assert not any(a.expr.is_Symbol for a in prog.body)

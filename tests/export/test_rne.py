@@ -2,18 +2,27 @@
 """The exported inverse dynamics ``rne(q, qd, qdd)`` in every language, built and run,
 against ``robot.rne`` at random states (some joints at rest, where Coulomb friction is 0):
 ≤ 1e-9 relative, for the PUMA 560 (published parameters, motor inertia, friction) and
-numeric 2R (standard DH) and 3R (modified DH, friction) arms."""
+numeric 2R (standard DH) and 3R (modified DH, friction) arms. The program's operation count
+(issue 33: the PUMA's under 400), and the recursion it is made from against the dynamics
+room's, also on the Stanford arm (a prismatic joint) and the UR5 with numbers for every
+inertial parameter."""
 
 from __future__ import annotations
 
 import shutil
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 import pytest
+import sympy as sp
 
 import dhsym
+from dhsym.dynamics.compiled_dynamics import numeric_model
+from dhsym.dynamics.model import dynamic_model
+from dhsym.dynamics.recursive_newton_euler import rne_expressions
 from dhsym.errors import DHError
+from dhsym.export.program import _rne_recursion, rne_program
 from dhsym.model.tablefile import read_table_text
 
 from ..conftest import _need
@@ -212,3 +221,97 @@ def test_compiled_rne_matches_robot(tmp_path, monkeypatch):
     q, qd, qdd = _states(3)
     tau = np.array([fast.rne(*s) for s in zip(q, qd, qdd)])
     _check(robot, (q, qd, qdd), tau)
+
+
+def _generic_values(robot: dhsym.Robot) -> dict[str, sp.Expr]:
+    """A number for every inertial symbol of a table without them: every centre-of-mass
+    component and every product of inertia nonzero (nothing for the program to drop)."""
+    values: dict[str, sp.Expr] = {}
+    for s in dynamic_model(robot).parameters:
+        name, k = s.name, int("".join(c for c in s.name if c.isdigit()) or 1)
+        if name.startswith("m"):
+            values[name] = sp.Rational(10 + k, 4)
+        elif name[:3] in ("Ixx", "Iyy", "Izz"):
+            values[name] = sp.Rational(20 + k + 3 * "xyz".index(name[1]), 100)
+        elif name.startswith("I"):
+            values[name] = sp.Rational(k, 1000)
+        elif name.startswith("r"):
+            values[name] = (-1) ** k * sp.Rational(k + 2 * "xyz".index(name[1]), 50)
+        else:
+            raise AssertionError(f"no value for {name}")
+    return values
+
+
+def _model(name: str):
+    if name in NAMES:
+        robot = _robots()[name]
+        return robot, None
+    robot = dhsym.load(name)
+    return robot, _generic_values(robot)
+
+
+def _at(point: dict) -> Callable[[sp.Expr], sp.Expr]:
+    """Each step of a recursion evaluated at ``point`` as it is made."""
+    return lambda e: e.xreplace(point)
+
+
+# mul, add of the exported rne (sympy.count_ops: MUL + DIV, ADD + SUB); before the
+# arrangement of export.program._rne_recursion: PUMA 560 258 + 217, Stanford 335 + 285,
+# UR5 378 + 336 (the last two with _generic_values)
+COUNTS = {"puma560": (210, 188), "stanford": (275, 270), "ur5": (309, 309)}
+
+
+@pytest.mark.parametrize("name", sorted(COUNTS))
+def test_the_rne_program_is_short_and_makes_no_trivial_products(name):
+    robot, values = _model(name)
+    prog = rne_program(robot, values=values)
+    exprs = prog.expressions()
+    total = sp.Add(*(sp.count_ops(e, visual=True) for e in exprs))
+    ops = {str(s): int(total.coeff(s)) for s in total.free_symbols}
+    mul = ops.get("MUL", 0) + ops.get("DIV", 0)
+    add = ops.get("ADD", 0) + ops.get("SUB", 0)
+    assert mul <= COUNTS[name][0] and add <= COUNTS[name][1], (mul, add)
+    if name == "puma560":  # issue 33: at most 400 operations
+        assert mul + add < 400 and ops.get("POW", 0) <= 10, ops
+    for e in exprs:  # no product by 0 or ±1.0 (-1: a minus sign), no line that renames
+        for m in sp.preorder_traversal(e):
+            if m.is_Mul:
+                assert all(a == -1 or abs(a) not in (0, 1) for a in m.args if a.is_Number), e
+    assert not any(a.expr.is_Symbol for a in prog.body)
+
+
+@pytest.mark.parametrize("name", [*NAMES, "stanford", "ur5"])
+def test_the_arranged_recursion_is_the_recursion_of_the_dynamics_room(name):
+    """_rne_recursion (U matrices, moments about the joints' points, the wrist's last link
+    carried) against rne_expressions on the same numbers: both conventions, a prismatic
+    joint (Stanford), products of inertia and full centres of mass (Stanford, UR5)."""
+    robot, values = _model(name)
+    dm = numeric_model(robot, values)
+    inputs = (*dm.variables, *dm.rates, *dm.accelerations)
+    q, qd, qdd = _states(dm.n, 3)
+    for state in zip(q, qd, qdd):
+        at = _at(dict(zip(inputs, map(sp.Float, np.concatenate(state)))))
+        a = np.array([float(e) for e in _rne_recursion(dm, at)])
+        b = np.array([float(at(e)) for e in rne_expressions(dm, clean=at)])
+        assert np.allclose(a, b, rtol=1e-12, atol=1e-12), (a, b)
+
+
+def test_the_program_computes_the_recursion():
+    """The straight-line program of a robot without friction, run line by line, gives the
+    recursion's torques: what the printers write is what was proven."""
+    robot, values = _model("stanford")
+    prog = rne_program(robot, values=values)
+    dm = numeric_model(robot, values)
+    q, qd, qdd = _states(dm.n, 2)
+    for state in zip(q, qd, qdd):
+        known = {
+            sp.Symbol(name, real=True): state[("q", "qd", "qdd").index(arr)][k]
+            for name, arr, k in prog.inputs
+        }
+        for a in prog.body:
+            known[sp.Symbol(a.name, real=True)] = float(a.expr.xreplace(known))
+        got = np.array([float(o.expr.xreplace(known)) for o in prog.outputs])
+        inputs = (*dm.variables, *dm.rates, *dm.accelerations)
+        at = _at(dict(zip(inputs, map(sp.Float, np.concatenate(state)))))
+        want = np.array([float(e) for e in rne_expressions(dm, clean=at)])
+        assert np.allclose(got, want, rtol=1e-9, atol=1e-9), (got, want)
