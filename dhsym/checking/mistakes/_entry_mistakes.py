@@ -243,10 +243,20 @@ class WrongSign(EntryMistake):
         inside = "" if part in sp.Add.make_args(e) else " (inside a bracket)"
         return f"In entry {where} the term {nota.text(part)} has the wrong sign{inside}."
 
-    def table_edits(self, rows: tuple[DHRow, ...], key: DHTable) -> Iterator[TableEdit]:
+    def table_edits(
+        self,
+        rows: tuple[DHRow, ...],
+        key: DHTable,
+        within: frozenset[int] | None = None,
+        touching: frozenset[int] | None = None,
+    ) -> Iterator[TableEdit]:
         """Each cell of ``rows`` with its sign flipped (a joint's entry: its offset), told
         with the key's value of that cell."""
         for k, row in enumerate(rows):
+            if within is not None and k + 1 not in within:
+                continue
+            if touching is not None and k + 1 not in touching:
+                continue
             for name, value in row.params().items():
                 if value == 0 or name == row.variable_field and value == row.variable:
                     continue

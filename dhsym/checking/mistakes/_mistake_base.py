@@ -153,10 +153,18 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
         """(the key table under this mistake, what the student did, rows involved)."""
         return iter(())
 
-    def table_edits(self, rows: tuple[DHRow, ...], key: DHTable) -> Iterator[TableEdit]:
+    def table_edits(
+        self,
+        rows: tuple[DHRow, ...],
+        key: DHTable,
+        within: frozenset[int] | None = None,
+        touching: frozenset[int] | None = None,
+    ) -> Iterator[TableEdit]:
         """``rows`` (the key's, or the key's under another slip) under one slip of this kind,
         each told against the ``key`` (the search of two slips in one table composes them:
-        :func:`~dhsym.checking.mistakes._row_mistakes.explain_table_pairs`); none by default."""
+        :func:`~dhsym.checking.mistakes._row_mistakes.explain_table_pairs`); only those that
+        rewrite no row outside ``within`` and at least one row of ``touching`` (1-based;
+        None: any); none by default."""
         return iter(())
 
     def build_variants(self, case: MatrixCase) -> Variants:

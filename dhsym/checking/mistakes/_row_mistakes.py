@@ -77,14 +77,36 @@ class IndexShift(Mistake):
         for rows, detail in self._variants(case.key.rows, case.key.convention):
             yield Chain(rows, case.key.convention), detail, ()
 
-    def table_edits(self, rows: tuple[DHRow, ...], key: DHTable) -> Iterator[TableEdit]:
+    def table_edits(
+        self,
+        rows: tuple[DHRow, ...],
+        key: DHTable,
+        within: frozenset[int] | None = None,
+        touching: frozenset[int] | None = None,
+    ) -> Iterator[TableEdit]:
         for new, detail in self._variants(rows, key.convention):
-            yield new, detail, _changed(rows, new)
+            yield from _kept(rows, new, detail, within, touching)
 
 
 def _changed(before: tuple[DHRow, ...], after: tuple[DHRow, ...]) -> tuple[int, ...]:
     """The 1-based rows an edit rewrote."""
     return tuple(k + 1 for k, (b, a) in enumerate(zip(before, after, strict=True)) if b != a)
+
+
+def _kept(
+    before: tuple[DHRow, ...],
+    after: tuple[DHRow, ...],
+    detail: str,
+    within: frozenset[int] | None,
+    touching: frozenset[int] | None,
+) -> Iterator[TableEdit]:
+    """The edit (rows, detail, the rows it rewrote) unless it rewrites a row outside
+    ``within`` or none of ``touching``."""
+    where = _changed(before, after)
+    if (within is None or within.issuperset(where)) and (
+        touching is None or not touching.isdisjoint(where)
+    ):
+        yield after, detail, where
 
 
 def _no_offset(row: DHRow) -> DHRow:
@@ -101,25 +123,32 @@ class OffsetMissing(Mistake):
     kind, title = "offset_missing", "joint offset missing"
 
     def _variants(
-        self, rows: tuple[DHRow, ...], told: tuple[DHRow, ...] | None = None
+        self,
+        rows: tuple[DHRow, ...],
+        told: tuple[DHRow, ...] | None = None,
+        within: frozenset[int] | None = None,
     ) -> Iterator[tuple[tuple[DHRow, ...], str, tuple[int, ...]]]:
         """The offsets of ``rows`` left out, all and one by one; the entries are named as
-        ``told`` (the key's rows, when ``rows`` are under another slip) has them."""
+        ``told`` (the key's rows, when ``rows`` are under another slip) has them; only the
+        variants that rewrite rows in ``within`` (1-based; None: all)."""
         told = rows if told is None else told
         with_offset = [k for k, r in enumerate(rows) if r.variable is not None and r.offset != 0]
-        if not with_offset:
+        if not with_offset or not any(_inside([k], within) for k in with_offset):
             return
         # rows with a variable are joint rows, whose variable_field is "theta" or "d"
         names = ", ".join(
             f"row {k + 1}: {sp.sstr(getattr(told[k], cast(str, told[k].variable_field)))}"
             for k in with_offset
         )
-        yield (
-            tuple(_no_offset(r) for r in rows),
-            (f"The joint offset is missing ({names}): the variable alone is not the entry."),
-            tuple(k + 1 for k in with_offset),
-        )
+        if _inside(with_offset, within):
+            yield (
+                tuple(_no_offset(r) for r in rows),
+                (f"The joint offset is missing ({names}): the variable alone is not the entry."),
+                tuple(k + 1 for k in with_offset),
+            )
         for k in with_offset:
+            if not _inside([k], within):
+                continue
             yield (
                 tuple(_no_offset(r) if j == k else r for j, r in enumerate(rows)),
                 (
@@ -137,9 +166,20 @@ class OffsetMissing(Mistake):
         for rows, detail, where in self._variants(case.key.rows):
             yield Chain(rows, case.key.convention), detail, where
 
-    def table_edits(self, rows: tuple[DHRow, ...], key: DHTable) -> Iterator[TableEdit]:
-        for new, detail, _ in self._variants(rows, tuple(key.rows)):
-            yield new, detail, _changed(rows, new)
+    def table_edits(
+        self,
+        rows: tuple[DHRow, ...],
+        key: DHTable,
+        within: frozenset[int] | None = None,
+        touching: frozenset[int] | None = None,
+    ) -> Iterator[TableEdit]:
+        for new, detail, _ in self._variants(rows, tuple(key.rows), within):
+            yield from _kept(rows, new, detail, within, touching)
+
+
+def _inside(rows: list[int], within: frozenset[int] | None) -> bool:
+    """True when the 0-based ``rows`` are all in ``within`` (1-based; None: any)."""
+    return within is None or all(k + 1 in within for k in rows)
 
 
 def _angle_terms(expr: sp.Expr, factor: sp.Expr) -> sp.Expr:
@@ -152,21 +192,30 @@ class DegreesAsRadians(Mistake):
     kind, title = "degrees_as_radians", "degrees read as radians"
 
     def _variants(
-        self, rows: tuple[DHRow, ...], table: bool = False
+        self, rows: tuple[DHRow, ...], table: bool = False, within: frozenset[int] | None = None
     ) -> Iterator[tuple[tuple[DHRow, ...], str, tuple[int, ...]]]:
         """All rows' angles, then one row's (the degrees in one row of a table; with
-        ``table``, then the radians written in one row of a table in degrees)."""
-        if not any(_angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0 for r in rows):
+        ``table``, then the radians written in one row of a table in degrees); only the
+        variants that rewrite rows in ``within`` (1-based; None: all)."""
+
+        def has_angle(r: DHRow) -> bool:
+            return _angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0
+
+        if within is not None and not any(has_angle(rows[k - 1]) for k in within):
+            return  # every variant rewrites a row with an angle: none is inside
+        angled = [k for k, r in enumerate(rows) if has_angle(r)]
+        if not angled:
             return
         both = (
             (180 / sp.pi, "An angle in degrees was used as radians (cos 90 is not cos 90°)."),
             (sp.pi / 180, "An angle in radians was read as degrees (1.57° is not 90°)."),
         )
-        for factor, detail in both:
-            yield tuple(_scaled(r, factor) for r in rows), detail, ()
+        if _inside(angled, within):
+            for factor, detail in both:
+                yield tuple(_scaled(r, factor) for r in rows), detail, ()
         for factor, detail in both if table else both[:1]:
-            for k, row in enumerate(rows):
-                if _angle_terms(row.alpha, 0) == 0 and _angle_terms(row.theta, 0) == 0:
+            for k in angled:
+                if not _inside([k], within):
                     continue
                 yield (
                     tuple(_scaled(r, factor) if j == k else r for j, r in enumerate(rows)),
@@ -182,9 +231,15 @@ class DegreesAsRadians(Mistake):
         for rows, detail, where in self._variants(case.key.rows, table=True):
             yield Chain(rows, case.key.convention), detail, where
 
-    def table_edits(self, rows: tuple[DHRow, ...], key: DHTable) -> Iterator[TableEdit]:
-        for new, detail, _ in self._variants(rows, table=True):
-            yield new, detail, _changed(rows, new)
+    def table_edits(
+        self,
+        rows: tuple[DHRow, ...],
+        key: DHTable,
+        within: frozenset[int] | None = None,
+        touching: frozenset[int] | None = None,
+    ) -> Iterator[TableEdit]:
+        for new, detail, _ in self._variants(rows, table=True, within=within):
+            yield from _kept(rows, new, detail, within, touching)
 
 
 def _scaled(row: DHRow, factor: sp.Expr) -> DHRow:
@@ -274,8 +329,6 @@ def explain_table_pairs(
     case: TableCase,
     mistakes: tuple[Mistake, ...],
     budget: int = PAIR_BUDGET,
-    *,
-    with_row: bool = False,
 ) -> tuple[Diagnosis, ...]:
     """Two catalogued slips that together give the answer's table, both named (a twist's
     sign flipped in one row and the degrees written as radians, an index shift and an
@@ -284,11 +337,12 @@ def explain_table_pairs(
     Each slip of ``mistakes`` (their :meth:`~Mistake.table_edits`) is applied to the key's
     rows and each slip of the same or a later kind to the result (two of one kind only in
     different rows); a pair is compared with the answer only when the rows the two slips
-    rewrite cover every row the answer has wrong. ``with_row``: the second slip is instead
-    one wrong cell in one row (:class:`SingleWrongRow` with a single cell), after a slip of
-    ``mistakes`` or after another wrong cell in another row. At most ``budget`` tables are
-    compared with the answer (a count, not a time: the diagnosis does not depend on the
-    machine's load).
+    rewrite cover every row the answer has wrong, and each rewrites one of them (a slip
+    the other undoes is not in the answer). Then the second slip is one wrong cell in one
+    row (:class:`SingleWrongRow` with a single cell, not one the first slip rewrote), after
+    a slip of ``mistakes``, or after another wrong cell in another row. At most ``budget``
+    tables are compared with the answer (a count, not a time: the diagnosis does not
+    depend on the machine's load).
 
     >>> import dhsym
     >>> from dataclasses import replace
@@ -309,28 +363,21 @@ def explain_table_pairs(
     if not bad:
         return ()
     left = budget
-    firsts = [(m, [e for e in m.table_edits(base, key) if e[0] != base and e[2]]) for m in mistakes]
-    if with_row:
-        starts: list[tuple[_Slip | None, tuple[DHRow, ...]]] = [
-            ((m.kind, m.title, e[1], e[2]), e[0]) for m, edits in firsts for e in edits
-        ]
-        starts.append((None, base))  # two rows with one wrong cell each: the least named
-        for first, rows in starts:
-            check_time()
-            left -= 1
-            if left < 0:
-                return ()
-            found = _one_wrong_cell(case, rows, first)
-            if found:
-                return found
-        return ()
+    # each slip is seen in the answer: it rewrites a row the answer has wrong
+    firsts = [
+        (m, [e for e in m.table_edits(base, key, touching=frozenset(bad)) if e[0] != base])
+        for m in mistakes
+    ]
     for i, (a, edits_a) in enumerate(firsts):
         for b, _ in firsts[i:]:
             for rows_a, detail_a, where_a in edits_a:
                 check_time()
-                for rows_b, detail_b, where_b in b.table_edits(rows_a, key):
-                    if a is b and (not where_b or set(where_a) & set(where_b)):
-                        continue  # two slips of one kind: in two places
+                # the second slip rewrites only rows the answer has wrong or the first
+                # rewrote; a second of the same kind only other rows (two places)
+                within = frozenset(bad - set(where_a) if a is b else bad | set(where_a))
+                if not within:
+                    continue
+                for rows_b, detail_b, where_b in b.table_edits(rows_a, key, within, frozenset(bad)):
                     if not bad <= set(where_a) | set(where_b) or rows_b == base:
                         continue
                     left -= 1
@@ -341,21 +388,46 @@ def explain_table_pairs(
                             (a.kind, a.title, detail_a, where_a),
                             (b.kind, b.title, detail_b, where_b),
                         )
+    starts: list[tuple[_Slip | None, tuple[DHRow, ...]]] = [
+        ((m.kind, m.title, e[1], e[2]), e[0]) for m, edits in firsts for e in edits
+    ]
+    starts.append((None, base))  # two rows with one wrong cell each: the least named
+    for first, rows in starts:
+        check_time()
+        left -= 1
+        if left < 0:
+            return ()
+        found = _one_wrong_cell(case, rows, first, bad)
+        if found:
+            return found
     return ()
 
 
 def _one_wrong_cell(
-    case: TableCase, rows: tuple[DHRow, ...], first: _Slip | None
+    case: TableCase, rows: tuple[DHRow, ...], first: _Slip | None, bad: set[int]
 ) -> tuple[Diagnosis, ...]:
     """The pair of ``first`` (None: one wrong cell in another row) and one wrong cell in
-    one row, when it gives the answer from ``rows`` (the key's rows under ``first``)."""
+    one row, when it gives the answer from ``rows`` (the key's rows under ``first``;
+    ``bad``: the 1-based rows where the answer differs from the key)."""
     key, ans, conv = case.key, case.answer, case.key.convention
-    differ = [k for k in range(key.n) if not _same_row(rows[k], ans.rows[k], conv, case.values)]
+    touched = set(first[3]) if first is not None else set()
+    differ = [
+        k
+        for k in range(key.n)
+        if (
+            k + 1 in bad
+            if k + 1 not in touched
+            else not _same_row(rows[k], ans.rows[k], conv, case.values)
+        )
+    ]
     if len(differ) != (1 if first is not None else 2):
         return ()
     cells = [_wrong_cells(rows[k], ans.rows[k], conv, case.values) for k in differ]
     if any(len(c) != 1 for c in cells):
         return ()
+    for k, (name,) in zip(differ, cells, strict=True):
+        if name == "type" or getattr(rows[k], name) != getattr(key.rows[k], name):
+            return ()  # the wrong cell overwrites the first slip's: that slip is not there
     fixed = tuple(ans.rows[j] if j in differ else r for j, r in enumerate(rows))
     if not same_cells(Chain(fixed, conv), ans, case.values):
         return ()

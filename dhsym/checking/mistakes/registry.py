@@ -255,7 +255,7 @@ def diagnose_matrix(
 def diagnose_table(case: TableCase) -> tuple[Diagnosis, ...]:
     """Explain a wrong table with the first table mistake that reproduces it, else with two
     slips that do (:func:`~dhsym.checking.mistakes._row_mistakes.explain_table_pairs`, two
-    diagnoses naming each other, within :data:`PAIR_BUDGET` tables compared each time):
+    diagnoses naming each other, within :data:`PAIR_BUDGET` tables compared):
     two named slips of :data:`TABLE_PAIR_MISTAKES`, then one of them with one wrong cell,
     or two rows with one wrong cell each, are tried before the catch-all of one wrong row
     (a twist's sign flipped and written in radians in one row is both, not just a wrong
@@ -274,9 +274,7 @@ def diagnose_table(case: TableCase) -> tuple[Diagnosis, ...]:
     for m in TABLE_MISTAKES:
         check_time()
         if isinstance(m, SingleWrongRow):  # the catch-all of one row: two named slips first
-            pairs = explain_table_pairs(case, TABLE_PAIR_MISTAKES) or explain_table_pairs(
-                case, TABLE_PAIR_MISTAKES, with_row=True
-            )
+            pairs = explain_table_pairs(case, TABLE_PAIR_MISTAKES)
             if pairs:
                 return pairs
         d = m.explain_table(case)

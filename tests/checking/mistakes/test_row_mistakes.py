@@ -92,6 +92,8 @@ def test_one_slip_is_still_one_diagnosis():
     r = puma(r2="| 2 | θ2 | 0.2 | 0.5 | 0 |")
     assert found(r) == [("single_wrong_row", (2,))]
     assert "two slips" not in r.message
+    # a3 for a2 (the example class's grace) is no sign of a2 overwritten by a wrong cell
+    assert found(puma(r2="| 2 | θ2 | 0 | a3 | 0 |")) == [("single_wrong_row", (2,))]
 
 
 def test_three_slips_are_not_forced_into_a_pair():
