@@ -251,7 +251,7 @@ class WrongSign(EntryMistake):
         touching: frozenset[int] | None = None,
     ) -> Iterator[TableEdit]:
         """Each cell of ``rows`` with its sign flipped (a joint's entry: its offset), told
-        with the key's value of that cell."""
+        with the key's value of that cell (a cell another slip wrote: its sign flipped too)."""
         for k, row in enumerate(rows):
             if within is not None and k + 1 not in within:
                 continue
@@ -266,7 +266,10 @@ class WrongSign(EntryMistake):
                 new = tuple(
                     replace(r, **{name: flipped}) if j == k else r for j, r in enumerate(rows)
                 )
-                shown = cell_text(name, getattr(key.rows[k], name), key)
+                if value != getattr(key.rows[k], name):  # another slip wrote this cell
+                    yield new, f"Row {k + 1}: {name} has the wrong sign too.", (k + 1,)
+                    continue
+                shown = cell_text(name, value, key)
                 yield new, f"Row {k + 1}: {name} has the wrong sign; it is {shown}.", (k + 1,)
 
     def explain_table(self, case: TableCase) -> Diagnosis | None:

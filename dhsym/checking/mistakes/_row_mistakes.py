@@ -196,25 +196,33 @@ class DegreesAsRadians(Mistake):
     ) -> Iterator[tuple[tuple[DHRow, ...], str, tuple[int, ...]]]:
         """All rows' angles, then one row's (the degrees in one row of a table; with
         ``table``, then the radians written in one row of a table in degrees); only the
-        variants that rewrite rows in ``within`` (1-based; None: all)."""
+        variants that rewrite rows in ``within`` (1-based; None: all).
 
-        def has_angle(r: DHRow) -> bool:
+        A table's rows are those with a constant angle (a fixed θ or α of any joint); a
+        matrix's, as before, the rows with a joint angle (a prismatic row's α is scaled
+        only with all rows).
+        """
+
+        def constant(r: DHRow) -> bool:  # what the scaling rewrites
+            return _angle_terms(r.alpha, 0) != r.alpha or _angle_terms(r.theta, 0) != r.theta
+
+        def joint_angle(r: DHRow) -> bool:
             return _angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0
 
-        if within is not None and not any(has_angle(rows[k - 1]) for k in within):
-            return  # every variant rewrites a row with an angle: none is inside
-        angled = [k for k, r in enumerate(rows) if has_angle(r)]
-        if not angled:
+        one = constant if table else joint_angle
+        rows_one = [k for k, r in enumerate(rows) if one(r)]
+        if not rows_one:
             return
+        rows_all = [k for k, r in enumerate(rows) if constant(r)]
         both = (
             (180 / sp.pi, "An angle in degrees was used as radians (cos 90 is not cos 90°)."),
             (sp.pi / 180, "An angle in radians was read as degrees (1.57° is not 90°)."),
         )
-        if _inside(angled, within):
+        if _inside(rows_all, within):
             for factor, detail in both:
                 yield tuple(_scaled(r, factor) for r in rows), detail, ()
         for factor, detail in both if table else both[:1]:
-            for k in angled:
+            for k in rows_one:
                 if not _inside([k], within):
                     continue
                 yield (
@@ -337,10 +345,11 @@ def explain_table_pairs(
     Each slip of ``mistakes`` (their :meth:`~Mistake.table_edits`) is applied to the key's
     rows and each slip of the same or a later kind to the result (two of one kind only in
     different rows); a pair is compared with the answer only when the rows the two slips
-    rewrite cover every row the answer has wrong, and each rewrites one of them (a slip
-    the other undoes is not in the answer). Then the second slip is one wrong cell in one
-    row (:class:`SingleWrongRow` with a single cell, not one the first slip rewrote), after
-    a slip of ``mistakes``, or after another wrong cell in another row. At most ``budget``
+    rewrite cover every row the answer has wrong; the first rewrites one of them (a slip
+    the other undoes is not in the answer), the second only rows the answer has wrong or
+    the first rewrote. Then the second slip is one wrong cell in one row
+    (:class:`SingleWrongRow` with a single cell; not the only cell the first slip rewrote),
+    after a slip of ``mistakes``, or after another wrong cell in another row. At most ``budget``
     tables are compared with the answer (a count, not a time: the diagnosis does not
     depend on the machine's load).
 
@@ -373,11 +382,11 @@ def explain_table_pairs(
             for rows_a, detail_a, where_a in edits_a:
                 check_time()
                 # the second slip rewrites only rows the answer has wrong or the first
-                # rewrote; a second of the same kind only other rows (two places)
+                # rewrote (it may put one of those back); of the same kind, only other rows
                 within = frozenset(bad - set(where_a) if a is b else bad | set(where_a))
                 if not within:
                     continue
-                for rows_b, detail_b, where_b in b.table_edits(rows_a, key, within, frozenset(bad)):
+                for rows_b, detail_b, where_b in b.table_edits(rows_a, key, within):
                     if not bad <= set(where_a) | set(where_b) or rows_b == base:
                         continue
                     left -= 1
@@ -425,9 +434,16 @@ def _one_wrong_cell(
     cells = [_wrong_cells(rows[k], ans.rows[k], conv, case.values) for k in differ]
     if any(len(c) != 1 for c in cells):
         return ()
-    for k, (name,) in zip(differ, cells, strict=True):
-        if name == "type" or getattr(rows[k], name) != getattr(key.rows[k], name):
-            return ()  # the wrong cell overwrites the first slip's: that slip is not there
+    if any(c == ["type"] for c in cells):
+        return ()
+    slipped = {
+        (k, n)
+        for k in range(key.n)
+        for n in ("theta", "d", "a", "alpha")
+        if getattr(rows[k], n) != getattr(key.rows[k], n)
+    }
+    if first is not None and slipped <= {(k, c[0]) for k, c in zip(differ, cells, strict=True)}:
+        return ()  # the wrong cell overwrites all the first slip wrote: that slip is not there
     fixed = tuple(ans.rows[j] if j in differ else r for j, r in enumerate(rows))
     if not same_cells(Chain(fixed, conv), ans, case.values):
         return ()

@@ -157,3 +157,24 @@ def test_deductions_of_a_table_with_two_slips():
     assert both.award(4.0, r)[0] == 2.0
     signs = puma(r2="| 2 | θ2 | 0 | -a2 | 0 |", r5="| 5 | θ5 | 0 | 0 | 90° |")
     assert Credit(deduct=(("wrong_sign", 0.25),)).award(4.0, signs)[0] > 0
+
+
+def test_a_sign_after_a_shift_is_told_as_a_second_slip():
+    # α and a from the previous row, and the sign of the α that moved into row 5
+    rows = list(shifted(tuple(PUMA.rows), -1, ("alpha", "a")))
+    rows[4] = replace(rows[4], alpha=-rows[4].alpha)
+    d = diagnose_table(TableCase(PUMA, Chain(tuple(rows), PUMA.convention)))
+    assert [x.kind for x in d] == ["index_shift", "wrong_sign"]
+    assert d[1].rows == (5,) and "Row 5: alpha has the wrong sign too." in d[1].detail
+
+
+def test_every_row_in_radians_is_one_slip_not_a_pair():
+    cartesian = dhsym.load_table("cartesian")  # prismatic joints, fixed angles in two rows
+    rows = [
+        replace(r, theta=r.theta * sp.pi / 180, alpha=r.alpha * sp.pi / 180) for r in cartesian.rows
+    ]
+    d = diagnose_table(TableCase(cartesian, Chain(tuple(rows), cartesian.convention)))
+    assert [x.kind for x in d] == ["degrees_as_radians"]
+    rows[1] = cartesian.rows[1]  # row 1 alone in radians: the slip of one row
+    d = diagnose_table(TableCase(cartesian, Chain(tuple(rows), cartesian.convention)))
+    assert [(x.kind, x.rows) for x in d] == [("degrees_as_radians", (1,))]
