@@ -204,10 +204,10 @@ class DegreesAsRadians(Mistake):
         """
 
         def constant(r: DHRow) -> bool:  # what the scaling rewrites
-            return _angle_terms(r.alpha, 0) != r.alpha or _angle_terms(r.theta, 0) != r.theta
+            return bool(_angle_terms(r.alpha, 0) != r.alpha or _angle_terms(r.theta, 0) != r.theta)
 
         def joint_angle(r: DHRow) -> bool:
-            return _angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0
+            return bool(_angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0)
 
         one = constant if table else joint_angle
         rows_one = [k for k, r in enumerate(rows) if one(r)]
