@@ -384,9 +384,10 @@ def explain_table_pairs(
                 # the second slip rewrites only rows the answer has wrong or the first
                 # rewrote (it may put one of those back); of the same kind, only other rows
                 within = frozenset(bad - set(where_a) if a is b else bad | set(where_a))
+                need = frozenset(bad - set(where_a))  # the second slip rewrites these
                 if not within:
                     continue
-                for rows_b, detail_b, where_b in b.table_edits(rows_a, key, within):
+                for rows_b, detail_b, where_b in b.table_edits(rows_a, key, within, need or None):
                     if not bad <= set(where_a) | set(where_b) or rows_b == base:
                         continue
                     left -= 1
