@@ -211,8 +211,8 @@ class Assignment:
                 raise DHError(
                     f"{unused[0]!r} is drawn but used by no question: a variant is a symbol "
                     "of a question's key table (a2, d3, ...), a name in an ik@ question "
-                    '(ask: "ik@q1,q2") or a name in a profile key (key: "cubic(q0=0, qf=1, '
-                    'tf=T)")',
+                    '(ask: "ik@q1,q2") or a transform at joint values (ask: "T0_2@q1,q2") '
+                    'or a name in a profile key (key: "cubic(q0=0, qf=1, tf=T)")',
                     file=str(p),
                     field=f"variants.{unused[0]}",
                 )
@@ -244,16 +244,23 @@ def _variant_spec(data: Mapping[str, object], path: Path) -> VariantSpec | None:
     return VariantSpec.parse(data["variants"], secret, _title(data, path), file=str(path))
 
 
-_IK_AT = re.compile(r"^(?P<head>\s*(?:ik|inverse)[^@]*@)(?P<values>.*)$", re.IGNORECASE)
+#: a question at joint values: ``ik@…``, or a transform there (``T0_6@…``, ``fk@…``)
+_IK_AT = re.compile(
+    r"^(?P<head>\s*(?:ik|inverse|fk|arm|\^|[TAH]_?\{?\d|p_?[xyz])[^@]*@)(?P<values>.*)$",
+    re.IGNORECASE,
+)
 
 
 def _ask_with(ask: str, values: Mapping[str, object]) -> str:
     """``ask`` with the drawn joint values put in: ``ik@q1,q2`` becomes ``ik@pi/6,9/20``
-    when ``q1`` and ``q2`` are drawn; any other question is left as it is.
+    when ``q1`` and ``q2`` are drawn (and ``T0_2@q1,q2``, ``fk@q1,q2``: a transform at
+    them); any other question is left as it is.
 
     >>> import sympy as sp
     >>> _ask_with("ik@q1, 0.5", {"q1": sp.pi / 6}), _ask_with("T0_2", {"q1": 1})
     ('ik@pi/6,0.5', 'T0_2')
+    >>> _ask_with("T0_2@q1,q2", {"q1": 1, "q2": sp.pi}), _ask_with("q@T", {"T": 2})
+    ('T0_2@1,pi', 'q@T')
     """
     m = _IK_AT.match(ask)
     parts = [v.strip() for v in m["values"].split(",")] if m is not None else []

@@ -10,8 +10,11 @@ range or a list the instructor writes (exact decimals; degrees as in table files
     secret: hw3.secret                         # a file beside the assignment, kept private
 
 A name is either a constant symbol of a question's key table (its value is put into the
-table: the student's key has their numbers) or a name in an ``ik@`` question
-(``ask: "ik@q1,q2"``: the pose these joint values reach).
+table: the student's key has their numbers), a name in an ``ik@`` question
+(``ask: "ik@q1,q2"``: the pose these joint values reach) or in a transform asked at joint
+values (``ask: "T0_6@q1,q2,0,0,0,0"`` or ``"fk@q1,…"``: the matrix there, in numbers).  The
+feedback page and the problem sheet print the student's values (:meth:`Variant.text`);
+a sheet's numeric check is at the joint values of its first ``ik@`` or ``T…@`` question.
 
 **Seeding.**  A student's values are drawn with HMAC-SHA256 keyed by the assignment's
 secret (the file ``secret:`` names, at least 16 bytes; ``dhsym variants hw.yaml

@@ -21,8 +21,10 @@ Examples
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from fractions import Fraction
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
@@ -143,19 +145,21 @@ def _samples(
     syms: set[sp.Symbol],
     singularities: Singularities | None = None,
     dynamics_variants: tuple[tuple[str, sp.ImmutableMatrix, str], ...] = (),
+    fixed: Mapping[sp.Symbol, float] | None = None,
 ) -> tuple[DiagnosisSample, DiagnosisSample, sp.ImmutableMatrix]:
     """The symbolic and valued diagnosis samples with the mistakes' variants there, and
     ``expected`` with the table's numbers.  The valued sample gets variants only when the
-    table has numbers (else no answer is diagnosed there: :func:`sample_for`)."""
+    table has numbers (else no answer is diagnosed there: :func:`sample_for`); symbols in
+    ``fixed`` (the joints of a transform asked at joint values) keep their value in both."""
     out = []
     mistakes = mistakes_for(question.kind)
     value_map = table.value_map
     scratch: dict[tuple[object, ...], object] = {}  # what both samples' variants derive
-    for fixed in (None, value_map):
-        sample = Sample.random(syms, fixed=fixed)
+    for numbers in (None, value_map):
+        sample = Sample.random(syms, fixed={**(numbers or {}), **(fixed or {})} or None)
         kv = values(expected, sample)
         variants: Mapping[Mistake, Variants] = MappingProxyType({})
-        if fixed is None or fixed:
+        if numbers is None or numbers:
             case = MatrixCase(  # the key's own case: the answer is the key
                 tuple(table.rows),
                 table.convention,
@@ -198,15 +202,55 @@ def _expected(question: Question, robot: Robot) -> tuple[sp.ImmutableMatrix, Sin
     return robot.transform(q.frm, q.to).matrix, None
 
 
+def _exact(x: float) -> sp.Expr:
+    """A joint value as written: a rational multiple of π (``pi/6``, drawn in degrees) or the
+    decimal of its shortest repr (``0.45`` is 9/20).
+
+    >>> _exact(0.5235987755982988), _exact(0.45), _exact(1.2345678)
+    (pi/6, 9/20, 6172839/5000000)
+    """
+    turns = Fraction(x / math.pi).limit_denominator(720)
+    if turns and abs(float(turns) * math.pi - x) <= 1e-12 * max(1.0, abs(x)):
+        return sp.Rational(turns.numerator, turns.denominator) * sp.pi
+    return sp.Rational(repr(x))
+
+
+def _at_pose(question: Question, table: DHTable) -> dict[sp.Symbol, float]:
+    """The joint values of a transform asked at them (``T0_6@q1,…,qn``), by variable."""
+    if question.pose is None:
+        return {}
+    variables = table.variables
+    if len(question.pose) != len(variables):
+        raise DHError(
+            f"question {question.spec!r}: {table.name or 'the robot'} has "
+            f"{len(variables)} joint values ({', '.join(map(str, variables))}), "
+            f"got {len(question.pose)}"
+        )
+    return dict(zip(variables, question.pose, strict=True))
+
+
 def prepare_matrix(
     table: DHTable, question: Question, robot: Robot, names: NameContext
 ) -> tuple[NameContext, MatrixPart]:
     """A matrix key (``T``, ``J``, ``det J``, one entry of them) prepared: its expected
-    matrix and the diagnosis samples; the names are the table's."""
+    matrix and the diagnosis samples; the names are the table's.  A transform asked at
+    joint values (``T0_6@q1,…,qn``) is the matrix there (its lengths as symbols, or with
+    the table's numbers), and its diagnosis samples keep the joints at those values.
+
+    >>> from dhsym.checking.judging.key import Key, prepare
+    >>> part = prepare(Key.load("planar2r", "T0_2[1,3]@pi/2,0")).part
+    >>> part.expected, part.expected_valued
+    (Matrix([[a1 + a2]]), Matrix([[9/5]]))
+    """
     full, sing = _expected(question, robot)
+    pose = _at_pose(question, table)
+    if pose:
+        full = sp.ImmutableMatrix(full.xreplace({v: _exact(x) for v, x in pose.items()}))
     expected = sp.ImmutableMatrix([[full[question.entry]]]) if question.entry else full
     syms = set(table.variables) | set(table.constants)
-    symbolic, valued, expected_valued = _samples(table, question, robot, expected, syms, sing)
+    symbolic, valued, expected_valued = _samples(
+        table, question, robot, expected, syms, sing, fixed=pose
+    )
     common = (expected, expected_valued, _texts(robot, expected), frozenset(syms))
     if sing is not None:
         return names, DeterminantPart(*common, symbolic, valued, sing)

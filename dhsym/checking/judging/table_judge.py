@@ -3,7 +3,7 @@ is wrong and why.
 
 The verdict is :func:`~dhsym.checking.comparing.table_match.compare_tables`' (two tables
 that give the same kinematics); a wrong table is explained by the mistakes room
-(:func:`~dhsym.checking.mistakes.registry.diagnose_table`).
+(:func:`~dhsym.checking.mistakes.registry.diagnose_table`), by one slip or by two, both named.
 
 Examples
 --------
@@ -13,6 +13,12 @@ Examples
 >>> right = "theta | d | a | alpha\ntheta1 | 0 | a1 | 0\ntheta2 | 0 | a2 | 0"
 >>> check_table(pk, read_answer_value(pk.form(), right)).verdict.value
 'correct'
+>>> two = "theta | d | a | alpha\ntheta1 | 0 | -a1 | 0\ntheta2 | 0 | -a2 | 0"
+>>> r = check_table(pk, read_answer_value(pk.form(), two))
+>>> r.message[:59]
+'The table is wrong. Most likely two slips, each wrong sign.'
+>>> [(d.kind, d.rows) for d in r.diagnoses]
+[('wrong_sign', (1,)), ('wrong_sign', (2,))]
 >>> table_cells(pk.key.table)[1]
 ('1', 'theta1', '0', 'a1', '0', 'R')
 """
@@ -113,9 +119,20 @@ def check_table(pk: PreparedKey, answer: TableAnswer) -> CheckResult:
         if match.diverges_at and not match.same_robot
         else ""
     )
-    message = (
-        f"The table is wrong. Most likely: {diagnoses[0].title}. {diagnoses[0].detail}{where}{note}"
-    )
+    if len(diagnoses) == 2:  # two slips (diagnose_table's pairs): both named
+        first, second = diagnoses
+        likely = (
+            f"two slips, {first.title} and {second.title}"
+            if first.kind != second.kind
+            else f"two slips, each {first.title}"
+        )
+        message = f"The table is wrong. Most likely {likely}. {first.detail} {second.detail}"
+        message += f"{where}{note}"
+    else:
+        message = (
+            f"The table is wrong. Most likely: {diagnoses[0].title}. "
+            f"{diagnoses[0].detail}{where}{note}"
+        )
     return CheckResult(
         "table",
         Verdict.INCORRECT,

@@ -31,11 +31,13 @@ from typing import ClassVar, TypeAlias, TypeVar, cast
 import numpy as np
 import sympy as sp
 
+from dhsym.model.table import DHRow, DHTable
+
 from ..comparing.equivalence import close, values
 from ..comparing.table_match import Chain, same_cells
 from ..comparing.verdict import Diagnosis
 from ..reading.limits import check_time
-from ._mistake_base import MatrixCase, Mistake, TableCase, cell_text
+from ._mistake_base import MatrixCase, Mistake, TableCase, TableEdit, cell_text
 
 __all__ = [
     "DroppedTerm",
@@ -241,26 +243,39 @@ class WrongSign(EntryMistake):
         inside = "" if part in sp.Add.make_args(e) else " (inside a bracket)"
         return f"In entry {where} the term {nota.text(part)} has the wrong sign{inside}."
 
-    def explain_table(self, case: TableCase) -> Diagnosis | None:
-        key = case.key
-        for k, row in enumerate(key.rows):
+    def table_edits(
+        self,
+        rows: tuple[DHRow, ...],
+        key: DHTable,
+        within: frozenset[int] | None = None,
+        touching: frozenset[int] | None = None,
+    ) -> Iterator[TableEdit]:
+        """Each cell of ``rows`` with its sign flipped (a joint's entry: its offset), told
+        with the key's value of that cell (a cell another slip wrote: its sign flipped too)."""
+        for k, row in enumerate(rows):
+            if within is not None and k + 1 not in within:
+                continue
+            if touching is not None and k + 1 not in touching:
+                continue
             for name, value in row.params().items():
                 if value == 0 or name == row.variable_field and value == row.variable:
                     continue
                 # name is the joint's own column here: the entry holds the joint variable
                 variable = cast(sp.Expr, row.variable)
                 flipped = -value if name != row.variable_field else 2 * variable - value
-                rows = tuple(
-                    replace(r, **{name: flipped}) if j == k else r for j, r in enumerate(key.rows)
+                new = tuple(
+                    replace(r, **{name: flipped}) if j == k else r for j, r in enumerate(rows)
                 )
-                if same_cells(Chain(rows, key.convention), case.answer, case.values):
-                    shown = cell_text(name, value, key)
-                    return Diagnosis(
-                        self.kind,
-                        self.title,
-                        f"Row {k + 1}: {name} has the wrong sign; it is {shown}.",
-                        rows=(k + 1,),
-                    )
+                if value != getattr(key.rows[k], name):  # another slip wrote this cell
+                    yield new, f"Row {k + 1}: {name} has the wrong sign too.", (k + 1,)
+                    continue
+                shown = cell_text(name, value, key)
+                yield new, f"Row {k + 1}: {name} has the wrong sign; it is {shown}.", (k + 1,)
+
+    def explain_table(self, case: TableCase) -> Diagnosis | None:
+        for rows, detail, where in self.table_edits(tuple(case.key.rows), case.key):
+            if same_cells(Chain(rows, case.key.convention), case.answer, case.values):
+                return Diagnosis(self.kind, self.title, detail, rows=where)
         return None
 
 
@@ -429,11 +444,16 @@ def _trig(e: sp.Basic, memo: dict[sp.Basic, frozenset[sp.Basic]]) -> frozenset[s
 
 
 def explain_pairs(
-    case: MatrixCase, mistakes: tuple[EntryMistake, ...], budget: int = PAIR_BUDGET
+    case: MatrixCase,
+    mistakes: tuple[EntryMistake, ...],
+    budget: int = PAIR_BUDGET,
+    *,
+    same: bool = False,
 ) -> tuple[Diagnosis, ...]:
     """Entries that two catalogued slips of different kinds explain together (a sign and
     sin for cos, a dropped term and a missing length), two diagnoses per pair of kinds,
-    each entry named once.
+    each entry named once; with ``same``, two slips of one kind instead (two terms with
+    the wrong sign, two lengths left out).
 
     The search composes the second slip on each candidate of the first, in the entries
     still wrong (``case.wrong``) only, within ``budget`` candidates shared evenly by the
@@ -454,8 +474,24 @@ def explain_pairs(
     >>> print(r.diagnoses[0].detail)
     In your answer the term a2*C12 has the wrong sign. (One of two slips there; the other:
     sin and cos swapped.)
+
+    Two slips of one kind (``same``): both terms' signs flipped.
+
+    >>> pk = prepare(Key.load("puma560", "T0_6[0,3]"))  # C1*(a2*C2 + a3*C23 - d4*S23) + d3*S1
+    >>> r = check_matrix(pk, read_answer_value(pk.form(), "C1*(a2*C2 - a3*C23 - d4*S23) - d3*S1"),
+    ...                  LIMITS)
+    >>> r.kinds
+    ('wrong_sign', 'wrong_sign')
+    >>> for d in r.diagnoses:
+    ...     print(d.detail)
+    In your answer the term d3*S1 has the wrong sign. (One of two slips of this kind there.)
+    In your answer the term a3*C23 has the wrong sign (inside a bracket). (The second slip of
+    this kind.)
     """
-    kinds = [(a, b) for i, a in enumerate(mistakes) for b in mistakes[i + 1 :]]
+    if same:
+        kinds = [(a, a) for a in mistakes]
+    else:
+        kinds = [(a, b) for i, a in enumerate(mistakes) for b in mistakes[i + 1 :]]
     if not case.wrong or not kinds:
         return ()
     share = max(1, budget // (len(case.wrong) * len(kinds)))
@@ -472,10 +508,15 @@ def explain_pairs(
         a_text = grouped(case, [(p, t) for p, t, _ in hits])
         b_text = grouped(case, [(p, t) for p, _, t in hits])
         ta, tb = by_kind[ka].title, by_kind[kb].title
-        out.append(
-            Diagnosis(ka, ta, f"{a_text} (One of two slips there; the other: {tb}.)", entries)
-        )
-        out.append(Diagnosis(kb, tb, f"{b_text} (The second slip there, with: {ta}.)", entries))
+        if ka == kb:
+            tail_a, tail_b = "One of two slips of this kind there.", "The second slip of this kind."
+        else:
+            tail_a, tail_b = (
+                f"One of two slips there; the other: {tb}.",
+                f"The second slip there, with: {ta}.",
+            )
+        out.append(Diagnosis(ka, ta, f"{a_text} ({tail_a})", entries))
+        out.append(Diagnosis(kb, tb, f"{b_text} ({tail_b})", entries))
     return tuple(out)
 
 

@@ -37,10 +37,20 @@ if TYPE_CHECKING:
     from dhsym.kinematics.singularities import Singularities
     from dhsym.robot import Robot
 
-__all__ = ["MatrixCase", "Mistake", "TableCase", "Variants", "cell_text", "prepare_variants"]
+__all__ = [
+    "MatrixCase",
+    "Mistake",
+    "TableCase",
+    "TableEdit",
+    "Variants",
+    "cell_text",
+    "prepare_variants",
+]
 
 #: a mistake's variants at a sample: (the key's values under the mistake, what the student did)
 Variants: TypeAlias = tuple[tuple[np.ndarray, str], ...]
+#: one slip in a table's rows: (the rows under it, what the student did, the rows it names)
+TableEdit: TypeAlias = tuple[tuple[DHRow, ...], str, tuple[int, ...]]
 
 
 @dataclass(frozen=True, eq=False)
@@ -141,6 +151,20 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
 
     def table_variants(self, case: TableCase) -> Iterator[tuple[Chain, str, tuple[int, ...]]]:
         """(the key table under this mistake, what the student did, rows involved)."""
+        return iter(())
+
+    def table_edits(
+        self,
+        rows: tuple[DHRow, ...],
+        key: DHTable,
+        within: frozenset[int] | None = None,
+        touching: frozenset[int] | None = None,
+    ) -> Iterator[TableEdit]:
+        """``rows`` (the key's, or the key's under another slip) under one slip of this kind,
+        each told against the ``key`` (the search of two slips in one table composes them:
+        :func:`~dhsym.checking.mistakes._row_mistakes.explain_table_pairs`); only those that
+        rewrite no row outside ``within`` and at least one row of ``touching`` (1-based;
+        None: any); none by default."""
         return iter(())
 
     def build_variants(self, case: MatrixCase) -> Variants:

@@ -1,7 +1,8 @@
 """Mistakes in reading the table's rows: each rewrites the rows, then recomputes.
 
 α and a taken from the neighbouring row, a joint offset left out, degrees read as
-radians (or back), and, for tables only, one wrong row named with its wrong cells.
+radians (or back), and, for tables only, one wrong row named with its wrong cells; two of
+these slips in one table, both named (:func:`explain_table_pairs`).
 
 Examples
 --------
@@ -13,20 +14,29 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import replace
-from typing import cast
+from typing import TypeAlias, cast
 
 import numpy as np
 import sympy as sp
 
-from dhsym.model.table import Convention, DHRow, JointType
+from dhsym.model.table import Convention, DHRow, DHTable, JointType
 
 from ..comparing.table_match import Chain, same_cells
 from ..comparing.verdict import Diagnosis
-from ._mistake_base import MatrixCase, Mistake, TableCase, cell_text
+from ..reading.limits import check_time
+from ._entry_mistakes import PAIR_BUDGET
+from ._mistake_base import MatrixCase, Mistake, TableCase, TableEdit, cell_text
 
-__all__ = ["DegreesAsRadians", "IndexShift", "OffsetMissing", "SingleWrongRow", "shifted"]
+__all__ = [
+    "DegreesAsRadians",
+    "IndexShift",
+    "OffsetMissing",
+    "SingleWrongRow",
+    "explain_table_pairs",
+    "shifted",
+]
 
 
 def shifted(rows: tuple[DHRow, ...], step: int, names: tuple[str, ...]) -> tuple[DHRow, ...]:
@@ -67,6 +77,37 @@ class IndexShift(Mistake):
         for rows, detail in self._variants(case.key.rows, case.key.convention):
             yield Chain(rows, case.key.convention), detail, ()
 
+    def table_edits(
+        self,
+        rows: tuple[DHRow, ...],
+        key: DHTable,
+        within: frozenset[int] | None = None,
+        touching: frozenset[int] | None = None,
+    ) -> Iterator[TableEdit]:
+        for new, detail in self._variants(rows, key.convention):
+            yield from _kept(rows, new, detail, within, touching)
+
+
+def _changed(before: tuple[DHRow, ...], after: tuple[DHRow, ...]) -> tuple[int, ...]:
+    """The 1-based rows an edit rewrote."""
+    return tuple(k + 1 for k, (b, a) in enumerate(zip(before, after, strict=True)) if b != a)
+
+
+def _kept(
+    before: tuple[DHRow, ...],
+    after: tuple[DHRow, ...],
+    detail: str,
+    within: frozenset[int] | None,
+    touching: frozenset[int] | None,
+) -> Iterator[TableEdit]:
+    """The edit (rows, detail, the rows it rewrote) unless it rewrites a row outside
+    ``within`` or none of ``touching``."""
+    where = _changed(before, after)
+    if (within is None or within.issuperset(where)) and (
+        touching is None or not touching.isdisjoint(where)
+    ):
+        yield after, detail, where
+
 
 def _no_offset(row: DHRow) -> DHRow:
     if row.variable is None or row.offset == 0:
@@ -82,27 +123,37 @@ class OffsetMissing(Mistake):
     kind, title = "offset_missing", "joint offset missing"
 
     def _variants(
-        self, rows: tuple[DHRow, ...]
+        self,
+        rows: tuple[DHRow, ...],
+        told: tuple[DHRow, ...] | None = None,
+        within: frozenset[int] | None = None,
     ) -> Iterator[tuple[tuple[DHRow, ...], str, tuple[int, ...]]]:
+        """The offsets of ``rows`` left out, all and one by one; the entries are named as
+        ``told`` (the key's rows, when ``rows`` are under another slip) has them; only the
+        variants that rewrite rows in ``within`` (1-based; None: all)."""
+        told = rows if told is None else told
         with_offset = [k for k, r in enumerate(rows) if r.variable is not None and r.offset != 0]
-        if not with_offset:
+        if not with_offset or not any(_inside([k], within) for k in with_offset):
             return
         # rows with a variable are joint rows, whose variable_field is "theta" or "d"
         names = ", ".join(
-            f"row {k + 1}: {sp.sstr(getattr(rows[k], cast(str, rows[k].variable_field)))}"
+            f"row {k + 1}: {sp.sstr(getattr(told[k], cast(str, told[k].variable_field)))}"
             for k in with_offset
         )
-        yield (
-            tuple(_no_offset(r) for r in rows),
-            (f"The joint offset is missing ({names}): the variable alone is not the entry."),
-            tuple(k + 1 for k in with_offset),
-        )
+        if _inside(with_offset, within):
+            yield (
+                tuple(_no_offset(r) for r in rows),
+                (f"The joint offset is missing ({names}): the variable alone is not the entry."),
+                tuple(k + 1 for k in with_offset),
+            )
         for k in with_offset:
+            if not _inside([k], within):
+                continue
             yield (
                 tuple(_no_offset(r) if j == k else r for j, r in enumerate(rows)),
                 (
                     f"The joint offset of row {k + 1} is missing: the entry is "
-                    f"{sp.sstr(getattr(rows[k], cast(str, rows[k].variable_field)))}."
+                    f"{sp.sstr(getattr(told[k], cast(str, told[k].variable_field)))}."
                 ),
                 (k + 1,),
             )
@@ -115,6 +166,21 @@ class OffsetMissing(Mistake):
         for rows, detail, where in self._variants(case.key.rows):
             yield Chain(rows, case.key.convention), detail, where
 
+    def table_edits(
+        self,
+        rows: tuple[DHRow, ...],
+        key: DHTable,
+        within: frozenset[int] | None = None,
+        touching: frozenset[int] | None = None,
+    ) -> Iterator[TableEdit]:
+        for new, detail, _ in self._variants(rows, tuple(key.rows), within):
+            yield from _kept(rows, new, detail, within, touching)
+
+
+def _inside(rows: list[int], within: frozenset[int] | None) -> bool:
+    """True when the 0-based ``rows`` are all in ``within`` (1-based; None: any)."""
+    return within is None or all(k + 1 in within for k in rows)
+
 
 def _angle_terms(expr: sp.Expr, factor: sp.Expr) -> sp.Expr:
     return sp.Add(*[t if t.free_symbols else t * factor for t in sp.Add.make_args(expr)])
@@ -126,34 +192,62 @@ class DegreesAsRadians(Mistake):
     kind, title = "degrees_as_radians", "degrees read as radians"
 
     def _variants(
-        self, rows: tuple[DHRow, ...]
+        self, rows: tuple[DHRow, ...], table: bool = False, within: frozenset[int] | None = None
     ) -> Iterator[tuple[tuple[DHRow, ...], str, tuple[int, ...]]]:
-        """All rows' angles, then one row's (the degrees in one row of a table)."""
-        if not any(_angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0 for r in rows):
+        """All rows' angles, then one row's (the degrees in one row of a table; with
+        ``table``, then the radians written in one row of a table in degrees); only the
+        variants that rewrite rows in ``within`` (1-based; None: all).
+
+        A table's rows are those with a constant angle (a fixed θ or α of any joint); a
+        matrix's, as before, the rows with a joint angle (a prismatic row's α is scaled
+        only with all rows).
+        """
+
+        def constant(r: DHRow) -> bool:  # what the scaling rewrites
+            return bool(_angle_terms(r.alpha, 0) != r.alpha or _angle_terms(r.theta, 0) != r.theta)
+
+        def joint_angle(r: DHRow) -> bool:
+            return bool(_angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0)
+
+        one = constant if table else joint_angle
+        rows_one = [k for k, r in enumerate(rows) if one(r)]
+        if not rows_one:
             return
+        rows_all = [k for k, r in enumerate(rows) if constant(r)]
         both = (
             (180 / sp.pi, "An angle in degrees was used as radians (cos 90 is not cos 90°)."),
             (sp.pi / 180, "An angle in radians was read as degrees (1.57° is not 90°)."),
         )
-        for factor, detail in both:
-            yield tuple(_scaled(r, factor) for r in rows), detail, ()
-        for k, row in enumerate(rows):
-            if _angle_terms(row.alpha, 0) == 0 and _angle_terms(row.theta, 0) == 0:
-                continue
-            factor, detail = both[0]
-            yield (
-                tuple(_scaled(r, factor) if j == k else r for j, r in enumerate(rows)),
-                f"Row {k + 1}: {detail}",
-                (k + 1,),
-            )
+        if _inside(rows_all, within):
+            for factor, detail in both:
+                yield tuple(_scaled(r, factor) for r in rows), detail, ()
+        for factor, detail in both if table else both[:1]:
+            for k in rows_one:
+                if not _inside([k], within):
+                    continue
+                yield (
+                    tuple(_scaled(r, factor) if j == k else r for j, r in enumerate(rows)),
+                    f"Row {k + 1}: {detail}",
+                    (k + 1,),
+                )
 
     def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
         for rows, detail, _ in self._variants(case.rows):
             yield case.chain_values(rows, case.convention), detail
 
     def table_variants(self, case: TableCase) -> Iterator[tuple[Chain, str, tuple[int, ...]]]:
-        for rows, detail, where in self._variants(case.key.rows):
+        for rows, detail, where in self._variants(case.key.rows, table=True):
             yield Chain(rows, case.key.convention), detail, where
+
+    def table_edits(
+        self,
+        rows: tuple[DHRow, ...],
+        key: DHTable,
+        within: frozenset[int] | None = None,
+        touching: frozenset[int] | None = None,
+    ) -> Iterator[TableEdit]:
+        for new, detail, _ in self._variants(rows, table=True, within=within):
+            yield from _kept(rows, new, detail, within, touching)
 
 
 def _scaled(row: DHRow, factor: sp.Expr) -> DHRow:
@@ -176,33 +270,54 @@ class SingleWrongRow(Mistake):
             rows = tuple(ans.rows[k] if j == k else r for j, r in enumerate(key.rows))
             if not same_cells(Chain(rows, key.convention), ans, case.values):
                 continue
-            if same_cells(
-                Chain((key.rows[k],), key.convention),
-                Chain((ans.rows[k],), key.convention),
-                case.values,
-            ):
+            if _same_row(key.rows[k], ans.rows[k], key.convention, case.values):
                 continue
-            wrong = [
-                n
-                for n in ("theta", "d", "a", "alpha")
-                if not same_cells(
-                    _one(key.rows[k], n, key.convention),
-                    _one(ans.rows[k], n, key.convention),
-                    case.values,
-                )
-            ]
-            if ans.rows[k].joint is not key.rows[k].joint:
-                wrong = ["type"]
-            cells = ", ".join(
-                f"{n} should be {cell_text(n, getattr(key.rows[k], n), key)}"
-                if n != "type"
-                else f"the joint is {key.rows[k].joint.name.lower()}"
-                for n in wrong
-            )
+            wrong = _wrong_cells(key.rows[k], ans.rows[k], key.convention, case.values)
             return Diagnosis(
-                self.kind, self.title, f"Row {k + 1} is wrong: {cells}.", rows=(k + 1,)
+                self.kind,
+                self.title,
+                f"Row {k + 1} is wrong: {_cells_text(key, k, wrong)}.",
+                rows=(k + 1,),
             )
         return None
+
+
+def _same_row(
+    right: DHRow, given: DHRow, convention: Convention, values: Mapping[sp.Symbol, sp.Expr]
+) -> bool:
+    """True when two rows have the same cells (a one-row :func:`same_cells`)."""
+    return same_cells(Chain((right,), convention), Chain((given,), convention), values)
+
+
+def _wrong_cells(
+    right: DHRow, given: DHRow, convention: Convention, values: Mapping[sp.Symbol, sp.Expr]
+) -> list[str]:
+    """The cells of ``given`` that differ from ``right`` (``["type"]``: the joint's kind)."""
+    if given.joint is not right.joint:
+        return ["type"]
+    return [
+        n
+        for n in ("theta", "d", "a", "alpha")
+        if not same_cells(_one(right, n, convention), _one(given, n, convention), values)
+    ]
+
+
+def _cells_text(
+    key: DHTable, k: int, wrong: list[str], under: tuple[DHRow, ...] | None = None
+) -> str:
+    """``theta should be θ2, a should be a2``: row ``k``'s wrong cells as the key has them
+    (and, for a cell another slip rewrote in ``under``, as that slip has it)."""
+    out = []
+    for n in wrong:
+        if n == "type":
+            out.append(f"the joint is {key.rows[k].joint.name.lower()}")
+            continue
+        right = getattr(key.rows[k], n)
+        text = f"{n} should be {cell_text(n, right, key)}"
+        if under is not None and getattr(under[k], n) != right:
+            text += f" ({cell_text(n, getattr(under[k], n), key)} with the other slip)"
+        out.append(text)
+    return ", ".join(out)
 
 
 def _one(row: DHRow, name: str, convention: Convention) -> Chain:
@@ -212,3 +327,149 @@ def _one(row: DHRow, name: str, convention: Convention) -> Chain:
     }
     joint = JointType.FIXED
     return Chain((DHRow(joint, keep["theta"], keep["d"], keep["a"], keep["alpha"]),), convention)
+
+
+#: (the kind, its title, what the student did, the rows it names) of one slip of a pair
+_Slip: TypeAlias = tuple[str, str, str, tuple[int, ...]]
+
+
+def explain_table_pairs(
+    case: TableCase,
+    mistakes: tuple[Mistake, ...],
+    budget: int = PAIR_BUDGET,
+) -> tuple[Diagnosis, ...]:
+    """Two catalogued slips that together give the answer's table, both named (a twist's
+    sign flipped in one row and the degrees written as radians, an index shift and an
+    offset left out, two slips of one kind in two rows), or ``()``.
+
+    Each slip of ``mistakes`` (their :meth:`~Mistake.table_edits`) is applied to the key's
+    rows and each slip of the same or a later kind to the result (two of one kind only in
+    different rows); a pair is compared with the answer only when the rows the two slips
+    rewrite cover every row the answer has wrong; the first rewrites one of them (a slip
+    the other undoes is not in the answer), the second only rows the answer has wrong or
+    the first rewrote. Then the second slip is one wrong cell in one row
+    (:class:`SingleWrongRow` with a single cell; not the only cell the first slip rewrote),
+    after a slip of ``mistakes``, or after another wrong cell in another row. At most ``budget``
+    tables are compared with the answer (a count, not a time: the diagnosis does not
+    depend on the machine's load).
+
+    >>> import dhsym
+    >>> from dataclasses import replace
+    >>> from dhsym.checking.mistakes.registry import TABLE_PAIR_MISTAKES
+    >>> key = dhsym.load_table("puma560")
+    >>> rows = list(key.rows)
+    >>> rows[2] = replace(rows[2], alpha=sp.Integer(90))  # -90° flipped, and no ° mark
+    >>> found = explain_table_pairs(TableCase(key, Chain(tuple(rows), key.convention)),
+    ...                             TABLE_PAIR_MISTAKES)
+    >>> [(d.kind, d.rows) for d in found]
+    [('degrees_as_radians', (3,)), ('wrong_sign', (3,))]
+    """
+    key, ans = case.key, case.answer
+    if key.n != ans.n or ans.convention is not key.convention:
+        return ()
+    base, conv = tuple(key.rows), key.convention
+    bad = {k + 1 for k in range(key.n) if not _same_row(base[k], ans.rows[k], conv, case.values)}
+    if not bad:
+        return ()
+    left = budget
+    # each slip is seen in the answer: it rewrites a row the answer has wrong
+    firsts = [
+        (m, [e for e in m.table_edits(base, key, touching=frozenset(bad)) if e[0] != base])
+        for m in mistakes
+    ]
+    for i, (a, edits_a) in enumerate(firsts):
+        for b, _ in firsts[i:]:
+            for rows_a, detail_a, where_a in edits_a:
+                check_time()
+                # the second slip rewrites only rows the answer has wrong or the first
+                # rewrote (it may put one of those back); of the same kind, only other rows
+                within = frozenset(bad - set(where_a) if a is b else bad | set(where_a))
+                need = frozenset(bad - set(where_a))  # the second slip rewrites these
+                if not within:
+                    continue
+                for rows_b, detail_b, where_b in b.table_edits(rows_a, key, within, need or None):
+                    if not bad <= set(where_a) | set(where_b) or rows_b == base:
+                        continue
+                    left -= 1
+                    if left < 0:
+                        return ()
+                    if same_cells(Chain(rows_b, conv), ans, case.values):
+                        return _pair(
+                            (a.kind, a.title, detail_a, where_a),
+                            (b.kind, b.title, detail_b, where_b),
+                        )
+    starts: list[tuple[_Slip | None, tuple[DHRow, ...]]] = [
+        ((m.kind, m.title, e[1], e[2]), e[0]) for m, edits in firsts for e in edits
+    ]
+    starts.append((None, base))  # two rows with one wrong cell each: the least named
+    for first, rows in starts:
+        check_time()
+        left -= 1
+        if left < 0:
+            return ()
+        found = _one_wrong_cell(case, rows, first, bad)
+        if found:
+            return found
+    return ()
+
+
+def _one_wrong_cell(
+    case: TableCase, rows: tuple[DHRow, ...], first: _Slip | None, bad: set[int]
+) -> tuple[Diagnosis, ...]:
+    """The pair of ``first`` (None: one wrong cell in another row) and one wrong cell in
+    one row, when it gives the answer from ``rows`` (the key's rows under ``first``;
+    ``bad``: the 1-based rows where the answer differs from the key)."""
+    key, ans, conv = case.key, case.answer, case.key.convention
+    touched = set(first[3]) if first is not None else set()
+    differ = [
+        k
+        for k in range(key.n)
+        if (
+            k + 1 in bad
+            if k + 1 not in touched
+            else not _same_row(rows[k], ans.rows[k], conv, case.values)
+        )
+    ]
+    if len(differ) != (1 if first is not None else 2):
+        return ()
+    cells = [_wrong_cells(rows[k], ans.rows[k], conv, case.values) for k in differ]
+    if any(len(c) != 1 for c in cells):
+        return ()
+    if any(c == ["type"] for c in cells):
+        return ()
+    slipped = {
+        (k, n)
+        for k in range(key.n)
+        for n in ("theta", "d", "a", "alpha")
+        if getattr(rows[k], n) != getattr(key.rows[k], n)
+    }
+    if first is not None and slipped <= {(k, c[0]) for k, c in zip(differ, cells, strict=True)}:
+        return ()  # the wrong cell overwrites all the first slip wrote: that slip is not there
+    fixed = tuple(ans.rows[j] if j in differ else r for j, r in enumerate(rows))
+    if not same_cells(Chain(fixed, conv), ans, case.values):
+        return ()
+    title = SingleWrongRow.title
+    slips = [
+        (
+            SingleWrongRow.kind,
+            title,
+            f"Row {k + 1} is wrong: {_cells_text(key, k, c, rows)}.",
+            (k + 1,),
+        )
+        for k, c in zip(differ, cells, strict=True)
+    ]
+    return _pair(first if first is not None else slips.pop(0), slips[0])
+
+
+def _pair(a: _Slip, b: _Slip) -> tuple[Diagnosis, Diagnosis]:
+    """The two diagnoses of a pair of slips, each naming the other."""
+    if a[0] == b[0]:
+        tail_a = " (One of two slips of this kind in this table.)"
+        tail_b = " (The second slip of this kind in this table.)"
+    else:
+        tail_a = f" (One of two slips in this table; the other: {b[1]}.)"
+        tail_b = f" (The second slip in this table, with: {a[1]}.)"
+    return (
+        Diagnosis(a[0], a[1], a[2] + tail_a, rows=a[3]),
+        Diagnosis(b[0], b[1], b[2] + tail_b, rows=b[3]),
+    )

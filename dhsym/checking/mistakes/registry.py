@@ -85,7 +85,13 @@ from ._mistake_base import MatrixCase, Mistake, TableCase, prepare_variants
 
 # Variants is a type alias: re-exported here, kept out of __all__ (autodoc cannot format it)
 from ._mistake_base import Variants as Variants
-from ._row_mistakes import DegreesAsRadians, IndexShift, OffsetMissing, SingleWrongRow
+from ._row_mistakes import (
+    DegreesAsRadians,
+    IndexShift,
+    OffsetMissing,
+    SingleWrongRow,
+    explain_table_pairs,
+)
 from ._screw_mistakes import SCREW_MISTAKES, ScrewMistake, screw_variants
 from .trajectory_mistakes import TRAJECTORY_MISTAKES, TrajectoryMistake
 
@@ -125,6 +131,7 @@ __all__ = [
     "SCREW_MISTAKES",
     "ScrewMistake",
     "TABLE_MISTAKES",
+    "TABLE_PAIR_MISTAKES",
     "TableCase",
     "TRAJECTORY_MISTAKES",
     "TrajectoryMistake",
@@ -163,6 +170,14 @@ TABLE_MISTAKES: tuple[Mistake, ...] = (
     WrongSign(),
     SingleWrongRow(),
 )
+#: the table mistakes composed in pairs (two slips in one table; one wrong row is tried as
+#: the second slip after these, :func:`diagnose_table`)
+TABLE_PAIR_MISTAKES: tuple[Mistake, ...] = (
+    IndexShift(),
+    OffsetMissing(),
+    DegreesAsRadians(),
+    WrongSign(),
+)
 
 #: the mistakes tried on a wrong matrix answer, by kind of question (the others: the
 #: matrix ones, :data:`MATRIX_MISTAKES`)
@@ -191,7 +206,8 @@ def diagnose_matrix(
     """Explain a wrong matrix: one mistake for all wrong entries, else entry by entry,
     each mistake named once with the entries it explains, then two slips of the entries'
     kinds together (:func:`~dhsym.checking.mistakes._entry_mistakes.explain_pairs`, within
-    :data:`PAIR_BUDGET` candidates) in the entries still unexplained.
+    :data:`PAIR_BUDGET` candidates) in the entries still unexplained: of two kinds, then
+    two of one kind (within another :data:`PAIR_BUDGET`).
 
     ``mistakes`` are the kinds of the question (``^iT_j``: :data:`MATRIX_MISTAKES`;
     ``J``: :data:`JACOBIAN_MISTAKES`; ``det J``: :data:`DET_MISTAKES`).
@@ -212,8 +228,10 @@ def diagnose_matrix(
             found.append(d)
             done = set(d.entries)
             left = [p for p in left if case.label(p) not in done]
-    if left:  # two slips in one place: pairs of the entries' kinds, composed
-        pairs = explain_pairs(replace(case, wrong=tuple(left)), ENTRY_MISTAKES)
+    for same in (False, True):  # two slips in one place: of two kinds, then of one kind
+        if not left:
+            break
+        pairs = explain_pairs(replace(case, wrong=tuple(left)), ENTRY_MISTAKES, same=same)
         found.extend(pairs)
         done = {e for d in pairs for e in d.entries}
         left = [p for p in left if case.label(p) not in done]
@@ -235,9 +253,30 @@ def diagnose_matrix(
 
 
 def diagnose_table(case: TableCase) -> tuple[Diagnosis, ...]:
-    """Explain a wrong table with the first table mistake that reproduces it."""
+    """Explain a wrong table with the first table mistake that reproduces it, else with two
+    slips that do (:func:`~dhsym.checking.mistakes._row_mistakes.explain_table_pairs`, two
+    diagnoses naming each other, within :data:`PAIR_BUDGET` tables compared):
+    two named slips of :data:`TABLE_PAIR_MISTAKES`, then one of them with one wrong cell,
+    or two rows with one wrong cell each, are tried before the catch-all of one wrong row
+    (a twist's sign flipped and written in radians in one row is both, not just a wrong
+    row).
+
+    >>> import dhsym
+    >>> import sympy as sp
+    >>> from dhsym.checking.comparing.table_match import Chain
+    >>> key = dhsym.load_table("puma560")
+    >>> rows = list(key.rows)
+    >>> rows[1], rows[4] = replace(rows[1], a=-rows[1].a), replace(rows[4], alpha=sp.pi / 2)
+    >>> answer = Chain(tuple(rows), key.convention)
+    >>> [(d.kind, d.rows) for d in diagnose_table(TableCase(key, answer))]
+    [('wrong_sign', (2,)), ('wrong_sign', (5,))]
+    """
     for m in TABLE_MISTAKES:
         check_time()
+        if isinstance(m, SingleWrongRow):  # the catch-all of one row: two named slips first
+            pairs = explain_table_pairs(case, TABLE_PAIR_MISTAKES)
+            if pairs:
+                return pairs
         d = m.explain_table(case)
         if d is not None:
             return (d,)

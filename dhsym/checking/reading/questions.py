@@ -1,11 +1,13 @@
 """What is asked: a DH table, a transform ``^iT_j``, a link matrix ``A_k`` or one entry; the
 Jacobian ``J`` or one entry ``J[r,c]``, its determinant ``det J``, or the inverse kinematics
 ``ik`` (symbolic in the pose; ``ik all`` asks for every branch, ``ik@q1,…,qn`` for the numbers
-of the pose that these joint values reach); the dynamics ``M``, ``M[i,j]``, ``g``, ``C``, Spong's
-Christoffel symbol ``c_ijk`` (1-based, ``c_112``), ``tau`` (symbolic in q, q̇, q̈) and the
-statics ``tau_static`` (τ = Jᵀ F); a robot as a product of exponentials (``kind`` ``screw``,
-:mod:`~dhsym.checking.reading.screw_questions`): the screw axes ``S``, ``S3``, ``B``, the home
-configuration ``Mhome``, ``Js``, ``Jb`` and ``T(theta)``;
+of the pose that these joint values reach); a transform at given joint values (``T0_6@q1,…,qn``,
+``fk@q1,…,qn`` for ``^0T_n``: the matrix in numbers, graded to the key's digits); the dynamics
+``M``, ``M[i,j]``, ``g``, ``C``, Spong's Christoffel symbol ``c_ijk`` (1-based, ``c_112``),
+``tau`` (symbolic in q, q̇, q̈) and the statics ``tau_static`` (τ = Jᵀ F); a robot as a
+product of exponentials (``kind`` ``screw``, :mod:`~dhsym.checking.reading.screw_questions`):
+the screw axes ``S``, ``S3``, ``B``, the home configuration ``Mhome``, ``Js``, ``Jb`` and
+``T(theta)``;
 of a time profile (kind ``trajectory``, its key a profile
 such as ``cubic(q0=0, qf=1, tf=2)``): a coefficient ``traj a<k>``, the blend time ``tb``,
 the peak velocity ``vmax``, the position at a time ``q@<t>``, the gains ``kp`` and ``kd``.
@@ -20,6 +22,8 @@ Question(spec='T0_6[0,3]', kind='entry', frm=0, to=6, entry=(0, 3), pose=None, e
 '{}^{0}T_{2}'
 >>> [Question.parse(s, 2).label for s in ("J", "J[1,0]", "det(J)", "IK", "ik all", "ik@pi/2,0")]
 ['J', 'J[1,0]', 'det J', 'ik', 'ik all', 'ik@1.5707963267949,0']
+>>> [Question.parse(s, 2).label for s in ("T0_2@pi/2,0", "fk@ 0.5, 1", "T0_2[0,3]@0,0")]
+['T0_2@1.5707963267949,0', 'T0_2@0.5,1', 'T0_2[0,3]@0,0']
 >>> [Question.parse(s, 2).label for s in ("M", "M[0,1]", "g", "C", "c_{112}", "τ", "tau_s")]
 ['M', 'M[0,1]', 'g', 'C', 'c_112', 'tau', 'tau_static']
 >>> [Question.parse(s, 2).label for s in ("S", "S_2", "B", "Mhome", "J_s", "Jb[5,1]", "T(θ)")]
@@ -49,6 +53,8 @@ _TRANSFORM = re.compile(  # frame numbers have at most 4 digits (no 5000-digit i
 _JACOBIAN = re.compile(r"^(?:J|J0|J_0|jacobian)(?:\[(?P<r>\d+),(?P<c>\d+)\])?$", re.IGNORECASE)
 _DET = re.compile(r"^det(?:J|\(J\)|_J|\{J\})$", re.IGNORECASE)
 _IK = re.compile(r"^(?:ik|inverse)(?P<all>:?all|\*)?(?:@(?P<q>.+))?$", re.IGNORECASE)
+#: a transform at joint values: ``T0_6@q1,…,qn`` (``fk@…`` is ``^0T_n`` there)
+_AT = re.compile(r"^(?P<head>[^@]+)@(?P<q>.+)$")
 _DYNAMICS = re.compile(
     r"^(?P<part>M|C|g|tau|τ)(?:\[(?P<r>\d{1,2}),(?P<c>\d{1,2})\])?$"
     r"|^c_?\{?(?P<i>\d),?(?P<j>\d),?(?P<k>\d)\}?$"
@@ -62,6 +68,7 @@ _TRAJECTORY = re.compile(
 )
 _KINDS = (
     "table, T<i>_<j>, A<k>, arm, px/py/pz, optionally with [row,col] (0-based), e.g. T0_6[0,3]; "
+    "T0_6@q1,...,qn or fk@q1,...,qn (the matrix at these joint values); "
     "J, J[row,col], det J, ik, ik all, ik@q1,...,qn; M, M[row,col], g, C, c_ijk, tau, tau_static; "
     "S, S<i>, B, B<i>, Mhome, Js, Jb, T(theta); "
     "of a profile: traj a<k>, tb, vmax, q@<t>, kp, kd"
@@ -76,6 +83,8 @@ class Question:
 
     For ``ik``, ``pose`` holds the joint values whose pose is to be solved (None: a
     symbolic answer in the pose ``n s a p``) and ``every`` asks for every branch.
+    For ``matrix`` and ``entry``, ``pose`` holds the joint values the transform is asked at
+    (``T0_6@q1,…,qn``; None: symbolic in the joint variables).
     For ``dynamics``, ``part`` is ``M``, ``g``, ``C``, ``tau``, ``tau_static`` or ``c`` (the
     Christoffel symbol ``c_ijk``, its 1-based ``index``); ``entry`` is 0-based.
     For ``screw``, ``part`` is ``S``, ``B``, ``Mhome``, ``Js``, ``Jb`` or ``T`` and ``column``
@@ -98,7 +107,8 @@ class Question:
     @classmethod
     def parse(cls, spec: str, n: int) -> Question:
         """Read ``table``, ``T0_2``, ``T02``, ``^0T_2``, ``A3``, ``arm``, ``px``, ``…[r,c]``,
-        ``J``, ``J[r,c]``, ``det J``, ``ik``, ``ik all``, ``ik@q1,…,qn``, ``M``, ``M[r,c]``,
+        any of these ``@q1,…,qn`` (``fk@q1,…,qn``), ``J``, ``J[r,c]``, ``det J``, ``ik``,
+        ``ik all``, ``ik@q1,…,qn``, ``M``, ``M[r,c]``,
         ``g``, ``C``, ``c_ijk``, ``tau``, ``tau_static``; ``traj a<k>``, ``tb``, ``vmax``,
         ``q@<t>``, ``kp`` and ``kd`` (``n`` does not matter for these)."""
         text = str(spec).strip()
@@ -143,6 +153,18 @@ class Question:
             if m["q"] is not None:
                 pose = tuple(parse_number_list(m["q"], f"question {text!r}"))
             return cls(text, "ik", 0, n, None, pose, m["all"] is not None)
+        at = _AT.match(compact)
+        if at is not None:  # a transform at joint values
+            head = at["head"]
+            if head.lower() == "fk":
+                head = "T0_n"
+            inner = cls.parse(head, n)
+            if inner.kind not in ("matrix", "entry") or inner.pose is not None:
+                raise DHError(
+                    f"question {text!r}: joint values follow a transform, e.g. T0_{n}@q1,...,qn"
+                )
+            pose = tuple(parse_number_list(at["q"], f"question {text!r}"))
+            return cls(text, inner.kind, inner.frm, inner.to, inner.entry, pose)
         m = _TRANSFORM.match(compact)
         if m is None:
             raise DHError(f"unknown question {text!r}: expected {_KINDS}")
@@ -167,7 +189,8 @@ class Question:
 
     @property
     def label(self) -> str:
-        """Canonical text: ``table``, ``T0_2``, ``T0_6[0,3]``, ``J[1,0]``, ``det J``, ``ik``."""
+        """Canonical text: ``table``, ``T0_2``, ``T0_6[0,3]``, ``T0_2@0.5,1``, ``J[1,0]``,
+        ``det J``, ``ik``."""
         if self.kind == "table":
             return "table"
         if self.kind == "det":
@@ -184,7 +207,8 @@ class Question:
         if self.kind == "screw":
             return screw_label(self.part, self.entry, self.column)
         base = "J" if self.kind == "jacobian" else f"T{self.frm}_{self.to}"
-        return f"{base}[{self.entry[0]},{self.entry[1]}]" if self.entry else base
+        at = "@" + ",".join(f"{x:.15g}" for x in self.pose) if self.pose is not None else ""
+        return (f"{base}[{self.entry[0]},{self.entry[1]}]" if self.entry else base) + at
 
     @property
     def label_latex(self) -> str:
@@ -202,9 +226,10 @@ class Question:
         if self.kind == "trajectory":
             return _trajectory_latex(self.part)
         base = "J" if self.kind == "jacobian" else f"{{}}^{{{self.frm}}}T_{{{self.to}}}"
+        at = "" if self.pose is None else r" \text{ at the given joint values}"
         if self.entry:
-            return f"{base}[{self.entry[0] + 1},{self.entry[1] + 1}]"
-        return base
+            return f"{base}[{self.entry[0] + 1},{self.entry[1] + 1}]{at}"
+        return base + at
 
 
 def _trajectory_part(m: re.Match[str]) -> str:

@@ -121,3 +121,25 @@ def test_an_unexplained_entry_stays_unexplained(px):
     r = check_answer(px, "C1*(a2*S2 - a3*C23 - d4*S23) + 7*d3*S1")
     assert r.verdict is Verdict.INCORRECT
     assert r.kinds == ("unexplained",)
+
+
+@pytest.mark.parametrize(
+    ("answer", "kind", "words"),
+    [
+        # two terms with the wrong sign (one inside the bracket)
+        ("C1*(a2*C2 - a3*C23 - d4*S23) - d3*S1", "wrong_sign", ("a3*C23", "d3*S1")),
+        # two lengths left out
+        ("C1*(C2 + a3*C23 - S23) + d3*S1", "missing_length", ("a2", "d4")),
+        # two terms left out
+        ("C1*a2*C2 + d3*S1", "dropped_term", ("a3*C23", "-d4*S23")),
+    ],
+)
+def test_two_slips_of_one_kind_in_one_entry_are_both_named(px, answer, kind, words):
+    r = check_answer(px, answer)
+    assert r.verdict is Verdict.INCORRECT
+    assert r.kinds == (kind, kind), r.diagnoses
+    details = [d.detail for d in r.diagnoses]
+    assert "of this kind" in details[0] and "of this kind" in details[1]
+    for word in words:
+        assert word in " ".join(details), (word, details)
+    assert all(d.entries == ((1, 4),) for d in r.diagnoses)
