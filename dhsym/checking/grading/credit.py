@@ -183,7 +183,7 @@ class Credit:
         if len(result.entries) > 1:
             right = sum(e.correct for e in result.entries)
             return right / len(result.entries), f"{right} of {len(result.entries)} entries right"
-        total = len(result.expected_table)
+        total = len(result.expected_table) - 1  # the first line of the table is its header
         wrong = {r for d in result.diagnoses for r in d.rows}
         if total > 1 and wrong and all(d.rows for d in result.diagnoses):
             right = total - len(wrong)

@@ -134,11 +134,6 @@ def test_the_search_is_bounded_by_a_count():
     assert explain_table_pairs(TableCase(PUMA, PUMA), TABLE_PAIR_MISTAKES) == ()
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="grading/credit.py counts the header of expected_table as a row (5 of 7); "
-    "owned by the grading helper, reported",
-)
 def test_credit_by_rows_of_a_table_with_two_slips():
     r = puma(r2="| 2 | θ2 | 0 | -a2 | 0 |", r4="| 4 | θ4 | 0.3 | 0 | 90° |")
     assert Credit("entries").award(6.0, r) == (
