@@ -38,6 +38,7 @@ __all__ = [
     "md_code",
     "check_text",
     "md_math",
+    "render_chart",
     "render_check",
     "render_feedback",
     "render_question_text",
@@ -195,6 +196,12 @@ def check_text(result: CheckResult) -> str:
         if table:
             lines += ["", title, *("  " + t for t in text_table(table[0], table[1:]))]
     return "\n".join(clean_text(line) for line in lines) + "\n"
+
+
+def render_chart(data: Mapping[str, object]) -> str:
+    """The class summary's chart (SVG, autoescaped as HTML is) from
+    :func:`~dhsym.checking.grading.report.chart_data`."""
+    return _environment("html").get_template("gradebook_chart.svg.j2").render(**data)
 
 
 def render_summary(data: Mapping[str, object]) -> str:
