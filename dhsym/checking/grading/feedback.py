@@ -37,6 +37,7 @@ __all__ = [
     "QuestionFeedback",
     "md_code",
     "check_text",
+    "load_feedback_templates",
     "md_math",
     "render_chart",
     "render_check",
@@ -100,6 +101,18 @@ _FILTERS = (
     ("points", _points),
     ("mathml", _mathml),
 )
+
+
+def load_feedback_templates() -> None:
+    """Compile the feedback pages' templates and import the MathML converter now: a grading
+    run's template process does it once, and the sandbox children it forks render their
+    first page without compiling or importing anything.
+
+    >>> load_feedback_templates()
+    """
+    for fmt in ("md", "html"):
+        _environment(fmt).get_template(f"feedback.{fmt}.j2")
+    _mathml("x")
 
 
 def _environment(fmt: str) -> jinja2.Environment:
