@@ -26,7 +26,7 @@
 # %%
 from pathlib import Path
 import tempfile
-from IPython.display import Markdown, Image, display
+from IPython.display import SVG, Markdown, display
 
 from dhsym.checking import Key, check_answer, grade, render_check
 
@@ -98,7 +98,7 @@ print(report.students, "students, mean", round(report.mean, 2), "of", 10)
 print((report_dir / "gradebook.csv").read_text())
 
 # %%
-display(Image(filename=str(report_dir / "summary.png")))
+display(SVG(filename=str(report_dir / "summary.svg")))
 
 # %% [markdown]
 # Each student gets a feedback page (Markdown and HTML): the verdict, the diagnosis,

@@ -550,7 +550,9 @@ def _multiply(
         if e.value.is_zero:  # an exact zero; no sympify per call
             out.append(out[-1])
             continue
-        v = np.broadcast_to(np.asarray(v, dtype=float), (size,))  # a constant repeated
+        v = np.asarray(v, dtype=float)
+        if v.shape != (size,):  # a constant repeated (np.broadcast_to costs more)
+            v = np.full(size, v)
         factor = elementary_stack(e.kind, e.axis, v)
         out.append(out[-1] @ factor)
     return np.stack(out, axis=1) if prefixes else np.array(out[-1])

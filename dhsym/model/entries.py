@@ -34,6 +34,8 @@ def as_expr(value: object, *, field: str | None = None, row: int | None = None) 
     if isinstance(value, bool) or value is None:
         raise TableError(f"expected a number or expression, got {value!r}", row=row, field=field)
     if isinstance(value, sp.Basic):
+        if _plainly_finite_real(value):  # the checks below pass; they cost more than the entry
+            return value
         expr = value
     elif isinstance(value, int):
         if abs(value) >= 10**DEFAULT_LIMITS.max_digits:  # before any str(value)
@@ -60,6 +62,28 @@ def as_expr(value: object, *, field: str | None = None, row: int | None = None) 
         raise TableError("non-finite number", row=row, field=field)
     check_real(expr, row=row, field=field, text=isinstance(value, str))
     return expr
+
+
+def _plainly_finite_real(expr: sp.Basic) -> bool:
+    """True for the commonest entries, which :func:`as_expr` accepts unchanged: a symbol, a
+    rational far inside a double's range, a named real constant (``pi``, ``E``) or such a
+    rational times one (``pi/2``).
+
+    >>> [_plainly_finite_real(e) for e in (sp.Symbol("q1"), sp.Integer(0), -sp.pi / 2)]
+    [True, True, True]
+    >>> [_plainly_finite_real(e) for e in (sp.Integer(10) ** 309, sp.I, 2 * sp.I, sp.oo)]
+    [False, False, False, False]
+    """
+    if expr.is_Symbol:
+        return True
+    if expr.is_Mul and len(expr.args) == 2 and expr.args[1].is_NumberSymbol:
+        expr = expr.args[0]
+    elif expr.is_NumberSymbol:
+        return True
+    return bool(expr.is_Rational) and abs(expr.p) < _SMALL and abs(expr.q) < _SMALL
+
+
+_SMALL = 10**300
 
 
 #: The largest magnitude a double holds: beyond it a value is ``inf`` in any exported code.

@@ -232,12 +232,18 @@ def escape_markdown(text: object) -> str:
     return " ".join(_MD_SPECIAL.sub(r"\\\1", s).splitlines())
 
 
+_ASCII_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f]")
+
+
 def clean_text(text: object) -> str:
     """Drop control and format characters (terminal escapes, bidi overrides).
 
     >>> clean_text("ok\x1b[31m red\u202e")
     'ok[31m red'
     """
+    text = str(text)
+    if text.isascii():  # the ASCII control characters, the only Cc or Cf ones in ASCII
+        return _ASCII_CONTROL.sub("", text)
     return "".join(
-        ch for ch in str(text) if ch in "\n\t" or unicodedata.category(ch) not in ("Cc", "Cf")
+        ch for ch in text if ch in "\n\t" or unicodedata.category(ch) not in ("Cc", "Cf")
     )

@@ -243,7 +243,7 @@ def _magnitude(expr: sp.Expr, sample: Sample) -> np.ndarray:
         return out
     if expr.is_Pow and expr.exp.is_Integer and expr.exp > 0:
         return _magnitude(expr.base, sample) ** int(expr.exp)
-    size: np.ndarray = np.abs(np.broadcast_to(values(expr, sample), (sample.size,)))
+    size: np.ndarray = np.abs(values(expr, sample))  # an expression's: (size,) already
     return size
 
 

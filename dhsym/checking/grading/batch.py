@@ -7,7 +7,7 @@ or a CSV file (columns ``student``, optional ``name``, one per question id); the
 rules for answer files and duplicate ids are in :mod:`dhsym.checking.grading.submissions`.
 
 The report folder gets ``gradebook.csv``, ``feedback/<student>.md|.html``,
-``summary.html`` with ``summary.png``, and ``.dhsym-grading-cache.json`` (rewritten
+``summary.html`` with its chart ``summary.svg``, and ``.dhsym-grading-cache.json`` (rewritten
 atomically) so that a rerun skips what is already graded.  Nothing is written
 outside it: student ids become safe file names.
 
@@ -47,7 +47,7 @@ from ..reading.limits import AnswerLimits, AnswerTimeout, check_seconds, time_li
 from .assignment import Assignment, AssignmentQuestion
 from .assignment_tests import run_assignment_tests
 from .backends import Progress, dask_address, run_dask, run_pool, run_serial
-from .feedback import QuestionFeedback, render_feedback
+from .feedback import QuestionFeedback, load_feedback_templates, render_feedback
 from .records import GradeRecord
 from .report import write_gradebook, write_summary
 from .report_files import CACHE_NAME, inside, safe_name, write_atomic
@@ -62,6 +62,7 @@ __all__ = [
     "grade_submission",
     "prepare_keys",
     "shared_keys",
+    "warm_worker",
 ]
 
 _MAX_CACHE = 500_000_000
@@ -149,6 +150,14 @@ def prepare_keys(keys: tuple[AnyKey, ...], prepared: PreparedKeys) -> None:
             prepared.get(k)
         except Exception:  # noqa: BLE001, S112 - the job that needs the key says why
             continue
+
+
+def warm_worker(keys: tuple[AnyKey, ...], prepared: PreparedKeys) -> None:
+    """What a grading run does once before its sandbox children fork: prepare ``keys``
+    (:func:`prepare_keys`) and compile the feedback pages' templates
+    (:func:`~dhsym.checking.grading.feedback.load_feedback_templates`)."""
+    prepare_keys(keys, prepared)
+    load_feedback_templates()
 
 
 def _wrong_parts(result: CheckResult) -> tuple[tuple[str, str], ...]:
@@ -451,18 +460,23 @@ def grade(
     if dask is not None:
         runner = run_dask(grade_submission, jobs, dask, deadline, state=PreparedKeys)
     elif workers > 0:
-        warm = partial(prepare_keys, shared_keys(j[0] for j in jobs))
+        warm = partial(warm_worker, shared_keys(j[0] for j in jobs))
         runner = run_pool(
             grade_submission, jobs, workers, deadline, state=PreparedKeys, warm=warm, local=keys
         )
     else:
         runner = run_serial(grade_submission, jobs, state=PreparedKeys)
     bar = Progress(len(jobs), enabled=progress)
-    last_save = time.monotonic()
+    # each final record turned into JSON data once; the cache is written again after 5 s
+    # or 20 times as long as the last write took, whichever is later (a large class's
+    # cache is not rewritten all the time)
+    final = {k: r.to_dict() for k, r in records.items() if _final(r, a)}
+    last_save, pause = time.monotonic(), 5.0
 
-    def save() -> None:
-        final = {k: r.to_dict() for k, r in records.items() if _final(r, a)}
+    def save() -> float:
+        start = time.monotonic()
         write_atomic(cache_path, json.dumps({"assignment": run_fp, "records": final}))
+        return max(5.0, 20 * (time.monotonic() - start))
 
     for s in subs:  # the pages of submissions that could not be read at all
         if s.error:
@@ -483,9 +497,11 @@ def grade(
                 record = replace(record, fingerprint=sub.fingerprint(own.get(sub.uid, a), run_fp))
             _write_pages(root, files[sub.uid], record.pages)
             records[sub.uid] = replace(record, pages={})
+            if _final(records[sub.uid], a):
+                final[sub.uid] = records[sub.uid].to_dict()
             bar.step()
-            if time.monotonic() - last_save > 5.0:
-                save()
+            if time.monotonic() - last_save > pause:
+                pause = save()
                 last_save = time.monotonic()
     finally:
         save()

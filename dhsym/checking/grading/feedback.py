@@ -37,7 +37,9 @@ __all__ = [
     "QuestionFeedback",
     "md_code",
     "check_text",
+    "load_feedback_templates",
     "md_math",
+    "render_chart",
     "render_check",
     "render_feedback",
     "render_question_text",
@@ -99,6 +101,18 @@ _FILTERS = (
     ("points", _points),
     ("mathml", _mathml),
 )
+
+
+def load_feedback_templates() -> None:
+    """Compile the feedback pages' templates and import the MathML converter now: a grading
+    run's template process does it once, and the sandbox children it forks render their
+    first page without compiling or importing anything.
+
+    >>> load_feedback_templates()
+    """
+    for fmt in ("md", "html"):
+        _environment(fmt).get_template(f"feedback.{fmt}.j2")
+    _mathml("x")
 
 
 def _environment(fmt: str) -> jinja2.Environment:
@@ -195,6 +209,12 @@ def check_text(result: CheckResult) -> str:
         if table:
             lines += ["", title, *("  " + t for t in text_table(table[0], table[1:]))]
     return "\n".join(clean_text(line) for line in lines) + "\n"
+
+
+def render_chart(data: Mapping[str, object]) -> str:
+    """The class summary's chart (SVG, autoescaped as HTML is) from
+    :func:`~dhsym.checking.grading.report.chart_data`."""
+    return _environment("html").get_template("gradebook_chart.svg.j2").render(**data)
 
 
 def render_summary(data: Mapping[str, object]) -> str:

@@ -2,7 +2,8 @@
 
 Files are written through :mod:`~dhsym.checking.grading.report_files` (paths that stay
 inside the folder, atomic writes, CSV cells that a spreadsheet never runs). The summary
-page (HTML, from a template) shows a chart of the scores and of the mistake kinds, and
+page (HTML, from a template) shows a chart of the scores and of the mistake kinds (an SVG
+from its own template, :func:`chart_data`), and
 per question its difficulty (the share of the class that got it right) and the most
 common wrong entries, each with one example answer: what to re-teach, in one page.
 """
@@ -18,7 +19,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .feedback import render_summary
+from .feedback import render_chart, render_summary
 from .report_files import csv_cell, inside, write_atomic
 
 if TYPE_CHECKING:
@@ -26,6 +27,7 @@ if TYPE_CHECKING:
     from .records import GradeRecord
 
 __all__ = [
+    "chart_data",
     "question_picture",
     "write_gradebook",
     "write_summary",
@@ -70,31 +72,99 @@ def write_gradebook(
     return path
 
 
-def _chart(root: Path, a: Assignment, records: Sequence[GradeRecord], kinds: Counter[str]) -> Path:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-    from matplotlib.ticker import MaxNLocator
+def _step(top: int, most: int = 8) -> int:
+    """The step of whole-number ticks from 0 to ``top``: 1, 2, 5, 10, 20, 50 … with at most
+    ``most`` steps.
 
-    fig = Figure(figsize=(10, 4))
-    FigureCanvasAgg(fig)
-    ax1, ax2 = fig.subplots(1, 2)
-    scores = [r.score for r in records]
+    >>> _step(3), _step(9), _step(40), _step(41), _step(0)
+    (1, 2, 5, 10, 1)
+    """
+    scale = 1
+    while True:
+        for step in (scale, 2 * scale, 5 * scale):
+            if top <= step * most:
+                return step
+        scale *= 10
+
+
+def _ticks(top: float, whole: bool = True) -> list[int]:
+    """Whole-number ticks from 0 to at least ``top`` (``whole``: the last at or above it)."""
+    step = _step(math.ceil(top))
+    end = step * max(1, math.ceil(top / step)) if whole else top
+    return list(range(0, int(end) + 1, step))
+
+
+#: the chart's size and its two panels' plot areas, in SVG units (pixels): left, top, right,
+#: bottom; the mistake kinds' names are written left of the second one
+_CHART = (1000, 400)
+_SCORES_BOX = (70.0, 40.0, 470.0, 340.0)
+_KINDS_BOX = (720.0, 40.0, 970.0, 340.0)
+
+
+def chart_data(
+    a: Assignment, records: Sequence[GradeRecord], kinds: Counter[str]
+) -> dict[str, Any]:
+    """The summary's chart as numbers placed on the page: a histogram of the scores (up to
+    20 bins from 0 to the maximum score) and bars of the 12 most common mistake kinds,
+    each axis with whole-number ticks (counts of students and answers).
+
+    >>> from types import SimpleNamespace as NS
+    >>> recs = [NS(score=s) for s in (0, 1, 2, 2)]
+    >>> c = chart_data(NS(max_score=2.0), recs, Counter({"wrong_sign": 3, "transposed": 1}))
+    >>> [b["count"] for b in c["bins"]], [t["label"] for t in c["bins_y"]]
+    ([1, 3], ['0', '1', '2', '3'])
+    >>> [(b["label"], b["count"]) for b in c["bars"]], [t["label"] for t in c["bars_x"]]
+    ([('wrong_sign', 3), ('transposed', 1)], ['0', '1', '2', '3'])
+    """
     top = max(a.max_score, 1.0)
-    bins = min(20, max(1, int(math.ceil(top))))
-    ax1.hist(scores, bins=bins, range=(0, top), color="#4a7bb7", edgecolor="white")
-    ax1.set_title("Scores")
-    ax1.set_xlabel(f"points (of {a.max_score:g})")
-    ax1.set_ylabel("students")
-    labels = [k for k, _ in kinds.most_common(12)] or ["none"]
-    counts = [kinds[k] for k in labels] if kinds else [0]
-    ax2.barh(labels[::-1], counts[::-1], color="#b7574a")
-    ax2.set_title("Mistake kinds")
-    ax2.set_xlabel("answers")
-    for axis in (ax1.yaxis, ax2.xaxis):  # counts of students and answers: whole numbers
-        axis.set_major_locator(MaxNLocator(integer=True))
-    fig.tight_layout()
-    path = inside(root, "summary.png")
-    fig.savefig(path, dpi=100)
+    n = min(20, max(1, int(math.ceil(top))))
+    counts = [0] * n
+    for r in records:
+        if 0 <= r.score <= top:  # the last bin holds the maximum, as numpy's histogram
+            counts[min(n - 1, int(r.score * n / top))] += 1
+    x0, y0, x1, y1 = _SCORES_BOX
+    ys = _ticks(max(counts, default=0))
+    per, width = (y1 - y0) / ys[-1], (x1 - x0) / n
+    bins = [
+        {"x": x0 + k * width, "width": width, "y": y1 - c * per, "height": c * per, "count": c}
+        for k, c in enumerate(counts)
+    ]
+    xs = [t for t in _ticks(top, whole=False) if t <= top]
+    bins_x = [{"at": x0 + t * (x1 - x0) / top, "label": str(t)} for t in xs]
+    bins_y = [{"at": y1 - t * per, "label": str(t)} for t in ys]
+    named = kinds.most_common(12) or [("none", 0)]
+    bx0, by0, bx1, by1 = _KINDS_BOX
+    xs = _ticks(max(c for _, c in named))
+    scale, slot = (bx1 - bx0) / xs[-1], (by1 - by0) / len(named)
+    bars = [
+        {
+            "label": label,
+            "count": c,
+            "y": by0 + k * slot + 0.1 * slot,
+            "height": 0.8 * slot,
+            "width": c * scale,
+            "middle": by0 + (k + 0.5) * slot,
+        }
+        for k, (label, c) in enumerate(named)  # the most common at the top
+    ]
+    return {
+        "width": _CHART[0],
+        "height": _CHART[1],
+        "scores_box": _SCORES_BOX,
+        "kinds_box": _KINDS_BOX,
+        "max_score": f"{a.max_score:g}",
+        "bins": bins,
+        "bins_x": bins_x,
+        "bins_y": bins_y,
+        "bars": bars,
+        "bars_x": [{"at": bx0 + t * scale, "label": str(t)} for t in xs],
+    }
+
+
+def _chart(root: Path, a: Assignment, records: Sequence[GradeRecord], kinds: Counter[str]) -> Path:
+    """``summary.svg``: :func:`chart_data` drawn by its template (no plotting library)."""
+    path = inside(root, "summary.svg")
+    write_atomic(path, render_chart(chart_data(a, records, kinds)))
     return path
 
 
@@ -170,7 +240,7 @@ def write_summary(
     *,
     refused: Sequence[tuple[str, str]] = (),
 ) -> Path:
-    """``summary.html`` and its chart ``summary.png``: scores, verdicts, mistake kinds, and
+    """``summary.html`` and its chart ``summary.svg``: scores, verdicts, mistake kinds, and
     per question its difficulty and most common wrong entries (what to re-teach); the
     entries of the submissions folder that were not graded, each with its reason."""
     kinds: Counter[str] = Counter(k for r in records for k in r.kinds)

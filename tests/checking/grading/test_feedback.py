@@ -72,9 +72,8 @@ def test_ik_feedback_shows_no_internal_branch_symbols():
 
 
 def test_summary_chart_counts_whole_students(tmp_path):
+    from collections import Counter
     from types import SimpleNamespace as NS
-
-    from matplotlib.ticker import MaxNLocator
 
     from dhsym.checking.grading import report as _report
     from dhsym.checking.grading.records import GradeRecord
@@ -82,18 +81,21 @@ def test_summary_chart_counts_whole_students(tmp_path):
     a = NS(questions=[NS(id="q1", ask="A1", points=2)], max_score=2.0)
     recs = [
         GradeRecord(s, s, s, f"{s}/", (), "graded", {"q1": p}, {"q1": "correct"}, (), p, 2)
-        for s, p in (("ann", 2), ("bo", 0))
+        for s, p in (("ann", 2), ("bo", 0), ("cy", 2))
     ]
-    seen = []
-    real = MaxNLocator.__init__
-
-    def spy(self, *args, **kw):
-        seen.append(kw.get("integer"))
-        real(self, *args, **kw)
-
-    MaxNLocator.__init__ = spy
-    try:
-        _report._chart(tmp_path, a, recs, __import__("collections").Counter({"wrong_sign": 1}))
-    finally:
-        MaxNLocator.__init__ = real
-    assert seen.count(True) == 2
+    kinds = Counter({"wrong_sign": 1, "<b>&": 3})
+    path = _report._chart(tmp_path, a, recs, kinds)
+    assert path.name == "summary.svg"
+    svg = path.read_text(encoding="utf-8")
+    assert svg.startswith("<svg ") and "<b>" not in svg and "&lt;b&gt;&amp;" in svg
+    data = _report.chart_data(a, recs, kinds)
+    # counts of students and answers: whole-number ticks, the axes reaching the largest count
+    assert [t["label"] for t in data["bins_y"]] == ["0", "1", "2"]
+    assert [t["label"] for t in data["bars_x"]] == ["0", "1", "2", "3"]
+    assert [b["count"] for b in data["bins"]] == [1, 2]  # the maximum score in the last bin
+    assert [(b["label"], b["count"]) for b in data["bars"]] == [("<b>&", 3), ("wrong_sign", 1)]
+    tall = [b["height"] for b in data["bins"]]
+    assert tall[1] == 2 * tall[0] > 0
+    many = _report.chart_data(a, recs * 40, Counter({"k": 41}))
+    assert [t["label"] for t in many["bins_y"]][-1] == "80"
+    assert [t["label"] for t in many["bars_x"]] == [str(t) for t in range(0, 51, 10)]
