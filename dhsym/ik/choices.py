@@ -508,7 +508,8 @@ def _surely_exact(T: np.ndarray) -> bool:
     >>> _surely_exact(np.eye(4)), _surely_exact(np.round(np.diag([0.6, 0.6, 1, 1]), 3))
     (True, False)
     """
-    (a, b, c, _), (d, e, f, _), (g, h, i, _) = T[:3].tolist()
+    rows: list[list[float]] = T[:3].tolist()
+    (a, b, c, _), (d, e, f, _), (g, h, i, _) = rows
     # each comparison is False for a NaN: a pose of NaNs is not surely exact
     return (
         a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g) > 0.0
