@@ -16,7 +16,7 @@ The closed form is measured
 
 * one pose per call (``robot.ik(T)``: every branch, each checked by ``fk``, singular
   factors evaluated; the program for floats, in C through ctypes when a compiler is
-  there), per pose: the best of 20 passes over blocks of 20 poses (:func:`per_pose`,
+  there), per pose: the best of 200 passes over blocks of 20 poses (:func:`per_pose`,
   EAIK's ``IK`` timed the same way when installed);
 * batched, ``solver.raw`` (every branch, unchecked) and ``robot.ik`` (checked, the
   default), in poses per second; the same run's batch ``fk`` is the yardstick (IK time
@@ -162,7 +162,7 @@ def bench(
 
     # closed form, one pose per call
     T1 = list(robot.fk(random_q(robot, single, rng)))
-    t_one = per_pose(robot.ik, T1, 20)
+    t_one = per_pose(robot.ik, T1, 200)
     n_one = np.mean([len(robot.ik(T)) for T in T1])
     print(
         f"closed form, one pose per call: {t_one * 1e6:8.1f} µs (all {K} branches, each checked "
@@ -217,7 +217,7 @@ def eaik_peer(
     if not bot.hasKnownDecomposition():
         print("EAIK: no known decomposition for this arm")
         return
-    t_e1 = per_pose(bot.IK, T1, 20)
+    t_e1 = per_pose(bot.IK, T1, 200)
     t_check = best(lambda: [robot.fk_function()(np.asarray(bot.IK(T).Q)) for T in T1], 3) / len(T1)
     t_eb = best(lambda: bot.IK_batched(list(TB)), 3) / len(TB)
     print(

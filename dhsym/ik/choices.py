@@ -608,7 +608,16 @@ def _tolerances(arr: np.ndarray, check: str | None, tol: float | None) -> np.nda
         return np.full(arr.shape[:-2], float(tol))
     if arr.ndim == 2:
         return np.array(pose_accuracy(arr).tol)
-    return np.array([pose_accuracy(T).tol for T in arr])
+    # a batch: the poses surely exact (told at once, as _surely_exact tells one) have the
+    # tolerance of an exact pose; only the others are measured one by one
+    R = arr[:, :3, :3]
+    with np.errstate(invalid="ignore", over="ignore"):
+        gram = np.abs(np.matmul(R.transpose(0, 2, 1), R) - np.eye(3)).max(axis=(1, 2))
+        exact = (gram <= 1e-13) & (np.linalg.det(np.where(np.isfinite(R), R, 0.0)) > 0.0)
+    tols = np.full(len(arr), FLOOR)
+    for k in np.nonzero(~exact)[0]:
+        tols[k] = pose_accuracy(arr[k]).tol
+    return tols
 
 
 def _against_given(
