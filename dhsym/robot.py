@@ -107,10 +107,10 @@ class Robot(KinematicChain):
     def ik_cache(self) -> IKCache:
         """The derived inverse kinematics of this robot and of its sub-chains with a joint
         given (:class:`dhsym.ik.choices.IKCache`), made on first use."""
-        from dhsym.ik.choices import IKCache
-
         shared = self._shared
         if shared.ik_cache is None:
+            from dhsym.ik.choices import IKCache
+
             with shared.lock:
                 if shared.ik_cache is None:
                     shared.ik_cache = IKCache(self, _native_compiler())
@@ -161,9 +161,10 @@ class Robot(KinematicChain):
         >>> len(r.ik(T)), len(r.ik(np.round(T, 6))), len(r.ik(np.round(T, 3)))
         (8, 8, 8)
         """
-        from dhsym.ik.choices import solve
-
-        return solve(
+        cache = self._shared.ik_cache  # made once (ik_cache); no import on each call
+        if cache is None:
+            cache = self.ik_cache()
+        return cache.solve(
             self,
             T,
             check=check,
@@ -173,7 +174,6 @@ class Robot(KinematicChain):
             free=free,
             limits=limits,
             near=near,
-            cache=self.ik_cache(),
         )
 
     # -- screws and the product of exponentials (dhsym.screws) -------------------------

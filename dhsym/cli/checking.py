@@ -48,7 +48,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
     from dhsym.checking.comparing.verdict import CheckResult, Verdict
     from dhsym.checking.grading.feedback import render_check
     from dhsym.checking.judging.checker import check_answer
-    from dhsym.checking.judging.key import load_key
+    from dhsym.checking.judging.key import PreparedKeys, load_key
     from dhsym.checking.reading.limits import (
         DEFAULT_ANSWER_LIMITS,
         AnswerLimits,
@@ -61,10 +61,13 @@ def _cmd_check(args: argparse.Namespace) -> int:
         if args.timeout is not None
         else DEFAULT_ANSWER_LIMITS
     )
-    key = load_key(args.key, args.question, tool_free=args.tool_free, rounding=args.rounding)
+    keys = PreparedKeys()  # the key prepared once: to check it on loading, then to judge
+    key = load_key(
+        args.key, args.question, tool_free=args.tool_free, rounding=args.rounding, keys=keys
+    )
     try:
         answer = _read_answer(args.answer, limits.max_bytes)
-        result = check_answer(key, answer, limits=limits)
+        result = check_answer(key, answer, limits=limits, keys=keys)
     except UnreadableAnswer as err:
         result = CheckResult(
             key.question.spec,

@@ -202,6 +202,34 @@ class IKCache:
             found = self._solvers[key] = build_solver(self.inverse(), values, self.native)
         return found
 
+    def solve(
+        self,
+        robot: KinematicChain,
+        T: object,
+        *,
+        check: str | None = "pose",
+        tol: float | None = None,
+        singular_tol: float = 1e-6,
+        values: Mapping[object, object] | None = None,
+        free: Mapping[int, float] | None = None,
+        limits: bool = False,
+        near: object = None,
+    ) -> IKSolution:
+        """:func:`solve` with this cache, for ``robot`` (this cache's chain or one with an
+        equal table): ``Robot.ik``'s way in, with nothing imported on each call."""
+        return solve(
+            robot,
+            T,
+            check=check,
+            tol=tol,
+            singular_tol=singular_tol,
+            values=values,
+            free=free,
+            limits=limits,
+            near=near,
+            cache=self,
+        )
+
     def given(self, joint: int) -> GivenJoint:
         """The chain with joint ``joint`` (1-based) given, and its own cache."""
         found = self._given.get(joint)
@@ -386,16 +414,22 @@ def solve(
     if cache is None:
         cache = IKCache(robot)
     arr = np.asarray(T, dtype=float)
+    if check == "pose" and arr.shape == (4, 4) and not free and _surely_exact(arr):
+        # one pose whose rotation is a rotation (told without an SVD): solved as given,
+        # as below, with the tolerance of an exact pose (a closed form's solver takes the
+        # pose as read here, not reading it again)
+        solver = cache.solver(values)
+        inner_tol = FLOOR if tol is None else tol
+        if isinstance(solver, ClosedFormSolver):
+            sol = solver.solve_pose(arr, tol=inner_tol, singular_tol=singular_tol)
+        else:
+            sol = solver.solve(arr, check=check, tol=inner_tol, singular_tol=singular_tol)
+        if limits or near is not None or np.count_nonzero(sol.near):
+            return _chosen(robot, sol, limits, near, free, values)
+        return sol  # nothing to choose: no limits, no order, no singular family to name
     single = arr.ndim in (1, 2) and not (arr.ndim == 2 and arr.shape[-1] == 3)
     if (free or limits or near is not None) and not single:
         raise DHError("free, limits and near apply to one pose: solve the poses one by one")
-    if check == "pose" and arr.shape == (4, 4) and not free and _surely_exact(arr):
-        # one pose whose rotation is a rotation (told without an SVD): solved as given,
-        # as below, with the tolerance of an exact pose
-        sol = cache.solver(values).solve(
-            arr, check=check, tol=FLOOR if tol is None else tol, singular_tol=singular_tol
-        )
-        return _chosen(robot, sol, limits, near, free, values)
     given, brought, tols = arr, False, _tolerances(arr, check, tol)
     if tols is not None:
         rigid = nearest_rigid(arr)
@@ -452,7 +486,7 @@ def _chosen(
     """The solutions of one pose within the joint limits (``limits``), nearest to ``near``
     first, with the singular family named (a batch as it is)."""
     if not sol.batch:
-        if not free and len(sol) and sol.near_singular.any():
+        if not free and len(sol) and np.count_nonzero(sol.near):
             sol = replace(sol, note=singular_family(robot, sol, values))
         if limits:
             sol = within_limits(robot, sol)
@@ -470,17 +504,18 @@ def _surely_exact(T: np.ndarray) -> bool:
     >>> _surely_exact(np.eye(4)), _surely_exact(np.round(np.diag([0.6, 0.6, 1, 1]), 3))
     (True, False)
     """
-    (a, b, c, _), (d, e, f, _), (g, h, i, _) = T[:3].tolist()
-    gram = (
-        a * a + d * d + g * g - 1.0,
-        b * b + e * e + h * h - 1.0,
-        c * c + f * f + i * i - 1.0,
-        a * b + d * e + g * h,
-        a * c + d * f + g * i,
-        b * c + e * f + h * i,
+    rows: list[list[float]] = T[:3].tolist()
+    (a, b, c, _), (d, e, f, _), (g, h, i, _) = rows
+    # each comparison is False for a NaN: a pose of NaNs is not surely exact
+    return (
+        a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g) > 0.0
+        and abs(a * a + d * d + g * g - 1.0) <= 1e-13
+        and abs(b * b + e * e + h * h - 1.0) <= 1e-13
+        and abs(c * c + f * f + i * i - 1.0) <= 1e-13
+        and abs(a * b + d * e + g * h) <= 1e-13
+        and abs(a * c + d * f + g * i) <= 1e-13
+        and abs(b * c + e * f + h * i) <= 1e-13
     )
-    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
-    return det > 0.0 and max(abs(x) for x in gram) <= 1e-13 and all(x == x for x in gram)
 
 
 def singular_family(
@@ -569,7 +604,16 @@ def _tolerances(arr: np.ndarray, check: str | None, tol: float | None) -> np.nda
         return np.full(arr.shape[:-2], float(tol))
     if arr.ndim == 2:
         return np.array(pose_accuracy(arr).tol)
-    return np.array([pose_accuracy(T).tol for T in arr])
+    # a batch: the poses surely exact (told at once, as _surely_exact tells one) have the
+    # tolerance of an exact pose; only the others are measured one by one
+    R = arr[:, :3, :3]
+    with np.errstate(invalid="ignore", over="ignore"):
+        gram = np.abs(np.matmul(R.transpose(0, 2, 1), R) - np.eye(3)).max(axis=(1, 2))
+        exact = (gram <= 1e-13) & (np.linalg.det(np.where(np.isfinite(R), R, 0.0)) > 0.0)
+    tols = np.full(len(arr), FLOOR)
+    for k in np.nonzero(~exact)[0]:
+        tols[k] = pose_accuracy(arr[k]).tol
+    return tols
 
 
 def _against_given(

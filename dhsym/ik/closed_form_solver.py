@@ -212,6 +212,10 @@ class ClosedFormSolver:
             self.K, B
         )
         self.branch_signs.flags.writeable = False  # shared by the solutions that keep all
+        # ``valid`` of one pose's solutions (all valid: the program for floats keeps only
+        # the valid rows), a read-only view of this, shared as the signs are
+        self._all_valid = np.ones(self.K, dtype=bool)
+        self._all_valid.flags.writeable = False
         self._base = self._constant(-1, 0) if robot.table.base else None
         self._tool = self._constant(robot.n, robot.n + 1) if robot.table.tool else None
         self._base_inv = None if self._base is None else np.linalg.inv(self._base)
@@ -576,17 +580,40 @@ class ClosedFormSolver:
         singular wrist, a division by zero) and batches by the program for numpy.
         """
         arr, check = read_poses(T, check, wrist=bool(self.ik.decoupling.wrist))
-        single = arr.ndim == 2
+        if arr.ndim == 2:
+            return self._one(arr, check, tol, singular_tol, stretch)
         cells = _POSITION if check == "position" else _ALL
-        if single:
-            one = self._solve_one(arr, check, cells, tol, singular_tol, stretch)
-            if one is not None:
-                return one if len(one) else replace(one, reason=self._why(arr, check, tol))
-        batch = self._solve_batch(arr.reshape(-1, 4, 4), check, cells, tol, singular_tol, stretch)
-        if not single:
-            return batch
-        one = batch.solution(0)
-        return replace(one, reason=self._why(arr, check, tol)) if not len(one) else one
+        return self._solve_batch(arr, check, cells, tol, singular_tol, stretch)
+
+    def solve_pose(
+        self, pose: np.ndarray, *, tol: float = 1e-9, singular_tol: float = 1e-6
+    ) -> IKSolution:
+        """Every solution of one pose ``(4, 4)`` of floats, read already (as
+        :func:`~dhsym.ik.protocols.read_poses` gives it), each checked by the whole pose:
+        what :meth:`solve` gives for it, without reading it again (``Robot.ik``'s path for
+        one exact pose).
+
+        >>> import dhsym
+        >>> r = dhsym.load("puma560")
+        >>> solver = r.ik_cache().solver()
+        >>> T = r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
+        >>> bool((solver.solve_pose(T).q == solver.solve(T).q).all())
+        True
+        """
+        return self._one(pose, "pose", tol, singular_tol, False)
+
+    def _one(
+        self, pose: np.ndarray, check: str | None, tol: float, singular_tol: float, stretch: bool
+    ) -> IKSolution:
+        """One pose read already: the program for floats, else (a singular wrist, a
+        division by zero, a stretched pose without native code) the program for numpy."""
+        cells = _POSITION if check == "position" else _ALL
+        one = self._solve_one(pose, check, cells, tol, singular_tol, stretch)
+        if one is None:
+            one = self._solve_batch(
+                pose.reshape(1, 4, 4), check, cells, tol, singular_tol, stretch
+            ).solution(0)
+        return one if len(one) else replace(one, reason=self._why(pose, check, tol))
 
     def _why(self, pose: np.ndarray, check: str | None, tol: float) -> str:
         """Why one pose has no solution: the first step (in the order of the derivation)
@@ -710,14 +737,14 @@ class ClosedFormSolver:
     ) -> IKSolution | None:
         """One pose with the program for floats (native when built, :meth:`native`);
         ``None`` when it cannot finish it (the program for floats does not stretch)."""
+        if not pose.flags.c_contiguous:
+            pose = np.ascontiguousarray(pose, dtype=float)
         inner = self._inner(pose)
-        fast = self.native()
+        fast = self._native_program
+        if fast is None:
+            fast = self.native()
         if fast is not None:
-            out = fast(
-                np.ascontiguousarray(inner, dtype=float),
-                np.ascontiguousarray(pose, dtype=float),
-                stretch,
-            )
+            out = fast(inner, pose, stretch)
         elif stretch:
             return None
         else:
@@ -727,35 +754,36 @@ class ClosedFormSolver:
                 out = self._program("scalar")(*args)
             except (ArithmeticError, ValueError):  # a division by zero, sin(inf): numpy decides
                 return None
-        n, w, K = self.n, len(self._wrist_s), self.K
-        at, kinds = self._scalar_layout()
-        F = len(kinds)
+        layout = self._layout
+        at, kinds = layout if layout is not None else self._scalar_layout()
         residual = out[at.position if check == "position" else at.whole]
-        if w and _smallest(out[at.wrist]) < WRIST_NEAR:
+        if self._wrist_s and _smallest(out[at.wrist]) < WRIST_NEAR:
             return None  # a singular wrist: θ4 and θ6 from the whole rotation (numpy)
         if check is None:
             kept = [k for k, r in enumerate(residual) if r - r == 0]
         else:
             kept = [k for k, r in enumerate(residual) if r <= tol]
+        n, K, F = self.n, self.K, len(kinds)
         values = out[at.joints]
         close = out[at.factors]
         low = _smallest(close)
         if len(kept) > 1 and low < _SUSPECT:  # two branches coincide only at a singularity
             kept = self._distinct(kept, values)
-        if len(kept) == K:
+        k = len(kept)
+        if k == K:
             signs = self.branch_signs
         else:
-            values = [v for k in kept for v in values[k * n : k * n + n]]
-            residual = [residual[k] for k in kept]
+            values = [v for j in kept for v in values[j * n : j * n + n]]
+            residual = [residual[j] for j in kept]
             signs = self.branch_signs[kept]
-        near = np.zeros((len(kept), F), dtype=bool)
+        near = np.zeros((k, F), dtype=bool)
         if low < singular_tol:
-            for i, k in enumerate(kept):
-                near[i] = [c < singular_tol for c in close[k * F : k * F + F]]
+            for i, j in enumerate(kept):
+                near[i] = [c < singular_tol for c in close[j * F : j * F + F]]
         return IKSolution(
-            np.array(values).reshape(len(kept), n),
-            np.ones(len(kept), dtype=bool),
-            np.array(residual),
+            np.array(values, dtype=float).reshape(k, n),
+            self._all_valid[:k],
+            np.array(residual, dtype=float),
             near,
             kinds,
             signs,

@@ -44,7 +44,7 @@ METHODS = ("closed form", "general 6R", "numeric", "compiled")
 BranchNamer = Callable[[np.ndarray, np.ndarray], tuple[str, ...]]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class IKSolution:
     """The solutions of one pose, or of a batch of poses along a leading axis.
 
@@ -79,6 +79,38 @@ class IKSolution:
     #: combination of joints that is all that is determined ("θ4 + θ6 = 0.7 is all that
     #: is determined; one solution given with θ4 = 0"), None otherwise
     note: str | None = None
+
+    def __init__(
+        self,
+        q: np.ndarray,
+        valid: np.ndarray,
+        residual: np.ndarray,
+        near: np.ndarray,
+        factor_kinds: tuple[str, ...],
+        signs: np.ndarray,
+        method: str,
+        reason: str | None = None,
+        iterations: int | None = None,
+        names: tuple[str, ...] | None = None,
+        namer: BranchNamer | None = None,
+        note: str | None = None,
+    ) -> None:
+        # the fields in order, written once into the instance's dict: what the generated
+        # __init__ of a frozen dataclass does through object.__setattr__ per field, about
+        # a microsecond of each single-pose answer (the instance stays frozen after)
+        d = self.__dict__
+        d["q"] = q
+        d["valid"] = valid
+        d["residual"] = residual
+        d["near"] = near
+        d["factor_kinds"] = factor_kinds
+        d["signs"] = signs
+        d["method"] = method
+        d["reason"] = reason
+        d["iterations"] = iterations
+        d["names"] = names
+        d["namer"] = namer
+        d["note"] = note
 
     @property
     def batch(self) -> bool:

@@ -147,3 +147,23 @@ def test_a_singular_wrist_names_the_combination_that_is_determined(name, theta5)
 def test_a_regular_pose_has_no_family_note() -> None:
     r = dhsym.load("puma560")
     assert r.ik(r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])).note is None
+
+
+def test_batch_tolerances_are_each_poses_own() -> None:
+    """A batch's poses get the tolerance each has alone (pose_accuracy): exact poses told
+    at once, rounded, NaN, infinite, reflected and slightly perturbed ones measured."""
+    from dhsym.ik.accuracy import FLOOR, pose_accuracy
+    from dhsym.ik.choices import _tolerances
+
+    r = dhsym.load("puma560")
+    T = r.fk(np.random.default_rng(3).uniform(-3.0, 3.0, (80, 6)))
+    T[10:20] = np.round(T[10:20], 6)
+    T[20:30] = np.round(T[20:30], 3)
+    T[30:33] = np.nan
+    T[33:36, 0, 0] = np.inf
+    T[36:40, :3, 0] *= -1.0  # a reflection: RᵀR = I, det R = -1
+    T[40:45, :3, :3] += 1e-11
+    got = _tolerances(T, "pose", None)
+    want = np.array([pose_accuracy(x).tol for x in T])
+    assert np.array_equal(got, want)
+    assert (got[:10] == FLOOR).all() and (got[20:30] > FLOOR).all() and (got[36:40] > FLOOR).all()
