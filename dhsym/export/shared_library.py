@@ -536,7 +536,7 @@ def native_rows(
         return None
     try:
         lib = _load({f"{_PREFIX}.c": rows_source(program, variables)}, cc)[0]
-    except (DHError, OSError):
+    except (DHError, OSError, NotImplementedError):  # NotImplementedError: C has no such function
         return None
     fn = getattr(lib, _ROWS)
     fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int]
