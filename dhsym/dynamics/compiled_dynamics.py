@@ -168,7 +168,7 @@ class _NativeRows:
         self.inputs = inputs
         self.outputs = outputs
         self.lock = threading.Lock()
-        # one state of rne: row 0's gravity is the robot's until other rows are written
+        # the gravity (a read-only array) row 0 holds, until other rows are written
         self.gravity: np.ndarray | None = None
 
     def states(self, Q: np.ndarray, V: np.ndarray, A: np.ndarray, G: object) -> np.ndarray:
@@ -254,6 +254,7 @@ class DynamicsFunctions:
         self._exact_only = False
         self._potential = _Compiled(potential, dm.variables, (1,))
         self.gravity = np.array([to_float(g) for g in dm.gravity])
+        self.gravity.flags.writeable = False  # one state's C input keeps it (_NativeRows.one)
         links = [dm.links[r - 1] for r in dm.joints]
         try:
             self._viscous = np.array([to_float(L.B * L.G**2) for L in links])
