@@ -223,7 +223,7 @@ def state_figures() -> None:
             f.gravload(q)
         print(
             f"PUMA 560, {path} path: {cd.COMPILE_AFTER} small calls on the recursion and the "
-            f"switch (program and C build, disk cache as this process found it) "
+            f"switch (the program; on the C path its build too; disk cache as found) "
             f"{cpu_with_children() - t0:.1f} s CPU with the compiler's"
         )
     if paths["C"]._native is None:
