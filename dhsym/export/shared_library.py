@@ -478,6 +478,8 @@ def rows_source(program: NumericProgram, variables: Sequence[sp.Symbol]) -> str:
     """
     import sympy as sp
 
+    from dhsym.model.entries import as_expr
+
     from .c import CPrinter
 
     names: dict[sp.Basic, sp.Basic] = {s: sp.Symbol(f"a{k}") for k, s in enumerate(variables)}
@@ -491,7 +493,7 @@ def rows_source(program: NumericProgram, variables: Sequence[sp.Symbol]) -> str:
         names[sym] = sp.Symbol(f"t{k}")
         body.append(f"        const double t{k} = {value};")
     body += [
-        f"        out[{k}] = {printer.doprint(sp.sympify(o).xreplace(names))};"
+        f"        out[{k}] = {printer.doprint(as_expr(o).xreplace(names))};"
         for k, o in enumerate(program.outputs)
     ]
     k, p = len(variables), len(program.outputs)
