@@ -16,7 +16,17 @@ fully symbolic inertial parameters, which takes minutes). Prints:
    2R and 3R arm with symbolic masses, lengths and inertias (same arm, same results);
 3. the numeric ``rne`` (the recursion on numbers) of the PUMA 560 for a batch of 10⁵
    states and for one state, against pinocchio's ``rnea`` called from Python (when ``pin``
-   is installed).
+   is installed);
+4. one state after the switch to the compiled program (``COMPILE_AFTER`` small calls):
+   ``rne``, ``inertia``, ``gravload``, ``coriolis``, ``accel`` of the PUMA 560 in CPU time
+   per call (``time.process_time``, best of 7 runs of 2000 calls, the load printed), through
+   the C program (when a compiler is there; goal ≤ 5 µs per ``rne``) against the same
+   program for Python floats (the NumPy path without a compiler) and against pinocchio's
+   ``rnea``, ``crba``, ``computeCoriolisMatrix`` and ``aba`` in the same run (``pin``, a
+   test extra; said when it is absent); and the first ``rne`` in a fresh process with an
+   empty and with a warm disk cache.
+
+``--only-numbers`` runs parts 3's one-state figures, 4 and the first calls only (a minute).
 """
 
 from __future__ import annotations
@@ -150,13 +160,145 @@ def compact_figures(arms: list[str]) -> None:
         f"exported rne of the PUMA 560: {mul} multiplications, {add} additions, {total} "
         f"operations in all (Corke's simplified PUMA: 224 + 174; goal <= 400 flops)"
     )
+    first_call_figures()
+
+
+def first_call_figures() -> None:
+    """The first ``rne`` of the PUMA 560 in a fresh process (imports included), with an
+    empty disk cache and then with the cache that run left (warm)."""
+    import tempfile
+
+    code = "import dhsym; p = dhsym.load('puma560'); p.rne([0.1] * 6, [0.2] * 6, [0.3] * 6)"
     with tempfile.TemporaryDirectory() as cache:
-        code = "import dhsym; p = dhsym.load('puma560'); p.rne([0.1] * 6, [0.2] * 6, [0.3] * 6)"
-        t, cpu = fresh(code, {"DHSYM_CACHE": cache})
+        for state in ("empty", "warm"):
+            t, cpu = fresh(code, {"DHSYM_CACHE": cache})
+            print(
+                f"first rne of the PUMA 560 in a fresh process, {state} disk cache: {t:.1f} s "
+                f"wall, {cpu:.1f} s CPU [goal <= 2 s]"
+            )
+
+
+def per_call(fn, number: int = 2000, repeat: int = 7) -> float:
+    """CPU seconds of one call of ``fn()``: the best of ``repeat`` runs of ``number``
+    calls, timed with ``time.process_time`` (on a loaded machine the CPU time is the
+    figure that carries over; the load is printed beside it)."""
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.process_time()
+        for _ in range(number):
+            fn()
+        best = min(best, (time.process_time() - t0) / number)
+    return best
+
+
+def load_text() -> str:
+    import os
+
+    return "load average {:.2f} {:.2f} {:.2f} (uptime), 2 cores".format(*os.getloadavg())
+
+
+def state_figures() -> None:
+    """Part 4: one state after the switch, through C, the Python floats program and
+    pinocchio, CPU µs per call."""
+    from dhsym.dynamics import compiled_dynamics as cd
+    from dhsym.export.shared_library import native_compiler
+
+    puma = dhsym.load("puma560")
+    rng = np.random.default_rng(1)
+    q, v, a = rng.uniform(-1, 1, (3, 6))
+    paths = {
+        "C": puma.dynamics_functions(),  # the facade passes the C compiler when there is one
+        "NumPy": cd.dynamics_functions(puma),  # no compiler: the program for Python floats
+    }
+    import resource
+
+    def cpu_with_children() -> float:
+        mine = time.process_time()
+        kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return mine + kids.ru_utime + kids.ru_stime
+
+    for path, f in paths.items():
+        t0 = cpu_with_children()
+        for _ in range(cd.COMPILE_AFTER + 1):  # past the switch, as a simulation gets there
+            f.gravload(q)
+        print(
+            f"PUMA 560, {path} path: {cd.COMPILE_AFTER} small calls on the recursion and the "
+            f"switch (the program; on the C path its build too; disk cache as found) "
+            f"{cpu_with_children() - t0:.1f} s CPU with the compiler's"
+        )
+    if paths["C"]._native is None:
+        why = (
+            "no C compiler (DHSYM_NO_COMPILE or none found)"
+            if native_compiler() is None
+            else "C build failed"
+        )
+        print(f"PUMA 560 one state: {why}; the C path is the NumPy path here")
+    tau = paths["NumPy"].rne(q, v, a)
+    calls = {
+        "rne": lambda f: f.rne(q, v, a),
+        "inertia": lambda f: f.inertia(q),
+        "gravload": lambda f: f.gravload(q),
+        "coriolis": lambda f: f.coriolis(q, v),
+        "accel": lambda f: f.accel(q, v, tau),
+    }
+    for name, call in calls.items():  # the paths agree
+        ref, got = call(paths["NumPy"]), call(paths["C"])
+        assert np.allclose(got, ref, rtol=1e-10, atol=1e-10 * max(1.0, np.abs(ref).max())), name
+    times = {
+        (name, path): per_call(lambda c=call, f=f: c(f))
+        for name, call in calls.items()
+        for path, f in paths.items()
+    }
+    pin_times: dict[str, float] = {}
+    try:
+        import pinocchio as pin
+
+        from tests.dynamics.test_compiled_dynamics import pin_model
+    except ImportError:
+        pin = None
+        print("pinocchio: absent (pip install pin, a test extra); no pinocchio figures")
+    if pin is not None:
+        model = pin_model(puma)
+        data = model.createData()
+        C = paths["C"]
+        M = pin.crba(model, data, q)
+        M = np.triu(M) + np.triu(M, 1).T
+        agree = {
+            "rne": np.allclose(pin.rnea(model, data, q, v, a), C.rne(q, v, a, friction=False)),
+            "inertia": np.allclose(M, C.inertia(q)),
+            "coriolis": np.allclose(
+                pin.computeCoriolisMatrix(model, data, q, v) @ v, C.coriolis(q, v) @ v
+            ),
+        }
+        print(f"pinocchio {pin.__version__} agrees with dhsym (no friction): {agree}")
+        pin_calls = {
+            "rne": ("rnea", lambda: pin.rnea(model, data, q, v, a)),
+            "inertia": ("crba", lambda: pin.crba(model, data, q)),
+            "gravload": (
+                "computeGeneralizedGravity",
+                lambda: pin.computeGeneralizedGravity(model, data, q),
+            ),
+            "coriolis": (
+                "computeCoriolisMatrix",
+                lambda: pin.computeCoriolisMatrix(model, data, q, v),
+            ),
+            "accel": ("aba", lambda: pin.aba(model, data, q, v, tau)),
+        }
+        pin_times = {name: per_call(call) for name, (_, call) in pin_calls.items()}
     print(
-        f"first rne of the PUMA 560 in a fresh process, empty disk cache: {t:.1f} s wall, "
-        f"{cpu:.1f} s CPU [goal <= 2 s]"
+        f"PUMA 560, one state after the switch, CPU us per call (best of 7 x 2000; {load_text()}):"
     )
+    for name in calls:
+        c_us, np_us = times[name, "C"] * 1e6, times[name, "NumPy"] * 1e6
+        line = (
+            f"  {name:9s} C {c_us:7.2f}   NumPy path {np_us:8.2f} (C {np_us / c_us:5.1f}x faster)"
+        )
+        if name in pin_times:
+            p_us = pin_times[name] * 1e6
+            line += (
+                f"   pinocchio {pin_calls[name][0]} {p_us:6.2f} (C / pinocchio {c_us / p_us:4.2f})"
+            )
+        print(line + ("   [goal <= 5 us]" if name == "rne" else ""))
 
 
 def main() -> int:
@@ -165,7 +307,12 @@ def main() -> int:
     p.add_argument("--batch", type=int, default=100_000, help="states in the rne batch")
     p.add_argument("--arms", action="store_true", help="part 0 also for the Stanford arm and UR5")
     p.add_argument("--only-compact", action="store_true", help="part 0 only")
+    p.add_argument("--only-numbers", action="store_true", help="part 4 and the first calls only")
     args = p.parse_args()
+    if args.only_numbers:
+        state_figures()
+        first_call_figures()
+        return 0
     compact_figures(["puma560", *(["stanford", "ur5"] if args.arms else [])])
     if args.only_compact:
         return 0
@@ -230,6 +377,7 @@ def main() -> int:
         from tests.dynamics.test_compiled_dynamics import pin_model
     except ImportError:
         print("pinocchio: not installed (pip install pin)")
+        state_figures()
         return 0
     model = pin_model(puma)
     data = model.createData()

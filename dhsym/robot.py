@@ -44,7 +44,11 @@ if TYPE_CHECKING:
     import numpy as np
     from matplotlib.figure import Figure
 
-    from dhsym.dynamics.compiled_dynamics import DynamicsFunctions, Trajectory
+    from dhsym.dynamics.compiled_dynamics import (
+        DynamicsFunctions,
+        NativeRowsCompiler,
+        Trajectory,
+    )
     from dhsym.dynamics.equations import EquationsOfMotion
     from dhsym.dynamics.static_forces import Statics
     from dhsym.export.shared_library import CompiledRobot
@@ -333,7 +337,8 @@ class Robot(KinematicChain):
             with self._shared.lock:
                 f = found.get(key)
                 if f is None:
-                    f = found[key] = dynamics_functions(self, values)
+                    native = _native_rows_compiler()
+                    f = found[key] = dynamics_functions(self, values, native=native)
         return f
 
     def rne(
@@ -503,6 +508,18 @@ def _native_compiler() -> NativeCompiler | None:
     from dhsym.export.shared_library import native_compiler, native_program
 
     return native_program if native_compiler() is not None else None
+
+
+def _native_rows_compiler() -> NativeRowsCompiler | None:
+    """What compiles the dynamics' program into C for one state of ``robot.rne``,
+    ``inertia``, ``gravload``, ``coriolis`` and ``accel`` after the switch of
+    :mod:`dhsym.dynamics.compiled_dynamics` (:func:`dhsym.export.shared_library.native_rows`),
+    or ``None`` without a C compiler or with ``DHSYM_NO_COMPILE=1`` (as
+    :func:`_native_compiler`): then the program is compiled for Python floats. The
+    results are the same either way."""
+    from dhsym.export.shared_library import native_compiler, native_rows
+
+    return native_rows if native_compiler() is not None else None
 
 
 def load(name_or_path: str | Path, **kw: Any) -> Robot:

@@ -62,10 +62,12 @@ if TYPE_CHECKING:
     import sympy as sp
     from numpy.typing import ArrayLike
 
+    from dhsym.dynamics.compiled_dynamics import NativeRun
     from dhsym.ik.choices import IKCache
     from dhsym.ik.protocols import NativeProgram
     from dhsym.ik.solution import IKSolution
     from dhsym.kinematics.chain import KinematicChain
+    from dhsym.kinematics.numeric import NumericProgram
 
 __all__ = [
     "CompiledRobot",
@@ -74,7 +76,9 @@ __all__ = [
     "library_name",
     "native_compiler",
     "native_program",
+    "native_rows",
     "native_source",
+    "rows_source",
 ]
 
 _FLAGS = ("-O2", "-shared", "-fPIC", "-std=c99")
@@ -440,4 +444,113 @@ def native_program(
         return values
 
     run.library = lib  # type: ignore[attr-defined]  # kept alive with the function
+    return run
+
+
+# -- a straight-line program of floats, row by row, in C --------------------------------------
+_ROWS = "dhsym_rows"
+
+
+def rows_source(program: NumericProgram, variables: Sequence[sp.Symbol]) -> str:
+    """The C of a :class:`~dhsym.kinematics.numeric.NumericProgram` evaluated row by row
+    (:class:`dhsym.dynamics.compiled_dynamics.NativeRowsCompiler`): one function
+    ``void dhsym_rows(const double *in, double *out, int m)`` reading each of the ``m``
+    rows of ``in`` (one value per variable, in order) into ``const double a<k>``, one
+    ``const double`` per assignment of the program, and writing one entry of the row of
+    ``out`` per output: the same operations, in the same order, as
+    :func:`~dhsym.kinematics.numeric.compile_program` evaluates for floats.
+
+    >>> import sympy as sp
+    >>> from dhsym.kinematics.numeric import NumericProgram
+    >>> x, y = sp.symbols("x y", real=True)
+    >>> prog = NumericProgram.of([sp.sin(x + y), 2 * sp.cos(x + y)], (x, y))
+    >>> for line in rows_source(prog, (x, y)).splitlines()[5:]:
+    ...     print(line)
+    {
+        for (int i = 0; i < m; ++i, in += 2, out += 2) {
+            const double a0 = in[0];
+            const double a1 = in[1];
+            const double t0 = a0 + a1;
+            out[0] = sin(t0);
+            out[1] = 2*cos(t0);
+        }
+    }
+    """
+    import sympy as sp
+
+    from dhsym.model.entries import as_expr
+
+    from .c import CPrinter
+
+    names: dict[sp.Basic, sp.Basic] = {s: sp.Symbol(f"a{k}") for k, s in enumerate(variables)}
+    # math.h of strict C99 has no M_PI: the constants as doubles (as math.pi, math.e)
+    names[sp.pi] = sp.Float(np.pi, 17)
+    names[sp.E] = sp.Float(np.e, 17)
+    printer = CPrinter()
+    body = [f"        const double a{k} = in[{k}];" for k in range(len(variables))]
+    for k, (sym, e) in enumerate(program.assignments):
+        value = printer.doprint(e.xreplace(names))
+        names[sym] = sp.Symbol(f"t{k}")
+        body.append(f"        const double t{k} = {value};")
+    body += [
+        f"        out[{k}] = {printer.doprint(as_expr(o).xreplace(names))};"
+        for k, o in enumerate(program.outputs)
+    ]
+    k, p = len(variables), len(program.outputs)
+    return "\n".join(
+        [
+            "/* dhsym: a straight-line program of floats evaluated row by row (each row of",
+            f" * in: {k} values, each row of out: {p}), built by dhsym's numeric dynamics. */",
+            "#include <math.h>",
+            "",
+            f"void {_ROWS}(const double *in, double *out, int m)",
+            "{",
+            f"    for (int i = 0; i < m; ++i, in += {k}, out += {p}) {{",
+            *body,
+            "    }",
+            "}",
+            "",
+        ]
+    )
+
+
+def native_rows(
+    program: NumericProgram,
+    variables: Sequence[sp.Symbol],
+    inputs: np.ndarray,
+    outputs: np.ndarray,
+) -> NativeRun | None:
+    """The :class:`dhsym.dynamics.compiled_dynamics.NativeRowsCompiler` of the facade: the
+    program's C (:func:`rows_source`) built by :func:`native_compiler` into the disk cache
+    (as :func:`compiled`: verified before it is loaded) and bound to the caller's buffers
+    ``inputs`` ``(R, len(variables))`` and ``outputs`` ``(R, len(program.outputs))``
+    (C-contiguous floats, kept alive by the function): ``run(m)`` evaluates the first
+    ``m <= R`` rows of ``inputs`` into those of ``outputs``. ``None`` without a
+    compiler, when a buffer does not fit, or when the build fails (a function C does not
+    have: the caller keeps its own program for floats)."""
+    cc = native_compiler()
+    k, p = len(variables), len(program.outputs)
+    fits = all(
+        a.dtype == np.float64 and a.ndim == 2 and a.flags.c_contiguous and a.shape[1] == w
+        for a, w in ((inputs, k), (outputs, p))
+    )
+    if cc is None or not fits or inputs.shape[0] != outputs.shape[0]:
+        return None
+    try:
+        lib = _load({f"{_PREFIX}.c": rows_source(program, variables)}, cc)[0]
+    except (DHError, OSError, NotImplementedError):  # NotImplementedError: C has no such function
+        return None
+    fn = getattr(lib, _ROWS)
+    fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int]
+    fn.restype = None
+    rows = inputs.shape[0]
+    at_in, at_out = _address(inputs), _address(outputs)
+
+    def run(m: int) -> None:
+        if not 0 <= m <= rows:
+            raise DHError(f"{m} rows do not fit the native program's buffers of {rows}")
+        fn(at_in, at_out, m)
+
+    # the library and the buffers live as long as the function
+    run.keep = (lib, inputs, outputs)  # type: ignore[attr-defined]
     return run

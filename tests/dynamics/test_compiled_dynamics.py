@@ -369,3 +369,189 @@ def test_a_long_run_of_small_calls_switches_to_the_compiled_program_with_the_sam
     warm = cd.dynamics_functions(arm("standard", prismatic=True))
     monkeypatch.setattr(cd, "COMPILE_AFTER", 0)
     np.testing.assert_allclose(warm.rne(q, qd, qdd), after, rtol=1e-12, atol=1e-14)
+
+
+# --- one state in C ---------------------------------------------------------------------------
+
+
+def _native_rows():
+    """The export room's compiler of the τ program into C (what ``Robot`` passes in)."""
+    from dhsym.export.shared_library import native_compiler, native_rows
+
+    _need("a C compiler", native_compiler() is not None, "install gcc, unset DHSYM_NO_COMPILE")
+    return native_rows
+
+
+def _values(robot):
+    """Numbers for the inertial symbols a table leaves open (a physical arm: positive
+    masses, inertia tensors with a dominant diagonal)."""
+    from dhsym.dynamics.compiled_dynamics import numeric_model
+
+    values = {}
+    for k, s in enumerate(numeric_model(robot).parameters):
+        name = s.name
+        if name == "g":
+            values[name] = 9.81
+        elif name.startswith("m"):
+            values[name] = 1.0 + 0.3 * k % 2.0
+        elif name[:3] in ("Ixx", "Iyy", "Izz") or name[1:].isdigit():
+            values[name] = 0.05 + 0.01 * (k % 5)
+        elif name.startswith("I"):
+            values[name] = 0.002 * ((k % 3) - 1)
+        else:  # the centres of mass
+            values[name] = 0.04 * ((k % 5) - 2)
+    return values
+
+
+def _calls(f, q, v, a):
+    """Every one-state call of the numeric dynamics, by name."""
+    tau = f.rne(q, v, a)
+    return {
+        "rne": tau,
+        "rne without friction": f.rne(q, v, a, friction=False),
+        "inertia": f.inertia(q),
+        "gravload": f.gravload(q),
+        "christoffel": f.christoffel(q),
+        "coriolis": f.coriolis(q, v),
+        "accel": f.accel(q, v, tau),
+    }
+
+
+def _agree(got, expected, rtol=1e-10):
+    for name, value in expected.items():
+        assert got[name].shape == value.shape, name
+        scale = max(1.0, float(np.abs(value).max()))
+        np.testing.assert_allclose(got[name], value, rtol=rtol, atol=rtol * scale, err_msg=name)
+
+
+@pytest.mark.parametrize("name", ["puma560", "stanford", "scara", "spong2r"])
+def test_one_state_in_c_gives_the_numbers_of_python_and_of_the_recursion_cold_and_warm(
+    name, tmp_path, monkeypatch
+):
+    """After the switch, one state runs the τ program as C (the PUMA's friction with it);
+    its numbers are the numeric recursion's and the Python floats' (1e-10 relative), and a
+    second process-like build reads program and library from the disk cache."""
+    from dhsym.dynamics import compiled_dynamics as cd
+    from dhsym.export import shared_library
+
+    native = _native_rows()
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path / "cache"))  # cold
+    monkeypatch.delenv("DHSYM_NO_CACHE", raising=False)
+    robot = dhsym.load(name)
+    values = _values(robot)
+    n = len(robot.variables)
+    states = np.random.default_rng(7).uniform(-1.5, 1.5, (3, 3, n))
+    recursion = cd.dynamics_functions(robot, values)
+    expected = [_calls(recursion, *s) for s in states]  # fewer calls than COMPILE_AFTER
+    assert recursion._compiled._program is None
+    monkeypatch.setattr(cd, "COMPILE_AFTER", 0)
+    python = cd.dynamics_functions(robot, values)  # no compiler: the program for floats
+    c = cd.dynamics_functions(robot, values, native=native)
+    in_c = [_calls(c, *s) for s in states]
+    for s, want, got in zip(states, expected, in_c):
+        _agree(got, want)
+        _agree(_calls(python, *s), want)
+    assert python._native is None and c._native is not None
+    assert c.has_friction == (name == "puma560")
+
+    # warm: the program and the library from the disk cache, nothing derived or built
+    def refused(*args, **kwargs):
+        raise AssertionError("derived or built again: the disk cache was not read")
+
+    monkeypatch.setattr(cd, "rne_expressions", refused)
+    monkeypatch.setattr(shared_library.subprocess, "run", refused)
+    warm = cd.dynamics_functions(robot, values, native=native)
+    for s, got in zip(states, in_c):
+        again = _calls(warm, *s)
+        for key, value in got.items():
+            np.testing.assert_array_equal(again[key], value, err_msg=key)
+    assert warm._native is not None
+
+
+def test_small_batches_after_the_switch_run_in_c_row_by_row(tmp_path, monkeypatch):
+    """Up to SMALL states at once go through the C program too (a state per row), with
+    the numbers of the recursion; a large batch stays on the recursion."""
+    from dhsym.dynamics import compiled_dynamics as cd
+
+    native = _native_rows()
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path / "cache"))
+    robot = arm("modified", prismatic=True)
+    rng = np.random.default_rng(8)
+    Q, V, A = (rng.uniform(-1, 1, (5, 4)) for _ in range(3))
+    reference = cd.dynamics_functions(robot)
+    want = [reference.rne(Q, V, A), reference.inertia(Q), reference.accel(Q, V, A)]
+    monkeypatch.setattr(cd, "COMPILE_AFTER", 0)
+    f = cd.dynamics_functions(robot, native=native)
+    got = [f.rne(Q, V, A), f.inertia(Q), f.accel(Q, V, A)]
+    assert f._native is not None
+    for g, w in zip(got, want):
+        np.testing.assert_allclose(g, w, rtol=1e-10, atol=1e-10)
+    big = rng.uniform(-1, 1, (cd.SMALL + 1, 4))
+    np.testing.assert_allclose(f.rne(big, big, big)[3], f.rne(big[3], big[3], big[3]), atol=1e-10)
+    # lists and broadcast states take the general path, with the same numbers
+    np.testing.assert_array_equal(f.rne(list(Q[0]), V[0], A[0]), f.rne(Q[0], V[0], A[0]))
+    np.testing.assert_array_equal(f.gravload(Q[:1])[0], f.gravload(Q[0]))
+
+
+def test_without_a_native_program_the_python_program_answers(tmp_path, monkeypatch):
+    """A compiler that cannot build (None) is asked once; the program for Python floats
+    answers with the same numbers."""
+    from dhsym.dynamics import compiled_dynamics as cd
+
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setattr(cd, "COMPILE_AFTER", 0)
+    asked = []
+
+    def cannot(program, variables, inputs, outputs):
+        asked.append((len(variables), inputs.shape, outputs.shape))
+        return None
+
+    robot = arm("standard")
+    f = cd.dynamics_functions(robot, native=cannot)
+    q = np.array([0.1, -0.4, 0.7, 0.2])
+    tau = f.rne(q, q, q)
+    f.rne(q, q, q)
+    assert asked == [(15, (cd.SMALL, 15), (cd.SMALL, 8))]  # q, q̇, q̈, g; τ and friction
+    assert f._native is None
+    np.testing.assert_allclose(tau, REFERENCE["standard"](robot, q, q, q, [0.5, -1.0, -9.81]))
+
+
+def test_native_rows_refuses_what_it_cannot_run():
+    """Buffers of the wrong shape, a function C has not, and rows past the buffers."""
+    import sympy as sp
+
+    from dhsym.kinematics.numeric import NumericProgram
+
+    native = _native_rows()
+    x, y = sp.symbols("x y", real=True)
+    program = NumericProgram.of([x * y + sp.sin(x), x - y], (x, y))
+    assert native(program, (x, y), np.zeros((2, 3)), np.zeros((2, 2))) is None
+    assert native(program, (x, y), np.zeros((2, 2)), np.zeros((3, 2))) is None
+    assert native(program, (x, y), np.zeros((2, 2), dtype=np.float32), np.zeros((2, 2))) is None
+    mystery = NumericProgram.of([sp.Function("mystery")(x)], (x,))
+    assert native(mystery, (x,), np.zeros((1, 1)), np.zeros((1, 1))) is None
+    inputs, outputs = np.array([[0.5, 2.0], [1.0, -1.0]]), np.zeros((2, 2))
+    run = native(program, (x, y), inputs, outputs)
+    run(2)
+    np.testing.assert_allclose(outputs, [[1 + np.sin(0.5), -1.5], [-1 + np.sin(1.0), 2.0]])
+    with pytest.raises(dhsym.DHError, match="do not fit"):
+        run(3)
+
+
+def test_the_robot_passes_the_c_compiler_to_its_dynamics(monkeypatch):
+    """``Robot.dynamics_functions`` gives its dynamics the export room's C compiler when
+    the process has one, none with ``DHSYM_NO_COMPILE`` (no compiler found)."""
+    from dhsym import robot as facade
+    from dhsym.export import shared_library
+
+    assert facade._native_rows_compiler() in (None, shared_library.native_rows)
+    monkeypatch.setattr(shared_library, "native_compiler", lambda: None)
+    assert facade._native_rows_compiler() is None
+    monkeypatch.setattr(shared_library, "native_compiler", lambda: "cc")
+    assert facade._native_rows_compiler() is shared_library.native_rows
+    text = (
+        "gravity: [0, -9.81, 0]\njoints: [{type: R, theta: q1, d: 0, a: 0.7, alpha: 0, "
+        "m: 1.25, r: [-0.35, 0, 0], I: [0, 0.03, 0.03]}]"
+    )
+    f = Robot(read_table_text(text)).dynamics_functions()
+    assert f._native_compiler is shared_library.native_rows
