@@ -103,7 +103,8 @@ def prepare_ik(
             poses[True] = pose_sample(robot, values=table.value_map)
     # the mistakes' variants, at each diagnosis pose: a wrong answer's diagnosis only compares
     nota = robot.notation
-    built = {id(s): prepare_ik_variants(ik, s, branch_names, nota) for s in poses.values()}
+    distinct = {id(s): s for s in poses.values()}  # a numeric question: one pose, built once
+    built = {i: prepare_ik_variants(ik, s, branch_names, nota) for i, s in distinct.items()}
     diagnosis = MappingProxyType({valued: built[id(s)] for valued, s in poses.items()})
     symbols = frozenset(set(table.constants) | set(pose_symbols()[:3, :]))
     return names, IKPart(ik, pose, branch_names, symbols, diagnosis)
