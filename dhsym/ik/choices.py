@@ -6,7 +6,8 @@ KUKA LWR have seven joints: one given, the six left form a family of
 :mod:`dhsym.ik.families`); where the six left have no closed form, the numeric solver
 with the joint held answers from several starts (``method="numeric"``,
 :func:`~dhsym.ik.levenberg_marquardt.numeric_solutions`). At a singular wrist the
-result's ``note`` names the combination that is determined (:func:`singular_family`).
+result's ``note`` names the combination that is determined (:func:`singular_family`;
+on the UR arms, the sum of the turns of the four joints with parallel axes).
 Then ``limits=True`` shifts each angle by multiples of 2π into its joint's range and
 drops the solutions that do not fit, and ``near=q0`` orders them by distance from ``q0``
 (angles compared modulo 2π).
@@ -498,7 +499,9 @@ def singular_family(
     Found from the first solution near a singularity: a null vector of its Jacobian with
     two equal entries (±) names the pair, and ``fk`` confirms the motion at a finite step
     (0.3 rad) keeps the pose (an instantaneous null motion, the stretched elbow, is not a
-    family and gives None).
+    family and gives None). A null vector over three or more joints with parallel axes
+    (the UR arms at θ5 = 0: joints 2, 3, 4 and 6) names the sum of their turns
+    (:func:`_parallel_family`).
 
     >>> import dhsym
     >>> r = dhsym.load("puma560")
@@ -628,7 +631,11 @@ def _parallel_family(
         f"{at}{what} is singular (joints {listed} turn about parallel axes); "
         f"{text} = {_angle(total)} is all that is determined of their turns: {names[-1]} may "
         f"be chosen (within reach), {follow} follow ("
-        + (f"the solutions there are given with {given}" if every else f"the first given with {given}")
+        + (
+            f"the solutions there are given with {given}"
+            if every
+            else f"the first given with {given}"
+        )
         + ")"
     )
 

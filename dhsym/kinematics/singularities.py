@@ -12,7 +12,12 @@ wrist joints then move the centre not at all, so
 determinant 1). ``J11`` is the 3×3 arm block, ``J22 = [z_a4 z_a5 z_a6]`` the wrist
 axes. Determinants are expanded along the line with most zeros and every minor is
 factored before it is used (sum-angle folds, then ``factor``), in the frame that gives
-the shortest result; a rotation does not change a determinant. Other arms use the
+the shortest result; a rotation does not change a determinant. A six-joint arm
+without a spherical wrist (the UR arms: axes 2, 3, 4 parallel, 5 and 6 meeting in the
+*wrist point*) has the whole ``J`` factored the same way, at the wrist point and in the
+middle frame where it has the most zeros, within a bound on the work
+(:data:`MAX_TERMS`); a wrist factor there is one whose zeros make the axes beside its
+joint parallel (``θ5 = 0``: axes 4 and 6, with 2 and 3). Other arms use the
 square part of ``J`` (the position rows for a positioning arm, the non-zero rows
 otherwise) or, when it is not square, the manipulability ``w = sqrt(det(J Jᵀ))`` by the
 Cauchy–Binet sum of squared minors.
@@ -35,6 +40,8 @@ det J = a2*S5*(a2*C2 + a3*C23 - d4*S23)*(a3*S3 + d4*C3)
 ((theta5, 0), (theta5, pi))
 >>> print(singularities(dhsym.load("planar2r")).text())
 det J_v = a1*a2*S2
+>>> print(singularities(dhsym.load("ur5")).text())
+det J = a2*a3*S3*S5*(a2*C2 + a3*C23 + d5*S234)
 """
 
 from __future__ import annotations
@@ -564,6 +571,12 @@ def _vanishes(expr: sp.Expr) -> bool:
     return expr == 0 or prove_equal(Matrix([expr]), Matrix([0]))
 
 
+def _parallel(robot: KinematicChain, ref: int, frame: int, at: Mapping[sp.Symbol, sp.Expr]) -> bool:
+    """Whether the z axis of ``frame`` is parallel to that of ``ref`` with ``at`` put in."""
+    z = robot.transform(ref, frame).matrix[:3, 2]
+    return _vanishes(z[0].subs(at)) and _vanishes(z[1].subs(at))
+
+
 def _parallel_axes(robot: KinematicChain, det: sp.Expr) -> dict[sp.Expr, str]:
     """The factors of ``det`` in one revolute joint ``j`` (not the first or the last) at
     whose zeros the axes of joints ``j − 1`` and ``j + 1``, not parallel otherwise, become
@@ -573,8 +586,12 @@ def _parallel_axes(robot: KinematicChain, det: sp.Expr) -> dict[sp.Expr, str]:
     >>> import dhsym
     >>> r = dhsym.load("ur5")
     >>> t3, t5 = sp.symbols("theta3 theta5", real=True)
-    >>> print(_parallel_axes(r, sp.sin(t3) * sp.sin(t5))[sp.sin(t5)])
-    the axes of joints 4 and 6 are parallel: joints 2, 3, 4 and 6 turn about parallel axes, which move the tool in three directions only
+    >>> import textwrap
+    >>> print(textwrap.fill(_parallel_axes(r, sp.sin(t3) * sp.sin(t5))[sp.sin(t5)], 80))
+    the axes of joints 4 and 6 are parallel: joints 2, 3, 4 and 6 turn about
+    parallel axes, which move the tool in three directions only
+    >>> list(_parallel_axes(r, sp.sin(t3) * sp.sin(t5)))  # θ3 = 0 makes no axes parallel
+    [sin(theta5)]
     """
     rows = [i for i, r in enumerate(robot.table.rows, start=1) if r.variable is not None]
     variables = list(robot.variables)
@@ -591,15 +608,14 @@ def _parallel_axes(robot: KinematicChain, det: sp.Expr) -> dict[sp.Expr, str]:
         zeros = _zeros(base, vs[0], JointType.REVOLUTE) if revolute[j] else ()
         if not zeros:
             continue
-
-        def across(k: int, at: Mapping[sp.Symbol, sp.Expr]) -> bool:
-            z = robot.transform(frames[j + 1], frames[k]).matrix[:3, 2]
-            return _vanishes(z[0].subs(at)) and _vanishes(z[1].subs(at))
-
-        if across(j - 1, {}) or not across(j - 1, {vs[0]: zeros[0]}):
+        ref, at = frames[j + 1], {vs[0]: zeros[0]}
+        if _parallel(robot, ref, frames[j - 1], {}) or not _parallel(robot, ref, frames[j - 1], at):
             continue
-        at = {vs[0]: zeros[0]}
-        together = [k for k in range(len(rows)) if revolute[k] and (k == j + 1 or across(k, at))]
+        together = [
+            k
+            for k in range(len(rows))
+            if revolute[k] and (k == j + 1 or _parallel(robot, ref, frames[k], at))
+        ]
         names = [str(k + 1) for k in together]
         text = f"the axes of joints {j} and {j + 2} are parallel"
         if len(together) > 2:
