@@ -539,16 +539,10 @@ def singular_family(
         name_i, name_j = _plain(robot.variables[i]), _plain(robot.variables[j])
         combo = _angle(q[i] + q[j] if same else q[j] - q[i])
         text = f"{name_i} + {name_j}" if same else f"{name_j} − {name_i}"
-        between = [
-            f"{_plain(robot.variables[k])} = {_angle(q[k])}" for k in range(i + 1, j) if revolute[k]
-        ]
-        what = "the wrist" if j == n - 1 else f"joints {i + 1} to {j + 1}"
-        at = f"{between[0]}: " if len(between) == 1 else ""
-        singular = [row for row, hit in zip(sol.q, sol.near_singular) if hit]
-        every = all(_angle(row[i] - q[i]) == "0" for row in singular)
-        given = f"{name_i} = {_angle(q[i])}"
+        place = _singular_place(robot, q, [i, j])
+        every, given = _stated_choice(robot, sol, q, i)
         return (
-            f"{at}{what} is singular (joints {i + 1} and {j + 1} turn about one line); "
+            f"{place} is singular (joints {i + 1} and {j + 1} turn about one line); "
             f"{text} = {combo} is all that is determined ("
             + (f"the solutions there are given with {given}" if every else f"given {given}")
             + ")"
@@ -584,7 +578,6 @@ def _parallel_family(
     (within reach), θ2, θ3 and θ4 follow
     """
     revolute = _revolute(robot)
-    n = len(q)
     support = np.nonzero(np.abs(v) > 1e-6)[0]
     if len(support) < 3 or not revolute[support].all():
         return None
@@ -616,19 +609,11 @@ def _parallel_family(
         f" + {name}" if sign > 0 else f" − {name}" for name, sign in zip(names[1:], signs[1:])
     )
     listed = ", ".join(str(k + 1) for k in support[:-1]) + f" and {last + 1}"
-    between = [
-        f"{_plain(robot.variables[k])} = {_angle(q[k])}"
-        for k in range(int(support[0]) + 1, last)
-        if revolute[k] and k not in support
-    ]
-    at = f"{between[0]}: " if len(between) == 1 else ""
-    what = "the wrist" if last == n - 1 else f"joints {support[0] + 1} to {last + 1}"
+    place = _singular_place(robot, q, [int(k) for k in support])
     follow = ", ".join(names[:-2]) + f" and {names[-2]}" if len(names) > 2 else names[0]
-    singular = [row for row, hit in zip(sol.q, sol.near_singular) if hit]
-    every = all(_angle(row[last] - q[last]) == "0" for row in singular)
-    given = f"{names[-1]} = {_angle(q[last])}"
+    every, given = _stated_choice(robot, sol, q, last)
     return (
-        f"{at}{what} is singular (joints {listed} turn about parallel axes); "
+        f"{place} is singular (joints {listed} turn about parallel axes); "
         f"{text} = {_angle(total)} is all that is determined of their turns: {names[-1]} may "
         f"be chosen (within reach), {follow} follow ("
         + (
@@ -638,6 +623,31 @@ def _parallel_family(
         )
         + ")"
     )
+
+
+def _singular_place(robot: KinematicChain, q: np.ndarray, joints: list[int]) -> str:
+    """What is singular, in words: ``"θ5 = 0: the wrist"`` when one revolute joint between
+    the first and the last of ``joints`` (0-based, in order) is not among them, and the
+    family reaches the last joint of the arm; ``"joints i to j"`` otherwise."""
+    revolute = _revolute(robot)
+    first, last = joints[0], joints[-1]
+    between = [
+        f"{_plain(robot.variables[k])} = {_angle(q[k])}"
+        for k in range(first + 1, last)
+        if revolute[k] and k not in joints
+    ]
+    what = "the wrist" if last == len(q) - 1 else f"joints {first + 1} to {last + 1}"
+    return (f"{between[0]}: " if len(between) == 1 else "") + what
+
+
+def _stated_choice(
+    robot: KinematicChain, sol: IKSolution, q: np.ndarray, k: int
+) -> tuple[bool, str]:
+    """Whether every solution near the singularity has joint ``k`` (0-based) at its value
+    in ``q``, and that choice in words (``"θ4 = 0"``)."""
+    singular = [row for row, hit in zip(sol.q, sol.near_singular) if hit]
+    every = all(_angle(row[k] - q[k]) == "0" for row in singular)
+    return every, f"{_plain(robot.variables[k])} = {_angle(q[k])}"
 
 
 def _angle(x: float) -> str:
