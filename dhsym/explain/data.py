@@ -290,8 +290,10 @@ class SingularityDerivation(Document):
     """The Jacobian determinant (or ``det(J Jᵀ)``) factored, and its singular factors named.
 
     ``method`` is ``blocks`` (``J`` at the wrist centre is block triangular), ``wrist``
-    (a wrist alone), ``position`` (the position rows of ``J``), ``rows`` (the non-zero rows)
-    or ``manipulability`` (the Cauchy–Binet sum); ``point`` names the reference point.
+    (a wrist alone), ``position`` (the position rows of ``J``), ``rows`` (the non-zero rows),
+    ``whole`` (the whole 6×6 ``J`` of an arm without a spherical wrist, at the wrist point
+    in a middle frame) or ``manipulability`` (the Cauchy–Binet sum); ``point`` names the
+    reference point.
     """
 
     kind = "singularities"

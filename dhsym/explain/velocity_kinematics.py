@@ -32,7 +32,7 @@ from pathlib import Path
 import sympy as sp
 
 from dhsym.kinematics.jacobian import geometric_jacobian
-from dhsym.kinematics.singularities import singularities
+from dhsym.kinematics.singularities import reference_point, singularities
 from dhsym.model.table import DHTable, JointType
 from dhsym.notation.escape import TeX
 from dhsym.notation.layout import (
@@ -223,7 +223,7 @@ def derive_singularities(
     robot = styled(name_or_robot, compact, notation)
     nota = robot.notation
     s = singularities(robot)
-    method = _method(s.measure, len(s.blocks))
+    method = "whole" if s.whole else _method(s.measure, len(s.blocks))
     measure = Math(TeX(_MEASURE[s.measure][0]), _MEASURE[s.measure][1])
     blocks = []
     shown: list[sp.Expr] = [s.determinant]
@@ -257,7 +257,13 @@ def derive_singularities(
         convention=robot.convention.value,
         n=len(robot.variables),
         method=method,
-        point="wrist centre" if method in ("blocks", "wrist") else "end effector",
+        point=(
+            reference_point(robot)[1]
+            if method == "whole"
+            else "wrist centre"
+            if method in ("blocks", "wrist")
+            else "end effector"
+        ),
         measure=measure,
         blocks=tuple(blocks),
         determinant=equation(measure, s.determinant, as_math(s.determinant, nota), nota, width),

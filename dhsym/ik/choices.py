@@ -6,7 +6,8 @@ KUKA LWR have seven joints: one given, the six left form a family of
 :mod:`dhsym.ik.families`); where the six left have no closed form, the numeric solver
 with the joint held answers from several starts (``method="numeric"``,
 :func:`~dhsym.ik.levenberg_marquardt.numeric_solutions`). At a singular wrist the
-result's ``note`` names the combination that is determined (:func:`singular_family`).
+result's ``note`` names the combination that is determined (:func:`singular_family`;
+on the UR arms, the sum of the turns of the four joints with parallel axes).
 Then ``limits=True`` shifts each angle by multiples of 2π into its joint's range and
 drops the solutions that do not fit, and ``near=q0`` orders them by distance from ``q0``
 (angles compared modulo 2π).
@@ -529,7 +530,9 @@ def singular_family(
     Found from the first solution near a singularity: a null vector of its Jacobian with
     two equal entries (±) names the pair, and ``fk`` confirms the motion at a finite step
     (0.3 rad) keeps the pose (an instantaneous null motion, the stretched elbow, is not a
-    family and gives None).
+    family and gives None). A null vector over three or more joints with parallel axes
+    (the UR arms at θ5 = 0: joints 2, 3, 4 and 6) names the sum of their turns
+    (:func:`_parallel_family`).
 
     >>> import dhsym
     >>> r = dhsym.load("puma560")
@@ -554,6 +557,9 @@ def singular_family(
         v = vt[-1]
         big = np.nonzero(np.abs(v) > 0.3)[0]
         if len(big) != 2 or not revolute[big].all() or abs(abs(v[big[0]]) - abs(v[big[1]])) > 1e-6:
+            parallel = _parallel_family(robot, sol, q, v, J, values)
+            if parallel is not None:
+                return parallel
             continue
         i, j = (int(k) for k in big)
         step = np.zeros(n)
@@ -564,21 +570,115 @@ def singular_family(
         name_i, name_j = _plain(robot.variables[i]), _plain(robot.variables[j])
         combo = _angle(q[i] + q[j] if same else q[j] - q[i])
         text = f"{name_i} + {name_j}" if same else f"{name_j} − {name_i}"
-        between = [
-            f"{_plain(robot.variables[k])} = {_angle(q[k])}" for k in range(i + 1, j) if revolute[k]
-        ]
-        what = "the wrist" if j == n - 1 else f"joints {i + 1} to {j + 1}"
-        at = f"{between[0]}: " if len(between) == 1 else ""
-        singular = [row for row, hit in zip(sol.q, sol.near_singular) if hit]
-        every = all(_angle(row[i] - q[i]) == "0" for row in singular)
-        given = f"{name_i} = {_angle(q[i])}"
+        place = _singular_place(robot, q, [i, j])
+        every, given = _stated_choice(robot, sol, q, i)
         return (
-            f"{at}{what} is singular (joints {i + 1} and {j + 1} turn about one line); "
+            f"{place} is singular (joints {i + 1} and {j + 1} turn about one line); "
             f"{text} = {combo} is all that is determined ("
             + (f"the solutions there are given with {given}" if every else f"given {given}")
             + ")"
         )
     return None
+
+
+def _parallel_family(
+    robot: KinematicChain,
+    sol: IKSolution,
+    q: np.ndarray,
+    v: np.ndarray,
+    J: np.ndarray,
+    values: Mapping[object, object] | None,
+) -> str | None:
+    """The family of :func:`singular_family` when three or more revolute joints turn about
+    parallel axes (the UR arms at θ5 = 0: joints 2, 3, 4 and 6), or None.
+
+    ``v`` is the null vector of the Jacobian ``J`` at ``q``; its joints (the entries not 0)
+    must turn about parallel axes (the angular columns of ``J``), so their turns about that
+    direction add up: ``Σ ±θ_k`` (the sign of each axis against the first) is what the
+    rotation fixes. ``fk`` confirms a finite family: the last of these joints turned by
+    ±0.3 rad and held, the Levenberg–Marquardt solver finds the others again from ``q``; the
+    pose and the sum must be kept and another joint must have moved.
+
+    >>> import dhsym
+    >>> import textwrap
+    >>> r = dhsym.load("ur5")
+    >>> note = r.ik(r.fk([0.3, -1.1, 1.4, -0.6, 0.0, 0.4])).note
+    >>> print(textwrap.fill(note.split(" (the")[0], 80))
+    θ5 = 0: the wrist is singular (joints 2, 3, 4 and 6 turn about parallel axes); θ2
+    + θ3 + θ4 + θ6 = 0.1 is all that is determined of their turns: θ6 may be chosen
+    (within reach), θ2, θ3 and θ4 follow
+    """
+    revolute = _revolute(robot)
+    support = np.nonzero(np.abs(v) > 1e-6)[0]
+    if len(support) < 3 or not revolute[support].all():
+        return None
+    axes = J[3:, support]
+    u = axes[:, 0] / np.linalg.norm(axes[:, 0])
+    if np.abs(np.cross(u, axes.T)).max() > 1e-6:
+        return None  # not all parallel: no sum of turns
+    signs = np.sign(axes.T @ u)
+    last = int(support[-1])
+    fk = robot.fk_function(values=values)
+    T = fk(q)
+    total = float(signs @ q[support])
+    for step in (0.3, -0.3):
+        start = q.copy()
+        start[last] += step
+        moved = numeric_ik(robot, T, start, values=values, fixed={last + 1: float(start[last])})
+        if not moved.converged:
+            continue
+        m = moved.q[0]
+        kept = np.abs(fk(m) - T).max() <= 1e-9
+        same = _angle(float(signs @ m[support]) - total) == "0"
+        others = np.abs(np.angle(np.exp(1j * (m - start))))[support[:-1]].max() > 1e-6
+        if kept and same and others:
+            break
+    else:
+        return None  # no finite motion: no family
+    names = [_plain(robot.variables[k]) for k in support]
+    text = names[0] + "".join(
+        f" + {name}" if sign > 0 else f" − {name}" for name, sign in zip(names[1:], signs[1:])
+    )
+    listed = ", ".join(str(k + 1) for k in support[:-1]) + f" and {last + 1}"
+    place = _singular_place(robot, q, [int(k) for k in support])
+    follow = ", ".join(names[:-2]) + f" and {names[-2]}" if len(names) > 2 else names[0]
+    every, given = _stated_choice(robot, sol, q, last)
+    return (
+        f"{place} is singular (joints {listed} turn about parallel axes); "
+        f"{text} = {_angle(total)} is all that is determined of their turns: {names[-1]} may "
+        f"be chosen (within reach), {follow} follow ("
+        + (
+            f"the solutions there are given with {given}"
+            if every
+            else f"the first given with {given}"
+        )
+        + ")"
+    )
+
+
+def _singular_place(robot: KinematicChain, q: np.ndarray, joints: list[int]) -> str:
+    """What is singular, in words: ``"θ5 = 0: the wrist"`` when one revolute joint between
+    the first and the last of ``joints`` (0-based, in order) is not among them, and the
+    family reaches the last joint of the arm; ``"joints i to j"`` otherwise."""
+    revolute = _revolute(robot)
+    first, last = joints[0], joints[-1]
+    between = [
+        f"{_plain(robot.variables[k])} = {_angle(q[k])}"
+        for k in range(first + 1, last)
+        if revolute[k] and k not in joints
+    ]
+    what = "the wrist" if last == len(q) - 1 else f"joints {first + 1} to {last + 1}"
+    return (f"{between[0]}: " if len(between) == 1 else "") + what
+
+
+def _stated_choice(
+    robot: KinematicChain, sol: IKSolution, q: np.ndarray, k: int
+) -> tuple[bool, str]:
+    """Whether every solution near the singularity has joint ``k`` (0-based) at its value
+    in ``q``, and that choice in words (``"θ4 = 0"``)."""
+    singular = [row for row, hit in zip(sol.q, sol.near_singular) if hit]
+    every = all(_angle(row[k] - q[k]) == "0" for row in singular)
+    return every, f"{_plain(robot.variables[k])} = {_angle(q[k])}"
 
 
 def _angle(x: float) -> str:

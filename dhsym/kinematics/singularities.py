@@ -12,7 +12,12 @@ wrist joints then move the centre not at all, so
 determinant 1). ``J11`` is the 3×3 arm block, ``J22 = [z_a4 z_a5 z_a6]`` the wrist
 axes. Determinants are expanded along the line with most zeros and every minor is
 factored before it is used (sum-angle folds, then ``factor``), in the frame that gives
-the shortest result; a rotation does not change a determinant. Other arms use the
+the shortest result; a rotation does not change a determinant. A six-joint arm
+without a spherical wrist (the UR arms: axes 2, 3, 4 parallel, 5 and 6 meeting in the
+*wrist point*) has the whole ``J`` factored the same way, at the wrist point and in the
+middle frame where it has the most zeros, within a bound on the work
+(:data:`MAX_TERMS`); a wrist factor there is one whose zeros make the axes beside its
+joint parallel (``θ5 = 0``: axes 4 and 6, with 2 and 3). Other arms use the
 square part of ``J`` (the position rows for a positioning arm, the non-zero rows
 otherwise) or, when it is not square, the manipulability ``w = sqrt(det(J Jᵀ))`` by the
 Cauchy–Binet sum of squared minors.
@@ -35,6 +40,8 @@ det J = a2*S5*(a2*C2 + a3*C23 - d4*S23)*(a3*S3 + d4*C3)
 ((theta5, 0), (theta5, pi))
 >>> print(singularities(dhsym.load("planar2r")).text())
 det J_v = a1*a2*S2
+>>> print(singularities(dhsym.load("ur5")).text())
+det J = a2*a3*S3*S5*(a2*C2 + a3*C23 + d5*S234)
 """
 
 from __future__ import annotations
@@ -80,27 +87,41 @@ _MAX_MINORS = 5  # Cauchy–Binet beyond this takes seconds: one redundant joint
 # --- determinants, factored as they are built -----------------------------------------------
 
 
-def _factor(expr: sp.Expr) -> sp.Expr:
-    """Factor a sum after folding sum angles; products are kept as they are."""
+def _factor(expr: sp.Expr, max_terms: int | None = None) -> sp.Expr:
+    """Factor a sum after folding sum angles; products are kept as they are. A sum that
+    expands to more than ``max_terms`` terms is a :class:`StructureError` (the bound)."""
     if expr == 0 or not expr.is_Add:
         return expr
-    folded = fold_sum_angles(sp.expand(expr))
+    expanded = sp.expand(expr)
+    if max_terms is not None and len(sp.Add.make_args(expanded)) > max_terms:
+        raise StructureError(
+            f"a minor of the determinant expands to {len(sp.Add.make_args(expanded))} terms, "
+            f"more than the {max_terms} factored here"
+        )
+    folded = fold_sum_angles(expanded)
     return sp.factor(folded) if folded != 0 else sp.Integer(0)
 
 
-def factored_det(M: sp.MatrixBase) -> sp.Expr:
+def factored_det(M: sp.MatrixBase, *, max_terms: int | None = None) -> sp.Expr:
     """Determinant by expansion along the line with most zeros, each minor factored.
+
+    ``max_terms`` bounds the work: a minor whose expanded sum has more terms raises
+    :class:`~dhsym.kinematics.decoupling.StructureError` (None: no bound).
 
     >>> t2, t3, a2, a3 = sp.symbols("theta2 theta3 a2 a3", real=True)
     >>> factored_det(sp.Matrix([[1, 0, 0], [0, -a2 * sp.sin(t2), -a3 * sp.sin(t2 + t3)],
     ...                         [0, a2 * sp.cos(t2), a3 * sp.cos(t2 + t3)]]))
     a2*a3*sin(theta3)
+    >>> factored_det(sp.Matrix([[a2, a3], [a3, a2]]), max_terms=1)
+    Traceback (most recent call last):
+    ...
+    dhsym.kinematics.decoupling.StructureError: a minor of the determinant expands to 2 terms, ...
     """
     n = M.rows
     if n == 0:
         return sp.Integer(1)
     if n == 1:
-        return _factor(M[0, 0])
+        return _factor(M[0, 0], max_terms)
     lines = [(sum(1 for x in M.row(i) if x == 0), 0, i) for i in range(n)]
     lines += [(sum(1 for x in M.col(j) if x == 0), 1, j) for j in range(n)]
     _, along_column, k = max(lines)
@@ -110,8 +131,8 @@ def factored_det(M: sp.MatrixBase) -> sp.Expr:
         if M[i, j] == 0:
             continue
         sub = sp.Matrix(M).minor_submatrix(i, j)
-        terms.append((-1) ** (i + j) * M[i, j] * factored_det(sub))
-    return _factor(sp.Add(*terms))
+        terms.append((-1) ** (i + j) * M[i, j] * factored_det(sub, max_terms=max_terms))
+    return _factor(sp.Add(*terms), max_terms)
 
 
 def _best_det(matrices: Sequence[sp.MatrixBase]) -> sp.Expr:
@@ -273,13 +294,31 @@ class Singularities:
         }[self.measure]
         return f"{head} = {self.robot.notation.latex(self.determinant)}"
 
+    @property
+    def whole(self) -> bool:
+        """True for the whole 6×6 ``J`` of an arm without a spherical wrist (one block, at
+        the wrist point in a middle frame; see :func:`reference_point`)."""
+        return self.measure == "det J" and len(self.blocks) == 1 and len(self.rows) == 6
+
     def verify(self) -> bool:
         """Exact proof that the factored form equals the determinant of ``J`` in frame 0.
 
         For the block form each block is proven against its own determinant in frame
         0 and the block triangle is checked (the wrist joints do not move the centre).
+        The whole ``J`` of an arm without a spherical wrist is proven against the
+        determinant of its own matrix (at the wrist point, in a middle frame) and then
+        compared, exactly, with ``det J`` in frame 0 at the tool point at rational points
+        (:func:`_equal_at_rational_points`).
         """
         robot = self.robot
+        if self.whole:
+            (block,) = self.blocks
+            J0 = geometric_jacobian(robot, 0).matrix
+            return (
+                prove_equal(Matrix([block.determinant]), Matrix([block.matrix.det("berkowitz")]))
+                and prove_equal(Matrix([self.determinant]), Matrix([block.determinant]))
+                and _equal_at_rational_points(J0, self.determinant, robot)
+            )
         if self.measure == "det J" and len(self.blocks) == 2:
             dec = decouple(robot, 3)
             J = geometric_jacobian(robot, 0, dec.centre).matrix
@@ -316,6 +355,50 @@ class Singularities:
         return tuple(
             _compile(f.expr, self.robot, values) for f in self.factors if f.kind != "constant"
         )
+
+
+def _equal_at_rational_points(
+    J: sp.MatrixBase, det: sp.Expr, robot: KinematicChain, points: int = 3, seed: int = 0
+) -> bool:
+    """Whether ``det J = det`` at ``points`` random points where every sine and cosine is a
+    rational number, compared exactly: each joint angle's ``(cos, sin)`` is the rational
+    point ``((1 − t²)/(1 + t²), 2t/(1 + t²))`` of the unit circle, the lengths and the
+    prismatic joints random rationals (seeded: the same points every run).
+
+    >>> import dhsym
+    >>> r = dhsym.load("planar2r")
+    >>> J = sp.Matrix(r.jacobian().matrix[:2, :])
+    >>> t2 = r.variables[1]
+    >>> a1, a2 = sp.symbols("a1 a2", real=True)
+    >>> _equal_at_rational_points(J, a1 * a2 * sp.sin(t2), r)
+    True
+    >>> _equal_at_rational_points(J, a1 * a2 * sp.cos(t2), r)
+    False
+    """
+    import random
+
+    rng = random.Random(seed)
+    joints = {r.variable: r.joint for r in robot.table.rows if r.variable is not None}
+    entries = [sp.expand_trig(e) for e in J] + [sp.expand_trig(det)]
+    symbols = set().union(*(e.free_symbols for e in entries))
+    for _ in range(points):
+        at: dict[sp.Expr, sp.Expr] = {}
+        for v, joint in joints.items():
+            t = sp.Rational(rng.randint(-30, 30), rng.randint(1, 30))
+            if joint is JointType.PRISMATIC:
+                at[v] = t
+            else:
+                at[sp.cos(v)] = (1 - t**2) / (1 + t**2)
+                at[sp.sin(v)] = 2 * t / (1 + t**2)
+        for x in symbols - set(joints):
+            at[x] = sp.Rational(rng.randint(1, 60), rng.randint(1, 30))
+        values = [e.xreplace(at) for e in entries]
+        if any(v.free_symbols for v in values):
+            return False  # an angle that is not a sum of joint angles: not evaluated exactly
+        M = sp.Matrix(J.rows, J.cols, values[:-1])
+        if sp.simplify(M.det(method="bareiss") - values[-1]) != 0:
+            return False
+    return True
 
 
 def _compile(
@@ -389,8 +472,11 @@ def _name_factors(
     wrist_factors: set[sp.Expr],
     geo: ArmGeometry | None,
     point: str,
+    wrist_words: Mapping[sp.Expr, str] | None = None,
 ) -> tuple[sp.Expr, tuple[SingularFactor, ...]]:
-    """The determinant with tidy signs, and its factors named (see the module text)."""
+    """The determinant with tidy signs, and its factors named (see the module text);
+    ``wrist_words`` are the descriptions of wrist factors read from the axes (an arm
+    without a spherical wrist), by factor."""
     variables = robot.variables
     joints = {r.variable: r.joint for r in robot.table.rows if r.variable is not None}
     number = {v: i for i, v in enumerate(variables, start=1)}
@@ -411,6 +497,8 @@ def _name_factors(
             kind = SingularityKind.BOUNDARY
         offset = geo.offset if geo is not None else None
         name, text = _describe(kind, robot, number[vs[0]] if vs else None, point, offset)
+        if kind is SingularityKind.WRIST and wrist_words and base in wrist_words:
+            text = wrist_words[base]
         sols = _zeros(base, vs[0], joints[vs[0]]) if len(vs) == 1 else ()
         out.append(
             SingularFactor(
@@ -453,6 +541,121 @@ def _tool_geometry(robot: KinematicChain, fallback: ArmGeometry | None) -> ArmGe
         return arm_geometry(robot, dec) if dec.arm else fallback
     except StructureError:
         return fallback
+
+
+#: The bound on the whole 6×6 determinant of an arm without a spherical wrist: no minor's
+#: expanded sum of more terms is factored (the UR arms' largest has 3 at the frame chosen, the
+#: Kinova Jaco's 60, and its determinant does not factor); a table beyond it is refused in
+#: seconds, not factored for minutes.
+MAX_TERMS = 40
+
+
+def reference_point(robot: KinematicChain) -> tuple[int | str, str]:
+    """Where the whole Jacobian of a six-joint arm without a spherical wrist is taken: the
+    frame whose origin is the point where the axes of the last two joints meet (the *wrist
+    point*: those joints do not move it, so their columns of ``J_v`` vanish), else the
+    tool point.
+
+    >>> import dhsym
+    >>> reference_point(dhsym.load("ur5")), reference_point(dhsym.load("planar4r"))
+    ((5, 'wrist point'), ('tool', 'tool point'))
+    """
+    try:
+        return decouple(robot, 2).centre, "wrist point"
+    except StructureError:
+        return "tool", "tool point"
+
+
+def _vanishes(expr: sp.Expr) -> bool:
+    """Exact proof that ``expr`` is 0 (a polynomial in sines and cosines)."""
+    return expr == 0 or prove_equal(Matrix([expr]), Matrix([0]))
+
+
+def _parallel(robot: KinematicChain, ref: int, frame: int, at: Mapping[sp.Symbol, sp.Expr]) -> bool:
+    """Whether the z axis of ``frame`` is parallel to that of ``ref`` with ``at`` put in."""
+    z = robot.transform(ref, frame).matrix[:3, 2]
+    return _vanishes(z[0].subs(at)) and _vanishes(z[1].subs(at))
+
+
+def _parallel_axes(robot: KinematicChain, det: sp.Expr) -> dict[sp.Expr, str]:
+    """The factors of ``det`` in one revolute joint ``j`` (not the first or the last) at
+    whose zeros the axes of joints ``j − 1`` and ``j + 1``, not parallel otherwise, become
+    parallel: the wrist singularities of an arm without a spherical wrist, each with its
+    description (which axes are then parallel), read from the axes, not from a name.
+
+    >>> import dhsym
+    >>> r = dhsym.load("ur5")
+    >>> t3, t5 = sp.symbols("theta3 theta5", real=True)
+    >>> import textwrap
+    >>> print(textwrap.fill(_parallel_axes(r, sp.sin(t3) * sp.sin(t5))[sp.sin(t5)], 80))
+    the axes of joints 4 and 6 are parallel: joints 2, 3, 4 and 6 turn about
+    parallel axes, which move the tool in three directions only
+    >>> list(_parallel_axes(r, sp.sin(t3) * sp.sin(t5)))  # θ3 = 0 makes no axes parallel
+    [sin(theta5)]
+    """
+    rows = [i for i, r in enumerate(robot.table.rows, start=1) if r.variable is not None]
+    variables = list(robot.variables)
+    revolute = [robot.table.rows[r - 1].joint is JointType.REVOLUTE for r in rows]
+    frames = [axis_frame(robot, r) for r in rows]
+    out: dict[sp.Expr, str] = {}
+    for base, _ in _normal_product(det)[1]:
+        vs = [v for v in variables if v in base.free_symbols]
+        if len(vs) != 1:
+            continue
+        j = variables.index(vs[0])
+        if not 0 < j < len(rows) - 1 or not (revolute[j - 1] and revolute[j + 1]):
+            continue
+        zeros = _zeros(base, vs[0], JointType.REVOLUTE) if revolute[j] else ()
+        if not zeros:
+            continue
+        ref, at = frames[j + 1], {vs[0]: zeros[0]}
+        if _parallel(robot, ref, frames[j - 1], {}) or not _parallel(robot, ref, frames[j - 1], at):
+            continue
+        together = [
+            k
+            for k in range(len(rows))
+            if revolute[k] and (k == j + 1 or _parallel(robot, ref, frames[k], at))
+        ]
+        names = [str(k + 1) for k in together]
+        text = f"the axes of joints {j} and {j + 2} are parallel"
+        if len(together) > 2:
+            listed = ", ".join(names[:-1]) + f" and {names[-1]}"
+            text += (
+                f": joints {listed} turn about parallel axes, which move the tool in three "
+                "directions only"
+            )
+        out[base] = text
+    return out
+
+
+def _whole(robot: KinematicChain) -> Singularities:
+    """A six-joint arm without a spherical wrist (the UR arms): the whole ``J`` at the wrist
+    point (:func:`reference_point`) in the middle frame where it has the most zeros, its
+    determinant expanded along its sparsest lines, bounded by :data:`MAX_TERMS`."""
+    point, where = reference_point(robot)
+    middle = sorted(range(1, robot.n), key=lambda k: abs(2 * k - robot.n))[:3]
+    mats = {k: geometric_jacobian(robot, k, point).matrix for k in middle}
+    frame = max(middle, key=lambda k: sum(1 for x in mats[k] if x == 0))
+    try:
+        det = factored_det(mats[frame], max_terms=MAX_TERMS)
+    except StructureError as err:
+        raise StructureError(
+            f"{robot.name or 'this arm'} has no spherical wrist and its 6×6 determinant (J at "
+            f"the {where}, in frame {frame}) is not factored here: {err} (use the numeric "
+            "measure)"
+        ) from None
+    try:
+        geo: ArmGeometry | None = arm_geometry(robot, decouple(robot, 2))
+    except StructureError:
+        geo = _tool_geometry(robot, None)
+    words = _parallel_axes(robot, det)
+    block = Block("J", Matrix(mats[frame]), frame, det)
+    det, named = _name_factors(robot, det, set(words), geo, where, words)
+    method = (
+        f"the whole J at the {where}, in frame {frame} (of the middle frames, the one where J "
+        "has the most zeros): moving the point or turning the frame does not change det J"
+    )
+    return Singularities("det J", det, named, (block,), tuple(range(6)), method, robot)
 
 
 def singularities(robot: KinematicChain) -> Singularities:
@@ -587,6 +790,8 @@ def _derive(robot: KinematicChain) -> Singularities:
     frames = [k for k in range(0, robot.n + 1) if _rotation_about_z0(robot, k)]
     if square is not None:
         measure, rows = square
+        if len(rows) == 6 and n == 6:
+            return _whole(robot)
         if len(rows) > 4:
             raise StructureError(
                 f"{robot.name or 'this arm'} has no spherical wrist: the {len(rows)}×{len(rows)} "

@@ -132,3 +132,55 @@ def test_a_singular_wrist_names_its_family_in_text_and_json(capsys):
     assert "θ4 + θ6 = -0.9 is all that is determined" in out["note"]
     assert main(["ik", "puma560", "--pose-of", q]) == 0
     assert "  note: θ5 = 0: the wrist is singular" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("name", "q", "says"),
+    [
+        ("puma560", "0.3,-0.5,0.4,0.2,0,-1.1", "θ4 + θ6 = -0.9 is all that is determined"),
+        # the Stanford table is in degrees: so is --pose-of (θ4 + θ6 = −40° = −0.6981 rad)
+        ("stanford", "10,-30,0.4,20,0,-60", "θ4 + θ6 = -0.6981 is all that is determined"),
+        ("ur5", "0.3,-1.1,1.4,-0.6,0,0.4", "θ2 + θ3 + θ4 + θ6 = 0.1 is all that is determined"),
+    ],
+)
+def test_a_singular_pose_names_its_family_in_text_and_json_on_each_arm(name, q, says, capsys):
+    # issue 32, done when: singular poses on PUMA, UR5 and Stanford, Python, CLI and JSON
+    assert main(["ik", name, "--pose-of", q, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert says in out["note"] and out["note"].startswith("θ5 = 0: the wrist is singular")
+    assert any(s["singular"] == ["wrist"] for s in out["solutions"])
+    assert main(["ik", name, "--pose-of", q]) == 0
+    assert "  note: θ5 = 0: the wrist is singular" in capsys.readouterr().out
+    r = dhsym.load(name)
+    values = np.array([float(x) for x in q.split(",")])
+    if name == "stanford":
+        values[[0, 1, 3, 4, 5]] = np.radians(values[[0, 1, 3, 4, 5]])
+    assert says in r.ik(r.fk(values)).note
+
+
+@pytest.mark.parametrize(
+    ("name", "where", "step"),
+    [
+        ("puma560", "5", "theta3"),
+        ("ur5", "5", "theta3"),
+        ("stanford", "axis", "theta1"),
+    ],
+)
+def test_an_unreachable_pose_names_the_step_in_python_text_and_json(name, where, step, capsys):
+    r = dhsym.load(name)
+    T = r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
+    if where == "axis":  # the Stanford arm reaches out to any distance (d3 unlimited) but
+        T[:3, 3] = [0.0, 0.0, 0.3]  # never within its shoulder offset of the axis of joint 1
+    else:
+        T[:3, 3] *= 5
+    said = f"no real value of {step} on any branch"
+    sol = r.ik(T)
+    assert len(sol) == 0 and said in sol.reason
+    pose = ",".join(f"{x:.12g}" for x in T[:3].ravel())
+    assert main(["ik", name, "--pose", pose, "--json"]) == 1
+    captured = capsys.readouterr()
+    out = json.loads(captured.out)
+    assert out["solutions"] == [] and said in out["reason"]
+    assert "dhsym: no solution:" in captured.err and said in captured.err
+    assert main(["ik", name, "--pose", pose]) == 1
+    assert said in capsys.readouterr().err

@@ -124,6 +124,7 @@ def test_puma_singularities_are_factored_and_named():
         ("scara", "rows", "det J"),
         ("planar4r", "manipulability", "det(J J^T)"),
         ("stanford", "blocks", "det J"),
+        ("ur5", "whole", "det J"),
     ],
 )
 def test_each_method_has_its_words_in_every_format(name, method, measure):
@@ -134,6 +135,19 @@ def test_each_method_has_its_words_in_every_format(name, method, measure):
         assert f"{s.measure.latex} &= {s.determinant.latex_lines[0]}" in out
     if method == "manipulability":
         assert "Cauchy" in s.to_text() and s.factors == ()
+
+
+def test_an_arm_without_a_spherical_wrist_is_written_at_its_wrist_point():
+    s = derive_singularities("ur5")
+    assert (s.method, s.point) == ("whole", "wrist point")
+    text = s.to_text()
+    assert "take the whole J at the\n   wrist point" in text and "   In frame 4:" in text
+    assert "det J = a2*a3*S3*S5*(a2*C2 + a3*C23 + d5*S234)" in text
+    assert "wrist singularity: S5 = 0, at theta5 = 0 or theta5 = pi. The axes of joints 4" in text
+    tex = s.to_latex()
+    assert "In frame 4," in tex and r"\item \textbf{wrist singularity}: $S_{5} = 0$" in tex
+    assert tex.isascii()
+    assert "In frame 4:" in s.to_markdown()
 
 
 def test_zeros_of_a_factor_are_where_it_vanishes():

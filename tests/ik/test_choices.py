@@ -167,3 +167,42 @@ def test_batch_tolerances_are_each_poses_own() -> None:
     want = np.array([pose_accuracy(x).tol for x in T])
     assert np.array_equal(got, want)
     assert (got[:10] == FLOOR).all() and (got[20:30] > FLOOR).all() and (got[36:40] > FLOOR).all()
+
+
+@pytest.mark.parametrize("name", ["ur5", "ur3"])
+@pytest.mark.parametrize("theta5", [0.0, np.pi])
+def test_a_ur_singular_wrist_names_the_sum_of_the_parallel_joints(name, theta5) -> None:
+    # issue 32, item 2: joints 2, 3, 4 and 6 turn about parallel axes at θ5 = 0 or π; only
+    # θ2 + θ3 + θ4 ± θ6 is determined, θ6 may be chosen and the others follow
+    from dhsym.ik.levenberg_marquardt import numeric_ik
+
+    r = dhsym.load(name)
+    q = np.array([0.3, -1.1, 1.4, -0.6, theta5, 0.4])
+    T = r.fk(q)
+    sol = r.ik(T)
+    assert sol.note is not None
+    sign = 1 if theta5 == 0 else -1
+    text = "θ2 + θ3 + θ4 + θ6" if theta5 == 0 else "θ2 + θ3 + θ4 − θ6"
+    value = float(np.angle(np.exp(1j * (q[1] + q[2] + q[3] + sign * q[5]))))
+    assert sol.note.startswith(f"θ5 = {0 if theta5 == 0 else 3.142}: the wrist is singular")
+    assert "(joints 2, 3, 4 and 6 turn about parallel axes)" in sol.note
+    assert f"{text} = {value:.4g} is all that is determined" in sol.note
+    # the stated choice is the first singular solution's θ6
+    row = sol.q[np.nonzero(sol.near_singular)[0][0]]
+    assert f"given with θ6 = {float(np.angle(np.exp(1j * row[5]))):.4g})" in sol.note
+    # the family it names keeps the pose: another θ6, the other joints found again (fk),
+    # the sum unchanged
+    for t in (0.2, -0.25):
+        start = row.copy()
+        start[5] += t
+        moved = numeric_ik(r, T, start, fixed={6: start[5]}).q[0]
+        assert np.abs(r.fk(moved) - T).max() < 1e-9
+        d = moved[1] + moved[2] + moved[3] + sign * moved[5] - value
+        assert abs(np.angle(np.exp(1j * d))) < 1e-9
+        assert abs(moved[1] - row[1]) > 1e-3  # a family, not one point
+
+
+def test_a_regular_ur5_pose_has_no_family_note() -> None:
+    r = dhsym.load("ur5")
+    sol = r.ik(r.fk([0.3, -1.1, 1.4, -0.6, 1.2, 0.4]))
+    assert sol.note is None and not sol.near_singular.any()

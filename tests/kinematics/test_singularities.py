@@ -163,3 +163,90 @@ def test_one_vocabulary_names_the_same_singularity_the_same_on_every_arm(tmp_pat
         for f in singularities(_robot(name)).factors:
             assert f.name == names[f.kind]
     assert "arm singularity" not in names.values()
+
+
+# --- six-joint arms without a spherical wrist (issue 32, item 2) ------------------------------
+
+UR = ["ur3", "ur5", "ur10"]
+
+
+@pytest.mark.parametrize("name", UR)
+def test_an_arm_without_a_spherical_wrist_gets_its_whole_determinant_factored(name: str) -> None:
+    robot = _robot(name)
+    s = singularities(robot)
+    assert s.whole and s.measure == "det J" and s.rows == (0, 1, 2, 3, 4, 5)
+    assert s.text() == "det J = a2*a3*S3*S5*(a2*C2 + a3*C23 + d5*S234)"
+    (block,) = s.blocks
+    assert block.frame == 4 and "wrist point" in s.method
+    kinds = {f.kind: f.text() for f in s.factors if f.kind != "constant"}
+    assert kinds == {"elbow": "S3", "shoulder": "a2*C2 + a3*C23 + d5*S234", "wrist": "S5"}
+    wrist = next(f for f in s.factors if f.kind == "wrist")
+    t5 = sp.Symbol("theta5", real=True)
+    assert wrist.solutions == ((t5, 0), (t5, sp.pi))
+    assert wrist.description.startswith("the axes of joints 4 and 6 are parallel: joints 2, 3, 4")
+    shoulder = next(f for f in s.factors if f.kind == "shoulder")
+    assert "wrist point" in shoulder.description
+    assert s.verify()
+    # a second method: the determinant of the numeric Jacobian (frame 0, tool point)
+    rng = np.random.default_rng(3)
+    q = rng.uniform(-np.pi, np.pi, (20, 6))
+    J = jacobian_function(robot)(q)
+    assert np.allclose(np.linalg.det(J), s.function()(q), atol=1e-12)
+
+
+def test_a_wrong_whole_determinant_is_not_proven() -> None:
+    from dataclasses import replace
+
+    s = singularities(_robot("ur5"))
+    assert not replace(s, determinant=2 * s.determinant).verify()
+    (block,) = s.blocks
+    t3 = sp.Symbol("theta3", real=True)
+    wrong = block.determinant.xreplace({sp.sin(t3): sp.cos(t3)})
+    assert not replace(s, determinant=wrong, blocks=(replace(block, determinant=wrong),)).verify()
+
+
+def test_the_ur5_singular_configurations_make_the_jacobian_singular() -> None:
+    robot = _robot("ur5")
+    s = singularities(robot)
+    J = jacobian_function(robot)
+    base = np.array([0.3, -1.1, 1.4, -0.6, 1.2, 0.4])
+    assert abs(np.linalg.det(J(base))) > 1e-4
+    for factor in s.factors:
+        for var, value in factor.solutions:
+            q = base.copy()
+            q[robot.variables.index(var)] = float(value)
+            assert abs(np.linalg.det(J(q))) < 1e-12, (factor.kind, value)
+    # at θ5 = 0 the axes of joints 2, 3, 4 and 6 (the angular columns) are all parallel
+    q = base.copy()
+    q[4] = 0.0
+    axes = J(q)[3:, [1, 2, 3, 5]]
+    assert np.abs(np.cross(axes[:, 0], axes.T)).max() < 1e-12
+    # shoulder: θ4 chosen so that a2*C2 + a3*C23 + d5*S234 = 0; the wrist point (frame 5)
+    # then lies at the shoulder offset d4 from the axis of joint 1
+    v = robot.table.value_map
+    a2, a3, d4, d5 = (float(v[sp.Symbol(n, real=True)]) for n in ("a2", "a3", "d4", "d5"))
+    t2, t3 = 1.3, 0.4
+    s234 = -(a2 * np.cos(t2) + a3 * np.cos(t2 + t3)) / d5
+    q = base.copy()
+    q[1:4] = t2, t3, np.arcsin(s234) - t2 - t3
+    point = robot.fk_function(0, 5)(q)[:3, 3]
+    assert np.isclose(np.hypot(point[0], point[1]), abs(d4), atol=1e-12)
+    assert abs(np.linalg.det(J(q))) < 1e-12
+
+
+def test_an_arm_whose_determinant_does_not_factor_is_refused_within_the_bound() -> None:
+    from dhsym.kinematics.decoupling import StructureError
+
+    with pytest.raises(StructureError, match="not factored here: a minor of the determinant"):
+        singularities(dhsym.load("jaco"))
+
+
+def test_the_whole_determinant_is_kept_and_read_back_equal() -> None:
+    from dhsym.kinematics.singularities import singularities_data, stored_singularities
+
+    robot = _robot("ur5")
+    s = singularities(robot)
+    data = singularities_data(s)
+    assert data is not None
+    back = stored_singularities(data, robot)
+    assert back == s and isinstance(back, type(s)) and back.whole
