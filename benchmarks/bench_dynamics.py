@@ -117,13 +117,28 @@ def cpu_timed(f, *a, **k):
     return out, time.perf_counter() - w0, time.process_time() - c0
 
 
-def ops_split(exprs: list[sp.Expr]) -> tuple[int, int, int]:
-    """(multiplications and divisions, additions and subtractions, all) of ``exprs``."""
+def op_counts(exprs: list[sp.Expr]) -> dict[str, int]:
+    """``sympy.count_ops`` of ``exprs`` by kind (``MUL``, ``ADD``, ``POW``, ``NEG``, ``SIN``…)."""
     total = sp.Add(*(sp.count_ops(e, visual=True) for e in exprs))
-    sym = {str(s): total.coeff(s) for s in total.free_symbols} if total != 0 else {}
-    mul = sum(int(sym.get(k, 0)) for k in ("MUL", "DIV"))
-    add = sum(int(sym.get(k, 0)) for k in ("ADD", "SUB"))
-    return mul, add, int(sum(int(v) for v in sym.values()))
+    return {str(s): int(total.coeff(s)) for s in total.free_symbols} if total != 0 else {}
+
+
+def flops_line(label: str, robot: dhsym.Robot) -> str:
+    """The exported ``rne``'s floating-point operations: multiplications (squares counted as
+    one each), additions and subtractions, negations; sines, cosines and the Coulomb
+    friction's sign tests apart (they are no flops)."""
+    from dhsym.export.program import rne_program
+
+    prog = rne_program(robot)
+    c = op_counts([a.expr for a in prog.body] + [o.expr for o in prog.outputs])
+    mul = c.get("MUL", 0) + c.get("DIV", 0) + c.get("POW", 0)
+    add = c.get("ADD", 0) + c.get("SUB", 0)
+    flops = mul + add + c.get("NEG", 0)
+    rest = ", ".join(f"{c[k]} {k.lower()}" for k in ("SIN", "COS", "COULOMB") if c.get(k))
+    return (
+        f"{label}: {mul} multiplications (squares included), {add} additions, "
+        f"{c.get('NEG', 0)} negations: {flops} flops [goal <= 400]; also {rest}"
+    )
 
 
 def compact_figures(arms: list[str]) -> None:
@@ -131,7 +146,6 @@ def compact_figures(arms: list[str]) -> None:
     import tempfile
 
     from dhsym.dynamics.compact_form import compact_dynamics
-    from dhsym.export.program import rne_program
 
     for name in arms:
         cd, t, cpu = cpu_timed(compact_dynamics, dhsym.load(name))
@@ -154,11 +168,23 @@ def compact_figures(arms: list[str]) -> None:
             f"dhsym derive puma560 --what dynamics --format {fmt}: {t:.1f} s wall, "
             f"{cpu:.1f} s CPU [goal <= 60 s]"
         )
-    prog = rne_program(dhsym.load("puma560"))
-    mul, add, total = ops_split([a.expr for a in prog.body] + [o.expr for o in prog.outputs])
+    import dataclasses
+
+    puma = dhsym.load("puma560")
+    print(flops_line("exported rne of the PUMA 560 (friction and motor inertia)", puma))
+    rigid = dataclasses.replace(
+        puma.table,
+        rows=tuple(
+            dataclasses.replace(r, inertia=dataclasses.replace(r.inertia, Jm=0, B=0, Tc=(0, 0)))
+            if r.inertia is not None
+            else r
+            for r in puma.table.rows
+        ),
+    )
     print(
-        f"exported rne of the PUMA 560: {mul} multiplications, {add} additions, {total} "
-        f"operations in all (Corke's simplified PUMA: 224 + 174; goal <= 400 flops)"
+        flops_line(
+            "the same, rigid links only (Corke's simplified PUMA: 224 + 174)", dhsym.Robot(rigid)
+        )
     )
     first_call_figures()
 
@@ -360,7 +386,10 @@ def main() -> int:
     rng = np.random.default_rng(0)
     Q, V, A = (rng.uniform(-1, 1, (args.batch, 6)) for _ in range(3))
     f.rne(Q[:8], V[:8], A[:8])  # compile (numpy path)
-    f.rne(Q[0], V[0], A[0])  # compile (one-state path)
+    from dhsym.dynamics.compiled_dynamics import COMPILE_AFTER
+
+    for k in range(COMPILE_AFTER + 1):  # past the switch to the compiled one-state path
+        f.rne(Q[k], V[k], A[k])
     _, t_batch = timed(f.rne, Q, V, A)
     reps = 2000
     t0 = time.perf_counter()
