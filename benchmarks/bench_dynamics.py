@@ -385,10 +385,10 @@ def main() -> int:
     f = puma.dynamics_functions()
     rng = np.random.default_rng(0)
     Q, V, A = (rng.uniform(-1, 1, (args.batch, 6)) for _ in range(3))
-    f.rne(Q[:8], V[:8], A[:8])  # compile (numpy path)
     from dhsym.dynamics.compiled_dynamics import COMPILE_AFTER
 
-    for k in range(COMPILE_AFTER + 1):  # past the switch to the compiled one-state path
+    _, t_recursion = timed(f.rne, Q, V, A)  # before the switch: the recursion on numbers
+    for k in range(COMPILE_AFTER + 1):  # past the switch to the compiled program
         f.rne(Q[k], V[k], A[k])
     _, t_batch = timed(f.rne, Q, V, A)
     reps = 2000
@@ -397,7 +397,9 @@ def main() -> int:
         f.rne(Q[k], V[k], A[k])
     t_one = (time.perf_counter() - t0) / reps
     print(
-        f"PUMA 560 compiled rne: batch of {args.batch} in {t_batch * 1e3:.1f} ms "
+        f"PUMA 560 rne, batch of {args.batch}: the recursion on numbers (before the switch) "
+        f"{t_recursion * 1e3:.1f} ms ({t_recursion / args.batch * 1e6:.2f} us/state); the "
+        f"compiled program (after it) {t_batch * 1e3:.1f} ms "
         f"({t_batch / args.batch * 1e6:.2f} us/state); one state {t_one * 1e6:.1f} us"
     )
     try:

@@ -175,6 +175,13 @@ class _NativeRows:
         """τ and the friction torque ``(m, 2n)`` at the rows of ``V``, ``A`` ``(m, n)`` with
         ``Q`` ``(m, n)`` or one ``(n,)`` for every row, gravity ``(m, 3)`` or ``(3,)``."""
         n, m = self.n, V.shape[0]
+        rows = self.inputs.shape[0]
+        if m > rows:  # a batch: block by block through the buffers
+            Qs, Gs = np.broadcast_to(Q, (m, n)), np.broadcast_to(G, (m, 3))
+            blocks = range(0, m, rows)
+            return np.concatenate(
+                [self.states(*(x[i : i + rows] for x in (Qs, V, A, Gs))) for i in blocks]
+            )
         with self.lock:
             x = self.inputs
             x[:m, :n] = Q
@@ -284,7 +291,8 @@ class DynamicsFunctions:
     def _rows(self, Q: np.ndarray, V: np.ndarray, A: np.ndarray, g: np.ndarray) -> np.ndarray:
         """τ at the states ``(m, n)`` with gravity ``(3,)`` or ``(m, 3)``: the numeric
         recursion, or for a small call after :data:`COMPILE_AFTER` of them the compiled
-        program state by state (plain floats)."""
+        program state by state (native code, or plain floats without a compiler); once the
+        native program is built, batches go through it too."""
         m = Q.shape[0]
         G = np.broadcast_to(g, (m, 3))
         if m <= SMALL:
@@ -294,6 +302,8 @@ class DynamicsFunctions:
                 if native is not None:
                     return native.states(Q, V, A, G)[:, : self.n]
                 return np.stack([self._compiled(Q[i], V[i], A[i], G[i]) for i in range(m)])
+        if self._native is not None:  # past the switch: a batch in native code too
+            return self._native.states(Q, V, A, G)[:, : self.n]
         if self._recursion is None and not self._exact_only:
             try:
                 self._recursion = numeric_recursion(self.model)

@@ -470,7 +470,8 @@ def test_one_state_in_c_gives_the_numbers_of_python_and_of_the_recursion_cold_an
 
 def test_small_batches_after_the_switch_run_in_c_row_by_row(tmp_path, monkeypatch):
     """Up to SMALL states at once go through the C program too (a state per row), with
-    the numbers of the recursion; a large batch stays on the recursion."""
+    the numbers of the recursion; once it is built, a large batch goes through it block by
+    block (more rows than its buffers hold), with the recursion's numbers."""
     from dhsym.dynamics import compiled_dynamics as cd
 
     native = _native_rows()
@@ -488,6 +489,10 @@ def test_small_batches_after_the_switch_run_in_c_row_by_row(tmp_path, monkeypatc
         np.testing.assert_allclose(g, w, rtol=1e-10, atol=1e-10)
     big = rng.uniform(-1, 1, (cd.SMALL + 1, 4))
     np.testing.assert_allclose(f.rne(big, big, big)[3], f.rne(big[3], big[3], big[3]), atol=1e-10)
+    rows = f._native.inputs.shape[0]
+    Qb, Vb, Ab = (rng.uniform(-1, 1, (2 * rows + 5, 4)) for _ in range(3))
+    np.testing.assert_allclose(f.rne(Qb, Vb, Ab), reference.rne(Qb, Vb, Ab), rtol=1e-10, atol=1e-10)
+    np.testing.assert_allclose(f.gravload(Qb), reference.gravload(Qb), rtol=1e-10, atol=1e-10)
     # lists and broadcast states take the general path, with the same numbers
     np.testing.assert_array_equal(f.rne(list(Q[0]), V[0], A[0]), f.rne(Q[0], V[0], A[0]))
     np.testing.assert_array_equal(f.gravload(Q[:1])[0], f.gravload(Q[0]))
