@@ -177,7 +177,7 @@ class _NativeRows:
         n, m = self.n, V.shape[0]
         rows = self.inputs.shape[0]
         if m > rows:  # a batch: block by block through the buffers
-            Qs, Gs = np.broadcast_to(Q, (m, n)), np.broadcast_to(G, (m, 3))
+            Qs, Gs = np.broadcast_to(Q, (m, n)), np.broadcast_to(np.asarray(G), (m, 3))
             blocks = range(0, m, rows)
             return np.concatenate(
                 [self.states(*(x[i : i + rows] for x in (Qs, V, A, Gs))) for i in blocks]
