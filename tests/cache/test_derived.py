@@ -71,12 +71,14 @@ def test_a_refusal_is_kept(tmp_path, monkeypatch):
     from dhsym.kinematics.decoupling import StructureError
 
     _cache(tmp_path, monkeypatch)
-    sub = dhsym.load("panda").ik_cache().given(7).cache.chain  # no spherical wrist left
+    # seven joints: a redundant arm's determinant is refused (a six-joint arm without a
+    # spherical wrist is no longer refused: its whole J is factored)
+    panda = dhsym.load("panda")
     with pytest.raises(StructureError) as first:
-        sing.singularities(sub)
+        sing.singularities(panda)
     monkeypatch.setattr(sing, "_derive", None)
     with pytest.raises(StructureError) as again:
-        sing.singularities(sub)
+        sing.singularities(panda)
     assert again.value.message == first.value.message
 
 
