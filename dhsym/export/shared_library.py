@@ -421,27 +421,33 @@ def native_program(
     fn = getattr(lib, _NATIVE)
     fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int, ctypes.c_void_p]
     fn.restype = None
-    # one buffer for the two poses and one for the outputs, made once: a call copies the
-    # poses in and reads the outputs out (no array made, no address looked up per call);
-    # the lock keeps threads that share the solver from sharing the buffers at once
-    poses = (ctypes.c_double * 32)()
-    out = (ctypes.c_double * len(outputs))()
-    inner_in = np.frombuffer(memoryview(poses), dtype=float, count=16).reshape(4, 4)
-    pose_in = np.frombuffer(memoryview(poses), dtype=float, count=16, offset=128).reshape(4, 4)
-    pose_at = ctypes.byref(poses, 128)
-    values_out = np.frombuffer(memoryview(out), dtype=float)
-    lock = threading.Lock()
+    m = len(outputs)
+    # each thread its own buffers, made on its first call (no lock, nothing shared): the
+    # two poses are copied in, the C writes the outputs into a numpy array, and the call
+    # returns a copy of it (an array the caller owns; no list, no address looked up per call)
+    local = threading.local()
 
-    def run(inner: np.ndarray, pose: np.ndarray, stretch: bool) -> list[float]:
-        with lock:
-            inner_in[...] = inner
-            if pose is inner:
-                fn(poses, poses, stretch, out)
-            else:
-                pose_in[...] = pose
-                fn(poses, pose_at, stretch, out)
-            values: list[float] = values_out.tolist()
-        return values
+    def buffers() -> tuple[np.ndarray, np.ndarray, int, int, np.ndarray, int]:
+        poses = np.empty((2, 4, 4))
+        values = np.empty(m)
+        at = _address(poses)
+        made = (poses[0], poses[1], at, at + 128, values, _address(values))
+        local.buffers = made
+        return made
+
+    def run(inner: np.ndarray, pose: np.ndarray, stretch: bool) -> np.ndarray:
+        try:
+            inner_in, pose_in, inner_at, pose_at, values, values_at = local.buffers
+        except AttributeError:
+            inner_in, pose_in, inner_at, pose_at, values, values_at = buffers()
+        inner_in[...] = inner
+        if pose is inner:
+            fn(inner_at, inner_at, stretch, values_at)
+        else:
+            pose_in[...] = pose
+            fn(inner_at, pose_at, stretch, values_at)
+        got: np.ndarray = values.copy()
+        return got
 
     run.library = lib  # type: ignore[attr-defined]  # kept alive with the function
     return run

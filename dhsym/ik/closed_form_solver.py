@@ -736,7 +736,12 @@ class ClosedFormSolver:
         stretch: bool = False,
     ) -> IKSolution | None:
         """One pose with the program for floats (native when built, :meth:`native`);
-        ``None`` when it cannot finish it (the program for floats does not stretch)."""
+        ``None`` when it cannot finish it (the program for floats does not stretch).
+
+        The program's outputs are one array (the native program's own, or the floats'
+        list made one): the solutions' joint values and residuals are views of it when
+        every branch is kept, rows taken from it otherwise; the few floats the decisions
+        need (residuals, wrist sines, factors) are read as lists."""
         if not pose.flags.c_contiguous:
             pose = np.ascontiguousarray(pose, dtype=float)
         inner = self._inner(pose)
@@ -751,39 +756,41 @@ class ClosedFormSolver:
             args = inner[:3].T.ravel().tolist()
             args += args if inner is pose else pose[:3].T.ravel().tolist()
             try:
-                out = self._program("scalar")(*args)
+                out = np.array(self._program("scalar")(*args), dtype=float)
             except (ArithmeticError, ValueError):  # a division by zero, sin(inf): numpy decides
                 return None
         layout = self._layout
         at, kinds = layout if layout is not None else self._scalar_layout()
-        residual = out[at.position if check == "position" else at.whole]
-        if self._wrist_s and _smallest(out[at.wrist]) < WRIST_NEAR:
+        head = out[: at.joints.start].tolist()  # the residuals and the wrist sines
+        if self._wrist_s and _smallest(head[at.wrist]) < WRIST_NEAR:
             return None  # a singular wrist: θ4 and θ6 from the whole rotation (numpy)
+        span = at.position if check == "position" else at.whole
         if check is None:
-            kept = [k for k, r in enumerate(residual) if r - r == 0]
+            kept = [k for k, r in enumerate(head[span]) if r - r == 0]
         else:
-            kept = [k for k, r in enumerate(residual) if r <= tol]
+            kept = [k for k, r in enumerate(head[span]) if r <= tol]
+        residual = out[span]
         n, K, F = self.n, self.K, len(kinds)
-        values = out[at.joints]
-        close = out[at.factors]
+        values = out[at.joints].reshape(K, n)
+        close = out[at.factors].tolist()
         low = _smallest(close)
         if len(kept) > 1 and low < _SUSPECT:  # two branches coincide only at a singularity
-            kept = self._distinct(kept, values)
+            kept = self._distinct(kept, values.ravel().tolist())
         k = len(kept)
         if k == K:
             signs = self.branch_signs
         else:
-            values = [v for j in kept for v in values[j * n : j * n + n]]
-            residual = [residual[j] for j in kept]
-            signs = self.branch_signs[kept]
+            rows = np.array(kept, dtype=np.intp)  # take: cheaper than indexing by a list
+            values, residual = values.take(rows, 0), residual.take(rows)
+            signs = self.branch_signs.take(rows, 0)
         near = np.zeros((k, F), dtype=bool)
         if low < singular_tol:
             for i, j in enumerate(kept):
                 near[i] = [c < singular_tol for c in close[j * F : j * F + F]]
         return IKSolution(
-            np.array(values, dtype=float).reshape(k, n),
+            values,
             self._all_valid[:k],
-            np.array(residual, dtype=float),
+            residual,
             near,
             kinds,
             signs,

@@ -45,9 +45,11 @@ __all__ = ["IKSolver", "InverseKinematics", "NativeCompiler", "NativeProgram", "
 
 #: a closed form's program for one pose in native code: ``f(inner, pose, stretch)`` of the
 #: pose from frame 0 to frame n and the pose as given (contiguous row-major ``(4, 4)``
-#: float arrays) gives the program's outputs as floats; ``stretch`` reads every negative
-#: radicand as 0 (the ``"stretched"`` program of :mod:`dhsym.ik.closed_form_solver`)
-NativeProgram = Callable[[np.ndarray, np.ndarray, bool], list[float]]
+#: float arrays) gives the program's outputs as a new ``(outputs,)`` float array the
+#: caller owns (safe to call from several threads at once); ``stretch`` reads every
+#: negative radicand as 0 (the ``"stretched"`` program of
+#: :mod:`dhsym.ik.closed_form_solver`)
+NativeProgram = Callable[[np.ndarray, np.ndarray, bool], np.ndarray]
 
 
 @runtime_checkable

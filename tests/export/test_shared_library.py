@@ -190,8 +190,9 @@ def test_native_program_agrees_with_the_numpy_path(name):
 
 
 def test_native_program_shared_by_threads_gives_each_its_own_answer():
-    """The program copies the poses into one buffer made once: threads that call it at
-    once each get the outputs of their own pose (a lock), as one thread calling in turn."""
+    """Each thread copies the poses into buffers of its own and gets a new array of the
+    outputs: threads that call the program at once each get the outputs of their own pose,
+    as one thread calling in turn, and a later call never changes an array returned."""
     from concurrent.futures import ThreadPoolExecutor
 
     _need("a C compiler", shared_library.native_compiler(), "apt-get install gcc")
@@ -203,11 +204,15 @@ def test_native_program_shared_by_threads_gives_each_its_own_answer():
     inner = [np.ascontiguousarray(solver._inner(T)) for T in poses]
     rounded = [np.round(T, 3) for T in poses]  # another pose given: the second buffer
     calls = [(a, a, False) for a in inner] + [(a, b, True) for a, b in zip(inner, rounded)]
-    serial = [built(*c) for c in calls]
+    arrays = [built(*c) for c in calls]
+    assert all(type(v) is np.ndarray and v.dtype == np.float64 for v in arrays)
+    assert not any(np.shares_memory(a, b) for a, b in zip(arrays, arrays[1:]))
+    serial = [v.tolist() for v in arrays]  # read after every call: none was overwritten
     assert len({tuple(v) for v in serial}) == len(calls)  # each pose its own outputs
+    assert serial == [built(*c).tolist() for c in calls]
     with ThreadPoolExecutor(4) as pool:
         for _ in range(5):
-            assert list(pool.map(lambda c: built(*c), calls)) == serial
+            assert [v.tolist() for v in pool.map(lambda c: built(*c), calls)] == serial
 
 
 def test_no_compile_forces_the_numpy_path(tmp_path):
