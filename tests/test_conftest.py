@@ -29,7 +29,7 @@ def _root_conftest():
         "tests/docs/test_site.py::test_the_site_builds_without_a_warning",
         "tests/test_installed.py::test_handout_pdf",
         "tests/export/test_compile_all.py::test_every_robot_is_exported",
-        "tests/explain/test_notebooks.py::test_notebook_runs_clean[03_puma560.ipynb]",
+        "tests/explain/test_latex.py::test_every_builtin_robot_compiles_without_errors_or_overfull_boxes",
     ],
 )
 def test_a_module_that_builds_a_shared_fixture_is_one_unit(nodeid):
@@ -42,6 +42,8 @@ def test_a_module_that_builds_a_shared_fixture_is_one_unit(nodeid):
         "tests/model/test_parsing.py::test_whitelist_refuses_calls",
         "dhsym/model/table.py::dhsym.model.table.DHTable",
         "tests/ik/test_decoupled.py::test_x[puma560]",
+        # a session-scoped fixture (built once per worker) does not tie a module's tests
+        "tests/explain/test_notebooks.py::test_notebook_runs_clean[03_puma560.ipynb]",
     ],
 )
 def test_any_other_test_is_a_unit_by_itself(nodeid):

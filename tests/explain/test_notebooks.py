@@ -84,9 +84,11 @@ def test_students_read_lectures_not_internal_names(source):
     assert not [text for _, text in cell_sources(nb) if INTERNAL.search(text)]
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def warm_matplotlib():
-    """Build matplotlib's font cache here, not in a notebook (where its notice would be stderr)."""
+    """Build matplotlib's font cache here, not in a notebook (where its notice would be stderr).
+    Once per worker (session), not per module: the notebooks, the suite's longest quick tests,
+    are shared out one by one among the workers (tests/conftest.py), not run by one."""
     pytest.importorskip("matplotlib")
     import matplotlib.font_manager  # noqa: F401
 
