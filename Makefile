@@ -36,12 +36,18 @@ demo: $(STAMP)
 # export, the general 6R, the class through Dask, ...) on their own. Both steps and all
 # their workers share one disk cache (DHSYM_TEST_CACHE: a robot is derived once for the
 # whole run), and the tests of a module with a shared fixture (the docs site, the wheel,
-# the exports of every robot) run on one worker (tests/conftest.py).
+# the exports of every robot) run on one worker (tests/conftest.py). Python's compiled
+# modules (dhsym's, the test modules pytest rewrites) are kept for the run in a folder of
+# their own (PYTHONPYCACHEPREFIX; even where PYTHONDONTWRITEBYTECODE is set), so that every
+# worker of both steps, and every command or notebook kernel a test starts, reads them
+# instead of compiling them again; the checkout gets no __pycache__.
 test: $(STAMP)
 	cache=$$(mktemp -d "$${TMPDIR:-/tmp}/dhsym-test-cache-XXXXXX") && \
+	pyc=$$(mktemp -d "$${TMPDIR:-/tmp}/dhsym-test-pyc-XXXXXX") && \
+	unset PYTHONDONTWRITEBYTECODE && export PYTHONPYCACHEPREFIX=$$pyc && \
 	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto -m "not slow" && \
 	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto -m slow; \
-	status=$$?; rm -rf "$$cache"; exit $$status
+	status=$$?; rm -rf "$$cache" "$$pyc"; exit $$status
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check dhsym tests benchmarks

@@ -32,6 +32,28 @@ def work_unit(nodeid: str, root: Path) -> str:
     return file if _builds_once(root / file) else nodeid
 
 
+#: fixtures of the tests that start an outside program: TeX, Chromium, a Jupyter kernel
+STARTS_A_PROGRAM = frozenset(
+    {"need_tex", "need_chromium", "need_jupyter", "need_playwright", "need_otter", "browser"}
+)
+
+
+def program_modules_first(items: list) -> None:
+    """Put first, in place and otherwise in order, the test modules with a test that starts
+    TeX, Chromium or a Jupyter kernel (:data:`STARTS_A_PROGRAM`): the long tests are handed
+    out first and the short ones last, so that no worker is left alone with a long module
+    at the end of a run. A module's tests stay together (a module-scoped fixture is built
+    once)."""
+    first = {
+        item.path for item in items if STARTS_A_PROGRAM & set(getattr(item, "fixturenames", ()))
+    }
+    items.sort(key=lambda item: item.path not in first)  # sort is stable
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    program_modules_first(items)
+
+
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object:
     """Under ``pytest -n N`` (the default ``--dist load``): share the tests out one by one,

@@ -10,7 +10,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from tests.conftest import work_unit
+from tests.conftest import program_modules_first, work_unit
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -29,7 +29,7 @@ def _root_conftest():
         "tests/docs/test_site.py::test_the_site_builds_without_a_warning",
         "tests/test_installed.py::test_handout_pdf",
         "tests/export/test_compile_all.py::test_every_robot_is_exported",
-        "tests/explain/test_notebooks.py::test_notebook_runs_clean[03_puma560.ipynb]",
+        "tests/explain/test_latex.py::test_every_builtin_robot_compiles_without_errors_or_overfull_boxes",
     ],
 )
 def test_a_module_that_builds_a_shared_fixture_is_one_unit(nodeid):
@@ -42,6 +42,8 @@ def test_a_module_that_builds_a_shared_fixture_is_one_unit(nodeid):
         "tests/model/test_parsing.py::test_whitelist_refuses_calls",
         "dhsym/model/table.py::dhsym.model.table.DHTable",
         "tests/ik/test_decoupled.py::test_x[puma560]",
+        # a session-scoped fixture (built once per worker) does not tie a module's tests
+        "tests/explain/test_notebooks.py::test_notebook_runs_clean[03_puma560.ipynb]",
     ],
 )
 def test_any_other_test_is_a_unit_by_itself(nodeid):
@@ -77,3 +79,30 @@ def test_the_session_cache_is_private_and_not_the_users():
         Path(folder).name.startswith(_root_conftest().PREFIX)
         or os.environ.get("DHSYM_TEST_CACHE") == folder
     )
+
+
+def test_modules_that_start_a_program_come_first_and_stay_together():
+    def item(path: str, *fixtures: str) -> SimpleNamespace:
+        return SimpleNamespace(path=Path(path), fixturenames=("tmp_path", *fixtures))
+
+    items = [
+        item("a.py"),
+        item("b.py", "need_tex"),
+        item("a.py"),
+        item("c.py"),
+        item("b.py"),
+        item("d.py", "browser"),
+        SimpleNamespace(path=Path("dhsym/x.py")),  # a doctest: no fixture names
+    ]
+    order = [items[1], items[4], items[5], items[0], items[2], items[3], items[6]]
+    program_modules_first(items)
+    assert items == order
+
+
+def test_this_session_runs_the_modules_that_start_a_program_first(request):
+    from tests.conftest import STARTS_A_PROGRAM
+
+    items = request.session.items
+    first = {i.path for i in items if STARTS_A_PROGRAM & set(getattr(i, "fixturenames", ()))}
+    flags = [item.path in first for item in items]
+    assert flags == sorted(flags, reverse=True)  # all of them, then the others

@@ -148,16 +148,19 @@ def _long_table(tmp_path, n: int, twisted: bool) -> str:
     return str(p)
 
 
-def test_derive_of_a_long_or_exploding_chain_is_a_one_line_refusal(tmp_path):
-    out = _dhsym("derive", _long_table(tmp_path, 250, twisted=False))
-    assert out.returncode == 2 and out.stderr.count("\n") == 1
-    assert "spans 250 links; a derivation shows at most 60" in out.stderr
-    out = _dhsym("derive", _long_table(tmp_path, 24, twisted=True))
-    assert out.returncode == 2 and out.stderr.count("\n") == 1
-    assert "too large to write out in closed form" in out.stderr and "--from/--to" in out.stderr
+def test_derive_of_a_long_or_exploding_chain_is_a_one_line_refusal(tmp_path, capsys):
+    assert main(["derive", _long_table(tmp_path, 250, twisted=False)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "spans 250 links; a derivation shows at most 60" in err
+    assert main(["derive", _long_table(tmp_path, 24, twisted=True)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1
+    assert "too large to write out in closed form" in err and "--from/--to" in err
 
 
-def test_every_command_answers_on_a_sixty_row_twisted_table(tmp_path):
+def test_every_command_answers_on_a_sixty_row_twisted_table(tmp_path, capsys):
+    """Every command, in this process (one derivation of the table, not one per command);
+    the last one also from the shell."""
     table = _long_table(tmp_path, 60, twisted=True)
     q = ",".join(["0.1"] * 60)
     answer = tmp_path / "answer.txt"
@@ -176,11 +179,12 @@ def test_every_command_answers_on_a_sixty_row_twisted_table(tmp_path):
         ("plot", table, "--view", "2d", "-o", str(tmp_path / "p.png")),
     ]
     for argv in runs:
-        out = _dhsym(*argv)
-        assert "Traceback" not in out.stderr, argv
-        assert out.returncode in (0, 1, 2), (argv, out.stderr)
-        if out.returncode == 2:
-            assert out.stderr.startswith("dhsym: error: ") and out.stderr.count("\n") == 1, argv
+        code = main(list(argv))  # an exception, not an exit code, fails the test
+        err = capsys.readouterr().err
+        assert "Traceback" not in err, argv
+        assert code in (0, 1, 2), (argv, err)
+        if code == 2:
+            assert err.startswith("dhsym: error: ") and err.count("\n") == 1, argv
     assert _dhsym("fk", table, "--q", q).returncode == 0
 
 

@@ -8,7 +8,6 @@ import re
 import shutil
 from pathlib import Path
 
-import nbformat
 import pytest
 
 from dhsym.cli import main
@@ -27,6 +26,16 @@ NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 SOURCES = sorted((ROOT / "notebooks").glob("*.py"))
 INTERNAL = re.compile(r"seeds?\s*0\d", re.IGNORECASE)  # "seed 001", "Seeds 000 and 002"
 
+
+@pytest.fixture(scope="session")
+def nbformat():
+    """nbformat, imported by a worker that runs these tests, not by every worker at
+    collection (it imports jsonschema, whose import builds rfc3987-syntax's grammars)."""
+    import nbformat
+
+    return nbformat
+
+
 pytestmark = pytest.mark.jupyter
 
 
@@ -40,7 +49,7 @@ def test_notebook_in_sync_with_its_source(source):
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=[p.name for p in SOURCES])
-def test_rebuild_without_changes_keeps_ids_and_outputs(source):
+def test_rebuild_without_changes_keeps_ids_and_outputs(source, nbformat):
     committed = nbformat.read(source.with_suffix(".ipynb"), as_version=4)
     rebuilt = notebook_from_source(source, committed)
     assert [(c.id, c.get("outputs")) for c in rebuilt.cells] == [
@@ -49,7 +58,7 @@ def test_rebuild_without_changes_keeps_ids_and_outputs(source):
     assert len({c.id for c in committed.cells}) == len(committed.cells)
 
 
-def test_rebuild_after_an_edit_changes_only_the_edited_cells(tmp_path):
+def test_rebuild_after_an_edit_changes_only_the_edited_cells(tmp_path, nbformat):
     for name in ("03_puma560.py", "03_puma560.ipynb"):
         shutil.copy(ROOT / "notebooks" / name, tmp_path / name)
     source = tmp_path / "03_puma560.py"
@@ -78,15 +87,17 @@ def test_a_missing_source_is_a_clear_error(tmp_path):
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=[p.name for p in SOURCES])
-def test_students_read_lectures_not_internal_names(source):
+def test_students_read_lectures_not_internal_names(source, nbformat):
     assert not INTERNAL.search(source.read_text())
     nb = nbformat.read(source.with_suffix(".ipynb"), as_version=4)
     assert not [text for _, text in cell_sources(nb) if INTERNAL.search(text)]
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def warm_matplotlib():
-    """Build matplotlib's font cache here, not in a notebook (where its notice would be stderr)."""
+    """Build matplotlib's font cache here, not in a notebook (where its notice would be stderr).
+    Once per worker (session), not per module: the notebooks, the suite's longest quick tests,
+    are shared out one by one among the workers (tests/conftest.py), not run by one."""
     pytest.importorskip("matplotlib")
     import matplotlib.font_manager  # noqa: F401
 
@@ -104,7 +115,7 @@ def test_there_are_notebooks():
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
-def test_committed_with_outputs(path):
+def test_committed_with_outputs(path, nbformat):
     nb = nbformat.read(path, as_version=4)
     code = [c for c in nb.cells if c.cell_type == "code"]
     hint = f"run: dhsym notebooks build notebooks/{path.stem}.py"
@@ -124,6 +135,8 @@ def test_notebook_runs_clean(path, need_jupyter, warm_matplotlib):
 
 
 def _notebook(tmp_path: Path, source: str) -> Path:
+    import nbformat
+
     nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(source)])
     nb.metadata["kernelspec"] = {
         "name": "python3",
@@ -145,7 +158,7 @@ def test_warning_and_error_cells_fail(tmp_path, need_jupyter):
     assert main(["notebooks", "run", str(path), "--timeout", "60"]) == 2
 
 
-def test_build_command_writes_and_executes(tmp_path, need_jupyter):
+def test_build_command_writes_and_executes(tmp_path, need_jupyter, nbformat):
     source = tmp_path / "01_tiny.py"
     source.write_text("# %% [markdown]\n# Tiny\n\n# %%\nprint(6 * 7)\n")
     assert main(["notebooks", "build", str(source), "--no-execute"]) == 0

@@ -10,6 +10,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from dhsym.checking import Assignment, Key, check_answer
+from dhsym.checking.judging.key import PreparedKeys
 from dhsym.checking.judging.rounding import DEFAULT_ROUNDING, Rounding
 from dhsym.errors import DHError
 
@@ -130,36 +131,47 @@ def test_rounding_in_the_assignment_and_per_question(tmp_path):
 
 # Spong's two-link planar elbow arm (Robot Modeling and Control): M[1,1] = m2 lc2² + I2 and
 # the tip's x = l1 C1 + l2 C12.
-M22 = Key.load(SPONG, "M[1,1]")
-PX = Key.load(SPONG, "T0_2[0,3]")
+# The keys are loaded by the worker that runs these tests, not by every worker at collection.
+SPONG_QUESTIONS = {"M22": "M[1,1]", "PX": "T0_2[0,3]"}
+
+
+@pytest.fixture(scope="module")
+def spong() -> dict[str, Key]:
+    return {name: Key.load(SPONG, q) for name, q in SPONG_QUESTIONS.items()}
+
+
+@pytest.fixture(scope="module")
+def prepared() -> PreparedKeys:
+    """The keys prepared once for the many answers of a property (as a grading worker does)."""
+    return PreparedKeys()
 
 
 @pytest.mark.parametrize(
     ("key", "answer"),
     [
-        (M22, "1.00*(m2*lc2**2 + I2)*(1 + S2/300)"),
-        (M22, "1.00**64*1.00**64*1.00**64*(m2*lc2**2 + I2)*(2 + S2)"),
-        (PX, "1.00*(l1*C1 + l2*C12)*(1 + S1/300)"),
-        (PX, "1.00**64*1.00**64*1.00**64*(l1*C1 + l2*C12)*(1 + S1/3)"),
-        (PX, "1.000*l1*C1 + 1.00*l2*C12*(1 + S2/400)"),
+        ("M22", "1.00*(m2*lc2**2 + I2)*(1 + S2/300)"),
+        ("M22", "1.00**64*1.00**64*1.00**64*(m2*lc2**2 + I2)*(2 + S2)"),
+        ("PX", "1.00*(l1*C1 + l2*C12)*(1 + S1/300)"),
+        ("PX", "1.00**64*1.00**64*1.00**64*(l1*C1 + l2*C12)*(1 + S1/3)"),
+        ("PX", "1.000*l1*C1 + 1.00*l2*C12*(1 + S2/400)"),
     ],
 )
-def test_decimals_cannot_absorb_an_error_that_varies_with_q(key, answer):
+def test_decimals_cannot_absorb_an_error_that_varies_with_q(key, answer, spong):
     """Issue 34, item 4: each decimal stands for one value, the same at every point."""
-    assert check_answer(key, answer).verdict.value == "incorrect"
+    assert check_answer(spong[key], answer).verdict.value == "incorrect"
 
 
 @pytest.mark.parametrize(
     ("key", "answer"),
     [
-        (M22, "1.00*(m2*lc2**2 + I2)"),
-        (M22, "1.00**64*1.000**8*(m2*lc2**2 + I2)"),
-        (PX, "l1*cos(q1 + 0.000) + l2*cos(q1 + q2)"),
-        (PX, "l1*sin(q1 + 1.5708) + l2*0.7071**2*2*C12"),
+        ("M22", "1.00*(m2*lc2**2 + I2)"),
+        ("M22", "1.00**64*1.000**8*(m2*lc2**2 + I2)"),
+        ("PX", "l1*cos(q1 + 0.000) + l2*cos(q1 + q2)"),
+        ("PX", "l1*sin(q1 + 1.5708) + l2*0.7071**2*2*C12"),
     ],
 )
-def test_honestly_rounded_decimals_stay_right(key, answer):
-    r = check_answer(key, answer)
+def test_honestly_rounded_decimals_stay_right(key, answer, spong):
+    r = check_answer(spong[key], answer)
     assert r.correct, r.message
 
 
@@ -174,7 +186,7 @@ DECIMALS = st.sampled_from(["1.00", "1.000", "0.999", "1.001", "1.00**64", "1.00
     decimals=st.lists(DECIMALS, min_size=1, max_size=4),
     where=st.sampled_from(["outside", "inside"]),
 )
-def test_key_times_a_varying_factor_is_never_right(factor, size, decimals, where):
+def test_key_times_a_varying_factor_is_never_right(spong, prepared, factor, size, decimals, where):
     """key × (1 + f(q)), f not constant, whatever decimals are added: never correct."""
     scale = "*".join(decimals)
     f = f"({size.numerator}/{size.denominator})*{factor}"
@@ -182,7 +194,7 @@ def test_key_times_a_varying_factor_is_never_right(factor, size, decimals, where
         answer = f"{scale}*(m2*lc2**2 + I2)*(1 + {f})"
     else:
         answer = f"(m2*{scale}*lc2**2 + I2*{scale})*(1 + {f})"
-    r = check_answer(M22, answer)
+    r = check_answer(spong["M22"], answer, keys=prepared)
     assert not r.correct, (answer, r.message)
 
 

@@ -16,7 +16,6 @@ import sys
 import zipfile
 from pathlib import Path
 
-import jsonschema
 import pytest
 
 from dhsym.checking.grading.batch import grade
@@ -32,6 +31,15 @@ from dhsym.errors import DHError
 ROOT = Path(__file__).resolve().parents[3]
 HW = ROOT / "examples" / "homework"
 STUDENTS = sorted(p.name for p in (HW / "submissions").iterdir() if p.is_dir())
+
+
+@pytest.fixture(scope="module")
+def jsonschema():
+    """jsonschema, imported by the worker that runs these tests, not by every worker at
+    collection (its import builds the grammars of rfc3987-syntax: seconds)."""
+    import jsonschema
+
+    return jsonschema
 
 
 @pytest.fixture(scope="module")
@@ -99,7 +107,7 @@ def test_zip_layout_follows_the_specification(autograder_zip):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("student", STUDENTS)
-def test_run_autograder_matches_dhsym_grade(student, source, class_scores, tmp_path):
+def test_run_autograder_matches_dhsym_grade(student, source, class_scores, tmp_path, jsonschema):
     proc = _run(source, HW / "submissions" / student, tmp_path)
     assert proc.returncode == 0, proc.stderr
     data = json.loads((tmp_path / "results.json").read_text(encoding="utf-8"))
@@ -135,7 +143,7 @@ def test_the_key_is_shown_only_when_asked(tmp_path, source):
     assert "correct " in q5["output"]
 
 
-def test_answers_file_metadata_and_hostile_text(tmp_path, source):
+def test_answers_file_metadata_and_hostile_text(tmp_path, source, jsonschema):
     sub = tmp_path / "submission" / "hw3"  # a zip of one folder
     sub.mkdir(parents=True)
     (sub / "answers.yaml").write_text(
@@ -154,7 +162,7 @@ def test_answers_file_metadata_and_hostile_text(tmp_path, source):
     assert data["score"] == 0
 
 
-def test_no_submission_folder_is_graded_zero(tmp_path, source):
+def test_no_submission_folder_is_graded_zero(tmp_path, source, jsonschema):
     data = run_autograder(
         AutograderPaths(source, tmp_path / "absent", tmp_path, tmp_path / "none.json")
     )
@@ -162,7 +170,7 @@ def test_no_submission_folder_is_graded_zero(tmp_path, source):
     assert data["score"] == 0 and all(t["output"].startswith("UNREADABLE") for t in data["tests"])
 
 
-def test_a_broken_autograder_still_writes_results(tmp_path):
+def test_a_broken_autograder_still_writes_results(tmp_path, jsonschema):
     (tmp_path / "source").mkdir()
     (tmp_path / "source" / "dhsym-autograder.json").write_text('{"assignment": "gone.yaml"}')
     with pytest.raises(DHError):
@@ -174,7 +182,7 @@ def test_a_broken_autograder_still_writes_results(tmp_path):
     assert data["score"] == 0 and "could not grade" in data["output"]
 
 
-def test_schema_rejects_what_the_specification_does_not_allow():
+def test_schema_rejects_what_the_specification_does_not_allow(jsonschema):
     ok = {"tests": [{"score": 1.0, "max_score": 2.0, "name": "q1", "visibility": "visible"}]}
     jsonschema.validate(ok, RESULTS_SCHEMA)
     for bad in (
@@ -187,7 +195,7 @@ def test_schema_rejects_what_the_specification_does_not_allow():
             jsonschema.validate(bad, RESULTS_SCHEMA)
 
 
-def test_wheel_in_the_zip_grades_without_the_source_tree(tmp_path, source):
+def test_wheel_in_the_zip_grades_without_the_source_tree(tmp_path, source, jsonschema):
     """Install only the zip's wheel (its dependencies are this environment's) and run."""
     site = tmp_path / "site"
     wheel = next((source / "dist").glob("dhsym-*.whl"))
