@@ -20,16 +20,62 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+import sympy as sp
 from sympy.printing.c import C99CodePrinter
 
 from .languages import Language
 
 if TYPE_CHECKING:
-    import sympy as sp
+    from .program import Assign
 
-__all__ = ["LANGUAGE", "CPrinter", "NativePrinter"]
+__all__ = ["LANGUAGE", "CPrinter", "NativePrinter", "SinCos", "sincos_pairs"]
+
+
+@dataclass(frozen=True)
+class SinCos:
+    """``sin`` and ``cos`` of one angle, named ``sin`` and ``cos`` in the generated code and
+    taken with one call of its ``dh_sincos`` (one reduction, both polynomials)."""
+
+    sin: str
+    cos: str
+    angle: sp.Expr
+    level: int
+
+
+def sincos_pairs(body: Sequence[Assign]) -> list[Assign | SinCos]:
+    """``body`` with each ``s = sin(x)``, ``c = cos(x)`` of one angle (at one level, no
+    singular value) as one :class:`SinCos` where the first of the two stood.
+
+    >>> import sympy as sp
+    >>> from dhsym.export.program import Assign
+    >>> q1, q2 = sp.symbols("q1 q2", real=True)
+    >>> body = [Assign("c1", sp.cos(q1)), Assign("c12", sp.cos(q1 + q2)),
+    ...         Assign("s1", sp.sin(q1)), Assign("w0", 2 * q1)]
+    >>> [getattr(a, "name", None) or (a.sin, a.cos) for a in sincos_pairs(body)]
+    [('s1', 'c1'), 'c12', 'w0']
+    """
+    trig: dict[tuple[type, sp.Expr, int], Assign] = {}
+    for a in body:
+        if isinstance(a.expr, (sp.sin, sp.cos)) and a.alt is None:
+            trig.setdefault((type(a.expr), a.expr.args[0], a.level), a)
+    out: list[Assign | SinCos] = []
+    done: set[str] = set()
+    for a in body:
+        if a.name in done:
+            continue
+        if isinstance(a.expr, (sp.sin, sp.cos)) and a.alt is None:
+            x = a.expr.args[0]
+            s, c = trig.get((sp.sin, x, a.level)), trig.get((sp.cos, x, a.level))
+            if s is not None and c is not None:
+                out.append(SinCos(s.name, c.name, x, a.level))
+                done |= {s.name, c.name}
+                continue
+        out.append(a)
+    return out
 
 
 class CPrinter(C99CodePrinter):
@@ -38,6 +84,12 @@ class CPrinter(C99CodePrinter):
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
         return f"safe_sqrt({self._print(expr.args[0])}, stretch)"
+
+    def _print_sin(self, expr: sp.Expr) -> str:
+        return f"dh_sin({self._print(expr.args[0])})"
+
+    def _print_cos(self, expr: sp.Expr) -> str:
+        return f"dh_cos({self._print(expr.args[0])})"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)
@@ -69,6 +121,12 @@ class NativePrinter(CPrinter):
     'nan_max(fabs(x), fabs(y - 1))'
     """
 
+    def _print_sin(self, expr: sp.Expr) -> str:
+        return f"sin({self._print(expr.args[0])})"
+
+    def _print_cos(self, expr: sp.Expr) -> str:
+        return f"cos({self._print(expr.args[0])})"
+
     def _print_remainder(self, expr: sp.Expr) -> str:
         x, y = (self._print(a) for a in expr.args)
         return f"remainder({x}, {y})"
@@ -88,4 +146,5 @@ LANGUAGE = Language(
     files=(("c_header.h.j2", "{prefix}.h", None), ("c_source.c.j2", "{prefix}.c", None)),
     comment=" *",
     note="gcc -std=c99 -O2 -c {prefix}.c (link with -lm)",
+    extra={"sincos_pairs": sincos_pairs},
 )

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 from sympy.printing.cxx import CXX17CodePrinter
 
+from .c import sincos_pairs
 from .languages import Language
 
 if TYPE_CHECKING:
@@ -30,6 +31,12 @@ class CppPrinter(CXX17CodePrinter):
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
         return f"detail::safe_sqrt({self._print(expr.args[0])}, stretch)"
+
+    def _print_sin(self, expr: sp.Expr) -> str:
+        return f"detail::dh_sin({self._print(expr.args[0])})"
+
+    def _print_cos(self, expr: sp.Expr) -> str:
+        return f"detail::dh_cos({self._print(expr.args[0])})"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)
@@ -54,4 +61,5 @@ LANGUAGE = Language(
     files=(("cpp_header.hpp.j2", "{prefix}.hpp", None),),
     comment="//",
     note='#include "{prefix}.hpp" (C++17, header-only)',
+    extra={"sincos_pairs": sincos_pairs},
 )
