@@ -91,6 +91,10 @@ class CPrinter(C99CodePrinter):
     def _print_cos(self, expr: sp.Expr) -> str:
         return f"dh_cos({self._print(expr.args[0])})"
 
+    def _print_atan2(self, expr: sp.Expr) -> str:
+        y, x = (self._print(a) for a in expr.args)
+        return f"dh_atan2({y}, {x})"
+
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)
         return f"({v} > 0.0 ? {up} : ({v} < 0.0 ? {down} : 0.0))"
@@ -126,6 +130,10 @@ class NativePrinter(CPrinter):
 
     def _print_cos(self, expr: sp.Expr) -> str:
         return f"cos({self._print(expr.args[0])})"
+
+    def _print_atan2(self, expr: sp.Expr) -> str:
+        y, x = (self._print(a) for a in expr.args)
+        return f"atan2({y}, {x})"
 
     def _print_remainder(self, expr: sp.Expr) -> str:
         x, y = (self._print(a) for a in expr.args)

@@ -38,6 +38,10 @@ class CppPrinter(CXX17CodePrinter):
     def _print_cos(self, expr: sp.Expr) -> str:
         return f"detail::dh_cos({self._print(expr.args[0])})"
 
+    def _print_atan2(self, expr: sp.Expr) -> str:
+        y, x = (self._print(a) for a in expr.args)
+        return f"detail::dh_atan2({y}, {x})"
+
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)
         return f"({v} > 0.0 ? {up} : ({v} < 0.0 ? {down} : 0.0))"
