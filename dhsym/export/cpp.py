@@ -8,7 +8,7 @@ Examples
 >>> import sympy as sp
 >>> x = sp.Symbol("x", real=True)
 >>> CppPrinter().doprint(sp.cos(x) + 2.0 * x)
-'2.0*x + std::cos(x)'
+'2.0*x + detail::dh_cos(x)'
 """
 
 from __future__ import annotations
