@@ -1,3 +1,4 @@
+# ruff: noqa: E501
 """The C printer's own functions: the exported C and C++ take sine, cosine and atan2 from
 dhsym's own ``dh_sincos_n`` and ``dh_atan2`` (no libm call on the fk's and IK's path).
 
