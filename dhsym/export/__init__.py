@@ -24,12 +24,16 @@ Examples
 {
     const double q1 = q[0];
     const double q2 = q[1];
-    /* the sines and cosines of the joint angles and their sums, two at a time */
-    const double angle[2] = {q1, q1 + q2};
-    double sine[2], cosine[2];
-    dh_sincos_n(2, angle, sine, cosine);
-    const double s1 = sine[0], c1 = cosine[0];
-    const double s12 = sine[1], c12 = cosine[1];
+    double s1, c1, s12, c12;
+    { /* the sines and cosines of 2 angles, two at a time */
+        const double angle[2] = {q1, q1 + q2};
+        double sine[2], cosine[2];
+        dh_sincos_n(2, angle, sine, cosine);
+        s1 = sine[0];
+        c1 = cosine[0];
+        s12 = sine[1];
+        c12 = cosine[1];
+    }
     T[0] = c12;
     T[1] = -s12;
     T[2] = 0.0;

@@ -13,7 +13,7 @@ With symbolic lengths each function takes ``const double p[<PREFIX>_NPARAMS]`` l
 Sines, cosines and ``atan2`` are the file's own (``dh_sincos_n``, ``dh_sincos``,
 ``dh_atan2``: ``templates/export/c_math.j2``, within 2 ulp of libm's, libm itself outside
 their range): the fk takes every angle in one call, which gcc -O2 vectorises; the IK
-takes a joint's sine and cosine in one call (:func:`sincos_pairs`).
+takes those of one level that are known together in one call (:func:`sincos_pairs`).
 
 Examples
 --------
@@ -37,13 +37,12 @@ from .languages import Language
 if TYPE_CHECKING:
     from .program import Assign
 
-__all__ = ["LANGUAGE", "CPrinter", "NativePrinter", "SinCos", "sincos_pairs"]
+__all__ = ["LANGUAGE", "CPrinter", "NativePrinter", "SinCos", "SinCosGroup", "sincos_pairs"]
 
 
 @dataclass(frozen=True)
 class SinCos:
-    """``sin`` and ``cos`` of one angle, named ``sin`` and ``cos`` in the generated code and
-    taken with one call of its ``dh_sincos`` (one reduction, both polynomials)."""
+    """``sin`` and ``cos`` of one angle, named ``sin`` and ``cos`` in the generated code."""
 
     sin: str
     cos: str
@@ -51,23 +50,42 @@ class SinCos:
     level: int
 
 
-def sincos_pairs(body: Sequence[Assign]) -> list[Assign | SinCos]:
+@dataclass(frozen=True)
+class SinCosGroup:
+    """Pairs of one level taken together: one call of the file's ``dh_sincos_n`` (two
+    angles at a time with SSE2), or of ``dh_sincos`` for one."""
+
+    pairs: tuple[SinCos, ...]
+    level: int
+
+    @property
+    def size(self) -> int:
+        """The length of the call's arrays: the pairs, made even (the last angle again)."""
+        return len(self.pairs) + len(self.pairs) % 2
+
+
+def sincos_pairs(body: Sequence[Assign]) -> list[Assign | SinCosGroup]:
     """``body`` with each ``s = sin(x)``, ``c = cos(x)`` of one angle (at one level, no
-    singular value) as one :class:`SinCos` where the first of the two stood.
+    singular value) as one :class:`SinCos`, in the earliest group of its level that comes
+    after what its angle reads (a group stands where its first pair stood).
 
     >>> import sympy as sp
     >>> from dhsym.export.program import Assign
     >>> q1, q2 = sp.symbols("q1 q2", real=True)
     >>> body = [Assign("c1", sp.cos(q1)), Assign("c12", sp.cos(q1 + q2)),
-    ...         Assign("s1", sp.sin(q1)), Assign("w0", 2 * q1)]
-    >>> [getattr(a, "name", None) or (a.sin, a.cos) for a in sincos_pairs(body)]
-    [('s1', 'c1'), 'c12', 'w0']
+    ...         Assign("s1", sp.sin(q1)), Assign("w0", 2 * q1), Assign("s12", sp.sin(q1 + q2)),
+    ...         Assign("q3", q1 - q2), Assign("c3", sp.cos(sp.Symbol("q3", real=True))),
+    ...         Assign("s3", sp.sin(sp.Symbol("q3", real=True)))]
+    >>> [[(p.sin, p.cos) for p in a.pairs] if isinstance(a, SinCosGroup) else a.name
+    ...  for a in sincos_pairs(body)]
+    [[('s1', 'c1'), ('s12', 'c12')], 'w0', 'q3', [('s3', 'c3')]]
     """
     trig: dict[tuple[type, sp.Expr, int], Assign] = {}
     for a in body:
         if isinstance(a.expr, (sp.sin, sp.cos)) and a.alt is None:
             trig.setdefault((type(a.expr), a.expr.args[0], a.level), a)
-    out: list[Assign | SinCos] = []
+    out: list[Assign | list[SinCos]] = []
+    where: dict[str, int] = {}  # a name's place in out
     done: set[str] = set()
     for a in body:
         if a.name in done:
@@ -76,11 +94,28 @@ def sincos_pairs(body: Sequence[Assign]) -> list[Assign | SinCos]:
             x = a.expr.args[0]
             s, c = trig.get((sp.sin, x, a.level)), trig.get((sp.cos, x, a.level))
             if s is not None and c is not None:
-                out.append(SinCos(s.name, c.name, x, a.level))
+                pair = SinCos(s.name, c.name, x, a.level)
                 done |= {s.name, c.name}
+                after = max((where.get(v.name, -1) for v in x.free_symbols), default=-1)
+                group = next(
+                    (
+                        k
+                        for k in range(after + 1, len(out))
+                        if isinstance(g := out[k], list) and g[0].level == a.level
+                    ),
+                    None,
+                )
+                if group is None:
+                    group = len(out)
+                    out.append([])
+                members = out[group]
+                assert isinstance(members, list)
+                members.append(pair)
+                where[s.name] = where[c.name] = group
                 continue
+        where[a.name] = len(out)
         out.append(a)
-    return out
+    return [SinCosGroup(tuple(g), g[0].level) if isinstance(g, list) else g for g in out]
 
 
 class CPrinter(C99CodePrinter):

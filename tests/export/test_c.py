@@ -15,7 +15,7 @@ import shutil
 import sympy as sp
 
 import dhsym
-from dhsym.export.c import CPrinter, NativePrinter, SinCos, sincos_pairs
+from dhsym.export.c import CPrinter, NativePrinter, SinCos, SinCosGroup, sincos_pairs
 from dhsym.export.program import fk_program
 
 from ..conftest import _need
@@ -76,7 +76,8 @@ int main(void)
     const double pairs[][2] = {{0.0, 0.0}, {-0.0, 0.0}, {0.0, -0.0}, {-0.0, -0.0}, {1.0, 0.0},
                                {-1.0, -0.0}, {0.0, -1.0}, {-0.0, -1.0}, {INFINITY, 1.0},
                                {1.0, -INFINITY}, {INFINITY, -INFINITY}, {NAN, 1.0}, {1.0, NAN},
-                               {1e-300, 1.0}, {-1.0, 1e300}};
+                               {1e-300, 1.0}, {-1.0, 1e300}, {0.0, 2.5}, {-0.0, 2.5}, {0.0, -2.5},
+                               {-0.0, -2.5}, {2.5, 0.0}, {-2.5, -0.0}, {0.0, 1e-310}, {-1e-310, -0.0}};
     for (i = 0; i < N; i += BLOCK) {
         for (k = 0; k < BLOCK; ++k) {
             const int kind = (i / BLOCK + k) % 4;
@@ -148,7 +149,7 @@ def test_own_sine_cosine_and_atan2_against_libm_in_cpp(tmp_path):
 def test_the_fk_takes_every_angle_in_one_call():
     files = dhsym.export(dhsym.load("puma560"), "c", what="fk", prefix="arm")
     fk = files["arm.c"].split("void arm_fk")[1]
-    assert "dh_sincos_n(6, angle, sine, cosine);" in fk
+    assert fk.count("dh_sincos_n(6, angle, sine, cosine);") == 1
     assert "const double angle[6] = {q1, q2, q2 + q3, q4, q5, q6};" in fk
     # the library's own: no call of libm's sin or cos on the fk's path
     assert " sin(" not in fk.split("}")[0] and " cos(" not in fk.split("}")[0]
@@ -157,11 +158,21 @@ def test_the_fk_takes_every_angle_in_one_call():
 def test_pairs_keep_an_angle_alone_and_the_order():
     body = fk_program(dhsym.load("planar2r")).body
     items = sincos_pairs(body)
-    assert all(isinstance(a, SinCos) for a in items[:2])
-    assert [(a.sin, a.cos) for a in items[:2]] == [("s1", "c1"), ("s12", "c12")]
+    assert isinstance(items[0], SinCosGroup) and all(isinstance(p, SinCos) for p in items[0].pairs)
+    assert [(p.sin, p.cos) for p in items[0].pairs] == [("s1", "c1"), ("s12", "c12")]
+    assert not any(isinstance(a, SinCosGroup) for a in items[1:])
     q = sp.Symbol("q1", real=True)
-    alone = [a for a in sincos_pairs(body[:1]) if not isinstance(a, SinCos)]
+    alone = [a for a in sincos_pairs(body[:1]) if not isinstance(a, SinCosGroup)]
     assert [a.name for a in alone] == ["c1"] and str(alone[0].expr) == str(sp.cos(q))
+
+
+def test_the_ik_takes_the_sines_of_one_level_together():
+    """The UR5's innermost level: q2 + q3 and q2 in one call (two at a time), after q2."""
+    files = dhsym.export(dhsym.load("ur5"), "c", what="ik", prefix="arm")
+    ik = files["arm.c"].split("int arm_ik")[1]
+    after_q2 = ik.split("const double q2 =")[1]
+    assert "const double angle[2] = {q2 + q3, q2};" in after_q2.split("const double q4 =")[0]
+    assert "continue; /* no real value" in ik  # a branch with no real joint value ends there
 
 
 def test_the_native_solver_keeps_libm():
