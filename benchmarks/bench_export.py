@@ -1,14 +1,17 @@
 """Speed of the exported C for the PUMA 560 (spherical wrist) and the UR5 (three parallel
-axes): fk and IK (all branches) per call.
+axes): fk and IK (all branches, each checked by its fk) per call, against EAIK in the same
+run.
 
-Measured three ways in one run: in C (a loop of 1,000,000 fk and 200,000 ik calls over
-varying inputs, timed with clock_gettime inside the program, gcc -O2), through ctypes
-(dhsym.export.shared_library, timeit), and dhsym's own NumPy/float path (robot.fk, robot.ik)
-as the reference; EAIK's ``IK`` (Python call into its C++, all solutions, unchecked)
-when installed and the table suits it; roboticstoolbox is not compared. Then the PUMA
-560's inverse dynamics: its operation count, the exported ``rne`` in a C loop (best of 15
-runs of 100,000 calls, wall and thread CPU time, the latter not counting time the process
-waits for a core), through ctypes (``compiled(robot).rne``), the exported NumPy module and
+Measured three ways in one run: in C (a program compiled with gcc -std=gnu99 -O2 that calls
+fk on 1,000 configurations in [-3.1, 3.1]^6 a thousand times, and IK on their 1,000 poses,
+exact and typed with 6 and with 4 decimals, ten times; best of 15 runs, thread CPU time
+(clock_gettime(CLOCK_THREAD_CPUTIME_ID): not counting time the process waits for a core)
+and wall time), through ctypes (dhsym.export.shared_library, timeit) and dhsym's own
+NumPy/float path (robot.fk, robot.ik) as the reference; EAIK's ``IK`` (its C++ through its
+Python binding, all solutions, unchecked) on 200 poses when installed and the table suits
+it; roboticstoolbox is not compared. Then the PUMA 560's inverse dynamics: its operation
+count, the exported ``rne`` in a C loop (best of 15 runs of 100,000 calls, wall and thread
+CPU time), through ctypes (``compiled(robot).rne``), the exported NumPy module and
 ``robot.rne`` on one state (the reference, NumPy). The ratio column is dhsym's own time
 over this row's (fk to robot.fk, IK to robot.ik, rne to robot.rne), per robot, in the same
 run; the load average is printed first and last.
@@ -32,49 +35,71 @@ from dhsym.export.shared_library import compiled
 from dhsym.ik.choices import IKCache, solve
 
 _MAIN = r"""
+#define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
+#include <stdlib.h>
 #include <math.h>
 #include <time.h>
 #include "arm.h"
-static double now(void)
+#define NP 1000
+static double Q[NP][6], POSES[3][NP][16];
+static double seconds(clockid_t clock)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    clock_gettime(clock, &t);
     return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 int main(void)
 {
-    double q[6] = {0.3, -0.5, 0.4, 0.2, 0.7, -1.1}, T[16], sink = 0.0, t0;
-    double S[ARM_MAX_IK_SOLUTIONS][6], R[ARM_MAX_IK_SOLUTIONS], Tr[16];
-    long i, n = 1000000, m = 200000;
-    int c = 0;
-    t0 = now();
-    for (i = 0; i < n; ++i) {
-        q[0] = 1e-7 * (double)i;
-        arm_fk(q, T);
-        sink += T[3];
+    double S[ARM_MAX_IK_SOLUTIONS][6], R[ARM_MAX_IK_SOLUTIONS], sink = 0.0;
+    static const char *kind[3] = {"exact", "rounded6", "rounded4"};
+    long i, z, r, found;
+    int j, k;
+    srand(1);
+    for (i = 0; i < NP; ++i) { /* 1000 configurations in [-3.1, 3.1]^6 and their poses */
+        for (j = 0; j < 6; ++j) {
+            Q[i][j] = (2.0 * rand() / RAND_MAX - 1.0) * 3.1;
+        }
+        arm_fk(Q[i], POSES[0][i]);
+        for (j = 0; j < 16; ++j) { /* the pose typed with 6 and with 4 decimals */
+            POSES[1][i][j] = rint(POSES[0][i][j] * 1e6) / 1e6;
+            POSES[2][i][j] = rint(POSES[0][i][j] * 1e4) / 1e4;
+        }
     }
-    printf("fk_ns %.2f\n", (now() - t0) / n * 1e9);
-    arm_fk(q, T);
-    t0 = now();
-    for (i = 0; i < m; ++i) {
-        T[3] += 1e-12;
-        c += arm_ik(T, 0.0, S, R);
-        sink += S[0][0];
+    { /* fk: best of 15 runs of 1000 x 1000 calls, wall and thread CPU */
+        double wall = 1e30, cpu = 1e30;
+        for (r = 0; r < 15; ++r) {
+            const double w0 = seconds(CLOCK_MONOTONIC), c0 = seconds(CLOCK_THREAD_CPUTIME_ID);
+            for (z = 0; z < 1000; ++z) {
+                for (i = 0; i < NP; ++i) {
+                    double T[16];
+                    arm_fk(Q[i], T);
+                    sink += T[3];
+                }
+            }
+            cpu = fmin(cpu, (seconds(CLOCK_THREAD_CPUTIME_ID) - c0) / (1000.0 * NP) * 1e9);
+            wall = fmin(wall, (seconds(CLOCK_MONOTONIC) - w0) / (1000.0 * NP) * 1e9);
+        }
+        printf("fk_wall %.2f\nfk_cpu %.2f\n", wall, cpu);
     }
-    printf("ik_ns %.2f\nsolutions %.2f\n", (now() - t0) / m * 1e9, (double)c / m);
-    for (i = 0; i < 16; ++i) {
-        Tr[i] = rint(T[i] * 1e6) / 1e6; /* the pose typed with 6 decimals */
+    for (k = 0; k < 3; ++k) { /* ik: best of 15 runs of 10 x 1000 poses */
+        double wall = 1e30, cpu = 1e30;
+        for (r = 0; r < 15; ++r) {
+            const double w0 = seconds(CLOCK_MONOTONIC), c0 = seconds(CLOCK_THREAD_CPUTIME_ID);
+            found = 0;
+            for (z = 0; z < 10; ++z) {
+                for (i = 0; i < NP; ++i) {
+                    found += arm_ik(POSES[k][i], 0.0, S, R);
+                    sink += S[0][0];
+                }
+            }
+            cpu = fmin(cpu, (seconds(CLOCK_THREAD_CPUTIME_ID) - c0) / (10.0 * NP) * 1e9);
+            wall = fmin(wall, (seconds(CLOCK_MONOTONIC) - w0) / (10.0 * NP) * 1e9);
+        }
+        printf("ik_%s_wall %.2f\nik_%s_cpu %.2f\nik_%s_solutions %.3f\n", kind[k], wall, kind[k],
+               cpu, kind[k], (double)found / (10.0 * NP));
     }
-    c = 0;
-    t0 = now();
-    for (i = 0; i < m; ++i) {
-        Tr[3] += 1e-6;
-        c += arm_ik(Tr, 0.0, S, R);
-        sink += S[0][0];
-    }
-    printf("ik_rounded_ns %.2f\nrounded_solutions %.2f\nsink %g\n", (now() - t0) / m * 1e9,
-           (double)c / m, sink);
+    printf("sink %g\n", sink);
     return 0;
 }
 """
@@ -99,6 +124,16 @@ def per_call(fn, arg, number: int) -> float:
     return best / number * 1e9
 
 
+def per_pose(fn, poses: list[np.ndarray], repeat: int = 5) -> float:
+    """Nanoseconds per pose: the best of ``repeat`` passes over ``poses``, one call each."""
+
+    def run() -> None:
+        for pose in poses:
+            fn(pose)
+
+    return min(timeit.repeat(run, number=1, repeat=repeat)) / len(poses) * 1e9
+
+
 def bench(name: str) -> None:
     robot = dhsym.load(name)
     q = np.array([0.3, -0.5, 0.4, 0.2, 0.7, -1.1])
@@ -111,32 +146,48 @@ def bench(name: str) -> None:
     def numpy_path(pose: np.ndarray) -> object:
         return solve(robot, pose, cache=numpy_cache)
 
+    rng = np.random.default_rng(1)
+    poses = list(robot.fk(rng.uniform(-3.1, 3.1, size=(200, robot.n))))
     rows = [
-        ("fk, C loop", c["fk_ns"]),
+        ("fk, C loop (thread CPU)", c["fk_cpu"]),
+        ("fk, C loop (wall)", c["fk_wall"]),
         ("fk, ctypes (compiled)", per_call(fast.fk, q, 20000)),
         ("fk, dhsym robot.fk", per_call(robot.fk, q, 20000)),
-        ("ik all branches, C loop", c["ik_ns"]),
-        ("ik, ctypes (compiled)", per_call(fast.ik, T, 20000)),
-        ("ik, dhsym robot.ik", per_call(robot.ik, T, 2000)),
-        ("ik 6 decimals, C loop", c["ik_rounded_ns"]),
+        ("ik all branches, C loop (thread CPU)", c["ik_exact_cpu"]),
+        ("ik all branches, C loop (wall)", c["ik_exact_wall"]),
+        ("ik 6 decimals, C loop (thread CPU)", c["ik_rounded6_cpu"]),
+        ("ik 4 decimals, C loop (thread CPU)", c["ik_rounded4_cpu"]),
+        ("ik, ctypes (compiled)", per_pose(fast.ik, poses)),
+        ("ik, dhsym robot.ik", per_pose(robot.ik, poses[:50])),
         ("ik 6 decimals, robot.ik", per_call(robot.ik, np.round(T, 6), 2000)),
         ("ik, robot.ik NumPy path", per_call(numpy_path, T, 2000)),
     ]
     eaik = eaik_call(robot)
     if eaik is not None:
-        rows.append(("ik, EAIK bot.IK (C++)", per_call(eaik, T, 20000)))
+        rows.append(("ik, EAIK bot.IK (C++ via Python)", per_pose(eaik, poses)))
     family = robot.inverse().family
     print(
-        f"{robot.name} ({family}), {c['solutions']:.0f} IK solutions per pose "
-        f"(backend {fast.backend})"
+        f"{robot.name} ({family}), IK solutions per pose: "
+        f"{c['ik_exact_solutions']:.2f} exact, {c['ik_rounded6_solutions']:.2f} with 6 decimals, "
+        f"{c['ik_rounded4_solutions']:.2f} with 4 (1000 poses of configurations in [-3.1, 3.1]^6; "
+        f"backend {fast.backend})"
     )
-    ref = {"fk": rows[2][1], "ik": rows[5][1]}
+    ref = {"fk": rows[3][1], "ik": rows[9][1]}
     for label, ns in rows:
         kind = label.split(",")[0].split()[0]
-        print(f"  {label:28s} {ns:12.1f} ns   dhsym/this = {ref[kind] / ns:8.1f}x")
+        print(f"  {label:38s} {ns:12.1f} ns   dhsym/this = {ref[kind] / ns:8.1f}x")
+    print(
+        f"  goals (issue 30, thread CPU): fk {c['fk_cpu']:.0f} ns (<= 100), all IK branches "
+        f"{c['ik_exact_cpu'] / 1000:.2f} us exact, {c['ik_rounded6_cpu'] / 1000:.2f} us with 6 "
+        f"decimals (<= 2)"
+    )
     if eaik is not None:
-        ratio = rows[4][1] / rows[-1][1]
-        print(f"  ik time, ctypes (compiled) / EAIK: {ratio:.2f} (above 1: EAIK is faster)")
+        e = rows[-1][1]
+        print(
+            f"  per pose: exported C IK (thread CPU) / EAIK: {c['ik_exact_cpu'] / e:.2f}; "
+            f"ctypes (compiled) / EAIK: {rows[8][1] / e:.2f} (above 1: EAIK is faster; EAIK's "
+            "figure includes its Python call and checks nothing)"
+        )
 
 
 def eaik_call(robot: dhsym.Robot):

@@ -19,21 +19,26 @@ Examples
 >>> files = dhsym.export(dhsym.load("planar2r"), "c", what=("fk",), prefix="arm")
 >>> sorted(files)
 ['arm.c', 'arm.h']
->>> print(files["arm.c"].split("void arm_fk")[1].split("}")[0])  # doctest: +ELLIPSIS
+>>> print(files["arm.c"].split("void arm_fk")[1].split("\\n}")[0])  # doctest: +ELLIPSIS
 (const double q[ARM_NJOINTS], double T[16])
 {
     const double q1 = q[0];
     const double q2 = q[1];
-    const double c1 = cos(q1);
-    const double c12 = cos(q1 + q2);
-    const double s1 = sin(q1);
-    const double s12 = sin(q1 + q2);
+    double s1, c1, s12, c12;
+    { /* the sines and cosines of 2 angles, two at a time */
+        const double angle[2] = {q1, q1 + q2};
+        double sine[2], cosine[2];
+        dh_sincos_n(2, angle, sine, cosine);
+        s1 = sine[0];
+        c1 = cosine[0];
+        s12 = sine[1];
+        c12 = cosine[1];
+    }
     T[0] = c12;
     T[1] = -s12;
     T[2] = 0.0;
     T[3] = c1 + 0.8*c12;
 ...
-<BLANKLINE>
 """
 
 from __future__ import annotations

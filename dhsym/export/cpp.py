@@ -8,7 +8,7 @@ Examples
 >>> import sympy as sp
 >>> x = sp.Symbol("x", real=True)
 >>> CppPrinter().doprint(sp.cos(x) + 2.0 * x)
-'2.0*x + std::cos(x)'
+'2.0*x + detail::dh_cos(x)'
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 from sympy.printing.cxx import CXX17CodePrinter
 
+from .c import sincos_pairs
 from .languages import Language
 
 if TYPE_CHECKING:
@@ -30,6 +31,16 @@ class CppPrinter(CXX17CodePrinter):
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
         return f"detail::safe_sqrt({self._print(expr.args[0])}, stretch)"
+
+    def _print_sin(self, expr: sp.Expr) -> str:
+        return f"detail::dh_sin({self._print(expr.args[0])})"
+
+    def _print_cos(self, expr: sp.Expr) -> str:
+        return f"detail::dh_cos({self._print(expr.args[0])})"
+
+    def _print_atan2(self, expr: sp.Expr) -> str:
+        y, x = (self._print(a) for a in expr.args)
+        return f"detail::dh_atan2({y}, {x})"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)
@@ -54,4 +65,5 @@ LANGUAGE = Language(
     files=(("cpp_header.hpp.j2", "{prefix}.hpp", None),),
     comment="//",
     note='#include "{prefix}.hpp" (C++17, header-only)',
+    extra={"sincos_pairs": sincos_pairs},
 )

@@ -486,13 +486,13 @@ def rows_source(program: NumericProgram, variables: Sequence[sp.Symbol]) -> str:
 
     from dhsym.model.entries import as_expr
 
-    from .c import CPrinter
+    from .c import NativePrinter
 
     names: dict[sp.Basic, sp.Basic] = {s: sp.Symbol(f"a{k}") for k, s in enumerate(variables)}
     # math.h of strict C99 has no M_PI: the constants as doubles (as math.pi, math.e)
     names[sp.pi] = sp.Float(np.pi, 17)
     names[sp.E] = sp.Float(np.e, 17)
-    printer = CPrinter()
+    printer = NativePrinter()  # libm's sin and cos, as NumPy's evaluation of the program
     body = [f"        const double a{k} = in[{k}];" for k in range(len(variables))]
     for k, (sym, e) in enumerate(program.assignments):
         value = printer.doprint(e.xreplace(names))
