@@ -88,6 +88,9 @@ STUCK = 1e-3
 #: two refined solutions closer than this (angles by cosine and sine) are one
 SAME = 1e-6
 
+#: 10ᵏ for k = 0 … MOST_DECIMALS, a column (written_decimals tries every k at once)
+_SCALES = 10.0 ** np.arange(MOST_DECIMALS + 1, dtype=float)[:, None]
+
 
 @dataclass(frozen=True)
 class PoseAccuracy:
@@ -116,10 +119,10 @@ def written_decimals(T: np.ndarray) -> int | None:
     (0, None)
     """
     entries = np.asarray(T, dtype=float)[:3].ravel()
-    for k in range(MOST_DECIMALS + 1):
-        if np.array_equal(np.round(entries, k), entries):
-            return k
-    return None
+    # every k at once, by numpy's own rule for np.round(x, k): x·10ᵏ, rint, ÷10ᵏ
+    with np.errstate(invalid="ignore", over="ignore"):
+        same = (np.rint(entries * _SCALES) / _SCALES == entries).all(axis=1)
+    return int(np.argmax(same)) if same.any() else None
 
 
 def nearest_rigid(T: np.ndarray) -> np.ndarray:
@@ -143,12 +146,14 @@ def nearest_rigid(T: np.ndarray) -> np.ndarray:
     return out
 
 
-def pose_accuracy(T: np.ndarray) -> PoseAccuracy:
+def pose_accuracy(T: np.ndarray, rigid: np.ndarray | None = None) -> PoseAccuracy:
     """How accurate the pose ``T`` ``(4, 4)`` is, and its tolerance (the rule: see the
-    module)."""
+    module); ``rigid``: its :func:`nearest_rigid` pose when already known."""
     arr = np.asarray(T, dtype=float)
+    if rigid is None:
+        rigid = nearest_rigid(arr)
     with np.errstate(invalid="ignore"):  # a pose of NaNs: no solution, said by its step
-        off = float(np.abs(nearest_rigid(arr)[:3, :3] - arr[:3, :3]).max())
+        off = float(np.abs(rigid[:3, :3] - arr[:3, :3]).max())
     if not np.isfinite(off):
         return PoseAccuracy(off, None, 0.0, FLOOR)
     k = written_decimals(arr)

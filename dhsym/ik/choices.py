@@ -431,9 +431,10 @@ def solve(
     single = arr.ndim in (1, 2) and not (arr.ndim == 2 and arr.shape[-1] == 3)
     if (free or limits or near is not None) and not single:
         raise DHError("free, limits and near apply to one pose: solve the poses one by one")
-    given, brought, tols = arr, False, _tolerances(arr, check, tol)
-    if tols is not None:
-        rigid = nearest_rigid(arr)
+    given, brought = arr, False
+    rigid = nearest_rigid(arr) if _poses(arr, check) else None
+    tols = _tolerances(arr, check, tol, rigid)
+    if tols is not None and rigid is not None:
         with np.errstate(invalid="ignore"):  # a pose of NaNs is refused later, by its step
             off = np.abs(rigid[..., :3, :3] - arr[..., :3, :3]).max(axis=(-2, -1)) > _EXACT
         if off.any():  # only the poses that are off: an exact pose is solved as given
@@ -694,16 +695,25 @@ def _plain(variable: object) -> str:
     return branch_word("sign", True, variable).split(" ")[4]
 
 
-def _tolerances(arr: np.ndarray, check: str | None, tol: float | None) -> np.ndarray | None:
+def _poses(arr: np.ndarray, check: str | None) -> bool:
+    """Whether ``arr`` holds poses to bring to rigid ones (``check="pose"``, one pose
+    ``(4, 4)`` or a batch ``(N, 4, 4)``), not positions."""
+    return check == "pose" and arr.shape[-2:] == (4, 4) and arr.ndim in (2, 3)
+
+
+def _tolerances(
+    arr: np.ndarray, check: str | None, tol: float | None, rigid: np.ndarray | None = None
+) -> np.ndarray | None:
     """The tolerance of each pose of ``arr`` (``()`` or ``(N,)``): ``tol`` when given, else
-    the pose's own (:func:`~dhsym.ik.accuracy.pose_accuracy`); None when ``check`` is not
-    ``"pose"`` or ``arr`` holds positions (nothing to bring to a rigid pose)."""
-    if check != "pose" or arr.shape[-2:] != (4, 4) or arr.ndim not in (2, 3):
+    the pose's own (:func:`~dhsym.ik.accuracy.pose_accuracy`, of ``rigid``, the nearest
+    rigid poses, when known); None when :func:`_poses` says there is nothing to bring to a
+    rigid pose."""
+    if not _poses(arr, check):
         return None
     if tol is not None:
         return np.full(arr.shape[:-2], float(tol))
     if arr.ndim == 2:
-        return np.array(pose_accuracy(arr).tol)
+        return np.array(pose_accuracy(arr, rigid).tol)
     # a batch: the poses surely exact (told at once, as _surely_exact tells one) have the
     # tolerance of an exact pose; only the others are measured one by one
     R = arr[:, :3, :3]
@@ -712,7 +722,7 @@ def _tolerances(arr: np.ndarray, check: str | None, tol: float | None) -> np.nda
         exact = (gram <= 1e-13) & (np.linalg.det(np.where(np.isfinite(R), R, 0.0)) > 0.0)
     tols = np.full(len(arr), FLOOR)
     for k in np.nonzero(~exact)[0]:
-        tols[k] = pose_accuracy(arr[k]).tol
+        tols[k] = pose_accuracy(arr[k], None if rigid is None else rigid[k]).tol
     return tols
 
 

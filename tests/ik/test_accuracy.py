@@ -136,3 +136,25 @@ def test_written_decimals_and_the_nearest_rotation() -> None:
     assert np.array_equal(R[:3, 3], np.round(T, 3)[:3, 3])
     eye = pose_accuracy(np.eye(4))
     assert eye.decimals == 0 and eye.tol == FLOOR and eye.exact
+
+
+def test_written_decimals_is_the_least_k_np_round_keeps() -> None:
+    """The decimals of a pose are the least k with np.round(T, k) == T, as np.round reads
+    them (every k tried at once), on poses rounded to 0 … 13 decimals, scaled, and with NaN
+    or inf entries; the tolerance is the same with the nearest rigid pose given or not."""
+
+    def by_definition(T: np.ndarray) -> int | None:
+        entries = T[:3].ravel()
+        return next((k for k in range(13) if np.array_equal(np.round(entries, k), entries)), None)
+
+    rng = np.random.default_rng(7)
+    for _ in range(3000):
+        T = rng.uniform(-5, 5, (4, 4)) * rng.choice([1e-3, 1.0, 1e3])
+        d = int(rng.integers(0, 14))
+        if d < 13:
+            T = np.round(T, d)
+        if rng.random() < 0.05:
+            T[0, 0] = rng.choice([np.nan, np.inf])
+        assert written_decimals(T) == by_definition(T)
+    T = np.round(dhsym.load("puma560").fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1]), 4)
+    assert pose_accuracy(T, nearest_rigid(T)) == pose_accuracy(T)
