@@ -143,17 +143,19 @@ def _constants(chain: Chain) -> set[sp.Symbol]:
     return out - {r.variable for r in chain.rows if r.variable is not None}
 
 
+def _constant_value(s: sp.Symbol, values: Mapping[sp.Symbol, sp.Expr], seed: int) -> float:
+    """The value of the constant ``s``: its number in ``values``, else one drawn for its
+    name (the same whatever else is in the tables)."""
+    if s in values:
+        return float(values[s])
+    rng = np.random.default_rng([seed, zlib.crc32(s.name.encode())])
+    return float(rng.uniform(*TOLERANCES.length_range))
+
+
 def _constant_env(
     key: Chain, answer: Chain, values: Mapping[sp.Symbol, sp.Expr], seed: int
 ) -> dict[sp.Symbol, float]:
-    env: dict[sp.Symbol, float] = {}
-    for s in _constants(key) | _constants(answer):
-        if s in values:
-            env[s] = float(values[s])
-        else:  # one value per name, whatever else is in the tables
-            rng = np.random.default_rng([seed, zlib.crc32(s.name.encode())])
-            env[s] = float(rng.uniform(*TOLERANCES.length_range))
-    return env
+    return {s: _constant_value(s, values, seed) for s in _constants(key) | _constants(answer)}
 
 
 def _axes(F: np.ndarray, chain: Chain, joints: list[_Joint]) -> tuple[np.ndarray, np.ndarray]:
@@ -354,31 +356,117 @@ def symbolic_values(key: DHTable, answer: DHTable | Chain) -> Mapping[sp.Symbol,
     return {} if _constants(Chain.of(answer)) else key.value_map
 
 
+#: the largest number, and the most nodes, a plainly finite cell may hold
+#: (:func:`_plainly_finite`): with values of at most this size, nothing overflows
+_PLAIN_NUMBER, _PLAIN_NODES = 1000.0, 32
+
+
+def _plainly_finite(e: sp.Basic, budget: int = _PLAIN_NODES) -> bool:
+    """True when ``e`` has a finite value wherever its symbols have values of at most
+    ``_PLAIN_NUMBER``: at most ``_PLAIN_NODES`` nodes of symbols, such numbers, ``pi``,
+    sums, products, powers 0 to 4, sines and cosines (what a table's cells are made of);
+    anything else is evaluated.
+
+    >>> x = sp.Symbol("x")
+    >>> _plainly_finite(sp.cos(x + sp.pi / 2) * x**2), _plainly_finite(1 / x)
+    (True, False)
+    """
+    return _plain_nodes(e, budget) >= 0
+
+
+def _plain_nodes(e: sp.Basic, budget: int) -> int:
+    """What is left of ``budget`` after the nodes of a plainly finite ``e``, or -1."""
+    budget -= 1
+    if budget < 0:
+        return -1
+    if e.is_Symbol or e is sp.pi:
+        return budget
+    if e.is_Number:
+        return budget if e.is_finite and abs(float(e)) <= _PLAIN_NUMBER else -1
+    if e.is_Pow:
+        k = e.exp
+        return _plain_nodes(e.base, budget) if k.is_Integer and 0 <= k <= 4 else -1
+    if e.is_Add or e.is_Mul or isinstance(e, (sp.sin, sp.cos)):
+        for arg in e.args:
+            budget = _plain_nodes(arg, budget)
+            if budget < 0:
+                return -1
+        return budget
+    return -1
+
+
 def same_cells(
     key: DHTable | Chain,
     answer: DHTable | Chain,
     values: Mapping[sp.Symbol, sp.Expr] | None = None,
     seed: int = 3,
 ) -> bool:
-    """True when both tables have the same rows, cell by cell (joint variables paired)."""
+    """True when both tables have the same rows, cell by cell (joint variables paired).
+
+    Each pair of cells is compared at one point: a random value per constant
+    (:func:`_constant_value`: drawn from a range of lengths, or the number ``values``
+    gives) and per row's joint variable.  A cell that is the same expression in both rows,
+    with the same variable, has the same value there; one that is plainly finite
+    (:func:`_plainly_finite`) and has a moderate value for each of its symbols agrees with
+    itself without being evaluated (a mistake's variant changes a cell or two), and
+    only the values the other cells need are drawn: the same values, the same answer.
+
+    >>> from dhsym.model.library import load_table
+    >>> t = load_table("planar2r")
+    >>> same_cells(t, t), same_cells(t, t.with_values({}))
+    (True, True)
+    """
     k, a = _with_variables(Chain.of(key)), _with_variables(Chain.of(answer))
     if k.n != a.n or k.convention is not a.convention:
         return False
-    env = {s: np.array([v]) for s, v in _constant_env(k, a, dict(values or {}), seed).items()}
-    rng = np.random.default_rng(seed)
-    key_variables = {r.variable for r in k.rows if r.variable is not None}
-    for rk, ra in zip(k.rows, a.rows):
+    given = dict(values or {})
+    variables_k = {r.variable for r in k.rows if r.variable is not None}
+    variables_a = {r.variable for r in a.rows if r.variable is not None}
+    constants: set[sp.Symbol] | None = None  # both chains', computed only when asked
+
+    def is_constant(s: sp.Symbol) -> bool:
+        """Whether ``s`` (a symbol of a cell) gets a constant's value (:func:`_constants`)."""
+        nonlocal constants
+        if s not in variables_k and s not in variables_a:
+            return True  # a symbol of a cell that is neither chain's variable
+        if constants is None:
+            constants = _constants(k) | _constants(a)
+        return s in constants
+
+    env: dict[sp.Symbol, np.ndarray] = {}  # the constants' values, drawn when first needed
+    drawn: list[np.ndarray] = []  # the joint values of the rows, one draw per row in turn
+    rng: np.random.Generator | None = None
+    for row, (rk, ra) in enumerate(zip(k.rows, a.rows)):
         if rk.joint is not ra.joint:
             return False
-        if ra.variable != rk.variable and ra.variable in key_variables:
+        if ra.variable != rk.variable and ra.variable in variables_k:
             return False  # variables are matched by position, never relabelled
-        q = np.array([rng.uniform(*TOLERANCES.symbol_range)])
-        env_k = {**env, rk.variable: q} if rk.variable is not None else env
-        env_a = {**env, ra.variable: q} if ra.variable is not None else env
         for name in ("theta", "d", "a", "alpha"):
+            ck, ca = getattr(rk, name), getattr(ra, name)
+            needed = ck.free_symbols | ca.free_symbols
+            if ra.variable == rk.variable:  # the row's variable has its value in both
+                needed.discard(rk.variable)
+            known = {s for s in needed if is_constant(s)}
+            if (
+                ra.variable == rk.variable
+                and needed == known
+                and all(abs(float(given.get(s, 0))) <= _PLAIN_NUMBER for s in known)
+                and _plainly_finite(ck)
+                and ca == ck
+            ):
+                continue
+            for s in known - env.keys():
+                env[s] = np.array([_constant_value(s, given, seed)])
+            rng = rng if rng is not None else np.random.default_rng(seed)
+            while len(drawn) <= row:
+                drawn.append(np.array([rng.uniform(*TOLERANCES.symbol_range)]))
+            q = drawn[row]
+            shared = {s: env[s] for s in known}
+            env_k = {**shared, rk.variable: q} if rk.variable is not None else shared
+            env_a = {**shared, ra.variable: q} if ra.variable is not None else shared
             try:
-                vk = float(evaluate(getattr(rk, name), env_k, 1)[0])
-                va = float(evaluate(getattr(ra, name), env_a, 1)[0])
+                vk = float(evaluate(ck, env_k, 1)[0])
+                va = float(evaluate(ca, env_a, 1)[0])
             except EvaluationError:
                 return False
             if name in ("theta", "alpha"):

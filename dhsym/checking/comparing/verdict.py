@@ -12,7 +12,7 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 from typing import Any
 
@@ -75,6 +75,9 @@ class EntryResult:
     expected_latex: str = ""
     proof: str = ""
     rounding: str = ""
+    #: the expected entry as MathML when the key has it converted (a wrong entry's; the
+    #: HTML feedback shows it), else ``""`` and the page converts ``expected_latex``
+    expected_mathml: str = field(default="", compare=False, repr=False)
 
     def to_json(self) -> dict[str, object]:
         """A JSON-ready dict."""

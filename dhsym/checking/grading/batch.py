@@ -42,7 +42,8 @@ from dhsym.model.yamlsafe import FileRefused, read_limited
 
 from ..comparing.verdict import CheckResult, Verdict
 from ..judging.checker import check_answer
-from ..judging.key import AnyKey, PreparedKeys
+from ..judging.key import AnyKey, Key, PreparedKeys
+from ..judging.matrix_key import MatrixPart
 from ..reading.limits import AnswerLimits, AnswerTimeout, check_seconds, time_limit
 from .assignment import Assignment, AssignmentQuestion
 from .assignment_tests import run_assignment_tests
@@ -154,9 +155,18 @@ def prepare_keys(keys: tuple[AnyKey, ...], prepared: PreparedKeys) -> None:
 
 def warm_worker(keys: tuple[AnyKey, ...], prepared: PreparedKeys) -> None:
     """What a grading run does once before its sandbox children fork: prepare ``keys``
-    (:func:`prepare_keys`) and compile the feedback pages' templates
-    (:func:`~dhsym.checking.grading.feedback.load_feedback_templates`)."""
+    (:func:`prepare_keys`), convert their entries to MathML for the feedback pages
+    (:class:`~dhsym.checking.judging.matrix_key.KeyMathML`) and compile the pages'
+    templates (:func:`~dhsym.checking.grading.feedback.load_feedback_templates`)."""
     prepare_keys(keys, prepared)
+    for k in keys:
+        if isinstance(k, Key):
+            try:
+                part = prepared.get(k).part
+            except Exception:  # noqa: BLE001, S112 - the job that needs the key says why
+                continue
+            if isinstance(part, MatrixPart):
+                part.expected_mathml.convert_all()
     load_feedback_templates()
 
 

@@ -28,9 +28,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TypeAlias, overload
 
+import sympy as sp
+
 from dhsym.errors import DHError
 from dhsym.model.library import load_table
-from dhsym.model.table import DHTable, JointType
+from dhsym.model.table import AngleUnit, Convention, DHTable, JointType
+from dhsym.notation.printers import format_angle
 from dhsym.robot import Robot, from_poe
 from dhsym.screws.poefile import is_poe_path
 
@@ -59,6 +62,7 @@ __all__ = [
     "TablePart",
     "load_key",
     "prepare",
+    "table_cells",
 ]
 
 
@@ -121,9 +125,41 @@ def _key_table(ref: str | Path) -> DHTable:
     return load_table(ref)
 
 
+def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
+    """A table as text cells, header first, in its own convention's column order."""
+    deg = table.angles is AngleUnit.DEG
+    if table.convention is Convention.MODIFIED:
+        head, order = (
+            ("i", "alpha_{i-1}", "a_{i-1}", "d_i", "theta_i", "joint"),
+            ("alpha", "a", "d", "theta"),
+        )
+    else:
+        head, order = (
+            ("i", "theta_i", "d_i", "a_i", "alpha_i", "joint"),
+            ("theta", "d", "a", "alpha"),
+        )
+    rows: list[tuple[str, ...]] = [head]
+    for i, row in enumerate(table.rows, 1):
+        cells = [str(i)]
+        for name in order:
+            v = getattr(row, name)
+            if name in ("theta", "alpha"):
+                cells.append(format_angle(v, deg, latex=False))
+            else:
+                cells.append(
+                    f"{float(v):.6g}" if v.is_Rational and not v.is_Integer else sp.sstr(v)
+                )
+        rows.append((*cells, row.joint.value))
+    return tuple(tuple(r) for r in rows)
+
+
 @dataclass(frozen=True)
 class TablePart:
-    """A table key's part: nothing to derive (the answer is compared with the key's table)."""
+    """A table key's part: nothing to derive (the answer is compared with the key's table);
+    ``cells`` is the key's table as the feedback shows it (:func:`table_cells`), printed
+    once."""
+
+    cells: tuple[tuple[str, ...], ...] = ()
 
 
 #: the prepared part of a key, one type per kind of question
@@ -136,8 +172,8 @@ Preparer: TypeAlias = Callable[[DHTable, Question, Robot, NameContext], tuple[Na
 def _prepare_table(
     table: DHTable, question: Question, robot: Robot, names: NameContext
 ) -> tuple[NameContext, KeyPart]:
-    """A table key: nothing to derive."""
-    return names, TablePart()
+    """A table key: nothing to derive; its cells printed for the feedback."""
+    return names, TablePart(table_cells(table))
 
 
 #: each kind of question's preparer (the matrix kinds share one)
@@ -189,6 +225,11 @@ class PreparedKey:
 AnyKey: TypeAlias = Key | TrajectoryKey
 
 
+#: how many key objects :class:`PreparedKeys` recognises by identity (a class's assignment
+#: has a few questions; a variant per student brings one more key object per job)
+_MET = 64
+
+
 class PreparedKeys:
     """A worker's prepared keys: each :class:`Key` or
     :class:`~dhsym.checking.judging.trajectory_key.TrajectoryKey` (frozen values) prepared
@@ -203,6 +244,11 @@ class PreparedKeys:
     def __init__(self) -> None:
         self._prepared: dict[Key, PreparedKey] = {}
         self._trajectories: dict[TrajectoryKey, PreparedTrajectory] = {}
+        # the key objects met last, by identity (each held, so its id is not reused): a
+        # grading child unpickles its jobs' assignment once per batch, and every answer
+        # asks for its key twice; hashing and comparing a key by value (its whole table)
+        # cost 0.1 to 0.2 ms a time
+        self._met: dict[int, tuple[AnyKey, PreparedKey | PreparedTrajectory]] = {}
 
     def __len__(self) -> int:
         return len(self._prepared) + len(self._trajectories)
@@ -217,15 +263,24 @@ class PreparedKeys:
         """``key`` prepared (:func:`prepare`, or
         :func:`~dhsym.checking.judging.trajectory_key.prepare_trajectory`), the first time
         only."""
+        met = self._met.get(id(key))
+        if met is not None and met[0] is key:
+            return met[1]
+        found: PreparedKey | PreparedTrajectory
         if isinstance(key, TrajectoryKey):
             pt = self._trajectories.get(key)
             if pt is None:
                 pt = self._trajectories[key] = prepare_trajectory(key)
-            return pt
-        pk = self._prepared.get(key)
-        if pk is None:
-            pk = self._prepared[key] = prepare(key)
-        return pk
+            found = pt
+        else:
+            pk = self._prepared.get(key)
+            if pk is None:
+                pk = self._prepared[key] = prepare(key)
+            found = pk
+        if len(self._met) >= _MET:
+            self._met.clear()
+        self._met[id(key)] = (key, found)
+        return found
 
 
 def load_key(

@@ -123,8 +123,12 @@ def _compare(
                 a_text, a_latex = _shown(raw), ""
             else:  # wrong: the student's entry in the key's notation
                 a_text, a_latex = nota.text(a), nota.latex(a)
+            # a wrong entry's feedback shows the key's entry, converted once per key
+            shown = part.expected_mathml.entry(k) if not proof else ""
             entries.append(
-                EntryResult(*where, bool(proof), a_text, e_text, a_latex, e_latex, proof, note)
+                EntryResult(
+                    *where, bool(proof), a_text, e_text, a_latex, e_latex, proof, note, shown
+                )
             )
     return entries, wrong, unknown
 

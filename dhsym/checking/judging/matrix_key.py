@@ -33,6 +33,7 @@ import sympy as sp
 
 from dhsym.errors import DHError
 from dhsym.model.table import DHTable
+from dhsym.notation.mathml import latex_mathml
 
 from ..comparing.dynamics_values import dynamics_key, part_matrix, question_symbols, rate_aliases
 from ..comparing.equivalence import Sample, values
@@ -55,6 +56,7 @@ __all__ = [
     "DeterminantPart",
     "DiagnosisSample",
     "DynamicsPart",
+    "KeyMathML",
     "MatrixPart",
     "prepare_dynamics",
     "prepare_matrix",
@@ -77,13 +79,51 @@ class DiagnosisSample:
     variants: Mapping[Mistake, Variants]
 
 
+class KeyMathML:
+    """The key's entries as MathML for the feedback pages, each converted once.
+
+    A grading run converts every entry of the keys its students share when it prepares
+    them, before its sandbox children fork (:meth:`convert_all`); an entry of a key of one
+    student's own (a variant) is converted the first time a page shows it.  Only the
+    conversion is kept: the MathML of an entry never changes.
+
+    >>> m = KeyMathML(("a_{1}", "0"))
+    >>> m.entry(1).count("<mn>0</mn>"), m.converted
+    (1, 1)
+    >>> m.convert_all(); m.converted
+    2
+    """
+
+    def __init__(self, latex: tuple[str, ...]) -> None:
+        self._latex = latex
+        self._mathml: list[str | None] = [None] * len(latex)
+
+    @property
+    def converted(self) -> int:
+        """How many entries are converted so far."""
+        return sum(m is not None for m in self._mathml)
+
+    def entry(self, k: int) -> str:
+        """The MathML of entry ``k`` (row by row), converted the first time."""
+        m = self._mathml[k]
+        if m is None:
+            m = self._mathml[k] = latex_mathml(self._latex[k])
+        return m
+
+    def convert_all(self) -> None:
+        """Convert every entry now."""
+        for k in range(len(self._latex)):
+            self.entry(k)
+
+
 @dataclass(frozen=True, eq=False)
 class MatrixPart:
     """What checking answers to a matrix key shares.
 
     ``expected`` is the key's matrix (1×1 for one entry), ``expected_valued`` the same
     with the table's numbers for its lengths (the exact proofs of answers that use the
-    numbers), ``expected_text`` each entry as (text, LaTeX), ``symbols`` every symbol
+    numbers), ``expected_text`` each entry as (text, LaTeX), ``expected_mathml`` each
+    entry's LaTeX as MathML (:class:`KeyMathML`), ``symbols`` every symbol
     the key may use.  ``symbolic``/``valued`` serve only the diagnosis of wrong answers
     (:func:`sample_for` tells which one an answer gets).
     """
@@ -91,6 +131,7 @@ class MatrixPart:
     expected: sp.ImmutableMatrix
     expected_valued: sp.ImmutableMatrix
     expected_text: tuple[tuple[str, str], ...]
+    expected_mathml: KeyMathML
     symbols: frozenset[sp.Symbol]
     symbolic: DiagnosisSample
     valued: DiagnosisSample
@@ -132,9 +173,13 @@ def sample_for(table: DHTable, answer: sp.Basic) -> str:
     return "symbolic"
 
 
-def _texts(robot: Robot, expected: sp.ImmutableMatrix) -> tuple[tuple[str, str], ...]:
+def _texts(
+    robot: Robot, expected: sp.ImmutableMatrix
+) -> tuple[tuple[tuple[str, str], ...], KeyMathML]:
+    """Each entry of the key as (text, LaTeX), and its MathML (converted when first shown)."""
     nota = robot.notation
-    return tuple((nota.text(e), nota.latex(e)) for e in expected)
+    texts = tuple((nota.text(e), nota.latex(e)) for e in expected)
+    return texts, KeyMathML(tuple(tex for _, tex in texts))
 
 
 def _samples(
@@ -251,7 +296,7 @@ def prepare_matrix(
     symbolic, valued, expected_valued = _samples(
         table, question, robot, expected, syms, sing, fixed=pose
     )
-    common = (expected, expected_valued, _texts(robot, expected), frozenset(syms))
+    common = (expected, expected_valued, *_texts(robot, expected), frozenset(syms))
     if sing is not None:
         return names, DeterminantPart(*common, symbolic, valued, sing)
     return names, MatrixPart(*common, symbolic, valued)
@@ -280,7 +325,7 @@ def prepare_dynamics(
     part = DynamicsPart(
         expected,
         expected_valued,
-        _texts(robot, expected),
+        *_texts(robot, expected),
         frozenset(syms),
         symbolic,
         valued,

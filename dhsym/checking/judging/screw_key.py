@@ -88,7 +88,7 @@ def prepare_screw(
     symbolic, valued, expected_valued = _samples(
         table, question, robot, expected, syms, dynamics_variants=variants
     )
-    common = (expected, expected_valued, _texts(robot, expected), frozenset(syms))
+    common = (expected, expected_valued, *_texts(robot, expected), frozenset(syms))
     return names, ScrewPart(*common, symbolic, valued, variants)
 
 

@@ -25,46 +25,15 @@ Examples
 
 from __future__ import annotations
 
-import sympy as sp
-
-from dhsym.model.table import AngleUnit, Convention, DHTable
-from dhsym.notation.printers import format_angle
+from dhsym.model.table import AngleUnit
 
 from ..comparing.table_match import compare_tables, symbolic_values
 from ..comparing.verdict import CheckResult, Diagnosis, Verdict
 from ..mistakes.registry import TableCase, diagnose_table
 from ..reading.answer_value import TableAnswer
-from .key import PreparedKey
+from .key import PreparedKey, TablePart, table_cells
 
 __all__ = ["check_table", "table_cells"]
-
-
-def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
-    """A table as text cells, header first, in its own convention's column order."""
-    deg = table.angles is AngleUnit.DEG
-    if table.convention is Convention.MODIFIED:
-        head, order = (
-            ("i", "alpha_{i-1}", "a_{i-1}", "d_i", "theta_i", "joint"),
-            ("alpha", "a", "d", "theta"),
-        )
-    else:
-        head, order = (
-            ("i", "theta_i", "d_i", "a_i", "alpha_i", "joint"),
-            ("theta", "d", "a", "alpha"),
-        )
-    rows: list[tuple[str, ...]] = [head]
-    for i, row in enumerate(table.rows, 1):
-        cells = [str(i)]
-        for name in order:
-            v = getattr(row, name)
-            if name in ("theta", "alpha"):
-                cells.append(format_angle(v, deg, latex=False))
-            else:
-                cells.append(
-                    f"{float(v):.6g}" if v.is_Rational and not v.is_Integer else sp.sstr(v)
-                )
-        rows.append((*cells, row.joint.value))
-    return tuple(tuple(r) for r in rows)
 
 
 def check_table(pk: PreparedKey, answer: TableAnswer) -> CheckResult:
@@ -73,7 +42,9 @@ def check_table(pk: PreparedKey, answer: TableAnswer) -> CheckResult:
     table = key.table
     ans = answer.table
     values_ = table.value_map  # for the diagnosis; the verdict is symbolic first
-    expected_table, answer_table = table_cells(table), table_cells(ans)
+    # the key's cells were printed when it was prepared
+    shown = pk.part.cells if isinstance(pk.part, TablePart) else ()
+    expected_table, answer_table = shown or table_cells(table), table_cells(ans)
     note = (
         " (Your angles were read as degrees, from a value above 2π, a ° or deg mark"
         " or the file's angles: deg.)"

@@ -130,3 +130,30 @@ def test_same_cells_ignores_variable_names_and_full_turns():
     ]
     assert same_cells(PUMA, DHTable(tuple(rows), PUMA.convention), PUMA.value_map)
     assert not same_cells(PUMA, Chain(PUMA.rows[:5], PUMA.convention))
+
+
+def test_same_cells_evaluates_what_might_have_no_value():
+    """A cell that is the same in both tables is taken as equal only when it has a value:
+    one that uses another row's joint variable, or one without a real value, still fails
+    (as when each cell was evaluated)."""
+    t = load_table("planar2r")
+    r1, r2 = t.rows
+    other = Chain((replace(r1, d=r2.variable), r2), t.convention)
+    assert not same_cells(other, other)
+    a1 = next(s for s in t.constants if s.name == "a1")
+    no_value = Chain((replace(r1, d=sp.sqrt(-(a1**2) - 1)), r2), t.convention)
+    assert not same_cells(no_value, no_value)
+    assert same_cells(t, t) and same_cells(Chain.of(t), t)
+
+
+def test_same_cells_still_finds_the_one_changed_cell():
+    t = load_table("planar2r")
+    r1, r2 = t.rows
+    for row in (
+        replace(r2, a=-r2.a),
+        replace(r2, alpha=r2.alpha + sp.pi),
+        replace(r2, theta=r2.theta + sp.pi / 2),
+    ):
+        assert not same_cells(t, Chain((r1, row), t.convention))
+    full_turn = replace(r2, theta=r2.theta + 2 * sp.pi)
+    assert same_cells(t, Chain((r1, full_turn), t.convention))

@@ -159,3 +159,36 @@ def test_prepared_key_has_no_memo_to_fill():
     with pytest.raises(dataclasses.FrozenInstanceError):
         pk.part = TablePart()  # type: ignore[misc]
     assert not hasattr(pk, "variant_values")
+
+
+def test_a_key_unpickled_with_its_job_finds_the_prepared_key():
+    """A sandbox child unpickles its jobs' assignment: the key objects are new and equal, and
+    find the key prepared before the child forked (by value the first time, then by
+    identity); many key objects later, a key is still found by value."""
+    import pickle
+
+    keys = PreparedKeys()
+    pk = keys.get(KEY)
+    copies = [pickle.loads(pickle.dumps(KEY)) for _ in range(100)]
+    assert all(keys.get(k) is pk for k in copies) and len(keys) == 1
+    assert all(keys.get(k) is pk for k in copies[:3])
+
+
+def test_the_keys_mathml_is_converted_once_and_shown_for_wrong_entries():
+    from dhsym.checking.grading.batch import warm_worker
+    from dhsym.notation.mathml import latex_mathml
+
+    keys = PreparedKeys()
+    warm_worker((KEY,), keys)
+    part = keys.get(KEY).part
+    assert isinstance(part, MatrixPart) and part.expected_mathml.converted == 16
+    r = check_answer(
+        KEY,
+        "[[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 - a2*S12],"
+        " [0, 0, 1, 0], [0, 0, 0, 1]]",
+        keys=keys,
+    )
+    wrong = [e for e in r.entries if not e.correct]
+    assert [(e.row, e.col) for e in wrong] == [(2, 4)]
+    assert wrong[0].expected_mathml == latex_mathml(wrong[0].expected_latex)
+    assert all(e.expected_mathml == "" for e in r.entries if e.correct)
