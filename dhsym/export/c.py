@@ -25,7 +25,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -37,7 +37,15 @@ from .languages import Language
 if TYPE_CHECKING:
     from .program import Assign
 
-__all__ = ["LANGUAGE", "CPrinter", "NativePrinter", "SinCos", "SinCosGroup", "sincos_pairs"]
+__all__ = [
+    "LANGUAGE",
+    "CPrinter",
+    "NativePrinter",
+    "SinCos",
+    "SinCosGroup",
+    "TrigPrinting",
+    "sincos_pairs",
+]
 
 
 @dataclass(frozen=True)
@@ -118,23 +126,31 @@ def sincos_pairs(body: Sequence[Assign]) -> list[Assign | SinCosGroup]:
     return [SinCosGroup(tuple(g), g[0].level) if isinstance(g, list) else g for g in out]
 
 
-class CPrinter(C99CodePrinter):
+class TrigPrinting:
+    """The printing of ``sin``, ``cos`` and ``atan2`` as the functions named ``trig`` +
+    ``sin`` (``dh_sin``: the file's own, ``templates/export/c_math.j2``; ``""``: libm's)."""
+
+    trig = "dh_"
+    _print: Callable[[object], str]  # the code printer's own (declared for the type checker)
+
+    def _print_sin(self, expr: sp.Expr) -> str:
+        return f"{self.trig}sin({self._print(expr.args[0])})"
+
+    def _print_cos(self, expr: sp.Expr) -> str:
+        return f"{self.trig}cos({self._print(expr.args[0])})"
+
+    def _print_atan2(self, expr: sp.Expr) -> str:
+        y, x = (self._print(a) for a in expr.args)
+        return f"{self.trig}atan2({y}, {x})"
+
+
+class CPrinter(TrigPrinting, C99CodePrinter):
     """sympy's C99 printer, with the solver's ``SafeSqrt`` as a helper of the file (its
     ``stretch``: a local of the IK function, set for a pose that is not exact) and the
     file's own ``dh_sin``, ``dh_cos``, ``dh_atan2``."""
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
         return f"safe_sqrt({self._print(expr.args[0])}, stretch)"
-
-    def _print_sin(self, expr: sp.Expr) -> str:
-        return f"dh_sin({self._print(expr.args[0])})"
-
-    def _print_cos(self, expr: sp.Expr) -> str:
-        return f"dh_cos({self._print(expr.args[0])})"
-
-    def _print_atan2(self, expr: sp.Expr) -> str:
-        y, x = (self._print(a) for a in expr.args)
-        return f"dh_atan2({y}, {x})"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)
@@ -167,15 +183,7 @@ class NativePrinter(CPrinter):
     'nan_max(fabs(x), fabs(y - 1))'
     """
 
-    def _print_sin(self, expr: sp.Expr) -> str:
-        return f"sin({self._print(expr.args[0])})"
-
-    def _print_cos(self, expr: sp.Expr) -> str:
-        return f"cos({self._print(expr.args[0])})"
-
-    def _print_atan2(self, expr: sp.Expr) -> str:
-        y, x = (self._print(a) for a in expr.args)
-        return f"atan2({y}, {x})"
+    trig = ""
 
     def _print_remainder(self, expr: sp.Expr) -> str:
         x, y = (self._print(a) for a in expr.args)

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 
 from sympy.printing.cxx import CXX17CodePrinter
 
-from .c import sincos_pairs
+from .c import TrigPrinting, sincos_pairs
 from .languages import Language
 
 if TYPE_CHECKING:
@@ -26,21 +26,14 @@ if TYPE_CHECKING:
 __all__ = ["LANGUAGE", "CppPrinter"]
 
 
-class CppPrinter(CXX17CodePrinter):
-    """sympy's C++17 printer, with the solver's ``SafeSqrt`` as a helper of the header."""
+class CppPrinter(TrigPrinting, CXX17CodePrinter):
+    """sympy's C++17 printer, with the solver's ``SafeSqrt`` as a helper of the header and
+    the header's own ``detail::dh_sin``, ``dh_cos``, ``dh_atan2``."""
+
+    trig = "detail::dh_"
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
         return f"detail::safe_sqrt({self._print(expr.args[0])}, stretch)"
-
-    def _print_sin(self, expr: sp.Expr) -> str:
-        return f"detail::dh_sin({self._print(expr.args[0])})"
-
-    def _print_cos(self, expr: sp.Expr) -> str:
-        return f"detail::dh_cos({self._print(expr.args[0])})"
-
-    def _print_atan2(self, expr: sp.Expr) -> str:
-        y, x = (self._print(a) for a in expr.args)
-        return f"detail::dh_atan2({y}, {x})"
 
     def _print_Coulomb(self, expr: sp.Expr) -> str:
         v, up, down = (self._print(a) for a in expr.args)
