@@ -33,6 +33,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import Enum
 from fractions import Fraction
+from functools import cached_property
 from typing import Any, TypeAlias
 
 import numpy as np
@@ -51,6 +52,9 @@ __all__ = [
     "Tool",
     "classify",
     "common_normal",
+    "cross",
+    "dot",
+    "entries",
     "exact_number",
     "is_zero_vector",
     "norm",
@@ -159,13 +163,60 @@ def sign_of(expr: sp.Expr, values: Values | None = None, *, what: str = "a lengt
     return 0 if abs(v) < sp.Float("1e-40") else (1 if v > 0 else -1)
 
 
+def entries(v: sp.MatrixBase) -> tuple[sp.Expr, ...]:
+    """The entries of an exact vector or matrix, row by row.
+
+    An immutable matrix holds them as its third argument (``args``: rows, columns, the
+    flat entries): read there, without the per-entry indexing of iterating a sympy matrix
+    (which dominates a long chain's frame assignment).
+
+    >>> entries(vector([1, 0, "a2"]))
+    (1, 0, a2)
+    """
+    if isinstance(v, sp.ImmutableDenseMatrix):
+        return tuple(v.args[2])
+    return tuple(v)
+
+
+def _rational(u: sp.MatrixBase) -> bool:
+    return all(c.is_Rational for c in entries(u))
+
+
+def dot(u: sp.MatrixBase, v: sp.MatrixBase) -> sp.Expr:
+    """``u · v`` of two exact 3-vectors.
+
+    Rational vectors (most robot files) are multiplied entry by entry: the same exact
+    number as sympy's ``Matrix.dot``, which first converts each 3-vector to a domain
+    matrix and costs far more (a 100-joint chain calls this thousands of times); others
+    go through ``Matrix.dot``, so their form is sympy's.
+
+    >>> dot(vector([1, 2, 3]), vector([0.5, 0, 1])), dot(vector(["a2", 0, 0]), vector([2, 0, 0]))
+    (7/2, 2*a2)
+    """
+    if _rational(u) and _rational(v):
+        return sp.Add(*(a * b for a, b in zip(entries(u), entries(v), strict=True)))
+    return u.dot(v)
+
+
+def cross(u: sp.MatrixBase, v: sp.MatrixBase) -> Vector:
+    """``u × v`` of two exact 3-vectors (rational ones entry by entry, as :func:`dot`).
+
+    >>> cross(vector([1, 0, 0]), vector([0, 1, 0])).T
+    Matrix([[0, 0, 1]])
+    """
+    if _rational(u) and _rational(v):
+        (a, b, c), (x, y, z) = entries(u), entries(v)
+        return Vector([b * z - c * y, c * x - a * z, a * y - b * x])
+    return Vector(u.cross(v))
+
+
 def is_zero_vector(v: Vector, values: Values | None = None) -> bool:
     """True when every component of ``v`` is zero (symbols decided at ``values``).
 
     >>> is_zero_vector(vector([0, sp.sqrt(2) - sp.sqrt(8) / 2, 0]))
     True
     """
-    return all(sign_of(c, values) == 0 for c in v)
+    return all(sign_of(c, values) == 0 for c in entries(v))
 
 
 def norm(v: Vector, values: Values | None = None) -> sp.Expr:
@@ -259,7 +310,7 @@ def simplify_vector(v: sp.MatrixBase) -> Vector:
     >>> simplify_vector(sp.Matrix([1 / sp.sqrt(2), sp.sin(1) ** 2 + sp.cos(1) ** 2, 0])).T
     Matrix([[sqrt(2)/2, 1, 0]])
     """
-    return Vector([c if c.is_Rational else sp.radsimp(sp.simplify(c)) for c in v])
+    return Vector([c if c.is_Rational else sp.radsimp(sp.simplify(c)) for c in entries(v)])
 
 
 @dataclass(frozen=True)
@@ -325,7 +376,7 @@ class JointAxis:
         True
         """
         w = vector(p) - self.point
-        return is_zero_vector(Vector(w.cross(self.direction)), values)
+        return is_zero_vector(cross(w, self.direction), values)
 
     def foot(self, p: object) -> Vector:
         """The foot of the perpendicular from ``p`` onto the line (the closest point).
@@ -334,7 +385,7 @@ class JointAxis:
         Matrix([[1, 0, 2]])
         """
         w = vector(p) - self.point
-        return simplify_vector(self.point + w.dot(self.direction) * self.direction)
+        return simplify_vector(self.point + dot(w, self.direction) * self.direction)
 
     def motion(self, q: float, values: Values | None = None) -> np.ndarray:
         """The 4×4 rigid motion (numbers) of turning by ``q`` about (R) or sliding ``q`` along (P).
@@ -430,11 +481,11 @@ def common_normal(
     """
     u1, u2 = l1.direction, l2.direction
     w = Vector(l2.point - l1.point)
-    c = Vector(u1.cross(u2))
+    c = cross(u1, u2)
     if is_zero_vector(c):
         start = l1.point if through is None else vector(through, field="through")
         w = Vector(l2.point - start)
-        perp = simplify_vector(w - w.dot(u1) * u1)
+        perp = simplify_vector(w - dot(w, u1) * u1)
         if is_zero_vector(perp, values):
             return CommonNormal(Relation.COINCIDENT, start, start, None, sp.Integer(0))
         length = norm(perp, values)
@@ -442,9 +493,9 @@ def common_normal(
         return CommonNormal(
             Relation.PARALLEL, start, simplify_vector(start + perp), direction, length
         )
-    cc = c.dot(c)
-    t1 = w.cross(u2).dot(c) / cc
-    t2 = w.cross(u1).dot(c) / cc
+    cc = dot(c, c)
+    t1 = dot(cross(w, u2), c) / cc
+    t2 = dot(cross(w, u1), c) / cc
     foot1 = simplify_vector(l1.point + t1 * u1)
     foot2 = simplify_vector(l2.point + t2 * u2)
     gap = simplify_vector(foot2 - foot1)
@@ -470,21 +521,22 @@ class Frame:
     def __post_init__(self) -> None:
         for key in ("origin", "x", "z"):
             object.__setattr__(self, key, vector(getattr(self, key), field=f"frame {key}"))
-        checks = (self.x.dot(self.x) - 1, self.z.dot(self.z) - 1, self.x.dot(self.z))
+        checks = (dot(self.x, self.x) - 1, dot(self.z, self.z) - 1, dot(self.x, self.z))
         if any(sign_of(c) != 0 for c in checks):
             raise GeometryError(f"frame {self.index}: x and z must be orthogonal unit vectors")
 
     @property
     def y(self) -> Vector:
         """``z × x`` (right-handed)."""
-        return Vector(self.z.cross(self.x))
+        return cross(self.z, self.x)
 
-    @property
+    @cached_property
     def matrix(self) -> sp.ImmutableMatrix:
-        """The 4×4 pose of the frame in world coordinates."""
-        M = sp.eye(4)
-        M[:3, 0], M[:3, 1], M[:3, 2], M[:3, 3] = self.x, self.y, self.z, self.origin
-        return sp.ImmutableMatrix(M)
+        """The 4×4 pose of the frame in world coordinates (built once per frame: the frame
+        assignment and its checks read it for every frame of a chain)."""
+        columns = [entries(v) for v in (self.x, self.y, self.z, self.origin)]
+        top = [columns[j][i] for i in range(3) for j in range(4)]
+        return sp.ImmutableMatrix(4, 4, [*top, 0, 0, 0, 1])
 
     @classmethod
     def from_matrix(cls, T: Any, index: int | str = "") -> Frame:  # sympy, numpy or lists
@@ -544,4 +596,4 @@ class Tool:
         >>> Tool((0, 0, 1), (0, 0, -1), (0, 1, 0)).frame.x.T
         Matrix([[-1, 0, 0]])
         """
-        return Frame("tool", self.point, Vector(self.sliding.cross(self.approach)), self.approach)
+        return Frame("tool", self.point, cross(self.sliding, self.approach), self.approach)

@@ -20,6 +20,7 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import cached_property
 from typing import TypeAlias
 
 import sympy as sp
@@ -65,7 +66,7 @@ class Origin:
         """The 4×4 transform, from the one kernel (``plain_product``)."""
         return plain_product(self.word)
 
-    @property
+    @cached_property
     def rational_matrix(self) -> sp.ImmutableMatrix:
         """The transform with each measured angle (no rational multiple of π) replaced by the
         nearest angle whose cosine and sine are rational (``tan(θ/2)`` within 1e-13), so the
