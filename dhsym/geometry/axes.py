@@ -47,6 +47,7 @@ __all__ = [
     "CommonNormal",
     "Frame",
     "JointAxis",
+    "MEASURED_DIGITS",
     "Relation",
     "exact_matrix",
     "Tool",
@@ -56,6 +57,7 @@ __all__ = [
     "dot",
     "entries",
     "exact_number",
+    "measured",
     "is_zero_vector",
     "norm",
     "sign_of",
@@ -100,6 +102,49 @@ def exact_number(value: object, *, field: str | None = None) -> sp.Expr:
         return as_expr(value, field=field)
     except Exception as err:  # noqa: BLE001 - re-raised as a geometry error
         raise GeometryError(str(err), field=field) from None
+
+
+#: significant digits of a measured entry (a URDF's decimals carry 4 to 9)
+MEASURED_DIGITS = 12
+#: largest numerator and denominator of the numbers of an exact form kept as it is
+#: (``sqrt(2)/2``, ``3*pi/4``, ``1/3``)
+_SMALL = 1000
+
+
+def measured(value: sp.Expr) -> sp.Expr:
+    """An entry as a textbook prints it: an exact form kept where the numbers given make
+    one (a decimal as written, ``pi/2``, ``sqrt(2)/20``, ``atan2(1, 3)``), and a measured
+    number (a fraction of 20 digits, the root of a large integer, the ``atan2`` of two
+    such: what the frame geometry makes of a URDF's decimals) as its decimal to
+    :data:`MEASURED_DIGITS` significant digits. Joint variables stay as they are; only the
+    constant part changes, by less than 5e-13 of itself.
+
+    >>> from dhsym.model.entries import exact_decimal
+    >>> exact_decimal(measured(sp.Rational(15726572319968823, 132156387503562500)))
+    '0.118999714029'
+    >>> exact_decimal(measured(sp.sqrt(134560049) / 100000))
+    '0.116000021121'
+    >>> th2 = sp.Symbol("theta2", real=True)
+    >>> measured(th2 + sp.atan2(sp.Rational(4840101082143211, 331871697081907052), 1))
+    theta2 + 583328799/40000000000
+    >>> measured(sp.Rational(-306, 10000)), measured(sp.pi / 2), measured(sp.sqrt(2) / 20)
+    (-153/5000, pi/2, sqrt(2)/20)
+    """
+    const, rest = value.as_independent(*value.free_symbols, as_Add=True)
+    if const == 0 or not const.is_number or _exact_form(const):
+        return value
+    return rest + sp.Rational(f"{to_float(const):.{MEASURED_DIGITS}g}")
+
+
+def _exact_form(value: sp.Expr) -> bool:
+    """Whether a constant is kept: a decimal of at most :data:`MEASURED_DIGITS` significant
+    digits, or an expression of small numbers (roots, π, ``atan2(1, 3)``)."""
+    if value.is_Rational:
+        decimal = sp.Rational(f"{to_float(value):.{MEASURED_DIGITS}g}")
+        return value.q <= _SMALL or value == decimal
+    if value.has(sp.Float):
+        return False
+    return all(abs(r.p) <= _SMALL and r.q <= _SMALL for r in value.atoms(sp.Rational))
 
 
 def _from_float(f: float, field: str | None) -> sp.Expr:
@@ -226,7 +271,7 @@ def norm(v: Vector, values: Values | None = None) -> sp.Expr:
     >>> norm(vector([0, "a2", 0]), {a2: 1}), norm(vector([3, 4, 0]))
     (a2, 5)
     """
-    n2 = sp.factor(sp.expand(v.dot(v)))
+    n2 = sp.factor(sp.expand(dot(v, v)))
     r = sp.sqrt(n2)
     if r.has(sp.Abs):
         r = r.replace(sp.Abs, lambda x: sign_of(x, values) * x)
@@ -267,7 +312,7 @@ def unit_direction(d: Vector) -> Vector:
     >>> u.dot(u), [round(float(c), 12) for c in u]
     (1, [0.393919298579, 0.0, 0.919145030018])
     """
-    n2 = sp.expand(d.dot(d))
+    n2 = sp.expand(dot(d, d))
     if n2 == 1:
         return Vector(d)
     if all(c.is_Rational for c in d):
