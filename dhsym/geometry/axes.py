@@ -130,7 +130,10 @@ def measured(value: sp.Expr) -> sp.Expr:
     >>> measured(sp.Rational(-306, 10000)), measured(sp.pi / 2), measured(sp.sqrt(2) / 20)
     (-153/5000, pi/2, sqrt(2)/20)
     """
-    const, rest = value.as_independent(*value.free_symbols, as_Add=True)
+    if value.is_Rational or value.is_Symbol:  # most entries: no sum to split
+        const, rest = (value, sp.Integer(0)) if value.is_Rational else (sp.Integer(0), value)
+    else:
+        const, rest = value.as_independent(*value.free_symbols, as_Add=True)
     if const == 0 or not const.is_number or _exact_form(const):
         return value
     return rest + sp.Rational(f"{to_float(const):.{MEASURED_DIGITS}g}")
@@ -140,8 +143,9 @@ def _exact_form(value: sp.Expr) -> bool:
     """Whether a constant is kept: a decimal of at most :data:`MEASURED_DIGITS` significant
     digits, or an expression of small numbers (roots, π, ``atan2(1, 3)``)."""
     if value.is_Rational:
-        decimal = sp.Rational(f"{to_float(value):.{MEASURED_DIGITS}g}")
-        return value.q <= _SMALL or value == decimal
+        return bool(value.q <= _SMALL) or value == sp.Rational(
+            f"{float(value):.{MEASURED_DIGITS}g}"
+        )
     if value.has(sp.Float):
         return False
     return all(abs(r.p) <= _SMALL and r.q <= _SMALL for r in value.atoms(sp.Rational))
