@@ -172,7 +172,9 @@ def vector(values: object, *, field: str = "vector") -> Vector:
     Matrix([[1, 1/2, d3]])
     """
     if isinstance(values, sp.MatrixBase):
-        items = list(values)
+        items = list(entries(values))
+        if values.shape == (3, 1) and all(c.is_Rational for c in items):
+            return Vector(values)  # exact already: nothing to read (frames of a long chain)
     else:
         try:
             items = list(values)  # type: ignore[call-overload]  # anything: refused just below

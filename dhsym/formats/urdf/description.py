@@ -77,13 +77,16 @@ class Origin:
         [ -6500857724477/28612666328005, 27864377316636/28612666328005],
         [-27864377316636/28612666328005, -6500857724477/28612666328005]])
         """
-        out = sp.eye(4)
+        # T(xyz) R: the rotations multiplied, the translation put in its column
+        rotation = sp.eye(4)
         for e in self.word:
             if e.kind == "R" and not (e.value / sp.pi).is_rational:
-                out = out * _rational_rotation(e.axis, e.value)
-            else:
-                out = out * plain_product([e])
-        return sp.ImmutableMatrix(out)
+                rotation = rotation * _rational_rotation(e.axis, e.value)
+            elif e.kind == "R":
+                rotation = rotation * plain_product([e])
+        cells = list(rotation)
+        cells[3], cells[7], cells[11] = self.xyz
+        return sp.ImmutableMatrix(4, 4, cells)
 
 
 def _rational_rotation(axis: str, angle: Expr) -> sp.Matrix:
