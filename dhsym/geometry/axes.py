@@ -116,8 +116,11 @@ def measured(value: sp.Expr) -> sp.Expr:
     one (a decimal as written, ``pi/2``, ``sqrt(2)/20``, ``atan2(1, 3)``), and a measured
     number (a fraction of 20 digits, the root of a large integer, the ``atan2`` of two
     such: what the frame geometry makes of a URDF's decimals) as its decimal to
-    :data:`MEASURED_DIGITS` significant digits. Joint variables stay as they are; only the
-    constant part changes, by less than 5e-13 of itself.
+    :data:`MEASURED_DIGITS` significant digits. An angle given by its tangent keeps it,
+    the tangent as a decimal (``atan(0.0145842538689)``): its cosine and sine stay exact
+    (the kernel takes a decimal angle in radians as measured, with float cosines, and an
+    exact proof such as PoE = DH would meet floats). Joint variables stay as they are;
+    only the constant part changes, by less than 5e-13 of itself.
 
     >>> from dhsym.model.entries import exact_decimal
     >>> exact_decimal(measured(sp.Rational(15726572319968823, 132156387503562500)))
@@ -126,7 +129,7 @@ def measured(value: sp.Expr) -> sp.Expr:
     '0.116000021121'
     >>> th2 = sp.Symbol("theta2", real=True)
     >>> measured(th2 + sp.atan2(sp.Rational(4840101082143211, 331871697081907052), 1))
-    theta2 + 583328799/40000000000
+    theta2 + atan(145842538689/10000000000000)
     >>> measured(sp.Rational(-306, 10000)), measured(sp.pi / 2), measured(sp.sqrt(2) / 20)
     (-153/5000, pi/2, sqrt(2)/20)
     """
@@ -136,6 +139,8 @@ def measured(value: sp.Expr) -> sp.Expr:
         const, rest = value.as_independent(*value.free_symbols, as_Add=True)
     if const == 0 or not const.is_number or _exact_form(const):
         return value
+    if const.has(sp.atan):  # sympy writes atan2(y, x) of numbers as atan(y/x) (± pi)
+        return rest + const.replace(sp.atan, lambda t: sp.atan(measured(t)))
     return rest + sp.Rational(f"{to_float(const):.{MEASURED_DIGITS}g}")
 
 
