@@ -33,6 +33,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import Enum
 from fractions import Fraction
+from functools import cached_property
 from typing import Any, TypeAlias
 
 import numpy as np
@@ -46,12 +47,17 @@ __all__ = [
     "CommonNormal",
     "Frame",
     "JointAxis",
+    "MEASURED_DIGITS",
     "Relation",
     "exact_matrix",
     "Tool",
     "classify",
     "common_normal",
+    "cross",
+    "dot",
+    "entries",
     "exact_number",
+    "measured",
     "is_zero_vector",
     "norm",
     "sign_of",
@@ -98,6 +104,58 @@ def exact_number(value: object, *, field: str | None = None) -> sp.Expr:
         raise GeometryError(str(err), field=field) from None
 
 
+#: significant digits of a measured entry (a URDF's decimals carry 4 to 9)
+MEASURED_DIGITS = 12
+#: largest numerator and denominator of the numbers of an exact form kept as it is
+#: (``sqrt(2)/2``, ``3*pi/4``, ``1/3``)
+_SMALL = 1000
+
+
+def measured(value: sp.Expr) -> sp.Expr:
+    """An entry as a textbook prints it: an exact form kept where the numbers given make
+    one (a decimal as written, ``pi/2``, ``sqrt(2)/20``, ``atan2(1, 3)``), and a measured
+    number (a fraction of 20 digits, the root of a large integer, the ``atan2`` of two
+    such: what the frame geometry makes of a URDF's decimals) as its decimal to
+    :data:`MEASURED_DIGITS` significant digits. An angle given by its tangent keeps it,
+    the tangent as a decimal (``atan(0.0145842538689)``): its cosine and sine stay exact
+    (the kernel takes a decimal angle in radians as measured, with float cosines, and an
+    exact proof such as PoE = DH would meet floats). Joint variables stay as they are;
+    only the constant part changes, by less than 5e-13 of itself.
+
+    >>> from dhsym.model.entries import exact_decimal
+    >>> exact_decimal(measured(sp.Rational(15726572319968823, 132156387503562500)))
+    '0.118999714029'
+    >>> exact_decimal(measured(sp.sqrt(134560049) / 100000))
+    '0.116000021121'
+    >>> th2 = sp.Symbol("theta2", real=True)
+    >>> measured(th2 + sp.atan2(sp.Rational(4840101082143211, 331871697081907052), 1))
+    theta2 + atan(145842538689/10000000000000)
+    >>> measured(sp.Rational(-306, 10000)), measured(sp.pi / 2), measured(sp.sqrt(2) / 20)
+    (-153/5000, pi/2, sqrt(2)/20)
+    """
+    if value.is_Rational or value.is_Symbol:  # most entries: no sum to split
+        const, rest = (value, sp.Integer(0)) if value.is_Rational else (sp.Integer(0), value)
+    else:
+        const, rest = value.as_independent(*value.free_symbols, as_Add=True)
+    if const == 0 or not const.is_number or _exact_form(const):
+        return value
+    if const.has(sp.atan):  # sympy writes atan2(y, x) of numbers as atan(y/x) (± pi)
+        return rest + const.replace(sp.atan, lambda t: sp.atan(measured(t)))
+    return rest + sp.Rational(f"{to_float(const):.{MEASURED_DIGITS}g}")
+
+
+def _exact_form(value: sp.Expr) -> bool:
+    """Whether a constant is kept: a decimal of at most :data:`MEASURED_DIGITS` significant
+    digits, or an expression of small numbers (roots, π, ``atan2(1, 3)``)."""
+    if value.is_Rational:
+        return bool(value.q <= _SMALL) or value == sp.Rational(
+            f"{float(value):.{MEASURED_DIGITS}g}"
+        )
+    if value.has(sp.Float):
+        return False
+    return all(abs(r.p) <= _SMALL and r.q <= _SMALL for r in value.atoms(sp.Rational))
+
+
 def _from_float(f: float, field: str | None) -> sp.Expr:
     if f != f or f in (float("inf"), float("-inf")):
         raise GeometryError(f"non-finite number {f!r}", field=field)
@@ -119,7 +177,9 @@ def vector(values: object, *, field: str = "vector") -> Vector:
     Matrix([[1, 1/2, d3]])
     """
     if isinstance(values, sp.MatrixBase):
-        items = list(values)
+        items = list(entries(values))
+        if values.shape == (3, 1) and all(c.is_Rational for c in items):
+            return Vector(values)  # exact already: nothing to read (frames of a long chain)
     else:
         try:
             items = list(values)  # type: ignore[call-overload]  # anything: refused just below
@@ -159,13 +219,60 @@ def sign_of(expr: sp.Expr, values: Values | None = None, *, what: str = "a lengt
     return 0 if abs(v) < sp.Float("1e-40") else (1 if v > 0 else -1)
 
 
+def entries(v: sp.MatrixBase) -> tuple[sp.Expr, ...]:
+    """The entries of an exact vector or matrix, row by row.
+
+    An immutable matrix holds them as its third argument (``args``: rows, columns, the
+    flat entries): read there, without the per-entry indexing of iterating a sympy matrix
+    (which dominates a long chain's frame assignment).
+
+    >>> entries(vector([1, 0, "a2"]))
+    (1, 0, a2)
+    """
+    if isinstance(v, sp.ImmutableDenseMatrix):
+        return tuple(v.args[2])
+    return tuple(v)
+
+
+def _rational(u: sp.MatrixBase) -> bool:
+    return all(c.is_Rational for c in entries(u))
+
+
+def dot(u: sp.MatrixBase, v: sp.MatrixBase) -> sp.Expr:
+    """``u · v`` of two exact 3-vectors.
+
+    Rational vectors (most robot files) are multiplied entry by entry: the same exact
+    number as sympy's ``Matrix.dot``, which first converts each 3-vector to a domain
+    matrix and costs far more (a 100-joint chain calls this thousands of times); others
+    go through ``Matrix.dot``, so their form is sympy's.
+
+    >>> dot(vector([1, 2, 3]), vector([0.5, 0, 1])), dot(vector(["a2", 0, 0]), vector([2, 0, 0]))
+    (7/2, 2*a2)
+    """
+    if _rational(u) and _rational(v):
+        return sp.Add(*(a * b for a, b in zip(entries(u), entries(v), strict=True)))
+    return u.dot(v)
+
+
+def cross(u: sp.MatrixBase, v: sp.MatrixBase) -> Vector:
+    """``u × v`` of two exact 3-vectors (rational ones entry by entry, as :func:`dot`).
+
+    >>> cross(vector([1, 0, 0]), vector([0, 1, 0])).T
+    Matrix([[0, 0, 1]])
+    """
+    if _rational(u) and _rational(v):
+        (a, b, c), (x, y, z) = entries(u), entries(v)
+        return Vector([b * z - c * y, c * x - a * z, a * y - b * x])
+    return Vector(u.cross(v))
+
+
 def is_zero_vector(v: Vector, values: Values | None = None) -> bool:
     """True when every component of ``v`` is zero (symbols decided at ``values``).
 
     >>> is_zero_vector(vector([0, sp.sqrt(2) - sp.sqrt(8) / 2, 0]))
     True
     """
-    return all(sign_of(c, values) == 0 for c in v)
+    return all(sign_of(c, values) == 0 for c in entries(v))
 
 
 def norm(v: Vector, values: Values | None = None) -> sp.Expr:
@@ -175,7 +282,7 @@ def norm(v: Vector, values: Values | None = None) -> sp.Expr:
     >>> norm(vector([0, "a2", 0]), {a2: 1}), norm(vector([3, 4, 0]))
     (a2, 5)
     """
-    n2 = sp.factor(sp.expand(v.dot(v)))
+    n2 = sp.factor(sp.expand(dot(v, v)))
     r = sp.sqrt(n2)
     if r.has(sp.Abs):
         r = r.replace(sp.Abs, lambda x: sign_of(x, values) * x)
@@ -216,7 +323,7 @@ def unit_direction(d: Vector) -> Vector:
     >>> u.dot(u), [round(float(c), 12) for c in u]
     (1, [0.393919298579, 0.0, 0.919145030018])
     """
-    n2 = sp.expand(d.dot(d))
+    n2 = sp.expand(dot(d, d))
     if n2 == 1:
         return Vector(d)
     if all(c.is_Rational for c in d):
@@ -259,7 +366,7 @@ def simplify_vector(v: sp.MatrixBase) -> Vector:
     >>> simplify_vector(sp.Matrix([1 / sp.sqrt(2), sp.sin(1) ** 2 + sp.cos(1) ** 2, 0])).T
     Matrix([[sqrt(2)/2, 1, 0]])
     """
-    return Vector([c if c.is_Rational else sp.radsimp(sp.simplify(c)) for c in v])
+    return Vector([c if c.is_Rational else sp.radsimp(sp.simplify(c)) for c in entries(v)])
 
 
 @dataclass(frozen=True)
@@ -325,7 +432,7 @@ class JointAxis:
         True
         """
         w = vector(p) - self.point
-        return is_zero_vector(Vector(w.cross(self.direction)), values)
+        return is_zero_vector(cross(w, self.direction), values)
 
     def foot(self, p: object) -> Vector:
         """The foot of the perpendicular from ``p`` onto the line (the closest point).
@@ -334,7 +441,7 @@ class JointAxis:
         Matrix([[1, 0, 2]])
         """
         w = vector(p) - self.point
-        return simplify_vector(self.point + w.dot(self.direction) * self.direction)
+        return simplify_vector(self.point + dot(w, self.direction) * self.direction)
 
     def motion(self, q: float, values: Values | None = None) -> np.ndarray:
         """The 4×4 rigid motion (numbers) of turning by ``q`` about (R) or sliding ``q`` along (P).
@@ -430,11 +537,11 @@ def common_normal(
     """
     u1, u2 = l1.direction, l2.direction
     w = Vector(l2.point - l1.point)
-    c = Vector(u1.cross(u2))
+    c = cross(u1, u2)
     if is_zero_vector(c):
         start = l1.point if through is None else vector(through, field="through")
         w = Vector(l2.point - start)
-        perp = simplify_vector(w - w.dot(u1) * u1)
+        perp = simplify_vector(w - dot(w, u1) * u1)
         if is_zero_vector(perp, values):
             return CommonNormal(Relation.COINCIDENT, start, start, None, sp.Integer(0))
         length = norm(perp, values)
@@ -442,9 +549,9 @@ def common_normal(
         return CommonNormal(
             Relation.PARALLEL, start, simplify_vector(start + perp), direction, length
         )
-    cc = c.dot(c)
-    t1 = w.cross(u2).dot(c) / cc
-    t2 = w.cross(u1).dot(c) / cc
+    cc = dot(c, c)
+    t1 = dot(cross(w, u2), c) / cc
+    t2 = dot(cross(w, u1), c) / cc
     foot1 = simplify_vector(l1.point + t1 * u1)
     foot2 = simplify_vector(l2.point + t2 * u2)
     gap = simplify_vector(foot2 - foot1)
@@ -470,21 +577,22 @@ class Frame:
     def __post_init__(self) -> None:
         for key in ("origin", "x", "z"):
             object.__setattr__(self, key, vector(getattr(self, key), field=f"frame {key}"))
-        checks = (self.x.dot(self.x) - 1, self.z.dot(self.z) - 1, self.x.dot(self.z))
+        checks = (dot(self.x, self.x) - 1, dot(self.z, self.z) - 1, dot(self.x, self.z))
         if any(sign_of(c) != 0 for c in checks):
             raise GeometryError(f"frame {self.index}: x and z must be orthogonal unit vectors")
 
     @property
     def y(self) -> Vector:
         """``z × x`` (right-handed)."""
-        return Vector(self.z.cross(self.x))
+        return cross(self.z, self.x)
 
-    @property
+    @cached_property
     def matrix(self) -> sp.ImmutableMatrix:
-        """The 4×4 pose of the frame in world coordinates."""
-        M = sp.eye(4)
-        M[:3, 0], M[:3, 1], M[:3, 2], M[:3, 3] = self.x, self.y, self.z, self.origin
-        return sp.ImmutableMatrix(M)
+        """The 4×4 pose of the frame in world coordinates (built once per frame: the frame
+        assignment and its checks read it for every frame of a chain)."""
+        columns = [entries(v) for v in (self.x, self.y, self.z, self.origin)]
+        top = [columns[j][i] for i in range(3) for j in range(4)]
+        return sp.ImmutableMatrix(4, 4, [*top, 0, 0, 0, 1])
 
     @classmethod
     def from_matrix(cls, T: Any, index: int | str = "") -> Frame:  # sympy, numpy or lists
@@ -544,4 +652,4 @@ class Tool:
         >>> Tool((0, 0, 1), (0, 0, -1), (0, 1, 0)).frame.x.T
         Matrix([[-1, 0, 0]])
         """
-        return Frame("tool", self.point, Vector(self.sliding.cross(self.approach)), self.approach)
+        return Frame("tool", self.point, cross(self.sliding, self.approach), self.approach)

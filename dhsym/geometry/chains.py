@@ -41,6 +41,8 @@ from dhsym.model.entries import as_expr
 from dhsym.model.table import Elementary
 from dhsym.notation.printers import Notation, format_angle
 
+from .axes import measured
+
 __all__ = [
     "ChainDerivation",
     "FrameChain",
@@ -108,11 +110,17 @@ def _fmt(value: object, md: bool) -> str:
     if isinstance(value, str):
         return value
     if isinstance(value, _Angle):
-        nice = (value.value / sp.pi).is_rational is True or value.value == 0
-        text = format_angle(value.value, degrees=nice, latex=md)
+        shown = measured(value.value)
+        nice = (shown / sp.pi).is_rational is True or shown == 0
+        if shown != value.value:  # a measured angle: its radians as a decimal
+            text = _NOTATION.latex(shown) if md else _NOTATION.text(shown)
+        else:
+            text = format_angle(shown, degrees=nice, latex=md)
         return f"${text}$" if md else text
     if isinstance(value, _Vec):
-        parts = [_NOTATION.latex(c) if md else _NOTATION.text(c) for c in value.value]
+        parts = [
+            _NOTATION.latex(c) if md else _NOTATION.text(c) for c in map(measured, value.value)
+        ]
         return f"$({', '.join(parts)})$" if md else f"({', '.join(parts)})"
     if isinstance(value, _Name):
         if md:
@@ -123,11 +131,16 @@ def _fmt(value: object, md: bool) -> str:
             return (
                 "$"
                 + r"\,".join(
-                    f"{e.kind}_{{{e.axis}}}({_NOTATION.latex(e.value)})" for e in value.value
+                    f"{e.kind}_{{{e.axis}}}({_NOTATION.latex(measured(e.value))})"
+                    for e in value.value
                 )
                 + "$"
             )
-        return " ".join(f"{e.kind}{e.axis}({_NOTATION.text(e.value)})" for e in value.value)
+        return " ".join(
+            f"{e.kind}{e.axis}({_NOTATION.text(measured(e.value))})" for e in value.value
+        )
+    if isinstance(value, sp.Expr):
+        value = measured(value)
     return f"${_NOTATION.latex(value)}$" if md else _NOTATION.text(value)
 
 

@@ -66,6 +66,9 @@ from .axes import (
     Relation,
     Tool,
     common_normal,
+    cross,
+    dot,
+    entries,
     exact_number,
     is_zero_vector,
     sign_of,
@@ -271,7 +274,7 @@ def _check_pairs(axes: tuple[JointAxis, ...], vals: dict[Any, Any]) -> None:
     # normal with its feet is computed here
     for k in range(1, len(axes)):
         L1, L2 = axes[k - 1], axes[k]
-        if L1.joint != L2.joint or not is_zero_vector(Vector(L1.direction.cross(L2.direction))):
+        if L1.joint != L2.joint or not is_zero_vector(cross(L1.direction, L2.direction)):
             continue
         if L1.joint == "P":
             raise GeometryError(
@@ -326,11 +329,11 @@ def _rows(
         F, G = frames[k - 1], frames[k]
         dp = simplify_vector(G.origin - F.origin)
         if conv is Convention.STANDARD:  # about z_{k-1}, then along x_k
-            theta, d = _atan2(F.x.cross(G.x).dot(F.z), F.x.dot(G.x)), _simplify(dp.dot(F.z))
-            a, alpha = _simplify(dp.dot(G.x)), _atan2(F.z.cross(G.z).dot(G.x), F.z.dot(G.z))
+            theta, d = _atan2(dot(cross(F.x, G.x), F.z), dot(F.x, G.x)), _simplify(dot(dp, F.z))
+            a, alpha = _simplify(dot(dp, G.x)), _atan2(dot(cross(F.z, G.z), G.x), dot(F.z, G.z))
         else:  # along x_{i-1}, then about z_i
-            alpha, a = _atan2(F.z.cross(G.z).dot(F.x), F.z.dot(G.z)), _simplify(dp.dot(F.x))
-            d, theta = _simplify(dp.dot(G.z)), _atan2(F.x.cross(G.x).dot(G.z), F.x.dot(G.x))
+            alpha, a = _atan2(dot(cross(F.z, G.z), F.x), dot(F.z, G.z)), _simplify(dot(dp, F.x))
+            d, theta = _simplify(dot(dp, G.z)), _atan2(dot(cross(F.x, G.x), G.z), dot(F.x, G.x))
         var = symbol(f"{'theta' if ax.joint == 'R' else 'd'}{k}")
         var = symbol(f"q{k}") if var in consts else var
         home = theta if ax.joint == "R" else d
@@ -413,21 +416,24 @@ def _home_is_rational(full: list[Elementary], cut: list[int], frames: list[Frame
     ``QQ`` (a 100-joint chain in milliseconds, not the seconds of generic sympy matrices).
     Raises :class:`~dhsym.errors.GeometryError` when a frame differs.
     """
-    wants = [f.matrix for f in frames]
+    wants = [list(entries(f.matrix)) for f in frames]
     if any(not x.is_Rational for w in wants for x in w):
         return False
-    factors = []
+    # a chain repeats few distinct factors (Rz(0), Tz(1/10), Rx(pi/2), …): each is built
+    # and converted once
+    distinct: dict[Elementary, DomainMatrix] = {}
     for e in full:
-        m = elementary_matrix(e)
-        if any(not x.is_Rational for x in m):
-            return False
-        factors.append(DomainMatrix.from_Matrix(m).convert_to(sp.QQ))
+        if e not in distinct:
+            m = elementary_matrix(e)
+            if any(not x.is_Rational for x in m):
+                return False
+            distinct[e] = DomainMatrix.from_Matrix(m).convert_to(sp.QQ)
     product, done = DomainMatrix.eye(4, sp.QQ), 0
     for k, want in enumerate(wants):
-        for factor in factors[done : cut[k]]:
-            product = product * factor
+        for e in full[done : cut[k]]:
+            product = product * distinct[e]
         done = cut[k]
-        if product.to_Matrix() != want:
+        if [sp.QQ.to_sympy(x) for x in product.to_list_flat()] != want:
             raise GeometryError(
                 f"internal check failed: frame {k} of the table differs from the "
                 "assigned frame at home (please report this)"
@@ -453,7 +459,7 @@ def _verify(fa: FrameAssignment, samples: int, seed: int, tol: float) -> float:
     prefixes = compile_word(full, table.variables, vals, prefixes=True)
     cut = _prefix_lengths(table)
     homes = [
-        np.array([[to_float(x) for x in row] for row in f.matrix.subs(vals).tolist()])
+        np.array([[to_float(x.xreplace(vals)) for x in row] for row in f.matrix.tolist()])
         for f in [*fa.frames, fa.tool.frame if fa.tool else fa.frames[-1]]
     ]
     offsets = [to_float(vm.offset.subs(vals)) for vm in fa.variable_map]
@@ -482,14 +488,14 @@ _EX, _EY = Vector([1, 0, 0]), Vector([0, 1, 0])
 def _reference(axis: JointAxis) -> tuple[Vector, Vector]:
     """The point of the axis nearest the world origin, and world x (or y) made perpendicular."""
     u = axis.direction
-    v = simplify_vector(_EX - _EX.dot(u) * u)
+    v = simplify_vector(_EX - dot(_EX, u) * u)
     if is_zero_vector(v):
-        v = simplify_vector(_EY - _EY.dot(u) * u)
+        v = simplify_vector(_EY - dot(_EY, u) * u)
     return axis.foot((0, 0, 0)), unit(v)
 
 
 def _closest(candidate: Vector, ref: Vector, vals: dict[Any, Any]) -> tuple[Vector, str]:
-    s = sign_of(candidate.dot(ref), vals, what="a direction")
+    s = sign_of(dot(candidate, ref), vals, what="a direction")
     return (Vector(-candidate), "−") if s < 0 else (candidate, "+")
 
 
@@ -511,7 +517,7 @@ def _link(
     """
     cn = common_normal(L1, L2, through=start, values=vals)
     if cn.relation is Relation.INTERSECTING:
-        x, sgn = _closest(unit(Vector(L1.direction.cross(L2.direction))), prev_x, vals)
+        x, sgn = _closest(unit(cross(L1.direction, L2.direction)), prev_x, vals)
         return cn, x, sgn, cn.foot1, cn.foot1
     if cn.relation is Relation.COINCIDENT:
         return cn, prev_x, "", start, start
@@ -562,11 +568,11 @@ def _standard_last(
     foot = Ln.foot(p)
     gap = simplify_vector(p - foot)
     if is_zero_vector(gap, vals):  # the tool point is on the last axis: x_n only ⊥ z_{n−1}
-        x = simplify_vector(t.x - t.x.dot(prev.z) * prev.z)
+        x = simplify_vector(t.x - dot(t.x, prev.z) * prev.z)
         x = prev.x if is_zero_vector(x) else unit(x)
     else:
         x = unit(gap, vals)
-    z = simplify_vector(t.z - t.z.dot(x) * x)
+    z = simplify_vector(t.z - dot(t.z, x) * x)
     frame = Frame(n, p, x, prev.z if is_zero_vector(z) else unit(z))
     dh = is_zero_vector(simplify_vector(frame.matrix - t.matrix))
     args = dict(p=p, a=tool.approach, s=tool.sliding, nv=t.x, b=foot, x=frame.x, z=frame.z)

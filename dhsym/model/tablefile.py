@@ -365,6 +365,12 @@ class _Reader(StrPrinter):
     def _print_atan(self, expr: sp.Expr) -> str:
         return f"atan2({self._print(expr.args[0])}, 1)"
 
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        # a measured decimal in a sum (a URDF's offset, ``theta2 + 0.0145832199750``) as the
+        # decimal it is; fractions of small denominators (``q1 + 1/2``) stay fractions
+        dec = _exact_decimal(expr) if expr.q > 10**6 else None
+        return dec if dec is not None else str(super()._print_Rational(expr))
+
 
 def _text(value: sp.Expr) -> str:
     """Text of an entry that :func:`read_table_text` reads back to the same value.

@@ -20,6 +20,7 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import cached_property
 from typing import TypeAlias
 
 import sympy as sp
@@ -65,7 +66,7 @@ class Origin:
         """The 4×4 transform, from the one kernel (``plain_product``)."""
         return plain_product(self.word)
 
-    @property
+    @cached_property
     def rational_matrix(self) -> sp.ImmutableMatrix:
         """The transform with each measured angle (no rational multiple of π) replaced by the
         nearest angle whose cosine and sine are rational (``tan(θ/2)`` within 1e-13), so the
@@ -76,13 +77,16 @@ class Origin:
         [ -6500857724477/28612666328005, 27864377316636/28612666328005],
         [-27864377316636/28612666328005, -6500857724477/28612666328005]])
         """
-        out = sp.eye(4)
+        # T(xyz) R: the rotations multiplied, the translation put in its column
+        rotation = sp.eye(4)
         for e in self.word:
             if e.kind == "R" and not (e.value / sp.pi).is_rational:
-                out = out * _rational_rotation(e.axis, e.value)
-            else:
-                out = out * plain_product([e])
-        return sp.ImmutableMatrix(out)
+                rotation = rotation * _rational_rotation(e.axis, e.value)
+            elif e.kind == "R":
+                rotation = rotation * plain_product([e])
+        cells = list(rotation)
+        cells[3], cells[7], cells[11] = self.xyz
+        return sp.ImmutableMatrix(4, 4, cells)
 
 
 def _rational_rotation(axis: str, angle: Expr) -> sp.Matrix:

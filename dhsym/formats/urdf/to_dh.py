@@ -15,7 +15,11 @@ in DH frame k; the base's and off-chain links' inertials are left out with a war
 
 Angles in ``rpy`` that are no multiple of π/12 (``-1.8``) are measurements: their cosines
 are floats (as in the transform kernel), and positions that depend on them are read as
-the simplest exact number within 1e-12.
+the simplest exact number within 1e-12. The frame geometry is exact; the table it gives
+holds what a textbook prints (:func:`as_written`): the URDF's decimals as written, exact
+forms of small numbers (``pi/2``), and each measured number the geometry makes of them (a
+fraction of 20 digits, ``sqrt(134560049)/100000``) as a decimal of 12 significant digits,
+so ``fk`` of the table is the URDF chain's to about 1e-12 of the arm's size.
 
 Examples
 --------
@@ -39,7 +43,7 @@ from typing import TYPE_CHECKING, Any
 import sympy as sp
 
 from dhsym.errors import DHError, FormatError, echoed
-from dhsym.geometry.axes import Frame, JointAxis, Tool, exact_number
+from dhsym.geometry.axes import Frame, JointAxis, Tool, exact_number, measured
 from dhsym.geometry.frame_choices import FrameChoice, match_frames, textbook_frames, turned
 from dhsym.geometry.frames import FrameAssignment, assign_frames
 from dhsym.kinematics.numeric import to_float
@@ -47,7 +51,7 @@ from dhsym.kinematics.transforms import chain_word, plain_product, rigid_inverse
 from dhsym.model.angles import AngleSnap, snap_note
 from dhsym.model.inertia import LinkInertia
 from dhsym.model.kinds import Convention
-from dhsym.model.table import DHTable
+from dhsym.model.table import DHTable, Elementary
 from dhsym.model.tablefile import dump_table
 from dhsym.notation.escape import clean_text
 
@@ -57,7 +61,14 @@ from .read import read_urdf
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["MAX_CHAIN", "UrdfImport", "chain_from_urdf", "import_urdf", "table_yaml"]
+__all__ = [
+    "MAX_CHAIN",
+    "UrdfImport",
+    "as_written",
+    "chain_from_urdf",
+    "import_urdf",
+    "table_yaml",
+]
 
 #: Most joints (fixed and moving) on the chain from base to tip; arms have 6 to 20.
 MAX_CHAIN = 100
@@ -250,7 +261,38 @@ def import_urdf(
     choice = _choose_frames(table, frames)
     if choice is not None:
         table = choice.table
-    return UrdfImport(model, start, tip, joints, fa, table, inertials, choice)
+    return UrdfImport(model, start, tip, joints, fa, as_written(table), inertials, choice)
+
+
+def as_written(table: DHTable) -> DHTable:
+    """The table with every measured constant
+    (:func:`~dhsym.geometry.axes.measured`) as a decimal: the DH
+    parameters, the base and tool transforms and the inertias (the joint limits are the
+    URDF's decimals already). ``fk`` moves by less than 1e-12 of the arm's size."""
+    rows = []
+    for row in table.rows:
+        new = replace(
+            row,
+            theta=measured(row.theta),
+            d=measured(row.d),
+            a=measured(row.a),
+            alpha=measured(row.alpha),
+        )
+        if row.inertia is not None:
+            inertia = row.inertia
+            new = replace(
+                new,
+                inertia=replace(
+                    inertia,
+                    m=measured(inertia.m),
+                    r=(measured(inertia.r[0]), measured(inertia.r[1]), measured(inertia.r[2])),
+                    I=sp.ImmutableMatrix(3, 3, [measured(v) for v in inertia.I]),
+                ),
+            )
+        rows.append(new)
+    base = tuple(Elementary(e.kind, e.axis, measured(e.value)) for e in table.base)
+    tool = tuple(Elementary(e.kind, e.axis, measured(e.value)) for e in table.tool)
+    return replace(table, rows=tuple(rows), base=base, tool=tool)
 
 
 def _choose_frames(table: DHTable, frames: str | DHTable) -> FrameChoice | None:

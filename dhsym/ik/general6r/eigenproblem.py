@@ -418,8 +418,12 @@ class General6R:
         theta = _candidates(arr, Tp, max(_ANGLE_TOL, math.sqrt(within)))
         if not len(theta):
             return np.empty((0, 6))
-        if within:  # out of reach Newton may wander: the candidates after 10 and 30 steps
-            theta = np.concatenate([_polish(arr, theta, Tp), _polish(arr, theta, Tp, 30)])
+        if within:
+            # out of reach Newton may wander: the candidates after 10 and 30 steps, and as
+            # they came (near a singularity the real part of a pair that rounding made
+            # complex can be the closest to the pose, 4e-4 on the Jaco rounded to 3
+            # decimals, while Newton from it wanders 2.6 rad away to 6e-3)
+            theta = np.concatenate([_polish(arr, theta, Tp), _polish(arr, theta, Tp, 30), theta])
         else:
             theta = _polish(arr, theta, Tp)
         q = np.empty_like(theta)

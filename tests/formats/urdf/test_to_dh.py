@@ -4,6 +4,7 @@ inertials against pinocchio, and chains that a DH table cannot hold."""
 from __future__ import annotations
 
 import math
+import re
 import xml.etree.ElementTree as ET
 from fractions import Fraction
 from pathlib import Path
@@ -155,6 +156,40 @@ def test_inertials_stay_exact_and_drops_are_named() -> None:
     assert any("panda_leftfinger" in w for w in panda.table.warnings)
 
 
+@pytest.mark.parametrize(("file", "tip", "n"), ROBOTS)
+def test_measured_numbers_print_as_decimals_and_read_back_equal(file: str, tip: str, n: int):
+    # issue 32, item 7: the SO-100 once gave d1 = 15726572319968823/132156387503562500, a2 =
+    # sqrt(134560049)/100000, θ2 + atan2(4840101082143211/331871697081907052, 1) and
+    # inertias as 26-digit fractions; what the frame geometry makes of a URDF's decimals is
+    # written as a decimal of 12 significant digits, the decimals of the URDF as written
+    from dhsym.formats.urdf import table_yaml
+    from dhsym.model.tablefile import read_table_text
+
+    for convention in ("standard", "modified"):
+        imp = import_urdf(DATA / file, tip=tip, convention=convention)
+        text = table_yaml(imp)
+        body = "\n".join(line for line in text.splitlines() if not line.startswith("#"))
+        assert not re.search(r"\d{14}/|/\d{14}|sqrt\(\d{4}|atan2\(\d{4}", text), file
+        # the decimals are the table's own (the limits are read back in degrees: -360.0
+        # of the UR5 as -2*pi, not as the URDF's -6.28318530718)
+        back = read_table_text(body)
+        assert (back.base, back.tool) == (imp.table.base, imp.table.tool)
+        for mine, read in zip(imp.table.rows, back.rows, strict=True):
+            assert read.params() == mine.params() and read.inertia == mine.inertia
+        for row in imp.table.rows:
+            inertia = [] if row.inertia is None else [row.inertia.m, *row.inertia.r, *row.inertia.I]
+            for v in [row.theta, row.d, row.a, row.alpha, *inertia]:
+                # each number a decimal of at most 12 significant digits, or a small fraction
+                for r in v.atoms(sp.Rational):
+                    assert r.q <= 1000 or r == sp.Rational(f"{float(r):.12g}"), (file, v)
+        # fk of the decimals: the URDF chain's to well below the check's 1e-9
+        assert imp.verify(5) < 1e-9
+    so100 = table_yaml(import_urdf(DATA / "so100.urdf", tip="gripper"))
+    assert "d: 0.118999714029, a: -0.0306, alpha: pi/2" in so100
+    assert "theta: 'theta2 + atan2(0.0145842538689, 1)'" in so100
+    assert "I: [0.000161511709312, 7.58044906884e-05, 0.000213312," in so100
+
+
 # --- chains a DH table cannot hold, or holds differently ------------------------------------
 
 
@@ -255,6 +290,38 @@ def test_long_plain_chains_convert(n: int, tmp_path: Path) -> None:
     path = tmp_path / "chain.urdf"
     path.write_text(text)
     assert np.abs(robot.fk(q) - urdf_pose(path, f"l{n}", q)).max() < 1e-9
+
+
+def test_a_rational_chain_is_assigned_frames_without_matrix_dot_or_simplify(monkeypatch) -> None:
+    # what keeps a 100-joint chain fast (benchmarks/bench_urdf.py): 3-vectors of rationals
+    # are multiplied entry by entry (sympy's Matrix.dot and cross convert each to a domain
+    # matrix first), and no entry is simplified per joint: only the base and tool words are
+    # (a fixed number of calls, the same for 10 joints as for 30)
+    calls: list[str] = []
+    for cls in (sp.ImmutableDenseMatrix, sp.MutableDenseMatrix):
+        for name in ("dot", "cross"):
+            original = getattr(cls, name)
+
+            def counted(*args: object, _f=original, _n=name, **kw: object) -> object:
+                calls.append(_n)
+                return _f(*args, **kw)
+
+            monkeypatch.setattr(cls, name, counted)
+    simplify = sp.simplify
+
+    def counted_simplify(*args: object, **kw: object) -> object:
+        calls.append("simplify")
+        return simplify(*args, **kw)
+
+    monkeypatch.setattr(sp, "simplify", counted_simplify)
+    counts = []
+    for n in (10, 30):
+        calls.clear()
+        imp = import_urdf(plain_chain(n), tip=f"l{n}")
+        assert imp.table.n == n and imp.verify(2) < 1e-9
+        counts.append((calls.count("dot") + calls.count("cross"), calls.count("simplify")))
+    # one Matrix.dot: the tool's approach · sliding, whatever the length
+    assert counts[0] == counts[1] and counts[0][0] <= 1, counts
 
 
 _MASSLESS = (
