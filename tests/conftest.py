@@ -50,7 +50,10 @@ def program_modules_first(items: list) -> None:
     items.sort(key=lambda item: item.path not in first)  # sort is stable
 
 
+@pytest.hookimpl(trylast=True)
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    # last: after ``-m``/``-k`` have deselected, so a module whose only program-starting
+    # tests are deselected (``-m "not slow"``) is not put first
     program_modules_first(items)
 
 
