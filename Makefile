@@ -45,8 +45,8 @@ test: $(STAMP)
 	cache=$$(mktemp -d "$${TMPDIR:-/tmp}/dhsym-test-cache-XXXXXX") && \
 	pyc=$$(mktemp -d "$${TMPDIR:-/tmp}/dhsym-test-pyc-XXXXXX") && \
 	unset PYTHONDONTWRITEBYTECODE && export PYTHONPYCACHEPREFIX=$$pyc && \
-	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto -m "not slow" && \
-	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto -m slow; \
+	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto --durations=15 -m "not slow" && \
+	DHSYM_TEST_CACHE=$$cache $(PY) -m pytest -q -n auto --durations=15 -m slow; \
 	status=$$?; rm -rf "$$cache" "$$pyc"; exit $$status
 
 lint: $(STAMP)

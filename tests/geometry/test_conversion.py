@@ -163,7 +163,12 @@ def test_round_trip_gives_back_every_table_with_its_base_and_tool(table):
     back = convert(there, table.convention)
     assert back == table
     assert back.base == table.base and back.tool == table.tool  # the very same words
-    assert max_fk_difference(table, there, samples=3) < 1e-12
+    # the pose of the converted table, by the elementary matrices in numbers (word_pose):
+    # no closed form derived for each of the 150 random tables (Robot.fk's closed forms
+    # are proven equal to this product by their own tests)
+    for q in np.random.default_rng(1).uniform(-np.pi, np.pi, (3, table.n)):
+        q = [sp.Float(x) for x in q]
+        assert np.max(np.abs(word_pose(there, q) - word_pose(table, q))) < 1e-12
 
 
 def test_round_trip_of_the_cases_that_used_to_move_into_a_row():
