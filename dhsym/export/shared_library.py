@@ -326,9 +326,10 @@ def native_source(
     outputs: Sequence[sp.Expr],
 ) -> str:
     """The C of a closed-form solver's program for one pose
-    (:class:`dhsym.ik.protocols.NativeCompiler`): one function
+    (:class:`dhsym.ik.protocols.NativeCompiler`): the function
     ``void dhsym_arm_program(const double A[16], const double B[16], int stretch,
-    double out[])`` with the 24 arguments read from the two row-major poses (12 each,
+    double out[])``, and around it robot.ik's rule for a pose as it comes
+    (:func:`_given_source`). The program reads its 24 arguments read from the two row-major poses (12 each,
     column by column), one ``const double`` per line of the program and one entry of
     ``out`` per output, as the solver's program for floats computes them (``remainder``
     of C99 as ``math.remainder``, ``safe_sqrt`` as :func:`dhsym.ik.rewriting.safe_sqrt_float`,
@@ -398,6 +399,76 @@ def native_source(
             *body,
             "}",
             "",
+            _given_source(len(outputs)),
+        ]
+    )
+
+
+def _given_source(m: int) -> str:
+    """The C of robot.ik's rule for one pose as it comes around the program
+    (:data:`dhsym.ik.protocols.NativeGiven`): ``void dhsym_arm_given(const double T[16],
+    double tol, const double base_inv[16], const double tool_inv[16], double out[])``,
+    the pose's accuracy and nearest rigid pose as the exported IK finds them (the one
+    ``pose_accuracy`` of ``templates/export/c_math.j2``), then the program (``m``
+    outputs) stretched at that pose, with the residuals against it and against the pose
+    as given."""
+    from dhsym.ik.accuracy import EXACT, FLOOR, MOST_DECIMALS
+    from dhsym.notation.templates import CODE, environment
+
+    macro = environment("text", CODE).from_string(
+        '{% import "c_math.j2" as own %}{{ own.pose_accuracy(floor, exact, most)|trim("\\n") }}'
+    )
+    rule = macro.render(floor=FLOOR, exact=EXACT, most=MOST_DECIMALS)
+    return "\n".join(
+        [
+            rule,
+            "",
+            "/* Z = X Y of row-major 4 x 4 matrices */",
+            "static void product(const double X[16], const double Y[16], double Z[16])",
+            "{",
+            "    int i, j;",
+            "    for (i = 0; i < 4; ++i) {",
+            "        for (j = 0; j < 4; ++j) {",
+            "            Z[4 * i + j] = X[4 * i] * Y[j] + X[4 * i + 1] * Y[4 + j]"
+            " + X[4 * i + 2] * Y[8 + j] + X[4 * i + 3] * Y[12 + j];",
+            "        }",
+            "    }",
+            "}",
+            "",
+            "/* robot.ik's rule for one pose as it comes (dhsym.ik.accuracy): out[0] its tolerance",
+            " * (tol when tol > 0; not above 0: no rotation near), out[1] whether it is not exact;",
+            " * when it is not, the program stretched at its nearest rigid pose R (base and tool",
+            f" * undone when given), its {m} outputs against R from out[2], then against T. */",
+            "void dhsym_arm_given(const double T[16], double tol, const double base_inv[16],",
+            "                     const double tool_inv[16], double out[])",
+            "{",
+            "    double R[16], inner[16], half[16];",
+            "    int stretch = 0;",
+            "    out[0] = pose_accuracy(T, tol, R, &stretch);",
+            "    out[1] = stretch;",
+            "    if (!(out[0] > 0.0) || !stretch) {",
+            "        return;",
+            "    }",
+            "    if (base_inv) {",
+            "        product(base_inv, R, half);",
+            "    } else {",
+            "        int i;",
+            "        for (i = 0; i < 16; ++i) {",
+            "            half[i] = R[i];",
+            "        }",
+            "    }",
+            "    if (tool_inv) {",
+            "        product(half, tool_inv, inner);",
+            "    } else {",
+            "        int i;",
+            "        for (i = 0; i < 16; ++i) {",
+            "            inner[i] = half[i];",
+            "        }",
+            "    }",
+            f"    {_NATIVE}(inner, R, 1, out + 2);",
+            f"    {_NATIVE}(inner, T, 1, out + {2 + m});",
+            "}",
+            "",
         ]
     )
 
@@ -409,8 +480,11 @@ def native_program(
 ) -> NativeProgram | None:
     """The :class:`dhsym.ik.protocols.NativeCompiler` of the facade: the program's C
     (:func:`native_source`) built by :func:`native_compiler` into the disk cache (as
-    :func:`compiled`: verified before it is loaded) and called by ctypes; ``None``
-    without a compiler, or when the build fails."""
+    :func:`compiled`: verified before it is loaded), its two functions called by ctypes
+    (a :class:`~dhsym.ik.protocols.NativeProgram`: ``run``, and ``given`` with the rule
+    for a pose as it comes); ``None`` without a compiler, or when the build fails."""
+    from dhsym.ik.protocols import NativeProgram
+
     cc = native_compiler()
     if cc is None:
         return None
@@ -421,36 +495,83 @@ def native_program(
     fn = getattr(lib, _NATIVE)
     fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int, ctypes.c_void_p]
     fn.restype = None
+    around = lib.dhsym_arm_given
+    ptr = ctypes.c_void_p
+    around.argtypes = [ptr, ctypes.c_double, ptr, ptr, ptr]
+    around.restype = None
     m = len(outputs)
     # each thread its own buffers, made on its first call (no lock, nothing shared): the
-    # two poses are copied in, the C writes the outputs into a numpy array, and the call
+    # poses are copied in, the C writes the outputs into a numpy array, and the call
     # returns a copy of it (an array the caller owns; no list, no address looked up per call)
     local = threading.local()
 
-    def buffers() -> tuple[np.ndarray, np.ndarray, int, int, np.ndarray, int]:
-        poses = np.empty((2, 4, 4))
-        values = np.empty(m)
+    def buffers() -> _Buffers:
+        poses = np.empty((4, 4, 4))  # the pose from frame 0 to n, as given, base⁻¹, tool⁻¹
+        values, around_values = np.empty(m), np.empty(2 + 2 * m)
         at = _address(poses)
-        made = (poses[0], poses[1], at, at + 128, values, _address(values))
+        inner, pose, base_inv, tool_inv = poses
+        values_at, around_at = _address(values), _address(around_values)
+        made = _Buffers(
+            inner, pose, base_inv, tool_inv, at, at + 128, at + 256, at + 384,
+            values, values_at, around_values, around_at,
+        )  # fmt: skip
         local.buffers = made
         return made
 
     def run(inner: np.ndarray, pose: np.ndarray, stretch: bool) -> np.ndarray:
         try:
-            inner_in, pose_in, inner_at, pose_at, values, values_at = local.buffers
+            b = local.buffers
         except AttributeError:
-            inner_in, pose_in, inner_at, pose_at, values, values_at = buffers()
-        inner_in[...] = inner
+            b = buffers()
+        b.inner[...] = inner
         if pose is inner:
-            fn(inner_at, inner_at, stretch, values_at)
+            fn(b.inner_at, b.inner_at, stretch, b.values_at)
         else:
-            pose_in[...] = pose
-            fn(inner_at, pose_at, stretch, values_at)
-        got: np.ndarray = values.copy()
+            b.pose[...] = pose
+            fn(b.inner_at, b.pose_at, stretch, b.values_at)
+        got: np.ndarray = b.values.copy()
         return got
 
-    run.library = lib  # type: ignore[attr-defined]  # kept alive with the function
-    return run
+    def given(
+        pose: np.ndarray, tol: float, base_inv: np.ndarray | None, tool_inv: np.ndarray | None
+    ) -> np.ndarray:
+        try:
+            b = local.buffers
+        except AttributeError:
+            b = buffers()
+        b.pose[...] = pose
+        base_at = tool_at = None
+        if base_inv is not None:
+            b.base_inv[...] = base_inv
+            base_at = b.base_at
+        if tool_inv is not None:
+            b.tool_inv[...] = tool_inv
+            tool_at = b.tool_at
+        around(b.pose_at, tol, base_at, tool_at, b.around_at)
+        got: np.ndarray = b.around.copy()
+        return got
+
+    return NativeProgram(run, given, lib)
+
+
+@dataclass(frozen=True, eq=False)
+class _Buffers:
+    """One thread's buffers of :func:`native_program` and their addresses: the four poses
+    (the pose from frame 0 to n, the pose as given, the inverses of base and tool), the
+    outputs of ``run`` and those of ``given``."""
+
+    inner: np.ndarray
+    pose: np.ndarray
+    base_inv: np.ndarray
+    tool_inv: np.ndarray
+    inner_at: int
+    pose_at: int
+    base_at: int
+    tool_at: int
+    values: np.ndarray
+    values_at: int
+    around: np.ndarray
+    around_at: int
 
 
 # -- a straight-line program of floats, row by row, in C --------------------------------------

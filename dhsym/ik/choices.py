@@ -428,6 +428,18 @@ def solve(
         if limits or near is not None or np.count_nonzero(sol.near):
             return _chosen(robot, sol, limits, near, free, values)
         return sol  # nothing to choose: no limits, no order, no singular family to name
+    if check == "pose" and arr.shape == (4, 4) and not free and (tol is None or tol > 0):
+        # one pose as it comes (rounded, measured, typed): the rule below in one call of
+        # the native program, when there is one and nothing needs the path below (a
+        # branch to refine, no solution and its reason, a singular wrist)
+        solver = cache.solver(values)
+        if isinstance(solver, ClosedFormSolver):
+            pose = arr if arr.flags.c_contiguous else np.ascontiguousarray(arr)
+            found = solver.solve_given(
+                pose, tol=tol, singular_tol=singular_tol, within=float(REFINE)
+            )
+            if found is not None:
+                return _chosen(robot, found, limits, near, free, values)
     single = arr.ndim in (1, 2) and not (arr.ndim == 2 and arr.shape[-1] == 3)
     if (free or limits or near is not None) and not single:
         raise DHError("free, limits and near apply to one pose: solve the poses one by one")

@@ -736,12 +736,8 @@ class ClosedFormSolver:
         stretch: bool = False,
     ) -> IKSolution | None:
         """One pose with the program for floats (native when built, :meth:`native`);
-        ``None`` when it cannot finish it (the program for floats does not stretch).
-
-        The program's outputs are one array (the native program's own, or the floats'
-        list made one): the solutions' joint values and residuals are views of it when
-        every branch is kept, rows taken from it otherwise; the few floats the decisions
-        need (residuals, wrist sines, factors) are read as lists."""
+        ``None`` when it cannot finish it (the program for floats does not stretch; a
+        singular wrist: :meth:`_read`)."""
         if not pose.flags.c_contiguous:
             pose = np.ascontiguousarray(pose, dtype=float)
         inner = self._inner(pose)
@@ -749,7 +745,7 @@ class ClosedFormSolver:
         if fast is None:
             fast = self.native()
         if fast is not None:
-            out = fast(inner, pose, stretch)
+            out = fast.run(inner, pose, stretch)
         elif stretch:
             return None
         else:
@@ -759,6 +755,65 @@ class ClosedFormSolver:
                 out = np.array(self._program("scalar")(*args), dtype=float)
             except (ArithmeticError, ValueError):  # a division by zero, sin(inf): numpy decides
                 return None
+        return self._read(out, check, tol, singular_tol)
+
+    def solve_given(
+        self, pose: np.ndarray, *, tol: float | None, singular_tol: float, within: float
+    ) -> IKSolution | None:
+        """Every solution of one pose as it comes ``(4, 4)`` (contiguous floats, read
+        already) whose rotation is not exact, in one call of the native program
+        (:data:`~dhsym.ik.protocols.NativeGiven`): the pose's tolerance and nearest rigid
+        pose (:mod:`dhsym.ik.accuracy`, ``tol`` when given), the branches of that pose
+        stretched and kept within ``within`` tolerances of it, each then kept when its
+        residual against the pose as given is within the tolerance.
+
+        ``None`` where the caller's own path (:func:`dhsym.ik.choices.solve`) must answer:
+        no native program (yet), an exact pose or no rotation near, a singular wrist, no
+        solution (the reason needs it) or a branch to refine (within ``within``
+        tolerances of the pose as given but not within one).
+
+        >>> import dhsym
+        >>> r = dhsym.load("ur5")
+        >>> solver = r.ik_cache().solver()
+        >>> T = np.round(r.fk([0.3, -0.5, 0.4, 0.2, 0.7, -1.1]), 6)
+        >>> _ = solver.native(now=True)  # built now, not on the 16th pose (None: no compiler)
+        >>> got = solver.solve_given(T, tol=None, singular_tol=1e-6, within=30.0)
+        >>> got is None or (len(got) == 8 and bool(got.residual.max() <= 1e-6))
+        True
+        """
+        fast = self._native_program
+        if fast is None:
+            fast = self.native()
+        if fast is None or fast.given is None:
+            return None
+        out = fast.given(pose, 0.0 if tol is None else tol, self._base_inv, self._tool_inv)
+        given_tol = float(out[0])
+        if not (given_tol > 0.0) or not out[1]:
+            return None  # no rotation near, or exact: the caller's path
+        m = (len(out) - 2) // 2
+        return self._read(
+            out[2 : 2 + m], "pose", given_tol * within, singular_tol, out[2 + m :], given_tol
+        )
+
+    def _read(
+        self,
+        out: np.ndarray,
+        check: str | None,
+        tol: float,
+        singular_tol: float,
+        given: np.ndarray | None = None,
+        given_tol: float = 0.0,
+    ) -> IKSolution | None:
+        """The solutions in the outputs ``out`` of the program for floats (native or not)
+        for one pose; ``None`` at a singular wrist (θ4 and θ6 from the whole rotation:
+        numpy). With ``given`` (the outputs again, their residuals against the pose as
+        given): the branches kept by ``tol`` are kept when that residual is within
+        ``given_tol``; ``None`` when one of them is above it but within ``tol`` (to be
+        refined: the caller's path) or none is left.
+
+        The program's outputs are one array: the solutions' joint values and residuals
+        are views of it when every branch is kept, rows taken from it otherwise; the few
+        floats the decisions need (residuals, wrist sines, factors) are read as lists."""
         layout = self._layout
         at, kinds = layout if layout is not None else self._scalar_layout()
         head = out[: at.joints.start].tolist()  # the residuals and the wrist sines
@@ -776,6 +831,14 @@ class ClosedFormSolver:
         low = _smallest(close)
         if len(kept) > 1 and low < _SUSPECT:  # two branches coincide only at a singularity
             kept = self._distinct(kept, values.ravel().tolist())
+        if given is not None:
+            residual = given[at.whole]
+            against = residual.tolist()
+            if any(given_tol < against[j] <= tol for j in kept):
+                return None  # near the pose as given, not on it: refined by the caller
+            kept = [j for j in kept if against[j] <= given_tol]
+            if not kept:
+                return None  # no solution: the caller says why
         k = len(kept)
         if k == K:
             signs = self.branch_signs

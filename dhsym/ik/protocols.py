@@ -25,6 +25,7 @@ True
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
 import numpy as np
@@ -41,15 +42,42 @@ if TYPE_CHECKING:
 
     from .solution import IKSolution
 
-__all__ = ["IKSolver", "InverseKinematics", "NativeCompiler", "NativeProgram", "read_poses"]
+__all__ = [
+    "IKSolver",
+    "InverseKinematics",
+    "NativeCompiler",
+    "NativeGiven",
+    "NativeProgram",
+    "NativeRun",
+    "read_poses",
+]
 
-#: a closed form's program for one pose in native code: ``f(inner, pose, stretch)`` of the
-#: pose from frame 0 to frame n and the pose as given (contiguous row-major ``(4, 4)``
-#: float arrays) gives the program's outputs as a new ``(outputs,)`` float array the
-#: caller owns (safe to call from several threads at once); ``stretch`` reads every
-#: negative radicand as 0 (the ``"stretched"`` program of
+#: the program run on one pose: ``run(inner, pose, stretch)`` of the pose from frame 0 to
+#: frame n and the pose as given (contiguous row-major ``(4, 4)`` float arrays) gives the
+#: program's outputs as a new ``(outputs,)`` float array the caller owns; ``stretch``
+#: reads every negative radicand as 0 (the ``"stretched"`` program of
 #: :mod:`dhsym.ik.closed_form_solver`)
-NativeProgram = Callable[[np.ndarray, np.ndarray, bool], np.ndarray]
+NativeRun = Callable[[np.ndarray, np.ndarray, bool], np.ndarray]
+#: the program run on one pose as it comes (:mod:`dhsym.ik.accuracy`):
+#: ``given(pose, tol, base_inv, tool_inv)`` of the pose as given (contiguous row-major
+#: ``(4, 4)``), the tolerance asked for (0: the pose's own) and the inverses of the base
+#: and tool transforms (``None``: none) gives ``[tol, stretch, *rigid, *as_given]``: the
+#: pose's tolerance (not above 0: the rotation is no rotation), whether it is not exact,
+#: and, when it is not, the program's outputs at its nearest rigid pose (stretched),
+#: first with the residuals against that pose, then against the pose as given
+NativeGiven = Callable[[np.ndarray, float, np.ndarray | None, np.ndarray | None], np.ndarray]
+
+
+@dataclass(frozen=True, eq=False)
+class NativeProgram:
+    """A closed form's program for one pose in native code (safe to call from several
+    threads at once): :data:`NativeRun` ``run``, and :data:`NativeGiven` ``given`` (the
+    rule for a pose as it comes around it; ``None`` when the compiler has none).
+    ``keep`` holds what the functions need alive (the loaded library)."""
+
+    run: NativeRun
+    given: NativeGiven | None = None
+    keep: object = field(default=None, repr=False)
 
 
 @runtime_checkable

@@ -7,6 +7,7 @@ import shutil
 import stat
 import subprocess
 import sys
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -170,9 +171,14 @@ def test_native_program_agrees_with_the_numpy_path(name):
 
     def counted(inner, pose, stretch):
         served.append(stretch)
-        return built(inner, pose, stretch)
+        return built.run(inner, pose, stretch)
 
-    solver._native_program = counted  # the C, counted: it serves every pose below
+    def around(pose, tol, base_inv, tool_inv):
+        served.append("given")
+        return built.given(pose, tol, base_inv, tool_inv)
+
+    # the C, counted: it serves every pose below
+    solver._native_program = replace(built, run=counted, given=around)
     numpy_only = IKCache(robot)  # no native compiler: the program for floats, and numpy
     rng = np.random.default_rng(7)
     n = len(robot.variables)
@@ -186,7 +192,49 @@ def test_native_program_agrees_with_the_numpy_path(name):
     far = robot.fk(np.zeros(n))
     far[:3, 3] *= 100.0  # out of reach: no solution, the same reason
     _fields_agree(robot.ik(far), solve(robot, far, cache=numpy_only))
-    assert len(served) >= 37 and True in served and False in served
+    # exact poses by the program; rounded ones by the rule around it (the few it leaves to
+    # robot.ik's own path, a branch to refine, by the program stretched)
+    assert len(served) >= 37 and "given" in served and False in served
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5", "stanford"])
+def test_a_rounded_pose_gets_the_same_solutions_from_the_native_rule(name):
+    """A pose as it comes (rounded to 6, 4 or 3 decimals, or typed: a few entries off by a
+    unit of the last decimal) is answered by one call of the native program with the rule
+    around it (``given``): the same branches, joint values and residuals (to rounding:
+    the nearest rigid pose by Newton's iteration, not by an SVD) as robot.ik's own path
+    of dhsym.ik.choices, and the same empty answers with the same reason, which the own
+    path gives (as it refines the branches near the pose as given, not on it)."""
+    _need("a C compiler", shared_library.native_compiler(), "apt-get install gcc")
+    robot = dhsym.load(name)
+    solver = robot.ik_cache().solver()
+    built = solver.native(now=True)
+    assert built is not None and built.given is not None
+    answered = []
+    own_answer = solver.solve_given
+
+    def spied(*args, **kwargs):
+        got = own_answer(*args, **kwargs)
+        answered.append(got is not None)
+        return got
+
+    solver.solve_given = spied  # robot.ik asks it first, for every pose below
+    numpy_only = IKCache(robot)  # no native compiler: robot.ik's own path, all in Python
+    rng = np.random.default_rng(30)
+    n = len(robot.variables)
+    checked = 0
+    for q in rng.uniform(-3.0, 3.0, (40, n)):
+        T = robot.fk(q)
+        typed = np.round(T, 4)
+        typed[rng.integers(0, 3), rng.integers(0, 4)] += 1e-4  # one entry mistyped
+        for pose in (np.round(T, 6), np.round(T, 4), np.round(T, 3), typed):
+            fast, own = robot.ik(pose), solve(robot, pose, cache=numpy_only)
+            assert set(fast.branches) == set(own.branches)
+            _fields_agree(fast, own)
+            assert fast.note == own.note
+            checked += 1
+    # the native rule answered most poses itself (the rest: a branch to refine, none)
+    assert len(answered) == checked and sum(answered) >= 0.8 * checked
 
 
 def test_native_program_shared_by_threads_gives_each_its_own_answer():
@@ -204,15 +252,15 @@ def test_native_program_shared_by_threads_gives_each_its_own_answer():
     inner = [np.ascontiguousarray(solver._inner(T)) for T in poses]
     rounded = [np.round(T, 3) for T in poses]  # another pose given: the second buffer
     calls = [(a, a, False) for a in inner] + [(a, b, True) for a, b in zip(inner, rounded)]
-    arrays = [built(*c) for c in calls]
+    arrays = [built.run(*c) for c in calls]
     assert all(type(v) is np.ndarray and v.dtype == np.float64 for v in arrays)
     assert not any(np.shares_memory(a, b) for a, b in zip(arrays, arrays[1:]))
     serial = [v.tolist() for v in arrays]  # read after every call: none was overwritten
     assert len({tuple(v) for v in serial}) == len(calls)  # each pose its own outputs
-    assert serial == [built(*c).tolist() for c in calls]
+    assert serial == [built.run(*c).tolist() for c in calls]
     with ThreadPoolExecutor(4) as pool:
         for _ in range(5):
-            assert [v.tolist() for v in pool.map(lambda c: built(*c), calls)] == serial
+            assert [v.tolist() for v in pool.map(lambda c: built.run(*c), calls)] == serial
 
 
 def test_no_compile_forces_the_numpy_path(tmp_path):
