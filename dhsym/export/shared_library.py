@@ -64,7 +64,7 @@ if TYPE_CHECKING:
 
     from dhsym.dynamics.compiled_dynamics import NativeRun
     from dhsym.ik.choices import IKCache
-    from dhsym.ik.protocols import NativeProgram
+    from dhsym.ik.protocols import NativeProgram, NativeRule
     from dhsym.ik.solution import IKSolution
     from dhsym.kinematics.chain import KinematicChain
     from dhsym.kinematics.numeric import NumericProgram
@@ -324,17 +324,18 @@ def native_source(
     args: Sequence[sp.Symbol],
     program: Sequence[tuple[sp.Symbol, sp.Expr]],
     outputs: Sequence[sp.Expr],
+    rule: NativeRule | None = None,
 ) -> str:
     """The C of a closed-form solver's program for one pose
     (:class:`dhsym.ik.protocols.NativeCompiler`): the function
     ``void dhsym_arm_program(const double A[16], const double B[16], int stretch,
-    double out[])``, and around it robot.ik's rule for a pose as it comes
-    (:func:`_given_source`). The program reads its 24 arguments read from the two row-major poses (12 each,
-    column by column), one ``const double`` per line of the program and one entry of
-    ``out`` per output, as the solver's program for floats computes them (``remainder``
-    of C99 as ``math.remainder``, ``safe_sqrt`` as :func:`dhsym.ik.rewriting.safe_sqrt_float`,
-    every negative radicand read as 0 with ``stretch``, a residual ``NaN`` when any of its
-    differences is).
+    double out[])``, and around it, with a ``rule``, robot.ik's rule for a pose as it
+    comes (:func:`_given_source`). The program reads its 24 arguments from the two
+    row-major poses (12 each, column by column), has one ``const double`` per line of
+    the program and one entry of ``out`` per output, as the solver's program for floats
+    computes them (``remainder`` of C99 as ``math.remainder``, ``safe_sqrt`` as
+    :func:`dhsym.ik.rewriting.safe_sqrt_float`, every negative radicand read as 0 with
+    ``stretch``, a residual ``NaN`` when any of its differences is).
 
     >>> import sympy as sp
     >>> a = sp.symbols("a:24", real=True)
@@ -399,29 +400,30 @@ def native_source(
             *body,
             "}",
             "",
-            _given_source(len(outputs)),
+            *([] if rule is None else [_given_source(len(outputs), rule)]),
         ]
     )
 
 
-def _given_source(m: int) -> str:
+def _given_source(m: int, rule: NativeRule) -> str:
     """The C of robot.ik's rule for one pose as it comes around the program
     (:data:`dhsym.ik.protocols.NativeGiven`): ``void dhsym_arm_given(const double T[16],
     double tol, const double base_inv[16], const double tool_inv[16], double out[])``,
     the pose's accuracy and nearest rigid pose as the exported IK finds them (the one
     ``pose_accuracy`` of ``templates/export/c_math.j2``), then the program (``m``
-    outputs) stretched at that pose, with the residuals against it and against the pose
-    as given."""
+    outputs) at the pose as given (exact) or stretched at its nearest rigid pose, with
+    the residuals against it and against the pose as given, and the ``rule``'s verdict
+    (:class:`dhsym.ik.protocols.NativeRule`)."""
     from dhsym.ik.accuracy import EXACT, FLOOR, MOST_DECIMALS
     from dhsym.notation.templates import CODE, environment
 
     macro = environment("text", CODE).from_string(
         '{% import "c_math.j2" as own %}{{ own.pose_accuracy(floor, exact, most)|trim("\\n") }}'
     )
-    rule = macro.render(floor=FLOOR, exact=EXACT, most=MOST_DECIMALS)
+    accuracy = macro.render(floor=FLOOR, exact=EXACT, most=MOST_DECIMALS)
     return "\n".join(
         [
-            rule,
+            accuracy,
             "",
             "/* Z = X Y of row-major 4 x 4 matrices */",
             "static void product(const double X[16], const double Y[16], double Z[16])",
@@ -436,37 +438,69 @@ def _given_source(m: int) -> str:
             "}",
             "",
             "/* robot.ik's rule for one pose as it comes (dhsym.ik.accuracy): out[0] its tolerance",
-            " * (tol when tol > 0; not above 0: no rotation near), out[1] whether it is not exact;",
-            " * when it is not, the program stretched at its nearest rigid pose R (base and tool",
-            f" * undone when given), its {m} outputs against R from out[2], then against T. */",
+            " * (tol when tol > 0; not above 0: no rotation near, nothing else written), out[1]",
+            " * whether it is not exact, out[2] the verdict (0: the kept branches are the answer;",
+            " * 1: robot.ik's own path answers; 2: read the outputs one by one), out[3] the kept",
+            " * branches (bit k: branch k), out[4] the smallest closeness to a singularity; from",
+            f" * out[5] the program's {m} outputs at the pose (base and tool undone when given):",
+            " * an exact pose as it is, else its nearest rigid pose R stretched, and then the",
+            " * outputs again against T (the residuals against the pose as given). */",
             "void dhsym_arm_given(const double T[16], double tol, const double base_inv[16],",
             "                     const double tool_inv[16], double out[])",
             "{",
-            "    double R[16], inner[16], half[16];",
-            "    int stretch = 0;",
+            "    double R[16], with_base[16], inner[16];",
+            f"    const double *A = R, *o = out + 5, *g = out + {5 + m};",
+            "    double candidate, low = INFINITY, wrist = INFINITY;",
+            "    int stretch = 0, k, kept = 0, count = 0, refine = 0;",
             "    out[0] = pose_accuracy(T, tol, R, &stretch);",
             "    out[1] = stretch;",
-            "    if (!(out[0] > 0.0) || !stretch) {",
+            "    if (!(out[0] > 0.0)) {",
             "        return;",
             "    }",
             "    if (base_inv) {",
-            "        product(base_inv, R, half);",
-            "    } else {",
-            "        int i;",
-            "        for (i = 0; i < 16; ++i) {",
-            "            half[i] = R[i];",
-            "        }",
+            "        product(base_inv, A, with_base);",
+            "        A = with_base;",
             "    }",
             "    if (tool_inv) {",
-            "        product(half, tool_inv, inner);",
-            "    } else {",
-            "        int i;",
-            "        for (i = 0; i < 16; ++i) {",
-            "            inner[i] = half[i];",
-            "        }",
+            "        product(A, tool_inv, inner);",
+            "        A = inner;",
             "    }",
-            f"    {_NATIVE}(inner, R, 1, out + 2);",
-            f"    {_NATIVE}(inner, T, 1, out + {2 + m});",
+            f"    {_NATIVE}(A, R, stretch, out + 5);",
+            "    if (stretch) {",
+            f"        {_NATIVE}(A, T, 1, out + {5 + m});",
+            "    }",
+            "    /* a branch within the tolerance of the pose solved (within"
+            f" {rule.within!r} of them: a pose",
+            "     * that is not exact) is kept when it is within it of the pose as given; one",
+            "     * above it but within the candidates' tolerance is to be refined */",
+            f"    candidate = stretch ? out[0] * {rule.within!r} : out[0];",
+            f"    for (k = 0; k < {rule.branches}; ++k) {{",
+            f"        if (!(o[{rule.whole} + k] <= candidate)) {{",
+            "            continue;",
+            "        }",
+            f"        if (stretch && !(g[{rule.whole} + k] <= out[0])) {{",
+            f"            refine |= g[{rule.whole} + k] <= candidate;",
+            "            continue;",
+            "        }",
+            "        kept |= 1 << k;",
+            "        ++count;",
+            "    }",
+            "    /* the smallest wrist sine and closeness to a singularity (NaN passed over) */",
+            f"    for (k = 0; k < {rule.wrist_count}; ++k) {{",
+            f"        wrist = o[{rule.wrist} + k] < wrist ? o[{rule.wrist} + k] : wrist;",
+            "    }",
+            f"    for (k = 0; k < {rule.factor_count}; ++k) {{",
+            f"        low = o[{rule.factors} + k] < low ? o[{rule.factors} + k] : low;",
+            "    }",
+            f"    if (wrist < {rule.wrist_near!r} || (stretch && (refine || !count))) {{",
+            "        out[2] = 1.0;",
+            f"    }} else if (low < {rule.suspect!r} || !count) {{",
+            "        out[2] = 2.0;",
+            "    } else {",
+            "        out[2] = 0.0;",
+            "    }",
+            "    out[3] = kept;",
+            "    out[4] = low;",
             "}",
             "",
         ]
@@ -477,6 +511,7 @@ def native_program(
     args: Sequence[sp.Symbol],
     program: Sequence[tuple[sp.Symbol, sp.Expr]],
     outputs: Sequence[sp.Expr],
+    rule: NativeRule,
 ) -> NativeProgram | None:
     """The :class:`dhsym.ik.protocols.NativeCompiler` of the facade: the program's C
     (:func:`native_source`) built by :func:`native_compiler` into the disk cache (as
@@ -489,7 +524,7 @@ def native_program(
     if cc is None:
         return None
     try:
-        lib = _load({f"{_PREFIX}.c": native_source(args, program, outputs)}, cc)[0]
+        lib = _load({f"{_PREFIX}.c": native_source(args, program, outputs, rule)}, cc)[0]
     except (DHError, OSError):
         return None
     fn = getattr(lib, _NATIVE)
@@ -507,7 +542,7 @@ def native_program(
 
     def buffers() -> _Buffers:
         poses = np.empty((4, 4, 4))  # the pose from frame 0 to n, as given, base⁻¹, tool⁻¹
-        values, around_values = np.empty(m), np.empty(2 + 2 * m)
+        values, around_values = np.empty(m), np.empty(5 + 2 * m)
         at = _address(poses)
         inner, pose, base_inv, tool_inv = poses
         values_at, around_at = _address(values), _address(around_values)

@@ -63,6 +63,8 @@ __all__ = [
 ]
 
 _TWO_PI = 2 * np.pi
+#: the tolerances within which a branch of a pose that is not exact is refined, a float
+_WITHIN = float(REFINE)
 # the refinement's numbers (REFINE_STEPS, _STUCK, _SAME) are the rule's: dhsym.ik.accuracy
 
 
@@ -415,7 +417,21 @@ def solve(
     if cache is None:
         cache = IKCache(robot)
     arr = np.asarray(T, dtype=float)
-    if check == "pose" and arr.shape == (4, 4) and not free and _surely_exact(arr):
+    one = check == "pose" and arr.shape == (4, 4) and not free
+    if one and (tol is None or tol > 0):
+        # one pose as it comes (exact, rounded, measured, typed): the rule below in one call
+        # of the native program, when there is one and nothing needs the paths below (a
+        # branch to refine, no solution of a pose that is not exact and its reason, a
+        # singular wrist)
+        solver = cache.solver(values)
+        if isinstance(solver, ClosedFormSolver):
+            pose = arr if arr.flags.c_contiguous else np.ascontiguousarray(arr)
+            found = solver.solve_given(pose, tol=tol, singular_tol=singular_tol, within=_WITHIN)
+            if found is not None:
+                if limits or near is not None or np.count_nonzero(found.near):
+                    return _chosen(robot, found, limits, near, free, values)
+                return found  # nothing to choose (as below)
+    if one and _surely_exact(arr):
         # one pose whose rotation is a rotation (told without an SVD): solved as given,
         # as below, with the tolerance of an exact pose (a closed form's solver takes the
         # pose as read here, not reading it again)
@@ -428,18 +444,6 @@ def solve(
         if limits or near is not None or np.count_nonzero(sol.near):
             return _chosen(robot, sol, limits, near, free, values)
         return sol  # nothing to choose: no limits, no order, no singular family to name
-    if check == "pose" and arr.shape == (4, 4) and not free and (tol is None or tol > 0):
-        # one pose as it comes (rounded, measured, typed): the rule below in one call of
-        # the native program, when there is one and nothing needs the path below (a
-        # branch to refine, no solution and its reason, a singular wrist)
-        solver = cache.solver(values)
-        if isinstance(solver, ClosedFormSolver):
-            pose = arr if arr.flags.c_contiguous else np.ascontiguousarray(arr)
-            found = solver.solve_given(
-                pose, tol=tol, singular_tol=singular_tol, within=float(REFINE)
-            )
-            if found is not None:
-                return _chosen(robot, found, limits, near, free, values)
     single = arr.ndim in (1, 2) and not (arr.ndim == 2 and arr.shape[-1] == 3)
     if (free or limits or near is not None) and not single:
         raise DHError("free, limits and near apply to one pose: solve the poses one by one")

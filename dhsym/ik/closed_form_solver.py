@@ -47,9 +47,10 @@ from dhsym.kinematics.numeric import evaluate_chunked
 from dhsym.model.entries import as_expr
 from dhsym.model.table import JointType
 
+from .accuracy import REFINE
 from .closed_form import ClosedForm
 from .kept_programs import derivation_text, kept_program
-from .protocols import NativeCompiler, NativeProgram, read_poses
+from .protocols import NativeCompiler, NativeProgram, NativeRule, read_poses
 from .rewriting import (
     MATH,
     NUMPY,
@@ -83,6 +84,9 @@ __all__ = ["ClosedFormSolver", "Layout"]
 METHOD = "closed form"
 #: fraction of a singular factor's largest value below which branches may coincide
 _SUSPECT = 1e-4
+#: the tolerances within which a branch of a pose that is not exact is a candidate (the
+#: native rule's; :func:`dhsym.ik.choices.solve` refines it against the pose as given)
+_WITHIN = float(REFINE)
 #: the single poses a solver answers with its program for floats before it builds the
 #: native one (a first answer does not wait for a C compiler; a solver in use gets it)
 NATIVE_AFTER = 16
@@ -216,6 +220,10 @@ class ClosedFormSolver:
         # the valid rows), a read-only view of this, shared as the signs are
         self._all_valid = np.ones(self.K, dtype=bool)
         self._all_valid.flags.writeable = False
+        #: the native rule's mask of every branch kept, and ``near`` of branches far from
+        #: every singularity (read-only, shared as ``valid``; its factors once known)
+        self._every = float(2**self.K - 1)
+        self._far_rows: np.ndarray | None = None
         self._base = self._constant(-1, 0) if robot.table.base else None
         self._tool = self._constant(robot.n, robot.n + 1) if robot.table.tool else None
         self._base_inv = None if self._base is None else np.linalg.inv(self._base)
@@ -341,7 +349,19 @@ class ClosedFormSolver:
         args, program, reduced = kept_program(
             lambda: self._entry("scalar"), lambda: self._rewritten("scalar")
         )
-        built = self._native(list(args), list(program), list(reduced))
+        at, kinds = self._scalar_layout()
+        rule = NativeRule(
+            self.K,
+            at.whole.start,
+            at.wrist.start,
+            at.wrist.stop - at.wrist.start,
+            at.factors.start,
+            at.factors.stop - at.factors.start,
+            WRIST_NEAR,
+            _SUSPECT,
+            _WITHIN,
+        )
+        built = self._native(list(args), list(program), list(reduced), rule)
         if built is None:
             self._native = None  # not again
         self._native_program = built
@@ -761,16 +781,17 @@ class ClosedFormSolver:
         self, pose: np.ndarray, *, tol: float | None, singular_tol: float, within: float
     ) -> IKSolution | None:
         """Every solution of one pose as it comes ``(4, 4)`` (contiguous floats, read
-        already) whose rotation is not exact, in one call of the native program
+        already) in one call of the native program
         (:data:`~dhsym.ik.protocols.NativeGiven`): the pose's tolerance and nearest rigid
-        pose (:mod:`dhsym.ik.accuracy`, ``tol`` when given), the branches of that pose
-        stretched and kept within ``within`` tolerances of it, each then kept when its
-        residual against the pose as given is within the tolerance.
+        pose (:mod:`dhsym.ik.accuracy`, ``tol`` when given); an exact pose solved as
+        given (as :meth:`solve_pose`), one that is not at its nearest rigid pose,
+        stretched, its branches kept within ``within`` tolerances of it and then when
+        their residual against the pose as given is within the tolerance.
 
         ``None`` where the caller's own path (:func:`dhsym.ik.choices.solve`) must answer:
-        no native program (yet), an exact pose or no rotation near, a singular wrist, no
-        solution (the reason needs it) or a branch to refine (within ``within``
-        tolerances of the pose as given but not within one).
+        no native program (yet), no rotation near, a singular wrist, or for a pose that
+        is not exact no solution (the reason needs it) or a branch to refine (within
+        ``within`` tolerances of the pose as given but not within one).
 
         >>> import dhsym
         >>> r = dhsym.load("ur5")
@@ -781,18 +802,45 @@ class ClosedFormSolver:
         >>> got is None or (len(got) == 8 and bool(got.residual.max() <= 1e-6))
         True
         """
-        fast = self._native_program
-        if fast is None:
-            fast = self.native()
+        fast = self._native_program  # built by the program for floats' calls (native())
         if fast is None or fast.given is None:
             return None
         out = fast.given(pose, 0.0 if tol is None else tol, self._base_inv, self._tool_inv)
-        given_tol = float(out[0])
-        if not (given_tol > 0.0) or not out[1]:
-            return None  # no rotation near, or exact: the caller's path
-        m = (len(out) - 2) // 2
-        return self._read(
-            out[2 : 2 + m], "pose", given_tol * within, singular_tol, out[2 + m :], given_tol
+        given_tol, stretched, verdict, kept, low = out[:5].tolist()
+        if not given_tol > 0.0 or verdict == 1.0:
+            return None  # no rotation near (NaN, a reflection), or the caller's path decides
+        m = (len(out) - 5) // 2
+        if verdict == 2.0 or low < singular_tol or within != _WITHIN:
+            if not stretched:  # exact: solved as given, as solve_pose
+                one = self._read(out[5 : 5 + m], "pose", given_tol, singular_tol)
+                if one is None or len(one):
+                    return one
+                return replace(one, reason=self._why(pose, "pose", given_tol))
+            return self._read(
+                out[5 : 5 + m], "pose", given_tol * within, singular_tol, out[5 + m :], given_tol
+            )
+        # the verdict: the kept branches are the answer, none near a singularity
+        at, kinds = self._layout if self._layout is not None else self._scalar_layout()
+        K, n, far = self.K, self.n, self._far_rows
+        assert far is not None  # made with the layout
+        values = out[5 + at.joints.start : 5 + at.joints.stop].reshape(K, n)
+        start = 5 + m if stretched else 5  # the residuals against the pose as given
+        residual = out[start + at.whole.start : start + at.whole.stop]
+        if kept == self._every:
+            k, signs = K, self.branch_signs
+        else:
+            rows = np.array([j for j in range(K) if int(kept) >> j & 1], dtype=np.intp)
+            values, residual = values.take(rows, 0), residual.take(rows)
+            k, signs = len(rows), self.branch_signs.take(rows, 0)
+        return IKSolution(
+            values,
+            self._all_valid[:k],
+            residual,
+            far[:k],
+            kinds,
+            signs,
+            METHOD,
+            namer=self.branch_names,
         )
 
     def _read(
@@ -867,6 +915,9 @@ class ClosedFormSolver:
         if self._layout is None:
             kinds = tuple(kind for kind, _, _ in self._singular_factors())
             at = Layout.scalar(self.n, len(self._wrist_s), len(kinds), self.K)
+            far = np.zeros((self.K, len(kinds)), dtype=bool)
+            far.flags.writeable = False
+            self._far_rows = far
             self._layout = (at, kinds)
         return self._layout
 

@@ -48,6 +48,7 @@ __all__ = [
     "NativeCompiler",
     "NativeGiven",
     "NativeProgram",
+    "NativeRule",
     "NativeRun",
     "read_poses",
 ]
@@ -61,11 +62,41 @@ NativeRun = Callable[[np.ndarray, np.ndarray, bool], np.ndarray]
 #: the program run on one pose as it comes (:mod:`dhsym.ik.accuracy`):
 #: ``given(pose, tol, base_inv, tool_inv)`` of the pose as given (contiguous row-major
 #: ``(4, 4)``), the tolerance asked for (0: the pose's own) and the inverses of the base
-#: and tool transforms (``None``: none) gives ``[tol, stretch, *rigid, *as_given]``: the
-#: pose's tolerance (not above 0: the rotation is no rotation), whether it is not exact,
-#: and, when it is not, the program's outputs at its nearest rigid pose (stretched),
-#: first with the residuals against that pose, then against the pose as given
+#: and tool transforms (``None``: none) gives ``[tol, stretch, verdict, kept, low,
+#: *outputs, *against_given]``: the pose's tolerance (not above 0: the rotation is no
+#: rotation, nothing else said), whether it is not exact, the :class:`NativeRule`'s
+#: verdict and the branches it keeps (a bit mask), the smallest closeness to a
+#: singularity, the program's outputs (an exact pose as given, else its nearest rigid pose
+#: stretched) and, for a pose that is not exact, the outputs again with the residuals
+#: against the pose as given
 NativeGiven = Callable[[np.ndarray, float, np.ndarray | None, np.ndarray | None], np.ndarray]
+
+
+@dataclass(frozen=True)
+class NativeRule:
+    """Where the program for one pose keeps what robot.ik decides by, and the numbers it
+    decides with, for the rule around it (:data:`NativeGiven`): the residuals of the
+    ``branches`` against the whole pose from ``whole``, the ``wrist_count`` wrist sines
+    from ``wrist``, the ``factor_count`` closenesses to a singularity from ``factors``
+    (offsets into the outputs); a wrist sine below ``wrist_near`` is a singular wrist, a
+    closeness below ``suspect`` may make two branches one, and a branch of a pose that is
+    not exact is a candidate within ``within`` tolerances of its nearest rigid pose.
+
+    The verdict: 0 when the kept branches are the answer (each within the tolerance of
+    the pose as given, none to refine, no singular wrist, no closeness below
+    ``suspect``); 1 when robot.ik's own path must answer (a singular wrist, a branch of a
+    pose that is not exact to refine, or none kept); 2 when the outputs must be read one
+    by one (a closeness below ``suspect``; an exact pose with no branch kept)."""
+
+    branches: int
+    whole: int
+    wrist: int
+    wrist_count: int
+    factors: int
+    factor_count: int
+    wrist_near: float
+    suspect: float
+    within: float
 
 
 @dataclass(frozen=True, eq=False)
@@ -146,8 +177,9 @@ class NativeCompiler(Protocol):
 
     Called with the program's arguments (the 12 entries of the pose from frame 0 to
     frame n, then the 12 of the pose as given, each column by column), its lines in
-    order and its outputs; returns a :data:`NativeProgram` with the same outputs, or
-    ``None`` when it cannot build one (the solver keeps its own program for floats).
+    order, its outputs and the :class:`NativeRule` of the rule around it; returns a
+    :data:`NativeProgram` with the same outputs, or ``None`` when it cannot build one
+    (the solver keeps its own program for floats).
     """
 
     def __call__(
@@ -155,6 +187,7 @@ class NativeCompiler(Protocol):
         args: Sequence[sp.Symbol],
         program: Sequence[tuple[sp.Symbol, sp.Expr]],
         outputs: Sequence[sp.Expr],
+        rule: NativeRule,
     ) -> NativeProgram | None: ...
 
 
