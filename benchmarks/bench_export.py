@@ -7,14 +7,16 @@ fk on 1,000 configurations in [-3.1, 3.1]^6 a thousand times, and IK on their 1,
 exact and typed with 6 and with 4 decimals, ten times; best of 15 runs, thread CPU time
 (clock_gettime(CLOCK_THREAD_CPUTIME_ID): not counting time the process waits for a core)
 and wall time), through ctypes (dhsym.export.shared_library, timeit) and dhsym's own
-NumPy/float path (robot.fk, robot.ik) as the reference; EAIK's ``IK`` (its C++ through its
-Python binding, all solutions, unchecked) on 200 poses when installed and the table suits
-it; roboticstoolbox is not compared. Then the PUMA 560's inverse dynamics: its operation
-count, the exported ``rne`` in a C loop (best of 15 runs of 100,000 calls, wall and thread
-CPU time), through ctypes (``compiled(robot).rne``), the exported NumPy module and
-``robot.rne`` on one state (the reference, NumPy). The ratio column is dhsym's own time
-over this row's (fk to robot.fk, IK to robot.ik, rne to robot.rne), per robot, in the same
-run; the load average is printed first and last.
+NumPy/float path (robot.fk, robot.ik) as the reference; robot.ik of one pose rounded to 6
+and to 4 decimals (the same pose 2,000 times, and 200 poses once each, best of 5 passes:
+these include the few poses whose branches robot.ik refines in Python); EAIK's ``IK`` (its
+C++ through its Python binding, all solutions, unchecked) on 200 poses when installed and
+the table suits it; roboticstoolbox is not compared. Then the PUMA 560's inverse dynamics:
+its operation count, the exported ``rne`` in a C loop (best of 15 runs of 100,000 calls,
+wall and thread CPU time), through ctypes (``compiled(robot).rne``), the exported NumPy
+module and ``robot.rne`` on one state (the reference, NumPy). The ratio column is dhsym's
+own time over this row's (fk to robot.fk, IK to robot.ik, rne to robot.rne), per robot, in
+the same run; the load average is printed first and last.
 
     PYTHONPATH=. python benchmarks/bench_export.py
 """
@@ -148,6 +150,7 @@ def bench(name: str) -> None:
 
     rng = np.random.default_rng(1)
     poses = list(robot.fk(rng.uniform(-3.1, 3.1, size=(200, robot.n))))
+    rounded = {d: [np.round(pose, d) for pose in poses] for d in (6, 4)}
     rows = [
         ("fk, C loop (thread CPU)", c["fk_cpu"]),
         ("fk, C loop (wall)", c["fk_wall"]),
@@ -160,6 +163,9 @@ def bench(name: str) -> None:
         ("ik, ctypes (compiled)", per_pose(fast.ik, poses)),
         ("ik, dhsym robot.ik", per_pose(robot.ik, poses[:50])),
         ("ik 6 decimals, robot.ik", per_call(robot.ik, np.round(T, 6), 2000)),
+        ("ik 4 decimals, robot.ik", per_call(robot.ik, np.round(T, 4), 2000)),
+        ("ik 6 decimals, robot.ik, 200 poses", per_pose(robot.ik, rounded[6])),
+        ("ik 4 decimals, robot.ik, 200 poses", per_pose(robot.ik, rounded[4])),
         ("ik, robot.ik NumPy path", per_call(numpy_path, T, 2000)),
     ]
     eaik = eaik_call(robot)
@@ -173,13 +179,15 @@ def bench(name: str) -> None:
         f"backend {fast.backend})"
     )
     ref = {"fk": rows[3][1], "ik": rows[9][1]}
+    exact_one, typed_one = rows[9][1], rows[10][1]
     for label, ns in rows:
         kind = label.split(",")[0].split()[0]
         print(f"  {label:38s} {ns:12.1f} ns   dhsym/this = {ref[kind] / ns:8.1f}x")
     print(
         f"  goals (issue 30, thread CPU): fk {c['fk_cpu']:.0f} ns (<= 100), all IK branches "
         f"{c['ik_exact_cpu'] / 1000:.2f} us exact, {c['ik_rounded6_cpu'] / 1000:.2f} us with 6 "
-        f"decimals (<= 2)"
+        f"decimals (<= 2); robot.ik {exact_one / 1000:.1f} us exact (<= 10), "
+        f"{typed_one / 1000:.1f} us with 6 decimals (<= 15)"
     )
     if eaik is not None:
         e = rows[-1][1]

@@ -17,7 +17,8 @@ The closed form is measured
 * one pose per call (``robot.ik(T)``: every branch, each checked by ``fk``, singular
   factors evaluated; the program for floats, in C through ctypes when a compiler is
   there), per pose: the best of 200 passes over blocks of 20 poses (:func:`per_pose`,
-  EAIK's ``IK`` timed the same way when installed);
+  EAIK's ``IK`` timed the same way when installed); and the same poses rounded to 6 and
+  to 4 decimals (best of 50 passes);
 * batched, ``solver.raw`` (every branch, unchecked) and ``robot.ik`` (checked, the
   default), in poses per second; the same run's batch ``fk`` is the yardstick (IK time
   in units of one ``fk`` of one configuration: less dependent on the machine's load).
@@ -168,6 +169,15 @@ def bench(
         f"closed form, one pose per call: {t_one * 1e6:8.1f} µs (all {K} branches, each checked "
         f"by fk, singular factors; {n_one:.2f} solutions per pose)"
     )
+    for decimals in (6, 4):  # poses as they come: typed with 6 or 4 decimals
+        typed = [np.round(T, decimals) for T in T1]
+        t_typed = per_pose(robot.ik, typed, 50)
+        n_typed = np.mean([len(robot.ik(T)) for T in typed])
+        print(
+            f"closed form, one pose per call, rounded to {decimals} decimals: "
+            f"{t_typed * 1e6:8.1f} µs ({n_typed:.2f} solutions per pose; the best block of "
+            "20 poses: a block with a branch refined in Python costs more)"
+        )
 
     # closed form, batched; batch fk in the same run as a yardstick of this machine's speed
     qB = random_q(robot, batch, rng)
