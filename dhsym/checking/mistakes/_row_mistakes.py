@@ -27,15 +27,7 @@ from ..comparing.table_match import Chain, same_cells
 from ..comparing.verdict import Diagnosis
 from ..reading.limits import check_time
 from ._entry_mistakes import PAIR_BUDGET
-from ._mistake_base import (
-    MatrixCase,
-    Mistake,
-    RowFilter,
-    Rows,
-    TableCase,
-    TableEdit,
-    cell_text,
-)
+from ._mistake_base import MatrixCase, Mistake, RowFilter, Rows, TableCase, TableEdit, cell_text
 
 __all__ = [
     "DegreesAsRadians",
