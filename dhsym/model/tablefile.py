@@ -82,6 +82,7 @@ __all__ = [
     "read_table",
     "read_table_text",
     "read_text_file",
+    "read_values",
     "table_from_data",
 ]
 
@@ -193,15 +194,7 @@ def _from_data(data: object, file: str | None) -> DHTable:
     if not isinstance(physical, bool):
         raise TableError("physical must be true or false", field="physical")
     rows = [_row(entry, i, physical) for i, entry in enumerate(joints, start=1)]
-    values = top.get("values") or {}
-    if not isinstance(values, Mapping):
-        raise TableError("'values' must map symbol names to numbers", field="values")
-    checked = {}
-    for k, v in values.items():
-        expr = as_expr(v, field=f"values.{k}")
-        if expr.free_symbols:
-            raise TableError(f"value of {k} must be a number, got {v!r}", field=f"values.{k}")
-        checked[str(k)] = expr
+    checked = read_values(top.get("values") or None)
     base = _elementaries(top.get("base"), "base", unit)
     tool = _elementaries(top.get("tool"), "tool", unit)
     _check_variables(rows, base, tool)
@@ -219,6 +212,30 @@ def _from_data(data: object, file: str | None) -> DHTable:
         **_gravity(top),
         **({} if physical else {"physical": False}),
     )
+
+
+def read_values(values: object) -> dict[str, sp.Expr]:
+    """A file's ``values:`` (symbol name → number) read exactly, by name (``None``: none);
+    a non-number names its field (``values.a2``).
+
+    >>> read_values({"a2": 0.4318, "d3": "pi/20"})
+    {'a2': 2159/5000, 'd3': pi/20}
+    >>> read_values({"a2": "l2"})
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.TableError: field values.a2: value of a2 must be a number, got 'l2'
+    """
+    if values is None:
+        return {}
+    if not isinstance(values, Mapping):
+        raise TableError("'values' must map symbol names to numbers", field="values")
+    out = {}
+    for k, v in values.items():
+        expr = as_expr(v, field=f"values.{k}")
+        if expr.free_symbols:
+            raise TableError(f"value of {k} must be a number, got {v!r}", field=f"values.{k}")
+        out[str(k)] = expr
+    return out
 
 
 def _check_variables(

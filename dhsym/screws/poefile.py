@@ -55,7 +55,7 @@ from dhsym.kinematics.transforms import plain_product
 from dhsym.model.entries import as_expr
 from dhsym.model.kinds import AngleUnit
 from dhsym.model.parsing import symbol
-from dhsym.model.tablefile import MAX_FILE_BYTES, read_steps, read_text_file
+from dhsym.model.tablefile import MAX_FILE_BYTES, read_steps, read_text_file, read_values
 from dhsym.model.yamlsafe import YAMLInputError, YAMLLimits, load_yaml
 from dhsym.notation.printers import Notation, decimal_lengths
 
@@ -243,14 +243,4 @@ def _joint(entry: object, i: int) -> tuple[ScrewAxis, sp.Symbol]:
 
 
 def _values(values: object) -> dict[sp.Symbol, sp.Expr]:
-    if values is None:
-        return {}
-    if not isinstance(values, Mapping):
-        raise TableError("'values' must map symbol names to numbers", field="values")
-    out = {}
-    for k, v in values.items():
-        expr = as_expr(v, field=f"values.{k}")
-        if expr.free_symbols:
-            raise TableError(f"value of {k} must be a number, got {v!r}", field=f"values.{k}")
-        out[symbol(str(k))] = expr
-    return out
+    return {symbol(k): v for k, v in read_values(values).items()}
