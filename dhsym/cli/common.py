@@ -197,6 +197,27 @@ def parse_values(text: str, option: str = "--values") -> dict[str, float]:
 
 
 URDF_SUFFIXES = (".urdf", ".xacro")
+ROBOT_HELP = "built-in robot name (dhsym list), table file, or URDF file (with --tip)"
+
+
+def add_robot_argument(parser: argparse.ArgumentParser) -> None:
+    """The positional ``robot``: a built-in name, a table file or a URDF file (``--tip``)."""
+    parser.add_argument("robot", help=ROBOT_HELP)
+
+
+def add_values_option(parser: argparse.ArgumentParser, example: str = "a2=0.43,d3=0.15") -> None:
+    """``--values NAME=NUMBER,...``: numbers for the table's symbolic lengths (read by
+    :func:`parse_values`), with an ``example``."""
+    parser.add_argument(
+        "--values",
+        metavar="NAME=NUMBER,...",
+        help=f"numbers for the table's symbolic lengths, e.g. {example}",
+    )
+
+
+def add_output_option(parser: argparse.ArgumentParser, help: str, metavar: str = "FILE") -> None:
+    """``-o/--output FILE``, required: where the command writes (``help`` says what)."""
+    parser.add_argument("-o", "--output", required=True, metavar=metavar, help=help)
 
 
 def add_urdf_options(parser: argparse.ArgumentParser) -> None:

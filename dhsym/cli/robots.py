@@ -20,7 +20,9 @@ from .common import (
     add_angle_options,
     add_command,
     add_notation_options,
+    add_robot_argument,
     add_urdf_options,
+    add_values_option,
     emit,
     load_robot,
     load_table_arg,
@@ -462,16 +464,12 @@ def _print_solutions(robot: Robot, sols: object, names: list[str], free: dict[in
         print(f"  note: {sols.note}")
 
 
-ROBOT_HELP = "built-in robot name (dhsym list), table file, or URDF file (with --tip)"
-VALUES_HELP = "numbers for the table's symbolic lengths, e.g. a2=0.43,d3=0.15"
-
-
 def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add ``list``, ``show``, ``derive``, ``fk`` and ``ik``."""
     add_command(sub, "list", "list the built-in robots").set_defaults(func=_cmd_list)
 
     s = add_command(sub, "show", "print a DH table")
-    s.add_argument("robot", help=ROBOT_HELP)
+    add_robot_argument(s)
     s.add_argument(
         "--format", choices=["markdown", "yaml"], default="markdown", help="output format"
     )
@@ -485,7 +483,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         description="Derive ^iT_j step by step, the way the lecture does: the DH table, each\n"
         "link matrix, the products and the arm matrix in lecture notation (C12, S23).",
     )
-    d.add_argument("robot", help=ROBOT_HELP)
+    add_robot_argument(d)
     d.add_argument(
         "--format",
         choices=["text", "markdown", "latex", "json"],
@@ -522,7 +520,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     d.set_defaults(func=_cmd_derive)
 
     f = add_command(sub, "fk", "numeric forward kinematics: the tool pose at joint values")
-    f.add_argument("robot", help=ROBOT_HELP)
+    add_robot_argument(f)
     f.add_argument(
         "--q", required=True, help="joint values, comma separated (angles in the table's unit)"
     )
@@ -532,7 +530,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         action="store_true",
         help="also the manipulability sqrt(det(J Jᵀ)) (Yoshikawa): 0 at a singularity",
     )
-    f.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
+    add_values_option(f)
     f.add_argument("--json", action="store_true", help="JSON output")
     add_urdf_options(f)
     f.set_defaults(func=_cmd_fk)
@@ -546,13 +544,13 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "one local solution by Levenberg-Marquardt from --q0 (default all zero), for arms\n"
         "without a closed form.",
     )
-    k.add_argument("robot", help=ROBOT_HELP)
+    add_robot_argument(k)
     k.add_argument("--pose", help="the goal T, 12 or 16 numbers row by row")
     k.add_argument("--pose-of", metavar="Q", help="the goal: the pose at these joint values")
     k.add_argument("--numeric", action="store_true", help="one numeric solution")
     k.add_argument("--q0", help="start of the numeric solver (default: all zero)")
     add_angle_options(k)
-    k.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
+    add_values_option(k)
     k.add_argument(
         "--tol",
         type=float,
