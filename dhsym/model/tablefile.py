@@ -48,7 +48,7 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -81,6 +81,7 @@ __all__ = [
     "read_steps",
     "read_table",
     "read_table_text",
+    "read_entry",
     "read_text_file",
     "read_values",
     "table_from_data",
@@ -274,15 +275,39 @@ def _gravity(top: Mapping[str, Any]) -> dict[str, object]:
     return {"gravity": tuple(as_expr(v, field="gravity") for v in g)}
 
 
-def _row(entry: object, i: int, physical: bool = True) -> DHRow:
+def read_entry(
+    entry: object,
+    i: int,
+    canon: Callable[[object], str],
+    keys: tuple[str, ...],
+    *,
+    like: str,
+    what: str = "row",
+    key: str = "column",
+) -> dict[str, object]:
+    """Row ``i`` of a file (a ``what`` written ``like``) by its ``canon`` key names, each one
+    of ``keys``; a row that is no mapping, or a ``key`` it does not know, names the row.
+
+    >>> read_entry({"Theta": 0}, 1, str.lower, ("theta",), like="{theta: ...}")
+    {'theta': 0}
+    >>> read_entry({"x": 0}, 2, str, ("theta", "d"), like="{theta: ...}")
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.TableError: row 2, field x: unknown column 'x': expected theta, d
+    """
     if not isinstance(entry, Mapping):
-        raise TableError("each row must be a mapping like {type: R, theta: ..., ...}", row=i)
-    row = {_canon(k): v for k, v in entry.items()}
-    for key in row:
-        if key not in _ROW_KEYS:
+        raise TableError(f"each {what} must be a mapping like {like}", row=i)
+    row = {canon(k): v for k, v in entry.items()}
+    for name in row:
+        if name not in keys:
             raise TableError(
-                f"unknown column {key!r}: expected {', '.join(_ROW_KEYS)}", row=i, field=key
+                f"unknown {key} {name!r}: expected {', '.join(keys)}", row=i, field=name
             )
+    return row
+
+
+def _row(entry: object, i: int, physical: bool = True) -> DHRow:
+    row = read_entry(entry, i, _canon, _ROW_KEYS, like="{type: R, theta: ..., ...}")
     for key in ("theta", "d", "a", "alpha"):
         if key not in row:
             raise TableError(f"missing column {key!r}", row=i, field=key)

@@ -55,7 +55,13 @@ from dhsym.kinematics.transforms import plain_product
 from dhsym.model.entries import as_expr
 from dhsym.model.kinds import AngleUnit
 from dhsym.model.parsing import symbol
-from dhsym.model.tablefile import MAX_FILE_BYTES, read_steps, read_text_file, read_values
+from dhsym.model.tablefile import (
+    MAX_FILE_BYTES,
+    read_entry,
+    read_steps,
+    read_text_file,
+    read_values,
+)
 from dhsym.model.yamlsafe import YAMLInputError, YAMLLimits, load_yaml
 from dhsym.notation.printers import Notation, decimal_lengths
 
@@ -198,14 +204,8 @@ def _vec(row: Mapping[str, Any], key: str, i: int) -> sp.ImmutableMatrix:
 
 
 def _joint(entry: object, i: int) -> tuple[ScrewAxis, sp.Symbol]:
-    if not isinstance(entry, Mapping):
-        raise TableError("each joint must be a mapping like {type: R, w: [...], v: [...]}", row=i)
-    row = {_canon(k): v for k, v in entry.items()}
-    for key in row:
-        if key not in _JOINT_KEYS:
-            raise TableError(
-                f"unknown key {key!r}: expected {', '.join(_JOINT_KEYS)}", row=i, field=key
-            )
+    like = "{type: R, w: [...], v: [...]}"
+    row = read_entry(entry, i, _canon, _JOINT_KEYS, like=like, what="joint", key="key")
     kind = str(row.get("type", "R" if "w" in row else "P")).strip().upper()
     if kind not in ("R", "P"):
         raise TableError(f"type must be R or P, got {kind!r}", row=i, field="type")
