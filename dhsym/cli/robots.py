@@ -17,6 +17,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from .common import (
+    JSON_SCHEMA_VERSION,
     add_angle_options,
     add_command,
     add_notation_options,
@@ -24,6 +25,7 @@ from .common import (
     add_urdf_options,
     add_values_option,
     emit,
+    json_head,
     load_robot,
     load_table_arg,
     note_warnings,
@@ -106,9 +108,6 @@ def _frames(robot: Robot, args: argparse.Namespace) -> tuple[int, int]:
     return i, j
 
 
-JSON_SCHEMA_VERSION = 1
-
-
 def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, object]:
     """The derivation as a JSON-ready dict (schema in docs/reference/json.md).
 
@@ -117,8 +116,6 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
     >>> d["compact"][0][3], d["matrix"][0][3]
     ('a1*C1 + a2*C12', 'a1*cos(theta1) + a2*cos(theta1 + theta2)')
     """
-    from dhsym._version import __version__
-
     j = robot.n if j is None else j
     pose = robot.transform(i, j)
     full = robot.notation.__class__(robot.notation.labels, compact=False)
@@ -139,10 +136,7 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
                 }
             )
     return {
-        "schema": JSON_SCHEMA_VERSION,
-        "dhsym": __version__,
-        "robot": robot.name,
-        "convention": robot.convention.value,
+        **json_head(robot),
         "from": pose.frm,
         "to": pose.to,
         "variables": [str(v) for v in robot.variables],
