@@ -84,6 +84,7 @@ __all__ = [
     "read_entry",
     "read_text_file",
     "read_values",
+    "read_yaml_text",
     "table_from_data",
 ]
 
@@ -146,11 +147,21 @@ def read_table_text(text: str, *, file: str | None = None) -> DHTable:
     """Read a table from YAML text (through the bounded loader :func:`.yamlsafe.load_yaml`)."""
     if len(text) > MAX_FILE_BYTES:
         raise TableError("table text is too large", file=file)
+    return table_from_data(read_yaml_text(text, file=file), file=file)
+
+
+def read_yaml_text(text: str, *, file: str | None = None) -> object:
+    """The data of a robot file's YAML text (a table or a PoE), read by the bounded loader
+    (:func:`.yamlsafe.load_yaml`, at most :data:`MAX_FILE_BYTES`); what it refuses is a
+    :class:`~dhsym.errors.TableError` naming the ``file``.
+
+    >>> read_yaml_text("joints: [{type: R}]")
+    {'joints': [{'type': 'R'}]}
+    """
     try:
-        data = load_yaml(text, limits=YAMLLimits(max_bytes=MAX_FILE_BYTES))
+        return load_yaml(text, limits=YAMLLimits(max_bytes=MAX_FILE_BYTES))
     except YAMLInputError as err:
         raise TableError(err.message, file=file) from None
-    return table_from_data(data, file=file)
 
 
 _LONG_NUMBER = "a number with thousands of digits: numbers have at most 40 digits"

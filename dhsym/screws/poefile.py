@@ -56,13 +56,12 @@ from dhsym.model.entries import as_expr
 from dhsym.model.kinds import AngleUnit
 from dhsym.model.parsing import symbol
 from dhsym.model.tablefile import (
-    MAX_FILE_BYTES,
     read_entry,
     read_steps,
     read_text_file,
     read_values,
+    read_yaml_text,
 )
-from dhsym.model.yamlsafe import YAMLInputError, YAMLLimits, load_yaml
 from dhsym.notation.printers import Notation, decimal_lengths
 
 from .algebra import ScrewAxis, adjoint, is_zero
@@ -91,11 +90,7 @@ def read_poe(path: str | os.PathLike[str]) -> ProductOfExponentials:
 
 def read_poe_text(text: str, *, file: str | None = None) -> ProductOfExponentials:
     """Read a PoE description from YAML text (the bounded loader of the table files)."""
-    try:
-        data = load_yaml(text, limits=YAMLLimits(max_bytes=MAX_FILE_BYTES))
-    except YAMLInputError as err:
-        raise TableError(err.message, file=file) from None
-    return poe_from_data(data, file=file)
+    return poe_from_data(read_yaml_text(text, file=file), file=file)
 
 
 def poe_from_data(data: object, *, file: str | None = None) -> ProductOfExponentials:
