@@ -39,11 +39,17 @@ if TYPE_CHECKING:  # the table loads when a command runs
 
 __all__ = [
     "EXIT_BROKEN_PIPE",
+    "JSON_SCHEMA_VERSION",
+    "ROBOT_HELP",
     "STDOUT",
     "HelpFormatter",
     "add_angle_options",
     "add_command",
     "add_notation_options",
+    "add_output_option",
+    "add_robot_argument",
+    "add_values_option",
+    "json_head",
     "q_in_degrees",
     "emit",
     "emit_bytes",
@@ -60,6 +66,10 @@ __all__ = [
 
 #: The file name that means standard output.
 STDOUT = "-"
+
+#: The version of the JSON the commands write (``dhsym derive --format json``; the schema
+#: in docs/reference/json.md).
+JSON_SCHEMA_VERSION = 1
 
 #: Exit status after a closed pipe: 128 + SIGPIPE, what the shell shows for ``yes | head``.
 EXIT_BROKEN_PIPE = 141
@@ -197,6 +207,42 @@ def parse_values(text: str, option: str = "--values") -> dict[str, float]:
 
 
 URDF_SUFFIXES = (".urdf", ".xacro")
+
+
+def json_head(robot: Robot) -> dict[str, object]:
+    """What every JSON a command writes about a robot starts with: the schema's version,
+    dhsym's, the robot's name and its convention."""
+    from dhsym._version import __version__
+
+    return {
+        "schema": JSON_SCHEMA_VERSION,
+        "dhsym": __version__,
+        "robot": robot.name,
+        "convention": robot.convention.value,
+    }
+
+
+ROBOT_HELP = "built-in robot name (dhsym list), table file, or URDF file (with --tip)"
+
+
+def add_robot_argument(parser: argparse.ArgumentParser) -> None:
+    """The positional ``robot``: a built-in name, a table file or a URDF file (``--tip``)."""
+    parser.add_argument("robot", help=ROBOT_HELP)
+
+
+def add_values_option(parser: argparse.ArgumentParser, example: str = "a2=0.43,d3=0.15") -> None:
+    """``--values NAME=NUMBER,...``: numbers for the table's symbolic lengths (read by
+    :func:`parse_values`), with an ``example``."""
+    parser.add_argument(
+        "--values",
+        metavar="NAME=NUMBER,...",
+        help=f"numbers for the table's symbolic lengths, e.g. {example}",
+    )
+
+
+def add_output_option(parser: argparse.ArgumentParser, help: str, metavar: str = "FILE") -> None:
+    """``-o/--output FILE``, required: where the command writes (``help`` says what)."""
+    parser.add_argument("-o", "--output", required=True, metavar=metavar, help=help)
 
 
 def add_urdf_options(parser: argparse.ArgumentParser) -> None:

@@ -25,12 +25,13 @@ from collections.abc import Callable
 
 import sympy as sp
 
-from dhsym import __version__
 from dhsym.kinematics.jacobian import geometric_jacobian
 from dhsym.kinematics.singularities import singularities
 from dhsym.notation.layout import Math
 from dhsym.notation.printers import Notation
 from dhsym.robot import Robot
+
+from .common import JSON_SCHEMA_VERSION, json_head
 
 __all__ = [
     "JSON_SCHEMA_VERSION",
@@ -44,8 +45,6 @@ __all__ = [
     "trajectory_json",
 ]
 
-JSON_SCHEMA_VERSION = 1
-
 
 def _formula(robot: Robot, expr: object) -> dict[str, str]:
     """One formula three ways: compact, full (parser-readable) and LaTeX."""
@@ -58,14 +57,7 @@ def _formula(robot: Robot, expr: object) -> dict[str, str]:
 
 
 def _head(robot: Robot, what: str) -> dict[str, object]:
-    return {
-        "schema": JSON_SCHEMA_VERSION,
-        "dhsym": __version__,
-        "robot": robot.name,
-        "convention": robot.convention.value,
-        "what": what,
-        "variables": [str(v) for v in robot.variables],
-    }
+    return {**json_head(robot), "what": what, "variables": [str(v) for v in robot.variables]}
 
 
 def _grid(fn: Callable[[sp.Expr], str], M: sp.MatrixBase) -> list[list[str]]:

@@ -23,7 +23,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .common import add_command, load_robot, note_warnings, wrote
+from .common import add_command, add_output_option, load_robot, note_warnings, wrote
 
 if TYPE_CHECKING:
     from dhsym.robot import Robot
@@ -192,11 +192,9 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         help="lengths and offsets as a run-time parameter array p instead of numbers",
     )
     c.add_argument("--values", help="numbers for symbolic lengths, e.g. a1=1,a2=0.8")
-    c.add_argument(
-        "-o",
-        "--output",
-        required=True,
+    add_output_option(
+        c,
+        "folder for the files (--lang urdf: a folder, or the file itself if it ends in .urdf)",
         metavar="DIR",
-        help="folder for the files (--lang urdf: a folder, or the file itself if it ends in .urdf)",
     )
     c.set_defaults(func=_cmd_export)

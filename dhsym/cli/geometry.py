@@ -10,6 +10,7 @@ import sys
 from .common import (
     URDF_SUFFIXES,
     add_command,
+    add_robot_argument,
     add_urdf_options,
     emit,
     load_table_arg,
@@ -106,9 +107,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         description="Convert a DH table to the other convention, a URDF file's chain (--tip)\n"
         "to a DH table (--to standard|modified, YAML), or a DH table to a URDF (--to urdf).",
     )
-    c.add_argument(
-        "robot", help="built-in robot name (dhsym list), table file, or URDF file (with --tip)"
-    )
+    add_robot_argument(c)
     c.add_argument(
         "--to",
         required=True,

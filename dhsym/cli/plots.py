@@ -13,7 +13,10 @@ from .common import (
     STDOUT,
     add_angle_options,
     add_command,
+    add_output_option,
+    add_robot_argument,
     add_urdf_options,
+    add_values_option,
     emit_bytes,
     load_robot,
     q_in_degrees,
@@ -83,28 +86,16 @@ def _cmd_view(args: argparse.Namespace) -> int:
 def register(subparsers: Any) -> None:
     """Add ``dhsym plot NAME|FILE [--q …] [--deg] [--view 2d|3d] [--workspace] -o FILE``."""
     p = add_command(subparsers, "plot", "draw the arm with its DH frames (PNG, PDF or SVG)")
-    p.add_argument(
-        "robot", help="built-in robot name (dhsym list), table file, or URDF file (with --tip)"
-    )
+    add_robot_argument(p)
     add_urdf_options(p)
     p.add_argument("--q", help="joint values, comma separated (default: all zero)")
     add_angle_options(p)
-    p.add_argument(
-        "--values",
-        metavar="NAME=NUMBER,...",
-        help="numbers for the table's symbolic lengths, e.g. a2=0.43,d3=0.15",
-    )
+    add_values_option(p)
     p.add_argument("--view", choices=["2d", "3d"], help="3d (default) or a 2d top view")
     p.add_argument("--workspace", action="store_true", help="reachable points instead of the arm")
     p.add_argument("--samples", type=int, default=4000, help="workspace samples")
     p.add_argument("--dpi", type=int, default=150, help="resolution of a PNG")
-    p.add_argument(
-        "-o",
-        "--output",
-        required=True,
-        metavar="FILE",
-        help="picture file: .png, .pdf or .svg; - writes to standard output",
-    )
+    add_output_option(p, "picture file: .png, .pdf or .svg; - writes to standard output")
     p.add_argument(
         "--format",
         choices=_FORMATS,
@@ -118,17 +109,11 @@ def register(subparsers: Any) -> None:
         "view",
         "a 3D view of the arm in one HTML page: a slider per joint, its frames, ^0T_n live",
     )
-    p.add_argument(
-        "robot", help="built-in robot name (dhsym list), table file, or URDF file (with --tip)"
-    )
+    add_robot_argument(p)
     add_urdf_options(p)
     p.add_argument("--q", help="joint values to start at, comma separated (default: all zero)")
     add_angle_options(p)
-    p.add_argument(
-        "--values",
-        metavar="NAME=NUMBER,...",
-        help="numbers for the table's symbolic lengths, e.g. a1=1,a2=0.8",
-    )
+    add_values_option(p, "a1=1,a2=0.8")
     p.add_argument(
         "--workspace",
         type=int,
@@ -136,11 +121,7 @@ def register(subparsers: Any) -> None:
         metavar="N",
         help="points of the workspace cloud the page can show (0: none; default 4000)",
     )
-    p.add_argument(
-        "-o",
-        "--output",
-        required=True,
-        metavar="FILE",
-        help="the page (.html); it opens offline, from a file; - writes to standard output",
+    add_output_option(
+        p, "the page (.html); it opens offline, from a file; - writes to standard output"
     )
     p.set_defaults(func=_cmd_view)

@@ -17,11 +17,15 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from .common import (
+    JSON_SCHEMA_VERSION,
     add_angle_options,
     add_command,
     add_notation_options,
+    add_robot_argument,
     add_urdf_options,
+    add_values_option,
     emit,
+    json_head,
     load_robot,
     load_table_arg,
     note_warnings,
@@ -104,9 +108,6 @@ def _frames(robot: Robot, args: argparse.Namespace) -> tuple[int, int]:
     return i, j
 
 
-JSON_SCHEMA_VERSION = 1
-
-
 def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, object]:
     """The derivation as a JSON-ready dict (schema in docs/reference/json.md).
 
@@ -115,8 +116,6 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
     >>> d["compact"][0][3], d["matrix"][0][3]
     ('a1*C1 + a2*C12', 'a1*cos(theta1) + a2*cos(theta1 + theta2)')
     """
-    from dhsym._version import __version__
-
     j = robot.n if j is None else j
     pose = robot.transform(i, j)
     full = robot.notation.__class__(robot.notation.labels, compact=False)
@@ -137,10 +136,7 @@ def derive_json(robot: Robot, i: int = 0, j: int | None = None) -> dict[str, obj
                 }
             )
     return {
-        "schema": JSON_SCHEMA_VERSION,
-        "dhsym": __version__,
-        "robot": robot.name,
-        "convention": robot.convention.value,
+        **json_head(robot),
         "from": pose.frm,
         "to": pose.to,
         "variables": [str(v) for v in robot.variables],
@@ -462,16 +458,12 @@ def _print_solutions(robot: Robot, sols: object, names: list[str], free: dict[in
         print(f"  note: {sols.note}")
 
 
-ROBOT_HELP = "built-in robot name (dhsym list), table file, or URDF file (with --tip)"
-VALUES_HELP = "numbers for the table's symbolic lengths, e.g. a2=0.43,d3=0.15"
-
-
 def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add ``list``, ``show``, ``derive``, ``fk`` and ``ik``."""
     add_command(sub, "list", "list the built-in robots").set_defaults(func=_cmd_list)
 
     s = add_command(sub, "show", "print a DH table")
-    s.add_argument("robot", help=ROBOT_HELP)
+    add_robot_argument(s)
     s.add_argument(
         "--format", choices=["markdown", "yaml"], default="markdown", help="output format"
     )
@@ -485,7 +477,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         description="Derive ^iT_j step by step, the way the lecture does: the DH table, each\n"
         "link matrix, the products and the arm matrix in lecture notation (C12, S23).",
     )
-    d.add_argument("robot", help=ROBOT_HELP)
+    add_robot_argument(d)
     d.add_argument(
         "--format",
         choices=["text", "markdown", "latex", "json"],
@@ -522,7 +514,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     d.set_defaults(func=_cmd_derive)
 
     f = add_command(sub, "fk", "numeric forward kinematics: the tool pose at joint values")
-    f.add_argument("robot", help=ROBOT_HELP)
+    add_robot_argument(f)
     f.add_argument(
         "--q", required=True, help="joint values, comma separated (angles in the table's unit)"
     )
@@ -532,7 +524,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         action="store_true",
         help="also the manipulability sqrt(det(J Jᵀ)) (Yoshikawa): 0 at a singularity",
     )
-    f.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
+    add_values_option(f)
     f.add_argument("--json", action="store_true", help="JSON output")
     add_urdf_options(f)
     f.set_defaults(func=_cmd_fk)
@@ -546,13 +538,13 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "one local solution by Levenberg-Marquardt from --q0 (default all zero), for arms\n"
         "without a closed form.",
     )
-    k.add_argument("robot", help=ROBOT_HELP)
+    add_robot_argument(k)
     k.add_argument("--pose", help="the goal T, 12 or 16 numbers row by row")
     k.add_argument("--pose-of", metavar="Q", help="the goal: the pose at these joint values")
     k.add_argument("--numeric", action="store_true", help="one numeric solution")
     k.add_argument("--q0", help="start of the numeric solver (default: all zero)")
     add_angle_options(k)
-    k.add_argument("--values", metavar="NAME=NUMBER,...", help=VALUES_HELP)
+    add_values_option(k)
     k.add_argument(
         "--tol",
         type=float,

@@ -9,7 +9,8 @@ evaluated per state (:func:`~dhsym.kinematics.interpreter.evaluate_many`). Build
 costs milliseconds where writing out the PUMA 560's recursion costs seconds, so the
 first numbers of a robot need no symbolic derivation; the exact recursion stays for
 the documents and the exported code (:func:`~dhsym.export.program.rne_program`), and
-the tests prove the two equal.
+the tests prove the two equal (why the recursion is written apart for numbers, sharing
+its geometry: :mod:`.recursive_newton_euler`).
 
 Examples
 --------
@@ -38,9 +39,10 @@ from dhsym.kinematics.constants import to_float
 from dhsym.kinematics.interpreter import EvaluationError, evaluate_many
 from dhsym.kinematics.numeric import elementary_stack
 from dhsym.kinematics.transforms import link_word
-from dhsym.model.table import Convention, Elementary, JointType
+from dhsym.model.table import Elementary, JointType
 
 from .model import DynamicModel
+from .recursive_newton_euler import cross, joint_prefix
 
 __all__ = ["NumericLink", "NumericRecursion", "numeric_recursion"]
 
@@ -50,7 +52,7 @@ class NumericLink:
     """One DH row as numbers: its word (constant runs as float ``4×4`` matrices, the
     joint's elementaries kept exact), the fixed part before the joint motion
     (``u = R_pre e_z``, the joint axis in frame i − 1, and ``r1``:
-    :func:`.recursive_newton_euler._split`), its joint (0-based, or
+    :func:`.recursive_newton_euler.joint_prefix`), its joint (0-based, or
     None for a fixed row) and kind, and the link's mass, centre of mass, inertia about
     it and motor inertia ``Jm G²``."""
 
@@ -111,10 +113,6 @@ def _lc(*terms: tuple[Component, float]) -> Component:
         if k != 0.0:
             out = out + (x if k == 1.0 else x * k)
     return out
-
-
-def _cross(a: Sequence[Component], b: Sequence[Component]) -> Vector:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 def _add(*vs: Sequence[Component]) -> Vector:
@@ -228,21 +226,21 @@ class NumericRecursion:
             r2 = _rt(R, (p[0] - L.r1[0], p[1] - L.r1[1], p[2] - L.r1[2]))
             wp, wdp = _rt(R, w), _rt(R, wd)
             r1 = L.r1
-            a_A = _rt(R, _add(a, _cross(wd, r1), _cross(w, _cross(w, r1))))
+            a_A = _rt(R, _add(a, cross(wd, r1), cross(w, cross(w, r1))))
             k = L.joint
             if L.kind is JointType.REVOLUTE and k is not None:
                 w_i = _add(wp, _scale(u, vs[k]))
-                wd_i = _add(wdp, _scale(_cross(wp, u), vs[k]), _scale(u, accs[k]))
+                wd_i = _add(wdp, _scale(cross(wp, u), vs[k]), _scale(u, accs[k]))
             else:
                 w_i, wd_i = wp, wdp
-            a_i = _add(a_A, _cross(wd_i, r2), _cross(w_i, _cross(w_i, r2)))
+            a_i = _add(a_A, cross(wd_i, r2), cross(w_i, cross(w_i, r2)))
             if L.kind is JointType.PRISMATIC and k is not None:
-                a_i = _add(a_i, _scale(_cross(w_i, u), 2 * vs[k]), _scale(u, accs[k]))
+                a_i = _add(a_i, _scale(cross(w_i, u), 2 * vs[k]), _scale(u, accs[k]))
             rc = L.rc
-            ac = _add(a_i, _cross(wd_i, rc), _cross(w_i, _cross(w_i, rc)))
+            ac = _add(a_i, cross(wd_i, rc), cross(w_i, cross(w_i, rc)))
             F = _scale(ac, L.m)
             N_i = _add(
-                _constant_times(L.inertia, wd_i), _cross(w_i, _constant_times(L.inertia, w_i))
+                _constant_times(L.inertia, wd_i), cross(w_i, _constant_times(L.inertia, w_i))
             )
             kept.append((R, p, u, r2, F, N_i))
             w, wd, a = w_i, wd_i, a_i
@@ -255,14 +253,14 @@ class NumericRecursion:
             L = self.links[i]
             R, p, u, r2, F, N_i = kept[i]
             if R_next is None:
-                f_i, n_i = F, _add(N_i, _cross(L.rc, F))
+                f_i, n_i = F, _add(N_i, cross(L.rc, F))
             else:
                 fo, no = _r(R_next, f_next), _r(R_next, n_next)
                 f_i = _add(F, fo)
-                n_i = _add(N_i, no, _cross(L.rc, F), _cross(p_next, fo))
+                n_i = _add(N_i, no, cross(L.rc, F), cross(p_next, fo))
             k = L.joint
             if k is not None:
-                moment = _add(n_i, _cross(r2, f_i)) if L.kind is JointType.REVOLUTE else f_i
+                moment = _add(n_i, cross(r2, f_i)) if L.kind is JointType.REVOLUTE else f_i
                 t = moment[0] * u[0] + moment[1] * u[1] + moment[2] * u[2]
                 tau[k] = t + L.armature * accs[k]
             f_next, n_next, R_next, p_next = f_i, n_i, R, p
@@ -290,8 +288,7 @@ def numeric_recursion(dm: DynamicModel) -> NumericRecursion:
     links = []
     for i, row in enumerate(table.rows, start=1):
         word = link_word(row, table.convention)
-        pre = () if table.convention is Convention.STANDARD else word[:2]
-        P = _constant(_fold(pre, variables, i), i)
+        P = _constant(_fold(joint_prefix(word, table.convention), variables, i), i)
         L = dm.links[i - 1]
         links.append(
             NumericLink(

@@ -26,6 +26,18 @@ with ``a_0 = −g`` (gravity enters as an acceleration of the base). The torque 
 moment about the joint's own axis, so the same lines are right in both conventions
 (roboticstoolbox's symbolic ``rne`` is not, for modified DH).
 
+The recursion is written three times, once for each thing it computes with, and the tests
+prove the three equal: here on exact expressions, each step kept with its equation for the
+documents (and, with Khalil's first moments, for the regressor); on float arrays, component
+by component with the products by the DH constants' zeros and ones left out, for a robot's
+first numbers without a derivation (:mod:`.numeric_recursion`); and arranged for few
+operations for generated code (Khalil and Dombre's ``U_i``, moments about the joint's
+point, a wrist's last link carried: the export room's ``rne_program``). One function
+generic over its arithmetic would carry the step record, the skipped zeros and that
+rearrangement as options of every line; the three share the geometry instead
+(:func:`joint_prefix`, :func:`cross`). The control room has no recursion of its own: its
+computed torque and simulation call the compiled dynamics.
+
 Examples
 --------
 >>> import dhsym
@@ -37,7 +49,7 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import sympy as sp
 
@@ -51,7 +63,7 @@ from .model import DynamicModel, dynamic_model
 if TYPE_CHECKING:
     from dhsym.kinematics.chain import KinematicChain
 
-__all__ = ["newton_euler", "rne_expressions"]
+__all__ = ["cross", "joint_prefix", "newton_euler", "rne_expressions"]
 
 Matrix: TypeAlias = sp.ImmutableMatrix
 _EZ = Matrix([0, 0, 1])
@@ -73,14 +85,36 @@ _EQUATIONS = {
 }
 
 
+def cross(a: Any, b: Any) -> tuple[Any, Any, Any]:
+    """``a × b`` by components, for any three-component vectors: exact entries here, float
+    arrays in :mod:`.numeric_recursion`.
+
+    >>> cross((1, 0, 0), (0, 1, 0))
+    (0, 0, 1)
+    """
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
 def _cross(a: sp.MatrixBase, b: sp.MatrixBase) -> Matrix:
-    return Matrix([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+    return Matrix(cross(a, b))
+
+
+def joint_prefix(word: Sequence[Elementary], convention: Convention) -> tuple[Elementary, ...]:
+    """The fixed elementaries of a link's word before its joint's motion (``Pre`` above):
+    none in the standard convention, ``Rx(α) Tx(a)`` in the modified one.
+
+    >>> import dhsym
+    >>> from dhsym.kinematics.transforms import link_word
+    >>> t = dhsym.load_table("puma560_modified")
+    >>> [e.kind + e.axis for e in joint_prefix(link_word(t.rows[1], t.convention), t.convention)]
+    ['Rx', 'Tx']
+    """
+    return () if convention is Convention.STANDARD else tuple(word[:2])
 
 
 def _split(row_word: Sequence[Elementary], convention: Convention) -> tuple[Matrix, Matrix]:
     """``(R_pre, t_pre)`` of the fixed part before the joint motion of one link matrix."""
-    pre = () if convention is Convention.STANDARD else tuple(row_word[:2])
-    P = plain_product(pre)
+    P = plain_product(joint_prefix(row_word, convention))
     return Matrix(P[:3, :3]), Matrix(P[:3, 3])
 
 

@@ -31,10 +31,12 @@ import re
 from collections.abc import Sequence
 from pathlib import Path
 from types import MappingProxyType
+from typing import TypedDict
 
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.kinematics.chain import KinematicChain
 from dhsym.kinematics.pose import Pose
 from dhsym.kinematics.transforms import chain_word, elementary_matrix
 from dhsym.model.table import AngleUnit, Convention, DHTable, Elementary
@@ -82,10 +84,13 @@ __all__ = [
     "Step",
     "TableCell",
     "TableData",
+    "Heading",
     "Term",
     "as_robot",
     "derive",
     "general_link",
+    "heading",
+    "label_key",
 ]
 
 #: Links one derivation shows step by step (a 60-row planar chain takes seconds).
@@ -247,6 +252,37 @@ def as_robot(name_or_robot: object) -> Robot:
     )
 
 
+def label_key(name: str) -> str:
+    """A robot's name as a LaTeX label and file key: lower case, words joined by ``-``.
+
+    >>> label_key("PUMA 560 (modified)"), label_key("")
+    ('puma-560-modified', 'robot')
+    """
+    return re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-") or "robot"
+
+
+class Heading(TypedDict):
+    """What every document of a robot starts with (its keyword arguments ``**heading``)."""
+
+    name: str
+    key: str
+    convention: str
+    n: int
+
+
+def heading(robot: KinematicChain, n: int) -> Heading:
+    """The robot's name (``robot`` when it has none), the :func:`label_key` of that name,
+    its convention and the ``n`` the document counts (joints, columns, screw axes).
+
+    >>> import dhsym
+    >>> h = heading(dhsym.load("puma560_modified"), 6)
+    >>> h["key"], h["convention"], h["n"]
+    ('puma-560-modified-dh-craig', 'modified', 6)
+    """
+    name = robot.name or "robot"
+    return Heading(name=name, key=label_key(name), convention=robot.convention.value, n=n)
+
+
 def _steps(robot: Robot, lo: int, hi: int, final: bool, width: float) -> list[Step]:
     """``^{lo}T_k = ^{lo}T_{k-1} ^{k-1}T_k`` for k = lo + 2 … hi, with their identities."""
     steps = []
@@ -346,15 +382,11 @@ def derive(
     q = None if check is None or check is False else check
     if q is True:
         q = [0.0] * len(robot.variables)
-    name = robot.name or "robot"
     return Derivation(
-        name=name,
-        key=re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-") or "robot",
+        **heading(robot, n),
         source=table.source,
         notes=table.notes,
         warnings=(*table.warnings, *_frame_notes(table, frm, to, n, nota)),
-        convention=robot.convention.value,
-        n=n,
         compact=compact,
         numeric=numeric,
         table=_table(table),

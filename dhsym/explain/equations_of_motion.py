@@ -52,7 +52,8 @@ from dhsym.notation.printers import Notation, TrigStyle
 from dhsym.robot import Robot
 
 from .data import DynamicsDerivation, EnergyData, LinkData, NEStepData
-from .velocity_kinematics import label_key, styled
+from .derivation import heading
+from .velocity_kinematics import styled
 
 __all__ = ["derive_dynamics"]
 
@@ -218,12 +219,8 @@ def derive_dynamics(
     )
     shown += [*lag.M, *lag.C, *lag.g]
     steps = tuple(_step(s, nota, width) for s in ne_steps)
-    name = robot.name or "robot"
     return DynamicsDerivation(
-        name=name,
-        key=label_key(name),
-        convention=robot.convention.value,
-        n=n,
+        **heading(robot, n),
         gravity=tuple(as_math(x, nota) for x in lag.model.gravity),
         energies=tuple(energies),
         inertia=inertia,

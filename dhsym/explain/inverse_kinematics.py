@@ -49,7 +49,8 @@ from dhsym.notation.printers import Notation, TrigStyle
 from dhsym.robot import Robot
 
 from .data import BranchData, IKCheck, IKDerivation, IKPart, IKStepData
-from .velocity_kinematics import label_key, styled
+from .derivation import heading
+from .velocity_kinematics import styled
 
 __all__ = ["default_configuration", "derive_inverse"]
 
@@ -240,12 +241,8 @@ def derive_inverse(
     q = None if check is None or check is False else check
     if q is True:
         q = default_configuration(robot)
-    name = robot.name or "robot"
     return IKDerivation(
-        name=name,
-        key=label_key(name),
-        convention=robot.convention.value,
-        n=len(robot.variables),
+        **heading(robot, len(robot.variables)),
         structure=ik.structure,
         pose=matrix_block(Math(TeX("T"), "T"), ik.pose, Notation(), width=width),
         parts=tuple(parts),

@@ -37,7 +37,8 @@ from dhsym.notation.printers import TrigStyle
 from dhsym.robot import Robot
 
 from .data import Document
-from .velocity_kinematics import label_key, styled
+from .derivation import heading
+from .velocity_kinematics import styled
 
 __all__ = ["AxisData", "ScrewDerivation", "derive_screws"]
 
@@ -117,12 +118,8 @@ def derive_screws(
         )
     S = poe.screw_matrix("space")
     B = poe.screw_matrix("body")
-    name = robot.name or "robot"
     return ScrewDerivation(
-        name=name,
-        key=label_key(name),
-        convention=robot.convention.value,
-        n=poe.n,
+        **heading(robot, poe.n),
         space_frame=Math(TeX(str(poe.frames[0])), str(poe.frames[0])),
         tool_frame=Math(TeX(str(poe.frames[1])), str(poe.frames[1])),
         steps=tuple(steps),

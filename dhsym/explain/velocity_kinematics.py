@@ -26,7 +26,6 @@ Examples
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import sympy as sp
@@ -50,9 +49,9 @@ from dhsym.notation.printers import Notation, TrigStyle
 from dhsym.robot import Robot
 
 from .data import Block, FactorData, JacobianColumnData, JacobianDerivation, SingularityDerivation
-from .derivation import as_robot
+from .derivation import as_robot, heading
 
-__all__ = ["derive_jacobian", "derive_singularities", "label_key", "styled"]
+__all__ = ["derive_jacobian", "derive_singularities", "styled"]
 
 
 def styled(
@@ -67,15 +66,6 @@ def styled(
     if compact == robot.notation.compact and style is robot.notation.style:
         return robot
     return Robot(robot.table, compact=compact, style=style)
-
-
-def label_key(name: str) -> str:
-    """A robot's name as a LaTeX label and file key: lower case, words joined by ``-``.
-
-    >>> label_key("PUMA 560 (modified)"), label_key("")
-    ('puma-560-modified', 'robot')
-    """
-    return re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-") or "robot"
 
 
 def _indexed(base: str, index: object) -> Math:
@@ -168,12 +158,8 @@ def derive_jacobian(
     result = matrix_block(
         label, J.matrix, nota, width=width, names=indexed_names("J", columns=True)
     )
-    name = robot.name or "robot"
     return JacobianDerivation(
-        name=name,
-        key=label_key(name),
-        convention=robot.convention.value,
-        n=len(J.columns),
+        **heading(robot, len(J.columns)),
         frame=_frame_math(J.frame),
         point=point_label,
         columns=tuple(columns),
@@ -250,12 +236,8 @@ def derive_singularities(
         )
         for f in s.factors
     )
-    name = robot.name or "robot"
     return SingularityDerivation(
-        name=name,
-        key=label_key(name),
-        convention=robot.convention.value,
-        n=len(robot.variables),
+        **heading(robot, len(robot.variables)),
         method=method,
         point=(
             reference_point(robot)[1]

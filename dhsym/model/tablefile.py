@@ -48,7 +48,7 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -81,7 +81,10 @@ __all__ = [
     "read_steps",
     "read_table",
     "read_table_text",
+    "read_entry",
     "read_text_file",
+    "read_values",
+    "read_yaml_text",
     "table_from_data",
 ]
 
@@ -144,11 +147,21 @@ def read_table_text(text: str, *, file: str | None = None) -> DHTable:
     """Read a table from YAML text (through the bounded loader :func:`.yamlsafe.load_yaml`)."""
     if len(text) > MAX_FILE_BYTES:
         raise TableError("table text is too large", file=file)
+    return table_from_data(read_yaml_text(text, file=file), file=file)
+
+
+def read_yaml_text(text: str, *, file: str | None = None) -> object:
+    """The data of a robot file's YAML text (a table or a PoE), read by the bounded loader
+    (:func:`.yamlsafe.load_yaml`, at most :data:`MAX_FILE_BYTES`); what it refuses is a
+    :class:`~dhsym.errors.TableError` naming the ``file``.
+
+    >>> read_yaml_text("joints: [{type: R}]")
+    {'joints': [{'type': 'R'}]}
+    """
     try:
-        data = load_yaml(text, limits=YAMLLimits(max_bytes=MAX_FILE_BYTES))
+        return load_yaml(text, limits=YAMLLimits(max_bytes=MAX_FILE_BYTES))
     except YAMLInputError as err:
         raise TableError(err.message, file=file) from None
-    return table_from_data(data, file=file)
 
 
 _LONG_NUMBER = "a number with thousands of digits: numbers have at most 40 digits"
@@ -193,15 +206,7 @@ def _from_data(data: object, file: str | None) -> DHTable:
     if not isinstance(physical, bool):
         raise TableError("physical must be true or false", field="physical")
     rows = [_row(entry, i, physical) for i, entry in enumerate(joints, start=1)]
-    values = top.get("values") or {}
-    if not isinstance(values, Mapping):
-        raise TableError("'values' must map symbol names to numbers", field="values")
-    checked = {}
-    for k, v in values.items():
-        expr = as_expr(v, field=f"values.{k}")
-        if expr.free_symbols:
-            raise TableError(f"value of {k} must be a number, got {v!r}", field=f"values.{k}")
-        checked[str(k)] = expr
+    checked = read_values(top.get("values") or None)
     base = _elementaries(top.get("base"), "base", unit)
     tool = _elementaries(top.get("tool"), "tool", unit)
     _check_variables(rows, base, tool)
@@ -219,6 +224,30 @@ def _from_data(data: object, file: str | None) -> DHTable:
         **_gravity(top),
         **({} if physical else {"physical": False}),
     )
+
+
+def read_values(values: object) -> dict[str, sp.Expr]:
+    """A file's ``values:`` (symbol name → number) read exactly, by name (``None``: none);
+    a non-number names its field (``values.a2``).
+
+    >>> read_values({"a2": 0.4318, "d3": "pi/20"})
+    {'a2': 2159/5000, 'd3': pi/20}
+    >>> read_values({"a2": "l2"})
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.TableError: field values.a2: value of a2 must be a number, got 'l2'
+    """
+    if values is None:
+        return {}
+    if not isinstance(values, Mapping):
+        raise TableError("'values' must map symbol names to numbers", field="values")
+    out = {}
+    for k, v in values.items():
+        expr = as_expr(v, field=f"values.{k}")
+        if expr.free_symbols:
+            raise TableError(f"value of {k} must be a number, got {v!r}", field=f"values.{k}")
+        out[str(k)] = expr
+    return out
 
 
 def _check_variables(
@@ -257,15 +286,39 @@ def _gravity(top: Mapping[str, Any]) -> dict[str, object]:
     return {"gravity": tuple(as_expr(v, field="gravity") for v in g)}
 
 
-def _row(entry: object, i: int, physical: bool = True) -> DHRow:
+def read_entry(
+    entry: object,
+    i: int,
+    canon: Callable[[object], str],
+    keys: tuple[str, ...],
+    *,
+    like: str,
+    what: str = "row",
+    key: str = "column",
+) -> dict[str, object]:
+    """Row ``i`` of a file (a ``what`` written ``like``) by its ``canon`` key names, each one
+    of ``keys``; a row that is no mapping, or a ``key`` it does not know, names the row.
+
+    >>> read_entry({"Theta": 0}, 1, str.lower, ("theta",), like="{theta: ...}")
+    {'theta': 0}
+    >>> read_entry({"x": 0}, 2, str, ("theta", "d"), like="{theta: ...}")
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.TableError: row 2, field x: unknown column 'x': expected theta, d
+    """
     if not isinstance(entry, Mapping):
-        raise TableError("each row must be a mapping like {type: R, theta: ..., ...}", row=i)
-    row = {_canon(k): v for k, v in entry.items()}
-    for key in row:
-        if key not in _ROW_KEYS:
+        raise TableError(f"each {what} must be a mapping like {like}", row=i)
+    row = {canon(k): v for k, v in entry.items()}
+    for name in row:
+        if name not in keys:
             raise TableError(
-                f"unknown column {key!r}: expected {', '.join(_ROW_KEYS)}", row=i, field=key
+                f"unknown {key} {name!r}: expected {', '.join(keys)}", row=i, field=name
             )
+    return row
+
+
+def _row(entry: object, i: int, physical: bool = True) -> DHRow:
+    row = read_entry(entry, i, _canon, _ROW_KEYS, like="{type: R, theta: ..., ...}")
     for key in ("theta", "d", "a", "alpha"):
         if key not in row:
             raise TableError(f"missing column {key!r}", row=i, field=key)

@@ -269,6 +269,15 @@ def load_yaml(
         raise err.located(file=file) from None
 
 
+def _link_refused(what: str, path: Path) -> FileRefused:
+    """The refusal of a file that is a symbolic link."""
+    return FileRefused(
+        f"{what} is not a regular file (a symbolic link: links are not read)",
+        kind="link",
+        file=str(path),
+    )
+
+
 def read_limited(
     path: str | Path,
     limit: int,
@@ -295,20 +304,12 @@ def read_limited(
     if not follow_links:
         flags |= getattr(os, "O_NOFOLLOW", 0)
     if not follow_links and p.is_symlink():
-        raise FileRefused(
-            f"{what} is not a regular file (a symbolic link: links are not read)",
-            kind="link",
-            file=str(p),
-        )
+        raise _link_refused(what, p)
     try:
         fd = os.open(p, flags)
     except OSError as err:
         if err.errno == errno.ELOOP:
-            raise FileRefused(
-                f"{what} is not a regular file (a symbolic link: links are not read)",
-                kind="link",
-                file=str(p),
-            ) from None
+            raise _link_refused(what, p) from None
         raise FileRefused(f"cannot read {what}: {err.strerror}", file=str(p)) from None
     st = os.fstat(fd)
     if not stat.S_ISREG(st.st_mode):

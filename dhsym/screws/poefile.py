@@ -55,8 +55,13 @@ from dhsym.kinematics.transforms import plain_product
 from dhsym.model.entries import as_expr
 from dhsym.model.kinds import AngleUnit
 from dhsym.model.parsing import symbol
-from dhsym.model.tablefile import MAX_FILE_BYTES, read_steps, read_text_file
-from dhsym.model.yamlsafe import YAMLInputError, YAMLLimits, load_yaml
+from dhsym.model.tablefile import (
+    read_entry,
+    read_steps,
+    read_text_file,
+    read_values,
+    read_yaml_text,
+)
 from dhsym.notation.printers import Notation, decimal_lengths
 
 from .algebra import ScrewAxis, adjoint, is_zero
@@ -85,11 +90,7 @@ def read_poe(path: str | os.PathLike[str]) -> ProductOfExponentials:
 
 def read_poe_text(text: str, *, file: str | None = None) -> ProductOfExponentials:
     """Read a PoE description from YAML text (the bounded loader of the table files)."""
-    try:
-        data = load_yaml(text, limits=YAMLLimits(max_bytes=MAX_FILE_BYTES))
-    except YAMLInputError as err:
-        raise TableError(err.message, file=file) from None
-    return poe_from_data(data, file=file)
+    return poe_from_data(read_yaml_text(text, file=file), file=file)
 
 
 def poe_from_data(data: object, *, file: str | None = None) -> ProductOfExponentials:
@@ -198,14 +199,8 @@ def _vec(row: Mapping[str, Any], key: str, i: int) -> sp.ImmutableMatrix:
 
 
 def _joint(entry: object, i: int) -> tuple[ScrewAxis, sp.Symbol]:
-    if not isinstance(entry, Mapping):
-        raise TableError("each joint must be a mapping like {type: R, w: [...], v: [...]}", row=i)
-    row = {_canon(k): v for k, v in entry.items()}
-    for key in row:
-        if key not in _JOINT_KEYS:
-            raise TableError(
-                f"unknown key {key!r}: expected {', '.join(_JOINT_KEYS)}", row=i, field=key
-            )
+    like = "{type: R, w: [...], v: [...]}"
+    row = read_entry(entry, i, _canon, _JOINT_KEYS, like=like, what="joint", key="key")
     kind = str(row.get("type", "R" if "w" in row else "P")).strip().upper()
     if kind not in ("R", "P"):
         raise TableError(f"type must be R or P, got {kind!r}", row=i, field="type")
@@ -243,14 +238,4 @@ def _joint(entry: object, i: int) -> tuple[ScrewAxis, sp.Symbol]:
 
 
 def _values(values: object) -> dict[sp.Symbol, sp.Expr]:
-    if values is None:
-        return {}
-    if not isinstance(values, Mapping):
-        raise TableError("'values' must map symbol names to numbers", field="values")
-    out = {}
-    for k, v in values.items():
-        expr = as_expr(v, field=f"values.{k}")
-        if expr.free_symbols:
-            raise TableError(f"value of {k} must be a number, got {v!r}", field=f"values.{k}")
-        out[symbol(str(k))] = expr
-    return out
+    return {symbol(k): v for k, v in read_values(values).items()}

@@ -79,6 +79,16 @@ def _ceil_to(x: sp.Expr, dt: sp.Expr) -> sp.Expr:
     return sp.ceiling(x / dt) * dt
 
 
+def _blend(
+    start: sp.Expr, duration: sp.Expr, q0: sp.Expr, v0: sp.Expr, q1: sp.Expr, v1: sp.Expr
+) -> Segment:
+    """A blend of ``mstraj`` from ``(q0, v0)`` to ``(q1, v1)``, at rest in acceleration at
+    both ends (the quintic of :func:`~.profiles.polynomial_segment`)."""
+    zero = sp.Integer(0)
+    seg, _ = polynomial_segment(start, duration, [q0, v0, zero], [q1, v1, zero])
+    return seg
+
+
 def mstraj(
     via: object,
     dt: object,
@@ -156,31 +166,20 @@ def mstraj(
             )
         seg_times.append(tseg)
         qd = [d / tseg for d in dq]
+        into = [a + half * v for a, v in zip(q_prev, qd)]  # where the straight line starts
         if first > 0:
             for j in range(n):
-                seg, _ = polynomial_segment(
-                    clock,
-                    first,
-                    [pos[j], v_prev[j], sp.Integer(0)],
-                    [q_prev[j] + half * qd[j], qd[j], sp.Integer(0)],
-                )
-                joints[j].append(seg)
+                joints[j].append(_blend(clock, first, pos[j], v_prev[j], into[j], qd[j]))
         clock += first
         if line > 0:
             for j in range(n):
-                joints[j].append(Segment(clock, clock + line, (q_prev[j] + half * qd[j], qd[j])))
+                joints[j].append(Segment(clock, clock + line, (into[j], qd[j])))
         clock += line
         pos = [a + (tseg - half) * v for a, v in zip(q_prev, qd)]
         q_prev, v_prev = q_next, qd
     if half > 0:
         for j in range(n):
-            seg, _ = polynomial_segment(
-                clock,
-                half,
-                [pos[j], v_prev[j], sp.Integer(0)],
-                [q_prev[j], v_end[j], sp.Integer(0)],
-            )
-            joints[j].append(seg)
+            joints[j].append(_blend(clock, half, pos[j], v_prev[j], q_prev[j], v_end[j]))
     labels = tuple(f"T_{k + 1} (segment {k + 1})" for k in range(ns))
     eqs = tuple(sp.Eq(s, v, evaluate=False) for s, v in zip(T_syms, seg_times))
     d = Derivation(labels, eqs, tuple(T_syms), tuple(seg_times))

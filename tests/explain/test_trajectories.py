@@ -69,19 +69,6 @@ def test_lspb_pieces_are_the_profile() -> None:
         assert got == want
 
 
-@pytest.mark.tex
-@pytest.mark.slow
-def test_handout_trajectory_section_compiles_without_overfull_boxes(tmp_path, need_tex) -> None:  # type: ignore[no-untyped-def]
-    from dhsym.explain.documents import write_handout
-    from dhsym.explain.latex import run_latex
-
-    tex = write_handout(["puma560"], tmp_path / "traj.tex", sections="fk,trajectory")
-    assert r"\subsection{Trajectories}" in tex.read_text()
-    run = run_latex(tex)
-    assert run.pdf.exists()
-    assert list(run.issues) == [], [str(i) for i in run.issues]
-
-
 def test_control_document_in_every_format(capsys: pytest.CaptureFixture[str]) -> None:
     from dhsym.explain.trajectories import derive_control
 
@@ -97,12 +84,21 @@ def test_control_document_in_every_format(capsys: pytest.CaptureFixture[str]) ->
 
 @pytest.mark.tex
 @pytest.mark.slow
-def test_handout_control_section_compiles_without_overfull_boxes(tmp_path, need_tex) -> None:  # type: ignore[no-untyped-def]
+@pytest.mark.parametrize(
+    ("robot", "sections", "heading"),
+    [
+        ("puma560", "fk,trajectory", "Trajectories"),
+        ("planar2r", "fk,trajectory,control", "Control"),
+    ],
+)
+def test_handout_section_compiles_without_overfull_boxes(  # type: ignore[no-untyped-def]
+    tmp_path, need_tex, robot: str, sections: str, heading: str
+) -> None:
     from dhsym.explain.documents import write_handout
     from dhsym.explain.latex import run_latex
 
-    tex = write_handout(["planar2r"], tmp_path / "ctl.tex", sections="fk,trajectory,control")
-    assert r"\subsection{Control}" in tex.read_text()
+    tex = write_handout([robot], tmp_path / "section.tex", sections=sections)
+    assert rf"\subsection{{{heading}}}" in tex.read_text()
     run = run_latex(tex)
     assert run.pdf.exists()
     assert list(run.issues) == [], [str(i) for i in run.issues]

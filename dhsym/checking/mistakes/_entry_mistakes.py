@@ -31,13 +31,22 @@ from typing import ClassVar, TypeAlias, TypeVar, cast
 import numpy as np
 import sympy as sp
 
-from dhsym.model.table import DHRow, DHTable
+from dhsym.model.table import DHTable
 
 from ..comparing.equivalence import close, values
 from ..comparing.table_match import Chain, same_cells
 from ..comparing.verdict import Diagnosis
 from ..reading.limits import check_time
-from ._mistake_base import MatrixCase, Mistake, TableCase, TableEdit, cell_text
+from ._mistake_base import (
+    MatrixCase,
+    Mistake,
+    RowFilter,
+    Rows,
+    TableCase,
+    TableEdit,
+    cell_text,
+    listed,
+)
 
 __all__ = [
     "DroppedTerm",
@@ -207,11 +216,10 @@ def grouped(case: MatrixCase, found: list[tuple[tuple[int, int], str]]) -> str:
         elif len(where) == 1:
             out.append(text.replace(_HERE, case.where(where[0])))
         else:
-            names = [case.where(p) for p in where]
-            listed = ", ".join(names[:-1]) + " and " + names[-1]
-            text = text.replace(f"entry {_HERE}", f"entries {listed}")
-            text = text.replace(f"Entry {_HERE} has", f"Entries {listed} have")
-            out.append(text.replace(_HERE, listed))
+            names = listed([case.where(p) for p in where])
+            text = text.replace(f"entry {_HERE}", f"entries {names}")
+            text = text.replace(f"Entry {_HERE} has", f"Entries {names} have")
+            out.append(text.replace(_HERE, names))
     return " ".join(out)
 
 
@@ -244,11 +252,7 @@ class WrongSign(EntryMistake):
         return f"In entry {where} the term {nota.text(part)} has the wrong sign{inside}."
 
     def table_edits(
-        self,
-        rows: tuple[DHRow, ...],
-        key: DHTable,
-        within: frozenset[int] | None = None,
-        touching: frozenset[int] | None = None,
+        self, rows: Rows, key: DHTable, within: RowFilter = None, touching: RowFilter = None
     ) -> Iterator[TableEdit]:
         """Each cell of ``rows`` with its sign flipped (a joint's entry: its offset), told
         with the key's value of that cell (a cell another slip wrote: its sign flipped too)."""

@@ -40,10 +40,13 @@ if TYPE_CHECKING:
 __all__ = [
     "MatrixCase",
     "Mistake",
+    "RowFilter",
+    "Rows",
     "TableCase",
     "TableEdit",
     "Variants",
     "cell_text",
+    "listed",
     "prepare_variants",
 ]
 
@@ -51,6 +54,9 @@ __all__ = [
 Variants: TypeAlias = tuple[tuple[np.ndarray, str], ...]
 #: one slip in a table's rows: (the rows under it, what the student did, the rows it names)
 TableEdit: TypeAlias = tuple[tuple[DHRow, ...], str, tuple[int, ...]]
+#: a table's rows, and the 1-based rows a slip may rewrite or must touch (None: any)
+Rows: TypeAlias = tuple[DHRow, ...]
+RowFilter: TypeAlias = frozenset[int] | None
 
 
 @dataclass(frozen=True, eq=False)
@@ -154,11 +160,7 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
         return iter(())
 
     def table_edits(
-        self,
-        rows: tuple[DHRow, ...],
-        key: DHTable,
-        within: frozenset[int] | None = None,
-        touching: frozenset[int] | None = None,
+        self, rows: Rows, key: DHTable, within: RowFilter = None, touching: RowFilter = None
     ) -> Iterator[TableEdit]:
         """``rows`` (the key's, or the key's under another slip) under one slip of this kind,
         each told against the ``key`` (the search of two slips in one table composes them:
@@ -254,7 +256,16 @@ def _placed(case: MatrixCase, hits: list[tuple[int, int]], detail: str) -> str:
     names = [case.where(p) for p in hits]
     if len(names) == 1:
         return detail.replace("{entries}", f"entry {names[0]}")
-    return detail.replace("{entries}", "entries " + ", ".join(names[:-1]) + " and " + names[-1])
+    return detail.replace("{entries}", f"entries {listed(names)}")
+
+
+def listed(names: list[str]) -> str:
+    """``(1,4), (2,4) and (3,4)``: several entries named in one sentence.
+
+    >>> listed(["(1,4)", "(2,4)", "(3,4)"])
+    '(1,4), (2,4) and (3,4)'
+    """
+    return ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def _reproduces(variant: np.ndarray, key: np.ndarray) -> bool:

@@ -27,7 +27,7 @@ from ..comparing.table_match import Chain, same_cells
 from ..comparing.verdict import Diagnosis
 from ..reading.limits import check_time
 from ._entry_mistakes import PAIR_BUDGET
-from ._mistake_base import MatrixCase, Mistake, TableCase, TableEdit, cell_text
+from ._mistake_base import MatrixCase, Mistake, RowFilter, Rows, TableCase, TableEdit, cell_text
 
 __all__ = [
     "DegreesAsRadians",
@@ -49,14 +49,43 @@ def shifted(rows: tuple[DHRow, ...], step: int, names: tuple[str, ...]) -> tuple
     return tuple(out)
 
 
-class IndexShift(Mistake):
+class _RowRewrite(Mistake):
+    """A mistake that rewrites the key's rows (:meth:`_rewrites`), then recomputes: the
+    matrix of the rewritten rows, the rewritten table, and its slips in a pair."""
+
+    def _rewrites(
+        self, rows: Rows, key: Rows, convention: Convention, table: bool, within: RowFilter
+    ) -> Iterator[TableEdit]:
+        """``rows`` under this mistake (the entries named as the ``key``'s rows have
+        them; ``table``: a table's variants, else a matrix's), each with what the student
+        did and the 1-based rows a table's diagnosis names; only the variants that rewrite
+        rows in ``within`` (1-based; None: all) need be given."""
+        raise NotImplementedError
+
+    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
+        for rows, detail, _ in self._rewrites(case.rows, case.rows, case.convention, False, None):
+            yield case.chain_values(rows, case.convention), detail
+
+    def table_variants(self, case: TableCase) -> Iterator[tuple[Chain, str, tuple[int, ...]]]:
+        key, conv = tuple(case.key.rows), case.key.convention
+        for rows, detail, where in self._rewrites(key, key, conv, True, None):
+            yield Chain(rows, conv), detail, where
+
+    def table_edits(
+        self, rows: Rows, key: DHTable, within: RowFilter = None, touching: RowFilter = None
+    ) -> Iterator[TableEdit]:
+        for new, detail, _ in self._rewrites(rows, tuple(key.rows), key.convention, True, within):
+            yield from _kept(rows, new, detail, within, touching)
+
+
+class IndexShift(_RowRewrite):
     """α and a taken from the neighbouring row (α_i where α_{i-1} belongs, or back)."""
 
     kind, title = "index_shift", "α/a index shifted by one row"
 
-    def _variants(
-        self, rows: tuple[DHRow, ...], convention: Convention
-    ) -> Iterator[tuple[tuple[DHRow, ...], str]]:
+    def _rewrites(
+        self, rows: Rows, key: Rows, convention: Convention, table: bool, within: RowFilter
+    ) -> Iterator[TableEdit]:
         own = "α_{i-1}, a_{i-1}" if convention is Convention.MODIFIED else "α_i, a_i"
         for step in (1, -1):
             for names in (("alpha", "a"), ("alpha",)):
@@ -67,25 +96,8 @@ class IndexShift(Mistake):
                         f"{what} come from the {'next' if step == 1 else 'previous'} row: in the "
                         f"{convention.value} convention row i holds {own}."
                     ),
+                    (),
                 )
-
-    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
-        for rows, detail in self._variants(case.rows, case.convention):
-            yield case.chain_values(rows, case.convention), detail
-
-    def table_variants(self, case: TableCase) -> Iterator[tuple[Chain, str, tuple[int, ...]]]:
-        for rows, detail in self._variants(case.key.rows, case.key.convention):
-            yield Chain(rows, case.key.convention), detail, ()
-
-    def table_edits(
-        self,
-        rows: tuple[DHRow, ...],
-        key: DHTable,
-        within: frozenset[int] | None = None,
-        touching: frozenset[int] | None = None,
-    ) -> Iterator[TableEdit]:
-        for new, detail in self._variants(rows, key.convention):
-            yield from _kept(rows, new, detail, within, touching)
 
 
 def _changed(before: tuple[DHRow, ...], after: tuple[DHRow, ...]) -> tuple[int, ...]:
@@ -117,27 +129,22 @@ def _no_offset(row: DHRow) -> DHRow:
     return replace(row, d=row.variable)
 
 
-class OffsetMissing(Mistake):
+class OffsetMissing(_RowRewrite):
     """A constant joint offset (θ3 + π/2) left out."""
 
     kind, title = "offset_missing", "joint offset missing"
 
-    def _variants(
-        self,
-        rows: tuple[DHRow, ...],
-        told: tuple[DHRow, ...] | None = None,
-        within: frozenset[int] | None = None,
-    ) -> Iterator[tuple[tuple[DHRow, ...], str, tuple[int, ...]]]:
+    def _rewrites(
+        self, rows: Rows, key: Rows, convention: Convention, table: bool, within: RowFilter
+    ) -> Iterator[TableEdit]:
         """The offsets of ``rows`` left out, all and one by one; the entries are named as
-        ``told`` (the key's rows, when ``rows`` are under another slip) has them; only the
-        variants that rewrite rows in ``within`` (1-based; None: all)."""
-        told = rows if told is None else told
+        the ``key``'s rows (not ``rows``, when they are under another slip) have them."""
         with_offset = [k for k, r in enumerate(rows) if r.variable is not None and r.offset != 0]
         if not with_offset or not any(_inside([k], within) for k in with_offset):
             return
         # rows with a variable are joint rows, whose variable_field is "theta" or "d"
         names = ", ".join(
-            f"row {k + 1}: {sp.sstr(getattr(told[k], cast(str, told[k].variable_field)))}"
+            f"row {k + 1}: {sp.sstr(getattr(key[k], cast(str, key[k].variable_field)))}"
             for k in with_offset
         )
         if _inside(with_offset, within):
@@ -153,28 +160,10 @@ class OffsetMissing(Mistake):
                 tuple(_no_offset(r) if j == k else r for j, r in enumerate(rows)),
                 (
                     f"The joint offset of row {k + 1} is missing: the entry is "
-                    f"{sp.sstr(getattr(told[k], cast(str, told[k].variable_field)))}."
+                    f"{sp.sstr(getattr(key[k], cast(str, key[k].variable_field)))}."
                 ),
                 (k + 1,),
             )
-
-    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
-        for rows, detail, _ in self._variants(case.rows):
-            yield case.chain_values(rows, case.convention), detail
-
-    def table_variants(self, case: TableCase) -> Iterator[tuple[Chain, str, tuple[int, ...]]]:
-        for rows, detail, where in self._variants(case.key.rows):
-            yield Chain(rows, case.key.convention), detail, where
-
-    def table_edits(
-        self,
-        rows: tuple[DHRow, ...],
-        key: DHTable,
-        within: frozenset[int] | None = None,
-        touching: frozenset[int] | None = None,
-    ) -> Iterator[TableEdit]:
-        for new, detail, _ in self._variants(rows, tuple(key.rows), within):
-            yield from _kept(rows, new, detail, within, touching)
 
 
 def _inside(rows: list[int], within: frozenset[int] | None) -> bool:
@@ -186,14 +175,14 @@ def _angle_terms(expr: sp.Expr, factor: sp.Expr) -> sp.Expr:
     return sp.Add(*[t if t.free_symbols else t * factor for t in sp.Add.make_args(expr)])
 
 
-class DegreesAsRadians(Mistake):
+class DegreesAsRadians(_RowRewrite):
     """An angle in degrees used as radians (cos 90 for cos 90°), or the other way round."""
 
     kind, title = "degrees_as_radians", "degrees read as radians"
 
-    def _variants(
-        self, rows: tuple[DHRow, ...], table: bool = False, within: frozenset[int] | None = None
-    ) -> Iterator[tuple[tuple[DHRow, ...], str, tuple[int, ...]]]:
+    def _rewrites(
+        self, rows: Rows, key: Rows, convention: Convention, table: bool, within: RowFilter
+    ) -> Iterator[TableEdit]:
         """All rows' angles, then one row's (the degrees in one row of a table; with
         ``table``, then the radians written in one row of a table in degrees); only the
         variants that rewrite rows in ``within`` (1-based; None: all).
@@ -230,24 +219,6 @@ class DegreesAsRadians(Mistake):
                     f"Row {k + 1}: {detail}",
                     (k + 1,),
                 )
-
-    def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
-        for rows, detail, _ in self._variants(case.rows):
-            yield case.chain_values(rows, case.convention), detail
-
-    def table_variants(self, case: TableCase) -> Iterator[tuple[Chain, str, tuple[int, ...]]]:
-        for rows, detail, where in self._variants(case.key.rows, table=True):
-            yield Chain(rows, case.key.convention), detail, where
-
-    def table_edits(
-        self,
-        rows: tuple[DHRow, ...],
-        key: DHTable,
-        within: frozenset[int] | None = None,
-        touching: frozenset[int] | None = None,
-    ) -> Iterator[TableEdit]:
-        for new, detail, _ in self._variants(rows, table=True, within=within):
-            yield from _kept(rows, new, detail, within, touching)
 
 
 def _scaled(row: DHRow, factor: sp.Expr) -> DHRow:

@@ -5,25 +5,10 @@ from __future__ import annotations
 import sympy as sp
 
 import dhsym
-from dhsym.checking import Key, check_answer
 from dhsym.checking.mistakes._matrix_mistakes import BlockTransposed
-from dhsym.kinematics.transforms import link_word, plain_product
 from dhsym.model.table import Convention
 
-PUMA = dhsym.load("puma560")
-
-
-def text(M) -> str:
-    return str(sp.Matrix(M).tolist())
-
-
-def product(rows, convention, reverse=False):
-    links = [list(link_word(r, convention)) for r in rows]
-    return plain_product([e for link in (links[::-1] if reverse else links) for e in link])
-
-
-def check(robot, question, answer):
-    return check_answer(Key.load(robot, question), answer)
+from ._answers import PUMA, check, product, text
 
 
 def test_transposed():

@@ -9,27 +9,13 @@ import pytest
 import sympy as sp
 
 import dhsym
-from dhsym.checking import Key, check_answer
-from dhsym.kinematics.transforms import link_word, plain_product
 from dhsym.model.table import Convention
+
+from ._answers import PUMA, check, product, text
 
 ROOT = Path(__file__).resolve().parents[3]
 SEED002 = ROOT / "tests" / "data" / "seeds" / "002_8d4894e47f2048cf.txt"
 GENERIC = ROOT / "examples" / "homework" / "generic_modified_link.yaml"
-PUMA = dhsym.load("puma560")
-
-
-def text(M) -> str:
-    return str(sp.Matrix(M).tolist())
-
-
-def product(rows, convention, reverse=False):
-    links = [list(link_word(r, convention)) for r in rows]
-    return plain_product([e for link in (links[::-1] if reverse else links) for e in link])
-
-
-def check(robot, question, answer):
-    return check_answer(Key.load(robot, question), answer)
 
 
 def test_seed_002_slide_is_wrong_at_entry_2_4_with_the_sign_diagnosis():

@@ -1,0 +1,25 @@
+"""What the tests of the mistakes share: a matrix written as a student types it, the
+plain product of rows, and one answer checked against a built-in key."""
+
+from __future__ import annotations
+
+import sympy as sp
+
+import dhsym
+from dhsym.checking import Key, check_answer
+from dhsym.kinematics.transforms import link_word, plain_product
+
+PUMA = dhsym.load("puma560")
+
+
+def text(M) -> str:
+    return str(sp.Matrix(M).tolist())
+
+
+def product(rows, convention, reverse=False):
+    links = [list(link_word(r, convention)) for r in rows]
+    return plain_product([e for link in (links[::-1] if reverse else links) for e in link])
+
+
+def check(robot, question, answer):
+    return check_answer(Key.load(robot, question), answer)
