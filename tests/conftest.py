@@ -40,14 +40,17 @@ STARTS_A_PROGRAM = frozenset(
 
 def program_modules_first(items: list) -> None:
     """Put first, in place and otherwise in order, the test modules with a test that starts
-    TeX, Chromium or a Jupyter kernel (:data:`STARTS_A_PROGRAM`): the long tests are handed
-    out first and the short ones last, so that no worker is left alone with a long module
-    at the end of a run. A module's tests stay together (a module-scoped fixture is built
+    TeX, Chromium or a Jupyter kernel (:data:`STARTS_A_PROGRAM`), then the modules that
+    build a shared fixture (:func:`_builds_once`: all their tests are one unit of work, the
+    largest units pytest-xdist hands out): the long units are handed out first and the
+    short ones last, so that no worker is left alone with a long one at the end of a run
+    while the other waits. A module's tests stay together (a module-scoped fixture is built
     once)."""
     first = {
         item.path for item in items if STARTS_A_PROGRAM & set(getattr(item, "fixturenames", ()))
     }
-    items.sort(key=lambda item: item.path not in first)  # sort is stable
+    units = {item.path for item in items if _builds_once(Path(item.path))}
+    items.sort(key=lambda item: (item.path not in first, item.path not in units))  # stable
 
 
 @pytest.hookimpl(trylast=True)

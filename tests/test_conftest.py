@@ -99,10 +99,29 @@ def test_modules_that_start_a_program_come_first_and_stay_together():
     assert items == order
 
 
+def test_then_the_modules_whose_tests_are_one_unit():
+    def item(path: str, *fixtures: str) -> SimpleNamespace:
+        return SimpleNamespace(path=ROOT / path, fixturenames=("tmp_path", *fixtures))
+
+    items = [
+        item("tests/model/test_parsing.py"),
+        item("tests/checking/judging/test_ik_branches.py"),  # a module-scoped fixture
+        item("tests/explain/test_notebooks.py", "need_jupyter"),
+        item("tests/model/test_parsing.py"),
+        item("tests/checking/judging/test_ik_branches.py"),
+    ]
+    order = [items[2], items[1], items[4], items[0], items[3]]
+    program_modules_first(items)
+    assert items == order
+
+
 def test_this_session_runs_the_modules_that_start_a_program_first(request):
-    from tests.conftest import STARTS_A_PROGRAM
+    from tests.conftest import STARTS_A_PROGRAM, _builds_once
 
     items = request.session.items
     first = {i.path for i in items if STARTS_A_PROGRAM & set(getattr(i, "fixturenames", ()))}
     flags = [item.path in first for item in items]
     assert flags == sorted(flags, reverse=True)  # all of them, then the others
+    rest = [item for item in items if item.path not in first]
+    units = [_builds_once(Path(item.path)) for item in rest]
+    assert units == sorted(units, reverse=True)  # then the modules that are one unit
