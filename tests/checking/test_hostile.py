@@ -14,9 +14,11 @@ from pathlib import Path
 
 import pytest
 
-from dhsym.checking import Key, check_answer
+from dhsym.checking import check_answer
 from dhsym.checking.reading import answers
 from dhsym.checking.reading.limits import AnswerLimits
+
+from ._keys import KEYS, load_key  # each key prepared once, as a grading worker does
 
 CANARY = Path("/tmp/dhsym-hostile-canary")
 HOSTILE = [
@@ -60,7 +62,8 @@ def test_hostile_answers_are_unreadable_fast(question, answer, tmp_path, monkeyp
     monkeypatch.chdir(tmp_path)
     before = _tree(tmp_path)
     # no deadline (seconds=0): the check ends because the counted limits bound its work
-    r = check_answer(Key.load("planar2r", question), answer, limits=AnswerLimits(seconds=0))
+    key = load_key("planar2r", question)
+    r = check_answer(key, answer, limits=AnswerLimits(seconds=0), keys=KEYS)
     assert r.verdict.value in ("unreadable", "incorrect")
     if r.verdict.value == "incorrect":  # readable but wrong: say so, never crash
         assert r.diagnoses
@@ -75,9 +78,9 @@ def test_ten_megabytes_and_binary_junk(monkeypatch):
         raise AssertionError(f"an answer of {len(text)} characters was read past the gate")
 
     monkeypatch.setattr(answers, "normalize_unicode", read_past_the_gate)
-    big = check_answer(Key.load("puma560", "T0_6"), b"1" * 10_000_000)
+    big = check_answer(load_key("puma560", "T0_6"), b"1" * 10_000_000, keys=KEYS)
     assert big.verdict.value == "unreadable"
     assert big.reason == "the answer is 10000000 bytes; at most 100000 are read"
-    junk = check_answer(Key.load("puma560", "table"), os.urandom(4096))
+    junk = check_answer(load_key("puma560", "table"), os.urandom(4096), keys=KEYS)
     assert junk.verdict.value == "unreadable"
     assert junk.reason in ("the answer is not text (binary data)", "the answer is not UTF-8 text")
