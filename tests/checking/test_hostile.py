@@ -72,15 +72,17 @@ def test_hostile_answers_are_unreadable_fast(question, answer, tmp_path, monkeyp
 
 
 def test_ten_megabytes_and_binary_junk(monkeypatch):
+    px, table = load_key("puma560", "T0_6"), load_key("puma560", "table")
+
     # refused at the gate: the size and the bytes are looked at, the text never reaches
     # the normalisation that starts every reading (nor the parser after it)
     def read_past_the_gate(text: str) -> str:
         raise AssertionError(f"an answer of {len(text)} characters was read past the gate")
 
     monkeypatch.setattr(answers, "normalize_unicode", read_past_the_gate)
-    big = check_answer(load_key("puma560", "T0_6"), b"1" * 10_000_000, keys=KEYS)
+    big = check_answer(px, b"1" * 10_000_000, keys=KEYS)
     assert big.verdict.value == "unreadable"
     assert big.reason == "the answer is 10000000 bytes; at most 100000 are read"
-    junk = check_answer(load_key("puma560", "table"), os.urandom(4096), keys=KEYS)
+    junk = check_answer(table, os.urandom(4096), keys=KEYS)
     assert junk.verdict.value == "unreadable"
     assert junk.reason in ("the answer is not text (binary data)", "the answer is not UTF-8 text")
