@@ -40,14 +40,71 @@ STARTS_A_PROGRAM = frozenset(
 
 def program_modules_first(items: list) -> None:
     """Put first, in place and otherwise in order, the test modules with a test that starts
-    TeX, Chromium or a Jupyter kernel (:data:`STARTS_A_PROGRAM`): the long tests are handed
-    out first and the short ones last, so that no worker is left alone with a long module
-    at the end of a run. A module's tests stay together (a module-scoped fixture is built
+    TeX, Chromium or a Jupyter kernel (:data:`STARTS_A_PROGRAM`), then the modules that
+    build a shared fixture (:func:`_builds_once`: all their tests are one unit of work, the
+    largest units pytest-xdist hands out): the long units are handed out first and the
+    short ones last, so that no worker is left alone with a long one at the end of a run
+    while the other waits. A module's tests stay together (a module-scoped fixture is built
     once)."""
     first = {
         item.path for item in items if STARTS_A_PROGRAM & set(getattr(item, "fixturenames", ()))
     }
-    items.sort(key=lambda item: item.path not in first)  # sort is stable
+    units = {item.path for item in items if _builds_once(Path(item.path))}
+    items.sort(key=lambda item: (item.path not in first, item.path not in units))  # stable
+
+
+#: the longest tests of ``make test`` (its ``--durations`` in CI and on this machine, both
+#: steps), longest first, by node id or its start: their units of work (:func:`work_unit`)
+#: are handed out before all others, so that no worker starts one of them near the end of
+#: a run while the other has nothing left. Only the order of the run depends on this list:
+#: a test that is not in it runs all the same (``tests/test_conftest.py`` checks that each
+#: entry still names a test).
+LONGEST_FIRST = (
+    # the slow step (-m slow)
+    "tests/dynamics/test_recursive_newton_euler.py::test_lagrange_equals_newton_euler_on_six_joint_robots[puma560_modified]",
+    "tests/docs/test_site.py",
+    "tests/dynamics/test_recursive_newton_euler.py::test_lagrange_equals_newton_euler_on_the_puma560_with_its_published_parameters",
+    "tests/dynamics/test_compact_form.py",
+    "tests/export/test_compile_all.py",
+    "tests/ik/test_accuracy.py::test_every_rounded_pose_is_solved_and_its_branch_found[jaco-",
+    "tests/test_installed.py",
+    "tests/checking/platforms/test_otter_example.py",
+    "tests/ik/test_accuracy.py::test_every_rounded_pose_is_solved_and_its_branch_found[panda.urdf-",
+    "tests/dynamics/test_recursive_newton_euler.py::test_lagrange_equals_newton_euler_on_six_joint_robots[stanford]",
+    "tests/test_fuzz.py::test_every_file_loader_gives_a_result_or_a_clear_error",
+    "tests/ik/test_kept_derivations.py::test_a_warm_and_a_cold_process_agree_to_the_bit",
+    "tests/control/test_controllers.py",
+    # the quick step
+    "tests/explain/test_notebooks.py::test_notebook_runs_clean[14_control.ipynb]",
+    "tests/explain/test_latex.py",
+    "tests/kinematics/test_simplification.py::test_inverse_word_composes_to_identity",
+    "tests/geometry/test_frames.py::test_measured_geometry_works_through_frames_fk_and_convert",
+    "tests/geometry/test_conversion.py::test_round_trip_gives_back_every_table_with_its_base_and_tool",
+    "tests/explain/test_notebooks.py::test_notebook_runs_clean[09_inverse_kinematics.ipynb]",
+    "tests/kinematics/test_numeric.py::test_numeric_equals_symbolic",
+    "tests/explain/test_notebooks.py::test_notebook_runs_clean[01_planar_2R.ipynb]",
+    "tests/export/test_languages.py::test_python[jaco]",
+    "tests/test_architecture.py::test_imports_point_one_way_without_circles",
+    "tests/screws/test_product.py::test_singularities_from_the_determinant",
+)
+
+
+def _rank(nodeid: str) -> int:
+    """The place of the test ``nodeid`` in :data:`LONGEST_FIRST` (its length if absent)."""
+    for k, start in enumerate(LONGEST_FIRST):
+        if nodeid.startswith(start):
+            return k
+    return len(LONGEST_FIRST)
+
+
+def longest_first(items: list, root: Path) -> None:
+    """Put first, in place, the units of work (:func:`work_unit`) of the tests named in
+    :data:`LONGEST_FIRST`, in its order; the others keep their order (stable)."""
+    rank: dict[str, int] = {}
+    for item in items:
+        unit = work_unit(item.nodeid, root)
+        rank[unit] = min(rank.get(unit, len(LONGEST_FIRST)), _rank(item.nodeid))
+    items.sort(key=lambda item: rank[work_unit(item.nodeid, root)])
 
 
 @pytest.hookimpl(trylast=True)
@@ -55,6 +112,7 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     # last: after ``-m``/``-k`` have deselected, so a module whose only program-starting
     # tests are deselected (``-m "not slow"``) is not put first
     program_modules_first(items)
+    longest_first(items, config.rootpath)
 
 
 @pytest.hookimpl(optionalhook=True)
@@ -63,12 +121,15 @@ def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object:
     except that the tests of a module defining a module-, class- or package-scoped
     fixture (the docs site, the wheel and its venv, the exports of every robot, a grading
     key, ...) go to one worker together (:func:`work_unit`), so that the fixture is built
-    once, not once by each worker that gets one of its tests. Another ``--dist`` is left
-    as asked."""
+    once, not once by each worker that gets one of its tests; the units are handed out in
+    the order of the items (:func:`longest_first`). Another ``--dist`` is left as asked."""
     if config.getoption("dist") != "load":
         return None
     from xdist.scheduler import LoadScopeScheduling
 
+    # the units go out in the order of the items (pytest_collection_modifyitems: the
+    # longest first), not re-sorted by their number of tests (xdist's loadscope reorder)
+    config.option.loadscopereorder = False
     root = config.rootpath
 
     class SharedFixtureScheduling(LoadScopeScheduling):

@@ -10,7 +10,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from tests.conftest import program_modules_first, work_unit
+from tests.conftest import LONGEST_FIRST, longest_first, program_modules_first, work_unit
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -99,10 +99,56 @@ def test_modules_that_start_a_program_come_first_and_stay_together():
     assert items == order
 
 
-def test_this_session_runs_the_modules_that_start_a_program_first(request):
-    from tests.conftest import STARTS_A_PROGRAM
+def test_then_the_modules_whose_tests_are_one_unit():
+    def item(path: str, *fixtures: str) -> SimpleNamespace:
+        return SimpleNamespace(path=ROOT / path, fixturenames=("tmp_path", *fixtures))
 
-    items = request.session.items
+    items = [
+        item("tests/model/test_parsing.py"),
+        item("tests/checking/judging/test_ik_branches.py"),  # a module-scoped fixture
+        item("tests/explain/test_notebooks.py", "need_jupyter"),
+        item("tests/model/test_parsing.py"),
+        item("tests/checking/judging/test_ik_branches.py"),
+    ]
+    order = [items[2], items[1], items[4], items[0], items[3]]
+    program_modules_first(items)
+    assert items == order
+
+
+def test_the_longest_tests_go_first_with_their_units():
+    def item(nodeid: str) -> SimpleNamespace:
+        return SimpleNamespace(nodeid=nodeid)
+
+    six = "tests/dynamics/test_recursive_newton_euler.py::test_lagrange_equals_newton_euler_on_"
+    items = [
+        item("tests/model/test_parsing.py::test_a"),
+        item("tests/docs/test_site.py::test_b"),  # a unit: the module (a shared fixture)
+        item(six + "six_joint_robots[stanford]"),
+        item("tests/docs/test_site.py::test_a"),
+        item(six + "six_joint_robots[puma560_modified]"),
+        item(six + "built_in_robots[planar2r]"),
+    ]
+    order = [items[4], items[1], items[3], items[2], items[0], items[5]]
+    longest_first(items, ROOT)
+    assert items == order
+
+
+def test_each_of_the_longest_tests_is_a_test():
+    for entry in LONGEST_FIRST:
+        path, _, name = entry.partition("::")
+        assert (ROOT / path).is_file(), entry
+        if name:
+            assert f"def {name.split('[')[0]}(" in (ROOT / path).read_text(), entry
+
+
+def test_this_session_runs_the_modules_that_start_a_program_first(request):
+    from tests.conftest import STARTS_A_PROGRAM, _builds_once, _rank
+
+    # after the longest tests' units (LONGEST_FIRST), which go before all others
+    items = [i for i in request.session.items if _rank(i.nodeid) == len(LONGEST_FIRST)]
     first = {i.path for i in items if STARTS_A_PROGRAM & set(getattr(i, "fixturenames", ()))}
     flags = [item.path in first for item in items]
     assert flags == sorted(flags, reverse=True)  # all of them, then the others
+    rest = [item for item in items if item.path not in first]
+    units = [_builds_once(Path(item.path)) for item in rest]
+    assert units == sorted(units, reverse=True)  # then the modules that are one unit

@@ -52,6 +52,30 @@ def worst_case_text(prefix: str, filler: str, kind: str, n: int) -> str:
     return unit * max(1, n // max(1, len(unit))) + "\x00"
 
 
+def sleep_naming_the_process(job: tuple[float, str]) -> None:
+    """Sleep ``seconds``, after writing this process's id into ``folder`` (a file named by
+    the id, holding the seconds), so that a test can see whether the process is gone."""
+    import time
+
+    seconds, folder = job
+    with open(os.path.join(folder, str(os.getpid())), "w", encoding="ascii") as f:
+        f.write(repr(seconds))
+    time.sleep(seconds)
+
+
+def is_gone(pid: int) -> bool:
+    """Whether the process ``pid`` no longer runs (ended and reaped, or a zombie)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return True
+    try:
+        with open(f"/proc/{pid}/stat", encoding="ascii") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
+    except FileNotFoundError:
+        return True
+
+
 def die_or_square(n: int) -> int:
     """``n * n``; a negative ``n`` ends the process at once (exit code 3)."""
     if n < 0:

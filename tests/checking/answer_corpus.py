@@ -95,18 +95,23 @@ class Outcome:
     why: str = ""
 
 
-def run_case(case: Case) -> Outcome:
-    """Check one case; ``ok`` when verdict, mistake, reason and message are as expected."""
+def run_case(case: Case, keys: object = None) -> Outcome:
+    """Check one case; ``ok`` when verdict, mistake, reason and message are as expected.
+
+    ``keys``: a map of prepared keys (:class:`~dhsym.checking.judging.key.PreparedKeys`)
+    that keeps each key prepared for the next cases (the tests); without it every case
+    prepares its key (the benchmark's time per answer)."""
     from dhsym.checking import Key, check_answer
 
-    kwargs = {"tool_free": False}
+    kwargs: dict[str, object] = {"tool_free": False}
     if case.rounding is not None:
         if "rounding" not in inspect.signature(Key.load).parameters:
             return Outcome(case, "?", False, "this dhsym has no rounding option")
         kwargs["rounding"] = case.rounding
+    shared = {} if keys is None else {"keys": keys}
     try:
-        key = Key.load(case.robot, case.question, **kwargs)
-        result = check_answer(key, case.answer)
+        key = Key.load(case.robot, case.question, **kwargs, **shared)
+        result = check_answer(key, case.answer, **shared)
     except Exception as err:  # noqa: BLE001 - the benchmark also runs older code
         return Outcome(case, "error", False, f"{type(err).__name__}: {err}")
     got = result.verdict.value

@@ -14,15 +14,16 @@ import sympy as sp
 
 import dhsym
 from dhsym.checking import Key, check_answer
-from dhsym.checking.judging.key import PreparedKeys
 from dhsym.checking.reading.answers import answer_text
 from dhsym.errors import DHError
+
+from ._keys import KEYS, load_key  # each key prepared once, as a grading worker does
 
 HOMEWORK = Path(__file__).resolve().parents[2] / "examples" / "homework"
 
 
 def verdict(robot: str, question: str, answer: object) -> str:
-    return check_answer(Key.load(robot, question), answer).verdict.value
+    return check_answer(load_key(robot, question), answer, keys=KEYS).verdict.value
 
 
 # --- 5: the notations of textbooks and numpy ------------------------------------------------
@@ -86,10 +87,10 @@ def test_check_reads_a_sympy_matrix_and_a_list_of_statements():
     t2 = sp.Symbol("theta2", real=True)
     px = a1 * sp.cos(x) + a2 * sp.cos(x + t2)
     assert dhsym.check(px, key="planar2r", question="px").result.verdict.value == "correct"
-    key = Key.load("planar2r", "T0_2")
+    key = load_key("planar2r", "T0_2")
     matrix = dhsym.Robot(key.table).transform(0, 2).matrix  # the key's own, a sympy matrix
-    assert check_answer(key, matrix).verdict.value == "correct"
-    assert check_answer(key, matrix.tolist()).verdict.value == "correct"
+    assert check_answer(key, matrix, keys=KEYS).verdict.value == "correct"
+    assert check_answer(key, matrix.tolist(), keys=KEYS).verdict.value == "correct"
 
 
 def test_a_key_of_the_wrong_type_is_refused_clearly():
@@ -519,26 +520,24 @@ def _text(matrix: sp.Matrix) -> str:
 
 @pytest.mark.parametrize("robot", ["planar2r", "scara"])
 def test_a_jacobian_in_omega_v_order_is_right_and_named(robot):
-    from dhsym.checking.judging.key import prepare
-
-    key = Key.load(robot, "J")
-    J = prepare(key).part.expected
-    result = check_answer(key, _text(sp.Matrix.vstack(J[3:, :], J[:3, :])))
+    key = load_key(robot, "J")
+    J = KEYS.get(key).part.expected
+    result = check_answer(key, _text(sp.Matrix.vstack(J[3:, :], J[:3, :])), keys=KEYS)
     assert result.verdict.value == "correct"
     assert "[ω; v]" in result.message and not result.diagnoses
-    assert check_answer(key, _text(J)).verdict.value == "correct"
+    assert check_answer(key, _text(J), keys=KEYS).verdict.value == "correct"
 
 
 @pytest.mark.parametrize("question", ["px", "T0_2[0,3]"])
 def test_a_constant_answer_is_no_transposed_matrix(question):
-    result = check_answer(Key.load("planar2r", question), "0")
+    result = check_answer(load_key("planar2r", question), "0", keys=KEYS)
     assert result.verdict.value == "incorrect"
     assert "transposed" not in result.kinds
 
 
 def test_a_circular_ik_answer_is_named_not_misdiagnosed():
     answer = IK_T2.replace("theta1 = atan2(py, px) - atan2(a2*S2, a1 + a2*C2)", "theta1 = theta1")
-    result = check_answer(Key.load("planar2r", "ik"), answer)
+    result = check_answer(load_key("planar2r", "ik"), answer, keys=KEYS)
     assert result.verdict.value == "incorrect"
     assert result.kinds == ("circular",)
 
@@ -563,17 +562,15 @@ def _nodes(expr: sp.Expr, kind: type) -> list[sp.Expr]:
 
 @st.composite
 def _edits(draw: st.DrawFn) -> tuple[Key, tuple[int, int], sp.Expr, sp.Expr]:
-    from dhsym.checking.judging.key import prepare
-
     robot, question = draw(st.sampled_from(_QUESTIONS))
-    key = Key.load(robot, question)
-    expected = prepare(key).part.expected
+    key = load_key(robot, question)
+    expected = KEYS.get(key).part.expected
     i = draw(st.integers(0, expected.rows - 1))
     j = draw(st.integers(0, expected.cols - 1))
     entry = expected[i, j]
     how = draw(st.sampled_from(["add", "scale", "swap_function", "rename", "tiny"]))
     symbols = sorted(
-        prepare(key).part.symbols & set(expected.free_symbols), key=sp.default_sort_key
+        KEYS.get(key).part.symbols & set(expected.free_symbols), key=sp.default_sort_key
     )
     if how == "add":
         edited = entry + draw(st.sampled_from([sp.Rational(1, 3), -2, sp.Rational(1, 1000)]))
@@ -608,11 +605,6 @@ def _differs(a: sp.Expr, b: sp.Expr) -> bool:
     return False
 
 
-#: the keys of the property below, each prepared once for its many answers (as a grading
-#: worker does)
-_PREPARED = PreparedKeys()
-
-
 @pytest.mark.slow
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(_edits())
@@ -620,9 +612,9 @@ def test_a_random_edit_that_changes_the_value_is_never_graded_right(case):
     key, (i, j), entry, edited = case
     if not _differs(entry, edited):
         return  # the edit kept the value (cos of a zero angle, a symbol renamed to itself)
-    matrix = sp.Matrix(_PREPARED.get(key).part.expected)
+    matrix = sp.Matrix(KEYS.get(key).part.expected)
     matrix[i, j] = edited
-    result = check_answer(key, answer_text(matrix.tolist()), keys=_PREPARED)
+    result = check_answer(key, answer_text(matrix.tolist()), keys=KEYS)
     assert result.verdict.value != "correct", (key.name, key.question.spec, (i, j), edited)
 
 

@@ -6,6 +6,8 @@ import pytest
 
 from tests.checking.answer_corpus import VERDICTS, load_corpus, run_case
 
+from ._keys import KEYS  # each key prepared once, as a grading worker does
+
 CASES = load_corpus()
 
 
@@ -28,5 +30,5 @@ def test_corpus_is_large_and_covers_every_verdict():
 
 @pytest.mark.parametrize("case", CASES, ids=[c.id for c in CASES])
 def test_corpus_answer(case):
-    outcome = run_case(case)
+    outcome = run_case(case, KEYS)
     assert outcome.ok, f"{case.answer!r}: {outcome.why}"

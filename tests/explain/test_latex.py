@@ -106,10 +106,10 @@ def test_shell_escape_is_off_and_absolute_reads_are_refused(tmp_path, need_tex):
 def test_a_runaway_document_is_killed_after_the_timeout(tmp_path, need_tex):
     tex = tmp_path / "loop.tex"
     tex.write_text(_doc("\\def\\a{\\a}\\a"))
-    start = time.monotonic()
-    with pytest.raises(DHError, match="did not finish"):
+    # the loop never ends by itself: the call returns only because the run is killed at its
+    # time limit, which the error names (no clock in the test: a loaded machine passes too)
+    with pytest.raises(DHError, match=r"did not finish within 2 s on .*loop\.tex"):
         compile_pdf(tex, timeout=2)
-    assert time.monotonic() - start < 30
 
 
 # --- the handouts, compiled ------------------------------------------------------------------

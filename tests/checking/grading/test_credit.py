@@ -89,15 +89,16 @@ def test_ik_all_branches_of_the_puma_count_each_branch_once():
     """The PUMA 560's derivation with the shoulder sign fixed (σ1 = +1) gives 4 of its 8
     branches: each is named, and credit: entries gives half the points."""
     import dhsym
-    from dhsym.checking import Key, check_answer
     from dhsym.checking.grading.credit import Credit
+
+    from .._keys import check_answer, load_key  # the key prepared once, as a worker does
 
     robot = dhsym.load("puma560")
     steps = robot.inverse().steps
     text = "\n".join(
         f"{robot.notation.text(st.lhs)} = {robot.notation.text(st.rhs)}" for st in steps
     ).replace("sigma_1*", "")
-    result = check_answer(Key.load("puma560", "ik all"), text)
+    result = check_answer(load_key("puma560", "ik all"), text)
     assert result.verdict.value == "incorrect"
     assert len(result.branches) == 8 and sum(ok for _, ok in result.branches) == 4
     assert len({name for name, _ in result.branches}) == 8

@@ -6,14 +6,14 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from dhsym.checking.judging.checker import check_answer
-from dhsym.checking.judging.key import Key
 from dhsym.checking.reading.questions import Question
 from dhsym.dynamics.lagrange_euler import link_jacobians
 from dhsym.dynamics.model import dynamic_model
 from dhsym.errors import DHError
 from dhsym.model.tablefile import read_table_text
 from dhsym.robot import Robot
+
+from .._keys import check_answer, load_key  # each key prepared once, as a grading worker does
 
 SPONG = """
 name: Two-link planar elbow arm (Spong)
@@ -38,7 +38,7 @@ C_RIGHT = f"[[{H}*qdot2, {H}*qdot2 + {H}*qdot1], [-{H}*qdot1, 0]]"
 
 
 def check(question: str, answer: str, table: object = TABLE):
-    return check_answer(Key.load(table, question), answer)
+    return check_answer(load_key(table, question), answer)
 
 
 def assert_diagnosed(result, kind: str) -> None:
@@ -189,7 +189,7 @@ def test_unknown_symbol_named():
 
 def test_builtin_robot_with_textbook_symbols():
     r = check_answer(
-        Key.load("planar2r", "M[1,1]"), "Izz2 + m2*(a2**2 + 2*a2*rx2 + rx2**2 + ry2**2)"
+        load_key("planar2r", "M[1,1]"), "Izz2 + m2*(a2**2 + 2*a2*rx2 + rx2**2 + ry2**2)"
     )
     assert r.verdict.value == "correct", r.message
 

@@ -13,15 +13,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dhsym
-from dhsym.checking import Key, check_answer
+from dhsym.checking import check_answer
 from dhsym.checking.comparing.verdict import Verdict
 from dhsym.checking.judging.ik_check import MIN_REAL_POSES, _where_real
-from dhsym.checking.judging.key import PreparedKeys
 from dhsym.checking.reading.limits import AnswerLimits
 from dhsym.explain.documents import render_derivation
 
+from .._keys import KEYS, load_key  # each key prepared once, as a grading worker does
+
 ROBOTS = ("ur5", "puma560", "stanford")
-KEYS = PreparedKeys()
 _STATEMENT = re.compile(r"^ {5}([A-Za-z][A-Za-z0-9_]*) = (.+)$")
 
 
@@ -68,7 +68,7 @@ def test_every_printed_branch_is_right(derivation):
     name, statements = derivation
     names = sigmas(statements)
     assert len(names) == 3, statements
-    key = Key.load(name, "ik")
+    key = load_key(name, "ik")
     for signs in itertools.product((1, -1), repeat=len(names)):
         r = check_answer(key, branch(statements, dict(zip(names, signs))), keys=KEYS)
         assert r.verdict is Verdict.CORRECT, (signs, r.message)
@@ -76,7 +76,7 @@ def test_every_printed_branch_is_right(derivation):
 
 def test_the_printed_sigma_form_is_every_solution(derivation):
     name, statements = derivation
-    r = check_answer(Key.load(name, "ik all"), "\n".join(statements), keys=KEYS)
+    r = check_answer(load_key(name, "ik all"), "\n".join(statements), keys=KEYS)
     assert r.verdict is Verdict.CORRECT, r.message
     assert "8 branches" in r.message
 
@@ -86,9 +86,9 @@ def test_the_plus_minus_form_of_the_ur5():
     statements = printed_statements("ur5")
     text = re.sub(r"\bsigma_[0-9]+\*", "±", "\n".join(statements))
     assert text.count("±") == 3
-    r = check_answer(Key.load("ur5", "ik all"), text, keys=KEYS)
+    r = check_answer(load_key("ur5", "ik all"), text, keys=KEYS)
     assert r.verdict is Verdict.CORRECT, r.message
-    r = check_answer(Key.load("ur5", "ik"), text, keys=KEYS)  # each choice is a solution
+    r = check_answer(load_key("ur5", "ik"), text, keys=KEYS)  # each choice is a solution
     assert r.verdict is Verdict.CORRECT, r.message
 
 
@@ -113,7 +113,7 @@ def _mutants(statements: list[str]) -> list[tuple[str, int, str]]:
 def test_one_slip_in_a_step_is_named(derivation):
     name, statements = derivation
     names = sigmas(statements)
-    key = Key.load(name, "ik")
+    key = load_key(name, "ik")
     right = branch(statements, dict.fromkeys(names, 1))
     lines = right.splitlines()
     tried = 0
@@ -188,7 +188,7 @@ def test_a_value_where_the_branch_has_none_or_none_where_it_has_one_is_wrong(the
     assert right in text
     helpers = "E_3 = sqrt(x_4)\nQ_3 = (1 - D_3**2)**2"
     text = text.replace(right, f"{helpers}\ntheta3 = {theta3}")
-    r = check_answer(Key.load("ur5", "ik"), text, keys=KEYS, limits=AnswerLimits(seconds=60))
+    r = check_answer(load_key("ur5", "ik"), text, keys=KEYS, limits=AnswerLimits(seconds=60))
     assert r.verdict is Verdict.INCORRECT, r.message
     assert r.kinds[0] == "branch_domain", r.message
     assert words in r.message

@@ -2,22 +2,15 @@
 
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 import pytest
 
 import dhsym
 from dhsym.checking import Key
-from dhsym.checking import check_answer as _check_answer
-from dhsym.checking.judging.key import PreparedKeys
 from dhsym.checking.reading.answer_value import read_answer_value
 from dhsym.ik.steps import BRANCH_NAMES
 
-#: each key prepared once for the answers of this module, as a grading worker does (the
-#: path without prepared keys is tested in test_checker.py and test_rounding.py)
-KEYS = PreparedKeys()
-check_answer = functools.partial(_check_answer, keys=KEYS)
+from .._keys import check_answer, load_key  # each key prepared once, as a grading worker does
 
 D = "((p_x^2 + p_y^2 - a1^2 - a2^2)/(2*a1*a2))"
 THETA1 = "theta1 = atan2(p_y, p_x) - atan2(a2*S2, a1 + a2*C2)"
@@ -34,7 +27,7 @@ def _key_answer(name: str, signs: dict[int, int], notation: str = "C1") -> str:
 @pytest.mark.parametrize("name", ["planar2r", "scara", "stanford", "puma560", "puma560_modified"])
 def test_every_branch_of_the_derivation_is_right_and_named(name):
     ik = dhsym.load(name).inverse()
-    key = Key.load(name, "ik")
+    key = load_key(name, "ik")
     for choice in ({}, {b.joint: -1 for b in ik.branches}):
         r = check_answer(key, _key_answer(name, choice))
         assert r.correct, r.message
@@ -47,7 +40,7 @@ def test_every_branch_of_the_derivation_is_right_and_named(name):
 
 
 def test_the_2r_in_other_valid_forms():
-    key = Key.load("planar2r", "ik")
+    key = load_key("planar2r", "ik")
     forms = [
         f"theta2 = acos({D})\n{THETA1}",
         f"c2 = {D}; s2 = -sqrt(1 - c2^2); theta2 = atan2(s2, c2); "
@@ -66,7 +59,7 @@ def test_the_2r_in_other_valid_forms():
 
 
 def test_numbers_for_the_lengths_use_the_tables_values():
-    key = Key.load("planar2r", "ik")
+    key = load_key("planar2r", "ik")
     answer = (
         "theta2 = acos((p_x^2 + p_y^2 - 1.64)/1.6)\n"
         "theta1 = atan2(p_y, p_x) - atan2(0.8*S2, 1 + 0.8*C2)"
@@ -75,7 +68,7 @@ def test_numbers_for_the_lengths_use_the_tables_values():
 
 
 def test_atan_for_atan2_is_named():
-    key = Key.load("planar2r", "ik")
+    key = load_key("planar2r", "ik")
     r = check_answer(key, f"theta2 = acos({D})\ntheta1 = atan(p_y/p_x) - atan2(a2*S2, a1 + a2*C2)")
     assert not r.correct and r.kinds == ("atan_for_atan2",)
     assert "atan(p_y/p_x) for atan2(p_y, p_x)" in r.message
@@ -88,22 +81,22 @@ def test_atan_for_atan2_is_named():
 
 def test_atan_in_the_puma_waist_is_named():
     answer = _key_answer("puma560", {}).replace("atan2(c_y, c_x)", "atan(c_y/c_x)")
-    r = check_answer(Key.load("puma560", "ik"), answer)
+    r = check_answer(load_key("puma560", "ik"), answer)
     assert r.kinds[0] == "atan_for_atan2"
 
 
 def test_a_wrong_sign_under_the_root_is_named():
-    key = Key.load("planar2r", "ik")
+    key = load_key("planar2r", "ik")
     r = check_answer(key, f"theta2 = atan2(sqrt({D}^2 - 1), {D})\n{THETA1}")
     assert not r.correct and r.kinds == ("wrong_root_sign",)
     answer = _key_answer("puma560", {}).replace("- d3**2)", "+ d3**2)")
     assert "+ d3**2" in answer
-    r = check_answer(Key.load("puma560", "ik"), answer)
+    r = check_answer(load_key("puma560", "ik"), answer)
     assert r.kinds[0] == "wrong_root_sign" and "c_x**2 + c_y**2 + d3**2" in r.message
 
 
 def test_every_branch_with_plus_minus():
-    key = Key.load("planar2r", "ik all")
+    key = load_key("planar2r", "ik all")
     both = f"theta2 = atan2(±sqrt(1 - {D}^2), {D})\n{THETA1}"
     r = check_answer(key, both)
     assert r.correct and "every solution" in r.message
@@ -117,20 +110,20 @@ def test_every_branch_with_plus_minus():
 
 
 def test_a_lost_branch_is_named():
-    key = Key.load("planar2r", "ik all")
+    key = load_key("planar2r", "ik all")
     r = check_answer(key, f"theta2 = acos({D})\n{THETA1}")
     assert not r.correct and r.kinds == ("lost_branch",)
     assert "only the elbow down branch (θ2)" in r.message and "1 of the 2 solutions" in r.message
     puma = _key_answer("puma560", {}).replace("r = sqrt", "r = ±sqrt")  # the wrist flip lost
     r = check_answer(
-        Key.load("puma560", "ik all"), puma.replace("theta3 = atan2(sqrt", "theta3 = atan2(±sqrt")
+        load_key("puma560", "ik all"), puma.replace("theta3 = atan2(sqrt", "theta3 = atan2(±sqrt")
     )
     assert r.kinds == ("lost_branch",) and "only the wrist not flipped branch (θ5)" in r.message
     assert "4 of the 8 solutions" in r.message
 
 
 def test_one_branch_questions_accept_one_branch():
-    key = Key.load("puma560", "ik")
+    key = load_key("puma560", "ik")
     assert check_answer(key, _key_answer("puma560", {1: -1, 5: -1})).correct
 
 
@@ -140,13 +133,13 @@ def test_numbers_for_a_given_pose(q):
     spec = "ik@" + ",".join(map(str, q))
     sols = robot.ik(robot.fk(q)[:3, 3])
     for name, row in zip(sols.branches, sols.q):
-        r = check_answer(Key.load("planar2r", spec), ", ".join(f"{x:.4f}" for x in row))
+        r = check_answer(load_key("planar2r", spec), ", ".join(f"{x:.4f}" for x in row))
         assert r.correct and name in r.message, r.message
         degrees = ", ".join(f"{np.degrees(x):.2f}°" for x in row)
-        assert check_answer(Key.load("planar2r", spec), degrees).correct
+        assert check_answer(load_key("planar2r", spec), degrees).correct
     everything = "\n".join(", ".join(f"{x:.5f}" for x in row) for row in sols.q)
-    assert check_answer(Key.load("planar2r", "ik all@" + spec[3:]), everything).correct
-    lost = check_answer(Key.load("planar2r", "ik all@" + spec[3:]), everything.splitlines()[0])
+    assert check_answer(load_key("planar2r", "ik all@" + spec[3:]), everything).correct
+    lost = check_answer(load_key("planar2r", "ik all@" + spec[3:]), everything.splitlines()[0])
     assert lost.kinds == ("lost_branch",)
 
 
@@ -156,7 +149,7 @@ def test_numbers_with_atan_or_too_few_digits():
     px, py = robot.fk(q)[:2, 3]
     gamma = np.arctan2(0.8 * np.sin(0.6), 1 + 0.8 * np.cos(0.6))
     wrong = np.arctan(py / px) - gamma
-    key = Key.load("planar2r", "ik@2.5,0.6")
+    key = load_key("planar2r", "ik@2.5,0.6")
     r = check_answer(key, f"theta1 = {wrong:.5f}, theta2 = 0.6")
     assert r.kinds == ("atan_for_atan2",)
     assert not check_answer(key, "2.4, 0.6").correct  # 2 significant digits: not close enough
@@ -169,13 +162,13 @@ def test_the_puma_numbers_all_eight():
     sols = robot.ik(robot.fk(q))
     spec = "ik all@" + ",".join(map(str, q))
     text = "\n".join(", ".join(f"{x:.6f}" for x in row) for row in sols.q)
-    assert check_answer(Key.load("puma560", spec), text).correct
-    r = check_answer(Key.load("puma560", spec), "\n".join(text.splitlines()[:6]))
+    assert check_answer(load_key("puma560", spec), text).correct
+    r = check_answer(load_key("puma560", spec), "\n".join(text.splitlines()[:6]))
     assert r.kinds == ("lost_branch",) and "6 of the 8 solutions" in r.message
 
 
 def test_unreadable_and_incomplete_answers():
-    key = Key.load("planar2r", "ik")
+    key = load_key("planar2r", "ik")
     assert check_answer(key, "theta1 = atan2(p_y, p_x)").kinds == ("missing_joint",)
     r = check_answer(key, "theta1 = atan2(p_y, p_x); theta2 = banana")
     assert r.kinds == ("unknown_symbol",) and "banana" in r.message
@@ -184,7 +177,7 @@ def test_unreadable_and_incomplete_answers():
     r = check_answer(key, "theta1 = ±±±±±±±0")
     assert r.verdict.value == "unreadable" and "more than 6 signs" in r.message
     with pytest.raises(dhsym.DHError, match="no closed-form"):  # the key's fault, not the answer's
-        Key.load("planar4r", "ik")
+        load_key("planar4r", "ik")
 
 
 def test_reading_statements_and_helpers():
@@ -205,7 +198,7 @@ def test_feedback_renders_an_ik_result():
     from dhsym.checking import render_check
 
     answer = f"theta2 = acos({D})\ntheta1 = atan(p_y/p_x) - atan2(a2*S2, a1 + a2*C2)"
-    r = check_answer(Key.load("planar2r", "ik"), answer)
+    r = check_answer(load_key("planar2r", "ik"), answer)
     page = render_check(r)
     assert "atan instead of atan2" in page
     assert [(e.col, e.correct) for e in r.entries] == [(1, False), (2, True)]
@@ -215,7 +208,7 @@ def test_feedback_renders_an_ik_result():
 def test_long_digit_runs_in_an_ik_answer_are_refused_by_the_parser():
     """The tolerance comes from the parser's literals (no text scan of its own): a long
     run of digits is refused there, in linear time."""
-    key = Key.load("planar2r", "ik")
+    key = load_key("planar2r", "ik")
     for text in ("x" + "1" * 20_000, "1" * 20_000 + ".", "a" + "1" * 20_000 + ".5"):
         assert check_answer(key, f"theta1 = {text}\ntheta2 = 0").verdict.value == "unreadable"
 
@@ -223,4 +216,4 @@ def test_long_digit_runs_in_an_ik_answer_are_refused_by_the_parser():
 @pytest.mark.slow
 def test_an_ik_question_on_a_general_6r_is_refused_by_the_key():
     with pytest.raises(dhsym.DHError, match="general 6R: its inverse kinematics is an"):
-        Key.load("jaco", "ik")
+        load_key("jaco", "ik")

@@ -2,23 +2,15 @@
 
 from __future__ import annotations
 
-import functools
-
 import pytest
 import sympy as sp
 
 import dhsym
-from dhsym.checking import Key
-from dhsym.checking import check_answer as _check_answer
-from dhsym.checking.judging.key import PreparedKeys
 from dhsym.checking.mistakes._jacobian_mistakes import next_axis_jacobian
 from dhsym.kinematics.jacobian import geometric_jacobian
 from dhsym.kinematics.singularities import singularities
 
-#: each key prepared once for the answers of this module, as a grading worker does (the
-#: path without prepared keys is tested in test_checker.py and test_rounding.py)
-KEYS = PreparedKeys()
-check_answer = functools.partial(_check_answer, keys=KEYS)
+from .._keys import check_answer, load_key  # each key prepared once, as a grading worker does
 
 
 def _matrix(M: sp.MatrixBase, nota) -> str:
@@ -38,7 +30,7 @@ def _full(M: sp.MatrixBase) -> str:
 def test_the_key_in_lecture_notation_and_expanded_is_right(name):
     robot = dhsym.load(name)
     J = robot.jacobian().matrix
-    key = Key.load(name, "J")
+    key = load_key(name, "J")
     r = check_answer(key, _matrix(J, robot.notation))
     assert r.correct, r.message
     assert r.message == f"All {J.rows * J.cols} entries are right."
@@ -47,7 +39,7 @@ def test_the_key_in_lecture_notation_and_expanded_is_right(name):
 
 
 def test_the_2r_jacobian_in_latex_with_identities():
-    key = Key.load("planar2r", "J")
+    key = load_key("planar2r", "J")
     answer = (
         r"\begin{bmatrix} -a_1 \sin\theta_1 - a_2 \sin(\theta_1 + \theta_2) & -a_2 S_{12} \\"
         r" a_1 c_1 + a_2 (c_1 c_2 - s_1 s_2) & a_2 C_{12} \\ 0 & 0 \\ 0 & 0 \\ 0 & 0 \\"
@@ -57,7 +49,7 @@ def test_the_2r_jacobian_in_latex_with_identities():
 
 
 def test_an_entry_of_j():
-    key = Key.load("puma560", "J[2,1]")  # row 3, column 2: a2 C2 + a3 C23 - d4 S23
+    key = load_key("puma560", "J[2,1]")  # row 3, column 2: a2 C2 + a3 C23 - d4 S23
     assert check_answer(key, "a2*C2 + a3*C23 - d4*S23").correct
     assert check_answer(key, "a2 cos(theta2) + a3 cos(theta2 + theta3) - d4 sin(q2 + q3)").correct
     wrong = check_answer(key, "a2*C2 + a3*C23 + d4*S23")
@@ -68,7 +60,7 @@ def test_an_entry_of_j():
 def test_the_tool_frame_is_named(name):
     robot = dhsym.load(name)
     r = check_answer(
-        Key.load(name, "J"), _matrix(geometric_jacobian(robot, frame="tool").matrix, robot.notation)
+        load_key(name, "J"), _matrix(geometric_jacobian(robot, frame="tool").matrix, robot.notation)
     )
     assert not r.correct and r.kinds[0] == "tool_frame", r.message
     assert "tool frame" in r.message
@@ -77,7 +69,7 @@ def test_the_tool_frame_is_named(name):
 @pytest.mark.parametrize("name", ["planar2r", "puma560", "puma560_modified", "stanford"])
 def test_the_axis_of_the_other_convention_is_named(name):
     robot = dhsym.load(name)
-    r = check_answer(Key.load(name, "J"), _matrix(next_axis_jacobian(robot), robot.notation))
+    r = check_answer(load_key(name, "J"), _matrix(next_axis_jacobian(robot), robot.notation))
     assert not r.correct and r.kinds[0] == "next_axis", r.message
     expected = "z_i and o_i" if robot.convention.value == "standard" else "z_(i-1) and o_(i-1)"
     assert expected in r.message
@@ -87,12 +79,12 @@ def test_a_missing_prismatic_column_is_named():
     robot = dhsym.load("stanford")
     J = robot.jacobian().matrix
     short = J[:, [0, 1, 3, 4, 5]]
-    r = check_answer(Key.load("stanford", "J"), _matrix(short, robot.notation))
+    r = check_answer(load_key("stanford", "J"), _matrix(short, robot.notation))
     assert not r.correct and r.kinds[0] == "missing_column"
     assert "column 3 belongs to the prismatic joint d3" in r.message
     zero = sp.Matrix(J).as_mutable()
     zero[:, 2] = sp.zeros(6, 1)
-    r = check_answer(Key.load("stanford", "J"), _matrix(zero, robot.notation))
+    r = check_answer(load_key("stanford", "J"), _matrix(zero, robot.notation))
     assert r.kinds[0] == "prismatic_column"
 
 
@@ -102,7 +94,7 @@ def test_a_prismatic_column_built_like_a_revolute_one_is_named():
     z = sp.Matrix([0, 0, -1])
     lever = robot.transform(0, 4).matrix[:3, 3] - robot.transform(0, 2).matrix[:3, 3]
     J[:, 2] = sp.Matrix.vstack(z.cross(lever), z)
-    r = check_answer(Key.load("scara", "J"), _matrix(J, robot.notation))
+    r = check_answer(load_key("scara", "J"), _matrix(J, robot.notation))
     assert not r.correct and "prismatic_column" in r.kinds, r.message
 
 
@@ -110,7 +102,7 @@ def test_a_prismatic_column_built_like_a_revolute_one_is_named():
 def test_det_j_right_in_any_sign_and_form(name):
     robot = dhsym.load(name)
     det = singularities(robot).determinant
-    key = Key.load(name, "det J")
+    key = load_key(name, "det J")
     assert check_answer(key, robot.notation.text(det)).correct
     flipped = check_answer(key, robot.notation.text(-det))
     assert flipped.correct and "up to its sign" in flipped.message
@@ -120,7 +112,7 @@ def test_det_j_right_in_any_sign_and_form(name):
 def test_det_j_of_the_puma_with_a_missing_factor_or_one_block():
     robot = dhsym.load("puma560")
     s = singularities(robot)
-    key = Key.load("puma560", "det J")
+    key = load_key("puma560", "det J")
     r = check_answer(key, "a2*(a2*C2 + a3*C23 - d4*S23)*(a3*S3 + d4*C3)")  # S5 left out
     assert not r.correct and r.kinds[0] == "block_determinant"  # that is det J11 (up to sign)
     r = check_answer(key, "a2*S5*(a3*S3 + d4*C3)")  # the shoulder factor left out
@@ -130,13 +122,13 @@ def test_det_j_of_the_puma_with_a_missing_factor_or_one_block():
 
 
 def test_question_labels_and_bad_questions():
-    assert Key.load("planar2r", "J[1,0]").question.label == "J[1,0]"
+    assert load_key("planar2r", "J[1,0]").question.label == "J[1,0]"
     with pytest.raises(dhsym.DHError, match="the rows of J are 0"):
-        Key.load("planar2r", "J[6,0]")
+        load_key("planar2r", "J[6,0]")
     with pytest.raises(dhsym.DHError, match="the columns of J are 0 … 1"):  # the key's fault
-        Key.load("planar2r", "J[0,5]")
+        load_key("planar2r", "J[0,5]")
 
 
 def test_a_wrong_shape_is_unreadable():
-    r = check_answer(Key.load("planar2r", "J"), "[[1, 0], [0, 1]]")
+    r = check_answer(load_key("planar2r", "J"), "[[1, 0], [0, 1]]")
     assert r.verdict.value == "unreadable" and "a 6×2 matrix" in r.message

@@ -11,14 +11,15 @@ import sympy as sp
 
 import dhsym
 from dhsym.checking import Key, check_answer
-from dhsym.checking.judging.key import PreparedKeys, prepare
+from dhsym.checking.judging.key import prepare
 from dhsym.checking.judging.screw_key import ScrewPart, screw_key_matrix
 from dhsym.screws.poefile import read_poe
+
+from .._keys import KEYS  # each key prepared once, as a grading worker does
 
 ROBOTS = resources.files("dhsym.screws") / "robots"
 UR5 = str(ROBOTS / "lynch_park_ur5.poe.yaml")
 THREE_R = str(ROBOTS / "lynch_park_3r.poe.yaml")
-KEYS = PreparedKeys()
 
 #: Lynch and Park, Example 4.5: the UR5's M, S_i and B_i as the book prints them
 UR5_M = "[[-1, 0, 0, L1 + L2], [0, 0, 1, W1 + W2], [0, 1, 0, H1 - H2], [0, 0, 0, 1]]"

@@ -8,14 +8,14 @@ import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from dhsym.checking import Key, check_answer
+from dhsym.checking import check_answer
 from dhsym.checking.comparing.verdict import Verdict
-from dhsym.checking.judging.key import PreparedKeys
 from dhsym.checking.mistakes.registry import ENTRY_MISTAKES
 from dhsym.robot import Robot
 
-KEY = Key.load("puma560", "T0_6[0,3]")  # C1*(a2*C2 + a3*C23 - d4*S23) + d3*S1
-KEYS = PreparedKeys()
+from .._keys import KEYS, load_key  # each key prepared once, as a grading worker does
+
+KEY = load_key("puma560", "T0_6[0,3]")  # C1*(a2*C2 + a3*C23 - d4*S23) + d3*S1
 PK = KEYS.get(KEY)
 E = PK.part.expected[0, 0]
 NOTA = Robot(KEY.table).notation

@@ -9,7 +9,6 @@ import pytest
 import sympy as sp
 
 import dhsym
-from dhsym.checking import Key, check_answer
 from dhsym.checking.comparing.table_match import Chain
 from dhsym.checking.comparing.verdict import Verdict
 from dhsym.checking.grading.credit import Credit
@@ -20,6 +19,8 @@ from dhsym.checking.mistakes.registry import (
     TableCase,
     diagnose_table,
 )
+
+from .._keys import check_answer, load_key  # each key prepared once, as a grading worker does
 
 PUMA = dhsym.load_table("puma560")
 HEAD = "| j | θ | d | a | α |\n|---|---|---|---|---|\n"
@@ -36,7 +37,7 @@ ROWS = (
 def puma(**changed: str):
     """The PUMA 560 table as a student types it, rows ``r<k>`` replaced, checked."""
     rows = [changed.get(f"r{k}", row) for k, row in enumerate(ROWS, 1)]
-    return check_answer(Key.load("puma560", "table"), HEAD + "\n".join(rows))
+    return check_answer(load_key("puma560", "table"), HEAD + "\n".join(rows))
 
 
 def found(result) -> list[tuple[str, tuple[int, ...]]]:

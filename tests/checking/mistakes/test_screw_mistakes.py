@@ -13,7 +13,6 @@ from dhsym.checking import Key, check_answer
 from dhsym.checking.comparing.equivalence import Sample, values
 from dhsym.checking.comparing.verdict import Verdict
 from dhsym.checking.grading.credit import Credit, mistake_kinds
-from dhsym.checking.judging.key import PreparedKeys
 from dhsym.checking.mistakes._screw_mistakes import (
     _flipped,
     _flipped_jacobian,
@@ -23,10 +22,11 @@ from dhsym.checking.mistakes._screw_mistakes import (
 from dhsym.checking.mistakes.registry import SCREW_MISTAKES
 from dhsym.screws.algebra import matrix_exp
 
+from .._keys import KEYS  # each key prepared once, as a grading worker does
+
 ROBOTS = resources.files("dhsym.screws") / "robots"
 UR5 = str(ROBOTS / "lynch_park_ur5.poe.yaml")
 THREE_R = str(ROBOTS / "lynch_park_3r.poe.yaml")
-KEYS = PreparedKeys()
 th1, th2 = sp.symbols("theta1 theta2", real=True)
 a1, a2 = sp.symbols("a1 a2", real=True)
 
