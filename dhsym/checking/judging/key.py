@@ -37,6 +37,7 @@ from dhsym.notation.printers import format_angle
 from dhsym.robot import Robot, from_poe
 from dhsym.screws.poefile import is_poe_path
 
+from ..comparing.table_match import KeyFrames
 from ..reading.answer_names import NameContext
 from ..reading.answer_value import AnswerForm
 from ..reading.questions import Question
@@ -157,9 +158,11 @@ def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
 class TablePart:
     """A table key's part: nothing to derive (the answer is compared with the key's table);
     ``cells`` is the key's table as the feedback shows it (:func:`table_cells`), printed
-    once."""
+    once; ``frames`` the key's frames where answers are compared with it
+    (:class:`~dhsym.checking.comparing.table_match.KeyFrames`), computed once."""
 
     cells: tuple[tuple[str, ...], ...] = ()
+    frames: KeyFrames | None = None
 
 
 #: the prepared part of a key, one type per kind of question
@@ -173,7 +176,7 @@ def _prepare_table(
     table: DHTable, question: Question, robot: Robot, names: NameContext
 ) -> tuple[NameContext, KeyPart]:
     """A table key: nothing to derive; its cells printed for the feedback."""
-    return names, TablePart(table_cells(table))
+    return names, TablePart(table_cells(table), KeyFrames.of(table))
 
 
 #: each kind of question's preparer (the matrix kinds share one)

@@ -52,7 +52,8 @@ def check_table(pk: PreparedKey, answer: TableAnswer) -> CheckResult:
         else ""
     )
     judged = symbolic_values(table, ans)
-    match = compare_tables(table, ans, tool_free=key.tool_free, values=judged)
+    frames = pk.part.frames if isinstance(pk.part, TablePart) else None
+    match = compare_tables(table, ans, tool_free=key.tool_free, values=judged, key_frames=frames)
     if match.same_robot and ans.convention is table.convention:
         if match.same_table:
             return CheckResult(
