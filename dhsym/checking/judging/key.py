@@ -24,7 +24,7 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TypeAlias, overload
 
@@ -206,11 +206,19 @@ class PreparedKey:
     robot: Robot
     names: NameContext
     part: KeyPart
+    #: :meth:`form`, built with the key (it depends on the key only)
+    _form: AnswerForm = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_form", self._reading_form())
 
     def form(self) -> AnswerForm:
         """What reading an answer to this key needs: the question, the names, the key's
         shape, the joints whose Jacobian column may be missing, the convention, the joint
-        variables and the lengths."""
+        variables and the lengths (built once, with the prepared key)."""
+        return self._form
+
+    def _reading_form(self) -> AnswerForm:
         table = self.key.table
         joints = [r.joint for r in table.rows if r.variable is not None]
         return AnswerForm(
