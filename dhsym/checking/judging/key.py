@@ -126,9 +126,34 @@ def _key_table(ref: str | Path) -> DHTable:
     return load_table(ref)
 
 
-def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
-    """A table as text cells, header first, in its own convention's column order."""
+def table_cells(
+    table: DHTable, like: DHTable | None = None, printed: tuple[tuple[str, ...], ...] = ()
+) -> tuple[tuple[str, ...], ...]:
+    """A table as text cells, header first, in its own convention's column order.
+
+    ``printed`` are the cells this function printed for the table ``like`` (a key's): a
+    row equal to ``like``'s row at the same place, in a table of the same convention and
+    angle unit, takes its printed cells (the same text) instead of being printed again.
+
+    >>> from dhsym import load_table
+    >>> key = load_table("planar2r")
+    >>> cells = table_cells(key)
+    >>> cells[1]
+    ('1', 'theta1', '0', 'a1', '0', 'R')
+    >>> table_cells(key, key, cells) == cells
+    True
+    >>> from dataclasses import replace
+    >>> other = replace(key, rows=(key.rows[0], replace(key.rows[1], a=2 * key.rows[1].a)))
+    >>> table_cells(other, key, cells)[1:] == table_cells(other)[1:] != cells[1:]
+    True
+    """
     deg = table.angles is AngleUnit.DEG
+    same_form = (
+        like is not None
+        and len(printed) == len(like.rows) + 1
+        and like.convention is table.convention
+        and like.angles is table.angles
+    )
     if table.convention is Convention.MODIFIED:
         head, order = (
             ("i", "alpha_{i-1}", "a_{i-1}", "d_i", "theta_i", "joint"),
@@ -141,6 +166,9 @@ def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
         )
     rows: list[tuple[str, ...]] = [head]
     for i, row in enumerate(table.rows, 1):
+        if same_form and like is not None and i <= len(like.rows) and row == like.rows[i - 1]:
+            rows.append(printed[i])  # the key's row, printed once
+            continue
         cells = [str(i)]
         for name in order:
             v = getattr(row, name)

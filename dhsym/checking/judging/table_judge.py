@@ -44,7 +44,8 @@ def check_table(pk: PreparedKey, answer: TableAnswer) -> CheckResult:
     values_ = table.value_map  # for the diagnosis; the verdict is symbolic first
     # the key's cells were printed when it was prepared
     shown = pk.part.cells if isinstance(pk.part, TablePart) else ()
-    expected_table, answer_table = shown or table_cells(table), table_cells(ans)
+    expected_table = shown or table_cells(table)
+    answer_table = table_cells(ans, table, expected_table)  # the key's rows printed once
     note = (
         " (Your angles were read as degrees, from a value above 2π, a ° or deg mark"
         " or the file's angles: deg.)"
