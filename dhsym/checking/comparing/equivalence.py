@@ -212,6 +212,8 @@ def prove_entry(
     polynomials in sines and cosines of whole multiples of the variables; other constants
     inside the functions may make it a false False, which :func:`agree_precisely` catches.
     """
+    if answer == key:  # the same expression: the difference below is 0, without building it
+        return True
     diff = answer - key
     if diff == 0:
         return True

@@ -51,7 +51,7 @@ from .backends import Progress, dask_address, run_dask, run_pool, run_serial
 from .feedback import QuestionFeedback, load_feedback_templates, render_feedback
 from .records import GradeRecord
 from .report import write_gradebook, write_summary
-from .report_files import CACHE_NAME, inside, safe_name, write_atomic
+from .report_files import CACHE_NAME, inside, inside_folder, safe_name, write_atomic
 from .sandbox import JobFailure
 from .submissions import Submission, read_submissions
 from .variants import ClassList, Variant, class_variants, variant_id
@@ -442,6 +442,7 @@ def grade(
                 own[s.uid] = a.for_variant(v)
     root.mkdir(parents=True, exist_ok=True)
     (root / "feedback").mkdir(exist_ok=True)
+    feedback = inside(root, "feedback")  # resolved once; each page name is a plain name
     deadline = lim.seconds * max(1, len(a.questions)) + _SLACK_SECONDS
     run_fp = _run_fingerprint(a, lim, deadline)
     cache_path = inside(root, CACHE_NAME)
@@ -453,7 +454,7 @@ def grade(
     failed = 0
     for s in subs:
         old = cache.get(s.uid)
-        names = [inside(root, "feedback", files[s.uid] + ext) for ext in (".md", ".html")]
+        names = [inside_folder(root, feedback, files[s.uid] + ext) for ext in (".md", ".html")]
         if s.error:
             records[s.uid] = _failed_record(s, a, JobFailure("error", s.error))
             failed += 1
@@ -490,7 +491,7 @@ def grade(
 
     for s in subs:  # the pages of submissions that could not be read at all
         if s.error:
-            _write_pages(root, files[s.uid], records[s.uid].pages)
+            _write_pages(root, feedback, files[s.uid], records[s.uid].pages)
             records[s.uid] = replace(records[s.uid], pages={})
     try:
         for k, outcome in runner:
@@ -505,7 +506,7 @@ def grade(
                 failed += 1
             else:
                 record = replace(record, fingerprint=sub.fingerprint(own.get(sub.uid, a), run_fp))
-            _write_pages(root, files[sub.uid], record.pages)
+            _write_pages(root, feedback, files[sub.uid], record.pages)
             records[sub.uid] = replace(record, pages={})
             if _final(records[sub.uid], a):
                 final[sub.uid] = records[sub.uid].to_dict()
@@ -551,6 +552,6 @@ def _class_variants(
     return class_variants(a.variants, roster.ids)
 
 
-def _write_pages(root: Path, name: str, pages: Mapping[str, str]) -> None:
+def _write_pages(root: Path, folder: Path, name: str, pages: Mapping[str, str]) -> None:
     for ext, fmt in ((".md", "md"), (".html", "html")):
-        write_atomic(inside(root, "feedback", name + ext), pages[fmt])
+        write_atomic(inside_folder(root, folder, name + ext), pages[fmt])

@@ -23,7 +23,15 @@ from pathlib import Path
 
 from dhsym.errors import DHError
 
-__all__ = ["CACHE_NAME", "csv_cell", "inside", "name_base", "safe_name", "write_atomic"]
+__all__ = [
+    "CACHE_NAME",
+    "csv_cell",
+    "inside",
+    "inside_folder",
+    "name_base",
+    "safe_name",
+    "write_atomic",
+]
 
 CACHE_NAME = ".dhsym-grading-cache.json"
 
@@ -66,6 +74,24 @@ def inside(root: Path, *parts: str) -> Path:
     if not path.is_relative_to(root):
         raise DHError(f"refusing to write outside the report folder: {path}")
     return path
+
+
+def inside_folder(root: Path, folder: Path, name: str) -> Path:
+    """:func:`inside` for a plain file ``name`` (no ``/``, no leading dot) in ``folder``,
+    a folder that :func:`inside` resolved in ``root``: one ``lstat`` instead of resolving
+    every part of the path again; only a symbolic link is resolved (and refused when it
+    leads out of ``root``).
+
+    >>> import tempfile
+    >>> root = Path(tempfile.mkdtemp()).resolve()
+    >>> folder = inside(root, "feedback")
+    >>> inside_folder(root, folder, "a.md") == inside(root, "feedback", "a.md")
+    True
+    """
+    if "/" in name or name.startswith(".") or os.sep in name:
+        raise DHError(f"not a plain file name: {name!r}")
+    path = folder / name
+    return inside(root, *path.relative_to(root).parts) if path.is_symlink() else path
 
 
 def write_atomic(path: Path, text: str) -> None:

@@ -24,7 +24,7 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TypeAlias, overload
 
@@ -37,6 +37,7 @@ from dhsym.notation.printers import format_angle
 from dhsym.robot import Robot, from_poe
 from dhsym.screws.poefile import is_poe_path
 
+from ..comparing.table_match import KeyFrames
 from ..reading.answer_names import NameContext
 from ..reading.answer_value import AnswerForm
 from ..reading.questions import Question
@@ -125,9 +126,34 @@ def _key_table(ref: str | Path) -> DHTable:
     return load_table(ref)
 
 
-def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
-    """A table as text cells, header first, in its own convention's column order."""
+def table_cells(
+    table: DHTable, like: DHTable | None = None, printed: tuple[tuple[str, ...], ...] = ()
+) -> tuple[tuple[str, ...], ...]:
+    """A table as text cells, header first, in its own convention's column order.
+
+    ``printed`` are the cells this function printed for the table ``like`` (a key's): a
+    row equal to ``like``'s row at the same place, in a table of the same convention and
+    angle unit, takes its printed cells (the same text) instead of being printed again.
+
+    >>> from dhsym import load_table
+    >>> key = load_table("planar2r")
+    >>> cells = table_cells(key)
+    >>> cells[1]
+    ('1', 'theta1', '0', 'a1', '0', 'R')
+    >>> table_cells(key, key, cells) == cells
+    True
+    >>> from dataclasses import replace
+    >>> other = replace(key, rows=(key.rows[0], replace(key.rows[1], a=2 * key.rows[1].a)))
+    >>> table_cells(other, key, cells)[1:] == table_cells(other)[1:] != cells[1:]
+    True
+    """
     deg = table.angles is AngleUnit.DEG
+    same_form = (
+        like is not None
+        and len(printed) == len(like.rows) + 1
+        and like.convention is table.convention
+        and like.angles is table.angles
+    )
     if table.convention is Convention.MODIFIED:
         head, order = (
             ("i", "alpha_{i-1}", "a_{i-1}", "d_i", "theta_i", "joint"),
@@ -140,6 +166,9 @@ def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
         )
     rows: list[tuple[str, ...]] = [head]
     for i, row in enumerate(table.rows, 1):
+        if same_form and like is not None and i <= len(like.rows) and row == like.rows[i - 1]:
+            rows.append(printed[i])  # the key's row, printed once
+            continue
         cells = [str(i)]
         for name in order:
             v = getattr(row, name)
@@ -157,9 +186,11 @@ def table_cells(table: DHTable) -> tuple[tuple[str, ...], ...]:
 class TablePart:
     """A table key's part: nothing to derive (the answer is compared with the key's table);
     ``cells`` is the key's table as the feedback shows it (:func:`table_cells`), printed
-    once."""
+    once; ``frames`` the key's frames where answers are compared with it
+    (:class:`~dhsym.checking.comparing.table_match.KeyFrames`), computed once."""
 
     cells: tuple[tuple[str, ...], ...] = ()
+    frames: KeyFrames | None = None
 
 
 #: the prepared part of a key, one type per kind of question
@@ -173,7 +204,7 @@ def _prepare_table(
     table: DHTable, question: Question, robot: Robot, names: NameContext
 ) -> tuple[NameContext, KeyPart]:
     """A table key: nothing to derive; its cells printed for the feedback."""
-    return names, TablePart(table_cells(table))
+    return names, TablePart(table_cells(table), KeyFrames.of(table))
 
 
 #: each kind of question's preparer (the matrix kinds share one)
@@ -203,11 +234,19 @@ class PreparedKey:
     robot: Robot
     names: NameContext
     part: KeyPart
+    #: :meth:`form`, built with the key (it depends on the key only)
+    _form: AnswerForm = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_form", self._reading_form())
 
     def form(self) -> AnswerForm:
         """What reading an answer to this key needs: the question, the names, the key's
         shape, the joints whose Jacobian column may be missing, the convention, the joint
-        variables and the lengths."""
+        variables and the lengths (built once, with the prepared key)."""
+        return self._form
+
+    def _reading_form(self) -> AnswerForm:
         table = self.key.table
         joints = [r.joint for r in table.rows if r.variable is not None]
         return AnswerForm(

@@ -85,8 +85,11 @@ def _compare(
     valued = sample_for(pk.key.table, ans) == "valued"
     value_map = pk.key.table.value_map
     sample = Sample.random(part.symbols | set(unknown), fixed=value_map if valued else None)
-    kv = values(expected, sample)
-    av = values(ans, sample)
+    # one memo for both at this sample: the answer's subtrees that are the key's (every
+    # entry of a right answer written as the key is) take the key's values, not a new walk
+    memo: dict[object, np.ndarray] = {}
+    kv = values(expected, sample, memo)
+    av = values(ans, sample, memo)
     near = np.asarray(close(av, kv, EXACT_RTOL, axis=0))
     entries: list[EntryResult] = []
     wrong: list[tuple[int, int]] = []

@@ -44,7 +44,8 @@ def check_table(pk: PreparedKey, answer: TableAnswer) -> CheckResult:
     values_ = table.value_map  # for the diagnosis; the verdict is symbolic first
     # the key's cells were printed when it was prepared
     shown = pk.part.cells if isinstance(pk.part, TablePart) else ()
-    expected_table, answer_table = shown or table_cells(table), table_cells(ans)
+    expected_table = shown or table_cells(table)
+    answer_table = table_cells(ans, table, expected_table)  # the key's rows printed once
     note = (
         " (Your angles were read as degrees, from a value above 2π, a ° or deg mark"
         " or the file's angles: deg.)"
@@ -52,7 +53,8 @@ def check_table(pk: PreparedKey, answer: TableAnswer) -> CheckResult:
         else ""
     )
     judged = symbolic_values(table, ans)
-    match = compare_tables(table, ans, tool_free=key.tool_free, values=judged)
+    frames = pk.part.frames if isinstance(pk.part, TablePart) else None
+    match = compare_tables(table, ans, tool_free=key.tool_free, values=judged, key_frames=frames)
     if match.same_robot and ans.convention is table.convention:
         if match.same_table:
             return CheckResult(

@@ -8,7 +8,7 @@ import pytest
 import sympy as sp
 
 from dhsym import load_table
-from dhsym.checking.comparing.table_match import Chain, compare_tables, same_cells
+from dhsym.checking.comparing.table_match import Chain, KeyFrames, compare_tables, same_cells
 from dhsym.model.table import DHTable
 
 pi = sp.pi
@@ -157,3 +157,29 @@ def test_same_cells_still_finds_the_one_changed_cell():
         assert not same_cells(t, Chain((r1, row), t.convention))
     full_turn = replace(r2, theta=r2.theta + 2 * sp.pi)
     assert same_cells(t, Chain((r1, full_turn), t.convention))
+
+
+def _match_fields(m):
+    return (m.same_robot, m.same_table, m.diverges_at, m.differences, m.reason, m.tool_differs)
+
+
+@pytest.mark.parametrize("values", ["own", "none"])
+def test_key_frames_prepared_once_give_the_same_match(values):
+    """The key's frames computed once (KeyFrames) are the frames computed per answer:
+    every kind of answer gets the same match with them as without them."""
+    given = PUMA.value_map if values == "own" else {}
+    frames = KeyFrames.of(PUMA)
+    assert frames.get(given, 11) is not None and frames.get(given, 12) is None
+    wrong = list(PUMA.rows)
+    wrong[2] = replace(wrong[2], a=sp.Rational(1, 2))
+    answers = [
+        table(PUMA, reverse_z(PUMA, 2)),
+        table(PUMA, shift_d(PUMA, 2, sp.Rational(1, 10))),
+        DHTable(tuple(wrong), PUMA.convention),
+    ]
+    for answer in answers:
+        plain = compare_tables(PUMA, answer, values=given)
+        once = compare_tables(PUMA, answer, values=given, key_frames=frames)
+        assert _match_fields(once) == _match_fields(plain)
+    other = {**PUMA.value_map, next(iter(PUMA.value_map)): sp.Integer(7)}
+    assert frames.get(other, 11) is None  # other numbers: computed per answer as before

@@ -4,7 +4,14 @@ from __future__ import annotations
 
 import pytest
 
-from dhsym.checking.grading.report_files import csv_cell, inside, name_base, safe_name, write_atomic
+from dhsym.checking.grading.report_files import (
+    csv_cell,
+    inside,
+    inside_folder,
+    name_base,
+    safe_name,
+    write_atomic,
+)
 from dhsym.errors import DHError
 
 
@@ -21,6 +28,20 @@ def test_a_path_outside_the_report_folder_is_refused(tmp_path):
     assert inside(root, "feedback", "a.md") == root / "feedback" / "a.md"
     with pytest.raises(DHError, match="outside the report folder"):
         inside(root, "..", "x")
+
+
+def test_a_page_in_the_resolved_folder_is_checked_like_inside(tmp_path):
+    root = (tmp_path / "report").resolve()
+    folder = root / "feedback"
+    folder.mkdir(parents=True)
+    assert inside_folder(root, folder, "a.md") == inside(root, "feedback", "a.md")
+    (folder / "in.md").symlink_to(root / "x.md")  # a link that stays inside: its target
+    assert inside_folder(root, folder, "in.md") == root / "x.md"
+    (folder / "out.md").symlink_to(tmp_path / "elsewhere.md")
+    with pytest.raises(DHError, match="outside the report folder"):
+        inside_folder(root, folder, "out.md")
+    with pytest.raises(DHError, match="plain file name"):
+        inside_folder(root, folder, "../x.md")
 
 
 def test_writes_are_atomic_and_survive_text_that_is_not_unicode(tmp_path):
