@@ -30,6 +30,7 @@ from typing import TypeAlias, overload
 
 import sympy as sp
 
+from dhsym.cache.memo import MEMO, MemoKey
 from dhsym.errors import DHError
 from dhsym.model.library import load_table
 from dhsym.model.table import AngleUnit, Convention, DHTable, JointType
@@ -240,6 +241,12 @@ class PreparedKey:
     def __post_init__(self) -> None:
         object.__setattr__(self, "_form", self._reading_form())
 
+    def memo_size(self) -> int:
+        """The estimated size (:class:`dhsym.cache.memo.Sized`, expression nodes): a rough
+        figure per prepared key (its expected values and its mistakes' variants; the
+        robot is the memo's own entry)."""
+        return 20_000
+
     def form(self) -> AnswerForm:
         """What reading an answer to this key needs: the question, the names, the key's
         shape, the joints whose Jacobian column may be missing, the convention, the joint
@@ -347,8 +354,20 @@ def load_key(
 
 
 def prepare(key: Key) -> PreparedKey:
-    """Prepare a key: its robot, names and its kind's part (:data:`PREPARERS`).
-    Not memoised: a worker keeps its keys in :class:`PreparedKeys`."""
+    """Prepare a key: its robot, names and its kind's part (:data:`PREPARERS`), once per
+    process for equal keys (the process's memo, :data:`dhsym.cache.memo.MEMO`, bounded):
+    ``Key.load`` prepares a key to check it, and the check that follows, or the next
+    ``dhsym.check`` of the same question in a notebook, finds it prepared. A grading
+    worker also keeps its keys in :class:`PreparedKeys` (found by identity, faster).
+
+    >>> prepare(Key.load("planar2r", "T0_2")) is prepare(Key.load("planar2r", "T0_2"))
+    True
+    """
+    return MEMO.get(MemoKey(key.table, PreparedKey, key), lambda: _prepared(key))
+
+
+def _prepared(key: Key) -> PreparedKey:
+    """:func:`prepare`'s work, not memoised."""
     table = key.table
     robot = Robot(table)
     preparer = PREPARERS[key.question.kind]

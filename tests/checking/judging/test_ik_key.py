@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from dhsym.cache.keys import entry_name
+from dhsym.cache.memo import MEMO
 from dhsym.cache.store import Store
 from dhsym.checking import Key, check_answer
 from dhsym.checking.judging import ik_key
@@ -15,6 +16,13 @@ from dhsym.checking.mistakes import _ik_mistakes
 QUESTION = "ik@0.3,0.9"
 #: wrong answers of the 2R at the question's pose: an elbow angle's sign slip, nonsense
 WRONG = ("theta1 = 0.3\ntheta2 = -0.9", "theta1 = 2.1\ntheta2 = 0.4", "theta1 = -0.3\ntheta2 = 0.9")
+
+
+@pytest.fixture(autouse=True)
+def _fresh_memo() -> None:
+    """Each test starts as a new process would: no key prepared yet (the memo keeps
+    prepared keys, :func:`dhsym.checking.judging.key.prepare`)."""
+    MEMO.clear()
 
 
 def _builds(monkeypatch: pytest.MonkeyPatch) -> list[str]:
@@ -55,7 +63,9 @@ def test_a_numeric_questions_variants_are_read_back_not_built(tmp_path, monkeypa
     key = Key.load("planar2r", QUESTION, keys=cold_keys)  # prepared once, to check it
     assert built == ["variants"]
     assert any(n.startswith("ik_variants-") for n in Store(tmp_path / "cache")._names())
-    cold, warm = cold_keys.get(key), warm_keys.get(key)
+    cold = cold_keys.get(key)
+    MEMO.clear()  # the second worker: a new process, as far as the memo knows
+    warm = warm_keys.get(key)
     assert built == ["variants"]  # read back: nothing built again
     assert isinstance(cold.part, ik_key.IKPart) and isinstance(warm.part, ik_key.IKPart)
     _same(cold.part, warm.part)
@@ -91,6 +101,7 @@ def test_an_entry_this_version_does_not_read_is_built_again(tmp_path, monkeypatc
         header + b"\n" + b"\x93NUMPY not an array",
     ):
         store.write(name, bad)  # written by the store: its HMAC holds, the content is wrong
+        MEMO.clear()  # a new process, as far as the memo knows
         again = prepare(key)
         assert built == ["variants"], bad[:40]
         _same(cold.part, again.part)
@@ -107,6 +118,7 @@ def test_the_variants_are_built_where_the_cache_is_off(tmp_path, monkeypatch):
     monkeypatch.setenv("DHSYM_NO_CACHE", "1")
     built = _builds(monkeypatch)
     key = Key.load("planar2r", QUESTION)
+    MEMO.clear()  # a new process, as far as the memo knows
     prepare(key)
     assert built == ["variants", "variants"]
     assert not (tmp_path / "cache").exists()

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import dhsym
+from dhsym.cache.memo import MEMO
 from dhsym.checking import Key, check_answer
 from dhsym.checking.judging.ik_key import IKPart
 from dhsym.checking.judging.key import PREPARERS, PreparedKeys, TablePart, prepare
@@ -21,12 +22,12 @@ from dhsym.checking.judging.matrix_key import (
 KEY = Key.load("planar2r", "T0_2")
 
 
-def test_prepared_key_is_shared_by_a_workers_map_and_nothing_else():
+def test_prepared_key_is_shared_by_a_workers_map_and_the_process_memo():
     keys = PreparedKeys()
     pk = keys.get(Key.load("planar2r", "T0_2"))
     assert keys.get(KEY) is pk and len(keys) == 1  # keyed by the frozen Key value
-    assert prepare(KEY) is not pk  # no process-wide memo: another worker prepares its own
-    assert PreparedKeys().get(KEY) is not pk
+    assert prepare(KEY) is pk  # the process's memo: equal keys are prepared once
+    assert PreparedKeys().get(KEY) is pk
     assert (
         check_answer(
             KEY,
@@ -145,6 +146,7 @@ def test_a_prepared_key_diagnoses_its_first_wrong_answer_without_building(
     assert first.kinds[0] != "unexplained"
     assert built == []  # the first wrong answer only compared with what was prepared
     # and a key prepared now (with the counters in place) does build them, once, here
+    MEMO.clear()  # a new process, as far as the memo knows
     prepare(key)
     assert built, "the counters see the builders"
     del built[:]
@@ -192,3 +194,28 @@ def test_the_keys_mathml_is_converted_once_and_shown_for_wrong_entries():
     assert [(e.row, e.col) for e in wrong] == [(2, 4)]
     assert wrong[0].expected_mathml == latex_mathml(wrong[0].expected_latex)
     assert all(e.expected_mathml == "" for e in r.entries if e.correct)
+
+
+def test_a_key_is_prepared_once_per_process_for_equal_keys(monkeypatch):
+    """Key.load prepares the key to check it; the check that follows, and a second
+    Key.load of the same question (a notebook's next dhsym.check), find it prepared."""
+    from dhsym.checking.judging import key as key_module
+
+    MEMO.clear()
+    built: list[str] = []
+    original = key_module.PREPARERS["matrix"]
+
+    def counted(*args, **kwargs):  # type: ignore[no-untyped-def]
+        built.append("matrix")
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(key_module, "PREPARERS", {**key_module.PREPARERS, "matrix": counted})
+    k = Key.load("planar2r", "T0_2")
+    answer = "[[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 + a2*S12], "
+    answer += "[0, 0, 1, 0], [0, 0, 0, 1]]"
+    assert check_answer(k, answer).correct
+    assert prepare(Key.load("planar2r", "T0_2")) is prepare(k)
+    assert built == ["matrix"]
+    MEMO.clear()  # a new process, as far as the memo knows
+    prepare(k)
+    assert built == ["matrix", "matrix"]
