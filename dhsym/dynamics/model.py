@@ -87,6 +87,20 @@ def dynamic_model(robot: KinematicChain, *, textbook: bool = True) -> DynamicMod
     With ``textbook=False`` a joint row without parameters is an error.
     """
     table = robot.table
+    for i, row in enumerate(table.rows, start=1):
+        # Lagrange, Newton-Euler and rne take the joint's rate as the variable's rate: an
+        # entry -q or 2q would turn the joint at -q' or 2q', and M, C, g and tau would be
+        # those of another joint variable (both methods agreeing on the wrong answer)
+        cell = getattr(row, row.variable_field) if row.variable_field is not None else None
+        if cell is not None and sp.diff(cell, row.variable) != 1:
+            raise DHError(
+                f"{row.variable_field} is {cell}: the dynamics take a joint variable that "
+                f"enters its cell with rate 1 ({row.variable} plus a constant); write the "
+                "table with the joint's angle or length as the variable, its axis turned "
+                "if need be",
+                row=i,
+                field=row.variable_field,
+            )
     links = []
     for i, row in enumerate(table.rows, start=1):
         if row.inertia is not None:

@@ -171,3 +171,25 @@ def _spong_eom():
     if not _CACHE:
         _CACHE.append(lagrange(spong_arm()))
     return _CACHE[0]
+
+
+@pytest.mark.parametrize("cell", ["-theta2", "2*theta2", "pi/2 - theta2"])
+def test_a_joint_variable_that_does_not_enter_with_rate_one_is_refused(cell):
+    """With theta = -q or 2q the joint turns at -q' or 2q': M, C, g and tau in q are not
+    those both methods would give with the joint's rate taken as q' (they agreed on the
+    wrong answer: M[0, 1] of this arm is -(I2 + m2 a2 (a1 cos q2 + a2)) for theta = -q2).
+    Until the rate is carried through every method, the dynamics refuse, naming the row."""
+    text = (
+        "convention: standard\nangles: rad\nvalues: {a1: 1.0, a2: 0.8}\njoints:\n"
+        "  - {type: R, theta: theta1, d: 0, a: a1, alpha: 0, m: m1, I: [0, 0, I1]}\n"
+        f"  - {{type: R, theta: {cell}, d: 0, a: a2, alpha: 0, m: m2, I: [0, 0, I2]}}\n"
+    )
+    robot = Robot(read_table_text(text))
+    with pytest.raises(dhsym.DHError, match="rate 1") as err:
+        dynamic_model(robot)
+    assert (err.value.row, err.value.field) == (2, "theta")
+    with pytest.raises(dhsym.DHError, match="rate 1"):
+        robot.rne(np.zeros(2), np.zeros(2), np.zeros(2))
+    assert robot.jacobian(np.array([0.3, 0.4])).shape == (6, 2)  # the kinematics are fine
+    ok = Robot(read_table_text(text.replace(cell, "theta2 + pi/2")))
+    assert dynamic_model(ok).n == 2
