@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, TypeAlias
 import sympy as sp
 
 from dhsym.errors import DHError
+from dhsym.kinematics.jacobian import joint_rows
 from dhsym.model.inertia import LinkInertia
 from dhsym.model.parsing import rate_symbols
 from dhsym.model.table import JointType
@@ -87,19 +88,19 @@ def dynamic_model(robot: KinematicChain, *, textbook: bool = True) -> DynamicMod
     With ``textbook=False`` a joint row without parameters is an error.
     """
     table = robot.table
-    for i, row in enumerate(table.rows, start=1):
-        # Lagrange, Newton-Euler and rne take the joint's rate as the variable's rate: an
-        # entry -q or 2q would turn the joint at -q' or 2q', and M, C, g and tau would be
-        # those of another joint variable (both methods agreeing on the wrong answer)
-        cell = getattr(row, row.variable_field) if row.variable_field is not None else None
-        if cell is not None and sp.diff(cell, row.variable) != 1:
+    # Lagrange, Newton-Euler and rne take the joint's rate as the variable's rate: an entry
+    # -q or 2q turns the joint at -q' or 2q', and M, C, g and tau would be those of another
+    # joint variable (both methods agreeing on the wrong answer)
+    for i, var, _, rate in joint_rows(robot):
+        if rate != 1:
+            name = table.rows[i - 1].variable_field or ""  # joint_rows: a row with a variable
             raise DHError(
-                f"{row.variable_field} is {cell}: the dynamics take a joint variable that "
-                f"enters its cell with rate 1 ({row.variable} plus a constant); write the "
-                "table with the joint's angle or length as the variable, its axis turned "
-                "if need be",
+                f"{name} is {getattr(table.rows[i - 1], name)}: the dynamics take a joint "
+                f"variable that enters its cell with rate 1 ({var} plus a constant); write "
+                "the table with the joint's angle or length as the variable, its axis "
+                "turned if need be",
                 row=i,
-                field=row.variable_field,
+                field=name,
             )
     links = []
     for i, row in enumerate(table.rows, start=1):
