@@ -63,8 +63,6 @@ __all__ = [
 ]
 
 _TWO_PI = 2 * np.pi
-#: the tolerances within which a branch of a pose that is not exact is refined, a float
-_WITHIN = float(REFINE)
 # the refinement's numbers (REFINE_STEPS, _STUCK, _SAME) are the rule's: dhsym.ik.accuracy
 
 
@@ -426,7 +424,7 @@ def solve(
         solver = cache.solver(values)
         if isinstance(solver, ClosedFormSolver):
             pose = arr if arr.flags.c_contiguous else np.ascontiguousarray(arr)
-            found = solver.solve_given(pose, tol=tol, singular_tol=singular_tol, within=_WITHIN)
+            found = solver.solve_given(pose, tol=tol, singular_tol=singular_tol, within=REFINE)
             if found is not None:
                 if limits or near is not None or np.count_nonzero(found.near):
                     return _chosen(robot, found, limits, near, free, values)

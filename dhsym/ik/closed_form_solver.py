@@ -84,9 +84,6 @@ __all__ = ["ClosedFormSolver", "Layout"]
 METHOD = "closed form"
 #: fraction of a singular factor's largest value below which branches may coincide
 _SUSPECT = 1e-4
-#: the tolerances within which a branch of a pose that is not exact is a candidate (the
-#: native rule's; :func:`dhsym.ik.choices.solve` refines it against the pose as given)
-_WITHIN = float(REFINE)
 #: the single poses a solver answers with its program for floats before it builds the
 #: native one (a first answer does not wait for a C compiler; a solver in use gets it)
 NATIVE_AFTER = 16
@@ -359,7 +356,7 @@ class ClosedFormSolver:
             at.factors.stop - at.factors.start,
             WRIST_NEAR,
             _SUSPECT,
-            _WITHIN,
+            float(REFINE),  # the native rule's tolerances for a branch to refine
         )
         built = self._native(list(args), list(program), list(reduced), rule)
         if built is None:
@@ -810,7 +807,7 @@ class ClosedFormSolver:
         if not given_tol > 0.0 or verdict == 1.0:
             return None  # no rotation near (NaN, a reflection), or the caller's path decides
         m = (len(out) - 5) // 2
-        if verdict == 2.0 or low < singular_tol or within != _WITHIN:
+        if verdict == 2.0 or low < singular_tol or within != REFINE:
             if not stretched:  # exact: solved as given, as solve_pose
                 one = self._read(out[5 : 5 + m], "pose", given_tol, singular_tol)
                 if one is None or len(one):
