@@ -13,7 +13,11 @@ With symbolic lengths each function takes ``const double p[<PREFIX>_NPARAMS]`` l
 Sines, cosines and ``atan2`` are the file's own (``dh_sincos_n``, ``dh_sincos``,
 ``dh_atan2``: ``templates/export/c_math.j2``, within 2 ulp of libm's, libm itself outside
 their range): the fk takes every angle in one call, which gcc -O2 vectorises; the IK
-takes those of one level that are known together in one call (:func:`sincos_pairs`).
+takes those of one level that are known together in one call (:func:`sincos_pairs`), and
+where an angle is a sum of ``atan2`` terms (and of angles whose sine and cosine are known),
+its sine and cosine come from the ``atan2`` arguments (``y / r``, ``x / r``: the file's
+``dh_direction``) and the angle-sum formulas instead (:func:`ik_trig`): no ``atan2`` then
+``sin`` and ``cos`` in a row, the longest chain of an analytic IK.
 
 Examples
 --------
@@ -26,25 +30,25 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, replace
 
 import sympy as sp
 from sympy.printing.c import C99CodePrinter
 
 from .languages import Language
-
-if TYPE_CHECKING:
-    from .program import Assign
+from .program import Assign
 
 __all__ = [
     "LANGUAGE",
     "CPrinter",
+    "Direction",
     "NativePrinter",
     "SinCos",
     "SinCosGroup",
     "TrigPrinting",
+    "ik_trig",
     "sincos_pairs",
+    "within_turn",
 ]
 
 
@@ -126,6 +130,275 @@ def sincos_pairs(body: Sequence[Assign]) -> list[Assign | SinCosGroup]:
     return [SinCosGroup(tuple(g), g[0].level) if isinstance(g, list) else g for g in out]
 
 
+@dataclass(frozen=True)
+class Direction:
+    """``sin`` and ``cos`` of ``angle = atan2(y, x)`` as ``y / r`` and ``x / r``,
+    ``r = sqrt(x² + y²)`` (the file's ``dh_direction``; the angle's own ``dh_sincos``
+    when ``r`` is 0 or not finite)."""
+
+    sin: str
+    cos: str
+    y: sp.Expr
+    x: sp.Expr
+    angle: sp.Expr
+    level: int
+    joint: str = ""  # the joint whose atan2 term it is
+
+
+_Pair = tuple[sp.Expr, sp.Expr]  # (sin, cos) of an angle, as names or numbers
+
+
+def ik_trig(body: Sequence[Assign]) -> list[Assign | SinCosGroup | Direction]:
+    """:func:`sincos_pairs` of an IK ``body``, the sines and cosines of angles that are
+    sums of ``atan2`` terms taken from the terms' arguments: a joint ``q = ±atan2(y1, x1)
+    ± atan2(y2, x2) + k`` (no singular value) gets its terms named (``q_a``, ``q_b``; a
+    single term is ``q`` itself) with their arguments (``q_ay``, ``q_ax``), each term's
+    sine and cosine a :class:`Direction`, and the pair of ``q`` by the angle-sum formulas
+    (``sin(a ± b) = sa cb ± ca sb``, ``cos(a ± b) = ca cb ∓ sa sb``, ``k``'s sine and
+    cosine as numbers); a pair of a sum of such joints (``q2 + q3``) from those already
+    known. Mathematically the same values; in floating point within a few ulp of the
+    sine and cosine of the summed angle (the ``atan2`` and the sum rounded away), and
+    ``atan2``, ``sin``, ``cos`` no longer one after the other. Pairs that decide a
+    branch (a square root's radicand or a singular guard reads them, see
+    :func:`_decisions`) stay the angle's own, and so does a group whose call would be as
+    long without the pairs derived (``dh_sincos_n`` takes two angles at a time). The rest
+    stays as :func:`sincos_pairs` has it.
+
+    >>> import sympy as sp
+    >>> from dhsym.export.program import Assign
+    >>> x, y, k = sp.symbols("x y k", real=True)
+    >>> q1, q2 = sp.symbols("q1 q2", real=True)
+    >>> body = [Assign("q1", sp.atan2(y, x) - sp.atan2(k, 2 * x), 1),
+    ...         Assign("s1", sp.sin(q1), 1), Assign("c1", sp.cos(q1), 1),
+    ...         Assign("q2", sp.atan2(2 * y, x), 1),
+    ...         Assign("s12", sp.sin(q1 + q2), 1), Assign("c12", sp.cos(q1 + q2), 1)]
+    >>> for a in ik_trig(body):
+    ...     if isinstance(a, Direction):
+    ...         print(f"{a.sin}, {a.cos} of atan2({a.y}, {a.x})")
+    ...     else:
+    ...         print(f"{a.name} = {a.expr}")
+    q1_ax = 2*x
+    q1_a = atan2(k, q1_ax)
+    q1_b = atan2(y, x)
+    q1 = -q1_a + q1_b
+    sq1_a, cq1_a of atan2(k, q1_ax)
+    sq1_b, cq1_b of atan2(y, x)
+    s1 = cq1_a*sq1_b - cq1_b*sq1_a
+    c1 = cq1_a*cq1_b + sq1_a*sq1_b
+    q2_y = 2*y
+    q2 = atan2(q2_y, x)
+    sq2, cq2 of atan2(q2_y, x)
+    s12 = c1*sq2 + cq2*s1
+    c12 = c1*cq2 - s1*sq2
+    """
+    decides = _decisions(body)
+    candidates = {
+        v.name
+        for a in body
+        if isinstance(a.expr, (sp.sin, sp.cos)) and a.alt is None and a.name not in decides
+        for v in a.expr.args[0].free_symbols
+    }
+    used = _ik_trig(body, decides, candidates)[1]  # the joints whose terms are read
+    return _ik_trig(body, decides, used)[0]
+
+
+def _ik_trig(
+    body: Sequence[Assign], decides: set[str], wanted: set[str]
+) -> tuple[list[Assign | SinCosGroup | Direction], set[str]]:
+    """:func:`ik_trig` with the joints in ``wanted`` split into their atan2 terms; and
+    the joints whose terms the derived pairs read."""
+    used: set[str] = set()
+    taken = {a.name for a in body} | {
+        s.name for a in body for e in a.expressions() for s in e.free_symbols
+    }
+
+    def fresh(name: str) -> str:
+        while name in taken:
+            name += "_"
+        taken.add(name)
+        return name
+
+    # a joint's atan2 terms: (sign, angle, y, x); its constant part
+    terms: dict[sp.Symbol, tuple[list[tuple[int, sp.Expr, sp.Expr, sp.Expr]], sp.Expr]] = {}
+    known: dict[sp.Expr, _Pair] = {}
+    out: list[Assign | SinCosGroup | Direction] = []
+
+    def split(a: Assign) -> list[Assign] | None:
+        """``a`` with its atan2 terms and their arguments named, or ``None``."""
+        if a.alt is not None or not a.expr.has(sp.atan2) or a.name not in wanted:
+            return None
+        parts, const = [], sp.Integer(0)
+        for t in sp.Add.make_args(a.expr):
+            if t.is_number:
+                const += t
+                continue
+            sign, f = (-1, -t) if t.could_extract_minus_sign() else (1, t)
+            if not isinstance(f, sp.atan2):
+                return None
+            parts.append((sign, f))
+        single = len(parts) == 1 and parts[0][0] == 1 and const == 0
+        made: list[Assign] = []
+        found = []
+        for k, (sign, f) in enumerate(parts):
+            tag = "" if single else "abcdefgh"[k]
+            args = []
+            for arg, end in zip(f.args, "yx"):
+                if arg.is_Atom or (-arg).is_Atom:
+                    args.append(arg)
+                else:
+                    name = fresh(f"{a.name}_{tag}{end}")
+                    made.append(Assign(name, arg, a.level))
+                    args.append(sp.Symbol(name, real=True))
+            angle = sp.atan2(*args)
+            if not single:
+                name = fresh(f"{a.name}_{tag}")
+                made.append(Assign(name, angle, a.level))
+                angle = sp.Symbol(name, real=True)
+            found.append((sign, angle, args[0], args[1]))
+        whole = sp.Add(*(s * t[1] for s, t in zip((p[0] for p in found), found)), const)
+        if single:
+            whole = found[0][1]
+            found = [(1, sp.Symbol(a.name, real=True), found[0][2], found[0][3])]
+        made.append(Assign(a.name, whole, a.level))
+        made[0] = Assign(made[0].name, made[0].expr, a.level, a.comment)
+        if len(made) == 1:
+            made[0] = Assign(a.name, whole, a.level, a.comment)
+        terms[sp.Symbol(a.name, real=True)] = (found, const)
+        return made
+
+    def combine(p: _Pair, r: _Pair, sign: int) -> _Pair:
+        (sa, ca), (sb, cb) = p, r
+        return (sa * cb + sign * ca * sb, ca * cb - sign * sa * sb)
+
+    def number(k: sp.Expr) -> _Pair:
+        return (sp.Float(sp.sin(k).evalf(30), 17), sp.Float(sp.cos(k).evalf(30), 17))
+
+    def joint(v: sp.Symbol, level: int, made: list[Assign | Direction]) -> _Pair | None:
+        """The pair of a joint of atan2 terms, its directions appended to ``made``."""
+        if v not in terms:
+            return None
+        found, const = terms[v]
+        pair: _Pair | None = None
+        for sign, angle, y, x in found:
+            tag = angle.name if isinstance(angle, sp.Symbol) else v.name
+            d = Direction(fresh(f"s{tag}"), fresh(f"c{tag}"), y, x, angle, level, v.name)
+            made.append(d)
+            here: _Pair = (sp.Symbol(d.sin, real=True), sp.Symbol(d.cos, real=True))
+            if pair is None:
+                pair = here if sign == 1 else (-here[0], here[1])
+            else:
+                pair = combine(pair, here, sign)
+        assert pair is not None
+        return combine(pair, number(-const), -1) if const != 0 else pair
+
+    def derive(angle: sp.Expr, level: int, made: list[Assign | Direction]) -> _Pair | None:
+        """The pair of ``angle`` from known pairs and joints of atan2 terms, or ``None``."""
+        if angle in known:
+            return known[angle]
+        if isinstance(angle, sp.Symbol):
+            return joint(angle, level, made)
+        if angle.is_number:
+            return number(angle)
+        rest = [(b, angle - b) for b in known if len(sp.Add.make_args(angle - b)) == 1]
+        for b, r in rest + [(angle - t, t) for t in reversed(sp.Add.make_args(angle))]:
+            sign, f = (-1, -r) if r.could_extract_minus_sign() else (1, r)
+            if not (isinstance(f, sp.Symbol) or f.is_number):
+                continue
+            first = derive(b, level, made)
+            if first is None:
+                return None
+            second = derive(f, level, made)
+            if second is None:
+                return None
+            return combine(first, second, sign)
+        return None
+
+    for a in sincos_pairs(body):
+        if isinstance(a, Assign):
+            out.extend(split(a) or [a])
+            continue
+        rest: list[SinCos] = []
+        made: list[Assign | Direction] = []
+        reads: set[str] = set()
+        for p in sorted(a.pairs, key=lambda p: len(sp.Add.make_args(p.angle))):
+            trial: list[Assign | Direction] = []
+            decided = p.sin in decides or p.cos in decides
+            pair = None if decided else derive(p.angle, a.level, trial)
+            if pair is None:
+                rest.append(p)
+            elif (
+                trial
+                and isinstance(d := trial[-1], Direction)
+                and pair
+                == (
+                    sp.Symbol(d.sin, real=True),
+                    sp.Symbol(d.cos, real=True),
+                )
+            ):  # one atan2: its direction under the pair's own names
+                made.extend([*trial[:-1], replace(d, sin=p.sin, cos=p.cos)])
+                reads.update(x.joint for x in trial if isinstance(x, Direction))
+            else:
+                made.extend(trial)
+                reads.update(x.joint for x in trial if isinstance(x, Direction))
+                made.append(Assign(p.sin, pair[0], a.level))
+                made.append(Assign(p.cos, pair[1], a.level))
+            known[p.angle] = (sp.Symbol(p.sin, real=True), sp.Symbol(p.cos, real=True))
+        if rest and SinCosGroup(tuple(rest), a.level).size == a.size:
+            out.append(a)  # the call would take as long (two angles at a time): kept whole
+            continue
+        used |= reads
+        if rest:
+            out.append(SinCosGroup(tuple(rest), a.level))
+        out.extend(made)
+    return out, used
+
+
+def within_turn(body: Sequence[Assign]) -> set[str]:
+    """The names whose value is an ``atan2`` (and a number in ``[-π, π]`` at a singular
+    wrist): in ``[-π, π]`` already, so that the IK keeps them as they are (``wrap`` would
+    return them unchanged).
+
+    >>> import sympy as sp
+    >>> from dhsym.export.program import Assign
+    >>> x, y = sp.symbols("x y", real=True)
+    >>> sorted(within_turn([Assign("q1", sp.atan2(y, x)), Assign("q2", sp.atan2(y, x) + 1),
+    ...                     Assign("q3", sp.atan2(y, x), 1, (), ("s_5", 1e-12, sp.Float(0)))]))
+    ['q1', 'q3']
+    """
+
+    def inside(e: sp.Expr) -> bool:
+        return isinstance(e, sp.atan2) or (e.is_number and abs(float(e)) <= 3.141592653589793)
+
+    return {a.name for a in body if inside(a.expr) and (a.alt is None or inside(a.alt[2]))}
+
+
+def _decisions(body: Sequence[Assign]) -> set[str]:
+    """The names whose values decide something beyond rounding: what a square root's
+    radicand (its sign: a branch or none) or a singular value's guard reads, directly or
+    through other names. Their sines and cosines stay those of the angle (as every other
+    language computes them), so that a pose on a singularity (a radicand exactly 0, as at
+    a lecture's home pose) keeps its branches bit for bit."""
+    from dhsym.ik.rewriting import SafeSqrt
+
+    defs = {a.name: a for a in body}
+    out: set[str] = set()
+    todo = [
+        s.name
+        for a in body
+        for e in a.expressions()
+        for f in e.atoms(SafeSqrt)
+        for s in f.free_symbols
+    ] + [a.alt[0] for a in body if a.alt is not None]
+    while todo:
+        name = todo.pop()
+        if name in out:
+            continue
+        out.add(name)
+        if name in defs:
+            todo.extend(s.name for e in defs[name].expressions() for s in e.free_symbols)
+    return out
+
+
 class TrigPrinting:
     """The printing of ``sin``, ``cos`` and ``atan2`` as the functions named ``trig`` +
     ``sin`` (``dh_sin``: the file's own, ``templates/export/c_math.j2``; ``""``: libm's)."""
@@ -204,5 +477,5 @@ LANGUAGE = Language(
     files=(("c_header.h.j2", "{prefix}.h", None), ("c_source.c.j2", "{prefix}.c", None)),
     comment=" *",
     note="gcc -std=c99 -O2 -c {prefix}.c (link with -lm)",
-    extra={"sincos_pairs": sincos_pairs},
+    extra={"sincos_pairs": sincos_pairs, "ik_trig": ik_trig, "within_turn": within_turn},
 )

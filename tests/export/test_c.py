@@ -12,11 +12,22 @@ from __future__ import annotations
 
 import shutil
 
+import numpy as np
+import pytest
 import sympy as sp
 
 import dhsym
-from dhsym.export.c import CPrinter, NativePrinter, SinCos, SinCosGroup, sincos_pairs
-from dhsym.export.program import fk_program
+from dhsym.export import c as c_language
+from dhsym.export.c import (
+    CPrinter,
+    Direction,
+    NativePrinter,
+    SinCos,
+    SinCosGroup,
+    ik_trig,
+    sincos_pairs,
+)
+from dhsym.export.program import Assign, fk_program, ik_program
 
 from ..conftest import _need
 from . import _harness as h
@@ -166,13 +177,64 @@ def test_pairs_keep_an_angle_alone_and_the_order():
     assert [a.name for a in alone] == ["c1"] and str(alone[0].expr) == str(sp.cos(q))
 
 
-def test_the_ik_takes_the_sines_of_one_level_together():
-    """The UR5's innermost level: q2 + q3 and q2 in one call (two at a time), after q2."""
+def test_the_ik_takes_sines_from_the_atan2_arguments_where_nothing_is_decided():
+    """The UR5's innermost level: the sines and cosines of q2, q2 + q3 and q2 + q3 + q4 from
+    the atan2 arguments and the angle-sum formulas (no atan2, sin, cos in a row); those of
+    q1, q5, q6, which a square root's radicand further on reads, stay the angles' own."""
     files = dhsym.export(dhsym.load("ur5"), "c", what="ik", prefix="arm")
     ik = files["arm.c"].split("int arm_ik")[1]
-    after_q2 = ik.split("const double q2 =")[1]
-    assert "const double angle[2] = {q2 + q3, q2};" in after_q2.split("const double q4 =")[0]
+    inner = ik.split("const double q3_y =")[1]
+    assert "dh_direction(q3_y, d_3, q3, &s3, &c3);" in inner
+    assert "const double s23 = c2*s3 + c3*s2;" in inner
+    assert "const double s234 = c23*sq4 + cq4*s23;" in inner
+    assert "dh_sincos" not in inner.split("const double F[12]")[0]
+    for q in ("q1", "q5", "q6"):
+        assert f"dh_sincos({q}, &s{q[1]}, &c{q[1]});" in ik
+    assert "sol[2] = q3;" in ik and "sol[1] = wrap(q2);" in ik  # an atan2 is in [-pi, pi]
     assert "continue; /* no real value" in ik  # a branch with no real joint value ends there
+
+
+def test_ik_trig_leaves_what_decides_a_branch():
+    """Only pairs no radicand or singular guard reads are derived, and a call is split
+    only when it gets shorter: the PUMA's s23 (read by its wrist's radicand) and s4
+    (beside s5, guarded) keep their calls whole; the UR5's s5 and s6 (read by its elbow's
+    radicand) stay, its s2, s23, s234 are derived."""
+    items = ik_trig(ik_program(dhsym.load("puma560")).body)
+    assert not any(isinstance(a, Direction) for a in items)
+    kept = {p.sin for a in items if isinstance(a, SinCosGroup) for p in a.pairs}
+    assert {"s1", "s2", "s23", "s3", "s4", "s5", "s6"} <= kept
+    items = ik_trig(ik_program(dhsym.load("ur5")).body)
+    kept = {p.sin for a in items if isinstance(a, SinCosGroup) for p in a.pairs}
+    derived = {a.name for a in items if isinstance(a, Assign) and a.name[0] == "s"}
+    assert kept == {"s1", "s5", "s6"} and {"s2", "s23", "s234"} <= derived
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["ur5", "puma560"])
+def test_ik_at_singular_poses_as_with_the_angles_sines(name, tmp_path, monkeypatch):
+    """Lecture poses: the home pose and joints at multiples of pi/2 (a wrist, an elbow, a
+    shoulder on a singularity: radicands exactly 0 in exact arithmetic, where a rounding
+    decides a branch): the exported C IK finds the branches the same C finds with every
+    sine and cosine the angle's own (:func:`sincos_pairs` instead of :func:`ik_trig`),
+    the same values ≤ 1e-12 (angles across the cut at ±pi as one)."""
+    _need("gcc", shutil.which("gcc") is not None, "apt-get install gcc")
+    robot = dhsym.load(name)
+    rng = np.random.default_rng(3)
+    q = np.vstack([np.zeros(6), rng.integers(-2, 3, (60, 6)) * (np.pi / 2)])
+    q[20:40] += rng.uniform(-2.5, 2.5, (20, 6)) * (rng.random((20, 6)) < 0.5)
+    poses = robot.fk(q)
+    files = dhsym.export(robot, "c", what=("fk", "jacobian", "ik"), prefix="arm")
+    monkeypatch.setitem(c_language.LANGUAGE.extra, "ik_trig", sincos_pairs)
+    plain = dhsym.export(robot, "c", what=("fk", "jacobian", "ik"), prefix="arm")
+    assert plain["arm.c"] != files["arm.c"] or name == "puma560"
+    (tmp_path / "plain").mkdir()
+    iks = h.run_c(files, "arm", q[:0], poses, 6, True, True, tmp_path)[2]
+    want = h.run_c(plain, "arm", q[:0], poses, 6, True, True, tmp_path / "plain")[2]
+    assert sum(len(Q) for Q in want) > 4 * len(poses)
+    for Q, W in zip(iks, want):
+        assert Q.shape == W.shape
+        d = np.remainder(Q - W + np.pi, 2 * np.pi) - np.pi
+        assert np.abs(d).max(initial=0.0) <= 1e-12
 
 
 def test_the_native_solver_keeps_libm():
