@@ -25,6 +25,8 @@ Examples
 >>> x = sp.Symbol("x", real=True)
 >>> CPrinter().doprint(sp.atan2(x, sp.Symbol("y")) + x**2)
 'pow(x, 2) + dh_atan2(x, y)'
+>>> CPrinter().doprint(sp.atan2(0, x))
+'(x != x ? x : (signbit(x) ? 3.141592653589793 : 0.0))'
 """
 
 from __future__ import annotations
@@ -421,6 +423,16 @@ class CPrinter(TrigPrinting, C99CodePrinter):
     """sympy's C99 printer, with the solver's ``SafeSqrt`` as a helper of the file (its
     ``stretch``: a local of the IK function, set for a pose that is not exact) and the
     file's own ``dh_sin``, ``dh_cos``, ``dh_atan2``."""
+
+    def _print_atan2(self, expr: sp.Expr) -> str:
+        """``atan2(0, x)`` of a name ``x`` as the half turn it is (``dh_atan2``'s and
+        libm's very value: 0 for ``x`` > 0 or +0, π for ``x`` < 0 or -0, NaN for NaN);
+        any other ``atan2`` as :class:`TrigPrinting` prints it."""
+        y, x = expr.args
+        if self.trig == "dh_" and y.is_zero and isinstance(x, sp.Symbol):
+            v = self._print(x)
+            return f"({v} != {v} ? {v} : (signbit({v}) ? 3.141592653589793 : 0.0))"
+        return super()._print_atan2(expr)
 
     def _print_SafeSqrt(self, expr: sp.Expr) -> str:
         return f"safe_sqrt({self._print(expr.args[0])}, stretch)"
