@@ -262,9 +262,7 @@ def _ik_trig(
             whole = found[0][1]
             found = [(1, sp.Symbol(a.name, real=True), found[0][2], found[0][3])]
         made.append(Assign(a.name, whole, a.level))
-        made[0] = Assign(made[0].name, made[0].expr, a.level, a.comment)
-        if len(made) == 1:
-            made[0] = Assign(a.name, whole, a.level, a.comment)
+        made[0] = replace(made[0], comment=a.comment)  # the step's sentence first
         terms[sp.Symbol(a.name, real=True)] = (found, const)
         return made
 
@@ -326,25 +324,21 @@ def _ik_trig(
             trial: list[Assign | Direction] = []
             decided = p.sin in decides or p.cos in decides
             pair = None if decided else derive(p.angle, a.level, trial)
+            names = (sp.Symbol(p.sin, real=True), sp.Symbol(p.cos, real=True))
             if pair is None:
                 rest.append(p)
-            elif (
-                trial
-                and isinstance(d := trial[-1], Direction)
-                and pair
-                == (
-                    sp.Symbol(d.sin, real=True),
-                    sp.Symbol(d.cos, real=True),
-                )
-            ):  # one atan2: its direction under the pair's own names
-                made.extend([*trial[:-1], replace(d, sin=p.sin, cos=p.cos)])
-                reads.update(x.joint for x in trial if isinstance(x, Direction))
             else:
-                made.extend(trial)
                 reads.update(x.joint for x in trial if isinstance(x, Direction))
-                made.append(Assign(p.sin, pair[0], a.level))
-                made.append(Assign(p.cos, pair[1], a.level))
-            known[p.angle] = (sp.Symbol(p.sin, real=True), sp.Symbol(p.cos, real=True))
+                last = trial[-1] if trial else None
+                if isinstance(last, Direction) and pair == (
+                    sp.Symbol(last.sin, real=True),
+                    sp.Symbol(last.cos, real=True),
+                ):  # one atan2: its direction under the pair's own names
+                    made.extend([*trial[:-1], replace(last, sin=p.sin, cos=p.cos)])
+                else:
+                    made.extend([*trial, Assign(p.sin, pair[0], a.level)])
+                    made.append(Assign(p.cos, pair[1], a.level))
+            known[p.angle] = names
         if rest and SinCosGroup(tuple(rest), a.level).size == a.size:
             out.append(a)  # the call would take as long (two angles at a time): kept whole
             continue
