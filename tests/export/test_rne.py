@@ -1,8 +1,10 @@
 # ruff: noqa: E501
 """The exported inverse dynamics ``rne(q, qd, qdd)`` in every language, built and run,
 against ``robot.rne`` at random states (some joints at rest, where Coulomb friction is 0):
-≤ 1e-9 relative, for the PUMA 560 (published parameters, motor inertia, friction) and
-numeric 2R (standard DH) and 3R (modified DH, friction) arms. The program's operation count
+≤ 1e-9 relative, for the PUMA 560 (published parameters, motor inertia, friction),
+numeric 2R (standard DH) and 3R (modified DH, friction) arms and the Jaco (its first joint's
+variable enters as ``theta: -theta1``: the joint turns at −q̇1 and τ1 is the generalized
+force of q1; illustrative inertias, friction at that joint). The program's operation count
 (issue 33: the PUMA's under 400), and the recursion it is made from against the dynamics
 room's, also on the Stanford arm (a prismatic joint) and the UR5 with numbers for every
 inertial parameter."""
@@ -47,15 +49,20 @@ joints:
 """
 
 
+#: the built-in Jaco's table with inertias (``theta: -theta1``)
+JACO = Path(__file__).resolve().parents[1] / "data" / "dynamics" / "jaco_inertial.yaml"
+
+
 def _robots():
     return {
         "puma560": dhsym.load("puma560"),
         "arm2r": dhsym.Robot(read_table_text(ARM_2R)),
         "arm3r_modified": dhsym.Robot(read_table_text(ARM_3R)),
+        "jaco": dhsym.load(str(JACO)),
     }
 
 
-NAMES = ["puma560", "arm2r", "arm3r_modified"]
+NAMES = ["puma560", "arm2r", "arm3r_modified", "jaco"]
 
 
 def _states(n: int, m: int = 8) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
