@@ -92,14 +92,8 @@ def link_jacobians(dm: DynamicModel, i: int) -> tuple[Matrix, Matrix]:
 
     >>> import dhsym
     >>> dm = dynamic_model(dhsym.load("jaco"))
-    >>> link_jacobians(dm, 1)[1].T  # the Jaco's theta: -theta1 turns link 1 at -thetadot1
-    Matrix([
-    [0, 0, -1],
-    [0, 0,  0],
-    [0, 0,  0],
-    [0, 0,  0],
-    [0, 0,  0],
-    [0, 0,  0]])
+    >>> link_jacobians(dm, 1)[1][:, 0].T  # z_0 is y_1; theta: -theta1 turns it at -thetadot1
+    Matrix([[0, -1, 0]])
     """
     robot = dm.robot
     r = Matrix([*dm.links[i - 1].r, 1])

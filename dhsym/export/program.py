@@ -902,7 +902,15 @@ def rne_program(
         for arr, syms in (("q", qs), ("qd", vs), ("qdd", accs))
         for k, s in enumerate(syms)
     )
-    extra = ["Then the motor inertia Jm G^2 qdd" + ("" if friction else ".")]
+    flipped = [f"q{k} at {r}" for k, r in enumerate(dm.cell_rates, start=1) if r != 1]
+    rated = [
+        "A joint whose variable enters its cell at a rate k other than 1 (" + ", ".join(flipped),
+        "in this table) turns at k qd and its torque is k times the moment about its axis.",
+    ]
+    extra = [
+        *(rated if flipped else ()),
+        "Then the motor inertia Jm G^2 qdd" + ("" if friction else "."),
+    ]
     if friction:
         extra.append("and the friction B G^2 qd + |G| Tc (Tc+ when qd > 0, Tc- when qd < 0).")
     passes = (*_PASSES, *extra)

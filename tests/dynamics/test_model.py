@@ -20,8 +20,8 @@ from dhsym.kinematics.simplification import prove_equal
 from dhsym.model.tablefile import read_table_text
 from dhsym.robot import Robot
 
-# (name, convention, rows with the rated cells, the same rows with rate-1 cells, rates);
-# (planar links: only Izz; the RRP: diagonal inertias X, Y, Z)
+# the rows, with {c1} … for the cells of the joint variables (planar links: only Izz; the
+# RRP: diagonal inertias X, Y, Z)
 _PLANAR_2R = (
     "  - {{type: R, theta: {c1}, d: 0, a: a1, alpha: 0, m: m1, r: [rx1, ry1, 0], I: [0, 0, I1]}}\n"
     "  - {{type: R, theta: {c2}, d: 0, a: a2, alpha: 0, m: m2, r: [rx2, 0, 0], I: [0, 0, I2]}}\n"
