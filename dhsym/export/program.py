@@ -902,13 +902,13 @@ def rne_program(
         for arr, syms in (("q", qs), ("qd", vs), ("qdd", accs))
         for k, s in enumerate(syms)
     )
-    flipped = [f"q{k} at {r}" for k, r in enumerate(dm.cell_rates, start=1) if r != 1]
+    scaled = [f"q{k} at {r}" for k, r in enumerate(dm.cell_rates, start=1) if r != 1]
     rated = [
-        "A joint whose variable enters its cell at a rate k other than 1 (" + ", ".join(flipped),
+        "A joint whose variable enters its cell at a rate k other than 1 (" + ", ".join(scaled),
         "in this table) turns at k qd and its torque is k times the moment about its axis.",
     ]
     extra = [
-        *(rated if flipped else ()),
+        *(rated if scaled else ()),
         "Then the motor inertia Jm G^2 qdd" + ("" if friction else "."),
     ]
     if friction:
