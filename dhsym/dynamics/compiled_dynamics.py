@@ -11,7 +11,10 @@ roboticstoolbox's names:
   ``c_jk = ½ ∂²τ(q, q̇, 0)/∂q̇_j∂q̇_k`` (so ``C @ qd`` is the velocity term);
 * ``gravload(q)``: g(q); ``accel(q, qd, tau)``: forward dynamics; ``simulate``: RK4.
 
-Every argument is one state ``(n,)`` or a batch ``(..., n)``.
+Every argument is one state ``(n,)`` or a batch ``(..., n)``: the table's joint variables,
+their rates and accelerations, whatever the rate of a variable in its cell (the Jaco's
+``theta: -theta1``; :mod:`.model`), and τ their generalized forces; motor inertia and
+friction are defined on these variables.
 
 A long run of small calls (a simulation, a controller) switches after
 :data:`COMPILE_AFTER` of them from the numeric recursion to τ written out once as a

@@ -37,10 +37,9 @@ from typing import TYPE_CHECKING, TypeAlias
 
 import sympy as sp
 
-from dhsym.kinematics.jacobian import axis_frame, compact
+from dhsym.kinematics.jacobian import axis_frame, compact, joint_column
 from dhsym.kinematics.simplification import fold_sum_angles, tidy_signs
 from dhsym.kinematics.trig_ring import TrigRing, lecture_form
-from dhsym.model.table import JointType
 
 from .equations import EquationsOfMotion
 from .model import DynamicModel, dynamic_model
@@ -61,7 +60,6 @@ __all__ = [
 ]
 
 Matrix: TypeAlias = sp.ImmutableMatrix
-_EZ = Matrix([0, 0, 1])
 #: Sums with more terms than this are left expanded by :func:`tidy`, neither folded nor
 #: collected (a six-joint arm's entries: folding them costs minutes, shortens them little).
 _FOLD_TERMS = 60
@@ -87,27 +85,30 @@ def link_jacobians(dm: DynamicModel, i: int) -> tuple[Matrix, Matrix]:
     """``(J_v, J_ω)`` of link ``i``'s centre of mass, 3×n each, written in frame ``i``.
 
     Column *k* (joint in row ``j ≤ i`` turning about ``z_a`` of its axis frame *a*) is
-    ``^iR_a (e_z × ^a p_c)`` and ``^iR_a e_z`` for a revolute joint, ``^iR_a e_z`` and 0
-    for a prismatic one; ``^a p_c`` is the centre of mass seen from frame *a*.
+    ``k ^iR_a (e_z × ^a p_c)`` and ``k ^iR_a e_z`` for a revolute joint, ``k ^iR_a e_z``
+    and 0 for a prismatic one; ``^a p_c`` is the centre of mass seen from frame *a* and
+    ``k`` the rate of the joint's variable in its cell (``dm.cell_rates``: ``−1`` for
+    ``theta: -q1``), the column of :func:`~dhsym.kinematics.jacobian.joint_column`.
+
+    >>> import dhsym
+    >>> dm = dynamic_model(dhsym.load("jaco"))
+    >>> link_jacobians(dm, 1)[1][:, 0].T  # z_0 is y_1; theta: -theta1 turns it at -thetadot1
+    Matrix([[0, -1, 0]])
     """
     robot = dm.robot
     r = Matrix([*dm.links[i - 1].r, 1])
     cols_v, cols_w = [], []
-    for row, kind in zip(dm.joints, dm.kinds):
+    for row, kind, rate in zip(dm.joints, dm.kinds, dm.cell_rates):
         if row > i:
             cols_v.append(Matrix.zeros(3, 1))
             cols_w.append(Matrix.zeros(3, 1))
             continue
         a = axis_frame(robot, row)
         turn = robot.transform(i, a).matrix[:3, :3]
-        axis = turn * _EZ
-        if kind is JointType.REVOLUTE:
-            lever = (robot.transform(a, i).matrix * r)[:3, 0]
-            cols_v.append(turn * Matrix([-lever[1], lever[0], 0]))
-            cols_w.append(axis)
-        else:
-            cols_v.append(axis)
-            cols_w.append(Matrix.zeros(3, 1))
+        lever = (robot.transform(a, i).matrix * r)[:3, 0]
+        linear, angular = joint_column(turn, lever, kind, rate)
+        cols_v.append(linear)
+        cols_w.append(angular)
     Jv = Matrix.hstack(*cols_v).applyfunc(compact)
     Jw = Matrix.hstack(*cols_w).applyfunc(compact)
     return Matrix(Jv), Matrix(Jw)

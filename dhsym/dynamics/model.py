@@ -5,14 +5,24 @@ Rows without inertial parameters get the textbook symbolic set
 (:meth:`~dhsym.model.inertia.LinkInertia.textbook`) when ``textbook=True``; fixed
 rows without parameters carry no mass.
 
+A joint variable ``q`` enters its cell as ``k q + c`` (``theta: -theta1`` of the Jaco,
+``theta: 2*theta2``, ``d: -d3``): the joint turns (slides) at ``k q̇``, and the torque
+(force) of the equations of motion is the generalized force of ``q``, ``k`` times the
+moment (force) along the joint's axis. ``cell_rates`` keeps each ``k``, read once from
+:func:`~dhsym.kinematics.jacobian.joint_rows`; Lagrange–Euler, Newton–Euler, the numeric
+recursion and the exported ``rne`` all read it here. Motor inertia ``Jm G²`` and
+friction stay defined on ``q`` itself.
+
 Examples
 --------
 >>> import dhsym
 >>> dm = dynamic_model(dhsym.load("planar2r"))
->>> dm.rates, dm.accelerations
-((thetadot1, thetadot2), (thetaddot1, thetaddot2))
+>>> dm.rates, dm.accelerations, dm.cell_rates
+((thetadot1, thetadot2), (thetaddot1, thetaddot2), (1, 1))
 >>> dm.links[0].m, dm.gravity
 (m1, (0, 0, -981/100))
+>>> dynamic_model(dhsym.load("jaco")).cell_rates
+(-1, 1, 1, 1, 1, 1)
 """
 
 from __future__ import annotations
@@ -41,8 +51,10 @@ _ZERO_LINK = LinkInertia(0, (0, 0, 0), sp.zeros(3, 3))
 class DynamicModel:
     """A robot with the inertial parameters of every link (one per DH row).
 
-    ``joints[k]`` is the 1-based row of the k-th joint variable; ``gravity`` is the
-    gravitational acceleration written in DH frame 0.
+    ``joints[k]`` is the 1-based row of the k-th joint variable and ``cell_rates[k]`` the
+    rate ``∂ cell / ∂ q_k`` of its variable in its cell (a nonzero constant: the joint
+    moves at ``cell_rates[k] · q̇_k``); ``gravity`` is the gravitational acceleration
+    written in DH frame 0.
     """
 
     robot: KinematicChain = field(compare=False, repr=False)
@@ -52,6 +64,7 @@ class DynamicModel:
     accelerations: tuple[sp.Symbol, ...]
     joints: tuple[int, ...]
     kinds: tuple[JointType, ...]
+    cell_rates: tuple[sp.Expr, ...]
     gravity: tuple[sp.Expr, sp.Expr, sp.Expr]
 
     @property
@@ -88,20 +101,9 @@ def dynamic_model(robot: KinematicChain, *, textbook: bool = True) -> DynamicMod
     With ``textbook=False`` a joint row without parameters is an error.
     """
     table = robot.table
-    # Lagrange, Newton-Euler and rne take the joint's rate as the variable's rate: an entry
-    # -q or 2q turns the joint at -q' or 2q', and M, C, g and tau would be those of another
-    # joint variable (both methods agreeing on the wrong answer)
-    for i, var, _, rate in joint_rows(robot):
-        if rate != 1:
-            name = table.rows[i - 1].variable_field or ""  # joint_rows: a row with a variable
-            raise DHError(
-                f"{name} is {getattr(table.rows[i - 1], name)}: the dynamics take a joint "
-                f"variable that enters its cell with rate 1 ({var} plus a constant); write "
-                "the table with the joint's angle or length as the variable, its axis "
-                "turned if need be",
-                row=i,
-                field=name,
-            )
+    # the rate of each joint's variable in its cell (joint_rows refuses a cell that is
+    # not linear in its variable, naming the row and field)
+    cell_rates = tuple(rate for _, _, _, rate in joint_rows(robot))
     links = []
     for i, row in enumerate(table.rows, start=1):
         if row.inertia is not None:
@@ -124,5 +126,6 @@ def dynamic_model(robot: KinematicChain, *, textbook: bool = True) -> DynamicMod
         rate_symbols(variables, 2),
         table.joint_rows,
         tuple(table.rows[r - 1].joint for r in table.joint_rows),
+        cell_rates,
         tuple(sp.expand(g) for g in gravity),
     )

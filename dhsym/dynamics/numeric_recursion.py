@@ -51,7 +51,8 @@ __all__ = ["NumericLink", "NumericRecursion", "numeric_recursion"]
 class NumericLink:
     """One DH row as numbers: its word (constant runs as float ``4×4`` matrices, the
     joint's elementaries kept exact), the fixed part before the joint motion
-    (``u = R_pre e_z``, the joint axis in frame i − 1, and ``r1``:
+    (``u = k R_pre e_z``, the joint axis in frame i − 1 times the rate ``k`` of the
+    joint's variable in its cell, :attr:`~.model.DynamicModel.cell_rates`, and ``r1``:
     :func:`.recursive_newton_euler.joint_prefix`), its joint (0-based, or
     None for a fixed row) and kind, and the link's mass, centre of mass, inertia about
     it and motor inertia ``Jm G²``."""
@@ -290,12 +291,14 @@ def numeric_recursion(dm: DynamicModel) -> NumericRecursion:
         word = link_word(row, table.convention)
         P = _constant(_fold(joint_prefix(word, table.convention), variables, i), i)
         L = dm.links[i - 1]
+        k = index.get(i)
+        rate = 1.0 if k is None else float(_floats([dm.cell_rates[k]], "rate", i)[0])
         links.append(
             NumericLink(
                 tuple(_rows(f) for f in _fold(word, variables, i)),
-                tuple(float(x) for x in P[:3, 2]),  # type: ignore[arg-type]
+                tuple(float(x) * rate for x in P[:3, 2]),  # type: ignore[arg-type]
                 tuple(float(x) for x in P[:3, 3]),  # type: ignore[arg-type]
-                index.get(i),
+                k,
                 row.joint,
                 float(_floats([L.m], "m", i)[0]),
                 tuple(float(x) for x in _floats(L.r, "r", i)),  # type: ignore[arg-type]

@@ -2,10 +2,14 @@ r"""Recursive Newton–Euler: velocities and accelerations outward, forces and t
 
 Craig, *Introduction to Robotics*, §6.5 (modified DH) and Luh, Walker and Paul (standard
 DH), written once for both conventions. A link matrix is ``Pre · Rz(θ) Tz(d) · Post``:
-the joint moves about (along) the unit axis ``u`` through the point ``A`` = origin of
-``Pre`` (standard: ``Pre = I``, ``Post = Tx(a) Rx(α)``; modified: ``Pre = Rx(α) Tx(a)``,
-``Post = I``). Every vector of link *i* is written in frame *i*, with ``R = ^{i-1}R_i``,
-``r_1 = o_{i-1} → A`` (fixed in link i−1), ``r_2 = A → o_i`` and ``r_c`` the centre of mass:
+the joint moves about (along) the axis through the point ``A`` = origin of ``Pre``
+(standard: ``Pre = I``, ``Post = Tx(a) Rx(α)``; modified: ``Pre = Rx(α) Tx(a)``,
+``Post = I``), and ``u`` is its unit vector times the rate ``k`` of the joint variable
+in its cell (``θ = k q + c``: the joint turns at ``k q̇``, and ``u · moment`` is the
+generalized force of ``q``; ``k = 1`` but for cells such as the Jaco's ``-theta1``,
+:attr:`~.model.DynamicModel.cell_rates`). Every vector of link *i* is written in frame
+*i*, with ``R = ^{i-1}R_i``, ``r_1 = o_{i-1} → A`` (fixed in link i−1), ``r_2 = A → o_i``
+and ``r_c`` the centre of mass:
 
 .. math::
 
@@ -24,7 +28,8 @@ the joint moves about (along) the unit axis ``u`` through the point ``A`` = orig
 
 with ``a_0 = −g`` (gravity enters as an acceleration of the base). The torque is the
 moment about the joint's own axis, so the same lines are right in both conventions
-(roboticstoolbox's symbolic ``rne`` is not, for modified DH).
+(roboticstoolbox's symbolic ``rne`` is not, for modified DH). Motor inertia ``Jm G² q̈``
+is added on the joint variable ``q`` itself.
 
 The recursion is written three times, once for each thing it computes with, and the tests
 prove the three equal: here on exact expressions, each step kept with its equation for the
@@ -164,9 +169,10 @@ def rne_expressions(
         R, p = Matrix(T[:3, :3]), Matrix(T[:3, 3])
         Rt = R.T
         R_pre, r1 = _split(robot.link_word(i), table.convention)
-        u = (Rt * R_pre * _EZ).applyfunc(sp.expand)
-        r2 = Rt * (p - r1)
         k = index.get(i)
+        rate = sp.Integer(1) if k is None else dm.cell_rates[k]
+        u = (rate * (Rt * R_pre * _EZ)).applyfunc(sp.expand)  # the axis times the rate
+        r2 = Rt * (p - r1)
         wp, wdp = Rt * w, Rt * wd
         a_A = Rt * (a + _cross(wd, r1) + _cross(w, _cross(w, r1)))
         if row.joint is JointType.REVOLUTE and k is not None:

@@ -522,10 +522,11 @@ def _rne_recursion(dm: DynamicModel, clean: Callable[[sp.Expr], sp.Expr]) -> lis
     step through ``clean`` (which names it).
 
     The geometry is :func:`~dhsym.dynamics.recursive_newton_euler.rne_expressions`' (a link
-    matrix is ``Pre · Rz(θ) Tz(d) · Post``; ``u`` the joint axis, ``r_1`` from ``o_{i-1}``
-    to the joint's point ``A``, ``r_2`` from ``A`` to ``o_i``, all in frame *i*), and so is
-    every value; three things are arranged differently (Khalil and Dombre, *Modeling,
-    Identification and Control of Robots*, §9.5):
+    matrix is ``Pre · Rz(θ) Tz(d) · Post``; ``u`` the joint axis times the rate of the
+    joint's variable in its cell, ``r_1`` from ``o_{i-1}`` to the joint's point ``A``,
+    ``r_2`` from ``A`` to ``o_i``, all in frame *i*), and so is every value; three things
+    are arranged differently (Khalil and Dombre, *Modeling, Identification and Control of
+    Robots*, §9.5):
 
     * ``U_i = [ω̇_i]_× + [ω_i]_×[ω_i]_×`` once per link: the acceleration of any point
       ``r`` of the link is ``a_i + U_i r`` (for the next origin and the centre of mass);
@@ -569,9 +570,10 @@ def _rne_recursion(dm: DynamicModel, clean: Callable[[sp.Expr], sp.Expr]) -> lis
             robot.link_word(i)[:2] if table.convention is Convention.MODIFIED else ()
         )
         R_pre, r1 = M(pre[:3, :3]), M(pre[:3, 3])
-        u = (R.T * R_pre * ez).applyfunc(sp.expand)
-        r2 = (R.T * (p - r1)).applyfunc(sp.expand)
         k = index.get(i)
+        axis = (R.T * R_pre * ez).applyfunc(sp.expand)
+        u = axis if k is None or dm.cell_rates[k] == 1 else axis * dm.cell_rates[k]
+        r2 = (R.T * (p - r1)).applyfunc(sp.expand)
         a_before = a
         wp, wdp = keep(R.T * w), keep(R.T * wd)
         a_A = keep(R.T * (a + U * r1))
@@ -598,9 +600,9 @@ def _rne_recursion(dm: DynamicModel, clean: Callable[[sp.Expr], sp.Expr]) -> lis
             and turns
             and r1 == zero
             and r2 == zero
-            and rc.cross(u).applyfunc(sp.expand) == zero
+            and rc.cross(axis).applyfunc(sp.expand) == zero
         )
-        along = (u.T * rc)[0, 0] * R_pre * ez
+        along = (axis.T * rc)[0, 0] * R_pre * ez
         links.append((R, u, r1, r2, rc, k, row.joint, F, N, L.m, U, a_before, along, carried))
     tau: list[sp.Expr] = [sp.Integer(0)] * dm.n
     Rf, Rm = zero, zero  # force and moment about o_i of the link after, in frame i
@@ -900,7 +902,15 @@ def rne_program(
         for arr, syms in (("q", qs), ("qd", vs), ("qdd", accs))
         for k, s in enumerate(syms)
     )
-    extra = ["Then the motor inertia Jm G^2 qdd" + ("" if friction else ".")]
+    scaled = [f"q{k} at {r}" for k, r in enumerate(dm.cell_rates, start=1) if r != 1]
+    rated = [
+        "A joint whose variable enters its cell at a rate k other than 1 (" + ", ".join(scaled),
+        "in this table) turns at k qd and its torque is k times the moment about its axis.",
+    ]
+    extra = [
+        *(rated if scaled else ()),
+        "Then the motor inertia Jm G^2 qdd" + ("" if friction else "."),
+    ]
     if friction:
         extra.append("and the friction B G^2 qd + |G| Tc (Tc+ when qd > 0, Tc- when qd < 0).")
     passes = (*_PASSES, *extra)

@@ -74,6 +74,7 @@ __all__ = [
     "euler_angles",
     "geometric_jacobian",
     "jacobian_function",
+    "joint_column",
     "joint_rows",
     "numeric_jacobian",
     "rate_matrix",
@@ -174,6 +175,36 @@ def joint_rows(robot: KinematicChain) -> list[JointRow]:
             )
         out.append((i, row.variable, row.joint, rate))
     return out
+
+
+def joint_column(
+    turn: sp.MatrixBase, lever: sp.MatrixBase, joint: JointType, rate: sp.Expr
+) -> tuple[Matrix, Matrix]:
+    """``(linear, angular)`` of one joint's Jacobian column, before any tidying: the joint
+    turns (slides) about ``z_a`` of its axis frame *a* at ``rate · q̇`` (the rate of
+    :func:`joint_rows`: an entry ``k q + c`` moves the axis at ``k q̇``).
+
+    ``turn`` is ``^kR_a`` (frame *a* written in the Jacobian's frame *k*) and ``lever``
+    the point seen from frame *a*, ``^a p``; a revolute column is
+    ``k ^kR_a (e_z × ^a p)`` and ``k ^kR_a e_z``, a prismatic one ``k ^kR_a e_z`` and 0.
+    The geometric Jacobian and the dynamics' link Jacobians
+    (:func:`dhsym.dynamics.lagrange_euler.link_jacobians`) take their columns here.
+
+    >>> x, y = sp.symbols("x y", real=True)
+    >>> joint_column(sp.eye(3), Matrix([x, y, 0]), JointType.REVOLUTE, sp.Integer(-1))
+    (Matrix([
+    [ y],
+    [-x],
+    [ 0]]), Matrix([
+    [ 0],
+    [ 0],
+    [-1]]))
+    """
+    axis = Matrix(turn[:, 2])
+    if joint is JointType.REVOLUTE:
+        linear = Matrix(turn * Matrix([-lever[1], lever[0], 0]))
+        return Matrix(rate * linear), Matrix(rate * axis)
+    return Matrix(rate * axis), Matrix.zeros(3, 1)
 
 
 def _label(robot: KinematicChain, frame: int) -> int | str:
@@ -345,11 +376,7 @@ def geometric_jacobian(
         axis = turn[:, 2]
         lever_a = robot.transform(a, e).matrix[:3, 3]
         lever = (turn * lever_a).applyfunc(compact)
-        if joint is JointType.REVOLUTE:
-            linear = turn * Matrix([-lever_a[1], lever_a[0], 0])
-            angular = axis
-        else:
-            linear, angular = axis, Matrix.zeros(3, 1)
+        linear, angular = joint_column(turn, lever_a, joint, rate)
         columns.append(
             JacobianColumn(
                 var,
@@ -359,8 +386,8 @@ def geometric_jacobian(
                 rate,
                 Matrix(axis),
                 Matrix(lever),
-                Matrix((rate * linear).applyfunc(compact)),
-                Matrix((rate * angular).applyfunc(compact)),
+                Matrix(linear.applyfunc(compact)),
+                Matrix(angular.applyfunc(compact)),
             )
         )
     matrix = Matrix.hstack(*[Matrix.vstack(c.linear, c.angular) for c in columns])

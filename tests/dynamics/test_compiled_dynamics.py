@@ -5,6 +5,8 @@ Corke; Craig §6.5 for modified DH), and pinocchio's ``rnea``."""
 # ruff: noqa: E501  (table rows are one line each, as in a table file)
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -560,3 +562,89 @@ def test_the_robot_passes_the_c_compiler_to_its_dynamics(monkeypatch):
     )
     f = Robot(read_table_text(text)).dynamics_functions()
     assert f._native_compiler is shared_library.native_rows
+
+
+# --- a joint variable entering its cell with a rate other than 1 -------------------------------
+
+#: the built-in Jaco's table with inertias, motor inertia and friction at joint 1, whose
+#: variable enters its cell as ``theta: -theta1``
+JACO = Path(__file__).resolve().parents[1] / "data" / "dynamics" / "jaco_inertial.yaml"
+
+
+def _euler_lagrange(robot: Robot):
+    """τ(q, q̇, q̈) without friction from the Lagrangian ``½ q̇ᵀ M(q) q̇ − P(q)``, with M
+    made of Lagrange–Euler's link Jacobians (``Σ m Jvᵀ Jv + Jωᵀ I Jω + Jm G²``) and P of
+    its potential energies, the Euler–Lagrange equation ``d/dt(M q̇) − ∂K/∂q + ∂P/∂q``
+    taken by central differences: nothing of the Newton–Euler recursion, and ``lagrange``'s
+    six-joint derivation (minutes) left out. Returns ``(τ, M, ∂P/∂q)`` functions."""
+    import sympy as sp
+
+    from dhsym.dynamics.compiled_dynamics import numeric_model
+    from dhsym.dynamics.lagrange_euler import link_jacobians, potential_energies
+
+    dm = numeric_model(robot)
+    M = sp.diag(*dm.armature())
+    for i, L in enumerate(dm.links, start=1):
+        Jv, Jw = link_jacobians(dm, i)
+        M += L.m * Jv.T * Jv + Jw.T * L.I * Jw
+    inertia = sp.lambdify(dm.variables, M, "numpy")
+    P = sum(potential_energies(dm), sp.Integer(0))
+    dP = sp.lambdify(dm.variables, [sp.diff(P, x) for x in dm.variables], "numpy")
+
+    def Mq(q):
+        return np.array(inertia(*q), dtype=float)
+
+    def gq(q):
+        return np.array(dP(*q), dtype=float)
+
+    def tau(q, qd, qdd, h=1e-6):
+        Mdot = (Mq(q + h * qd) - Mq(q - h * qd)) / (2 * h)
+        e = np.eye(len(q))
+        dK = [
+            (qd @ Mq(q + h * e[i]) @ qd - qd @ Mq(q - h * e[i]) @ qd) / (4 * h)
+            for i in range(len(q))
+        ]
+        return Mq(q) @ qdd + Mdot @ qd - np.array(dK) + gq(q)
+
+    return tau, Mq, gq
+
+
+@pytest.mark.slow
+def test_the_jaco_flipped_first_joint_in_the_recursion_the_compiled_program_and_c(
+    tmp_path, monkeypatch
+):
+    """``theta: -theta1``: the numeric recursion (``robot.rne``), the compiled program for
+    Python floats and its C (when a compiler is there) give the torques, M and g of the
+    Euler–Lagrange equation of Lagrange–Euler's energies; the friction stays on q̇1."""
+    from dhsym.dynamics import compiled_dynamics as cd
+    from dhsym.export.shared_library import native_compiler, native_rows
+
+    monkeypatch.setenv("DHSYM_CACHE", str(tmp_path / "cache"))
+    monkeypatch.delenv("DHSYM_NO_CACHE", raising=False)
+    robot = dhsym.load(str(JACO))
+    assert cd.numeric_model(robot).cell_rates == (-1, 1, 1, 1, 1, 1)
+    tau, Mq, gq = _euler_lagrange(robot)
+    states = np.random.default_rng(11).uniform(-1.5, 1.5, (3, 3, 6))
+    recursion = cd.dynamics_functions(robot)
+    monkeypatch.setattr(cd, "COMPILE_AFTER", 0)
+    python = cd.dynamics_functions(robot)
+    runs = [recursion, python]
+    if native_compiler() is not None:
+        runs.append(cd.dynamics_functions(robot, native=native_rows))
+    for q, qd, qdd in states:
+        want = tau(q, qd, qdd)
+        scale = max(1.0, float(np.abs(want).max()))
+        for f in runs:
+            np.testing.assert_allclose(
+                f.rne(q, qd, qdd, friction=False), want, rtol=1e-7, atol=1e-7 * scale
+            )
+            np.testing.assert_allclose(f.inertia(q), Mq(q), rtol=1e-10, atol=1e-12)
+            np.testing.assert_allclose(f.gravload(q), gq(q), rtol=1e-10, atol=1e-12)
+            friction = f.rne(q, qd, qdd) - f.rne(q, qd, qdd, friction=False)
+            coulomb = 100 * (0.003 if qd[0] > 0 else -0.002)  # |G| Tc, by the sign of q̇1
+            np.testing.assert_allclose(
+                friction, [0.00002 * 100**2 * qd[0] + coulomb, 0, 0, 0, 0, 0], atol=1e-12
+            )
+    assert python._native is None
+    assert len(runs) == 2 or runs[2]._native is not None
+    np.testing.assert_allclose(robot.rne(*states[0]), recursion.rne(*states[0]), rtol=1e-12)

@@ -174,22 +174,29 @@ def _spong_eom():
 
 
 @pytest.mark.parametrize("cell", ["-theta2", "2*theta2", "pi/2 - theta2"])
-def test_a_joint_variable_that_does_not_enter_with_rate_one_is_refused(cell):
-    """With theta = -q or 2q the joint turns at -q' or 2q': M, C, g and tau in q are not
-    those both methods would give with the joint's rate taken as q' (they agreed on the
-    wrong answer: M[0, 1] of this arm is -(I2 + m2 a2 (a1 cos q2 + a2)) for theta = -q2).
-    Until the rate is carried through every method, the dynamics refuse, naming the row."""
+def test_a_joint_variable_with_a_rate_other_than_one_moves_its_joint_at_that_rate(cell):
+    """With theta = k q + c the joint turns at k q̇ and τ is the generalized force of q:
+    M[0, 1] of this arm is k (I2 + m2 a2 (a1 cos θ2 + a2)) with θ2 the cell (−(…) for
+    theta = −q2, where the methods once agreed on +(…)), and ``robot.rne`` (the numeric
+    recursion) gives Lagrange's τ at a state."""
     text = (
         "convention: standard\nangles: rad\nvalues: {a1: 1.0, a2: 0.8}\njoints:\n"
         "  - {type: R, theta: theta1, d: 0, a: a1, alpha: 0, m: m1, I: [0, 0, I1]}\n"
         f"  - {{type: R, theta: {cell}, d: 0, a: a2, alpha: 0, m: m2, I: [0, 0, I2]}}\n"
     )
     robot = Robot(read_table_text(text))
-    with pytest.raises(dhsym.DHError, match="rate 1") as err:
-        dynamic_model(robot)
-    assert (err.value.row, err.value.field) == (2, "theta")
-    with pytest.raises(dhsym.DHError, match="rate 1"):
-        robot.rne(np.zeros(2), np.zeros(2), np.zeros(2))
-    assert robot.jacobian(np.array([0.3, 0.4])).shape == (6, 2)  # the kinematics are fine
-    ok = Robot(read_table_text(text.replace(cell, "theta2 + pi/2")))
-    assert dynamic_model(ok).n == 2
+    k = dynamic_model(robot).cell_rates[1]
+    assert k == {"-theta2": -1, "2*theta2": 2, "pi/2 - theta2": -1}[cell]
+    eom = lagrange(robot)
+    t2 = robot.table.rows[1].theta
+    I2, m2, a1, a2 = R("I2"), R("m2"), R("a1"), R("a2")
+    assert prove_equal(
+        sp.Matrix([eom.M[0, 1]]), sp.Matrix([k * (I2 + m2 * a2 * (a1 * sp.cos(t2) + a2))])
+    )
+    values = {"m1": 2.0, "m2": 1.5, "I1": 0.1, "I2": 0.05}
+    q, qd, qdd = np.array([0.3, -0.7]), np.array([1.1, -0.4]), np.array([0.5, 2.0])
+    state = dict(zip(eom.variables, q)) | dict(zip(eom.rates, qd))
+    state |= dict(zip(eom.accelerations, qdd)) | {R(n): v for n, v in values.items()}
+    state |= {a1: 1.0, a2: 0.8, R("g"): 9.81}
+    want = np.array([float(e.xreplace(state)) for e in eom.tau])
+    np.testing.assert_allclose(robot.rne(q, qd, qdd, values=values), want, rtol=1e-12)
