@@ -280,7 +280,10 @@ def cell_text(name: str, value: sp.Expr, table: DHTable) -> str:
     """A table cell as a message shows it: angles in the table's unit, lengths with values."""
     if name in ("theta", "alpha"):
         return format_angle(value, table.angles is AngleUnit.DEG, latex=False)
-    number = value.subs(table.value_map)
-    if value.free_symbols and not number.free_symbols:
+    if not value.free_symbols:  # a number: nothing to substitute (subs of a map is not free)
+        return str(sp.sstr(value))
+    given = table.value_map
+    number = value.subs({s: given[s] for s in value.free_symbols if s in given})
+    if not number.free_symbols:
         return f"{sp.sstr(value)} (= {float(number):g})"
     return str(sp.sstr(value))

@@ -193,10 +193,10 @@ class DegreesAsRadians(_RowRewrite):
         """
 
         def constant(r: DHRow) -> bool:  # what the scaling rewrites
-            return bool(_angle_terms(r.alpha, 0) != r.alpha or _angle_terms(r.theta, 0) != r.theta)
+            return _has_constant(r.alpha) or _has_constant(r.theta)
 
         def joint_angle(r: DHRow) -> bool:
-            return bool(_angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0)
+            return _has_variable(r.alpha) or _has_variable(r.theta)
 
         one = constant if table else joint_angle
         rows_one = [k for k, r in enumerate(rows) if one(r)]
@@ -221,8 +221,38 @@ class DegreesAsRadians(_RowRewrite):
                 )
 
 
+def _has_constant(expr: sp.Expr) -> bool:
+    """True when ``expr`` has a constant term (``_angle_terms(expr, 0) != expr``), without
+    building the sum when every term has a symbol (the sum of its own terms is ``expr``).
+
+    >>> q = sp.Symbol("q")
+    >>> [_has_constant(e) for e in (q, q + sp.pi / 2, sp.pi / 2, sp.Integer(0), 2 * q)]
+    [False, True, True, False, False]
+    """
+    if all(t.free_symbols for t in sp.Add.make_args(expr)):
+        return False
+    return bool(_angle_terms(expr, 0) != expr)
+
+
+def _has_variable(expr: sp.Expr) -> bool:
+    """True when ``expr`` has a term with a symbol (``_angle_terms(expr, 0) != 0``), without
+    building the sum when no term or every term has one.
+
+    >>> q = sp.Symbol("q")
+    >>> [_has_variable(e) for e in (q, q + sp.pi / 2, sp.pi / 2, sp.Integer(0), 2 * q)]
+    [True, True, False, False, True]
+    """
+    terms = [bool(t.free_symbols) for t in sp.Add.make_args(expr)]
+    if all(terms) or not any(terms):
+        return all(terms)
+    return bool(_angle_terms(expr, 0) != 0)
+
+
 def _scaled(row: DHRow, factor: sp.Expr) -> DHRow:
-    """``row`` with the constant parts of θ and α multiplied by ``factor``."""
+    """``row`` with the constant parts of θ and α multiplied by ``factor`` (``row`` itself
+    when it has none: the same row)."""
+    if not _has_constant(row.theta) and not _has_constant(row.alpha):
+        return row
     return replace(
         row, theta=_angle_terms(row.theta, factor), alpha=_angle_terms(row.alpha, factor)
     )
