@@ -149,7 +149,7 @@ def values(
     if isinstance(expr, sp.MatrixBase):
         r, c = expr.shape
         try:  # every entry in one walk (the usual case) ...
-            flat = evaluate_many(list(expr), env, sample.size, memo)
+            flat = evaluate_many(expr.flat(), env, sample.size, memo)
             return np.ascontiguousarray(flat.T.reshape(sample.size, r, c))
         except (EvaluationError, OverflowError, TypeError, ValueError):
             pass  # ... else entry by entry: only the entries without a value are nan

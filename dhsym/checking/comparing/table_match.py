@@ -462,16 +462,19 @@ def same_cells(
             return False  # variables are matched by position, never relabelled
         for name in ("theta", "d", "a", "alpha"):
             ck, ca = getattr(rk, name), getattr(ra, name)
-            needed = ck.free_symbols | ca.free_symbols
-            if ra.variable == rk.variable:  # the row's variable has its value in both
+            same_variable = ra.variable == rk.variable
+            # the same expression (tested first: a variant changes a cell or two) has the
+            # same symbols as the key's cell
+            same = same_variable and (ca is ck or ca == ck)
+            needed = set(ck.free_symbols) if same else ck.free_symbols | ca.free_symbols
+            if same_variable:  # the row's variable has its value in both
                 needed.discard(rk.variable)
             known = {s for s in needed if is_constant(s)}
             if (
-                ra.variable == rk.variable
+                same
                 and needed == known
                 and all(abs(float(given.get(s, 0))) <= _PLAIN_NUMBER for s in known)
                 and _plainly_finite(ck)
-                and ca == ck
             ):
                 continue
             for s in known - env.keys():

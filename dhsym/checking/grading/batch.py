@@ -139,7 +139,17 @@ def shared_keys(assignments: Iterable[Assignment]) -> tuple[AnyKey, ...]:
     >>> [k.question.spec for k in shared_keys([a, a])], shared_keys([a])
     (['T0_2', 'table'], ())
     """
-    counts = Counter(q.key for a in assignments for q in a.questions)
+    # counted by object first (a class's jobs share their assignment's key objects), then
+    # by value over the distinct objects: a key is hashed once per object, not per job
+    # (hashing a key hashes its whole table)
+    by_object: dict[int, tuple[AnyKey, int]] = {}
+    for a in assignments:
+        for q in a.questions:
+            seen = by_object.get(id(q.key))
+            by_object[id(q.key)] = (q.key, 1 if seen is None else seen[1] + 1)
+    counts: Counter[AnyKey] = Counter()
+    for key, n in by_object.values():
+        counts[key] += n
     return tuple(k for k, n in counts.items() if n > 1)
 
 
@@ -478,15 +488,16 @@ def grade(
     else:
         runner = run_serial(grade_submission, jobs, state=PreparedKeys)
     bar = Progress(len(jobs), enabled=progress)
-    # each final record turned into JSON data once; the cache is written again after 5 s
-    # or 20 times as long as the last write took, whichever is later (a large class's
-    # cache is not rewritten all the time)
-    final = {k: r.to_dict() for k, r in records.items() if _final(r, a)}
+    # each final record turned into JSON text once (the cache is those texts joined, the
+    # bytes json.dumps gives the whole); the cache is written again after 5 s or 20 times
+    # as long as the last write took, whichever is later (a large class's cache is not
+    # rewritten all the time)
+    final = {k: _record_json(r) for k, r in records.items() if _final(r, a)}
     last_save, pause = time.monotonic(), 5.0
 
     def save() -> float:
         start = time.monotonic()
-        write_atomic(cache_path, json.dumps({"assignment": run_fp, "records": final}))
+        write_atomic(cache_path, _cache_json(run_fp, final))
         return max(5.0, 20 * (time.monotonic() - start))
 
     for s in subs:  # the pages of submissions that could not be read at all
@@ -509,7 +520,7 @@ def grade(
             _write_pages(root, feedback, files[sub.uid], record.pages)
             records[sub.uid] = replace(record, pages={})
             if _final(records[sub.uid], a):
-                final[sub.uid] = records[sub.uid].to_dict()
+                final[sub.uid] = _record_json(records[sub.uid])
             bar.step()
             if time.monotonic() - last_save > pause:
                 pause = save()
@@ -533,6 +544,24 @@ def grade(
         tuple(warnings),
         tuple(refused),
     )
+
+
+def _record_json(record: GradeRecord) -> str:
+    """One record of the grading cache as JSON text (what :func:`_cache_json` joins)."""
+    return json.dumps(record.to_dict())
+
+
+def _cache_json(run_fp: str, records: Mapping[str, str]) -> str:
+    """The grading cache's text from its records' JSON texts (:func:`_record_json`): the
+    same text as ``json.dumps({"assignment": run_fp, "records": {uid: record data}})``.
+
+    >>> data = {"s1": {"score": 1.5, "name": "Zoë"}, "s2": {"flags": []}}
+    >>> text = _cache_json("fp", {k: json.dumps(v) for k, v in data.items()})
+    >>> text == json.dumps({"assignment": "fp", "records": data}), _cache_json("fp", {})
+    (True, '{"assignment": "fp", "records": {}}')
+    """
+    body = ", ".join(f"{json.dumps(uid)}: {text}" for uid, text in records.items())
+    return f'{{"assignment": {json.dumps(run_fp)}, "records": {{{body}}}}}'
 
 
 def _class_variants(

@@ -41,6 +41,7 @@ from ._mistake_base import (
     MatrixCase,
     Mistake,
     RowFilter,
+    RowMemo,
     Rows,
     TableCase,
     TableEdit,
@@ -252,10 +253,16 @@ class WrongSign(EntryMistake):
         return f"In entry {where} the term {nota.text(part)} has the wrong sign{inside}."
 
     def table_edits(
-        self, rows: Rows, key: DHTable, within: RowFilter = None, touching: RowFilter = None
+        self,
+        rows: Rows,
+        key: DHTable,
+        within: RowFilter = None,
+        touching: RowFilter = None,
+        memo: RowMemo | None = None,
     ) -> Iterator[TableEdit]:
         """Each cell of ``rows`` with its sign flipped (a joint's entry: its offset), told
-        with the key's value of that cell (a cell another slip wrote: its sign flipped too)."""
+        with the key's value of that cell (a cell another slip wrote: its sign flipped too;
+        ``memo`` is not used: each edit flips one cell)."""
         for k, row in enumerate(rows):
             if within is not None and k + 1 not in within:
                 continue

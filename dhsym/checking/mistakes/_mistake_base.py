@@ -41,6 +41,7 @@ __all__ = [
     "MatrixCase",
     "Mistake",
     "RowFilter",
+    "RowMemo",
     "Rows",
     "TableCase",
     "TableEdit",
@@ -57,6 +58,10 @@ TableEdit: TypeAlias = tuple[tuple[DHRow, ...], str, tuple[int, ...]]
 #: a table's rows, and the 1-based rows a slip may rewrite or must touch (None: any)
 Rows: TypeAlias = tuple[DHRow, ...]
 RowFilter: TypeAlias = frozenset[int] | None
+#: rows a slip rewrote within one diagnosis, by (the row's id, the factor it was scaled by):
+#: (the row, kept so that its id is not reused; the rewritten row); a row rewritten the
+#: same way again is not built again (a row checks its cells when it is built)
+RowMemo: TypeAlias = dict[tuple[int, sp.Expr], tuple[DHRow, DHRow]]
 
 
 @dataclass(frozen=True, eq=False)
@@ -160,13 +165,19 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
         return iter(())
 
     def table_edits(
-        self, rows: Rows, key: DHTable, within: RowFilter = None, touching: RowFilter = None
+        self,
+        rows: Rows,
+        key: DHTable,
+        within: RowFilter = None,
+        touching: RowFilter = None,
+        memo: RowMemo | None = None,
     ) -> Iterator[TableEdit]:
         """``rows`` (the key's, or the key's under another slip) under one slip of this kind,
         each told against the ``key`` (the search of two slips in one table composes them:
         :func:`~dhsym.checking.mistakes._row_mistakes.explain_table_pairs`); only those that
         rewrite no row outside ``within`` and at least one row of ``touching`` (1-based;
-        None: any); none by default."""
+        None: any); none by default. ``memo``: the rows rewritten so far in this diagnosis
+        (:data:`RowMemo`), for a kind that rewrites whole rows."""
         return iter(())
 
     def build_variants(self, case: MatrixCase) -> Variants:
@@ -280,7 +291,10 @@ def cell_text(name: str, value: sp.Expr, table: DHTable) -> str:
     """A table cell as a message shows it: angles in the table's unit, lengths with values."""
     if name in ("theta", "alpha"):
         return format_angle(value, table.angles is AngleUnit.DEG, latex=False)
-    number = value.subs(table.value_map)
-    if value.free_symbols and not number.free_symbols:
+    if not value.free_symbols:  # a number: nothing to substitute (subs of a map is not free)
+        return str(sp.sstr(value))
+    given = table.value_map
+    number = value.subs({s: given[s] for s in value.free_symbols if s in given})
+    if not number.free_symbols:
         return f"{sp.sstr(value)} (= {float(number):g})"
     return str(sp.sstr(value))

@@ -27,7 +27,16 @@ from ..comparing.table_match import Chain, same_cells
 from ..comparing.verdict import Diagnosis
 from ..reading.limits import check_time
 from ._entry_mistakes import PAIR_BUDGET
-from ._mistake_base import MatrixCase, Mistake, RowFilter, Rows, TableCase, TableEdit, cell_text
+from ._mistake_base import (
+    MatrixCase,
+    Mistake,
+    RowFilter,
+    RowMemo,
+    Rows,
+    TableCase,
+    TableEdit,
+    cell_text,
+)
 
 __all__ = [
     "DegreesAsRadians",
@@ -40,12 +49,14 @@ __all__ = [
 
 
 def shifted(rows: tuple[DHRow, ...], step: int, names: tuple[str, ...]) -> tuple[DHRow, ...]:
-    """The rows with the cells ``names`` taken from row ``k + step`` (zero past the ends)."""
+    """The rows with the cells ``names`` taken from row ``k + step`` (zero past the ends; a
+    row whose cells those are already is kept as it is)."""
     out = []
     for k, row in enumerate(rows):
         src = k + step
         new = {n: (getattr(rows[src], n) if 0 <= src < len(rows) else sp.Integer(0)) for n in names}
-        out.append(replace(row, **new))
+        same = all(getattr(row, n) == v for n, v in new.items())
+        out.append(row if same else replace(row, **new))
     return tuple(out)
 
 
@@ -54,12 +65,19 @@ class _RowRewrite(Mistake):
     matrix of the rewritten rows, the rewritten table, and its slips in a pair."""
 
     def _rewrites(
-        self, rows: Rows, key: Rows, convention: Convention, table: bool, within: RowFilter
+        self,
+        rows: Rows,
+        key: Rows,
+        convention: Convention,
+        table: bool,
+        within: RowFilter,
+        memo: RowMemo | None = None,
     ) -> Iterator[TableEdit]:
         """``rows`` under this mistake (the entries named as the ``key``'s rows have
         them; ``table``: a table's variants, else a matrix's), each with what the student
         did and the 1-based rows a table's diagnosis names; only the variants that rewrite
-        rows in ``within`` (1-based; None: all) need be given."""
+        rows in ``within`` (1-based; None: all) need be given (``memo``: the rows rewritten
+        so far in this diagnosis)."""
         raise NotImplementedError
 
     def matrix_variants(self, case: MatrixCase) -> Iterator[tuple[np.ndarray, str]]:
@@ -72,9 +90,15 @@ class _RowRewrite(Mistake):
             yield Chain(rows, conv), detail, where
 
     def table_edits(
-        self, rows: Rows, key: DHTable, within: RowFilter = None, touching: RowFilter = None
+        self,
+        rows: Rows,
+        key: DHTable,
+        within: RowFilter = None,
+        touching: RowFilter = None,
+        memo: RowMemo | None = None,
     ) -> Iterator[TableEdit]:
-        for new, detail, _ in self._rewrites(rows, tuple(key.rows), key.convention, True, within):
+        conv = key.convention
+        for new, detail, _ in self._rewrites(rows, tuple(key.rows), conv, True, within, memo):
             yield from _kept(rows, new, detail, within, touching)
 
 
@@ -84,7 +108,13 @@ class IndexShift(_RowRewrite):
     kind, title = "index_shift", "α/a index shifted by one row"
 
     def _rewrites(
-        self, rows: Rows, key: Rows, convention: Convention, table: bool, within: RowFilter
+        self,
+        rows: Rows,
+        key: Rows,
+        convention: Convention,
+        table: bool,
+        within: RowFilter,
+        memo: RowMemo | None = None,
     ) -> Iterator[TableEdit]:
         own = "α_{i-1}, a_{i-1}" if convention is Convention.MODIFIED else "α_i, a_i"
         for step in (1, -1):
@@ -135,7 +165,13 @@ class OffsetMissing(_RowRewrite):
     kind, title = "offset_missing", "joint offset missing"
 
     def _rewrites(
-        self, rows: Rows, key: Rows, convention: Convention, table: bool, within: RowFilter
+        self,
+        rows: Rows,
+        key: Rows,
+        convention: Convention,
+        table: bool,
+        within: RowFilter,
+        memo: RowMemo | None = None,
     ) -> Iterator[TableEdit]:
         """The offsets of ``rows`` left out, all and one by one; the entries are named as
         the ``key``'s rows (not ``rows``, when they are under another slip) have them."""
@@ -181,7 +217,13 @@ class DegreesAsRadians(_RowRewrite):
     kind, title = "degrees_as_radians", "degrees read as radians"
 
     def _rewrites(
-        self, rows: Rows, key: Rows, convention: Convention, table: bool, within: RowFilter
+        self,
+        rows: Rows,
+        key: Rows,
+        convention: Convention,
+        table: bool,
+        within: RowFilter,
+        memo: RowMemo | None = None,
     ) -> Iterator[TableEdit]:
         """All rows' angles, then one row's (the degrees in one row of a table; with
         ``table``, then the radians written in one row of a table in degrees); only the
@@ -193,10 +235,10 @@ class DegreesAsRadians(_RowRewrite):
         """
 
         def constant(r: DHRow) -> bool:  # what the scaling rewrites
-            return bool(_angle_terms(r.alpha, 0) != r.alpha or _angle_terms(r.theta, 0) != r.theta)
+            return _has_constant(r.alpha) or _has_constant(r.theta)
 
         def joint_angle(r: DHRow) -> bool:
-            return bool(_angle_terms(r.alpha, 0) != 0 or _angle_terms(r.theta, 0) != 0)
+            return _has_variable(r.alpha) or _has_variable(r.theta)
 
         one = constant if table else joint_angle
         rows_one = [k for k, r in enumerate(rows) if one(r)]
@@ -209,23 +251,58 @@ class DegreesAsRadians(_RowRewrite):
         )
         if _inside(rows_all, within):
             for factor, detail in both:
-                yield tuple(_scaled(r, factor) for r in rows), detail, ()
+                yield tuple(_scaled(r, factor, memo) for r in rows), detail, ()
         for factor, detail in both if table else both[:1]:
             for k in rows_one:
                 if not _inside([k], within):
                     continue
                 yield (
-                    tuple(_scaled(r, factor) if j == k else r for j, r in enumerate(rows)),
+                    tuple(_scaled(r, factor, memo) if j == k else r for j, r in enumerate(rows)),
                     f"Row {k + 1}: {detail}",
                     (k + 1,),
                 )
 
 
-def _scaled(row: DHRow, factor: sp.Expr) -> DHRow:
-    """``row`` with the constant parts of θ and α multiplied by ``factor``."""
-    return replace(
-        row, theta=_angle_terms(row.theta, factor), alpha=_angle_terms(row.alpha, factor)
-    )
+def _has_constant(expr: sp.Expr) -> bool:
+    """True when ``expr`` has a constant term (``_angle_terms(expr, 0) != expr``), without
+    building the sum when every term has a symbol (the sum of its own terms is ``expr``).
+
+    >>> q = sp.Symbol("q")
+    >>> [_has_constant(e) for e in (q, q + sp.pi / 2, sp.pi / 2, sp.Integer(0), 2 * q)]
+    [False, True, True, False, False]
+    """
+    if all(t.free_symbols for t in sp.Add.make_args(expr)):
+        return False
+    return bool(_angle_terms(expr, 0) != expr)
+
+
+def _has_variable(expr: sp.Expr) -> bool:
+    """True when ``expr`` has a term with a symbol (``_angle_terms(expr, 0) != 0``), without
+    building the sum when no term or every term has one.
+
+    >>> q = sp.Symbol("q")
+    >>> [_has_variable(e) for e in (q, q + sp.pi / 2, sp.pi / 2, sp.Integer(0), 2 * q)]
+    [True, True, False, False, True]
+    """
+    terms = [bool(t.free_symbols) for t in sp.Add.make_args(expr)]
+    if all(terms) or not any(terms):
+        return all(terms)
+    return bool(_angle_terms(expr, 0) != 0)
+
+
+def _scaled(row: DHRow, factor: sp.Expr, memo: RowMemo | None = None) -> DHRow:
+    """``row`` with the constant parts of θ and α multiplied by ``factor`` (``row`` itself
+    when it has none: the same row), taken from ``memo`` when this diagnosis scaled the same
+    row object by ``factor`` before (and kept there)."""
+    if not _has_constant(row.theta) and not _has_constant(row.alpha):
+        return row
+    done = memo.get((id(row), factor)) if memo is not None else None
+    if done is not None:
+        return done[1]
+    new = replace(row, theta=_angle_terms(row.theta, factor), alpha=_angle_terms(row.alpha, factor))
+    if memo is not None:
+        memo[(id(row), factor)] = (row, new)
+    return new
 
 
 class SingleWrongRow(Mistake):
@@ -343,9 +420,10 @@ def explain_table_pairs(
     if not bad:
         return ()
     left = budget
+    memo: RowMemo = {}  # the rows the slips rewrote, each built once in this diagnosis
     # each slip is seen in the answer: it rewrites a row the answer has wrong
     firsts = [
-        (m, [e for e in m.table_edits(base, key, touching=frozenset(bad)) if e[0] != base])
+        (m, [e for e in m.table_edits(base, key, None, frozenset(bad), memo) if e[0] != base])
         for m in mistakes
     ]
     for i, (a, edits_a) in enumerate(firsts):
@@ -358,7 +436,8 @@ def explain_table_pairs(
                 need = frozenset(bad - set(where_a))  # the second slip rewrites these
                 if not within:
                     continue
-                for rows_b, detail_b, where_b in b.table_edits(rows_a, key, within, need or None):
+                second = b.table_edits(rows_a, key, within, need or None, memo)
+                for rows_b, detail_b, where_b in second:
                     if not bad <= set(where_a) | set(where_b) or rows_b == base:
                         continue
                     left -= 1
