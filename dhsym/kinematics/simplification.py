@@ -566,11 +566,15 @@ def _in_ring(expr: sp.Expr, ring: TrigRing, R: PolyRing, known: dict[sp.Expr, An
         out = R.one
         for arg in expr.args:
             out = normal(out * _in_ring(arg, ring, R, known))
-    elif _polynomial_node(expr):  # a positive integer power
-        base = _in_ring(expr.base, ring, R, known)
+    elif _polynomial_node(expr):  # a positive integer power, by squaring
+        square, k = _in_ring(expr.base, ring, R, known), int(expr.exp)
         out = R.one
-        for _ in range(int(expr.exp)):
-            out = normal(out * base)
+        while k:
+            if k & 1:
+                out = normal(out * square)
+            k >>= 1
+            if k:
+                square = normal(square * square)
     elif expr.is_Rational:
         out = R(QQ(int(expr.p), int(expr.q)))
     elif (opened := sp.expand_trig(expr)) != expr:
