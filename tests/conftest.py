@@ -61,19 +61,19 @@ def program_modules_first(items: list) -> None:
 #: entry still names a test).
 LONGEST_FIRST = (
     # the slow step (-m slow)
-    "tests/dynamics/test_recursive_newton_euler.py::test_lagrange_equals_newton_euler_on_six_joint_robots[puma560_modified]",
     "tests/docs/test_site.py",
-    "tests/dynamics/test_recursive_newton_euler.py::test_lagrange_equals_newton_euler_on_the_puma560_with_its_published_parameters",
-    "tests/dynamics/test_compact_form.py",
-    "tests/export/test_compile_all.py",
-    "tests/ik/test_accuracy.py::test_every_rounded_pose_is_solved_and_its_branch_found[jaco-",
-    "tests/test_installed.py",
     "tests/checking/platforms/test_otter_example.py",
-    "tests/ik/test_accuracy.py::test_every_rounded_pose_is_solved_and_its_branch_found[panda.urdf-",
-    "tests/dynamics/test_recursive_newton_euler.py::test_lagrange_equals_newton_euler_on_six_joint_robots[stanford]",
+    "tests/test_installed.py",
+    "tests/export/test_compile_all.py",
+    "tests/dynamics/test_compact_form.py",
     "tests/test_fuzz.py::test_every_file_loader_gives_a_result_or_a_clear_error",
+    "tests/ik/test_accuracy.py::test_every_rounded_pose_is_solved_and_its_branch_found[jaco-",
     "tests/ik/test_kept_derivations.py::test_a_warm_and_a_cold_process_agree_to_the_bit",
+    "tests/ik/test_accuracy.py::test_every_rounded_pose_is_solved_and_its_branch_found[panda.urdf-",
     "tests/control/test_controllers.py",
+    "tests/dynamics/test_recursive_newton_euler.py::test_lagrange_equals_newton_euler_on_six_joint_robots[puma560_modified]",
+    "tests/dynamics/test_recursive_newton_euler.py::test_lagrange_equals_newton_euler_on_six_joint_robots[stanford]",
+    "tests/dynamics/test_recursive_newton_euler.py::test_lagrange_equals_newton_euler_on_the_puma560_with_its_published_parameters",
     # the quick step
     "tests/explain/test_notebooks.py::test_notebook_runs_clean[14_control.ipynb]",
     "tests/explain/test_latex.py",

@@ -128,7 +128,7 @@ def test_the_longest_tests_go_first_with_their_units():
         item(six + "six_joint_robots[puma560_modified]"),
         item(six + "built_in_robots[planar2r]"),
     ]
-    order = [items[4], items[1], items[3], items[2], items[0], items[5]]
+    order = [items[1], items[3], items[4], items[2], items[0], items[5]]
     longest_first(items, ROOT)
     assert items == order
 

@@ -31,16 +31,21 @@ Examples
 from __future__ import annotations
 
 import random
-from collections.abc import Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any, TypeAlias
 
 import sympy as sp
+from sympy.polys.domains import QQ
+from sympy.polys.polyerrors import BasePolynomialError, CoercionFailed
+from sympy.polys.rings import PolyRing
 
+from dhsym.errors import DHError
 from dhsym.model.table import Elementary
 
 from .numeric import compile_exprs
 from .transforms import cos_sin, plain_product
+from .trig_ring import TrigRing
 
 __all__ = [
     "Segment",
@@ -470,6 +475,128 @@ def _trig_polynomial(expr: sp.Expr) -> tuple[sp.Expr, list[sp.Expr], list[sp.Sym
     return sp.expand(expanded.xreplace(subs)), relations, gens
 
 
+def _remainder_by_division(diff: sp.Expr) -> tuple[sp.Expr, list[sp.Expr]]:
+    """The remainder of ``diff`` (no floats) modulo ``sin² x + cos² x − 1`` by generic
+    polynomial division (:func:`sympy.reduced`, lex order: ``sin x`` first), and the
+    generators it is a polynomial of: the general way, for what :func:`_ring_of` refuses."""
+    poly, relations, gens = _trig_polynomial(diff)
+    if poly == 0:
+        return sp.Integer(0), []
+    others = sorted(poly.free_symbols - set(gens), key=sp.default_sort_key)
+    if relations:
+        _, rem = sp.reduced(poly, relations, *gens, *others, order="lex")
+    else:
+        rem = poly
+    return sp.expand(rem), [*gens, *others]
+
+
+def _polynomial_node(e: sp.Basic) -> bool:
+    """Whether ``e`` is a sum, a product or a positive integer power (what :func:`_in_ring`
+    builds from its arguments)."""
+    return bool(e.is_Add or e.is_Mul or (e.is_Pow and e.exp.is_Integer and e.exp > 0))
+
+
+def _subtrees(exprs: Iterable[sp.Basic], into: Callable[[sp.Basic], bool]) -> set[sp.Basic]:
+    """The subexpressions of ``exprs``, each visited once however often it is shared (the
+    equations of a recursion share most of their subtrees; ``atoms`` would walk each
+    copy), entering the arguments only of those for which ``into`` holds."""
+    seen: set[sp.Basic] = set()
+    todo = list(exprs)
+    while todo:
+        e = todo.pop()
+        if e in seen:
+            continue
+        seen.add(e)
+        if into(e):
+            todo.extend(e.args)
+    return seen
+
+
+def _leaves(exprs: Iterable[sp.Basic], *, opened: bool = False) -> list[sp.Basic]:
+    """The subexpressions of ``exprs`` that are no sum, product or positive integer power
+    (the symbols, numbers, sines and cosines a polynomial is made of); ``opened``: of
+    ``exprs`` with their sums of angles expanded (:func:`sympy.expand_trig`, which changes
+    only the leaves)."""
+    if opened:
+        exprs = [sp.expand_trig(e) for e in exprs]
+    return [e for e in _subtrees(exprs, _polynomial_node) if not _polynomial_node(e)]
+
+
+def _ring_of(exprs: Sequence[sp.Expr]) -> tuple[TrigRing, PolyRing] | None:
+    """The :class:`~dhsym.kinematics.trig_ring.TrigRing` of ``exprs`` over the rationals
+    (sums of angles expanded by :func:`sympy.expand_trig`, as :func:`_in_ring` does): the
+    sines and cosines of each angle, each symbol met outside them and the square roots of
+    integers are its generators; with the sparse ring
+    (:class:`sympy.polys.rings.PolyRing`) their polynomials are computed in. None when an
+    angle is not linear in the symbols or not written as :func:`sympy.expand` writes it
+    (its sine would be another generator there)."""
+    leaves = _leaves(_leaves(exprs), opened=True)
+    for f in leaves:
+        if isinstance(f, (sp.sin, sp.cos)) and sp.expand(f.args[0]) != f.args[0]:
+            return None
+    symbols = sorted(set().union(*(e.free_symbols for e in leaves)), key=sp.default_sort_key)
+    try:
+        ring = TrigRing.of(leaves, symbols, constants=True)
+    except DHError:  # an angle not linear in the symbols
+        return None
+    return ring, PolyRing(ring.gens or (sp.Dummy("one"),), QQ)
+
+
+def _in_ring(expr: sp.Expr, ring: TrigRing, R: PolyRing, known: dict[sp.Expr, Any]) -> Any:
+    """``expr`` as a polynomial of ``R`` in the normal form of ``ring`` (``sin² x → 1 −
+    cos² x``, ``(√b)² → b``), built from its tree: sums added, each product and power
+    reduced as it is made, each leaf with its sums of angles expanded
+    (:func:`sympy.expand_trig`: all it changes are the leaves), so nothing is expanded as
+    an expression; ``known`` holds the generators and the subexpressions already built
+    (shared subtrees are built once). Raises :class:`~sympy.polys.polyerrors.CoercionFailed`
+    when ``expr`` is no polynomial with rational coefficients in the generators (``π``,
+    ``1/x``, ``tan x``)."""
+    found = known.get(expr)
+    if found is not None:
+        return found
+
+    def normal(p: Any) -> Any:
+        return R.from_dict(ring.normal_terms(dict(p), QQ))
+
+    if expr.is_Add:
+        out = R.zero
+        for arg in expr.args:
+            out += _in_ring(arg, ring, R, known)
+    elif expr.is_Mul:
+        out = R.one
+        for arg in expr.args:
+            out = normal(out * _in_ring(arg, ring, R, known))
+    elif _polynomial_node(expr):  # a positive integer power, by squaring
+        square, k = _in_ring(expr.base, ring, R, known), int(expr.exp)
+        out = R.one
+        while k:
+            if k & 1:
+                out = normal(out * square)
+            k >>= 1
+            if k:
+                square = normal(square * square)
+    elif expr.is_Rational:
+        out = R(QQ(int(expr.p), int(expr.q)))
+    elif (opened := sp.expand_trig(expr)) != expr:
+        out = _in_ring(opened, ring, R, known)
+    else:  # a square root of an integer (in the ring's roots), or nothing of the ring
+        try:
+            leaf = ring.poly(expr)
+        except (BasePolynomialError, DHError) as e:
+            raise CoercionFailed(str(e)) from e
+        if not (leaf.domain.is_ZZ or leaf.domain.is_QQ):
+            raise CoercionFailed(f"{expr} is not a rational polynomial")
+        terms = {m: QQ.convert_from(c, leaf.domain) for m, c in leaf.rep.to_dict().items()}
+        out = normal(R.from_dict(terms))
+    known[expr] = out
+    return out
+
+
+def _within_rounding(coeffs: Sequence[sp.Expr], scale: float) -> bool:
+    """Whether coefficients of a remainder are the rounding of products of floats."""
+    return max(abs(float(c)) for c in coeffs) <= _FLOAT_TOL * scale
+
+
 def prove_equal(A: sp.MatrixBase, B: sp.MatrixBase) -> bool:
     """Exact proof that two trigonometric matrices are equal.
 
@@ -480,38 +607,65 @@ def prove_equal(A: sp.MatrixBase, B: sp.MatrixBase) -> bool:
     values; then remainder coefficients up to 1e-12 (float rounding of the
     same products in another order) are allowed.
 
+    The relations of different angles share no variable, so they are a Gröbner basis
+    and the remainder is the normal form ``sin^k x → sin^(k mod 2) x (1 − cos² x)^(k//2)``
+    (:meth:`~dhsym.kinematics.trig_ring.TrigRing.normal_terms`): the entries are built in
+    the sparse polynomial ring of the sines, cosines and symbols of both matrices, each
+    product reduced as it is made (:func:`_in_ring`), never expanded as expressions. An
+    entry with coefficients outside the rationals and their square roots of integers
+    (``π``), or with floats and square roots at once, is reduced by polynomial division
+    (:func:`sympy.reduced`) instead; both give the same remainder.
+
     >>> t = sp.Symbol("t", real=True)
     >>> prove_equal(sp.Matrix([sp.cos(2 * t)]), sp.Matrix([1 - 2 * sp.sin(t)**2]))
     True
     >>> prove_equal(sp.Matrix([sp.cos(t)]), sp.Matrix([sp.sin(t)]))
     False
+    >>> prove_equal(sp.Matrix([sp.sqrt(6) * sp.sin(t + sp.pi / 4)]),
+    ...             sp.Matrix([sp.sqrt(3) * (sp.sin(t) + sp.cos(t))]))
+    True
+    >>> prove_equal(sp.Matrix([sp.pi * sp.sin(t) ** 2]),
+    ...             sp.Matrix([sp.pi - sp.pi * sp.cos(t) ** 2]))
+    True
     """
     if A.shape != B.shape:
         return False
+    # each entry that is not 0 at sight: its sides, difference (floats at their exact
+    # values) and the difference's floats
+    entries: list[tuple[sp.Expr, sp.Expr, sp.Expr, set[sp.Basic]]] = []
     for a, b in zip(A, B):
         diff = a - b
         if diff == 0:
             continue
-        floats = diff.atoms(sp.Float)
+        floats = {e for e in _subtrees([diff], lambda e: True) if e.is_Float}
         if floats:  # cos/sin of a measured twist: exact arithmetic on the floats' values
             diff = diff.xreplace({f: sp.Rational(f) for f in floats})
-        poly, relations, gens = _trig_polynomial(diff)
-        if poly == 0:
-            continue
-        others = sorted(poly.free_symbols - set(gens), key=sp.default_sort_key)
-        if relations:
-            _, rem = sp.reduced(poly, relations, *gens, *others, order="lex")
-        else:
-            rem = poly
-        rem = sp.expand(rem)
-        if rem == 0:
-            continue
-        if not floats:
-            return False
+        entries.append((a, b, diff, floats))
+    if not entries:
+        return True
+    ringed = _ring_of([diff for _, _, diff, _ in entries])
+    known: dict[sp.Expr, Any] = dict(zip(ringed[0].atoms, ringed[1].gens)) if ringed else {}
+    for a, b, diff, floats in entries:
+        try:
+            # with floats, the coefficients whose rounding is allowed are those of division
+            if ringed is None or (floats and ringed[0].roots):
+                raise CoercionFailed("reduced by division")
+            rem = _in_ring(diff, *ringed, known)
+            if not rem:
+                continue
+            if not floats:
+                return False
+            coeffs = [QQ.to_sympy(c) for c in rem.values()]
+        except CoercionFailed:
+            remainder, gens = _remainder_by_division(diff)
+            if remainder == 0:
+                continue
+            if not floats:
+                return False
+            coeffs = sp.Poly(remainder, *gens).coeffs() if gens else [remainder]
         # the two sides multiplied the same floats in another order: allow their rounding
         scale = 1 + max(abs(float(f)) for f in (a.atoms(sp.Float) | b.atoms(sp.Float) | floats))
-        coeffs = sp.Poly(rem, *gens, *others).coeffs() if gens or others else [rem]
-        if max(abs(float(c)) for c in coeffs) > _FLOAT_TOL * scale:
+        if not _within_rounding(coeffs, scale):
             return False
     return True
 

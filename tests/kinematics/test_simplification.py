@@ -123,3 +123,90 @@ def test_prove_equal_rejects_a_wrong_sign():
     B = sp.Matrix([[sp.cos(x) * sp.cos(y) - sp.sin(x) * sp.sin(y), sp.sin(x + y) * z]])
     assert not prove_equal(A, B)
     assert prove_equal(A[:, :1], B[:, :1])
+
+
+# --- the normal form of prove_equal against polynomial division --------------------
+
+#: the leaves of the random trigonometric polynomials: sines and cosines of angles (sums,
+#: multiples and constant offsets expanded by prove_equal), symbols, square roots
+_TRIG_LEAVES = [
+    sp.sin(x),
+    sp.cos(x),
+    sp.sin(y),
+    sp.cos(y),
+    sp.sin(x + y),
+    sp.cos(x - y),
+    sp.sin(2 * x),
+    sp.cos(y + sp.pi / 3),
+    sp.cos(sp.pi / 18),
+    z,
+    r,
+    sp.sqrt(2),
+    sp.sqrt(6),
+]
+
+
+@st.composite
+def trig_polynomials(draw: st.DrawFn) -> sp.Expr:
+    """A random sum of products of leaves (:data:`_TRIG_LEAVES`), nested once, with
+    squares."""
+
+    def term() -> sp.Expr:
+        coeff = sp.Rational(draw(st.integers(-5, 5)), draw(st.integers(1, 4)))
+        factors = draw(st.lists(st.sampled_from(_TRIG_LEAVES), max_size=2))
+        power = draw(st.integers(1, 2))
+        return coeff * sp.Mul(*factors) ** power
+
+    inner = sp.Add(*(term() for _ in range(draw(st.integers(1, 2)))))
+    outer = sp.Add(*(term() for _ in range(draw(st.integers(0, 2)))))
+    return inner * term() + outer
+
+
+def _division_remainder(e: sp.Expr) -> sp.Expr:
+    """The remainder of ``e`` modulo ``sin² + cos² − 1`` by :func:`sympy.reduced`, lex
+    order with each sine before its cosine, written back in sines and cosines."""
+    expanded = sp.expand(sp.expand_trig(e))
+    angles = sorted({f.args[0] for f in expanded.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
+    s = [sp.Dummy(f"s{k}") for k in range(len(angles))]
+    c = [sp.Dummy(f"c{k}") for k in range(len(angles))]
+    forward = {sp.sin(a): s[k] for k, a in enumerate(angles)}
+    forward |= {sp.cos(a): c[k] for k, a in enumerate(angles)}
+    poly = sp.expand(expanded.xreplace(forward))
+    if not angles or poly == 0:
+        return poly
+    gens = [g for k in range(len(angles)) for g in (s[k], c[k])]
+    others = sorted(poly.free_symbols - set(gens), key=sp.default_sort_key)
+    relations = [s[k] ** 2 + c[k] ** 2 - 1 for k in range(len(angles))]
+    _, rem = sp.reduced(poly, relations, *gens, *others, order="lex")
+    return sp.expand(rem.xreplace({v: k for k, v in forward.items()}))
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(trig_polynomials())
+def test_the_normal_form_is_the_remainder_of_division(e):
+    from sympy.polys.domains import QQ
+
+    from dhsym.kinematics.simplification import _in_ring, _ring_of
+
+    ringed = _ring_of([e])
+    assert ringed is not None  # rational coefficients, square roots, linear angles
+    ring, R = ringed
+    p = _in_ring(e, ring, R, dict(zip(ring.atoms, R.gens)))
+    fast = sp.Add(*(QQ.to_sympy(k) * ring.monomial(m) for m, k in p.items()))
+    assert sp.expand(fast - _division_remainder(e)) == 0
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(trig_polynomials(), trig_polynomials(), st.sampled_from([0, 1, sp.sqrt(3), sp.pi]))
+def test_prove_equal_answers_as_division_does(e, other, k):
+    # e against itself rewritten (sin² → 1 − cos², sums of angles expanded), and against
+    # itself plus a multiple of another polynomial (often not 0 modulo sin² + cos² − 1);
+    # k = π leaves the rationals and their roots: prove_equal divides as the reference does
+    rewritten = sp.expand(sp.expand_trig(e)).replace(
+        lambda f: f.is_Pow and isinstance(f.base, sp.sin) and f.exp == 2,
+        lambda f: 1 - sp.cos(f.base.args[0]) ** 2,
+    )
+    assert prove_equal(sp.Matrix([k * e]), sp.Matrix([k * rewritten]))
+    changed = e + k * other
+    expected = _division_remainder(k * other) == 0
+    assert prove_equal(sp.Matrix([e, changed]), sp.Matrix([rewritten, e])) is expected
