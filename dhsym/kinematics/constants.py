@@ -124,12 +124,26 @@ def float_constants(expr: sp.Basic) -> sp.Basic:
     -0.25*x**2 + 1.4142135623730951*cos(x + 1.0471975511965979)
     """
     memo: dict[sp.Basic, sp.Basic] = {}
+    # whether a subtree holds a symbol, found once per shared subtree: sympy's free_symbols
+    # (and as_independent, which asks it of every argument) walk every copy of a subtree,
+    # minutes on the expanded torques of a non-orthogonal wrist (the Jaco)
+    symbolic: dict[sp.Basic, bool] = {}
+
+    def has_symbols(e: sp.Basic) -> bool:
+        hit = symbolic.get(e)
+        if hit is None:
+            if e.is_Atom or not (e.is_Add or e.is_Mul or e.is_Pow or isinstance(e, sp.Function)):
+                hit = bool(e.free_symbols)  # an atom, or a node that may bind its symbols
+            else:
+                hit = any(has_symbols(a) for a in e.args)
+            symbolic[e] = hit
+        return hit
 
     def walk(e: sp.Basic) -> sp.Basic:
         hit = memo.get(e)
         if hit is not None:
             return hit
-        if not e.free_symbols:
+        if not has_symbols(e):
             small = e.is_Integer and abs(int(e)) <= _EXACT_INT  # ±1, 2: exact in floats too
             out: sp.Basic = e if small or not isinstance(e, sp.Expr) else sp.Float(to_float(e), 17)
         elif e.is_Atom:
@@ -137,8 +151,9 @@ def float_constants(expr: sp.Basic) -> sp.Basic:
         elif e.is_Pow and e.exp.is_Integer:
             out = sp.Pow(walk(e.base), e.exp)
         elif e.is_Add or e.is_Mul:  # fold the constant part as one number
-            const, rest = e.as_independent(*e.free_symbols, as_Add=e.is_Add)
-            out = e.func(walk(const), *(walk(a) for a in e.func.make_args(rest)))
+            const = e.func(*(a for a in e.args if not has_symbols(a)))
+            rest = [walk(a) for a in e.args if has_symbols(a)]
+            out = e.func(walk(const), *rest)
         else:
             out = e.func(*(walk(a) for a in e.args))
         memo[e] = out
