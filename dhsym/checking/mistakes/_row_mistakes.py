@@ -316,7 +316,9 @@ class SingleWrongRow(Mistake):
             return None
         for k in range(key.n):
             rows = tuple(ans.rows[k] if j == k else r for j, r in enumerate(key.rows))
-            if not same_cells(Chain(rows, key.convention), ans, case.values):
+            if not same_cells(
+                Chain(rows, key.convention), ans, case.values, verdicts=case.verdicts
+            ):
                 continue
             if _same_row(key.rows[k], ans.rows[k], key.convention, case.values):
                 continue
@@ -443,7 +445,7 @@ def explain_table_pairs(
                     left -= 1
                     if left < 0:
                         return ()
-                    if same_cells(Chain(rows_b, conv), ans, case.values):
+                    if same_cells(Chain(rows_b, conv), ans, case.values, verdicts=case.verdicts):
                         return _pair(
                             (a.kind, a.title, detail_a, where_a),
                             (b.kind, b.title, detail_b, where_b),
@@ -496,7 +498,7 @@ def _one_wrong_cell(
     if first is not None and slipped <= {(k, c[0]) for k, c in zip(differ, cells, strict=True)}:
         return ()  # the wrong cell overwrites all the first slip wrote: that slip is not there
     fixed = tuple(ans.rows[j] if j in differ else r for j, r in enumerate(rows))
-    if not same_cells(Chain(fixed, conv), ans, case.values):
+    if not same_cells(Chain(fixed, conv), ans, case.values, verdicts=case.verdicts):
         return ()
     title = SingleWrongRow.title
     slips = [
