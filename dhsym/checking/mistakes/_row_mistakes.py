@@ -294,13 +294,15 @@ def _scaled(row: DHRow, factor: sp.Expr, memo: RowMemo | None = None) -> DHRow:
     """``row`` with the constant parts of θ and α multiplied by ``factor`` (``row`` itself
     when it has none: the same row), taken from ``memo`` when this diagnosis scaled the same
     row object by ``factor`` before (and kept there)."""
-    if not _has_constant(row.theta) and not _has_constant(row.alpha):
-        return row
     done = memo.get((id(row), factor)) if memo is not None else None
     if done is not None:
         return done[1]
-    new = replace(row, theta=_angle_terms(row.theta, factor), alpha=_angle_terms(row.alpha, factor))
-    if memo is not None:
+    if not _has_constant(row.theta) and not _has_constant(row.alpha):
+        new = row
+    else:
+        theta, alpha = _angle_terms(row.theta, factor), _angle_terms(row.alpha, factor)
+        new = replace(row, theta=theta, alpha=alpha)
+    if memo is not None:  # a row without a constant angle is kept too: it is itself
         memo[(id(row), factor)] = (row, new)
     return new
 
