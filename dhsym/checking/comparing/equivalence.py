@@ -233,25 +233,34 @@ def prove_entry(
         return None
 
 
-def _magnitude(expr: sp.Expr, sample: Sample) -> np.ndarray:
+def _magnitude(
+    expr: sp.Expr, sample: Sample, memo: dict[object, np.ndarray] | None = None
+) -> np.ndarray:
     """The size of the numbers a double-precision evaluation of ``expr`` adds up: every sum
-    taken as the sum of its terms' sizes (its rounding error is about ``eps`` times it)."""
+    taken as the sum of its terms' sizes (its rounding error is about ``eps`` times it);
+    ``memo``: the values of subtrees at this sample already computed (:func:`values`)."""
     if expr.is_Add:
-        return sum((_magnitude(a, sample) for a in expr.args), np.zeros(sample.size))
+        return sum((_magnitude(a, sample, memo) for a in expr.args), np.zeros(sample.size))
     if expr.is_Mul:
         out = np.ones(sample.size)
         for a in expr.args:
-            out = out * _magnitude(a, sample)
+            out = out * _magnitude(a, sample, memo)
         return out
     if expr.is_Pow and expr.exp.is_Integer and expr.exp > 0:
-        return _magnitude(expr.base, sample) ** int(expr.exp)
-    size: np.ndarray = np.abs(values(expr, sample))  # an expression's: (size,) already
+        return _magnitude(expr.base, sample, memo) ** int(expr.exp)
+    size: np.ndarray = np.abs(values(expr, sample, memo))  # an expression's: (size,) already
     return size
 
 
-def cancellation(answer: sp.Expr, sample: Sample, difference: np.ndarray) -> bool:
+def cancellation(
+    answer: sp.Expr,
+    sample: Sample,
+    difference: np.ndarray,
+    memo: dict[object, np.ndarray] | None = None,
+) -> bool:
     """True when ``difference`` (answer minus key at the sample) may be rounding error:
-    below ``2**-40`` times the size of the numbers the answer's sums cancel.
+    below ``2**-40`` times the size of the numbers the answer's sums cancel (``memo``: the
+    values of the answer's subtrees at this sample, when its walk computed them).
 
     Such an entry is decided by a higher precision or an exact proof, never by the
     doubles: ``(C1² + S1² − 1)·10¹³ + C12`` is ``C12``.
@@ -266,7 +275,7 @@ def cancellation(answer: sp.Expr, sample: Sample, difference: np.ndarray) -> boo
     """
     try:
         with np.errstate(all="ignore"):
-            size = _magnitude(answer, sample)
+            size = _magnitude(answer, sample, memo)
     except (EvaluationError, TypeError, ValueError, OverflowError):
         return False
     with np.errstate(all="ignore"):

@@ -52,7 +52,15 @@ from ..reading.limits import check_time
 from .sampled_frames import EvaluationError, evaluate, frames
 from .tolerances import TOLERANCES
 
-__all__ = ["Chain", "KeyFrames", "TableMatch", "compare_tables", "same_cells", "symbolic_values"]
+__all__ = [
+    "Chain",
+    "KeyFrames",
+    "RowVerdicts",
+    "TableMatch",
+    "compare_tables",
+    "same_cells",
+    "symbolic_values",
+]
 
 _CONFIGS = 6
 
@@ -414,11 +422,56 @@ def _plain_nodes(e: sp.Basic, budget: int) -> int:
     return -1
 
 
+class RowVerdicts:
+    """The rows of candidate tables already compared with one answer (:func:`same_cells`
+    with ``verdicts=``), for one diagnosis: a wrong table's diagnosis compares the answer
+    with a hundred and more variants of the key, and a variant changes a row or two, so
+    each other row is compared once, not once per variant.
+
+    A row's verdict is kept by what it depends on: its place, its joint, cells and
+    variable, and the variables of the candidate table (the answer, its numbers ``values``
+    and the seed are this object's); a row whose verdict depended on the other rows' cells
+    (a variable of one row written in another row's cell) is not kept.  Nothing is kept
+    beyond the object, which a diagnosis makes for its one answer.
+
+    >>> from dhsym.model.library import load_table
+    >>> t = load_table("planar2r")
+    >>> values = t.value_map
+    >>> seen = RowVerdicts(t, values)
+    >>> same_cells(t, t, values, verdicts=seen), len(seen)
+    (True, 2)
+    >>> same_cells(t, t, t.value_map, verdicts=seen), len(seen)  # another map: not kept
+    (True, 2)
+    """
+
+    def __init__(
+        self, answer: DHTable | Chain, values: Mapping[sp.Symbol, sp.Expr], seed: int = 3
+    ) -> None:
+        self.answer, self.values, self.seed = answer, values, seed
+        self._seen: dict[tuple[object, ...], bool] = {}
+
+    def __len__(self) -> int:
+        return len(self._seen)
+
+    def serves(self, answer: DHTable | Chain, values: object, seed: int) -> bool:
+        """True when this memo is for this answer, values map and seed (the same objects)."""
+        return answer is self.answer and values is self.values and seed == self.seed
+
+    def get(self, where: tuple[object, ...]) -> bool | None:
+        """The verdict of the row ``where`` describes, if it was judged."""
+        return self._seen.get(where)
+
+    def put(self, where: tuple[object, ...], verdict: bool) -> None:
+        """Keep the verdict of the row ``where`` describes."""
+        self._seen[where] = verdict
+
+
 def same_cells(
     key: DHTable | Chain,
     answer: DHTable | Chain,
     values: Mapping[sp.Symbol, sp.Expr] | None = None,
     seed: int = 3,
+    verdicts: RowVerdicts | None = None,
 ) -> bool:
     """True when both tables have the same rows, cell by cell (joint variables paired).
 
@@ -429,6 +482,10 @@ def same_cells(
     (:func:`_plainly_finite`) and has a moderate value for each of its symbols agrees with
     itself without being evaluated (a mistake's variant changes a cell or two), and
     only the values the other cells need are drawn: the same values, the same answer.
+    Each row's verdict depends on that row, its place and the tables' variables only
+    (the values are drawn per name and per place), so the rows may be judged in any order
+    and a row judged before for the same answer is taken from ``verdicts``
+    (:class:`RowVerdicts`), when given for this ``answer``, ``values`` and ``seed``.
 
     >>> from dhsym.model.library import load_table
     >>> t = load_table("planar2r")
@@ -442,12 +499,14 @@ def same_cells(
     variables_k = {r.variable for r in k.rows if r.variable is not None}
     variables_a = {r.variable for r in a.rows if r.variable is not None}
     constants: set[sp.Symbol] | None = None  # both chains', computed only when asked
+    consulted = False  # whether a row's verdict asked for the constants of both chains
 
     def is_constant(s: sp.Symbol) -> bool:
         """Whether ``s`` (a symbol of a cell) gets a constant's value (:func:`_constants`)."""
-        nonlocal constants
+        nonlocal constants, consulted
         if s not in variables_k and s not in variables_a:
             return True  # a symbol of a cell that is neither chain's variable
+        consulted = True
         if constants is None:
             constants = _constants(k) | _constants(a)
         return s in constants
@@ -455,7 +514,9 @@ def same_cells(
     env: dict[sp.Symbol, np.ndarray] = {}  # the constants' values, drawn when first needed
     drawn: list[np.ndarray] = []  # the joint values of the rows, one draw per row in turn
     rng: np.random.Generator | None = None
-    for row, (rk, ra) in enumerate(zip(k.rows, a.rows)):
+
+    def same_row(row: int, rk: DHRow, ra: DHRow) -> bool:
+        nonlocal rng
         if rk.joint is not ra.joint:
             return False
         if ra.variable != rk.variable and ra.variable in variables_k:
@@ -496,6 +557,24 @@ def same_cells(
                     return False
             elif not abs(vk - va) <= TOLERANCES.cell_atol * (1 + abs(vk)):
                 return False
+        return True
+
+    memo = verdicts if verdicts is not None and verdicts.serves(answer, values, seed) else None
+    table_variables = frozenset(variables_k)
+    for row, (rk, ra) in enumerate(zip(k.rows, a.rows)):
+        if memo is None:
+            if not same_row(row, rk, ra):
+                return False
+            continue
+        where = (row, rk.joint, rk.theta, rk.d, rk.a, rk.alpha, rk.variable, table_variables)
+        verdict = memo.get(where)
+        if verdict is None:
+            consulted = False
+            verdict = same_row(row, rk, ra)
+            if not consulted:
+                memo.put(where, verdict)
+        if not verdict:
+            return False
     return True
 
 

@@ -106,7 +106,7 @@ def _compare(
                     proof = "numeric"
                 elif exact:
                     proof = "exact"
-            elif not unknown and cancellation(a, sample, av[:, i, j] - kv[:, i, j]):
+            elif not unknown and cancellation(a, sample, av[:, i, j] - kv[:, i, j], memo):
                 # the doubles cannot tell: their difference is the rounding error of the sums
                 # the answer cancels; 60-digit numbers or the exact proof decide
                 exact = prove_entry(a, target, limits)

@@ -285,7 +285,8 @@ class WrongSign(EntryMistake):
 
     def explain_table(self, case: TableCase) -> Diagnosis | None:
         for rows, detail, where in self.table_edits(tuple(case.key.rows), case.key):
-            if same_cells(Chain(rows, case.key.convention), case.answer, case.values):
+            chain = Chain(rows, case.key.convention)
+            if same_cells(chain, case.answer, case.values, verdicts=case.verdicts):
                 return Diagnosis(self.kind, self.title, detail, rows=where)
         return None
 

@@ -30,7 +30,7 @@ from dhsym.model.table import AngleUnit, Convention, DHRow, DHTable
 from dhsym.notation.printers import Notation, format_angle
 
 from ..comparing.equivalence import Sample, close
-from ..comparing.table_match import Chain, same_cells
+from ..comparing.table_match import Chain, RowVerdicts, same_cells
 from ..comparing.verdict import Diagnosis
 
 if TYPE_CHECKING:
@@ -138,12 +138,18 @@ class MatrixCase:
 
 @dataclass(frozen=True, eq=False)
 class TableCase:
-    """A wrong table answer and the key table."""
+    """A wrong table answer and the key table; ``verdicts`` keeps, for this one diagnosis,
+    the rows of the key's variants already compared with the answer
+    (:class:`~dhsym.checking.comparing.table_match.RowVerdicts`)."""
 
     key: DHTable
     answer: DHTable
     tool_free: bool = False
     values: Mapping[sp.Symbol, sp.Expr] = field(default_factory=dict)
+    verdicts: RowVerdicts = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "verdicts", RowVerdicts(self.answer, self.values))
 
 
 class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override some
@@ -228,7 +234,7 @@ class Mistake(ABC):  # noqa: B024 - every hook has a default; kinds override som
     def explain_table(self, case: TableCase) -> Diagnosis | None:
         """A diagnosis when the answer table equals a variant of the key table."""
         for chain, detail, rows in self.table_variants(case):
-            if same_cells(chain, case.answer, case.values):
+            if same_cells(chain, case.answer, case.values, verdicts=case.verdicts):
                 return Diagnosis(self.kind, self.title, detail, rows=rows)
         return None
 

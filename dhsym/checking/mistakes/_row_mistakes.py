@@ -294,13 +294,15 @@ def _scaled(row: DHRow, factor: sp.Expr, memo: RowMemo | None = None) -> DHRow:
     """``row`` with the constant parts of θ and α multiplied by ``factor`` (``row`` itself
     when it has none: the same row), taken from ``memo`` when this diagnosis scaled the same
     row object by ``factor`` before (and kept there)."""
-    if not _has_constant(row.theta) and not _has_constant(row.alpha):
-        return row
     done = memo.get((id(row), factor)) if memo is not None else None
     if done is not None:
         return done[1]
-    new = replace(row, theta=_angle_terms(row.theta, factor), alpha=_angle_terms(row.alpha, factor))
-    if memo is not None:
+    if not _has_constant(row.theta) and not _has_constant(row.alpha):
+        new = row
+    else:
+        theta, alpha = _angle_terms(row.theta, factor), _angle_terms(row.alpha, factor)
+        new = replace(row, theta=theta, alpha=alpha)
+    if memo is not None:  # a row without a constant angle is kept too: it is itself
         memo[(id(row), factor)] = (row, new)
     return new
 
@@ -316,7 +318,9 @@ class SingleWrongRow(Mistake):
             return None
         for k in range(key.n):
             rows = tuple(ans.rows[k] if j == k else r for j, r in enumerate(key.rows))
-            if not same_cells(Chain(rows, key.convention), ans, case.values):
+            if not same_cells(
+                Chain(rows, key.convention), ans, case.values, verdicts=case.verdicts
+            ):
                 continue
             if _same_row(key.rows[k], ans.rows[k], key.convention, case.values):
                 continue
@@ -443,7 +447,7 @@ def explain_table_pairs(
                     left -= 1
                     if left < 0:
                         return ()
-                    if same_cells(Chain(rows_b, conv), ans, case.values):
+                    if same_cells(Chain(rows_b, conv), ans, case.values, verdicts=case.verdicts):
                         return _pair(
                             (a.kind, a.title, detail_a, where_a),
                             (b.kind, b.title, detail_b, where_b),
@@ -496,7 +500,7 @@ def _one_wrong_cell(
     if first is not None and slipped <= {(k, c[0]) for k, c in zip(differ, cells, strict=True)}:
         return ()  # the wrong cell overwrites all the first slip wrote: that slip is not there
     fixed = tuple(ans.rows[j] if j in differ else r for j, r in enumerate(rows))
-    if not same_cells(Chain(fixed, conv), ans, case.values):
+    if not same_cells(Chain(fixed, conv), ans, case.values, verdicts=case.verdicts):
         return ()
     title = SingleWrongRow.title
     slips = [

@@ -6,7 +6,13 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from dhsym.checking.comparing.equivalence import Sample, close, prove_entry, values
+from dhsym.checking.comparing.equivalence import (
+    Sample,
+    cancellation,
+    close,
+    prove_entry,
+    values,
+)
 
 x, y = sp.symbols("x y", real=True)
 
@@ -121,3 +127,25 @@ def test_other_identities_are_proven_exactly(answer, key):
 def test_wrong_identities_are_disproven():
     assert prove_entry(1 - 2 * sp.sin(x) ** 2, sp.cos(x)) is False
     assert prove_entry(2 * sp.sin(x / 2) * sp.cos(x / 2), sp.cos(x)) is False
+
+
+def test_cancellation_with_the_walks_memo_decides_as_without():
+    """The sizes of an answer's sums taken from the values its walk computed (the memo of
+    the answer and its key at the sample) decide as the sizes computed again."""
+    x, y = sp.symbols("x y", real=True)
+    key = sp.Matrix([[sp.cos(x), sp.sin(x) * y, x**2 + 1]])
+    answers = [
+        sp.Matrix([[(sp.cos(x) ** 2 + sp.sin(x) ** 2 - 1) * 10**13 + sp.cos(x), y, x**2]]),
+        sp.Matrix([[sp.cos(x) + sp.Rational(1, 10**3), sp.sin(x) * y * (1 + 10**-14), 2]]),
+        sp.Matrix([[sp.cos(90) * x, sp.sin(sp.pi / 180 * x) * 10**15 - 10**15, x**2 + 1]]),
+    ]
+    decided = set()
+    for answer in answers:
+        sample = Sample.random({x, y})
+        memo: dict[object, np.ndarray] = {}
+        diff = values(answer, sample, memo) - values(key, sample, memo)
+        for j in range(3):
+            plain = cancellation(answer[0, j], sample, diff[:, 0, j])
+            assert cancellation(answer[0, j], sample, diff[:, 0, j], memo) == plain
+            decided.add(plain)
+    assert decided == {True, False}

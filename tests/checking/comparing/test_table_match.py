@@ -8,7 +8,13 @@ import pytest
 import sympy as sp
 
 from dhsym import load_table
-from dhsym.checking.comparing.table_match import Chain, KeyFrames, compare_tables, same_cells
+from dhsym.checking.comparing.table_match import (
+    Chain,
+    KeyFrames,
+    RowVerdicts,
+    compare_tables,
+    same_cells,
+)
 from dhsym.model.table import DHTable
 
 pi = sp.pi
@@ -183,3 +189,61 @@ def test_key_frames_prepared_once_give_the_same_match(values):
         assert _match_fields(once) == _match_fields(plain)
     other = {**PUMA.value_map, next(iter(PUMA.value_map)): sp.Integer(7)}
     assert frames.get(other, 11) is None  # other numbers: computed per answer as before
+
+
+def _variants(key):
+    """The key's rows under every slip of the pair search and every pair of them: what a
+    table's diagnosis compares an answer with, many variants sharing most rows."""
+    from dhsym.checking.mistakes.registry import TABLE_PAIR_MISTAKES
+
+    base = tuple(key.rows)
+    out = []
+    for a in TABLE_PAIR_MISTAKES:
+        for rows_a, _, _ in a.table_edits(base, key):
+            out.append(rows_a)
+            for b in TABLE_PAIR_MISTAKES:
+                out.extend(rows_b for rows_b, _, _ in b.table_edits(rows_a, key))
+    return out
+
+
+@pytest.mark.parametrize("name", ["puma560", "stanford", "puma560_modified"])
+def test_row_verdicts_give_the_verdicts_of_same_cells(name):
+    """Rows judged once for one answer (RowVerdicts) give, variant after variant, the
+    verdict same_cells gives each variant alone, for answers right, wrong in one cell,
+    written in numbers, and under a slip (some variants equal them)."""
+    key = load_table(name)
+    variants = _variants(key)
+    rows = list(key.rows)
+    rows[1] = replace(rows[1], a=rows[2].a if rows[2].a != 0 else sp.Rational(1, 3))
+    answers = [key, DHTable(tuple(rows), key.convention), key.with_values(key.value_map)]
+    answers += [Chain(variants[k], key.convention) for k in (0, len(variants) // 2, -1)]
+    agreed = 0
+    for answer in answers:
+        values = key.value_map
+        memo = RowVerdicts(answer, values)
+        for rows_v in variants:
+            chain = Chain(rows_v, key.convention)
+            plain = same_cells(chain, answer, values)
+            assert same_cells(chain, answer, values, verdicts=memo) == plain
+            agreed += plain
+        assert 0 < len(memo) <= 4 * key.n * len(variants)
+    assert agreed >= 3  # each variant answer meets itself
+
+
+def test_row_verdicts_keep_no_row_that_depends_on_other_rows():
+    """A cell holding another row's joint variable is judged with both tables' constants:
+    that row's verdict is not kept (another variant may change which symbols those are),
+    and a memo made for another answer or another values map is not used."""
+    t = load_table("planar2r")
+    r1, r2 = t.rows
+    other = Chain((replace(r1, d=r2.variable), r2), t.convention)
+    memo = RowVerdicts(other, {})
+    assert same_cells(other, other, {}, verdicts=memo) == same_cells(other, other, {})
+    assert len(memo) == 0
+    values = t.value_map
+    memo = RowVerdicts(t, values)
+    assert same_cells(t, t, values, verdicts=memo) and len(memo) == 2
+    wrong = Chain((r1, replace(r2, a=-r2.a)), t.convention)
+    assert not same_cells(wrong, t, values, verdicts=memo) and len(memo) == 3
+    assert not memo.serves(Chain.of(t), values, 3) and not memo.serves(t, dict(values), 3)
+    assert not memo.serves(t, values, 4)
