@@ -40,7 +40,13 @@ from dhsym.model.yamlsafe import FileRefused, read_limited
 
 from ._table_text import TABLE_FORM, grid_table, yaml_table
 from .answer_names import ANGLE_DIFFERENCE, NameContext, angle_difference_name
-from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
+from .latex_input import (
+    answer_side,
+    flatten_subscripts,
+    is_latex,
+    latex_matrix_cells,
+    latex_to_text,
+)
 from .limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer, check_time
 from .literals import Literal
 
@@ -230,13 +236,14 @@ def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIM
 
 def _cell_text(cell: str) -> str:
     """One cell or expression as parser text (LaTeX translated, subscripts flattened,
-    ``[ ]`` and ``{ }`` used as brackets, ``90^o`` as degrees)."""
-    cell = cell.strip()
+    ``[ ]`` and ``{ }`` used as brackets, ``90^o`` as degrees, a closing ``;`` as MATLAB
+    ends a statement dropped)."""
+    cell = cell.strip().removesuffix(";").rstrip()
     if is_latex(cell):
         return latex_to_text(cell)
     cell = ANGLE_DIFFERENCE.sub(angle_difference_name, cell.replace("**", "^"))  # C[12-4]
     if "=" in cell:
-        cell = cell.rsplit("=", 1)[1]
+        cell = answer_side(cell)
     cell = _DEGREE_O.sub(r"\1°", flatten_subscripts(cell))
     return cell.translate(_BRACKETS)
 
@@ -373,7 +380,7 @@ def _plain_cells(text: str) -> list[list[str]]:
     if m:
         text = m[1]
     if "=" in text:
-        text = text.rsplit("=", 1)[1]
+        text = answer_side(text)
     body = text.strip()
     if body.startswith("[") and body.endswith("]"):
         inner = body[1:-1].strip()
