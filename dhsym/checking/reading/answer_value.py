@@ -383,7 +383,9 @@ def _read_ik(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> IKA
         else:
             raise UnreadableAnswer(f"cannot read {lhs.strip()!r} as the name of a joint variable")
     P = pose_symbols()
-    extra = [(str(P[i, j]), P[i, j]) for i in range(3) for j in range(4)]
+    # x, y, z for the position, as Spong writes a planar arm's (x, y), unless the robot has them
+    extra = [(c, P[i, 3]) for i, c in enumerate("xyz") if form.names.symbol(c) is None]
+    extra += [(str(P[i, j]), P[i, j]) for i in range(3) for j in range(4)]
     extra += list(helpers_named.items())
     signs: list[sp.Symbol] = []
     solutions: list[dict[int, IKStatement]] = []
