@@ -226,7 +226,7 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
         return _read_axes(form, answer, limits)
     if q.kind == "dynamics":
         shapes = ((rows, cols), (cols, rows)) if cols == 1 else ((rows, cols),)
-        grid = matrix_cells(answer, limits, shapes)
+        grid = matrix_cells(answer, limits, shapes, symmetric=q.part == "M")
         texts = [c for row in grid for c in row]  # a row vector is read as the column
         where = [f"entry {k + 1}" if cols == 1 else _pos(k, q, cols) for k in range(len(texts))]
         return MatrixAnswer(_source(answer), form.shape, _read_all(texts, where, form, limits))

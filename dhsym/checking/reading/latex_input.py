@@ -205,6 +205,8 @@ class _Translator:
     def command(self, name: str) -> str:
         if name in _GREEK:
             return self.postfix(self.subscripted(name.lower().removeprefix("var")))
+        if name == "ell":  # Spong's link lengths: \ell_1, \ell_{c2}
+            return self.postfix(self.subscripted("l"))
         if name == "pi":
             return self.postfix("pi")
         if name in _FUNCTIONS:
