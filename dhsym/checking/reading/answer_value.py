@@ -233,7 +233,7 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
     if q.kind != "jacobian":
         grid = matrix_cells(answer, limits)
         texts = [c for row in grid for c in row]
-        cells = _read_all(texts, [_pos(k, q) for k in range(len(texts))], form, limits)
+        cells = _printed(_read_all(texts, [_pos(k, q) for k in range(len(texts))], form, limits))
         if len(grid) == 3:
             cells += (_ZERO, _ZERO, _ZERO, _ONE)
         return MatrixAnswer(_source(answer), (4, 4), cells)
@@ -251,6 +251,48 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
         row.insert(k, _ZERO)
         full += row
     return MatrixAnswer(_source(answer), (6, cols), tuple(full), missing_column=k)
+
+
+_PRINTED = re.compile(r"\s*[-+]?\s*[0-9]*(\.(?P<frac>[0-9]*))?\s*")
+
+
+def _printed(cells: tuple[ReadCell, ...]) -> tuple[ReadCell, ...]:
+    """A matrix of plain numbers as numpy and MATLAB print one: when most of its decimals
+    show the same number of decimal places, the others are read to that many, their
+    trailing zeros dropped (numpy prints -0.15005 rounded to 4 decimals as ``-0.15``
+    beside ``0.4521``: it is -0.1500, right to 4 decimals). A matrix rounded to
+    significant digits (``0.82`` beside ``-0.006``) is read as written.
+
+    >>> from dhsym.checking.reading.literals import decimal_places
+    >>> n = sp.Dummy("n")
+    >>> cell = lambda t: ReadCell(t, sp.Rational(t), n, (Literal(n, t.lstrip("-"), 0),))
+    >>> [decimal_places(c.literals[0].text) for c in _printed(tuple(map(cell, ["0.4521",
+    ...     "-0.15", "0.4318", "1."])))]
+    [(4, 0.0001), (4, 0.0001), (4, 0.0001), (5, 0.0001)]
+    >>> [c.literals[0].text for c in _printed(tuple(map(cell, ["0.82", "0.19", "-0.006"])))]
+    ['0.82', '0.19', '0.006']
+    """
+    found = [_PRINTED.fullmatch(c.text) for c in cells]
+    if not all(found):
+        return cells
+    places = [len(m["frac"]) for m in found if m is not None and m["frac"]]  # not "1."
+    widest = max(places, default=0)
+    if 2 * places.count(widest) <= len(places):
+        return cells
+    return tuple(
+        ReadCell(
+            c.text,
+            c.value,
+            c.template,
+            tuple(
+                Literal(lit.symbol, lit.text + "0" * (widest - len(m["frac"])), lit.value)
+                if m is not None and m["frac"] is not None and "." in lit.text
+                else lit
+                for lit in c.literals
+            ),
+        )
+        for c, m in zip(cells, found, strict=True)
+    )
 
 
 def _read_axes(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> MatrixAnswer:
