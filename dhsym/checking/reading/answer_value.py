@@ -74,7 +74,9 @@ class AnswerForm:
     ``shape`` is the key's matrix (rows, columns); ``prismatic`` the 0-based joints whose
     Jacobian column an answer may leave out; ``convention`` the key's (for a table);
     ``variables`` and ``lengths`` the robot's joint variables and lengths (for an
-    inverse-kinematics answer).
+    inverse-kinematics answer); ``rows``, for a Jacobian with rows that are zero in every
+    configuration, the others (a planar arm's ``v_x, v_y, ω_z``: 0, 1, 5), which an
+    answer may give alone.
     """
 
     question: Question
@@ -84,6 +86,7 @@ class AnswerForm:
     convention: Convention = Convention.STANDARD
     variables: tuple[sp.Symbol, ...] = ()
     lengths: frozenset[sp.Symbol] = frozenset()
+    rows: tuple[int, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -237,8 +240,17 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
         if len(grid) == 3:
             cells += (_ZERO, _ZERO, _ZERO, _ONE)
         return MatrixAnswer(_source(answer), (4, 4), cells)
-    shapes = ((6, cols), (6, cols - 1)) if form.prismatic else ((6, cols),)
-    grid = matrix_cells(answer, limits, shapes)
+    taken = [(6, cols)] + [(6, cols - 1)] * bool(form.prismatic)
+    if form.rows:  # a planar arm's J in its plane: [v_x; v_y; ω_z]
+        taken.append((len(form.rows), cols))
+    grid = matrix_cells(answer, limits, tuple(taken))
+    if len(grid) == len(form.rows) != 6:
+        where = [f"entry ({i + 1},{j})" for i in form.rows for j in range(1, cols + 1)]
+        read = _read_all([c for row in grid for c in row], where, form, limits)
+        slices = [read[k * cols : (k + 1) * cols] for k in range(len(form.rows))]
+        given = dict(zip(form.rows, slices, strict=True))
+        plane = tuple(c for i in range(6) for c in given.get(i, (_ZERO,) * cols))
+        return MatrixAnswer(_source(answer), (6, cols), plane)
     width = len(grid[0])
     where = [f"entry ({i},{j})" for i, row in enumerate(grid, 1) for j in range(1, len(row) + 1)]
     read = _read_all([c for row in grid for c in row], where, form, limits)
