@@ -264,7 +264,17 @@ class PreparedKey:
             table.convention,
             tuple(self.robot.variables),
             frozenset(table.constants),
+            self._nonzero_rows(),
         )
+
+    def _nonzero_rows(self) -> tuple[int, ...]:
+        """For the whole Jacobian with rows that are zero in every configuration, the others
+        (a planar arm's v_x, v_y, ω_z); else ()."""
+        if self.key.question.kind != "jacobian" or not isinstance(self.part, MatrixPart):
+            return ()
+        J = self.part.expected
+        rows = tuple(i for i in range(J.rows) if any(e != 0 for e in J.row(i)))
+        return rows if J.shape[0] == 6 and 0 < len(rows) < 6 else ()
 
 
 #: the key of any question: a DH table's, or a profile's

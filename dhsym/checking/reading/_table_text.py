@@ -119,6 +119,7 @@ def _cell(
     raw = text.strip()
     if not raw:
         raise TableError("empty cell", row=row, field=field)
+    raw = _unmarked(raw)
     marked = bool(_DEGREE_MARK.search(raw))
     if marked:
         raw = _DEGREE_MARK.sub("", raw)
@@ -128,6 +129,21 @@ def _cell(
     except ParseError as err:
         raise TableError(err.message, row=row, field=field) from None
     return expr, marked
+
+
+def _unmarked(cell: str) -> str:
+    r"""A cell without the star Spong's tables put on the joint variable (``θ1*``,
+    ``\theta_1^*``, ``\theta_1^{*}``): a mark, not part of the value.
+
+    >>> _unmarked("θ1*"), _unmarked(r"$\theta_1^{*}$"), _unmarked("d3 ^*"), _unmarked("*")
+    ('θ1', '$\\theta_1$', 'd3', '*')
+    """
+    if len(cell) > 2 and cell[0] == cell[-1] == "$":
+        return f"${_unmarked(cell[1:-1].strip())}$"
+    for mark in ("^{*}", "^*", "*"):
+        if cell.endswith(mark) and cell[: -len(mark)].strip():
+            return cell[: -len(mark)].rstrip()
+    return cell
 
 
 def _constant(expr: sp.Expr) -> float:

@@ -74,7 +74,9 @@ class AnswerForm:
     ``shape`` is the key's matrix (rows, columns); ``prismatic`` the 0-based joints whose
     Jacobian column an answer may leave out; ``convention`` the key's (for a table);
     ``variables`` and ``lengths`` the robot's joint variables and lengths (for an
-    inverse-kinematics answer).
+    inverse-kinematics answer); ``rows``, for a Jacobian with rows that are zero in every
+    configuration, the others (a planar arm's ``v_x, v_y, ω_z``: 0, 1, 5), which an
+    answer may give alone.
     """
 
     question: Question
@@ -84,6 +86,7 @@ class AnswerForm:
     convention: Convention = Convention.STANDARD
     variables: tuple[sp.Symbol, ...] = ()
     lengths: frozenset[sp.Symbol] = frozenset()
+    rows: tuple[int, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -226,19 +229,28 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
         return _read_axes(form, answer, limits)
     if q.kind == "dynamics":
         shapes = ((rows, cols), (cols, rows)) if cols == 1 else ((rows, cols),)
-        grid = matrix_cells(answer, limits, shapes)
+        grid = matrix_cells(answer, limits, shapes, symmetric=q.part == "M")
         texts = [c for row in grid for c in row]  # a row vector is read as the column
         where = [f"entry {k + 1}" if cols == 1 else _pos(k, q, cols) for k in range(len(texts))]
         return MatrixAnswer(_source(answer), form.shape, _read_all(texts, where, form, limits))
     if q.kind != "jacobian":
         grid = matrix_cells(answer, limits)
         texts = [c for row in grid for c in row]
-        cells = _read_all(texts, [_pos(k, q) for k in range(len(texts))], form, limits)
+        cells = _printed(_read_all(texts, [_pos(k, q) for k in range(len(texts))], form, limits))
         if len(grid) == 3:
             cells += (_ZERO, _ZERO, _ZERO, _ONE)
         return MatrixAnswer(_source(answer), (4, 4), cells)
-    shapes = ((6, cols), (6, cols - 1)) if form.prismatic else ((6, cols),)
-    grid = matrix_cells(answer, limits, shapes)
+    taken = [(6, cols)] + [(6, cols - 1)] * bool(form.prismatic)
+    if form.rows:  # a planar arm's J in its plane: [v_x; v_y; ω_z]
+        taken.append((len(form.rows), cols))
+    grid = matrix_cells(answer, limits, tuple(taken))
+    if len(grid) == len(form.rows) != 6:
+        where = [f"entry ({i + 1},{j})" for i in form.rows for j in range(1, cols + 1)]
+        read = _read_all([c for row in grid for c in row], where, form, limits)
+        slices = [read[k * cols : (k + 1) * cols] for k in range(len(form.rows))]
+        given = dict(zip(form.rows, slices, strict=True))
+        plane = tuple(c for i in range(6) for c in given.get(i, (_ZERO,) * cols))
+        return MatrixAnswer(_source(answer), (6, cols), plane)
     width = len(grid[0])
     where = [f"entry ({i},{j})" for i, row in enumerate(grid, 1) for j in range(1, len(row) + 1)]
     read = _read_all([c for row in grid for c in row], where, form, limits)
@@ -251,6 +263,48 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
         row.insert(k, _ZERO)
         full += row
     return MatrixAnswer(_source(answer), (6, cols), tuple(full), missing_column=k)
+
+
+_PRINTED = re.compile(r"\s*[-+]?\s*[0-9]*(\.(?P<frac>[0-9]*))?\s*")
+
+
+def _printed(cells: tuple[ReadCell, ...]) -> tuple[ReadCell, ...]:
+    """A matrix of plain numbers as numpy and MATLAB print one: when most of its decimals
+    show the same number of decimal places, the others are read to that many, their
+    trailing zeros dropped (numpy prints -0.15005 rounded to 4 decimals as ``-0.15``
+    beside ``0.4521``: it is -0.1500, right to 4 decimals). A matrix rounded to
+    significant digits (``0.82`` beside ``-0.006``) is read as written.
+
+    >>> from dhsym.checking.reading.literals import decimal_places
+    >>> n = sp.Dummy("n")
+    >>> cell = lambda t: ReadCell(t, sp.Rational(t), n, (Literal(n, t.lstrip("-"), 0),))
+    >>> [decimal_places(c.literals[0].text) for c in _printed(tuple(map(cell, ["0.4521",
+    ...     "-0.15", "0.4318", "1."])))]
+    [(4, 0.0001), (4, 0.0001), (4, 0.0001), (5, 0.0001)]
+    >>> [c.literals[0].text for c in _printed(tuple(map(cell, ["0.82", "0.19", "-0.006"])))]
+    ['0.82', '0.19', '0.006']
+    """
+    found = [_PRINTED.fullmatch(c.text) for c in cells]
+    if not all(found):
+        return cells
+    places = [len(m["frac"]) for m in found if m is not None and m["frac"]]  # not "1."
+    widest = max(places, default=0)
+    if 2 * places.count(widest) <= len(places):
+        return cells
+    return tuple(
+        ReadCell(
+            c.text,
+            c.value,
+            c.template,
+            tuple(
+                Literal(lit.symbol, lit.text + "0" * (widest - len(m["frac"])), lit.value)
+                if m is not None and m["frac"] is not None and "." in lit.text
+                else lit
+                for lit in c.literals
+            ),
+        )
+        for c, m in zip(cells, found, strict=True)
+    )
 
 
 def _read_axes(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> MatrixAnswer:
@@ -383,7 +437,9 @@ def _read_ik(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> IKA
         else:
             raise UnreadableAnswer(f"cannot read {lhs.strip()!r} as the name of a joint variable")
     P = pose_symbols()
-    extra = [(str(P[i, j]), P[i, j]) for i in range(3) for j in range(4)]
+    # x, y, z for the position, as Spong writes a planar arm's (x, y), unless the robot has them
+    extra = [(c, P[i, 3]) for i, c in enumerate("xyz") if form.names.symbol(c) is None]
+    extra += [(str(P[i, j]), P[i, j]) for i in range(3) for j in range(4)]
     extra += list(helpers_named.items())
     signs: list[sp.Symbol] = []
     solutions: list[dict[int, IKStatement]] = []

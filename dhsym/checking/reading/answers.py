@@ -40,7 +40,13 @@ from dhsym.model.yamlsafe import FileRefused, read_limited
 
 from ._table_text import TABLE_FORM, grid_table, yaml_table
 from .answer_names import ANGLE_DIFFERENCE, NameContext, angle_difference_name
-from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
+from .latex_input import (
+    answer_side,
+    flatten_subscripts,
+    is_latex,
+    latex_matrix_cells,
+    latex_to_text,
+)
 from .limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer, check_time
 from .literals import Literal
 
@@ -63,6 +69,7 @@ __all__ = [
 _UNICODE = str.maketrans(
     {"−": "-", "–": "-", "·": "*", "×": "*", "⋅": "*", "∗": "*", "÷": "/", "⁄": "/"}
     | {"º": "°", "˚": "°", "\u200b": "", "\u2060": "", "ᵢ": "i", "ⱼ": "j", "₍": "(", "₎": ")"}
+    | {"ℓ": "l"}  # Spong's link lengths ℓ1, ℓc2
     | {c: " " for c in "\u00a0\u2002\u2003\u2004\u2005\u2006\u2007\u2008\u2009\u200a\u202f"}
     | {chr(0x2080 + k): str(k) for k in range(10)}  # subscript digits: θ₁ is θ1
     | {"½": "(1/2)", "¼": "(1/4)", "¾": "(3/4)", "⅓": "(1/3)", "√": " sqrt "}
@@ -230,13 +237,14 @@ def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIM
 
 def _cell_text(cell: str) -> str:
     """One cell or expression as parser text (LaTeX translated, subscripts flattened,
-    ``[ ]`` and ``{ }`` used as brackets, ``90^o`` as degrees)."""
-    cell = cell.strip()
+    ``[ ]`` and ``{ }`` used as brackets, ``90^o`` as degrees, a closing ``;`` as MATLAB
+    ends a statement dropped)."""
+    cell = cell.strip().removesuffix(";").rstrip()
     if is_latex(cell):
         return latex_to_text(cell)
     cell = ANGLE_DIFFERENCE.sub(angle_difference_name, cell.replace("**", "^"))  # C[12-4]
     if "=" in cell:
-        cell = cell.rsplit("=", 1)[1]
+        cell = answer_side(cell)
     cell = _DEGREE_O.sub(r"\1°", flatten_subscripts(cell))
     return cell.translate(_BRACKETS)
 
@@ -373,7 +381,7 @@ def _plain_cells(text: str) -> list[list[str]]:
     if m:
         text = m[1]
     if "=" in text:
-        text = text.rsplit("=", 1)[1]
+        text = answer_side(text)
     body = text.strip()
     if body.startswith("[") and body.endswith("]"):
         inner = body[1:-1].strip()
@@ -443,15 +451,24 @@ def matrix_cells(
     text: str | bytes,
     limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
     shapes: tuple[tuple[int, int], ...] = ((4, 4), (3, 4)),
+    *,
+    symmetric: bool = False,
 ) -> list[list[str]]:
-    """The cells of a matrix answer as the student wrote them (3 or 4 rows of 4, or ``shapes``).
+    """The cells of a matrix answer as the student wrote them (3 or 4 rows of 4, or ``shapes``),
+    or entry by entry as Spong writes the inertia matrix (``d11 = …; d12 = …``, 1-based; an
+    entry may be another's name, ``d21 = d12``; of a ``symmetric`` matrix, ``d21`` may be
+    left out).
 
     >>> matrix_cells(r"$\\begin{pmatrix} c_1 & -s_1 & 0 & 0 \\\\ s_1 & c_1 & 0 & 0 \\\\"
     ...              r" 0&0&1&0 \\end{pmatrix}$")[1]
     ['s_1', 'c_1', '0', '0']
+    >>> matrix_cells("d11 = a + b; d12 = c; d22 = e", shapes=((2, 2),), symmetric=True)
+    [['a + b', 'c'], ['c', 'e']]
     """
     text = read_text(text, limits)
     cells = latex_matrix_cells(text) if is_latex(text) else None
+    if cells is None:
+        cells = _named_entries(text, shapes, symmetric)
     if cells is None:
         cells = _plain_cells(text)
     if len(cells) > limits.max_rows or any(len(r) > limits.max_columns for r in cells):
@@ -467,6 +484,57 @@ def matrix_cells(
         )
         raise UnreadableAnswer(f"expected {wanted}, got {got} cell" + ("s" * (widths != [1])))
     return cells
+
+
+# one entry by name, 1-based: d11, d_12, M_{21}, m_{1,2}
+_ENTRY_NAME = re.compile(r"\s*[A-Za-z]{1,3}_?\{?([1-9]),?([1-9])\}?\s*")
+
+
+def _named_entries(
+    text: str, shapes: tuple[tuple[int, int], ...], symmetric: bool
+) -> list[list[str]] | None:
+    """The cells of a matrix written entry by entry (``d11 = …``), or None if it is not."""
+    if "=" not in text:
+        return None
+    if is_latex(text):
+        text = re.sub(r"\\\\|\$|\\\[|\\\]", "\n", text)
+    statements = [
+        part
+        for line in re.split(r"\n|;", text)
+        for part in (_split_top(line, ",") if line.count("=") > 1 else [line])
+        if part.strip(" \t,")
+    ]
+    if len(statements) < 2:  # one statement is a labelled answer: T12 = [[…]]
+        return None
+    named: dict[tuple[int, int], str] = {}
+    for statement in statements:
+        *names, value = _split_top(statement, "=")  # d12 = d21 = …
+        found = [_ENTRY_NAME.fullmatch(name) for name in names]
+        if not names or not all(found):
+            return None
+        for m in found:
+            assert m is not None
+            if (int(m[1]), int(m[2])) in named:
+                return None
+            named[int(m[1]), int(m[2])] = value.strip()
+    rows = max((i for i, _ in named), default=0)
+    cols = max((j for _, j in named), default=0)
+    shape = next((sh for sh in shapes if sh[0] >= rows and sh[1] >= cols), None)
+    if not named or shape is None:
+        return None
+    grid: list[list[str]] = []
+    for i in range(1, shape[0] + 1):
+        row = []
+        for j in range(1, shape[1] + 1):
+            cell = named.get((i, j)) or (named.get((j, i)) if symmetric else None)
+            if cell is None:
+                raise UnreadableAnswer(f"the entry ({i},{j}) is missing")
+            ref = _ENTRY_NAME.fullmatch(cell)  # d21 = d12
+            if ref is not None and (int(ref[1]), int(ref[2])) in named:
+                cell = named[int(ref[1]), int(ref[2])]
+            row.append(cell)
+        grid.append(row)
+    return grid
 
 
 def read_answer_table(

@@ -38,7 +38,13 @@ import re
 
 from dhsym.errors import ParseError
 
-__all__ = ["flatten_subscripts", "is_latex", "latex_matrix_cells", "latex_to_text"]
+__all__ = [
+    "answer_side",
+    "flatten_subscripts",
+    "is_latex",
+    "latex_matrix_cells",
+    "latex_to_text",
+]
 
 _GREEK = frozenset(
     "alpha beta gamma delta epsilon varepsilon zeta eta theta vartheta iota kappa lambda mu nu "
@@ -199,6 +205,8 @@ class _Translator:
     def command(self, name: str) -> str:
         if name in _GREEK:
             return self.postfix(self.subscripted(name.lower().removeprefix("var")))
+        if name == "ell":  # Spong's link lengths: \ell_1, \ell_{c2}
+            return self.postfix(self.subscripted("l"))
         if name == "pi":
             return self.postfix("pi")
         if name in _FUNCTIONS:
@@ -393,17 +401,40 @@ def _strip_delimiters(src: str) -> str:
     return text
 
 
-def _right_of_equals(text: str) -> str:
-    """The part after the last top-level ``=`` (drops labels like ``{}^0T_2 =``)."""
-    depth, cut = 0, -1
+# a label: one name, with subscripts, braces, a LaTeX command or an index ``[0,3]``, and
+# a LaTeX superscript prefix ``{}^0T_2``; no operator, no space between two names
+_LABEL = re.compile(r"\s*(\{\}\^\{?\w+\}?)?\\?[A-Za-z][\w{}\\]*(\[[\d,\s]*\])?\s*")
+
+
+def answer_side(text: str) -> str:
+    r"""The side of an equation that is the answer: the part after the last top-level
+    ``=`` (a label such as ``p_x =`` or ``{}^0T_2 =`` dropped), or the part before the
+    first when the answer is written first and the label last (``a_1 C_1 = p_x``).
+
+    >>> answer_side("p_x = a1 C1"), answer_side("a1 C1 + a2 C12 = px"), answer_side("a1 C1")
+    (' a1 C1', 'a1 C1 + a2 C12 ', 'a1 C1')
+    >>> answer_side("T0_2[0,3] = x = a1 C1"), answer_side("d = d3"), answer_side("0 = d3")
+    (' a1 C1', ' d3', ' d3')
+    """
+    depth, cuts = 0, [-1]
     for k, ch in enumerate(text):
-        if ch == "{":
+        if ch in "{([":
             depth += 1
-        elif ch == "}":
+        elif ch in "})]":
             depth -= 1
         elif ch == "=" and depth == 0:
-            cut = k
-    return text[cut + 1 :]
+            cuts.append(k)
+    last = text[cuts[-1] + 1 :]
+    first = text[: cuts[1]] if len(cuts) > 1 else last
+    if _LABEL.fullmatch(last) and not _LABEL.fullmatch(first) and _is_expression(first):
+        return first
+    return last
+
+
+def _is_expression(text: str) -> bool:
+    """Whether ``text`` combines terms (an operator, a call or a product of names), which
+    a bare number or name does not."""
+    return bool(re.search(r"[-+*/^()\\·]|\w\s+\w", text.strip()))
 
 
 def latex_to_text(src: str) -> str:
@@ -418,7 +449,7 @@ def latex_to_text(src: str) -> str:
     ...
     dhsym.errors.ParseError: LaTeX: unsupported command \input in '\\input{/etc/passwd}': expected math (\cos, \frac, \theta …)
     """  # noqa: E501
-    text = _right_of_equals(_strip_delimiters(src))
+    text = answer_side(_strip_delimiters(src))
     return _Translator(text).run()
 
 

@@ -110,6 +110,31 @@ def test_latex_and_markdown_answers():
     assert check("g", md).verdict.value == "correct"
 
 
+@pytest.mark.parametrize(
+    "answer",
+    [
+        f"d11 = {D11}\nd12 = {D12}\nd21 = d12\nd22 = {D22}",
+        f"d11 = {D11}; d12 = {D12}; d22 = {D22}",  # d21 by symmetry
+        f"M_{{11}} = {D11}, M_{{12}} = M_{{21}} = {D12}, M_{{22}} = {D22}",
+        r"d_{11} = m_1 \ell_{c1}^2 + m_2(\ell_1^2 + \ell_{c2}^2 + 2\ell_1\ell_{c2}\cos q_2)"
+        r" + I_1 + I_2 \\ d_{12} = d_{21} = m_2(\ell_{c2}^2 + \ell_1\ell_{c2}\cos q_2) + I_2"
+        r" \\ d_{22} = m_2\ell_{c2}^2 + I_2",
+        f"d11 = {D11.replace('l', 'ℓ')}; d12 = {D12}; d22 = {D22}",
+    ],
+)
+def test_the_inertia_matrix_entry_by_entry_as_spong_writes_it(answer):
+    r = check("M", answer)
+    assert r.verdict.value == "correct", r.message
+
+
+def test_entries_by_name_leave_nothing_out_and_say_which():
+    r = check("M", f"d11 = {D11}; d12 = {D12}")
+    assert r.verdict.value == "unreadable" and "(2,2) is missing" in r.message
+    assert check("C", f"c11 = {H}*qdot2; c12 = 0; c22 = 0").verdict.value == "unreadable"
+    r = check("M", f"d11 = {D11}; d12 = {D12}; d22 = m2*lc2**2")
+    assert r.verdict.value == "incorrect"
+
+
 def test_wrong_shape_is_unreadable():
     assert check("M", "[[1, 2, 3]]").verdict.value == "unreadable"
 

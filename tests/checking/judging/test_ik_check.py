@@ -58,6 +58,19 @@ def test_the_2r_in_other_valid_forms():
     assert "the branch elbow up." in check_answer(key, forms[1]).message  # s2 < 0
 
 
+def test_spongs_x_and_y_are_the_position():
+    """Spong writes the planar arm's target as (x, y): D = (x² + y² − a1² − a2²)/(2 a1 a2)."""
+    spong = (
+        "D = (x^2 + y^2 - a1^2 - a2^2)/(2 a1 a2)\ntheta2 = atan2(sqrt(1 - D^2), D)\n"
+        "theta1 = atan2(y, x) - atan2(a2 sin(theta2), a1 + a2 cos(theta2))"
+    )
+    assert check_answer(load_key("planar2r", "ik"), spong).correct
+    r = check_answer(load_key("planar2r", "ik"), spong.replace("atan2(y, x)", "atan2(x, y)"))
+    assert not r.correct
+    # a helper the answer defines wins over the position: x here is not p_x
+    assert not check_answer(load_key("planar2r", "ik"), "x = 0\n" + spong).correct
+
+
 def test_numbers_for_the_lengths_use_the_tables_values():
     key = load_key("planar2r", "ik")
     answer = (

@@ -10,7 +10,7 @@ from dhsym.checking.mistakes._jacobian_mistakes import next_axis_jacobian
 from dhsym.kinematics.jacobian import geometric_jacobian
 from dhsym.kinematics.singularities import singularities
 
-from .._keys import check_answer, load_key  # each key prepared once, as a grading worker does
+from .._keys import KEYS, check_answer, load_key  # each key prepared once, as a grading worker does
 
 
 def _matrix(M: sp.MatrixBase, nota) -> str:
@@ -46,6 +46,21 @@ def test_the_2r_jacobian_in_latex_with_identities():
         r" 1 & 1 \end{bmatrix}"
     )
     assert check_answer(key, answer).correct
+
+
+def test_a_planar_arms_j_in_its_plane():
+    """The rows zero in every configuration may be left out: the 2R's [v_x; v_y; ω_z]
+    (the rows it has) is its J; without ω_z (Craig's 2×2) it is not, and the reader says
+    which shapes it takes."""
+    key = load_key("planar2r", "J")
+    v = "[-a1 S1 - a2 S12, -a2 S12], [a1 C1 + a2 C12, a2 C12]"
+    assert check_answer(key, f"[{v}, [1, 1]]").correct
+    r = check_answer(key, f"[{v}, [1, 0]]")
+    assert not r.correct and "(6,2)" in r.message  # entries named as in the whole J
+    r = check_answer(key, f"[{v}]")
+    assert r.verdict.value == "unreadable" and "6×2 or 3×2" in r.message
+    assert KEYS.get(key).form().rows == (0, 1, 5)
+    assert KEYS.get(load_key("puma560", "J")).form().rows == ()  # every row moves
 
 
 def test_an_entry_of_j():
@@ -131,4 +146,4 @@ def test_question_labels_and_bad_questions():
 
 def test_a_wrong_shape_is_unreadable():
     r = check_answer(load_key("planar2r", "J"), "[[1, 0], [0, 1]]")
-    assert r.verdict.value == "unreadable" and "a 6×2 matrix" in r.message
+    assert r.verdict.value == "unreadable" and "a 6×2 or 3×2 matrix" in r.message

@@ -65,6 +65,28 @@ def test_default_rule_digits_written_and_at_least_three(answer, verdict):
     assert check(answer).verdict.value == verdict
 
 
+@pytest.mark.parametrize(
+    ("answer", "verdict"),
+    [
+        # the toolbox printout of IRob2305 Lecture 5 (fkine of the PUMA 560 at zero), as
+        # numpy and MATLAB print it: -0.15005 to 4 decimals, its trailing zeros dropped
+        ("[[1, 0, 0, 0.4521], [0, 1, 0, -0.15], [0, 0, 1, 0.4318], [0, 0, 0, 1]]", "correct"),
+        (
+            "[[1., 0., 0., 0.4521], [0., 1., 0., -0.15], [0., 0., 1., 0.4318], [0., 0., 0., 1.]]",
+            "correct",
+        ),
+        ("[[1, 0, 0, 0.4521], [0, 1, 0, -0.1501], [0, 0, 1, 0.4318], [0, 0, 0, 1]]", "correct"),
+        # to 4 decimals, -0.16 and -0.1 are -0.1600 and -0.1000: wrong
+        ("[[1, 0, 0, 0.4521], [0, 1, 0, -0.16], [0, 0, 1, 0.4318], [0, 0, 0, 1]]", "incorrect"),
+        ("[[1, 0, 0, 0.4521], [0, 1, 0, -0.1], [0, 0, 1, 0.4318], [0, 0, 0, 1]]", "incorrect"),
+        # every entry to 2 decimals: 2 significant digits are too few, as before
+        ("[[1, 0, 0, 0.45], [0, 1, 0, -0.15], [0, 0, 1, 0.43], [0, 0, 0, 1]]", "incorrect"),
+    ],
+)
+def test_a_printed_matrix_keeps_its_decimals_with_trailing_zeros_dropped(answer, verdict):
+    assert check_answer(Key.load("puma560", "fk@0,0,0,0,0,0"), answer).verdict.value == verdict
+
+
 def test_the_issue_examples():
     puma = "puma560"
     pi_half = check_answer(Key.load(puma, "T0_3[0,1]"), "cos(theta1 + 1.5708)")

@@ -37,6 +37,10 @@ P2 = NameContext.from_table(load_table("planar2r"))
         "a_1·C1 + a_2·C12",
         r"$a_1 C_1 + a_2 C_{12}$",
         "a1*cos(q1) + a2*cos(q1 + q2)",
+        "a1 C1 + a2 C12 = px",  # the answer first, its label last
+        r"a_1 c_1 + a_2 c_{12} = p_x",
+        "T0_2[0,3] = a1 C1 + a2 C12",
+        "a1 C1 + a2 C12;",  # a MATLAB statement's end
     ],
 )
 def test_expressions_in_every_notation(text):
@@ -55,6 +59,8 @@ def test_expressions_in_every_notation(text):
         r"S_{12} & C_{12} &"
         r" 0 & a_1 S_1 + a_2 S_{12} \\ 0 & 0 & 1 & 0 \\ 0 & 0 & 0 & 1 \end{bmatrix}",
         "[C12, -S12, 0, a1*C1 + a2*C12; S12, C12, 0, a1*S1 + a2*S12; 0, 0, 1, 0; 0, 0, 0, 1]",
+        "[C12, -S12, 0, a1*C1 + a2*C12; S12, C12, 0, a1*S1 + a2*S12; 0, 0, 1, 0; 0, 0, 0, 1]"
+        " = T0_2",
     ],
 )
 def test_matrices_in_every_notation(text):
@@ -146,3 +152,16 @@ def test_text_limits(tmp_path):
     with pytest.raises(UnreadableAnswer, match="10000000 bytes"):
         read_answer_file(big)
     assert read_text("\ufeffθ1 − 1") == "θ1 - 1"
+
+
+@pytest.mark.parametrize(
+    ("text", "read"),
+    [
+        ("d = d3", "d3"),  # two names: the label is on the left
+        ("0 = d3", "d3"),  # a bare number is no answer written first
+        ("a1 C1 = a1 cos(theta1)", "a1*cos(theta1)"),  # a rewriting: its last form
+        ("p_x = x = a1 C1", "a1*cos(theta1)"),
+    ],
+)
+def test_the_answer_side_of_an_equation(text, read):
+    assert read_expression(text, P2) == read_expression(read, P2)

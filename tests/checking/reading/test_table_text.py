@@ -84,3 +84,30 @@ def test_a_table_file_may_leave_out_the_joint_type():
         "  - {theta: 0, d: d2, a: 0, alpha: 0}\n"
     )
     assert [r.joint.value for r in t.rows] == ["R", "P"]
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "Link\tai\tαi\tdi\tθi\n1\t0\t90\t0\tθ1*\n2\ta2\t0\t0\tθ2*\n3\ta3\t-90\td3\tθ3*\n"
+        "4\t0\t90\td4\tθ4*\n5\t0\t-90\t0\tθ5*\n6\t0\t0\t0\tθ6*\n",
+        "| i | a | alpha | d | theta |\n|---|---|---|---|---|\n"
+        + "".join(
+            f"| {i} | {a} | {al} | {d} | $\\theta_{i}^{{*}}$ |\n"
+            for i, (a, al, d) in enumerate(
+                [(0, 90, 0), ("a2", 0, 0), ("a3", -90, "d3"), (0, 90, "d4"), (0, -90, 0)]
+                + [(0, 0, 0)],
+                1,
+            )
+        ),
+    ],
+)
+def test_the_star_on_a_joint_variable_is_a_mark_not_a_value(puma_table, text):
+    """Spong's tables mark the joint variable with a star (θ1*, \\theta_1^*)."""
+    r = check_answer(puma_table, text)
+    assert r.verdict is Verdict.CORRECT, r.message
+
+
+def test_a_star_that_is_not_at_the_end_is_still_refused(puma_table):
+    text = "a,alpha,d,theta\n0,90,0,theta1*2\n" + "a2,0,0,theta2\n" * 5
+    assert check_answer(puma_table, text).verdict is not Verdict.CORRECT
