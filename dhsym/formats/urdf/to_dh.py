@@ -252,6 +252,14 @@ def import_urdf(
     notes = [note] if note else []
     if dropped:
         notes.append("inertials not in the DH table: " + "; ".join(dropped))
+    unknown = [k for k, inertia in enumerate(inertias, start=1) if inertia is None]
+    if unknown:
+        rows_text = ", ".join(map(str, unknown))
+        notes.append(
+            f"no <inertial> on the links of row{'s' * (len(unknown) > 1)} {rows_text}: "
+            "their dynamics are in the textbook symbols (m_k, r_k, I_k); give values= "
+            "for them, or a URDF with inertials"
+        )
     table = replace(
         fa.table,
         rows=rows,

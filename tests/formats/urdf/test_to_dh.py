@@ -533,3 +533,14 @@ def test_the_triangle_inequality_is_the_rigid_bodys_not_each_inertials() -> None
     with pytest.raises(FormatError, match="triangle inequality") as err:
         import_urdf(moving, tip="hand")
     assert err.value.field == "<link name='hand'> <inertial>"
+
+
+def test_a_urdf_without_inertials_says_its_dynamics_are_symbols() -> None:
+    text = (
+        '<robot name="r"><link name="a"/><link name="b"/>'
+        + joint("j1", "a", "b", body='<axis xyz="0 0 1"/>')
+        + "</robot>"
+    )
+    imp = import_urdf(text)
+    assert any("no <inertial> on the links of row 1:" in w for w in imp.table.warnings)
+    assert imp.table.rows[0].inertia is None
