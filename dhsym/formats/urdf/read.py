@@ -73,9 +73,11 @@ def read_urdf(
 
     Each ``<inertial>`` is checked as the table reader checks a link's inertia
     (:meth:`~dhsym.model.inertia.LinkInertia.check`: no negative mass, an inertia that is
-    symmetric positive semi-definite and, unless ``physical=False``, keeps the triangle
-    inequality; ``<robot physical="false">``, as :func:`~dhsym.formats.urdf.write.write_urdf`
-    writes a table marked ``physical: false``, does the same).
+    symmetric positive semi-definite). The triangle inequality belongs to the rigid bodies
+    the dynamics see, a link with the links fixed to it:
+    :func:`~dhsym.formats.urdf.to_dh.import_urdf` checks it on them unless
+    ``physical=False`` here or there, or ``<robot physical="false">``, as
+    :func:`~dhsym.formats.urdf.write.write_urdf` writes a table marked ``physical: false``.
 
     >>> m = read_urdf('''<robot name="r"><link name="a"/><link name="b"/>
     ...   <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
@@ -140,9 +142,7 @@ def _model(root: Element, file: str | None, rule: AngleSnap, physical: bool) -> 
         links.append(
             (
                 name,
-                None
-                if inertial is None
-                else _inertial(inertial, el, file, rule, snapped, physical),
+                None if inertial is None else _inertial(inertial, el, file, rule, snapped),
             )
         )
     joints: list[UrdfJoint] = []
@@ -272,7 +272,6 @@ def _inertial(
     file: str | None,
     rule: AngleSnap,
     snapped: list[Snapped],
-    physical: bool,
 ) -> Inertial:
     mass_el = el.find("mass")
     where = _where(link, "inertial")
@@ -286,11 +285,11 @@ def _inertial(
     inertia = tuple(_numbers(inertia_el.get(k), 1, f"{where} <inertia> {k}", file)[0] for k in keys)
     xx, xy, xz, yy, yz, zz = inertia
     body = LinkInertia(mass, (0, 0, 0), sp.Matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]))
-    try:  # the table reader's checks: mass, symmetry, semi-definiteness, triangle inequality
-        body.check(physical=physical)
+    try:  # the table reader's checks: mass, symmetry, semi-definiteness; the triangle
+        # inequality is the rigid bodies' (import_urdf: a link with those fixed to it)
+        body.check(physical=False)
     except DHError as err:
-        hint = " (or read with physical=False)" if "physical: false" in err.message else ""
-        raise FormatError(err.message + hint, file=file, field=where) from None
+        raise FormatError(err.message, file=file, field=where) from None
     return Inertial(mass, _origin(el, file, rule, snapped), inertia)
 
 

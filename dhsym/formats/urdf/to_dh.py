@@ -156,10 +156,17 @@ def import_urdf(
     accepts inertias that break the triangle inequality (published data that does), and
     the table says so (``physical: false``).
 
-    >>> imp = import_urdf('''<robot name="r"><link name="a"/><link name="b"/><link name="c"/>
+    Without ``tip``, the tip is the one leaf below ``base``, or the one leaf that a moving
+    joint moves (ROS-Industrial's fixed ``base`` frame beside ``tool0`` is no tip); else
+    the choices are named:
+
+    >>> text = '''<robot name="r"><link name="a"/><link name="b"/><link name="c"/>
     ...   <joint name="j1" type="revolute"><parent link="a"/><child link="b"/>
     ...     <axis xyz="0 0 -1"/></joint>
-    ...   <joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint></robot>''')
+    ...   <joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint></robot>'''
+    >>> import_urdf(text).table.source
+    'URDF text, chain a -> b'
+    >>> import_urdf(text.replace('"fixed"', '"continuous"'))
     Traceback (most recent call last):
     ...
     dhsym.errors.FormatError: field tip: the tree branches below link 'a': give the tip ... b ...
@@ -174,8 +181,11 @@ def import_urdf(
     start = base or model.root
     if tip is None:
         leaves = model.leaves(start)
+        below = model.below(start)
+        moved = [leaf for leaf in leaves if below[leaf]]
+        if len(leaves) != 1 and len(moved) == 1:  # the others hang on fixed joints only
+            leaves = moved
         if len(leaves) != 1:
-            below = model.below(start)
             counts = [below[leaf] for leaf in leaves]
             choices = ", ".join(
                 f"{leaf} ({c} moving joint{'s' if c != 1 else ''})"
@@ -230,7 +240,9 @@ def import_urdf(
         replace(row, limits=j.limits if j.kind != "continuous" else None)
         for row, j in zip(fa.table.rows, moving, strict=True)
     )
-    inertias, dropped = _dh_inertias(model, start, moving, replace(fa.table, rows=rows))
+    inertias, dropped = _dh_inertias(
+        model, start, moving, replace(fa.table, rows=rows), physical and model.physical
+    )
     rows = tuple(
         replace(row, inertia=inertia) if inertia is not None else row
         for row, inertia in zip(rows, inertias, strict=True)
@@ -240,6 +252,14 @@ def import_urdf(
     notes = [note] if note else []
     if dropped:
         notes.append("inertials not in the DH table: " + "; ".join(dropped))
+    unknown = [k for k, inertia in enumerate(inertias, start=1) if inertia is None]
+    if unknown:
+        rows_text = ", ".join(map(str, unknown))
+        notes.append(
+            f"no <inertial> on the links of row{'s' * (len(unknown) > 1)} {rows_text}: "
+            "their dynamics are in the textbook symbols (m_k, r_k, I_k); give values= "
+            "for them, or a URDF with inertials"
+        )
     table = replace(
         fa.table,
         rows=rows,
@@ -331,9 +351,12 @@ def chain_from_urdf(
 
 
 def _dh_inertias(
-    model: UrdfModel, start: str, moving: Sequence[UrdfJoint], table: DHTable
+    model: UrdfModel, start: str, moving: Sequence[UrdfJoint], table: DHTable, physical: bool
 ) -> tuple[list[LinkInertia | None], list[str]]:
     """Each DH link's inertia (link k moves with row k) in DH frame k, and what was dropped.
+    With ``physical``, each such body keeps the triangle inequality: the rigid body the
+    dynamics see, not each ``<inertial>`` alone (a frame link with a placeholder inertia,
+    such as the Sawyer's ``right_hand`` with every entry 1e-8, merges into its link).
 
     Every link below ``start`` joins the body of its nearest moving ancestor on the chain:
     links hung on by ``fixed`` joints (a hand, a flange, a tool-centre link) merge into the
@@ -353,6 +376,7 @@ def _dh_inertias(
         children.setdefault(j.parent, []).append(j)
     inertial = dict(model.links)
     bodies: list[list[tuple[sp.Matrix, Inertial]]] = [[] for _ in range(len(moving) + 1)]
+    names: list[list[str]] = [[] for _ in range(len(moving) + 1)]
     base: list[str] = []
     off: list[str] = []
     stack: list[tuple[str, sp.Matrix, int]] = [(start, sp.eye(4), 0)]
@@ -361,6 +385,7 @@ def _dh_inertias(
         found = inertial.get(link)
         if found is not None:  # given, even all zero: a massless link, not unknown symbols
             bodies[body].append((T * found.origin.rational_matrix, found))
+            names[body].append(link)
             if body == 0 and (found.mass != 0 or any(v != 0 for v in found.inertia)):
                 base.append(link)
         for j in children.get(link, []):
@@ -383,6 +408,14 @@ def _dh_inertias(
             R = M[:3, :3]
             parts.append(LinkInertia(found.mass, (M[0, 3], M[1, 3], M[2, 3]), R * Ic * R.T))
         whole = LinkInertia.combine(parts)
+        try:
+            whole.check(physical=physical)
+        except DHError as err:
+            hint = " (or read with physical=False)" if "physical: false" in err.message else ""
+            links = " ".join(f"<link name={echoed(n)}>" for n in names[k])
+            raise FormatError(
+                err.message + hint, file=model.file, field=f"{links} <inertial>"
+            ) from None
         out.append(
             LinkInertia(
                 _tidy(whole.m),

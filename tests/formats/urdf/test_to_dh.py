@@ -503,3 +503,44 @@ def test_a_tool_turned_upside_down_reverses_the_last_z_and_keeps_fk(tmp_path: Pa
     robot = KinematicChain(imp.table)
     for q in np.random.default_rng(4).uniform(-math.pi, math.pi, (5, 2)):
         assert np.abs(robot.fk(q) - urdf_pose(path, "d", q)).max() < 1e-9
+
+
+def test_the_triangle_inequality_is_the_rigid_bodys_not_each_inertials() -> None:
+    """A frame link with a placeholder inertia (the Sawyer's right_hand: mass and every
+    inertia entry 1e-8, a rank-one matrix) merges into the link it is fixed to; that body
+    is a rigid body. The same placeholder on a moving link of its own is refused, naming it."""
+    placeholder = (
+        '<inertial><mass value="1e-8"/><inertia ixx="1e-8" ixy="1e-8" ixz="1e-8"'
+        ' iyy="1e-8" iyz="1e-8" izz="1e-8"/></inertial>'
+    )
+    arm = (
+        '<inertial><mass value="2"/>'
+        '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>'
+    )
+    text = (
+        f'<robot name="r"><link name="a"/><link name="b">{arm}</link>'
+        f'<link name="hand">{placeholder}</link>'
+        + joint("j1", "a", "b", body='<axis xyz="0 0 1"/>')
+        + joint("j2", "b", "hand", kind="fixed")
+        + "</robot>"
+    )
+    imp = import_urdf(text)
+    assert imp.table.physical and imp.table.rows[0].inertia is not None
+    moving = text.replace(
+        joint("j2", "b", "hand", kind="fixed"),
+        joint("j2", "b", "hand", body='<axis xyz="1 0 0"/>'),
+    )
+    with pytest.raises(FormatError, match="triangle inequality") as err:
+        import_urdf(moving, tip="hand")
+    assert err.value.field == "<link name='hand'> <inertial>"
+
+
+def test_a_urdf_without_inertials_says_its_dynamics_are_symbols() -> None:
+    text = (
+        '<robot name="r"><link name="a"/><link name="b"/>'
+        + joint("j1", "a", "b", body='<axis xyz="0 0 1"/>')
+        + "</robot>"
+    )
+    imp = import_urdf(text)
+    assert any("no <inertial> on the links of row 1:" in w for w in imp.table.warnings)
+    assert imp.table.rows[0].inertia is None
