@@ -4,6 +4,7 @@ out (a module that builds a fixture once for its tests runs on one worker)."""
 from __future__ import annotations
 
 import functools
+import gc
 import re
 from pathlib import Path
 
@@ -138,6 +139,30 @@ def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object:
             return work_unit(nodeid, root)
 
     return SharedFixtureScheduling(config, log)
+
+
+# --- Python's garbage collector (issue 30, item 5) -----------------------------------------
+# A full collection walks every object the process keeps: the modules the collection phase
+# imported (sympy, numpy, dhsym, ...), the robots and keys of the session fixtures, sympy's
+# caches. None of them is garbage. After the collection phase and after each test, the
+# young garbage is collected and what is left is moved to the permanent generation
+# (gc.freeze), so that later full collections walk only what later tests make. Measured
+# with gc.callbacks (thread CPU), one worker, load 9-15: the collector's time in
+# tests/kinematics 4.1 -> 2.0 s (of 61 s), in tests/ik 3.8 -> 1.2 s (of 70-84 s). A frozen
+# object is still freed when its last reference goes; only a cycle among frozen objects
+# stays, and the resident size of a room grew by less than 10 %.
+
+
+def pytest_collection_finish(session: pytest.Session) -> None:
+    gc.collect()
+    gc.freeze()
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_runtest_logfinish(nodeid: str, location: tuple) -> None:
+    # after the test's teardown: its function-scoped fixtures are gone
+    gc.collect(1)
+    gc.freeze()
 
 
 @pytest.fixture

@@ -152,3 +152,15 @@ def test_this_session_runs_the_modules_that_start_a_program_first(request):
     rest = [item for item in items if item.path not in first]
     units = [_builds_once(Path(item.path)) for item in rest]
     assert units == sorted(units, reverse=True)  # then the modules that are one unit
+
+
+def test_what_earlier_tests_and_the_collection_left_is_frozen():
+    import gc
+
+    import dhsym
+
+    # dhsym was imported by the collection phase, before this test: its module object
+    # is in the permanent generation (tests/conftest.py), which full collections skip
+    assert gc.get_freeze_count() > 0
+    assert gc.is_tracked(dhsym)
+    assert not any(obj is dhsym for obj in gc.get_objects(generation=2))
