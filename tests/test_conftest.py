@@ -164,3 +164,13 @@ def test_what_earlier_tests_and_the_collection_left_is_frozen():
     assert gc.get_freeze_count() > 0
     assert gc.is_tracked(dhsym)
     assert not any(obj is dhsym for obj in gc.get_objects(generation=2))
+
+
+def test_sympy_was_imported_with_the_cache_size_of_the_suite():
+    import os
+
+    from sympy.core import cache
+
+    # set (tests/conftest.py: SYMPY_CACHE_SIZE, unless the environment names another)
+    # before sympy was imported, or it would not hold
+    assert str(cache.SYMPY_CACHE_SIZE) == os.environ["SYMPY_CACHE_SIZE"]
