@@ -174,3 +174,12 @@ def test_sympy_was_imported_with_the_cache_size_of_the_suite():
     # set (tests/conftest.py: SYMPY_CACHE_SIZE, unless the environment names another)
     # before sympy was imported, or it would not hold
     assert str(cache.SYMPY_CACHE_SIZE) == os.environ["SYMPY_CACHE_SIZE"]
+
+
+def test_hypothesis_has_no_deadline_in_the_suite():
+    from hypothesis import settings
+
+    # no example fails for its time (tests/conftest.py), a test's own settings aside
+    assert settings.default.deadline is None
+    assert settings().deadline is None
+    assert settings.default.max_examples == 100  # as many examples as Hypothesis's own
