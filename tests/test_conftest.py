@@ -152,3 +152,34 @@ def test_this_session_runs_the_modules_that_start_a_program_first(request):
     rest = [item for item in items if item.path not in first]
     units = [_builds_once(Path(item.path)) for item in rest]
     assert units == sorted(units, reverse=True)  # then the modules that are one unit
+
+
+def test_what_earlier_tests_and_the_collection_left_is_frozen():
+    import gc
+
+    import dhsym
+
+    # dhsym was imported by the collection phase, before this test: its module object
+    # is in the permanent generation (tests/conftest.py), which full collections skip
+    assert gc.get_freeze_count() > 0
+    assert gc.is_tracked(dhsym)
+    assert not any(obj is dhsym for obj in gc.get_objects(generation=2))
+
+
+def test_sympy_was_imported_with_the_cache_size_of_the_suite():
+    import os
+
+    from sympy.core import cache
+
+    # set (tests/conftest.py: SYMPY_CACHE_SIZE, unless the environment names another)
+    # before sympy was imported, or it would not hold
+    assert str(cache.SYMPY_CACHE_SIZE) == os.environ["SYMPY_CACHE_SIZE"]
+
+
+def test_hypothesis_has_no_deadline_in_the_suite():
+    from hypothesis import settings
+
+    # no example fails for its time (tests/conftest.py), a test's own settings aside
+    assert settings.default.deadline is None
+    assert settings().deadline is None
+    assert settings.default.max_examples == 100  # as many examples as Hypothesis's own
