@@ -393,8 +393,7 @@ def _load_all(root: Path, data: str | bytes) -> None:
     (folder / "eve").mkdir(parents=True, exist_ok=True)
     _write(folder / "eve" / "q1.md", data)
     _write(folder / "zoe.yaml", data)
-    a = Assignment.load(HW / "assignment.yaml")
-    subs = read_submissions(folder, a)
+    subs = read_submissions(folder, HOMEWORK)
     assert [s.student for s in subs] == ["eve", "zoe"]
     for key in KEYS:
         result = check_answer(key, _bytes(data))
@@ -402,6 +401,8 @@ def _load_all(root: Path, data: str | bytes) -> None:
 
 
 KEYS = [Key.load("planar2r", q) for q in ("table", "T0_2", "T0_2[0,3]")]
+#: the homework's assignment (frozen), read once: the fuzzed bytes are the submissions
+HOMEWORK = Assignment.load(HW / "assignment.yaml")
 
 
 @pytest.mark.slow
