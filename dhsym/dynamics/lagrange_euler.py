@@ -125,14 +125,25 @@ def christoffel_symbols(
     (-m*sin(q2)/2, m*sin(q2)/2)
     """
     n = len(q)
-    dM = [M.diff(x) for x in q]  # dM[i][k, j] = ∂m_kj/∂q_i
-    return tuple(
-        tuple(
-            tuple(tidy((dM[i][k, j] + dM[j][k, i] - dM[k][i, j]) / 2, params) for k in range(n))
-            for j in range(n)
-        )
-        for i in range(n)
-    )
+    # Each distinct expression is differentiated and tidied once: M is symmetric (m_kj is
+    # m_jk) and c_ijk = c_jik, so about half the entries repeat; the expressions are those
+    # of differentiating and tidying every entry (``M.diff(x)`` differentiates each entry).
+    derivatives: dict[tuple[sp.Expr, sp.Symbol], sp.Expr] = {}
+    tidied: dict[sp.Expr, sp.Expr] = {}
+
+    def dm(x: sp.Symbol, a: int, b: int) -> sp.Expr:  # ∂m_ab/∂x
+        key = (M[a, b], x)
+        if key not in derivatives:
+            derivatives[key] = M[a, b].diff(x)
+        return derivatives[key]
+
+    def c(i: int, j: int, k: int) -> sp.Expr:
+        e = (dm(q[i], k, j) + dm(q[j], k, i) - dm(q[k], i, j)) / 2
+        if e not in tidied:
+            tidied[e] = tidy(e, params)
+        return tidied[e]
+
+    return tuple(tuple(tuple(c(i, j, k) for k in range(n)) for j in range(n)) for i in range(n))
 
 
 def coriolis_matrix(

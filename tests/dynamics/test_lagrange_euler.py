@@ -149,6 +149,45 @@ def test_christoffel_symbols_are_symmetric_in_i_and_j():
                 assert sp.expand(c[i][j][k] - c[j][i][k]) == 0
 
 
+def _christoffel_entry_by_entry(M, q, params=()):
+    """Spong's c_ijk the plain way: every entry of M differentiated, every symbol tidied."""
+    n = len(q)
+    dM = [M.diff(x) for x in q]
+    return tuple(
+        tuple(
+            tuple(tidy((dM[i][k, j] + dM[j][k, i] - dM[k][i, j]) / 2, params) for k in range(n))
+            for j in range(n)
+        )
+        for i in range(n)
+    )
+
+
+_Q3 = sp.symbols("theta1:4", real=True)
+_M3 = sp.symbols("m1:3", real=True)
+_TRIG_TERMS = st.tuples(
+    st.integers(-3, 3),
+    st.sampled_from([sp.Integer(1), *_M3]),
+    st.sampled_from([sp.cos(_Q3[1]), sp.sin(_Q3[2]), sp.cos(_Q3[1] + _Q3[2]), _Q3[2]]),
+    st.sampled_from([sp.Integer(1), sp.sin(_Q3[1]), sp.cos(_Q3[2]), sp.cos(_Q3[0])]),
+)
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    st.lists(st.lists(_TRIG_TERMS, max_size=4), min_size=9, max_size=9),
+    st.booleans(),
+)
+def test_christoffel_symbols_are_those_of_every_entry_differentiated(cells, symmetric):
+    """Each distinct entry differentiated and tidied once: the same expressions (srepr) as
+    entry by entry, for a symmetric M and for any other."""
+    entries = [sp.Add(*(k * a * b * c for k, a, b, c in cell)) for cell in cells]
+    M = sp.Matrix(3, 3, entries)
+    if symmetric:
+        M = sp.Matrix(3, 3, lambda r, c: M[min(r, c), max(r, c)])
+    got = christoffel_symbols(M, _Q3, _M3)
+    assert sp.srepr(got) == sp.srepr(_christoffel_entry_by_entry(M, _Q3, _M3))
+
+
 @settings(max_examples=25, deadline=None)
 @given(
     st.lists(st.floats(-3.1, 3.1), min_size=2, max_size=2),
