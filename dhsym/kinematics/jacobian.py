@@ -483,7 +483,11 @@ def analytic_jacobian(
 
 
 def _values(robot: KinematicChain, values: Mapping[Any, object] | None) -> dict[sp.Symbol, sp.Expr]:
-    return robot.table.with_values(values or {}).value_map
+    # none given: the table's own (a copy of the table, validated again, has the same map;
+    # the general 6R asks once per pose)
+    if not values:
+        return robot.table.value_map
+    return robot.table.with_values(values).value_map
 
 
 def jacobian_function(

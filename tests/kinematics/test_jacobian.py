@@ -73,6 +73,22 @@ def test_numeric_jacobian_equals_finite_differences_of_fk(name: str) -> None:
     assert worst < 1e-7
 
 
+def test_the_values_of_a_table_are_those_of_its_copy_with_the_values_given() -> None:
+    """Without values the table's own map is used, no copy made: the same map (keys, their
+    order, the values) as the copy ``with_values`` makes, for every robot; with values, the
+    copy's."""
+    from dhsym.kinematics.jacobian import _values
+
+    for name in ALL:
+        robot = _robot(name)
+        for none in (None, {}):
+            got = _values(robot, none)
+            assert list(got.items()) == list(robot.table.with_values({}).value_map.items())
+    r = dhsym.load("planar3r")  # no lengths given
+    a1 = sp.Symbol("a1", real=True)
+    assert _values(r, {"a1": 2})[a1] == 2 and a1 not in _values(r, None)
+
+
 @pytest.mark.parametrize(
     "name",
     [
