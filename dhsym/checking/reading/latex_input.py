@@ -404,9 +404,7 @@ def _strip_delimiters(src: str) -> str:
 # a label: one name, with subscripts, braces, a LaTeX command or an index ``[0,3]``, and
 # a LaTeX superscript prefix of one character ``{}^0T_2``; no operator, no space between
 # two names. Its parts cannot match the same characters twice: linear on any text.
-_LABEL = re.compile(
-    r"\s*(?:\{\}\^\{?[0-9A-Za-z]\}?)?\\?[A-Za-z][\w{}\\]*(?:\[[\d,\s]*\])?\s*"
-)
+_LABEL = re.compile(r"\s*(?:\{\}\^\{?[0-9A-Za-z]\}?)?\\?[A-Za-z][\w{}\\]*(?:\[[\d,\s]*\])?\s*")
 
 
 def answer_side(text: str) -> str:
