@@ -49,6 +49,7 @@ from .answers import (
     read_answer_table,
     read_cell,
     read_text,
+    split_statements,
 )
 from .latex_input import flatten_subscripts, is_latex, latex_to_text
 from .limits import DEFAULT_ANSWER_LIMITS, AnswerLimits, UnreadableAnswer
@@ -341,26 +342,7 @@ _MAX_SIGNS = 6  # ± in one answer (2^6 choices)
 _SIGN_NAME = "pmsign"
 _PLUS_MINUS = re.compile(r"\\pm(?![A-Za-z])|±|\+/-")
 _MINUS_PLUS = re.compile(r"\\mp(?![A-Za-z])|∓|-/\+")
-_WRAPPERS = re.compile(r"\\(?:begin|end)\{[A-Za-z*]+\}|\\\[|\\\]|\$|&")
 _IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
-
-
-def _statements(text: str) -> list[str]:
-    if is_latex(text):
-        text = _WRAPPERS.sub(" ", text)
-        parts = re.split(r"\\\\|\n|;", text)
-    else:
-        parts = re.split(r"\n|;", text)
-    out = []
-    for part in (p.strip().strip(",") for p in parts):
-        if not part:
-            continue
-        pieces = _split_top(part, ",")
-        if len(pieces) > 1 and all("=" in p for p in pieces):
-            out += [p.strip() for p in pieces]
-        else:
-            out.append(part)
-    return out
 
 
 def _lhs_name(lhs: str) -> str:
@@ -414,7 +396,7 @@ def _read_ik(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> IKA
     :mod:`dhsym.checking.judging.ik_check`); refuses what it cannot read."""
     text = read_text(answer, limits)
     variables = list(form.variables)
-    raw = _statements(text)
+    raw = split_statements(text)
     if len(raw) > 4 * len(variables) + 40:
         raise UnreadableAnswer(f"the answer has {len(raw)} statements; at most a few per joint")
     assignments: list[tuple[int, sp.Symbol, str, int | None]] = []

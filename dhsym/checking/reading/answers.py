@@ -63,6 +63,7 @@ __all__ = [
     "read_cell",
     "read_expression",
     "read_matrix",
+    "split_statements",
     "read_text",
 ]
 
@@ -486,6 +487,34 @@ def matrix_cells(
     return cells
 
 
+#: LaTeX around statements: environments, display brackets, dollars, alignment marks
+_WRAPPERS = re.compile(r"\\(?:begin|end)\{[A-Za-z*]+\}|\\\[|\\\]|\$|&")
+
+
+def split_statements(text: str) -> list[str]:
+    """The statements of an answer: one per line, ``;`` or LaTeX row, and a line of
+    ``name = value`` pieces split at its top-level commas.
+
+    >>> split_statements("d11 = f(a, b), d12 = c; d22 = e")
+    ['d11 = f(a, b)', 'd12 = c', 'd22 = e']
+    """
+    if is_latex(text):
+        text = _WRAPPERS.sub(" ", text)
+        parts = re.split(r"\\\\|\n|;", text)
+    else:
+        parts = re.split(r"\n|;", text)
+    out = []
+    for part in (p.strip().strip(",") for p in parts):
+        if not part:
+            continue
+        pieces = _split_top(part, ",")
+        if len(pieces) > 1 and all("=" in p for p in pieces):
+            out += [p.strip() for p in pieces]
+        else:
+            out.append(part)
+    return out
+
+
 # one entry by name, 1-based: d11, d_12, M_{21}, m_{1,2}
 _ENTRY_NAME = re.compile(r"\s*[A-Za-z]{1,3}_?\{?([1-9]),?([1-9])\}?\s*")
 
@@ -496,14 +525,7 @@ def _named_entries(
     """The cells of a matrix written entry by entry (``d11 = …``), or None if it is not."""
     if "=" not in text:
         return None
-    if is_latex(text):
-        text = re.sub(r"\\\\|\$|\\\[|\\\]", "\n", text)
-    statements = [
-        part
-        for line in re.split(r"\n|;", text)
-        for part in (_split_top(line, ",") if line.count("=") > 1 else [line])
-        if part.strip(" \t,")
-    ]
+    statements = split_statements(text)
     if len(statements) < 2:  # one statement is a labelled answer: T12 = [[…]]
         return None
     named: dict[tuple[int, int], str] = {}
