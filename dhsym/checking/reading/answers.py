@@ -81,7 +81,11 @@ _DEGREE_O = re.compile(  # 90^o, 90^{o}: degrees where the base is a number
     r"(?<![A-Za-z_0-9.])([0-9]+(?:\.[0-9]*)?|\.[0-9]+)\s*\^\s*(?:o|\{\s*o\s*\}|\(\s*o\s*\))"
     r"(?![A-Za-z0-9_])"
 )
-_MATRIX_WRAPPER = re.compile(r"^\s*(?:sp\.|sympy\.)?(?:Immutable)?Matrix\s*\((.*)\)\s*$", re.DOTALL)
+# a matrix as Python writes it: sympy's Matrix, numpy's array (``np.array([[…], […]])``)
+_MATRIX_WRAPPER = re.compile(
+    r"^\s*(?:(?:sp|sympy|np|numpy)\.)?(?:(?:Immutable)?Matrix|array|asarray|matrix)\s*\((.*)\)\s*$",
+    re.DOTALL,
+)
 # A YAML table: a ``joints:`` key, or a list of rows (``- {theta: …}`` / ``- theta: …``).
 # [ \t] and \w stay on one line and no two parts overlap: linear on any text.
 _YAML_TABLE = re.compile(r"^[ \t]*(?:joints[ \t]*:|-[ \t]+(?:\{|\w+[ \t]*:))", re.MULTILINE)
@@ -377,12 +381,13 @@ def _split_top(text: str, seps: str) -> list[str]:
 
 
 def _plain_cells(text: str) -> list[list[str]]:
-    """Cells of a plain-text matrix: ``[[…], […]]``, ``[a, b; c, d]`` or one row per line."""
+    """Cells of a plain-text matrix: ``[[…], […]]``, ``[a, b; c, d]`` or one row per line,
+    in Python's ``Matrix(…)`` or ``np.array(…)`` or not, labelled (``T = …``) or not."""
+    if "=" in text:
+        text = answer_side(text)
     m = _MATRIX_WRAPPER.match(text)
     if m:
         text = m[1]
-    if "=" in text:
-        text = answer_side(text)
     body = text.strip()
     if body.startswith("[") and body.endswith("]"):
         inner = body[1:-1].strip()

@@ -85,12 +85,12 @@ _DELIMS = ("$$", "$", r"\[", r"\]", r"\(", r"\)")
 
 
 def is_latex(text: str) -> bool:
-    r"""True when ``text`` looks like LaTeX (a command or a ``$`` delimiter).
+    r"""True when ``text`` looks like LaTeX (a command, or a ``$``, ``\(`` or ``\[`` delimiter).
 
-    >>> is_latex(r"\cos\theta_1"), is_latex("cos(theta1)"), is_latex("$C_1$")
-    (True, False, True)
+    >>> is_latex(r"\cos\theta_1"), is_latex("cos(theta1)"), is_latex("$C_1$"), is_latex(r"\(C_1\)")
+    (True, False, True, True)
     """
-    return "$" in text or re.search(r"\\[A-Za-z]", text) is not None
+    return "$" in text or re.search(r"\\[A-Za-z(\[]", text) is not None
 
 
 def _flat(content: str) -> str:
@@ -102,10 +102,29 @@ def _flat(content: str) -> str:
     return flat
 
 
+# a sum of joint indices, each a digit or an angle with its digit: 1+2, theta_1 + theta_2
+_INDEX_SUM = re.compile(r"(?:theta_?)?([1-9])(?:\+(?:theta_?)?[1-9])+")
+
+
+def _subscript(name: str, content: str) -> str:
+    r"""The subscript of ``name`` as a name suffix; a sine or cosine abbreviation of a sum
+    of joint angles takes the joints' digits (``c_{1+2}``, ``C_{\theta_1+\theta_2}`` →
+    ``c_12``, as ``c_{12}``).
+
+    >>> _subscript("C", "theta_1 + theta_2"), _subscript("s", "1+2+3"), _subscript("a", "i+1")
+    ('12', '123', 'ip1')
+    """
+    if name in _ABBREVIATION_HEADS:
+        flat = re.sub(r"[\s{}]", "", content)
+        if _INDEX_SUM.fullmatch(flat):
+            return "".join(re.findall(r"[1-9]", flat))
+    return _flat(content)
+
+
 def flatten_subscripts(text: str) -> str:
     """Rewrite plain-text subscripts ``name_{…}`` as names (``alpha_{i-1}`` → ``alpha_im1``)."""
     for _ in range(8):  # nested subscripts, innermost first
-        new = _PLAIN_SUB.sub(lambda m: f"{m[1]}_{_flat(m[2])}", text)
+        new = _PLAIN_SUB.sub(lambda m: f"{m[1]}_{_subscript(m[1], m[2])}", text)
         if new == text:
             return new
         text = new
@@ -300,7 +319,7 @@ class _Translator:
             sub = self.argument()
         else:
             sub = self.argument()
-        return f"{name}_{_flat(sub)}"
+        return f"{name}_{_subscript(name, sub)}"
 
     def subscripted_group(self, inner: str) -> str:
         """``\\mathbf{T}_2``: a font group that is a single name may take a subscript."""

@@ -41,6 +41,10 @@ P2 = NameContext.from_table(load_table("planar2r"))
         r"a_1 c_1 + a_2 c_{12} = p_x",
         "T0_2[0,3] = a1 C1 + a2 C12",
         "a1 C1 + a2 C12;",  # a MATLAB statement's end
+        r"\(a_1 C_1 + a_2 C_{12}\)",  # MathJax's inline and display delimiters
+        r"\[a_1 C_1 + a_2 C_{12}\]",
+        "a1 c_1 + a2 c_{1+2}",  # the sum angle's subscript written as a sum
+        r"a_1 C_{\theta_1} + a_2 C_{\theta_1+\theta_2}",
     ],
 )
 def test_expressions_in_every_notation(text):
@@ -61,6 +65,10 @@ def test_expressions_in_every_notation(text):
         "[C12, -S12, 0, a1*C1 + a2*C12; S12, C12, 0, a1*S1 + a2*S12; 0, 0, 1, 0; 0, 0, 0, 1]",
         "[C12, -S12, 0, a1*C1 + a2*C12; S12, C12, 0, a1*S1 + a2*S12; 0, 0, 1, 0; 0, 0, 0, 1]"
         " = T0_2",
+        # as Python prints or builds it: numpy's array, a label before sympy's Matrix
+        "np.array([[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 + a2*S12], [0, 0, 1, 0]])",
+        "T0_2 = sp.Matrix([[C12, -S12, 0, a1*C1 + a2*C12], [S12, C12, 0, a1*S1 + a2*S12],"
+        " [0, 0, 1, 0]])",
     ],
 )
 def test_matrices_in_every_notation(text):
