@@ -24,7 +24,7 @@ from dhsym.model.tablefile import table_from_data
 from dhsym.model.yamlsafe import YAMLInputError, YAMLLimits, load_yaml
 
 from .answer_names import NameContext
-from .latex_input import flatten_subscripts, is_latex, latex_to_text
+from .latex_input import flatten_subscripts, is_latex, latex_matrix_cells, latex_to_text
 from .limits import AnswerLimits, UnreadableAnswer, echoed
 
 __all__ = ["TABLE_FORM", "grid_table", "yaml_table"]
@@ -176,7 +176,21 @@ def _joint(cells: Mapping[str, sp.Expr], typed: str | None, row: int) -> JointTy
 def grid_table(
     text: str, ctx: NameContext, convention: Convention, limits: AnswerLimits
 ) -> DHTable:
-    """Read a Markdown, CSV, tab- or space-separated table with a header row."""
+    r"""Read a Markdown, CSV, tab- or space-separated table with a header row, or a LaTeX
+    ``tabular`` (or ``array``) with one.
+
+    >>> from dhsym import load_table
+    >>> from dhsym.checking.reading.limits import DEFAULT_ANSWER_LIMITS
+    >>> t = grid_table(r"\begin{tabular}{c|c|c|c} $a_i$ & $\alpha_i$ & $d_i$ & $\theta_i$"
+    ...                r" \\ \hline $a_1$ & 0 & 0 & $\theta_1^*$ \end{tabular}",
+    ...                NameContext.from_table(load_table("planar2r")), Convention.STANDARD,
+    ...                DEFAULT_ANSWER_LIMITS)
+    >>> t.rows[0].a, t.rows[0].theta
+    (a1, theta1)
+    """
+    latex = latex_matrix_cells(text) if is_latex(text) else None
+    if latex is not None and len(latex) >= 2:
+        return _grid(latex[0], latex[1:], ctx, convention, limits)
     lines = []
     for line in text.splitlines():
         stripped = line.strip()
@@ -189,10 +203,27 @@ def grid_table(
         lines.append(line)
     if len(lines) < 2:
         raise UnreadableAnswer("expected a table: a header row (θ, d, a, α) and one row per joint")
-    if len(lines) - 1 > limits.max_rows:
-        raise UnreadableAnswer(f"the table has {len(lines) - 1} rows; at most {limits.max_rows}")
     mode = _mode(lines[0])
     headers = _split(lines[0], mode)
+    rows: list[list[str]] = []
+    for line in lines[1:]:
+        cells = _split(line, mode)
+        if len(cells) != len(headers) and mode == " ":
+            cells = _WIDE_GAP.split(line.strip())
+        rows.append(cells)
+    return _grid(headers, rows, ctx, convention, limits)
+
+
+def _grid(
+    headers: list[str],
+    rows: list[list[str]],
+    ctx: NameContext,
+    convention: Convention,
+    limits: AnswerLimits,
+) -> DHTable:
+    """The table of a header row and its rows of cells, however they were written."""
+    if len(rows) > limits.max_rows:
+        raise UnreadableAnswer(f"the table has {len(rows)} rows; at most {limits.max_rows}")
     if len(headers) > limits.max_columns:
         raise UnreadableAnswer(
             f"the table has {len(headers)} columns; at most {limits.max_columns}"
@@ -212,10 +243,7 @@ def grid_table(
         convention = Convention.STANDARD
     units = {c[0]: c[1] for c in columns}
     raw_rows = []
-    for r, line in enumerate(lines[1:], start=1):
-        cells = _split(line, mode)
-        if len(cells) != len(headers) and mode == " ":
-            cells = _WIDE_GAP.split(line.strip())
+    for r, cells in enumerate(rows, start=1):
         if len(cells) != len(headers):
             raise TableError(f"{len(cells)} cells, but the header has {len(headers)}", row=r)
         raw_rows.append(dict(zip(names, cells)))

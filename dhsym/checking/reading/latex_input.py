@@ -68,10 +68,12 @@ _DEGREES = frozenset({"degree", "textdegree", "circ"})
 _ABBREVIATION_HEADS = frozenset("cCsS")  # Craig's c\theta_i, s\alpha_{i-1}
 _NUMBER = re.compile(r"[0-9]+(?:\.[0-9]+)?|\.[0-9]+")  # unambiguous: linear on any text
 _ROW_SPACING = re.compile(r"^\s*\[\s*-?[0-9.]+\s*(?:pt|em|ex|mm|cm|in|bp|mu)\s*\]")
-_MATRIX_ENVS = "bmatrix|pmatrix|matrix|Bmatrix|vmatrix|Vmatrix|smallmatrix|array"
+_MATRIX_ENVS = "bmatrix|pmatrix|matrix|Bmatrix|vmatrix|Vmatrix|smallmatrix|array|tabular"
 _MATRIX = re.compile(  # the body stops at the next \begin: linear on any text
     r"\\begin\{(" + _MATRIX_ENVS + r")\}(?P<body>(?:(?!\\begin\{).)*?)\\end\{\1\}", re.DOTALL
 )
+# a table's rules: \hline, booktabs' \toprule \midrule \bottomrule, \cline{2-4}
+_RULES = re.compile(r"\\(?:hline|toprule|midrule|bottomrule|cline\{[0-9\s-]*\})")
 _LETTER = "A-Za-z\u0370-\u03ff"
 _TOKEN = re.compile(
     r"(?P<space>\s+)|(?P<cmd>\\[A-Za-z]+)|(?P<esc>\\.)|(?P<num>[0-9]*\.?[0-9]+)"
@@ -474,19 +476,23 @@ def latex_to_text(src: str) -> str:
 
 
 def latex_matrix_cells(src: str) -> list[list[str]] | None:
-    r"""The cells (LaTeX) of the last matrix environment in ``src``, or None if there is none.
+    r"""The cells (LaTeX) of the last matrix environment (or ``tabular``) in ``src``, or None
+    if there is none.
 
     >>> latex_matrix_cells(r"\begin{array}{cc} 1 & 0 \\ 0 & 1 \\ \end{array}")
     [['1', '0'], ['0', '1']]
+    >>> latex_matrix_cells(r"\begin{tabular}{c|c} \toprule $a_i$ & $d_i$ \\ \midrule"
+    ...                    r" a_1 & 0 \end{tabular}")
+    [['$a_i$', '$d_i$'], ['a_1', '0']]
     """
     found = list(_MATRIX.finditer(src))
     if not found:
         return None
     m = found[-1]
     body = m["body"]
-    if m[1] == "array":
+    if m[1] in ("array", "tabular"):  # the column specification {c|c|c}
         body = re.sub(r"^\s*\{[^{}]*\}", "", body)
-    body = body.replace(r"\hline", " ")
+    body = _RULES.sub(" ", body)
     rows = [_ROW_SPACING.sub("", r) for r in re.split(r"\\\\", body)]  # \\[2pt]
     if rows and not rows[-1].strip():
         rows.pop()

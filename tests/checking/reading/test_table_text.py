@@ -111,3 +111,42 @@ def test_the_star_on_a_joint_variable_is_a_mark_not_a_value(puma_table, text):
 def test_a_star_that_is_not_at_the_end_is_still_refused(puma_table):
     text = "a,alpha,d,theta\n0,90,0,theta1*2\n" + "a2,0,0,theta2\n" * 5
     assert check_answer(puma_table, text).verdict is not Verdict.CORRECT
+
+
+PUMA_TABULAR_ROWS = [(0, 90, 0), ("a_2", 0, 0), ("a_3", -90, "d_3"), (0, 90, "d_4")]
+PUMA_TABULAR_ROWS += [(0, -90, 0), (0, 0, 0)]
+
+
+def _tabular(rows, rule=r"\hline", env="tabular", spec="{c|c|c|c|c}"):
+    body = "".join(
+        f"{i} & ${a}$ & ${al}^\\circ$ & ${d}$ & $\\theta_{i}^*$ \\\\\n"
+        for i, (a, al, d) in enumerate(rows, 1)
+    )
+    head = r"Link & $a_i$ & $\alpha_i$ & $d_i$ & $\theta_i$ \\"
+    return f"\\begin{{{env}}}{spec}\n{head} {rule}\n{body}\\end{{{env}}}"
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        _tabular(PUMA_TABULAR_ROWS),
+        _tabular(PUMA_TABULAR_ROWS, rule=r"\midrule", spec="{ccccc}"),  # booktabs
+        "$$" + _tabular(PUMA_TABULAR_ROWS, env="array") + "$$",
+    ],
+)
+def test_a_latex_tabular_is_read_as_the_table(puma_table, text):
+    """A table pasted from a LaTeX write-up: tabular or array, rules, $…$ cells."""
+    r = check_answer(puma_table, text)
+    assert r.verdict is Verdict.CORRECT, r.message
+
+
+def test_a_wrong_latex_tabular_is_diagnosed_and_a_bad_cell_named_by_row(puma_table):
+    wrong = list(PUMA_TABULAR_ROWS)
+    wrong[2] = ("a_3", 90, "d_3")  # the sign of alpha3
+    r = check_answer(puma_table, _tabular(wrong))
+    assert r.verdict is Verdict.INCORRECT, r.message
+    bad = list(PUMA_TABULAR_ROWS)
+    bad[3] = (0, 90, "d_4 +")
+    r = check_answer(puma_table, _tabular(bad))
+    assert r.verdict is Verdict.UNREADABLE
+    assert "row 4" in r.message, r.message
