@@ -45,6 +45,7 @@ from .answers import (
     _split_top,
     answer_text,
     expression_cell,
+    jacobian_blocks,
     matrix_cells,
     read_answer_table,
     read_cell,
@@ -244,7 +245,8 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
     taken = [(6, cols)] + [(6, cols - 1)] * bool(form.prismatic)
     if form.rows:  # a planar arm's J in its plane: [v_x; v_y; ω_z]
         taken.append((len(form.rows), cols))
-    grid = matrix_cells(answer, limits, tuple(taken))
+    blocks = jacobian_blocks(answer, cols, limits, linear=form.rows == (0, 1, 2))
+    grid = blocks or matrix_cells(answer, limits, tuple(taken))
     if len(grid) == len(form.rows) != 6:
         where = [f"entry ({i + 1},{j})" for i in form.rows for j in range(1, cols + 1)]
         read = _read_all([c for row in grid for c in row], where, form, limits)

@@ -55,6 +55,7 @@ __all__ = [
     "answer_text",
     "cell_literals",
     "expression_cell",
+    "jacobian_blocks",
     "matrix_cells",
     "normalize_unicode",
     "parse_cell",
@@ -518,6 +519,51 @@ def split_statements(text: str) -> list[str]:
         else:
             out.append(part)
     return out
+
+
+# the label of a block of the Jacobian at the start of a line (after $, \[ or \begin{align}):
+# J_v, Jv, J_{v}, J_\omega, Jω, J_w, optionally (q), then = or &=; each part bounded and
+# distinct: linear on any text
+_JACOBIAN_BLOCK = re.compile(
+    r"^[ \t$]*(?:\\[\[(][ \t]*)?(?:\\begin\{[a-z]+\*?\}[ \t]*)?"
+    r"J_?\{?[ \t]*(v|\\omega|omega|ω|w)[ \t]*(?:\}[ \t]*)?(?:\(q\)[ \t]*)?&?=",
+    re.MULTILINE,
+)
+
+
+def jacobian_blocks(
+    text: str | bytes,
+    cols: int,
+    limits: AnswerLimits = DEFAULT_ANSWER_LIMITS,
+    *,
+    linear: bool = False,
+) -> list[list[str]] | None:
+    r"""The cells of a Jacobian written as its two blocks, ``J_v = …`` and ``J_\omega = …``
+    (each 3×n, in either order, each on a line of its own), stacked as J = [J_v; J_ω];
+    None when the answer is not written so.  When J is ``linear`` (ω is zero in every
+    configuration: a Cartesian arm), ``J_v`` alone is its 3 rows.
+
+    >>> J = jacobian_blocks("Jw = [0, 0; 0, 0; 1, 1]\nJv = [[-a1 S1, 0], [a1 C1, 0], [0, 0]]", 2)
+    >>> [[cell.strip() for cell in row] for row in J]
+    [['-a1 S1', '0'], ['a1 C1', '0'], ['0', '0'], ['0', '0'], ['0', '0'], ['1', '1']]
+    """
+    text = read_text(text, limits)
+    found = list(_JACOBIAN_BLOCK.finditer(text))
+    if not found:
+        return None
+    kinds = ["v" if m[1] == "v" else "w" for m in found]
+    if linear and kinds == ["v"]:
+        return matrix_cells(text, limits, ((3, cols),))
+    if sorted(kinds) != ["v", "w"]:
+        raise UnreadableAnswer(
+            "expected the Jacobian as one matrix, or as its two blocks J_v = … and J_ω = …,"
+            f" each once; found {', '.join(m[0].strip(' =$') for m in found)}"
+        )
+    blocks = {}
+    for k, m in enumerate(found):
+        end = found[k + 1].start() if k + 1 < len(found) else len(text)
+        blocks[kinds[k]] = matrix_cells(text[m.start() : end], limits, ((3, cols),))
+    return blocks["v"] + blocks["w"]
 
 
 # one entry by name, 1-based: d11, d_12, M_{21}, m_{1,2}

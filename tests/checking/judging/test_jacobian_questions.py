@@ -63,6 +63,46 @@ def test_a_planar_arms_j_in_its_plane():
     assert KEYS.get(load_key("puma560", "J")).form().rows == ()  # every row moves
 
 
+@pytest.mark.parametrize("name", ["planar2r", "stanford", "puma560"])
+def test_j_written_as_its_blocks_jv_and_jw(name):
+    """Spong writes J = [J_v; J_ω]: the two blocks, labelled, in either order, plain or in
+    a LaTeX align, are the whole J; a wrong entry is named as in J."""
+    robot = dhsym.load(name)
+    J = robot.jacobian().matrix
+    key = load_key(name, "J")
+    jv, jw = _matrix(J[:3, :], robot.notation), _matrix(J[3:, :], robot.notation)
+    for text in (
+        f"Jv = {jv}\nJw = {jw}",
+        f"J_\\omega = {jw}\nJ_v(q) = {jv}",
+        f"Jv = {jv}\nJω = {jw}",
+    ):
+        r = check_answer(key, text)
+        assert r.correct, (text, r.message)
+    n = J.cols
+    wrong = sp.Matrix(J[3:, :])
+    wrong[2, n - 1] = -wrong[2, n - 1] if wrong[2, n - 1] != 0 else 1
+    r = check_answer(key, f"Jv = {jv}\nJw = {_matrix(wrong, robot.notation)}")
+    assert not r.correct and f"(6,{n})" in r.message, r.message
+
+
+def test_j_blocks_in_latex_and_blocks_missing_or_twice():
+    key = load_key("planar2r", "J")
+    latex = (
+        "\\begin{align}\nJ_v &= \\begin{bmatrix} -a_1 s_1 - a_2 s_{12} & -a_2 s_{12} \\\\"
+        " a_1 c_1 + a_2 c_{12} & a_2 c_{12} \\\\ 0 & 0 \\end{bmatrix} \\\\\n"
+        "J_\\omega &= \\begin{bmatrix} 0 & 0 \\\\ 0 & 0 \\\\ 1 & 1 \\end{bmatrix}\n\\end{align}"
+    )
+    assert check_answer(key, latex).correct
+    jv = "[-a1 S1 - a2 S12, -a2 S12; a1 C1 + a2 C12, a2 C12; 0, 0]"
+    for text in (f"Jv = {jv}", f"Jv = {jv}\nJv = {jv}"):  # was read as [v_x; v_y; ω_z]
+        r = check_answer(key, text)
+        assert r.verdict.value == "unreadable" and "J_v = … and J_ω = …" in r.message
+    # a Cartesian arm's J is its linear part: J_v alone is all of it
+    cart = dhsym.load("cartesian")
+    jv = _matrix(cart.jacobian().matrix[:3, :], cart.notation)
+    assert check_answer(load_key("cartesian", "J"), f"J_v = {jv}").correct
+
+
 def test_an_entry_of_j():
     key = load_key("puma560", "J[2,1]")  # row 3, column 2: a2 C2 + a3 C23 - d4 S23
     assert check_answer(key, "a2*C2 + a3*C23 - d4*S23").correct
