@@ -87,7 +87,8 @@ def question_symbols(robot: Robot, q: Question) -> tuple[sp.Symbol, ...]:
 
 def rate_aliases(robot: Robot) -> tuple[tuple[str, sp.Symbol], ...]:
     """Other spellings of the rates: ``qdot<k>``, ``qd<k>``, ``thetadot<k>`` (revolute),
-    ``ddot<k>`` (prismatic), and the same with ``ddot``/``dd`` for the accelerations.
+    ``ddot<k>`` (prismatic), code's ``dq<k>``, and the same with ``ddot``/``dd``/``ddq``
+    for the accelerations.
 
     >>> import dhsym
     >>> dict(rate_aliases(dhsym.load("planar2r")))["qdot1"]
@@ -99,5 +100,5 @@ def rate_aliases(robot: Robot) -> tuple[tuple[str, sp.Symbol], ...]:
         heads = ["q"] + (["theta"] if kind is JointType.REVOLUTE else ["d"])
         for h in heads:
             out += [(f"{h}dot{k}", rate), (f"{h}ddot{k}", acc)]
-        out += [(f"qd{k}", rate), (f"qdd{k}", acc)]
+        out += [(f"qd{k}", rate), (f"qdd{k}", acc), (f"dq{k}", rate), (f"ddq{k}", acc)]
     return tuple(out)

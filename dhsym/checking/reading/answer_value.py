@@ -30,6 +30,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
 
@@ -215,6 +216,56 @@ def read_answer_value(
     return _read_matrix(form, text, limits)
 
 
+# where a matrix begins on a line: a bracket, a LaTeX environment, Python's Matrix( / array(
+_MATRIX_START = re.compile(r"\[|\\begin\{|Matrix\s*\(|array\s*\(")
+_HELPER_END = " \t\r\\,;$"  # a LaTeX line break, punctuation or a dollar after a definition
+
+
+def _with_helpers(text: str, names: NameContext, limits: AnswerLimits) -> str:
+    r"""A matrix written with helpers defined on the lines before it (Spong's
+    ``h = -m2 l1 lc2 s2`` and then ``C = [h q̇2, h q̇2 + h q̇1; -h q̇1, 0]``): each helper's
+    text, bracketed, in place of its name in the matrix.  A helper may use the ones before
+    it; a name of the robot (or one it abbreviates) is not a helper, and then the text is
+    left as it is.
+
+    >>> from dhsym import load_table
+    >>> ctx = NameContext.from_table(load_table("planar2r"))
+    >>> _with_helpers("h = a2 S2\nk = 2 h\n[h, k]", ctx, DEFAULT_ANSWER_LIMITS)
+    '[(a2 S2), (2 (a2 S2))]'
+    >>> _with_helpers("a1 = 2\n[a1, 0]", ctx, DEFAULT_ANSWER_LIMITS)  # a1 is the robot's
+    'a1 = 2\n[a1, 0]'
+    """
+    lines = text.split("\n")
+    start = next((i for i, line in enumerate(lines) if _MATRIX_START.search(line)), 0)
+    helpers: list[tuple[str, str]] = []
+    for line in lines[:start]:
+        for statement in (p.strip(_HELPER_END) for p in line.split(";")):
+            if not statement:
+                continue
+            lhs, _, rhs = statement.partition("=")
+            name = _lhs_name(lhs.strip(_HELPER_END + "&"))
+            rhs = rhs.strip(_HELPER_END)
+            if not (_IDENTIFIER.match(name) and rhs and "=" not in rhs) or names.resolve(name):
+                return text
+            helpers.append((name, rhs))
+    if not helpers:
+        return text
+    rest = "\n".join(lines[start:])
+    for k, (name, rhs) in enumerate(helpers):
+        word = re.compile(rf"(?<![A-Za-z0-9_\\]){re.escape(name)}(?![A-Za-z0-9_])")
+        put = functools.partial(_put, f"({rhs})")
+        helpers[k + 1 :] = [(n, word.sub(put, r)) for n, r in helpers[k + 1 :]]
+        rest = word.sub(put, rest)
+        if len(rest) + sum(len(r) for _, r in helpers) > limits.max_bytes:
+            raise UnreadableAnswer(f"the helper {name} makes the answer too long")
+    return rest
+
+
+def _put(text: str, _match: re.Match[str]) -> str:
+    """A replacement taken as it is (``re.sub`` would read its backslashes)."""
+    return text
+
+
 def _pos(k: int, q: Question, cols: int = 4) -> str:
     if q.entry is not None or q.kind == "det" or q.index is not None:
         return "the answer"
@@ -227,16 +278,17 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
     if q.entry is not None or q.kind == "det" or form.shape == (1, 1):
         cell = expression_cell(answer, limits)
         return MatrixAnswer(cell, (1, 1), (ReadCell.read(cell, names, limits, "the answer"),))
+    text = _with_helpers(answer, names, limits) if isinstance(answer, str) else answer
     if q.kind == "screw" and form.shape != (4, 4):
-        return _read_axes(form, answer, limits)
+        return _read_axes(form, text, limits)
     if q.kind == "dynamics":
         shapes = ((rows, cols), (cols, rows)) if cols == 1 else ((rows, cols),)
-        grid = matrix_cells(answer, limits, shapes, symmetric=q.part == "M")
+        grid = matrix_cells(text, limits, shapes, symmetric=q.part == "M")
         texts = [c for row in grid for c in row]  # a row vector is read as the column
         where = [f"entry {k + 1}" if cols == 1 else _pos(k, q, cols) for k in range(len(texts))]
         return MatrixAnswer(_source(answer), form.shape, _read_all(texts, where, form, limits))
     if q.kind != "jacobian":
-        grid = matrix_cells(answer, limits)
+        grid = matrix_cells(text, limits)
         texts = [c for row in grid for c in row]
         cells = _printed(_read_all(texts, [_pos(k, q) for k in range(len(texts))], form, limits))
         if len(grid) == 3:
@@ -245,8 +297,8 @@ def _read_matrix(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) ->
     taken = [(6, cols)] + [(6, cols - 1)] * bool(form.prismatic)
     if form.rows:  # a planar arm's J in its plane: [v_x; v_y; ω_z]
         taken.append((len(form.rows), cols))
-    blocks = jacobian_blocks(answer, cols, limits, linear=form.rows == (0, 1, 2))
-    grid = blocks or matrix_cells(answer, limits, tuple(taken))
+    blocks = jacobian_blocks(text, cols, limits, linear=form.rows == (0, 1, 2))
+    grid = blocks or matrix_cells(text, limits, tuple(taken))
     if len(grid) == len(form.rows) != 6:
         where = [f"entry ({i + 1},{j})" for i in form.rows for j in range(1, cols + 1)]
         read = _read_all([c for row in grid for c in row], where, form, limits)

@@ -76,6 +76,8 @@ _UNICODE = str.maketrans(
     | {chr(0x2080 + k): str(k) for k in range(10)}  # subscript digits: θ₁ is θ1
     | {"½": "(1/2)", "¼": "(1/4)", "¾": "(3/4)", "⅓": "(1/3)", "√": " sqrt "}
 )
+# a rate typed with a combining dot above (q̇, θ̇) or diaeresis (q̈): qdot, thetaddot
+_RATE_MARK = re.compile("([A-Za-z\u0370-\u03ff])([\u0307\u0308])")
 _SUPERSCRIPTS = dict(zip("⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻", "0123456789+-"))
 _SUPERSCRIPT_RUN = re.compile("[" + "".join(_SUPERSCRIPTS) + "]+")
 _DEGREE_O = re.compile(  # 90^o, 90^{o}: degrees where the base is a number
@@ -220,11 +222,15 @@ def normalize_unicode(text: str) -> str:
     """ASCII for the Unicode that answers carry: ``−`` ``·`` ``×`` ``θ₁`` ``sin²`` ``√2`` ``½``.
 
     Superscript runs become ``^(…)`` (``^{…}`` in LaTeX), subscript digits plain digits,
-    ``º`` and ``˚`` the degree sign, odd spaces plain spaces.
+    ``º`` and ``˚`` the degree sign, odd spaces plain spaces, a dot or two above a letter
+    its rate (``q̇₁`` → ``qdot1``, ``θ̈₂`` → ``θddot2``).
 
     >>> normalize_unicode("1 − 2 sin²((θ₁+θ₂)/2) · √2")
     '1 - 2 sin^(2)((θ1+θ2)/2) *  sqrt 2'
+    >>> normalize_unicode("q̇₁ + θ̈₂")
+    'qdot1 + θddot2'
     """
+    text = _RATE_MARK.sub(lambda m: m[1] + ("dot" if m[2] == "\u0307" else "ddot"), text)
     sup = ("^{", "}") if is_latex(text) else ("^(", ")")
     text = _SUPERSCRIPT_RUN.sub(
         lambda m: sup[0] + "".join(_SUPERSCRIPTS[c] for c in m[0]) + sup[1], text
@@ -568,6 +574,14 @@ def jacobian_blocks(
 
 # one entry by name, 1-based: d11, d_12, M_{21}, m_{1,2}
 _ENTRY_NAME = re.compile(r"\s*[A-Za-z]{1,3}_?\{?([1-9]),?([1-9])\}?\s*")
+# one entry of a vector by name, 1-based: g1, g_1, phi_1, \phi_{1}, φ1, tau1, τ_1
+_VECTOR_ENTRY = re.compile(r"\s*\\?[A-Za-z\u0370-\u03ff]{1,5}_?\{?([1-9])\}?\s*")
+
+
+def _entry_at(name: str) -> tuple[int, int] | None:
+    """The 1-based (row, column) a matrix entry's name gives (``d12``, ``M_{21}``), or None."""
+    m = _ENTRY_NAME.fullmatch(name)
+    return (int(m[1]), int(m[2])) if m else None
 
 
 def _named_entries(
@@ -579,17 +593,20 @@ def _named_entries(
     statements = split_statements(text)
     if len(statements) < 2:  # one statement is a labelled answer: T12 = [[…]]
         return None
+    vector = any(1 in shape for shape in shapes)  # g1 = …; g2 = … for g(q), τ
     named: dict[tuple[int, int], str] = {}
     for statement in statements:
         *names, value = _split_top(statement, "=")  # d12 = d21 = …
-        found = [_ENTRY_NAME.fullmatch(name) for name in names]
-        if not names or not all(found):
+        if not names:
             return None
-        for m in found:
-            assert m is not None
-            if (int(m[1]), int(m[2])) in named:
+        for name in names:
+            m = _VECTOR_ENTRY.fullmatch(name) if vector else None
+            at = (int(m[1]), 1) if m else _entry_at(name)
+            if at is None or at in named:
                 return None
-            named[int(m[1]), int(m[2])] = value.strip()
+            named[at] = value.strip()
+    if vector and all(j == 1 for _, j in named) and not any(sh[1] == 1 for sh in shapes):
+        named = {(1, i): v for (i, _), v in named.items()}  # a row vector's entries
     rows = max((i for i, _ in named), default=0)
     cols = max((j for _, j in named), default=0)
     shape = next((sh for sh in shapes if sh[0] >= rows and sh[1] >= cols), None)
@@ -602,9 +619,9 @@ def _named_entries(
             cell = named.get((i, j)) or (named.get((j, i)) if symmetric else None)
             if cell is None:
                 raise UnreadableAnswer(f"the entry ({i},{j}) is missing")
-            ref = _ENTRY_NAME.fullmatch(cell)  # d21 = d12
-            if ref is not None and (int(ref[1]), int(ref[2])) in named:
-                cell = named[int(ref[1]), int(ref[2])]
+            ref = _entry_at(cell)  # d21 = d12
+            if ref is not None and ref in named:
+                cell = named[ref]
             row.append(cell)
         grid.append(row)
     return grid

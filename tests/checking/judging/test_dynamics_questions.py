@@ -135,6 +135,43 @@ def test_entries_by_name_leave_nothing_out_and_say_which():
     assert r.verdict.value == "incorrect"
 
 
+@pytest.mark.parametrize(
+    "question, answer",
+    [
+        ("g", f"g1 = {G1}\ng2 = {G2}"),  # a vector entry by entry
+        ("g", f"phi1 = {G1}; phi2 = {G2}"),  # Spong's φ_k
+        ("g", rf"\phi_1 = {G1} \\ \phi_2 = {G2}"),
+        ("g", f"φ₂ = {G2}\nφ₁ = {G1}"),
+        # Spong's C with its helper h = -m2 l1 lc2 sin q2 defined first
+        ("C", f"h = {H}\nC = [[h*qdot2, h*qdot2 + h*qdot1], [-h*qdot1, 0]]"),
+        ("C", f"h = {H}\n[h q̇₂, h q̇₂ + h q̇₁; -h q̇₁, 0]"),  # q̇: a combining dot
+        ("C", f"h = {H}; k = -h\n[h dq2, h (dq1 + dq2); k dq1, 0]"),  # code's dq
+        (
+            "C",
+            r"h = -m_2 l_1 l_{c2} \sin q_2 \\"
+            "\n"
+            r"C = \begin{bmatrix} h\dot q_2 & h(\dot q_1 + \dot q_2) \\ -h\dot q_1 & 0"
+            r" \end{bmatrix}",
+        ),
+    ],
+)
+def test_vectors_by_entry_helpers_and_rates_as_typed(question, answer):
+    r = check(question, answer)
+    assert r.verdict.value == "correct", r.message
+
+
+def test_a_helper_is_never_a_robot_symbol_and_cannot_blow_up():
+    # l1 = 1 is no helper (l1 is the robot's): nothing is put in for l1, the extra line
+    # makes the answer unreadable, as before
+    r = check("g", f"l1 = 1\n[{G1}; {G2}]")
+    assert r.verdict.value == "unreadable" and "3 rows" in r.message
+    wrong = check("C", f"h = {H}\nC = [[h*qdot2, h*qdot2 + h*qdot1], [h*qdot1, 0]]")
+    assert wrong.verdict.value == "incorrect" and "(2,1)" in wrong.message
+    lines = ["h0 = qdot1"] + [f"h{k} = h{k - 1} + h{k - 1} + h{k - 1}" for k in range(1, 40)]
+    r = check("C", "\n".join(lines) + "\n[[h39, 0], [0, 0]]")
+    assert r.verdict.value == "unreadable" and "too long" in r.message
+
+
 def test_wrong_shape_is_unreadable():
     assert check("M", "[[1, 2, 3]]").verdict.value == "unreadable"
 
