@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from dhsym.errors import ParseError
+from dhsym.errors import DHError, ParseError
 from dhsym.ik.steps import pose_symbols
 from dhsym.model.parsing import normalize_name
 from dhsym.model.table import AngleUnit, Convention, DHTable
@@ -44,6 +44,7 @@ from dhsym.model.table import AngleUnit, Convention, DHTable
 from .answer_names import NameContext
 from .answers import (
     _split_top,
+    answer_only,
     answer_text,
     expression_cell,
     jacobian_blocks,
@@ -203,7 +204,29 @@ def read_answer_value(
 ) -> Answer:
     """Read ``text`` once as ``form`` asks: a table, an inverse-kinematics answer, or a
     matrix / one entry (see the module text).  Raises the reader's
-    :class:`~dhsym.errors.DHError` on what it cannot read."""
+    :class:`~dhsym.errors.DHError` on what it cannot read.
+
+    Text that cannot be read as it is is read once more as the answer it holds
+    (:func:`~dhsym.checking.reading.answers.answer_only`: without code fences, comment
+    lines, a prose label, or the one formula set in prose); when that fails too, the first
+    reason is raised.
+    """
+    try:
+        return _read_value(form, text, limits)
+    except DHError as err:
+        try:
+            bare = answer_only(read_text(text, limits))
+        except DHError:
+            bare = None
+        if bare is None:
+            raise
+        try:
+            return _read_value(form, bare, limits)
+        except DHError:
+            raise err from None
+
+
+def _read_value(form: AnswerForm, text: str | bytes, limits: AnswerLimits) -> Answer:
     kind = form.question.kind
     if kind == "table":
         table = read_answer_table(text, form.names, form.convention, limits)

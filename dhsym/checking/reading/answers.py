@@ -52,6 +52,7 @@ from .literals import Literal
 
 __all__ = [
     "NameContext",
+    "answer_only",
     "answer_text",
     "cell_literals",
     "expression_cell",
@@ -236,6 +237,61 @@ def normalize_unicode(text: str) -> str:
         lambda m: sup[0] + "".join(_SUPERSCRIPTS[c] for c in m[0]) + sup[1], text
     )
     return text.translate(_UNICODE)
+
+
+# a Markdown code fence, a whole-line comment (# in Python and Markdown, % in LaTeX and
+# MATLAB), a prose label ("Answer:", "**Solution:**"); each bounded: linear on any text
+_FENCE_LINE = re.compile(r"^[ \t]*(?:```|~~~)[^\n]*$", re.MULTILINE)
+_COMMENT_LINE = re.compile(r"^[ \t]*[#%][^\n]*$", re.MULTILINE)
+_PROSE_LABEL = re.compile(r"[ \t*_]*[A-Za-z][A-Za-z ]{0,30}[*_]*:(?!=)[ \t*_]*")
+_PROSE = re.compile(r"(?<![A-Za-z])[A-Za-z]{2,}[ \t]+[A-Za-z]{2}")  # two words
+_MATH_DELIMITERS = (("$$", "$$"), ("\\[", "\\]"), ("\\(", "\\)"), ("$", "$"))
+
+
+def answer_only(text: str) -> str | None:
+    r"""The answer in a text that also holds other things, as a Markdown answer file does:
+    without code fences, whole-line comments (``# px``, ``% px``) and a prose label
+    (``Answer:``); of math set in prose (``My answer is $a_1 c_1$.``), the one formula.
+    None when nothing is left out, or when the prose holds several formulas (no guess).
+
+    >>> answer_only("```python\na1*cos(theta1)\n```"), answer_only("**Answer:** a1 C1")
+    ('a1*cos(theta1)', 'a1 C1')
+    >>> answer_only("My answer is $a_1 c_1$."), answer_only("So $x$ is $a_1 c_1$.")
+    ('$a_1 c_1$', None)
+    """
+    bare = _COMMENT_LINE.sub("", _FENCE_LINE.sub("", text)).strip()
+    label = _PROSE_LABEL.match(bare)
+    if label:
+        bare = bare[label.end() :].strip()
+    segments = _math_segments(bare)
+    if segments:
+        gaps = zip([(0, 0), *segments], [*segments, (len(bare), 0)])
+        outside = "".join(bare[b:a] for (_, b), (a, _) in gaps)
+        if _PROSE.search(outside):
+            if len(segments) != 1:
+                return None
+            a, b = segments[0]
+            bare = bare[a:b]
+    return bare if bare and bare != text.strip() else None
+
+
+def _math_segments(text: str) -> list[tuple[int, int]]:
+    r"""The (start, end) of each formula in ``$…$``, ``$$…$$``, ``\(…\)`` or ``\[…\]``,
+    delimiters included, in order; found by one scan per kind (linear)."""
+    found: list[tuple[int, int]] = []
+    taken = [False] * (len(text) + 1)
+    for open_, close in _MATH_DELIMITERS:
+        i = 0
+        while (a := text.find(open_, i)) >= 0:
+            b = text.find(close, a + len(open_))
+            if b < 0:
+                break
+            end = b + len(close)
+            if not any(taken[a:end]):
+                found.append((a, end))
+                taken[a:end] = [True] * (end - a)
+            i = end
+    return sorted(found)
 
 
 def read_answer_file(path: str | Path, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -> str:

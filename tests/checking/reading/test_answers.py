@@ -8,6 +8,8 @@ import pytest
 import sympy as sp
 
 from dhsym import load_table
+from dhsym.checking import Key, check_answer
+from dhsym.checking.comparing.verdict import Verdict
 from dhsym.checking.reading.answer_names import NameContext
 from dhsym.checking.reading.answers import (
     matrix_cells,
@@ -173,3 +175,34 @@ def test_text_limits(tmp_path):
 )
 def test_the_answer_side_of_an_equation(text, read):
     assert read_expression(text, P2) == read_expression(read, P2)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "```\na1*cos(theta1) + a2*cos(theta1 + theta2)\n```",  # a Markdown answer file
+        "```python\na1*cos(theta1) + a2*cos(theta1 + theta2)\n```",
+        "# px\na1 C1 + a2 C12",  # a comment line (Python, Markdown) ...
+        "% p_x\na1 C1 + a2 C12",  # ... (LaTeX, MATLAB)
+        "Answer: a1 C1 + a2 C12",
+        "**Solution:** $p_x = a_1 c_1 + a_2 c_{12}$",
+        "My answer is $a_1 c_1 + a_2 c_{12}$.",
+        r"Multiplying the two link matrices gives \(a_1 C_1 + a_2 C_{12}\) for p_x.",
+    ],
+)
+def test_the_answer_in_a_text_that_holds_more_is_read(text):
+    key = Key.load("planar2r", "T0_2[0,3]")
+    r = check_answer(key, text)
+    assert r.verdict is Verdict.CORRECT, r.message
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "So $p_x$ is $a_1 c_1 + a_2 c_{12}$ or $-a_1 c_1$.",  # two formulas: no guess
+        "Answer: a1 C1 + a2 C12, I think, or maybe minus",
+    ],
+)
+def test_prose_with_no_single_answer_stays_unreadable(text):
+    r = check_answer(Key.load("planar2r", "T0_2[0,3]"), text)
+    assert r.verdict is Verdict.UNREADABLE, r.message
