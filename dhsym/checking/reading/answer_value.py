@@ -468,6 +468,22 @@ def _sigmas(rhs: str, signs: list[sp.Symbol], named: dict[str, sp.Symbol]) -> st
     return _SIGMA.sub(sub, rhs).strip()
 
 
+# a branch's name before its statements: "elbow up:", "Solution 2:" (not ":=")
+_BRANCH_LABEL = re.compile(r"[ \t]*[A-Za-z][A-Za-z0-9 _()#.+-]{0,40}:(?!=)[ \t]*")
+# a unit written after a number: 0.3 rad, 17.2 deg, 17.2 degrees
+_UNIT_WORD = re.compile(r"(?<=[0-9.])[ \t]*(rad|radians|deg|degrees?)(?![A-Za-z0-9_])")
+
+
+def _is_list(text: str, n: int) -> bool:
+    """Whether ``text`` is a bracketed list of ``n`` values (a joint vector ``[0.3, 0.7]``)."""
+    body = text.strip()
+    return (
+        len(body) > 1
+        and body[0] + body[-1] in ("[]", "()")
+        and len(_split_top(body[1:-1], ",")) == n
+    )
+
+
 def _read_ik(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> IKAnswer:
     """The statements of an inverse-kinematics answer, one per line or ``;`` (see
     :mod:`dhsym.checking.judging.ik_check`); refuses what it cannot read."""
@@ -480,13 +496,17 @@ def _read_ik(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> IKA
     tuples: list[tuple[int, str]] = []
     helpers_named: dict[str, sp.Symbol] = {}
     for k, s in enumerate(raw):
+        label = _BRANCH_LABEL.match(s)  # elbow up: θ1 = …
+        s = s[label.end() :] if label else s
         if "=" not in s:
             tuples.append((k, s))
             continue
         lhs, rhs = s.split("=", 1)
         name = _lhs_name(lhs)
         target = form.names.symbol(name) if name else None
-        if target in variables:
+        if target not in variables and _is_list(rhs, len(variables)):  # q = [0.3, 0.7]
+            tuples.append((k, rhs))
+        elif target in variables:
             assignments.append((k, target, rhs, variables.index(target)))
         elif target in form.lengths:
             raise UnreadableAnswer(f"{lhs.strip()!r} is a length of the robot, not an unknown")
@@ -507,6 +527,7 @@ def _read_ik(form: AnswerForm, answer: str | bytes, limits: AnswerLimits) -> IKA
     sigmas: dict[str, sp.Symbol] = {}
 
     def statement(target: sp.Symbol, rhs: str, joint: int | None, where: str) -> IKStatement:
+        rhs = _UNIT_WORD.sub(lambda m: "°" if m[1].startswith("d") else "", rhs)
         signed = _signed(rhs, is_latex(rhs), signs)
         if not any(_SIGMA.fullmatch(name) for name in helpers_named):  # sigma_1 = … is a helper
             signed = _sigmas(signed, signs, sigmas)

@@ -141,3 +141,26 @@ def test_the_values_read():
     assert isinstance(ik, IKAnswer) and len(ik.signs) == 1
     st = ik.solutions[0][0]
     assert st.degrees and st.text == "±0.5°" and st.expr.has(sp.pi)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "q = [0.3000, 0.7000]",  # the joint vector, labelled
+        "theta = (0.3, 0.7)",
+        "theta1 = 0.3 rad\ntheta2 = 0.7 rad",  # a unit after the number
+        "θ1 = 17.19 deg, θ2 = 40.11 degrees",
+        "elbow down: θ1 = 0.3, θ2 = 0.7",  # the branch's name first
+        "Solution 1: [0.3, 0.7]",
+    ],
+)
+def test_numeric_ik_answers_as_students_label_them(text):
+    r = check_answer(Key.load("planar2r", "ik@0.3,0.7"), text)
+    assert r.verdict.value == "correct", r.message
+
+
+def test_a_unit_is_read_only_after_a_number_and_a_wrong_vector_stays_wrong():
+    key = Key.load("planar2r", "ik@0.3,0.7")
+    assert check_answer(key, "q = [0.3, 0.8]").verdict.value == "incorrect"
+    assert check_answer(key, "theta1 = 0.3 deg, theta2 = 0.7 deg").verdict.value == "incorrect"
+    assert check_answer(key, "q = [0.3, 0.7, 0.1]").verdict.value == "unreadable"
