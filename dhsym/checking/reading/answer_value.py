@@ -277,10 +277,12 @@ def _with_helpers(text: str, names: NameContext, limits: AnswerLimits) -> str:
     for k, (name, rhs) in enumerate(helpers):
         word = re.compile(rf"(?<![A-Za-z0-9_\\]){re.escape(name)}(?![A-Za-z0-9_])")
         put = functools.partial(_put, f"({rhs})")
+        uses = sum(len(word.findall(r)) for _, r in helpers[k + 1 :]) + len(word.findall(rest))
+        size = len(rest) + sum(len(r) for _, r in helpers) + uses * (len(rhs) + 2)
+        if size > limits.max_bytes:  # measured before it is built
+            raise UnreadableAnswer(f"the helper {name} makes the answer too long")
         helpers[k + 1 :] = [(n, word.sub(put, r)) for n, r in helpers[k + 1 :]]
         rest = word.sub(put, rest)
-        if len(rest) + sum(len(r) for _, r in helpers) > limits.max_bytes:
-            raise UnreadableAnswer(f"the helper {name} makes the answer too long")
     return rest
 
 
