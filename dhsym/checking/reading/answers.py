@@ -197,11 +197,20 @@ def read_text(data: str | bytes, limits: AnswerLimits = DEFAULT_ANSWER_LIMITS) -
     Traceback (most recent call last):
     ...
     dhsym.checking.reading.limits.UnreadableAnswer: the answer is not text (binary data)
+    >>> read_text("a1 C1".encode("utf-16"))  # with its byte-order mark
+    'a1 C1'
     """
     data = answer_text(data)
     size = len(data) if isinstance(data, bytes) else len(data.encode("utf-8", "replace"))
     if size > limits.max_bytes:
         raise UnreadableAnswer(f"the answer is {size} bytes; at most {limits.max_bytes} are read")
+    if isinstance(data, bytes) and data[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        try:  # UTF-16 with its byte-order mark, as Windows PowerShell's > writes a file
+            data = data.decode("utf-16")
+        except UnicodeDecodeError:
+            raise UnreadableAnswer(
+                "the answer is not UTF-16 text (after its byte-order mark)"
+            ) from None
     if isinstance(data, bytes):
         if b"\x00" in data:
             raise UnreadableAnswer("the answer is not text (binary data)")

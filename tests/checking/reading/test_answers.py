@@ -156,7 +156,7 @@ def test_text_limits(tmp_path):
     with pytest.raises(UnreadableAnswer, match="binary"):
         read_text(b"\x7fELF\x00\x01")
     with pytest.raises(UnreadableAnswer, match="UTF-8"):
-        read_text(b"\xff\xfe\xfa")
+        read_text(b"\xfa\xff\xfe")  # not UTF-8 (\xff\xfe first would be UTF-16's mark)
     big = tmp_path / "big.txt"
     big.write_bytes(b"1" * 10_000_000)
     with pytest.raises(UnreadableAnswer, match="10000000 bytes"):
@@ -206,3 +206,18 @@ def test_the_answer_in_a_text_that_holds_more_is_read(text):
 def test_prose_with_no_single_answer_stays_unreadable(text):
     r = check_answer(Key.load("planar2r", "T0_2[0,3]"), text)
     assert r.verdict is Verdict.UNREADABLE, r.message
+
+
+def test_utf16_with_its_byte_order_mark_is_text_and_nothing_else_is_guessed():
+    """Windows PowerShell's `>` writes UTF-16 with a byte-order mark."""
+    for encoding in ("utf-16", "utf-16-le", "utf-16-be"):
+        data = "a1 C1 + a2 C12".encode(encoding)
+        if encoding != "utf-16":
+            data = ("\ufeff" + "a1 C1 + a2 C12").encode(encoding)
+        assert read_expression(read_text(data), P2) == a1 * sp.cos(t1) + a2 * sp.cos(t1 + t2)
+    with pytest.raises(UnreadableAnswer, match="not UTF-16"):
+        read_text(b"\xff\xfe\x00")
+    with pytest.raises(UnreadableAnswer, match="binary"):
+        read_text("a1 C1".encode("utf-16-le"))  # no mark: not guessed
+    with pytest.raises(UnreadableAnswer, match="not UTF-8"):
+        read_text("90°".encode("cp1252"))
