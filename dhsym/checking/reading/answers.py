@@ -452,15 +452,21 @@ def _split_top(text: str, seps: str) -> list[str]:
     return out
 
 
-def _plain_cells(text: str) -> list[list[str]]:
+def _plain_cells(text: str, widths: frozenset[int] = frozenset({4})) -> list[list[str]]:
     """Cells of a plain-text matrix: ``[[…], […]]``, ``[a, b; c, d]`` or one row per line,
-    in Python's ``Matrix(…)`` or ``np.array(…)`` or not, labelled (``T = …``) or not."""
+    in Python's ``Matrix(…)`` or ``np.array(…)`` or not, labelled (``T = …``) or not; a
+    vector as a tuple ``(a, b, c)``; transposed by a closing ``^T``, ``.T`` or ``'``;
+    MATLAB rows of ``widths`` cells split at spaces (``[c1 -s1 0 0; …]``)."""
     if "=" in text:
         text = answer_side(text)
-    m = _MATRIX_WRAPPER.match(text)
+    body, transposed = _untransposed(text.strip())
+    if transposed:
+        return [list(col) for col in zip(*_plain_cells(body, widths), strict=False)]
+    m = _MATRIX_WRAPPER.match(body)
     if m:
-        text = m[1]
-    body = text.strip()
+        body = m[1].strip()
+    if body.startswith("(") and body.endswith(")") and len(_split_top(body[1:-1], ",")) > 1:
+        body = f"[{body[1:-1]}]"  # Lynch and Park's screw (0, 0, 1, 0, -a1, 0)
     if body.startswith("[") and body.endswith("]"):
         inner = body[1:-1].strip()
         if inner.startswith("["):
@@ -486,9 +492,28 @@ def _plain_cells(text: str) -> list[list[str]]:
         out.append(parts)
     if any(len(r) == 1 for r in out):  # MATLAB rows: [c1 -s1 0 0; s1 c1 0 0; 0 0 1 0]
         split = [r[0].split() if len(r) == 1 else r for r in out]
-        if all(len(w) == 4 for w in split) and all(_whole_cell(t) for w in split for t in w):
+        width = {len(w) for w in split}
+        if len(width) == 1 and width <= widths and all(_whole_cell(t) for w in split for t in w):
             return split
     return out
+
+
+# a transpose mark closing a matrix or vector (compared with the text's end, no pattern)
+_TRANSPOSE_MARKS = ("^T", "^{T}", "^\\top", "^{\\top}", "^\\intercal", "^{\\intercal}", ".T", "'")
+
+
+def _untransposed(text: str) -> tuple[str, bool]:
+    """``text`` without a closing transpose mark after its bracket, and whether it had one.
+
+    >>> _untransposed("[0 0 1 0 -a1 0]^T"), _untransposed("[a, b]")
+    (('[0 0 1 0 -a1 0]', True), ('[a, b]', False))
+    """
+    body = text.rstrip()
+    for mark in _TRANSPOSE_MARKS:
+        head = body[: -len(mark)].rstrip()
+        if body.endswith(mark) and head.endswith(("]", ")")):
+            return head, True
+    return text, False
 
 
 def _whole_cell(word: str) -> bool:
@@ -548,7 +573,9 @@ def matrix_cells(
     if cells is None:
         cells = _named_entries(text, shapes, symmetric)
     if cells is None:
-        cells = _plain_cells(text)
+        cells = _named_columns(text, shapes)
+    if cells is None:
+        cells = _plain_cells(text, frozenset(c for _, c in shapes))
     if len(cells) > limits.max_rows or any(len(r) > limits.max_columns for r in cells):
         raise UnreadableAnswer("the matrix has too many rows or columns")
     shape = (len(cells), len({len(r) for r in cells}) == 1 and len(cells[0]) or 0)
@@ -641,6 +668,46 @@ def jacobian_blocks(
 _ENTRY_NAME = re.compile(r"\s*[A-Za-z]{1,3}_?\{?([1-9]),?([1-9])\}?\s*")
 # one entry of a vector by name, 1-based: g1, g_1, phi_1, \phi_{1}, φ1, tau1, τ_1
 _VECTOR_ENTRY = re.compile(r"\s*\\?[A-Za-z\u0370-\u03ff]{1,5}_?\{?([1-9])\}?\s*")
+
+
+# a column by name, 1-based: S1, S_2, \mathcal{S}_3, B_{1}
+_COLUMN_NAME = re.compile(r"\s*(?:\\mathcal\{)?[A-Za-z]{1,3}\}?_?\{?([1-9])\}?\s*")
+
+
+def _named_columns(text: str, shapes: tuple[tuple[int, int], ...]) -> list[list[str]] | None:
+    r"""The cells of a matrix written column by column, each a vector by name (Lynch and
+    Park's ``S1 = (0, 0, 1, 0, 0, 0)``, ``S2 = …``; 1-based), or None if it is not.
+
+    >>> _named_columns("S1 = (0, 1)\nS2 = [a; b]", ((2, 2),))
+    [['0', 'a'], ['1', 'b']]
+    """
+    if "=" not in text:
+        return None
+    statements = []
+    for line in (p.strip() for p in _split_top(text, "\n;")):
+        pieces = _split_top(line, ",")  # S1 = (…), S2 = (…) on one line
+        statements += pieces if len(pieces) > 1 and all("=" in p for p in pieces) else [line]
+    statements = [p.strip() for p in statements if p.strip()]
+    if len(statements) < 2:
+        return None
+    columns: dict[int, list[str]] = {}
+    for statement in statements:
+        name, eq, value = statement.partition("=")
+        m = _COLUMN_NAME.fullmatch(name)
+        if not eq or m is None or int(m[1]) in columns or "=" in value:
+            return None
+        cells = _plain_cells(value.strip().rstrip(","), frozenset({1}) | {c for _, c in shapes})
+        if len(cells) == 1 or all(len(row) == 1 for row in cells):
+            columns[int(m[1])] = [c.strip() for row in cells for c in row]
+        else:
+            return None
+    n = len(columns)
+    if sorted(columns) != list(range(1, n + 1)) or len({len(c) for c in columns.values()}) != 1:
+        return None
+    rows = len(columns[1])
+    if (rows, n) not in shapes and (n, rows) in shapes:
+        return [columns[j] for j in range(1, n + 1)]  # each vector a row, as the key lists them
+    return [[columns[j][i] for j in range(1, n + 1)] for i in range(rows)]
 
 
 def _entry_at(name: str) -> tuple[int, int] | None:

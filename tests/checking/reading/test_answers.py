@@ -221,3 +221,35 @@ def test_utf16_with_its_byte_order_mark_is_text_and_nothing_else_is_guessed():
         read_text("a1 C1".encode("utf-16-le"))  # no mark: not guessed
     with pytest.raises(UnreadableAnswer, match="not UTF-8"):
         read_text("90°".encode("cp1252"))
+
+
+@pytest.mark.parametrize(
+    ("question", "text"),
+    [
+        ("S", "S1 = (0, 0, 1, 0, 0, 0)\nS2 = (0, 0, 1, 0, -a1, 0)"),  # Lynch and Park
+        ("S", "S_1 = [0;0;1;0;0;0], S_2 = [0;0;1;0;-a1;0]"),
+        ("S", "[0 0; 0 0; 1 1; 0 0; 0 -a1; 0 0]"),  # MATLAB rows of two
+        ("S", "[[0, 0, 1, 0, 0, 0], [0, 0, 1, 0, -a1, 0]]^T"),  # transposed: 6×2
+        ("S2", "(0, 0, 1, 0, -a1, 0)"),
+        ("S2", "S2 = [0 0 1 0 -a1 0]^T"),
+        ("S2", "[0 0 1 0 -a1 0]'"),
+        (
+            "J",
+            "J1 = (-a1 S1 - a2 S12, a1 C1 + a2 C12, 0, 0, 0, 1)\n"
+            "J2 = (-a2 S12, a2 C12, 0, 0, 0, 1)",
+        ),  # J column by column
+    ],
+)
+def test_vectors_as_tuples_by_name_and_transposed(question, text):
+    r = check_answer(Key.load("planar2r", question), text)
+    assert r.verdict is Verdict.CORRECT, r.message
+
+
+def test_a_transposed_matrix_is_transposed_and_a_wrong_column_named():
+    key = Key.load("planar2r", "T0_2")
+    rows = "[[C12, S12, 0, 0], [-S12, C12, 0, 0], [0, 0, 1, 0], "
+    rows += "[a1 C1 + a2 C12, a1 S1 + a2 S12, 0, 1]]"
+    assert check_answer(key, rows + "^T").verdict is Verdict.CORRECT
+    assert check_answer(key, rows).verdict is Verdict.INCORRECT  # not transposed: wrong
+    r = check_answer(Key.load("planar2r", "S"), "S1 = (0, 0, 1, 0, 0, 0)\nS2 = (0, 0, 1, 0, a1, 0)")
+    assert r.verdict is Verdict.INCORRECT and "v = ω × q" in r.message, r.message
