@@ -23,7 +23,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import replace
 from itertools import islice
 from typing import ClassVar, TypeAlias, TypeVar, cast
@@ -190,13 +190,12 @@ class EntryMistake(Mistake):
     ``writes_trig``: the mistake may write a sine or cosine the key's entry does not have
     (the others only remove or keep them), which prunes the search of pairs.
     ``in_sums``: its one-place edit (:meth:`node_edit`) rewrites one term of a sum, and is
-    placed at that term; ``negates``: that term is negated (what is written inside it is
-    negated with it, when a second slip is made there).
+    placed at that term; ``whole``: the whole entry is one of its places (its sign).
     """
 
     writes_trig: ClassVar[bool] = False
     in_sums: ClassVar[bool] = False
-    negates: ClassVar[bool] = False
+    whole: ClassVar[bool] = False
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
@@ -215,7 +214,7 @@ class EntryMistake(Mistake):
         edit = self.node_edit(case)
         if edit is None:
             return
-        if self.negates:
+        if self.whole:
             yield (), -e, None
         for path, node in _walk(e):
             if self.in_sums:  # placed at the term
@@ -229,6 +228,16 @@ class EntryMistake(Mistake):
     def rewrite_term(self, t: sp.Expr) -> sp.Expr:
         """The term ``t`` of a sum as this slip writes it (a kind ``in_sums``)."""
         raise NotImplementedError
+
+    def again(self, node: sp.Basic, part: object) -> sp.Basic | None:
+        """The slip told by ``part`` made on ``node``, its place as another slip below it
+        rewrote it, for a slip that scales its place (a sign, a length left out); None
+        for the others."""
+        return None
+
+    def scale(self, part: object, case: MatrixCase) -> np.ndarray | float | None:
+        """What :meth:`again` multiplies its place by, at the sample (None: no such slip)."""
+        return None
 
     def message(self, case: MatrixCase, where: str, e: sp.Expr, part: object) -> str:
         raise NotImplementedError
@@ -299,13 +308,19 @@ class WrongSign(EntryMistake):
     slide of Mohan, Lecture 9, prints)."""
 
     kind, title = "wrong_sign", "wrong sign"
-    in_sums = negates = True
+    in_sums = whole = True
 
     def node_edit(self, case: MatrixCase) -> Edit[object] | None:
         return _flip
 
     def rewrite_term(self, t: sp.Expr) -> sp.Expr:
         return _negated(t)
+
+    def again(self, node: sp.Basic, part: object) -> sp.Basic | None:
+        return -node
+
+    def scale(self, part: object, case: MatrixCase) -> np.ndarray | float | None:
+        return -1.0
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
@@ -507,6 +522,12 @@ class MissingLength(EntryMistake):
 
     def node_edit(self, case: MatrixCase) -> Edit[object] | None:
         return _length_edit([r.variable for r in case.rows if r.variable is not None])
+
+    def again(self, node: sp.Basic, part: object) -> sp.Basic | None:
+        return node / cast(tuple[sp.Basic, sp.Basic], part)[0]  # length_candidates' pair
+
+    def scale(self, part: object, case: MatrixCase) -> np.ndarray | float | None:
+        return 1.0 / values(cast(tuple[sp.Basic, sp.Basic], part)[0], case.sample)
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
@@ -716,17 +737,22 @@ def _weights(
     return out
 
 
-def _composed(
-    node: sp.Basic, edits: dict[tuple[int, ...], tuple[sp.Basic, bool]], path: tuple[int, ...] = ()
-) -> sp.Basic:
-    """``node`` with the slips ``edits`` (path → (the node written, whether it negates what
-    is there, slips below included)) made at once."""
+#: Slips made at once: path → (the node a slip writes there, or None with the slip that
+#: scales its place and what it changed, made on what the slips below wrote).
+Edits: TypeAlias = dict[tuple[int, ...], tuple[sp.Basic | None, "EntryMistake | None", object]]
+
+
+def _composed(node: sp.Basic, edits: Edits, path: tuple[int, ...] = ()) -> sp.Basic:
+    """``node`` with the slips ``edits`` made at once."""
     here = edits.get(path)
-    if here is not None and not here[1]:
+    if here is not None and here[0] is not None:
         return here[0]
     if any(len(q) > len(path) and q[: len(path)] == path for q in edits):
         node = node.func(*(_composed(a, edits, (*path, k)) for k, a in enumerate(node.args)))
-    return -node if here is not None else node
+    if here is not None and here[1] is not None:
+        again = here[1].again(node, here[2])
+        return node if again is None else again
+    return node
 
 
 def _inside(outer: tuple[int, ...], inner: tuple[int, ...]) -> bool:
@@ -744,13 +770,16 @@ def _by_differences(
     seen: dict[sp.Basic, frozenset[sp.Basic]],
 ) -> tuple[EntryMistake, EntryMistake, str, str] | None:
     """Two slips in ``form`` (the key's entry ``e`` as written, or expanded) found by what
-    each changes: the answer minus the key is the sum of the two changes when the slips
-    are at two places of one sum (the change of a slip inside a product is its change
-    times the factors beside it), their difference when the second is inside a term whose
-    sign the first flipped, and one change when both rewrite one sine or cosine (``S23``
-    written ``C34``: swapped and moved). Each pair whose changes add up is then built and
-    must give the answer at the sample, with the answer's sines and cosines, as a pair
-    found by composing (:func:`_pair_at`).
+    each changes (``d1``, ``d2``: the entry's change under each slip alone). The answer
+    minus the key is ``d1 + d2`` when the slips are at two places of one sum (a slip's
+    change inside a product is its change times the factors beside it); ``d1 + d2 + d1 d2
+    / (w m)`` when they are in two factors of one product ``m`` (``w``: how the entry
+    changes with ``m``); ``d1 + s d2`` when the second is inside the place of a first that
+    scales it by ``s`` (a sign: -1; a length left out: 1/length); ``d`` of the one
+    rewrite when both rewrite one sine or cosine (``S23`` written ``C34``: swapped and
+    moved). Each pair whose changes fit is then built and must give the answer at the
+    sample, with the answer's sines and cosines, as a pair found by composing
+    (:func:`_pair_at`).
 
     >>> import sympy as sp
     >>> from dhsym.checking.judging.key import Key, prepare
@@ -775,53 +804,122 @@ def _by_differences(
         sites[m] = found
     direction = np.random.default_rng(0).standard_normal(case.sample.size)
     goal = float(change @ direction)
+    # the products the slips are in: product's path -> [(kind, site's index, factor)]
+    products: dict[tuple[int, ...], list[tuple[EntryMistake, int, int]]] = {}
+    for m, found in sites.items():
+        for i, ((path, _, _), _) in enumerate(found):
+            for k in range(len(path)):
+                if isinstance(_node_at(form, path[:k]), sp.Mul):
+                    products.setdefault(path[:k], []).append((m, i, path[k]))
 
-    def made(edits: dict[tuple[int, ...], tuple[sp.Basic, bool]]) -> bool:
+    def made(
+        a: EntryMistake, b: EntryMistake, i: int, j: int
+    ) -> tuple[EntryMistake, EntryMistake, str, str] | None:
+        (pa, na, part_a), _ = sites[a][i]
+        (pb, nb, part_b), _ = sites[b][j]
+        edits: Edits
+        if pa == pb:  # one slip where the other scales
+            again = a.again(nb, part_a)
+            edits = {pa: (again if again is not None else b.again(na, part_b), None, None)}
+        elif _inside(pa, pb):
+            edits = {pa: (None, a, part_a), pb: (nb, None, None)}
+        elif _inside(pb, pa):
+            edits = {pb: (None, b, part_b), pa: (na, None, None)}
+        else:
+            edits = {pa: (na, None, None), pb: (nb, None, None)}
         cand = _composed(form, edits)
-        return _trig(cand, seen) == written and bool(close(values(cand, case.sample, memo), target))
+        if _trig(cand, seen) != written or not close(values(cand, case.sample, memo), target):
+            return None
+        return a, b, a.message(case, _HERE, e, part_a), b.message(case, _HERE, e, part_b)
+
+    def first(
+        a: EntryMistake, b: EntryMistake, near: Iterable[tuple[int, int]]
+    ) -> tuple[EntryMistake, EntryMistake, str, str] | None:
+        tried = 0
+        for i, j in near:
+            if tried >= _MATCHES:
+                return None
+            if a is b and i == j:
+                continue
+            tried += 1
+            hit = made(a, b, int(i), int(j))
+            if hit is not None:
+                return hit
+        return None
 
     for a, b in kinds:
         check_time()
         sa, sb = sites[a], sites[b]
         if not sa or not sb:
             continue
-        da = np.array([d for _, d in sa]) @ direction
-        db = np.array([d for _, d in sb]) @ direction
-        scale = [np.abs(x[np.isfinite(x)]) for x in (da, db)]
+        da = np.array([d for _, d in sa])
+        db = np.array([d for _, d in sb])
+        pa_, pb_ = da @ direction, db @ direction
+        scale = [np.abs(x[np.isfinite(x)]) for x in (pa_, pb_)]
         tol = 1e-7 * (1.0 + abs(goal) + sum(float(x.max(initial=0.0)) for x in scale))
-        # two places of one sum (plus), or b inside a term whose sign a flipped (minus)
-        for sign in (1.0, -1.0) if a.negates else (1.0,):
+        # two places of one sum
+        with np.errstate(invalid="ignore"):
+            near = np.argwhere(np.abs(pa_[:, None] + pb_[None, :] - goal) <= tol)
+
+        hit = first(
+            a,
+            b,
+            (
+                (i, j)
+                for i, j in near
+                if (a is not b or i < j) and _in_one_sum(form, sa[i][0][0], sb[j][0][0])
+            ),
+        )
+        if hit is not None:
+            return hit
+        # two factors of one product m: (w m + d1)(w m + d2) = w m (w m + change)
+        for path, inside in products.items():
+            value, weight = nodes[path]
+            if weight is None:
+                continue
+            wm = weight * value
+            k = int(np.argmax(np.where(np.isfinite(wm), np.abs(wm), -1.0)))
+            if not np.isfinite(wm[k]) or abs(wm[k]) < 1e-9:
+                continue
+            ia = [(i, f) for m, i, f in inside if m is a]
+            jb = [(j, f) for m, j, f in inside if m is b]
+            if not ia or not jb:
+                continue
+            xa = wm[k] + da[[i for i, _ in ia], k]
+            xb = wm[k] + db[[j for j, _ in jb], k]
+            want = wm[k] * (wm[k] + change[k])
+            size = 1e-7 * (abs(want) + np.abs(xa).max() * np.abs(xb).max() + 1.0)
             with np.errstate(invalid="ignore"):
-                near = np.argwhere(np.abs(da[:, None] + sign * db[None, :] - goal) <= tol)
-            tried = 0
-            for i, j in near:
-                if tried >= _MATCHES:
-                    break
-                (pa, na, part_a), delta_a = sa[i]
-                (pb, nb, part_b), delta_b = sb[j]
-                if a is b and (i >= j if sign > 0 else i == j):
-                    continue  # two slips of one kind: each pair once, at two places
-                if sign > 0:
-                    if _inside(pa, pb) or _inside(pb, pa):
-                        continue
-                    common = pa[: next(k for k, (x, y) in enumerate(zip(pa, pb)) if x != y)]
-                    if not isinstance(_node_at(form, common), sp.Add):
-                        continue  # in one product the changes do not add up
-                elif not _inside(pa, pb):
+                pairs = np.argwhere(np.abs(xa[:, None] * xb[None, :] - want) <= size)
+            hit = first(
+                a,
+                b,
+                (
+                    (ia[x][0], jb[y][0])
+                    for x, y in pairs
+                    if ia[x][1] != jb[y][1] and (a is not b or ia[x][0] < jb[y][0])
+                ),
+            )
+            if hit is not None:
+                return hit
+        # one slip inside the place of the other, which scales it: d1 + s d2
+        for outer, inner, projected, swapped in ((sa, sb, pb_, False), (sb, sa, pa_, True)):
+            if a is b and swapped:
+                continue
+            outer_kind = b if swapped else a
+            for i, ((place, _, part), d) in enumerate(outer):
+                s_ = outer_kind.scale(part, case)
+                if s_ is None:
                     continue
-                if not close(delta_a + sign * delta_b, change):
-                    continue
-                tried += 1
-                both = (
-                    {pa: (na, a.negates), pb: (nb, b.negates)} if pa != pb else {pa: (-nb, False)}
-                )
-                if made(both):
-                    return (
-                        a,
-                        b,
-                        a.message(case, _HERE, e, part_a),
-                        b.message(case, _HERE, e, part_b),
-                    )
+                with np.errstate(all="ignore"):
+                    want = float(((change - d) / s_) @ direction)
+                found = np.argwhere(np.abs(projected - want) <= tol).ravel().tolist()
+                near_ = [
+                    (j, i) if swapped else (i, j) for j in found if _inside(place, inner[j][0][0])
+                ]
+                hit = first(a, b, near_)
+                if hit is not None:
+                    return hit
         if a is b or not (a.writes_trig and b.writes_trig):
             continue
         # one sine or cosine rewritten by both slips
@@ -832,9 +930,10 @@ def _by_differences(
             value, weight = nodes[pa]
             for nb, part_b in edit(na):
                 assert weight is not None  # sa holds the places with a weight only
-                if close(weight * (values(nb, case.sample, memo) - value), change) and made(
-                    {pa: (nb, False)}
-                ):
+                if not close(weight * (values(nb, case.sample, memo) - value), change):
+                    continue
+                cand = _composed(form, {pa: (nb, None, None)})
+                if _trig(cand, seen) == written and close(values(cand, case.sample, memo), target):
                     return (
                         a,
                         b,
@@ -842,6 +941,15 @@ def _by_differences(
                         b.message(case, _HERE, e, part_b),
                     )
     return None
+
+
+def _in_one_sum(form: sp.Basic, x: tuple[int, ...], y: tuple[int, ...]) -> bool:
+    """True when the places ``x`` and ``y`` are in two terms of one sum (neither inside the
+    other, and the node where their paths part is a sum)."""
+    if _inside(x, y) or _inside(y, x):
+        return False
+    k = next(n for n, (u, v) in enumerate(zip(x, y)) if u != v)
+    return isinstance(_node_at(form, x[:k]), sp.Add)
 
 
 def _node_at(e: sp.Basic, path: tuple[int, ...]) -> sp.Basic:

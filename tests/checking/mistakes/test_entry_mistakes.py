@@ -242,6 +242,22 @@ def _entry_case(robot: str, question: str, text: str):
             ("wrong_sign", "sin_cos_swapped"),
             ("a3*C23 has the wrong sign", "S23 is written where C23 belongs"),
         ),
+        # C1*(C23*(C4*C5*C6 - S4*S6) - S23*S5*C6) - S1*(...): two factors of one product
+        (
+            "puma560",
+            "T0_6[0,0]",
+            "S1*(C23*(C4*C5*C6 + S4*S6) - S23*S5*C6) - S1*(S4*C5*C6 + C4*S6)",
+            ("wrong_sign", "sin_cos_swapped"),
+            ("-S4*S6 has the wrong sign", "S1 is written where C1 belongs"),
+        ),
+        # a length left out of a3*C23, and S23 for C23 inside that product
+        (
+            "puma560",
+            "T0_6[0,3]",
+            "C1*(a2*C2 + S23 - d4*S23) + d3*S1",
+            ("sin_cos_swapped", "missing_length"),
+            ("S23 is written where C23 belongs", "a3 is missing from a3*C23"),
+        ),
         # -C234*S5: C234 swapped and moved
         (
             "ur5",
