@@ -6,7 +6,8 @@ joint index in a sum angle (``C12`` for ``C23``), a missing length factor
 (``C2`` for ``a2 C2``). Unlike the other kinds, these rewrite the key's *entries*
 instead of recomputing the whole product; a wrong sign is also looked for cell by
 cell in a table. The student may have expanded or factored the entry: candidates
-are compared by value at the sample points, not by form.
+are compared by value at the sample points, not by form. Two slips in one entry are
+found by what each changes (:func:`explain_pairs`).
 
 Examples
 --------
@@ -581,11 +582,16 @@ def explain_pairs(
     each entry named once; with ``same``, two slips of one kind instead (two terms with
     the wrong sign, two lengths left out).
 
-    The search composes the second slip on each candidate of the first, in the entries
-    still wrong (``case.wrong``) only, within ``budget`` candidates shared evenly by the
-    entries and the pairs of kinds; the values of one entry's candidates share their
-    unchanged subtrees (one memo per entry), so a candidate costs about the depth of its
-    edit.
+    In the entries still wrong (``case.wrong``) only, each entry is searched first by
+    what each slip changes (:func:`_by_differences`: the places of each kind are matched
+    by their changes against the answer minus the key, in the entry as the key writes it
+    and expanded, so a long entry is searched whole, not within a budget), then by
+    composing the second slip on each candidate of the first (the pairs whose changes do
+    not combine so: a sign inside a sum angle, sin and cos swapped for a whole angle),
+    within ``budget`` candidates shared evenly by the entries and the pairs of kinds; the
+    values of one entry's candidates share their unchanged subtrees (one memo per entry),
+    so a candidate costs about the depth of its edit. Either way a pair is named only
+    when both slips together give the answer at the sample.
 
     >>> import sympy as sp
     >>> from dhsym.checking.judging.key import Key, prepare
