@@ -6,7 +6,8 @@ joint index in a sum angle (``C12`` for ``C23``), a missing length factor
 (``C2`` for ``a2 C2``). Unlike the other kinds, these rewrite the key's *entries*
 instead of recomputing the whole product; a wrong sign is also looked for cell by
 cell in a table. The student may have expanded or factored the entry: candidates
-are compared by value at the sample points, not by form.
+are compared by value at the sample points, not by form. Two slips in one entry are
+found by what each changes (:func:`explain_pairs`).
 
 Examples
 --------
@@ -23,7 +24,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import replace
 from itertools import islice
 from typing import ClassVar, TypeAlias, TypeVar, cast
@@ -102,36 +103,68 @@ def one_edit(
         yield cand, part
 
 
+#: One slip at one place of an entry: (the path from the entry's root to the node it
+#: rewrites, by argument index; that node as the slip writes it; what changed, as the
+#: kind's candidates tell it).
+Site: TypeAlias = tuple[tuple[int, ...], sp.Basic, object]
+
+
+def _walk(e: sp.Basic, path: tuple[int, ...] = ()) -> Iterator[tuple[tuple[int, ...], sp.Basic]]:
+    """Every node of ``e`` with its path, in the order :func:`one_edit` visits them."""
+    yield path, e
+    if not e.is_Atom:
+        for i, arg in enumerate(e.args):
+            yield from _walk(arg, (*path, i))
+
+
 def _forms(e: sp.Expr) -> list[sp.Expr]:
     """The entry as the key holds it, and expanded (a student may edit either form)."""
     expanded = sp.expand(e)
     return [e] if expanded == e else [e, expanded]
 
 
+def _negated(t: sp.Expr) -> sp.Expr:
+    """A term with its sign flipped."""
+    return -t
+
+
+def _left_out(t: sp.Expr) -> sp.Expr:
+    """A term left out."""
+    return sp.S.Zero
+
+
+def _in_sum(rewrite: Callable[[sp.Expr], sp.Expr]) -> Edit[sp.Expr]:
+    """The edit rewriting one term of a sum by ``rewrite``, with that term."""
+
+    def edit(node: sp.Basic) -> Iterator[tuple[sp.Basic, sp.Expr]]:
+        if isinstance(node, sp.Add):
+            for t in node.args[:_MAX_CANDIDATES]:
+                yield node - t + rewrite(t), t
+
+    return edit
+
+
+_flip, _drop = _in_sum(_negated), _in_sum(_left_out)
+
+
+def _swap_one(node: sp.Basic) -> Iterator[tuple[sp.Basic, sp.Expr]]:
+    """A sine as the cosine of its angle (or the other way round), with the factor."""
+    if isinstance(node, (sp.sin, sp.cos)):
+        yield (sp.cos if isinstance(node, sp.sin) else sp.sin)(node.args[0]), node
+
+
 def sign_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, sp.Expr | None]]:
     """``e`` with its sign flipped, then with one term's sign flipped, at any depth (a term
     inside a bracket or a product), with that term."""
     yield -e, None
-
-    def flip(node: sp.Basic) -> Iterator[tuple[sp.Basic, sp.Expr]]:
-        if isinstance(node, sp.Add):
-            for t in node.args[:_MAX_CANDIDATES]:
-                yield node - 2 * t, t
-
     for form in _forms(e):
-        yield from one_edit(form, flip)
+        yield from one_edit(form, _flip)
 
 
 def dropped_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, sp.Expr]]:
     """``e`` with one term of a sum left out, at any depth, with that term."""
-
-    def drop(node: sp.Basic) -> Iterator[tuple[sp.Basic, sp.Expr]]:
-        if isinstance(node, sp.Add):
-            for t in node.args[:_MAX_CANDIDATES]:
-                yield node - t, t
-
     for form in _forms(e):
-        yield from one_edit(form, drop)
+        yield from one_edit(form, _drop)
 
 
 def swap_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, sp.Expr | None]]:
@@ -149,11 +182,7 @@ def swap_candidates(e: sp.Expr) -> Iterator[tuple[sp.Expr, sp.Expr | None]]:
         for a in atoms[:_MAX_CANDIDATES]:
             yield e.xreplace({a: swap[a]}), a
 
-    def one(node: sp.Basic) -> Iterator[tuple[sp.Basic, sp.Expr]]:
-        if isinstance(node, (sp.sin, sp.cos)):
-            yield swap[node], node
-
-    yield from one_edit(e, one)  # one factor where the same angle occurs several times
+    yield from one_edit(e, _swap_one)  # one factor where the same angle occurs several times
 
 
 class EntryMistake(Mistake):
@@ -161,14 +190,55 @@ class EntryMistake(Mistake):
 
     ``writes_trig``: the mistake may write a sine or cosine the key's entry does not have
     (the others only remove or keep them), which prunes the search of pairs.
+    ``in_sums``: its one-place edit (:meth:`node_edit`) rewrites one term of a sum, and is
+    placed at that term; ``whole``: the whole entry is one of its places (its sign).
     """
 
     writes_trig: ClassVar[bool] = False
+    in_sums: ClassVar[bool] = False
+    whole: ClassVar[bool] = False
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
     ) -> Iterator[tuple[sp.Expr, object]]:
         raise NotImplementedError
+
+    def node_edit(self, case: MatrixCase) -> Edit[object] | None:
+        """The slip at one place of an entry (one node rewritten, as the candidates make
+        it), for the search of two slips by their differences (:func:`explain_pairs`);
+        None for a kind without one."""
+        return None
+
+    def sites(self, e: sp.Expr, case: MatrixCase) -> Iterator[Site]:
+        """Each slip of this kind at one place of ``e`` (:data:`Site`), in the order of the
+        candidates; the entry's sign (a sign's first candidate) is the place ``()``."""
+        edit = self.node_edit(case)
+        if edit is None:
+            return
+        if self.whole:
+            yield (), -e, None
+        for path, node in _walk(e):
+            if self.in_sums:  # placed at the term
+                if isinstance(node, sp.Add):
+                    for k, t in enumerate(node.args[:_MAX_CANDIDATES]):
+                        yield (*path, k), self.rewrite_term(t), t
+                continue
+            for new, part in edit(node):
+                yield path, new, part
+
+    def rewrite_term(self, t: sp.Expr) -> sp.Expr:
+        """The term ``t`` of a sum as this slip writes it (a kind ``in_sums``)."""
+        raise NotImplementedError
+
+    def again(self, node: sp.Basic, part: object) -> sp.Basic | None:
+        """The slip told by ``part`` made on ``node``, its place as another slip below it
+        rewrote it, for a slip that scales its place (a sign, a length left out); None
+        for the others."""
+        return None
+
+    def scale(self, part: object, case: MatrixCase) -> np.ndarray | float | None:
+        """What :meth:`again` multiplies its place by, at the sample (None: no such slip)."""
+        return None
 
     def message(self, case: MatrixCase, where: str, e: sp.Expr, part: object) -> str:
         raise NotImplementedError
@@ -239,6 +309,19 @@ class WrongSign(EntryMistake):
     slide of Mohan, Lecture 9, prints)."""
 
     kind, title = "wrong_sign", "wrong sign"
+    in_sums = whole = True
+
+    def node_edit(self, case: MatrixCase) -> Edit[object] | None:
+        return _flip
+
+    def rewrite_term(self, t: sp.Expr) -> sp.Expr:
+        return _negated(t)
+
+    def again(self, node: sp.Basic, part: object) -> sp.Basic | None:
+        return -node
+
+    def scale(self, part: object, case: MatrixCase) -> np.ndarray | float | None:
+        return -1.0
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
@@ -297,6 +380,9 @@ class SinCosSwapped(EntryMistake):
     kind, title = "sin_cos_swapped", "sin and cos swapped"
     writes_trig = True
 
+    def node_edit(self, case: MatrixCase) -> Edit[object] | None:
+        return _swap_one
+
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
     ) -> Iterator[tuple[sp.Expr, object]]:
@@ -317,6 +403,13 @@ class DroppedTerm(EntryMistake):
     """One term of a sum left out (at any depth: a term of a bracket)."""
 
     kind, title = "dropped_term", "a term is missing"
+    in_sums = True
+
+    def node_edit(self, case: MatrixCase) -> Edit[object] | None:
+        return _drop
+
+    def rewrite_term(self, t: sp.Expr) -> sp.Expr:
+        return _left_out(t)
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
@@ -344,6 +437,11 @@ def joint_index_candidates(
     ['cos(theta1 + theta2 + theta3)', 'cos(theta1 + theta2)', 'cos(theta1)', 'cos(theta2)',
      'cos(theta3)']
     """
+    yield from one_edit(e, _index_edit(joints))
+
+
+def _index_edit(joints: list[sp.Symbol]) -> Edit[tuple[sp.Basic, sp.Basic]]:
+    """The edit of :func:`joint_index_candidates` on one node."""
     where = {v: k for k, v in enumerate(joints)}
 
     def change(node: sp.Basic) -> Iterator[tuple[sp.Basic, tuple[sp.Basic, sp.Basic]]]:
@@ -365,7 +463,7 @@ def joint_index_candidates(
                 new = node.func(sp.Add(*[joints[j] for j in run]) + rest)
                 yield new, (new, node)
 
-    yield from one_edit(e, change)
+    return change
 
 
 class WrongJointIndex(EntryMistake):
@@ -373,6 +471,9 @@ class WrongJointIndex(EntryMistake):
 
     kind, title = "wrong_joint_index", "wrong joint index in a sum angle"
     writes_trig = True
+
+    def node_edit(self, case: MatrixCase) -> Edit[object] | None:
+        return _index_edit(_joints(case))
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
@@ -399,6 +500,11 @@ def length_candidates(
     >>> [str(c) for c, _ in length_candidates(a2 * sp.cos(t2) + 1, [t2])]
     ['cos(theta2) + 1']
     """
+    yield from one_edit(e, _length_edit(joints))
+
+
+def _length_edit(joints: list[sp.Symbol]) -> Edit[tuple[sp.Basic, sp.Basic]]:
+    """The edit of :func:`length_candidates` on one node."""
     skip = set(joints)
 
     def drop(node: sp.Basic) -> Iterator[tuple[sp.Basic, tuple[sp.Basic, sp.Basic]]]:
@@ -407,13 +513,22 @@ def length_candidates(
                 if f.is_Symbol and f not in skip:
                     yield node / f, (f, node)
 
-    yield from one_edit(e, drop)
+    return drop
 
 
 class MissingLength(EntryMistake):
     """A length left out of one product (``C2`` for ``a2 C2``)."""
 
     kind, title = "missing_length", "a length factor is missing"
+
+    def node_edit(self, case: MatrixCase) -> Edit[object] | None:
+        return _length_edit([r.variable for r in case.rows if r.variable is not None])
+
+    def again(self, node: sp.Basic, part: object) -> sp.Basic | None:
+        return node / cast(tuple[sp.Basic, sp.Basic], part)[0]  # length_candidates' pair
+
+    def scale(self, part: object, case: MatrixCase) -> np.ndarray | float | None:
+        return 1.0 / values(cast(tuple[sp.Basic, sp.Basic], part)[0], case.sample)
 
     def candidates(
         self, e: sp.Expr, case: MatrixCase | None = None
@@ -467,11 +582,16 @@ def explain_pairs(
     each entry named once; with ``same``, two slips of one kind instead (two terms with
     the wrong sign, two lengths left out).
 
-    The search composes the second slip on each candidate of the first, in the entries
-    still wrong (``case.wrong``) only, within ``budget`` candidates shared evenly by the
-    entries and the pairs of kinds; the values of one entry's candidates share their
-    unchanged subtrees (one memo per entry), so a candidate costs about the depth of its
-    edit.
+    In the entries still wrong (``case.wrong``) only, each entry is searched first by
+    what each slip changes (:func:`_by_differences`: the places of each kind are matched
+    by their changes against the answer minus the key, in the entry as the key writes it
+    and expanded, so a long entry is searched whole, not within a budget), then by
+    composing the second slip on each candidate of the first (the pairs whose changes do
+    not combine so: a sign inside a sum angle, sin and cos swapped for a whole angle),
+    within ``budget`` candidates shared evenly by the entries and the pairs of kinds; the
+    values of one entry's candidates share their unchanged subtrees (one memo per entry),
+    so a candidate costs about the depth of its edit. Either way a pair is named only
+    when both slips together give the answer at the sample.
 
     >>> import sympy as sp
     >>> from dhsym.checking.judging.key import Key, prepare
@@ -545,6 +665,11 @@ def _pair_at(
     # one the student did not write is not theirs); the key's own are always there
     seen: dict[sp.Basic, frozenset[sp.Basic]] = {}
     written = _trig(case.answer[p], seen)
+    for form in _forms(e):  # first by differences: slips at two places, or one place twice
+        hit = _by_differences(case, e, form, kinds, target, written, seen)
+        if hit is not None:
+            return hit
+        check_time()
     allowed = written | _trig(e, seen)
     memo: dict[object, np.ndarray] = {}
     firsts: dict[str, list[tuple[sp.Expr, object]]] = {}
@@ -578,3 +703,263 @@ def _pair_at(
                     return a, b, a.message(case, _HERE, e, part), b.message(case, _HERE, e, part2)
             check_time()
     return None
+
+
+#: The most places of one kind in one form of an entry, and the most pairs of places of
+#: one pair of kinds whose differences add up (built and evaluated to be sure).
+_SITES = 400
+_MATCHES = 16
+
+
+def _weights(
+    form: sp.Expr, case: MatrixCase, memo: dict[object, np.ndarray]
+) -> dict[tuple[int, ...], tuple[np.ndarray, np.ndarray | None]]:
+    """Each node's values at the sample, and how the entry changes with it (its weight: the
+    product of the factors beside it on the way up; None below a node that is no sum or
+    product, where the entry does not change in proportion)."""
+    out: dict[tuple[int, ...], tuple[np.ndarray, np.ndarray | None]] = {}
+    ones = np.ones(case.sample.size)
+
+    def visit(node: sp.Basic, path: tuple[int, ...], weight: np.ndarray | None) -> None:
+        out[path] = (values(node, case.sample, memo), weight)
+        if node.is_Atom:
+            return
+        if weight is None or not isinstance(node, (sp.Add, sp.Mul)):
+            for k, arg in enumerate(node.args):
+                visit(arg, (*path, k), None)
+            return
+        if isinstance(node, sp.Add):
+            for k, arg in enumerate(node.args):
+                visit(arg, (*path, k), weight)
+            return
+        own = [values(arg, case.sample, memo) for arg in node.args]
+        for k, arg in enumerate(node.args):
+            beside = (
+                np.prod([v for i, v in enumerate(own) if i != k], axis=0) if len(own) > 1 else ones
+            )
+            visit(arg, (*path, k), weight * beside)
+
+    visit(form, (), ones)
+    return out
+
+
+#: Slips made at once: path → (the node a slip writes there, or None with the slip that
+#: scales its place and what it changed, made on what the slips below wrote).
+Edits: TypeAlias = dict[tuple[int, ...], tuple[sp.Basic | None, "EntryMistake | None", object]]
+
+
+def _composed(node: sp.Basic, edits: Edits, path: tuple[int, ...] = ()) -> sp.Basic:
+    """``node`` with the slips ``edits`` made at once."""
+    here = edits.get(path)
+    if here is not None and here[0] is not None:
+        return here[0]
+    if any(len(q) > len(path) and q[: len(path)] == path for q in edits):
+        node = node.func(*(_composed(a, edits, (*path, k)) for k, a in enumerate(node.args)))
+    if here is not None and here[1] is not None:
+        again = here[1].again(node, here[2])
+        return node if again is None else again
+    return node
+
+
+def _inside(outer: tuple[int, ...], inner: tuple[int, ...]) -> bool:
+    """True when the place ``inner`` is ``outer`` or below it."""
+    return inner[: len(outer)] == outer
+
+
+def _by_differences(
+    case: MatrixCase,
+    e: sp.Expr,
+    form: sp.Expr,
+    kinds: list[tuple[EntryMistake, EntryMistake]],
+    target: np.ndarray,
+    written: frozenset[sp.Basic],
+    seen: dict[sp.Basic, frozenset[sp.Basic]],
+) -> tuple[EntryMistake, EntryMistake, str, str] | None:
+    """Two slips in ``form`` (the key's entry ``e`` as written, or expanded) found by what
+    each changes (``d1``, ``d2``: the entry's change under each slip alone). The answer
+    minus the key is ``d1 + d2`` when the slips are at two places of one sum (a slip's
+    change inside a product is its change times the factors beside it); ``d1 + d2 + d1 d2
+    / (w m)`` when they are in two factors of one product ``m`` (``w``: how the entry
+    changes with ``m``); ``d1 + s d2`` when the second is inside the place of a first that
+    scales it by ``s`` (a sign: -1; a length left out: 1/length); ``d`` of the one
+    rewrite when both rewrite one sine or cosine (``S23`` written ``C34``: swapped and
+    moved). Each pair whose changes fit is then built and must give the answer at the
+    sample, with the answer's sines and cosines, as a pair found by composing
+    (:func:`_pair_at`).
+
+    >>> import sympy as sp
+    >>> from dhsym.checking.judging.key import Key, prepare
+    >>> from dhsym.checking.judging.matrix_judge import check_matrix
+    >>> from dhsym.checking.reading.answer_value import read_answer_value
+    >>> from dhsym.checking.reading.limits import DEFAULT_ANSWER_LIMITS as LIMITS
+    >>> pk = prepare(Key.load("puma560", "J[4,3]"))  # -S1*S23: S23 swapped and moved
+    >>> r = check_matrix(pk, read_answer_value(pk.form(), "-S1*C34"), LIMITS)
+    >>> r.kinds
+    ('sin_cos_swapped', 'wrong_joint_index')
+    """
+    memo: dict[object, np.ndarray] = {}
+    nodes = _weights(form, case, memo)
+    change = target - nodes[()][0]
+    sites: dict[EntryMistake, list[tuple[Site, np.ndarray]]] = {}
+    for m in {m for pair in kinds for m in pair}:
+        found = []
+        for site in islice(m.sites(form, case), _SITES):
+            value, weight = nodes[site[0]]
+            if weight is not None:
+                found.append((site, weight * (values(site[1], case.sample, memo) - value)))
+        sites[m] = found
+    direction = np.random.default_rng(0).standard_normal(case.sample.size)
+    goal = float(change @ direction)
+    # the products the slips are in: product's path -> [(kind, site's index, factor)]
+    products: dict[tuple[int, ...], list[tuple[EntryMistake, int, int]]] = {}
+    for m, found in sites.items():
+        for i, ((path, _, _), _) in enumerate(found):
+            for k in range(len(path)):
+                if isinstance(_node_at(form, path[:k]), sp.Mul):
+                    products.setdefault(path[:k], []).append((m, i, path[k]))
+
+    def made(
+        a: EntryMistake, b: EntryMistake, i: int, j: int
+    ) -> tuple[EntryMistake, EntryMistake, str, str] | None:
+        (pa, na, part_a), _ = sites[a][i]
+        (pb, nb, part_b), _ = sites[b][j]
+        edits: Edits
+        if pa == pb:  # one slip where the other scales
+            again = a.again(nb, part_a)
+            edits = {pa: (again if again is not None else b.again(na, part_b), None, None)}
+        elif _inside(pa, pb):
+            edits = {pa: (None, a, part_a), pb: (nb, None, None)}
+        elif _inside(pb, pa):
+            edits = {pb: (None, b, part_b), pa: (na, None, None)}
+        else:
+            edits = {pa: (na, None, None), pb: (nb, None, None)}
+        cand = _composed(form, edits)
+        if _trig(cand, seen) != written or not close(values(cand, case.sample, memo), target):
+            return None
+        return a, b, a.message(case, _HERE, e, part_a), b.message(case, _HERE, e, part_b)
+
+    def first(
+        a: EntryMistake, b: EntryMistake, near: Iterable[tuple[int, int]]
+    ) -> tuple[EntryMistake, EntryMistake, str, str] | None:
+        tried = 0
+        for i, j in near:
+            if tried >= _MATCHES:
+                return None
+            if a is b and i == j:
+                continue
+            tried += 1
+            hit = made(a, b, int(i), int(j))
+            if hit is not None:
+                return hit
+        return None
+
+    for a, b in kinds:
+        check_time()
+        sa, sb = sites[a], sites[b]
+        if not sa or not sb:
+            continue
+        da = np.array([d for _, d in sa])
+        db = np.array([d for _, d in sb])
+        pa_, pb_ = da @ direction, db @ direction
+        scale = [np.abs(x[np.isfinite(x)]) for x in (pa_, pb_)]
+        tol = 1e-7 * (1.0 + abs(goal) + sum(float(x.max(initial=0.0)) for x in scale))
+        # two places of one sum
+        with np.errstate(invalid="ignore"):
+            near = np.argwhere(np.abs(pa_[:, None] + pb_[None, :] - goal) <= tol)
+
+        hit = first(
+            a,
+            b,
+            (
+                (i, j)
+                for i, j in near
+                if (a is not b or i < j) and _in_one_sum(form, sa[i][0][0], sb[j][0][0])
+            ),
+        )
+        if hit is not None:
+            return hit
+        # two factors of one product m: (w m + d1)(w m + d2) = w m (w m + change)
+        for path, inside in products.items():
+            value, weight = nodes[path]
+            if weight is None:
+                continue
+            wm = weight * value
+            k = int(np.argmax(np.where(np.isfinite(wm), np.abs(wm), -1.0)))
+            if not np.isfinite(wm[k]) or abs(wm[k]) < 1e-9:
+                continue
+            ia = [(i, f) for m, i, f in inside if m is a]
+            jb = [(j, f) for m, j, f in inside if m is b]
+            if not ia or not jb:
+                continue
+            xa = wm[k] + da[[i for i, _ in ia], k]
+            xb = wm[k] + db[[j for j, _ in jb], k]
+            want = wm[k] * (wm[k] + change[k])
+            size = 1e-7 * (abs(want) + np.abs(xa).max() * np.abs(xb).max() + 1.0)
+            with np.errstate(invalid="ignore"):
+                pairs = np.argwhere(np.abs(xa[:, None] * xb[None, :] - want) <= size)
+            hit = first(
+                a,
+                b,
+                (
+                    (ia[x][0], jb[y][0])
+                    for x, y in pairs
+                    if ia[x][1] != jb[y][1] and (a is not b or ia[x][0] < jb[y][0])
+                ),
+            )
+            if hit is not None:
+                return hit
+        # one slip inside the place of the other, which scales it: d1 + s d2
+        for outer, inner, projected, swapped in ((sa, sb, pb_, False), (sb, sa, pa_, True)):
+            if a is b and swapped:
+                continue
+            outer_kind = b if swapped else a
+            for i, ((place, _, part), d) in enumerate(outer):
+                s_ = outer_kind.scale(part, case)
+                if s_ is None:
+                    continue
+                with np.errstate(all="ignore"):
+                    want = float(((change - d) / s_) @ direction)
+                found = np.argwhere(np.abs(projected - want) <= tol).ravel().tolist()
+                near_ = [
+                    (j, i) if swapped else (i, j) for j in found if _inside(place, inner[j][0][0])
+                ]
+                hit = first(a, b, near_)
+                if hit is not None:
+                    return hit
+        if a is b or not (a.writes_trig and b.writes_trig):
+            continue
+        # one sine or cosine rewritten by both slips
+        edit = b.node_edit(case)
+        if edit is None:
+            continue
+        for (pa, na, part_a), _ in sa:
+            value, weight = nodes[pa]
+            for nb, part_b in edit(na):
+                assert weight is not None  # sa holds the places with a weight only
+                if not close(weight * (values(nb, case.sample, memo) - value), change):
+                    continue
+                cand = _composed(form, {pa: (nb, None, None)})
+                if _trig(cand, seen) == written and close(values(cand, case.sample, memo), target):
+                    return (
+                        a,
+                        b,
+                        a.message(case, _HERE, e, part_a),
+                        b.message(case, _HERE, e, part_b),
+                    )
+    return None
+
+
+def _in_one_sum(form: sp.Basic, x: tuple[int, ...], y: tuple[int, ...]) -> bool:
+    """True when the places ``x`` and ``y`` are in two terms of one sum (neither inside the
+    other, and the node where their paths part is a sum)."""
+    if _inside(x, y) or _inside(y, x):
+        return False
+    k = next(n for n, (u, v) in enumerate(zip(x, y)) if u != v)
+    return isinstance(_node_at(form, x[:k]), sp.Add)
+
+
+def _node_at(e: sp.Basic, path: tuple[int, ...]) -> sp.Basic:
+    """The node of ``e`` at ``path``."""
+    for k in path:
+        e = e.args[k]
+    return e

@@ -209,9 +209,10 @@ def diagnose_matrix(
 ) -> tuple[Diagnosis, ...]:
     """Explain a wrong matrix: one mistake for all wrong entries, else entry by entry,
     each mistake named once with the entries it explains, then two slips of the entries'
-    kinds together (:func:`~dhsym.checking.mistakes._entry_mistakes.explain_pairs`, within
-    :data:`PAIR_BUDGET` candidates) in the entries still unexplained: of two kinds, then
-    two of one kind (within another :data:`PAIR_BUDGET`).
+    kinds together (:func:`~dhsym.checking.mistakes._entry_mistakes.explain_pairs`: by
+    what each slip changes, then by composing within :data:`PAIR_BUDGET` candidates) in
+    the entries still unexplained: of two kinds, then two of one kind (within another
+    :data:`PAIR_BUDGET`).
 
     ``mistakes`` are the kinds of the question (``^iT_j``: :data:`MATRIX_MISTAKES`;
     ``J``: :data:`JACOBIAN_MISTAKES`; ``det J``: :data:`DET_MISTAKES`).
