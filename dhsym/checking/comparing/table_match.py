@@ -660,14 +660,8 @@ def _signed_frames(
     """
     seen: dict[tuple[float, ...], np.ndarray] = {}
     links: dict[tuple[int, tuple[float, ...]], np.ndarray] = {}
-    uses = [
-        [
-            j
-            for j, jt in enumerate(joints)
-            if any(jt[2] in e.free_symbols for e in r.params().values())
-        ]
-        for r in chain.rows
-    ]
+    cells = [set().union(*(e.free_symbols for e in r.params().values())) for r in chain.rows]
+    uses = [[j for j, jt in enumerate(joints) if jt[2] in names] for names in cells]
 
     def signed(signs: list[float]) -> np.ndarray:
         key = tuple(signs)
