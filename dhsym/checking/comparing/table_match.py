@@ -666,7 +666,10 @@ def _signed_frames(
     def signed(signs: list[float]) -> np.ndarray:
         key = tuple(signs)
         if key not in seen:
-            env = {**consts, **{jt[2]: s * Q[:, j] for j, (jt, s) in enumerate(zip(joints, signs))}}
+            env: dict[sp.Basic, np.ndarray | float] = {
+                **consts,
+                **{jt[2]: s * Q[:, j] for j, (jt, s) in enumerate(zip(joints, signs))},
+            }
             rows = []
             for k, row in enumerate(chain.rows):
                 at = (k, tuple(signs[j] for j in uses[k]))
