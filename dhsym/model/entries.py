@@ -6,6 +6,7 @@ q3 + pi/2
 
 from __future__ import annotations
 
+import math
 from typing import TypeAlias
 
 import sympy as sp
@@ -71,19 +72,30 @@ def _plainly_finite_real(expr: sp.Basic) -> bool:
 
     >>> [_plainly_finite_real(e) for e in (sp.Symbol("q1"), sp.Integer(0), -sp.pi / 2)]
     [True, True, True]
+    >>> [_plainly_finite_real(e) for e in (sp.pi**2 / 360, sp.pi**5, sp.sqrt(2) * sp.pi)]
+    [True, False, False]
     >>> [_plainly_finite_real(e) for e in (sp.Integer(10) ** 309, sp.I, 2 * sp.I, sp.oo)]
     [False, False, False, False]
     """
     if expr.is_Symbol:
         return True
-    if expr.is_Mul and len(expr.args) == 2 and expr.args[1].is_NumberSymbol:
+    if expr.is_Mul and len(expr.args) == 2 and _named_constant(expr.args[1]):
         expr = expr.args[0]
-    elif expr.is_NumberSymbol:
+    elif _named_constant(expr):
         return True
     return bool(expr.is_Rational) and abs(expr.p) < _SMALL and abs(expr.q) < _SMALL
 
 
+def _named_constant(expr: sp.Basic) -> bool:
+    """``pi``, ``E`` and such, or one to a small integer power (``pi**2``: a table read
+    in the wrong unit has ``pi**2/360``): a finite real number between 1e-4 and 1e4."""
+    if expr.is_Pow and expr.exp.is_Integer and 1 <= abs(expr.exp) <= _SMALL_POWER:
+        expr = expr.base
+    return bool(expr.is_NumberSymbol)
+
+
 _SMALL = 10**300
+_SMALL_POWER = 4
 
 
 #: The largest magnitude a double holds: beyond it a value is ``inf`` in any exported code.
@@ -156,14 +168,53 @@ def to_radians(expr: Expr, unit: AngleUnit | str) -> Expr:
 
 
 def check_radians(expr: Expr, *, row: int | None, field: str) -> None:
+    """Refuse a constant angle above 2π (a table in degrees read as radians).
+
+    >>> check_radians(sp.Symbol("q1") - sp.pi / 2, row=1, field="theta")
+    >>> check_radians(sp.Integer(90), row=2, field="alpha")
+    Traceback (most recent call last):
+    ...
+    dhsym.errors.TableError: row 2, field alpha: angle 90 is larger than 2*pi radians: ...
+    """
     for term in sp.Add.make_args(expr):
-        if not term.free_symbols and term.is_number and abs(float(term)) > 2 * float(sp.pi) + 1e-9:
+        if not term.free_symbols and term.is_number and _above_turn(term):
             raise TableError(
                 f"angle {term} is larger than 2*pi radians: is this table in degrees? "
                 "(set angles: deg)",
                 row=row,
                 field=field,
             )
+
+
+#: a constant angle above this many radians is refused (:func:`check_radians`)
+_TURN = 2 * float(sp.pi) + 1e-9
+
+
+def _above_turn(term: Expr) -> bool:
+    """``abs(float(term)) > _TURN`` for a constant term. A rational and a rational times
+    ``pi`` (the angles of tables) are compared in floats without a symbolic evaluation:
+    ``p / q`` is the rounded value ``float`` gives, and ``r * math.pi`` is within a few
+    units in the last place of it; a value that close to the bound is evaluated as before.
+
+    >>> [_above_turn(t) for t in (sp.pi / 2, -2 * sp.pi, sp.Integer(-7), sp.Rational(13, 2))]
+    [False, False, True, True]
+    """
+    r = term.args[0] if term.is_Mul and len(term.args) == 2 and term.args[1] is sp.pi else None
+    turns = None
+    try:
+        if term.is_Rational:
+            return bool(abs(term.p / term.q) > _TURN)
+        if term is sp.pi:
+            turns = 1.0
+        elif r is not None and r.is_Rational:
+            turns = abs(r.p / r.q)
+    except OverflowError:  # beyond a float: evaluated as before
+        turns = None
+    if turns is not None:
+        approx = turns * math.pi
+        if abs(approx - _TURN) > 1e-12 * _TURN:  # far from the bound: the same verdict
+            return approx > _TURN
+    return abs(float(term)) > _TURN
 
 
 def exact_decimal(value: object, max_digits: int | None = None) -> str | None:

@@ -242,6 +242,8 @@ def clean_text(text: object) -> str:
     'ok[31m red'
     """
     text = str(text)
+    if text.isprintable():  # no Cc or Cf character (nor a line break or another space)
+        return text
     if text.isascii():  # the ASCII control characters, the only Cc or Cf ones in ASCII
         return _ASCII_CONTROL.sub("", text)
     return "".join(

@@ -223,3 +223,17 @@ def test_clean_text_drops_terminal_escapes_and_bidi_but_keeps_layout():
     assert clean_text("a\x1b[2Jb\u202ec\u200bd\x00") == "a[2Jbcd"
     assert clean_text("x\ty\nz") == "x\ty\nz"
     assert clean_text(3) == "3"
+
+
+def test_clean_text_of_printable_text_is_the_text_for_every_character():
+    """A printable text (no Cc or Cf character) comes back as it is: the per-character
+    filter gives the same for every character of the Basic Multilingual Plane."""
+
+    def reference(text: str) -> str:
+        return "".join(
+            ch for ch in text if ch in "\n\t" or unicodedata.category(ch) not in ("Cc", "Cf")
+        )
+
+    for code in range(0x10000):
+        for text in (chr(code), f"a·π{chr(code)}b", f"x{chr(code)}"):
+            assert clean_text(text) == reference(text), hex(code)

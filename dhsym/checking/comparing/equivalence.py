@@ -118,7 +118,7 @@ class Sample:
 
         Without ``seed`` the points are fresh and unpredictable (seeded from OS entropy).
         """
-        syms = tuple(sorted(set(symbols), key=sp.default_sort_key))
+        syms = _ordered(set(symbols))
         table = _generator(seed).uniform(*TOLERANCES.symbol_range, size=(len(syms), size))
         for k, s in enumerate(syms):
             if fixed and s in fixed:
@@ -127,11 +127,24 @@ class Sample:
 
     def extended(self, symbols: Iterable[sp.Symbol], seed: int | None = None) -> Sample:
         """This sample plus (fresh) random values for symbols it does not have yet."""
-        new = sorted(set(symbols) - set(self.symbols), key=sp.default_sort_key)
+        new = _ordered(set(symbols) - set(self.symbols))
         if not new:
             return self
         extra = _generator(seed).uniform(*TOLERANCES.symbol_range, size=(len(new), self.size))
         return Sample(self.symbols + tuple(new), np.vstack([self.table, extra]), self.origin)
+
+
+def _ordered(symbols: set[sp.Symbol]) -> tuple[sp.Symbol, ...]:
+    """``symbols`` in sympy's canonical order (``default_sort_key``), which orders plain
+    symbols by name: sorted by name when all are plain symbols (a tenth of the cost).
+
+    >>> x, y, n = sp.Symbol("x"), sp.Symbol("y", real=True), sp.Dummy("n")
+    >>> _ordered({y, x}), _ordered({n, y}) == tuple(sorted({n, y}, key=sp.default_sort_key))
+    ((x, y), True)
+    """
+    if all(type(s) is sp.Symbol for s in symbols):
+        return tuple(sorted(symbols, key=lambda s: s.name))
+    return tuple(sorted(symbols, key=sp.default_sort_key))
 
 
 def values(

@@ -19,7 +19,7 @@ array([[2., 0.],
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Protocol
 
 import numpy as np
@@ -31,10 +31,12 @@ from dhsym.model.table import Convention, DHRow
 
 __all__ = [
     "EvaluationError",
+    "chained",
     "evaluate",
     "evaluate_many",
     "evaluate_or_nan",
     "frames",
+    "link_values",
     "word_product",
 ]
 
@@ -75,11 +77,38 @@ def evaluate_or_nan(
 
 def frames(table: Rows, env: Mapping[sp.Basic, np.ndarray | float], size: int) -> np.ndarray:
     """The DH frames ``^0T_k`` for k = 0 … n at every point: shape (size, n + 1, 4, 4)."""
-    out = np.empty((size, table.n + 1, 4, 4))
+    memo: dict[object, np.ndarray] = {}
+    return chained(
+        [link_values(row, table.convention, env, size, memo) for row in table.rows], size
+    )
+
+
+def link_values(
+    row: DHRow,
+    convention: Convention,
+    env: Mapping[sp.Basic, np.ndarray | float],
+    size: int,
+    memo: dict[object, np.ndarray] | None = None,
+) -> np.ndarray:
+    """One row's link transform ``^{i-1}T_i`` at every point: shape (size, 4, 4) (``memo``
+    as in :func:`~dhsym.kinematics.numeric.word_product`, for the same ``env``)."""
+    return word_product(link_word(row, convention), env, size, memo=memo)
+
+
+def chained(links: Sequence[np.ndarray], size: int) -> np.ndarray:
+    """The frames ``^0T_k`` (k = 0 … n) of the link transforms ``links`` (each of shape
+    (size, 4, 4)), multiplied in order: shape (size, n + 1, 4, 4).
+
+    >>> turn = np.array([[0.0, -1, 0, 0], [1, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> F = chained([turn[None], turn[None]], 1)
+    >>> F.shape, F[0, 2, :2, :2].round(12) + 0.0
+    ((1, 3, 4, 4), array([[-1.,  0.],
+           [ 0., -1.]]))
+    """
+    out = np.empty((size, len(links) + 1, 4, 4))
     current = np.broadcast_to(np.eye(4), (size, 4, 4)).copy()
     out[:, 0] = current
-    memo: dict[object, np.ndarray] = {}
-    for k, row in enumerate(table.rows, start=1):
-        current = current @ word_product(link_word(row, table.convention), env, size, memo=memo)
+    for k, link in enumerate(links, start=1):
+        current = current @ link
         out[:, k] = current
     return out

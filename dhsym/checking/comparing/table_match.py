@@ -49,7 +49,7 @@ from dhsym.kinematics.numeric import elementary_stack, numeric_rigid_inverse
 from dhsym.model.table import Convention, DHRow, DHTable, JointType
 
 from ..reading.limits import check_time
-from .sampled_frames import EvaluationError, evaluate, frames
+from .sampled_frames import EvaluationError, chained, evaluate, frames, link_values
 from .tolerances import TOLERANCES
 
 __all__ = [
@@ -643,6 +643,45 @@ class KeyFrames:
         return self.with_values if dict(values) == self.valued else None
 
 
+def _signed_frames(
+    chain: Chain,
+    joints: list[_Joint],
+    consts: Mapping[sp.Basic, float],
+    Q: np.ndarray,
+    size: int,
+) -> Callable[[list[float]], np.ndarray]:
+    """The frames of ``chain`` at the configurations ``Q`` with each joint variable's
+    values times its sign: ``frames(signs)``, as :func:`frames` computes them, for the one
+    comparison that asks for them (nothing is kept after it).
+
+    Each sign pattern's frames are computed once, and each row's link transforms once per
+    signs of the joint variables in its cells: a pattern that flips one joint computes
+    that joint's row again (and any row that names its variable), not every row.
+    """
+    seen: dict[tuple[float, ...], np.ndarray] = {}
+    links: dict[tuple[int, tuple[float, ...]], np.ndarray] = {}
+    cells = [set().union(*(e.free_symbols for e in r.params().values())) for r in chain.rows]
+    uses = [[j for j, jt in enumerate(joints) if jt[2] in names] for names in cells]
+
+    def signed(signs: list[float]) -> np.ndarray:
+        key = tuple(signs)
+        if key not in seen:
+            env: dict[sp.Basic, np.ndarray | float] = {
+                **consts,
+                **{jt[2]: s * Q[:, j] for j, (jt, s) in enumerate(zip(joints, signs))},
+            }
+            rows = []
+            for k, row in enumerate(chain.rows):
+                at = (k, tuple(signs[j] for j in uses[k]))
+                if at not in links:
+                    links[at] = link_values(row, chain.convention, env, size)
+                rows.append(links[at])
+            seen[key] = chained(rows, size)
+        return seen[key]
+
+    return signed
+
+
 def compare_tables(
     key: DHTable | Chain,
     answer: DHTable | Chain,
@@ -687,16 +726,7 @@ def compare_tables(
         **{jt[2]: Q[:, j] for j, jt in enumerate(jk)},
     }
 
-    def env_a(signs: list[float]) -> dict[sp.Basic, np.ndarray | float]:
-        return {**consts, **{jt[2]: s * Q[:, j] for j, (jt, s) in enumerate(zip(ja, signs))}}
-
-    seen: dict[tuple[float, ...], np.ndarray] = {}  # the answer's frames per sign pattern
-
-    def frames_a(signs: list[float]) -> np.ndarray:
-        key = tuple(signs)
-        if key not in seen:
-            seen[key] = frames(ac, env_a(signs), size)
-        return seen[key]
+    frames_a = _signed_frames(ac, ja, consts, Q, size)
 
     try:
         known = key_frames.get(values, seed) if key_frames is not None else None

@@ -24,6 +24,8 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from dhsym.notation.printers import Notation
+
 from ..comparing.equivalence import (
     EXACT_RTOL,
     Sample,
@@ -93,6 +95,7 @@ def _compare(
     near = np.asarray(close(av, kv, EXACT_RTOL, axis=0))
     entries: list[EntryResult] = []
     wrong: list[tuple[int, int]] = []
+    keyed: dict[sp.Basic, int] | None = None  # the key's entries, when an entry is wrong
     for i in range(expected.rows):
         for j in range(expected.cols):
             a, e = ans[i, j], expected[i, j]
@@ -125,7 +128,9 @@ def _compare(
             if proof or len(raw) > 160:  # right, or long: what the student wrote
                 a_text, a_latex = _shown(raw), ""
             else:  # wrong: the student's entry in the key's notation
-                a_text, a_latex = nota.text(a), nota.latex(a)
+                if keyed is None:
+                    keyed = {entry: n for n, entry in enumerate(expected)}
+                a_text, a_latex = _printed(a, keyed, part, nota)
             # a wrong entry's feedback shows the key's entry, converted once per key
             shown = part.expected_mathml.entry(k) if not proof else ""
             entries.append(
@@ -134,6 +139,28 @@ def _compare(
                 )
             )
     return entries, wrong, unknown
+
+
+def _printed(
+    a: sp.Basic, keyed: dict[sp.Basic, int], part: MatrixPart, nota: Notation
+) -> tuple[str, str]:
+    """A wrong entry in the key's notation, as (text, LaTeX): an entry that is one of the
+    key's entries (a transposed or swapped matrix) takes that entry's forms, printed when
+    the key was prepared by the same notation (the same text); else it is printed.
+
+    >>> from dhsym.checking.judging.key import Key, prepare
+    >>> pk = prepare(Key.load("planar2r", "T0_2"))
+    >>> part, nota = matrix_part(pk), pk.robot.notation
+    >>> keyed = {e: n for n, e in enumerate(part.expected)}
+    >>> _printed(part.expected[0, 1], keyed, part, nota) == part.expected_text[1]
+    True
+    >>> _printed(sp.Float(2.0), {sp.Integer(2): 0}, part, nota)  # equal in sympy, not the same
+    ('2.00000000000000', '2.0')
+    """
+    n = keyed.get(a)
+    if n is not None and not (a.has(sp.Float) or part.expected[n].has(sp.Float)):
+        return part.expected_text[n]
+    return nota.text(a), nota.latex(a)
 
 
 def _rounded(pk: PreparedKey, cell: ReadCell, sample: Sample, key: np.ndarray) -> str:

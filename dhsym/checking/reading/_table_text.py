@@ -152,7 +152,9 @@ def _constant(expr: sp.Expr) -> float:
 
 
 def _to_rad(expr: sp.Expr, degrees: bool, row: int, field: str) -> sp.Expr:
-    if not degrees or expr.has(sp.pi):  # a cell with pi is in radians whatever the table says
+    # a cell with pi is in radians whatever the table says; a joint variable alone is an
+    # angle in any unit (``to_radians`` gives it back as it is)
+    if not degrees or expr.is_Symbol or expr.has(sp.pi):
         return expr
     try:
         return to_radians(expr, "deg")

@@ -247,3 +247,34 @@ def test_row_verdicts_keep_no_row_that_depends_on_other_rows():
     assert not same_cells(wrong, t, values, verdicts=memo) and len(memo) == 3
     assert not memo.serves(Chain.of(t), values, 3) and not memo.serves(t, dict(values), 3)
     assert not memo.serves(t, values, 4)
+
+
+def test_signed_frames_are_the_frames_of_each_sign_pattern():
+    """The answer's frames per sign pattern, each row computed once per signs of the
+    variables in its cells, are those frames() computes for that pattern, also when a
+    row names another row's variable (a student's wrong table)."""
+    import itertools
+
+    import numpy as np
+
+    from dhsym.checking.comparing.sampled_frames import frames
+    from dhsym.checking.comparing.table_match import (
+        Chain,
+        _configurations,
+        _constant_env,
+        _joints,
+        _signed_frames,
+    )
+
+    q1, q2 = PUMA.variables[:2]
+    rows = list(PUMA.rows)
+    rows[2] = replace(rows[2], theta=rows[2].theta + q2, d=rows[2].d + q1)  # rows 1, 2 named
+    chain = Chain(tuple(rows), PUMA.convention)
+    joints = _joints(chain)
+    Q = _configurations(joints, 11)
+    consts = _constant_env(chain, chain, PUMA.value_map, 11)
+    signed = _signed_frames(chain, joints, consts, Q, len(Q))
+    for signs in itertools.product((1.0, -1.0), repeat=3):
+        pattern = [*signs, 1.0, 1.0, -1.0]
+        env = {**consts, **{jt[2]: s * Q[:, j] for j, (jt, s) in enumerate(zip(joints, pattern))}}
+        assert np.array_equal(signed(pattern), frames(chain, env, len(Q)))
