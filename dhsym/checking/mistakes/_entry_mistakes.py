@@ -800,6 +800,8 @@ def _by_differences(
     memo: dict[object, np.ndarray] = {}
     nodes = _weights(form, case, memo)
     change = target - nodes[()][0]
+    if not np.all(np.isfinite(change)):  # an answer without a finite value: no slips fit it
+        return None
     sites: dict[EntryMistake, list[tuple[Site, np.ndarray]]] = {}
     for m in {m for pair in kinds for m in pair}:
         found = []

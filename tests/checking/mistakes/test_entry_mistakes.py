@@ -291,3 +291,14 @@ def test_a_sum_of_changes_that_is_no_pair_of_slips_stays_unexplained():
     case = _entry_case("puma560", "T0_6[0,1]", "C1*S23*S5*C6 - C1*(C4*C6 + S4*C5*S6)")
     assert explain_pairs(case, ENTRY_MISTAKES) == ()
     assert explain_pairs(case, ENTRY_MISTAKES, same=True) == ()
+
+
+def test_an_answer_too_large_for_floats_is_no_pair_of_slips_and_warns_nothing():
+    """((x+1)^64+1)^64 … overflows at the sample points: the search by changes stops at
+    once (it warned "invalid value encountered in matmul" and compared NaNs)."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        r = check_answer(load_key("planar2r", "T0_2[0,3]"), "((((a1+1)^64+1)^64+1)^64)")
+    assert r.verdict is not Verdict.CORRECT
