@@ -666,12 +666,9 @@ def jacobian_blocks(
 
 # one entry by name, 1-based: d11, d_12, M_{21}, m_{1,2}
 _ENTRY_NAME = re.compile(r"\s*[A-Za-z]{1,3}_?\{?([1-9]),?([1-9])\}?\s*")
-# one entry of a vector by name, 1-based: g1, g_1, phi_1, \phi_{1}, φ1, tau1, τ_1
-_VECTOR_ENTRY = re.compile(r"\s*\\?[A-Za-z\u0370-\u03ff]{1,5}_?\{?([1-9])\}?\s*")
-
-
-# a column by name, 1-based: S1, S_2, \mathcal{S}_3, B_{1}
-_COLUMN_NAME = re.compile(r"\s*(?:\\mathcal\{)?[A-Za-z]{1,3}\}?_?\{?([1-9])\}?\s*")
+# a name with one 1-based index: a vector's entry (g1, g_1, \phi_{1}, φ1, τ_1) or a
+# column (S1, S_2, \mathcal{S}_3, B_{1})
+_ONE_INDEX = re.compile(r"\s*(?:\\mathcal\{)?\\?[A-Za-z\u0370-\u03ff]{1,5}\}?_?\{?([1-9])\}?\s*")
 
 
 def _named_columns(text: str, shapes: tuple[tuple[int, int], ...]) -> list[list[str]] | None:
@@ -693,7 +690,7 @@ def _named_columns(text: str, shapes: tuple[tuple[int, int], ...]) -> list[list[
     columns: dict[int, list[str]] = {}
     for statement in statements:
         name, eq, value = statement.partition("=")
-        m = _COLUMN_NAME.fullmatch(name)
+        m = _ONE_INDEX.fullmatch(name)
         if not eq or m is None or int(m[1]) in columns or "=" in value:
             return None
         cells = _plain_cells(value.strip().rstrip(","), frozenset({1}) | {c for _, c in shapes})
@@ -732,7 +729,7 @@ def _named_entries(
         if not names:
             return None
         for name in names:
-            m = _VECTOR_ENTRY.fullmatch(name) if vector else None
+            m = _ONE_INDEX.fullmatch(name) if vector else None
             at = (int(m[1]), 1) if m else _entry_at(name)
             if at is None or at in named:
                 return None
